@@ -1,0 +1,38 @@
+include(GoogleTest)
+# Helpers shared by every module.
+#
+# bounce_library(NAME SOURCES ... DEPS ...): a static library bounce_NAME whose headers are
+# included from the repository root ("engine/core/error.hpp").
+function(bounce_library name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;DEPS" ${ARGN})
+  add_library(bounce_${name} STATIC ${ARG_SOURCES})
+  target_include_directories(bounce_${name} PUBLIC ${PROJECT_SOURCE_DIR})
+  target_link_libraries(bounce_${name} PUBLIC ${ARG_DEPS})
+  target_compile_options(bounce_${name} PRIVATE -Wall -Wextra)
+  target_compile_definitions(bounce_${name} PUBLIC
+    BOUNCE_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
+    BOUNCE_SHADER_DIR="${PROJECT_BINARY_DIR}/shaders")
+endfunction()
+
+# bounce_test(NAME SOURCES ... DEPS ... [GPU]): a GoogleTest executable registered with ctest,
+# one ctest entry per TEST(). GPU tests run with Vulkan validation on (any validation error
+# fails the test: see engine/gpu) and a build-local Mesa shader cache.
+function(bounce_test name)
+  cmake_parse_arguments(ARG "GPU" "TIMEOUT" "SOURCES;DEPS" ${ARGN})
+  add_executable(test_${name} ${ARG_SOURCES})
+  target_link_libraries(test_${name} PRIVATE ${ARG_DEPS} GTest::gtest GTest::gtest_main)
+  target_compile_options(test_${name} PRIVATE -Wall -Wextra)
+  target_compile_definitions(test_${name} PRIVATE
+    BOUNCE_SHARED_DIR="${PROJECT_SOURCE_DIR}/../shared"
+    BOUNCE_TEST_OUT="${PROJECT_BINARY_DIR}/test-out")
+  if(NOT ARG_TIMEOUT)
+    set(ARG_TIMEOUT 600)
+  endif()
+  set(env "BOUNCE_VALIDATION=1" "MESA_SHADER_CACHE_DIR=${PROJECT_BINARY_DIR}/mesa-cache")
+  if(ARG_GPU)
+    list(APPEND env "BOUNCE_GPU_TEST=1")
+  endif()
+  gtest_discover_tests(test_${name}
+    DISCOVERY_MODE PRE_TEST
+    PROPERTIES ENVIRONMENT "${env}" TIMEOUT ${ARG_TIMEOUT})
+endfunction()
