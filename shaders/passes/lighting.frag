@@ -1,0 +1,52 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+// Deferred direct lighting: Lambertian reflection of every punctual light plus emission.
+//   L_o(x) = ρ(x)/π · Σ_i E_i(x) (n·l_i)₊ V_i(x) + L_e(x)          [radiance, linear HDR]
+// where E_i is the light's irradiance at normal incidence (lights.glsl) and V_i its shadow term.
+#include "frame.glsl"
+#include "gbuffer.glsl"
+
+layout(set = 0, binding = 0) uniform FrameUbo { Camera camera; };
+layout(set = 1, binding = 0) uniform sampler2D gAlbedo;
+layout(set = 1, binding = 1) uniform sampler2D gNormal;
+layout(set = 1, binding = 2) uniform sampler2D gEmissive;
+layout(set = 1, binding = 3) uniform sampler2D gDepth;
+layout(set = 1, binding = 4) uniform sampler2DArrayShadow shadowAtlas;
+layout(std430, set = 1, binding = 5) readonly buffer ShadowMatrices { mat4 shadowMatrices[]; };
+#include "shadow.glsl"
+layout(std430, set = 1, binding = 6) readonly buffer Lights { Light lights[]; };
+
+layout(push_constant) uniform Push {
+  vec4 background;  // rgb radiance where nothing was drawn
+  uint lightCount;
+  uint shadowsOn;   // 0 when the level's effects do not name `shadows`
+} pc;
+
+layout(location = 0) in vec2 inUv;
+layout(location = 0) out vec4 outRadiance;
+
+const float kInvPi = 0.31830988618379067;
+
+void main() {
+  ivec2 pixel = ivec2(gl_FragCoord.xy);
+  float depth = texelFetch(gDepth, pixel, 0).r;
+  if (depth >= 1.0) {
+    outRadiance = vec4(pc.background.rgb, 1.0);
+    return;
+  }
+  vec3 albedo = texelFetch(gAlbedo, pixel, 0).rgb;
+  vec3 n = texelFetch(gNormal, pixel, 0).xyz;
+  vec3 p = worldFromDepth(camera.invViewProj, (vec2(pixel) + 0.5) * camera.resolution.zw, depth);
+  vec3 irradiance = vec3(0.0);
+  for (uint i = 0u; i < pc.lightCount; ++i) {
+    vec3 l;
+    float dist;
+    vec3 e = incidentIrradiance(lights[i], p, l, dist);
+    float cosTheta = max(dot(n, l), 0.0);
+    if (cosTheta <= 0.0) continue;
+    float v = pc.shadowsOn != 0u ? shadowVisibility(lights[i], p, n, dist) : 1.0;
+    irradiance += e * cosTheta * v;
+  }
+  vec3 radiance = albedo * kInvPi * irradiance + texelFetch(gEmissive, pixel, 0).rgb;
+  outRadiance = vec4(radiance, 1.0);
+}
