@@ -1,0 +1,63 @@
+#include <gtest/gtest.h>
+
+#include "engine/core/error.hpp"
+#include "game/cli.hpp"
+
+using namespace bounce;
+
+namespace {
+cli::CommandSpec profileSpec() {
+  return {"profile", "LEVEL [options]", "per-pass GPU cost",
+          {{"--frames", "N", "frames"}, {"--resolution", "WxH", "size"}, {"--effects", "LIST", "effects"},
+           {"--no-cull", "", "keep all passes"}},
+          1, 1};
+}
+cli::Args run(std::vector<const char*> argv) {
+  return cli::parse(profileSpec(), static_cast<int>(argv.size()), argv.data(), 0);
+}
+std::string errorOf(std::vector<const char*> argv) {
+  try {
+    auto a = run(argv);
+    a.positiveInt("--frames", 1);
+    a.resolution("--resolution");
+    a.list("--effects");
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+}  // namespace
+
+TEST(Cli, ParsesValuesFlagsAndPositionals) {
+  auto a = run({"level.json", "--frames", "30", "--resolution=640x360", "--effects", "direct,shadows", "--no-cull"});
+  EXPECT_EQ(a.positional, std::vector<std::string>{"level.json"});
+  EXPECT_EQ(a.positiveInt("--frames", 1), 30);
+  EXPECT_EQ(a.resolution("--resolution"), (std::pair{640, 360}));
+  EXPECT_EQ(*a.list("--effects"), (std::vector<std::string>{"direct", "shadows"}));
+  EXPECT_TRUE(a.has("--no-cull"));
+  EXPECT_EQ(a.positiveInt("--absent", 7), 7);
+}
+
+TEST(Cli, BadInputIsOneLineNamingCommandAndOption) {
+  EXPECT_EQ(errorOf({"l.json", "--frames", "0"}),
+            "bounce profile: --frames: '0' is not a valid count (expected a positive integer)");
+  EXPECT_EQ(errorOf({"l.json", "--frames", "12abc"}),
+            "bounce profile: --frames: '12abc' is not a valid count (expected a positive integer)");
+  EXPECT_EQ(errorOf({"l.json", "--resolution", "640by360"}),
+            "bounce profile: --resolution: '640by360' is not a resolution (expected WIDTHxHEIGHT, each 1..16384)");
+  EXPECT_EQ(errorOf({"l.json", "--effects", "direct,,shadows"}),
+            "bounce profile: --effects: empty item in 'direct,,shadows' (expected a comma-separated list)");
+  EXPECT_EQ(errorOf({"l.json", "--bogus"}),
+            "bounce profile: --bogus: unknown option (expected one of the options in 'bounce profile --help')");
+  EXPECT_EQ(errorOf({"l.json", "--frames"}), "bounce profile: --frames: missing value (expected N)");
+  EXPECT_EQ(errorOf({}), "bounce profile: arguments: got 0 argument(s) (expected usage: bounce profile LEVEL [options])");
+  EXPECT_EQ(errorOf({"l.json", "--no-cull=1"}), "bounce profile: --no-cull: takes no value");
+}
+
+TEST(Cli, HelpSkipsPositionalCheckAndListsOptions) {
+  auto a = run({"--help"});
+  EXPECT_TRUE(a.has("--help"));
+  auto text = cli::helpText(profileSpec());
+  EXPECT_NE(text.find("usage: bounce profile LEVEL [options]"), std::string::npos);
+  EXPECT_NE(text.find("--resolution WxH"), std::string::npos);
+}
