@@ -7,14 +7,17 @@ namespace bounce::rg {
 
 namespace {
 
-std::string quoted(const std::string& s) {
-  std::string out = "\"";
+// Escape a name for a DOT string (quotes and backslashes; "\\n" added by the caller is a line break).
+std::string escaped(const std::string& s) {
+  std::string out;
   for (char c : s) {
     if (c == '"' || c == '\\') out += '\\';
     out += c;
   }
-  return out + "\"";
+  return out;
 }
+
+std::string quoted(const std::string& s) { return "\"" + escaped(s) + "\""; }
 
 std::string versionNode(std::uint32_t resource, std::uint32_t version) {
   return "r" + std::to_string(resource) + "_v" + std::to_string(version);
@@ -45,7 +48,7 @@ std::string RenderGraph::toDot() {
       std::int32_t producer = res.producers[v];
       bool culled = producer >= 0 && passes_[producer].culled;
       if (v == 0 && !res.imported) continue;  // a transient's empty version 0 is not data
-      out << "  " << versionNode(r, v) << " [label=" << quoted(res.name + "\\nv" + std::to_string(v) + "\\n" + detail)
+      out << "  " << versionNode(r, v) << " [label=" << "\"" << escaped(res.name) << "\\nv" << v << "\\n" << detail << "\""
           << ", shape=ellipse";
       if (culled) out << ", style=\"dashed\", color=grey60, fontcolor=grey60";
       else if (res.imported) out << ", style=bold";
@@ -56,15 +59,14 @@ std::string RenderGraph::toDot() {
   for (std::uint32_t p = 0; p < passes_.size(); ++p)
     for (const auto& a : passes_[p].accesses) {
       std::string usage = quoted(usageName(a.usage));
-      const char* grey = passes_[p].culled ? ", style=dashed, color=grey60" : "";
+      const bool culled = passes_[p].culled;
+      std::string style = culled ? ", style=dashed, color=grey60" : (a.write ? ", color=red" : ", color=darkgreen");
       if (a.write) {
-        out << "  p" << p << " -> " << versionNode(a.resource, a.version + 1) << " [label=" << usage
-            << ", color=red" << grey << "];\n";
+        out << "  p" << p << " -> " << versionNode(a.resource, a.version + 1) << " [label=" << usage << style << "];\n";
         if (keepsContents(resources_[a.resource], a.version))
           out << "  " << versionNode(a.resource, a.version) << " -> p" << p << " [style=dotted];\n";
       } else {
-        out << "  " << versionNode(a.resource, a.version) << " -> p" << p << " [label=" << usage
-            << ", color=darkgreen" << grey << "];\n";
+        out << "  " << versionNode(a.resource, a.version) << " -> p" << p << " [label=" << usage << style << "];\n";
       }
     }
   out << "}\n";

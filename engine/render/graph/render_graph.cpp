@@ -30,6 +30,7 @@ void RenderGraph::rollback(const Checkpoint& cp) {
 }
 
 std::uint32_t RenderGraph::addResource(ResourceNode node) {
+  if (node.name.empty()) throw InternalError("render graph: a resource needs a name (errors and the DOT dump use it)");
   resources_.push_back(std::move(node));
   invalidate();
   return static_cast<std::uint32_t>(resources_.size() - 1);
