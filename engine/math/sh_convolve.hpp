@@ -7,9 +7,10 @@
 // (Ramamoorthi & Hanrahan 2001, "An Efficient Representation for Irradiance Environment Maps",
 // eq. 8–9, there written Â_l = √(4π/(2l+1)) A_l): Â_0 = π, Â_1 = 2π/3, Â_2 = π/4, Â_3 = 0.
 // Â_3 = 0 means band 3 of radiance never reaches irradiance, and band 3 of radiance cannot be
-// recovered from irradiance. Â_4 = -π/24 is the first term an order-3 (9 coefficient) irradiance
-// drops; for radiance bounded by L_max the truncation error is at most a few percent of π·L_max
-// (bound in sh_test's IrradianceTruncationBound).
+// recovered from irradiance. Â_4 = -π/24 is the first term a 9-coefficient irradiance drops.
+// Truncation bound (Cauchy–Schwarz plus the addition theorem Σ_m Y_lm(n)² = (2l+1)/(4π)):
+//   |E(n) - E_{l<=2}(n)| <= √(Σ_{l>=4} Â_l² (2l+1)/(4π)) · ‖L - L_{l<=3}‖₂ ≈ 0.128 · ‖L - L_{l<=3}‖₂,
+// checked against brute force in tests/unit/math/sh_convolve_test.cpp.
 #include <span>
 #include <vector>
 

@@ -3,7 +3,7 @@
 //
 // Three estimators, from cheapest-to-write to exact:
 //  - projectMonteCarlo: stratified uniform sphere samples (n×n jittered strata, deterministic seed),
-//    error O(1/n^1.5) for smooth f; for arbitrary callables (a bake's ray-cast radiance);
+//    error ~1/N for smooth f in 2D (Owen 1997); for arbitrary callables (a bake's ray-cast radiance);
 //  - projectQuadrature: exact for f a polynomial of degree <= `degree` (band-limited f, products);
 //  - projectCubeMap: texel values times their exact solid angles.
 // V is the value type: double (scalar) or glm::dvec3 (RGB).

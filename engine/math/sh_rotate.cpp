@@ -32,7 +32,9 @@ double V(int m, int n, int l, const Band& r1, const Band& prev) {
     const double d = m == 1 ? 1.0 : 0.0;
     return P(1, m - 1, n, l, r1, prev) * std::sqrt(1.0 + d) - P(-1, -m + 1, n, l, r1, prev) * (1.0 - d);
   }
-  // m < 0: the 1998 correction; the √2 must pair with the δ_{m,-1} term as in the m > 0 case.
+  // m < 0: the printed versions disagree on which term carries √(1+δ); it must pair with the
+  // P(-1, ...) term to mirror the m > 0 case (as google/spherical-harmonics derives). The tests
+  // against the projection of the rotated function confirm this form.
   const double d = m == -1 ? 1.0 : 0.0;
   return P(1, m + 1, n, l, r1, prev) * (1.0 - d) + P(-1, -m - 1, n, l, r1, prev) * std::sqrt(1.0 + d);
 }

@@ -9,8 +9,8 @@
 // rows and columns permuted to (y, z, x): M¹[m][n] = R[p(m)][p(n)], p(-1) = y, p(0) = z, p(1) = x.
 // Bands l >= 2 follow from bands 1 and l-1 by the recurrence of Ivanic & Ruedenberg, "Rotation
 // Matrices for Real Spherical Harmonics. Direct Determination by Recursion", J. Phys. Chem. 100
-// (1996) 6342, Table 2 and eq. 8.1, with the corrections of J. Phys. Chem. A 102 (1998) 9099
-// (the m < 0 branch of V as fixed there). Their real SH have no Condon–Shortley phase, the
+// (1996) 6342, Tables 1–2 and eq. 8.1, with the corrections of J. Phys. Chem. A 102 (1998) 9099
+// (the m < 0 branch of V, see sh_rotate.cpp). Their real SH have no Condon–Shortley phase, the
 // convention of sh_eval.hpp, so the recurrence is used as published with no sign changes.
 // Tests check it against rotate-then-project and against the band-1 vector rotation.
 #include <array>
@@ -72,6 +72,9 @@ class Rotation {
   std::array<T, 25> band2_{};
   std::array<T, 49> band3_{};
 };
+
+using Rotationd = Rotation<double>;
+using Rotationf = Rotation<float>;
 
 // Zonal rotation shortcut: a function symmetric about axis d with zonal coefficients z_l
 // (the m = 0 coefficients it would have with axis +Z) has f_lm = √(4π/(2l+1)) z_l Y_lm(d)

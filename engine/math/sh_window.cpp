@@ -11,7 +11,7 @@ namespace bounce::sh {
 
 double windowWeight(Window kind, int l, double width) {
   if (l < 0 || !(width > 0.0)) throw InternalError("sh::windowWeight: band " + std::to_string(l) + " width " + std::to_string(width));
-  if (l == 0) return 1.0;
+  if (l == 0 || std::isinf(width)) return 1.0;
   if (l >= width) return 0.0;
   const double x = M_PI * l / width;  // finite width here
   switch (kind) {

@@ -37,9 +37,11 @@ std::vector<V> applyWindow(std::span<const V> coeffs, Window kind, double width)
 // Smallest value of Σ c_i Y_i(d) over `directions` (unit vectors).
 double minValue(std::span<const double> coeffs, std::span<const glm::dvec3> directions);
 
-// The largest width W (least filtering) for which the windowed reconstruction is >= -tolerance
-// along every direction, found by bisection on W in [1, 64] to 1e-4 relative, as Filament does
-// (the minimum is close to monotone in W; the result is checked, not assumed):
+// A width W (as little filtering as found) for which the windowed reconstruction is
+// >= -tolerance along every direction: bisection on W in [1, 64] to 1e-4 relative, as Filament's
+// cmgen does. Bisection finds a W at which the minimum crosses -tolerance; if the minimum is not
+// monotone in W a larger valid W may exist, so the result can be conservative but is never
+// wrong (every W returned was checked):
 //  - +inf when the coefficients are already non-negative along `directions` (no window needed);
 //  - nullopt when even band 0 alone is below -tolerance (c_0 < 0: no window can help).
 std::optional<double> minimalWindow(std::span<const double> coeffs, Window kind,
