@@ -2,6 +2,10 @@
 // Self-test of sh.glsl: one invocation per direction writes the 16 basis values, the RGB
 // reconstruction of 16 coefficients, and the irradiance from 4, 9 and 16 coefficients. The GPU
 // cross-check test compares these with engine/math.
+// std430 layouts (bytes): binding 0 = {uint count; uint pad[3];} then Input[count], Input = 272
+// (dir vec4 at 0, coeff[16] vec4 at 16); binding 1 = Output[count], Output = 128 (basis[16]
+// floats at 0, evalSum at 64, irradiance4 at 80, irradiance9 at 96, irradiance16 at 112).
+// Dispatch ceil(count / 64) groups.
 #extension GL_GOOGLE_include_directive : require
 #include "sh.glsl"
 
