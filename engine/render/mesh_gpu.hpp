@@ -1,0 +1,23 @@
+#pragma once
+// A cooked mesh on the GPU: one interleaved vertex buffer (MeshVertex) and one uint32 index
+// buffer holding every primitive, each primitive a range of indices.
+#include <cstdint>
+#include <vector>
+
+#include "engine/gpu/buffer.hpp"
+
+namespace bounce::render {
+
+struct MeshGpu {
+  struct Primitive {
+    std::uint32_t firstIndex = 0;
+    std::uint32_t indexCount = 0;
+    std::int32_t vertexOffset = 0;
+    std::uint32_t material = 0;  // index into the asset's materials
+  };
+  gpu::Buffer vertices;
+  gpu::Buffer indices;
+  std::vector<Primitive> primitives;
+};
+
+}  // namespace bounce::render

@@ -1,0 +1,50 @@
+#include "engine/render/passes/gbuffer_pass.hpp"
+
+#include "engine/render/mesh_gpu.hpp"
+#include "engine/render/passes/rendering.hpp"
+
+namespace bounce::render {
+
+const GBuffer& addGBufferPass(rg::RenderGraph& graph, const PassContext* pc, VkExtent2D extent) {
+  const auto& out = graph.addPass<GBuffer>(
+      "gbuffer",
+      [&](rg::Builder& b, GBuffer& d) {
+        auto desc = [&](rg::Format f) { return rg::TextureDesc{extent.width, extent.height, 1, 1, 1, f, false}; };
+        d.albedo = b.write(b.create<rg::Texture>("gbuffer.albedo", desc(rg::Format::RGBA8_UNORM)), rg::Usage::ColorAttachment);
+        d.normal = b.write(b.create<rg::Texture>("gbuffer.normal", desc(rg::Format::RGBA16F)), rg::Usage::ColorAttachment);
+        d.emissive = b.write(b.create<rg::Texture>("gbuffer.emissive", desc(rg::Format::RGBA16F)), rg::Usage::ColorAttachment);
+        d.entity = b.write(b.create<rg::Texture>("gbuffer.entity", desc(rg::Format::R32_UINT)), rg::Usage::ColorAttachment);
+        d.depth = b.write(b.create<rg::Texture>("gbuffer.depth", desc(rg::Format::D32F)), rg::Usage::DepthAttachment);
+      },
+      [pc, extent](const GBuffer& d, const rg::PassResources& res, rg::CommandContext& c) {
+        VkCommandBuffer cmd = pc->cmd(c);
+        auto view = [&](rg::Handle<rg::Texture> h) { return pc->backend->image(res.texture(h)).view(); };
+        Attachment colors[4] = {{view(d.albedo)}, {view(d.normal)}, {view(d.emissive)}, {view(d.entity)}};
+        Attachment depth{view(d.depth)};
+        depth.clear.depthStencil = {1.0f, 0};
+        beginRendering(*pc->gpu, cmd, extent, colors, &depth);
+        const auto& p = pc->pipelines->gbuffer;
+        p.bind(cmd);
+        p.bindSet(cmd, 0, pc->frameSet);
+        for (const DrawItem& draw : pc->world->draws) {
+          const auto& prim = draw.mesh->primitives[draw.primitive];
+          p.bindSet(cmd, 1, draw.material);
+          VkDeviceSize offset = 0;
+          VkBuffer vb = draw.mesh->vertices.handle();
+          vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
+          vkCmdBindIndexBuffer(cmd, draw.mesh->indices.handle(), 0, VK_INDEX_TYPE_UINT32);
+          p.push(cmd, draw.instance);
+          vkCmdDrawIndexed(cmd, prim.indexCount, 1, prim.firstIndex, prim.vertexOffset, 0);
+        }
+        pc->gpu->cmdEndRendering(cmd);
+      });
+  auto& bb = graph.blackboard();
+  bb.put("gbuffer.albedo", out.albedo);
+  bb.put("gbuffer.normal", out.normal);
+  bb.put("gbuffer.emissive", out.emissive);
+  bb.put("gbuffer.entity", out.entity);
+  bb.put("gbuffer.depth", out.depth);
+  return out;
+}
+
+}  // namespace bounce::render

@@ -1,0 +1,46 @@
+#include "engine/render/passes/shadow_pass.hpp"
+
+#include "engine/render/mesh_gpu.hpp"
+#include "engine/render/passes/rendering.hpp"
+
+namespace bounce::render {
+
+const ShadowAtlas& addShadowPass(rg::RenderGraph& graph, const PassContext* pc, std::uint32_t resolution) {
+  const auto layers = static_cast<std::uint32_t>(pc->world->shadowLayers.size());
+  const auto& out = graph.addPass<ShadowAtlas>(
+      "shadow",
+      [&](rg::Builder& b, ShadowAtlas& d) {
+        rg::TextureDesc desc{resolution, resolution, 1, layers, 1, rg::Format::D32F, false};
+        d.atlas = b.write(b.create<rg::Texture>("shadow.atlas", desc), rg::Usage::DepthAttachment);
+      },
+      [pc, resolution, layers](const ShadowAtlas& d, const rg::PassResources& res, rg::CommandContext& c) {
+        VkCommandBuffer cmd = pc->cmd(c);
+        gpu::Image& atlas = pc->backend->image(res.texture(d.atlas));
+        const auto& p = pc->pipelines->shadow;
+        for (std::uint32_t layer = 0; layer < layers; ++layer) {
+          Attachment depth{pc->frameView(atlas, VK_IMAGE_VIEW_TYPE_2D, layer, 1)};
+          depth.clear.depthStencil = {1.0f, 0};
+          beginRendering(*pc->gpu, cmd, {resolution, resolution}, {}, &depth);
+          p.bind(cmd);
+          p.bindSet(cmd, 0, pc->frameSet);
+          vkCmdSetDepthBias(cmd, kShadowDepthBiasConstant, 0.0f, kShadowDepthBiasSlope);
+          for (const DrawItem& draw : pc->world->draws) {
+            const auto& prim = draw.mesh->primitives[draw.primitive];
+            VkDeviceSize offset = 0;
+            VkBuffer vb = draw.mesh->vertices.handle();
+            vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
+            vkCmdBindIndexBuffer(cmd, draw.mesh->indices.handle(), 0, VK_INDEX_TYPE_UINT32);
+            struct {
+              std::uint32_t instance, layer;
+            } push{draw.instance, layer};
+            p.push(cmd, push);
+            vkCmdDrawIndexed(cmd, prim.indexCount, 1, prim.firstIndex, prim.vertexOffset, 0);
+          }
+          pc->gpu->cmdEndRendering(cmd);
+        }
+      });
+  graph.blackboard().put("shadow.atlas", out.atlas);
+  return out;
+}
+
+}  // namespace bounce::render

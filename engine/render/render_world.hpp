@@ -1,0 +1,44 @@
+#pragma once
+// RenderWorld: everything one frame draws, extracted from the ECS by GpuScene::extract(). Passes
+// read only this (and the graph's resources), never the registry: the data flow of DESIGN.md.
+#include <set>
+#include <string>
+#include <vector>
+
+#include <vulkan/vulkan.h>
+
+#include "engine/render/gpu_types.hpp"
+
+namespace bounce::render {
+
+struct MeshGpu;
+
+struct DrawItem {
+  const MeshGpu* mesh = nullptr;   // vertex (position, normal, uv0: 32 bytes) + uint32 index buffers
+  std::uint32_t primitive = 0;     // index into mesh->primitives
+  std::uint32_t instance = 0;      // index into RenderWorld::instances
+  VkDescriptorSet material = VK_NULL_HANDLE;  // G-buffer set 1: base colour + emissive textures
+  std::uint32_t entity = 0;        // entity index (per-object profiling, id buffer)
+  bool dynamic = false;
+};
+
+// One shadow-atlas layer: the light view-projection that rendered it.
+struct ShadowLayer {
+  glm::mat4 viewProj;
+  std::uint32_t light = 0;
+};
+
+struct RenderWorld {
+  CameraGpu camera{};
+  float cameraFar = 100.0f;
+  std::vector<InstanceGpu> instances;
+  std::vector<DrawItem> draws;
+  std::vector<LightGpu> lights;
+  std::vector<ShadowLayer> shadowLayers;  // empty when no light casts shadows or `shadows` is off
+  glm::vec3 background{0.0f};
+  glm::vec3 sceneMin{0.0f}, sceneMax{0.0f};  // world bounds of everything drawn
+  std::set<std::string> effects;             // the level's effects (after --effects)
+  bool has(const std::string& effect) const { return effects.count(effect) != 0; }
+};
+
+}  // namespace bounce::render
