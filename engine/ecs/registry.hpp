@@ -48,6 +48,8 @@ class Registry {
   Registry() = default;
   Registry(const Registry&) = delete;
   Registry& operator=(const Registry&) = delete;
+  Registry(Registry&&) = default;  // not while a view iterates it
+  Registry& operator=(Registry&&) = default;
 
   // A new entity: the lowest-cost free slot (most recently freed first), else a new slot.
   Entity create();

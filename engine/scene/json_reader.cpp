@@ -75,7 +75,10 @@ class Tracker {
 // and its "; last read: '…'" echo (which may hold the invalid bytes themselves).
 std::string cleanParseMessage(const std::string& m) {
   std::string s = m;
-  if (auto c = s.find(": "); c != std::string::npos && s.rfind("[json.exception", 0) == 0) s = s.substr(c + 2);
+  if (s.rfind("[json.exception", 0) == 0)
+    if (auto c = s.find("] "); c != std::string::npos) s = s.substr(c + 2);
+  if (s.rfind("parse error", 0) == 0)
+    if (auto c = s.find(": "); c != std::string::npos) s = s.substr(c + 2);
   if (auto lr = s.find("; last read"); lr != std::string::npos) s = s.substr(0, lr);
   for (char& ch : s)
     if (static_cast<unsigned char>(ch) < 0x20 || static_cast<unsigned char>(ch) >= 0x7f) ch = '?';
@@ -203,7 +206,8 @@ std::int64_t Node::integer(std::int64_t lo, std::int64_t hi) const {
   const std::string expected = "an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
   if (value_->is_number_unsigned()) {
     const auto u = value_->get<std::uint64_t>();
-    if (u > std::uint64_t(hi)) fail(std::to_string(u) + " is out of range", expected);
+    if ((lo > 0 && u < std::uint64_t(lo)) || (hi < 0 || u > std::uint64_t(hi)))
+      fail(std::to_string(u) + " is out of range", expected);
     return std::int64_t(u);
   }
   if (!value_->is_number_integer()) wrongType(expected);

@@ -219,7 +219,7 @@ void checkHierarchy(const std::vector<EntityDesc>& es, const json::Node& entitie
       std::string chain;
       for (std::size_t k = 0; k < std::min(cycle.size(), kShown); ++k) chain += json::inQuotes(es[cycle[k]].id) + " -> ";
       chain += cycle.size() > kShown ? "... -> " + json::inQuotes(es[cycle[0]].id) : json::inQuotes(es[cycle[0]].id);
-      entities.element(cycle[0]).child("parent").fail("parent cycle " + chain, "a tree (no entity its own ancestor)");
+      entities.element(cycle[0]).child("parent").fail("parent cycle " + chain, "a hierarchy without cycles");
     }
     for (std::size_t p : path) state[p] = 2;
   }
