@@ -1,0 +1,141 @@
+#pragma once
+// Scene components: plain structs, no behaviour. Units: metres, seconds, radians; linear
+// radiance for colours. Right-handed, +Y up (glTF).
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include <glm/glm.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+#include "engine/ecs/entity.hpp"
+
+namespace bounce::scene {
+
+// The level's id of the entity (unique within a level).
+struct Name {
+  std::string id;
+};
+
+// Local transform, relative to the Parent (or the world). Applied as T * R * S.
+struct Transform {
+  glm::vec3 translation{0.0f};
+  glm::quat rotation{1.0f, 0.0f, 0.0f, 0.0f};  // glm order: w, x, y, z; unit length
+  glm::vec3 scale{1.0f};
+  friend bool operator==(const Transform&, const Transform&) = default;
+};
+
+struct Parent {
+  ecs::Entity entity;
+};
+
+// Local-to-world matrix, written by transformSystem().
+struct WorldTransform {
+  glm::mat4 matrix{1.0f};
+};
+
+enum class SubdivisionScheme { CatmullClark, Loop, Bilinear };
+
+struct Subdivision {
+  SubdivisionScheme scheme = SubdivisionScheme::CatmullClark;
+  int levels = 1;  // 1..4
+  friend bool operator==(const Subdivision&, const Subdivision&) = default;
+};
+
+struct MeshRef {
+  std::filesystem::path asset;  // absolute, lexically normalised; the file existed at load
+  // A glTF node whose subtree is instanced: by name or by index. Empty: the default scene.
+  std::optional<std::variant<std::string, std::uint32_t>> node;
+  std::optional<Subdivision> subdivision;
+  friend bool operator==(const MeshRef&, const MeshRef&) = default;
+};
+
+struct MaterialOverride {
+  std::optional<glm::vec3> albedo;    // base colour factor, each channel in [0, 1]
+  std::optional<glm::vec3> emissive;  // emissive factor, linear radiance >= 0
+  friend bool operator==(const MaterialOverride&, const MaterialOverride&) = default;
+};
+
+// Perspective camera looking down its local -Z (glTF).
+struct Camera {
+  float yfovRad = 1.0471976f;  // 60 degrees
+  float near = 0.05f;          // metres
+  float far = 100.0f;          // metres
+  friend bool operator==(const Camera&, const Camera&) = default;
+};
+
+// Tags the camera a frame renders from (instantiate() gives it to the level's first camera).
+struct ActiveCamera {};
+
+enum class LightType { Point, Spot, Directional };
+
+// Punctual light pointing down its local -Z (glTF KHR_lights_punctual). Intensity is radiant
+// intensity for point and spot lights (irradiance I·cosθ/d²) and irradiance for directional.
+struct Light {
+  LightType type = LightType::Point;
+  glm::vec3 color{1.0f};
+  float intensity = 1.0f;
+  std::optional<float> range;      // metres; empty: unbounded
+  float innerConeRad = 0.0f;       // spot only
+  float outerConeRad = 0.7853982f; // spot only; 45 degrees (glTF default)
+  bool shadows = true;
+  friend bool operator==(const Light&, const Light&) = default;
+};
+
+enum class PlayMode { Loop, PingPong, Once };
+
+// Keyframed TRS. Every non-empty track has one value per time.
+struct Keyframes {
+  std::vector<float> times;  // seconds, strictly increasing, >= 2 entries
+  std::vector<glm::vec3> translation;
+  std::vector<glm::quat> rotation;  // unit quaternions; interpolated along the shorter arc
+  std::vector<glm::vec3> scale;
+  PlayMode mode = PlayMode::Loop;
+  friend bool operator==(const Keyframes&, const Keyframes&) = default;
+};
+
+// Rotation about `axis` (the parent's frame) through the entity's origin.
+struct Spin {
+  glm::vec3 axis{0.0f, 1.0f, 0.0f};  // unit
+  float periodS = 1.0f;
+  float phase = 0.0f;  // fraction of a turn
+  friend bool operator==(const Spin&, const Spin&) = default;
+};
+
+// Translation replaced by a point on a circle about `center`, in the plane normal to `axis`.
+struct Orbit {
+  std::optional<glm::vec3> center;  // empty: the entity's (keyframed) translation
+  glm::vec3 axis{0.0f, 1.0f, 0.0f};  // unit
+  float radius = 0.0f;
+  float periodS = 1.0f;
+  float phase = 0.0f;
+  friend bool operator==(const Orbit&, const Orbit&) = default;
+};
+
+// Offset amplitude·sin(2π(t/period + phase)) along `axis`.
+struct Bob {
+  glm::vec3 axis{0.0f, 1.0f, 0.0f};  // unit
+  float amplitude = 0.0f;            // metres
+  float periodS = 1.0f;
+  float phase = 0.0f;
+  friend bool operator==(const Bob&, const Bob&) = default;
+};
+
+// Scripted motion. Evaluated from `base` (the entity's transform when instantiated), never
+// incrementally, so the pose is a pure function of time: see evaluateMotion().
+struct Motion {
+  std::optional<Keyframes> keyframes;
+  std::optional<Spin> spin;
+  std::optional<Orbit> orbit;
+  std::optional<Bob> bob;
+  Transform base;
+  friend bool operator==(const Motion&, const Motion&) = default;
+};
+
+// The entity moves at run time; GI techniques treat it as a dynamic object.
+struct Dynamic {};
+
+}  // namespace bounce::scene

@@ -1,0 +1,317 @@
+#include "engine/scene/level.hpp"
+
+#include <algorithm>
+#include <numbers>
+#include <unordered_map>
+
+#include "engine/core/error.hpp"
+#include "engine/scene/json_reader.hpp"
+#include "engine/scene/motion.hpp"
+#include "engine/scene/systems.hpp"
+#include "engine/scene/transform_math.hpp"
+
+namespace bounce::scene {
+
+namespace {
+
+constexpr std::size_t kMaxEntities = 1u << 20;
+constexpr double kDegToRad = std::numbers::pi / 180.0;
+
+struct ParseContext {
+  std::filesystem::path dir;  // the level file's folder, absolute
+};
+
+// ---- one parser per entity key -------------------------------------------------------------
+
+void parseTransform(const json::Node& node, EntityDesc& d, const ParseContext&) {
+  const auto o = node.object({"translation", "rotation", "rotation_euler_deg", "scale"});
+  if (auto t = o.optional("translation")) d.transform.translation = t->vec3();
+  if (o.has("rotation") && o.has("rotation_euler_deg"))
+    o.optional("rotation_euler_deg")->fail("both rotation and rotation_euler_deg given", "one of them");
+  if (auto r = o.optional("rotation")) d.transform.rotation = parseQuaternion(*r);
+  if (auto r = o.optional("rotation_euler_deg")) d.transform.rotation = quatFromEulerDeg(r->vec3());
+  if (auto s = o.optional("scale")) d.transform.scale = parseScale(*s);
+}
+
+void parseMesh(const json::Node& node, EntityDesc& d, const ParseContext& ctx) {
+  const auto o = node.object({"asset", "node", "subdivision"});
+  MeshRef mesh;
+  const auto asset = o.required("asset", "a .gltf or .glb path relative to the level file");
+  const std::filesystem::path rel(asset.string());
+  std::string ext = rel.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  if (ext != ".gltf" && ext != ".glb") asset.fail("unsupported file type " + json::inQuotes(ext), "a .gltf or .glb file");
+  mesh.asset = (ctx.dir / rel).lexically_normal();
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(mesh.asset, ec))
+    asset.fail("file not found: " + mesh.asset.string(), "an existing file, relative to the level file");
+  if (auto n = o.optional("node")) {
+    if (n->raw().is_string())
+      mesh.node = n->string();
+    else if (n->raw().is_number_integer() || n->raw().is_number_unsigned())
+      mesh.node = std::uint32_t(n->integer(0, 0x7fffffff));
+    else
+      n->wrongType("a node name (string) or index (integer >= 0)");
+  }
+  if (auto s = o.optional("subdivision")) {
+    const auto so = s->object({"scheme", "levels"});
+    Subdivision sub;
+    const auto scheme = so.required("scheme", "one of: catmull-clark, loop, bilinear");
+    const std::string name = scheme.string();
+    if (name == "catmull-clark")
+      sub.scheme = SubdivisionScheme::CatmullClark;
+    else if (name == "loop")
+      sub.scheme = SubdivisionScheme::Loop;
+    else if (name == "bilinear")
+      sub.scheme = SubdivisionScheme::Bilinear;
+    else
+      scheme.fail("unknown scheme " + json::inQuotes(name), "one of: catmull-clark, loop, bilinear");
+    sub.levels = int(so.required("levels", "an integer in [1, 4]").integer(1, 4));
+    mesh.subdivision = sub;
+  }
+  d.mesh = std::move(mesh);
+}
+
+void parseMaterial(const json::Node& node, EntityDesc& d, const ParseContext&) {
+  const auto o = node.object({"albedo", "emissive"});
+  MaterialOverride m;
+  if (auto a = o.optional("albedo")) m.albedo = a->vec3(json::Range::closed(0, 1));
+  if (auto e = o.optional("emissive")) m.emissive = e->vec3(json::Range::atLeast(0));
+  d.material = m;
+}
+
+void parseCamera(const json::Node& node, EntityDesc& d, const ParseContext&) {
+  const auto o = node.object({"yfov_deg", "near", "far"});
+  Camera c;
+  if (auto f = o.optional("yfov_deg")) c.yfovRad = float(f->real(json::Range::open(0, 180)) * kDegToRad);
+  double nearM = 0.05, farM = 100.0;  // defaults, metres
+  if (auto n = o.optional("near")) {
+    n->real(json::Range::greaterThan(0));  // also checks it fits a float
+    nearM = n->real64(json::Range::greaterThan(0));
+  }
+  if (auto f = o.optional("far")) {
+    f->real(json::Range::greaterThan(nearM));
+    farM = f->real64(json::Range::greaterThan(nearM));
+  } else if (farM <= nearM) {
+    o.node().child("near").fail(json::formatNumber(nearM) + " is not below the default far 100",
+                                "a near below far (give \"far\")");
+  }
+  c.near = float(nearM);
+  c.far = float(farM);
+  d.camera = c;
+}
+
+void parseLight(const json::Node& node, EntityDesc& d, const ParseContext&) {
+  const auto o = node.object({"type", "color", "intensity", "range", "inner_cone_deg", "outer_cone_deg", "shadows"});
+  Light l;
+  const auto type = o.required("type", "one of: point, spot, directional");
+  const std::string t = type.string();
+  if (t == "point")
+    l.type = LightType::Point;
+  else if (t == "spot")
+    l.type = LightType::Spot;
+  else if (t == "directional")
+    l.type = LightType::Directional;
+  else
+    type.fail("unknown light type " + json::inQuotes(t), "one of: point, spot, directional");
+  if (auto c = o.optional("color")) l.color = c->vec3(json::Range::atLeast(0));
+  if (auto i = o.optional("intensity")) l.intensity = i->real(json::Range::atLeast(0));
+  if (auto r = o.optional("range")) l.range = r->real(json::Range::greaterThan(0));
+  if (auto s = o.optional("shadows")) l.shadows = s->boolean();
+  for (const char* cone : {"inner_cone_deg", "outer_cone_deg"})
+    if (l.type != LightType::Spot && o.has(cone)) o.node().child(cone).fail("only spot lights have cones", "no such key");
+  double inner = 0.0, outer = 45.0;
+  if (auto i = o.optional("inner_cone_deg")) inner = i->real64(json::Range::closedOpen(0, 90));
+  if (auto oc = o.optional("outer_cone_deg")) {
+    outer = oc->real64(json::Range::openClosed(inner, 90));
+  } else if (inner >= outer) {
+    o.node().child("inner_cone_deg").fail(json::formatNumber(inner) + " is not below the default outer cone 45",
+                                          "inner < outer (give \"outer_cone_deg\")");
+  }
+  l.innerConeRad = float(inner * kDegToRad);
+  l.outerConeRad = float(outer * kDegToRad);
+  d.light = l;
+}
+
+void parseMotionKey(const json::Node& node, EntityDesc& d, const ParseContext&) { d.motion = parseMotion(node); }
+
+// ---- the table ------------------------------------------------------------------------------
+// A component key: how to read it into EntityDesc and how to put it on an entity. Adding a
+// technique component (dnrt, vlm, …) is: a field in EntityDesc, a parse function, one row here.
+struct ComponentKey {
+  std::string_view key;
+  void (*parse)(const json::Node&, EntityDesc&, const ParseContext&);
+  void (*emplace)(const EntityDesc&, ecs::Registry&, ecs::Entity);
+};
+
+template <auto Field>
+void emplaceIfSet(const EntityDesc& d, ecs::Registry& r, ecs::Entity e) {
+  if (const auto& v = d.*Field) r.emplace<std::decay_t<decltype(*v)>>(e, *v);
+}
+
+const ComponentKey kComponentKeys[] = {
+    {"transform", parseTransform, nullptr},  // every entity gets a Transform: see instantiate()
+    {"mesh", parseMesh, emplaceIfSet<&EntityDesc::mesh>},
+    {"material", parseMaterial, emplaceIfSet<&EntityDesc::material>},
+    {"camera", parseCamera, emplaceIfSet<&EntityDesc::camera>},
+    {"light", parseLight, emplaceIfSet<&EntityDesc::light>},
+    {"motion", parseMotionKey, emplaceIfSet<&EntityDesc::motion>},
+};
+
+std::vector<std::string_view> entityKeys() {
+  std::vector<std::string_view> keys{"id", "parent", "dynamic"};
+  for (const auto& c : kComponentKeys) keys.push_back(c.key);
+  return keys;
+}
+
+EntityDesc parseEntity(const json::Node& node, const ParseContext& ctx) {
+  static const std::vector<std::string_view> kKeys = entityKeys();
+  const auto o = node.object(kKeys);
+  EntityDesc d;
+  d.pointer = node.pointer();
+  d.id = o.required("id", "a unique string id").string();
+  if (auto p = o.optional("parent")) d.parent = p->string();
+  for (const auto& c : kComponentKeys)
+    if (auto v = o.optional(c.key)) c.parse(*v, d, ctx);
+  if (auto dyn = o.optional("dynamic")) {
+    d.dynamic = dyn->boolean();
+    if (!d.dynamic && d.motion) dyn->fail("false, but the entity has a motion", "true, or no \"dynamic\" key");
+  }
+  if (d.motion) {
+    d.dynamic = true;
+    d.motion->base = d.transform;
+  }
+  return d;
+}
+
+// Duplicate ids, unknown parents, parent cycles (reported at the cycle member first in file order).
+void checkHierarchy(const std::vector<EntityDesc>& es, const json::Node& entities) {
+  std::unordered_map<std::string, std::size_t> byId;
+  for (std::size_t i = 0; i < es.size(); ++i) {
+    auto [it, fresh] = byId.emplace(es[i].id, i);
+    if (!fresh)
+      entities.element(i).child("id").fail("duplicate id " + json::inQuotes(es[i].id),
+                                           "a unique id; first used at " + es[it->second].pointer + "/id");
+  }
+  std::vector<std::size_t> parentOf(es.size(), SIZE_MAX);
+  for (std::size_t i = 0; i < es.size(); ++i) {
+    if (!es[i].parent) continue;
+    auto it = byId.find(*es[i].parent);
+    if (it == byId.end())
+      entities.element(i).child("parent").fail("unknown id " + json::inQuotes(*es[i].parent),
+                                               "the id of another entity in this level");
+    parentOf[i] = it->second;
+  }
+  // Walk each chain once: 0 = unvisited, 1 = on the current path, 2 = known acyclic.
+  std::vector<std::uint8_t> state(es.size(), 0);
+  for (std::size_t start = 0; start < es.size(); ++start) {
+    std::vector<std::size_t> path;
+    std::size_t cur = start;
+    while (cur != SIZE_MAX && state[cur] == 0) {
+      state[cur] = 1;
+      path.push_back(cur);
+      cur = parentOf[cur];
+    }
+    if (cur != SIZE_MAX && state[cur] == 1) {
+      std::vector<std::size_t> cycle(std::find(path.begin(), path.end(), cur), path.end());
+      std::rotate(cycle.begin(), std::min_element(cycle.begin(), cycle.end()), cycle.end());
+      constexpr std::size_t kShown = 8;  // keep the message one readable line
+      std::string chain;
+      for (std::size_t k = 0; k < std::min(cycle.size(), kShown); ++k) chain += json::inQuotes(es[cycle[k]].id) + " -> ";
+      chain += cycle.size() > kShown ? "... -> " + json::inQuotes(es[cycle[0]].id) : json::inQuotes(es[cycle[0]].id);
+      entities.element(cycle[0]).child("parent").fail("parent cycle " + chain, "a hierarchy without cycles");
+    }
+    for (std::size_t p : path) state[p] = 2;
+  }
+}
+
+}  // namespace
+
+Level loadLevel(const std::filesystem::path& pathIn) {
+  const std::string file = pathIn.string();
+  const nlohmann::json doc = json::parseFile(pathIn);
+  const json::Node root(doc, "", file);
+  const auto o = root.object({"bounce_level", "name", "effects", "background", "entities"});
+
+  const auto version = o.required("bounce_level", "the format version 1");
+  if (const auto v = version.integer(0, 1 << 30); v != 1)
+    version.fail("unsupported version " + std::to_string(v), "1");
+
+  Level level;
+  level.source = std::filesystem::absolute(pathIn).lexically_normal();
+  const ParseContext ctx{level.source.parent_path()};
+  level.name = pathIn.stem().string();
+  if (auto n = o.optional("name")) level.name = n->string();
+
+  const auto effects = o.required("effects", "an array of effect names (one of: " + knownEffectNames() + ")");
+  level.effects = parseEffects(effects);
+  if (auto b = o.optional("background")) level.background = b->vec3(json::Range::atLeast(0));
+
+  const auto entities = o.required("entities", "an array of entities");
+  for (const auto& e : entities.array(0, kMaxEntities, "at most " + std::to_string(kMaxEntities) + " entities"))
+    level.entities.push_back(parseEntity(e, ctx));
+  checkHierarchy(level.entities, entities);
+  return level;
+}
+
+void overrideEffects(Level& level, std::string_view list) { level.effects = parseEffectList(list, level.source.string()); }
+
+std::vector<ecs::Entity> instantiate(const Level& level, ecs::Registry& registry) {
+  const auto& es = level.entities;
+  // Check the invariants loadLevel guarantees before touching the registry.
+  std::unordered_map<std::string, std::size_t> byId;
+  for (std::size_t i = 0; i < es.size(); ++i)
+    if (!byId.emplace(es[i].id, i).second) throw InternalError("scene: instantiate: duplicate id \"" + es[i].id + "\"");
+  std::vector<std::size_t> parentOf(es.size(), SIZE_MAX);
+  for (std::size_t i = 0; i < es.size(); ++i) {
+    if (!es[i].parent) continue;
+    auto it = byId.find(*es[i].parent);
+    if (it == byId.end()) throw InternalError("scene: instantiate: unknown parent \"" + *es[i].parent + "\"");
+    parentOf[i] = it->second;
+  }
+  // Depth of each entity (memoised walk up the chain: O(n) in total even for one long chain).
+  constexpr std::size_t kUnknown = SIZE_MAX;
+  std::vector<std::size_t> depth(es.size(), kUnknown);
+  for (std::size_t i = 0; i < es.size(); ++i) {
+    std::vector<std::size_t> chain;
+    std::size_t cur = i;
+    while (cur != SIZE_MAX && depth[cur] == kUnknown) {
+      chain.push_back(cur);
+      if (chain.size() > es.size()) throw InternalError("scene: instantiate: parent cycle at \"" + es[i].id + "\"");
+      cur = parentOf[cur];
+    }
+    std::size_t d = cur == SIZE_MAX ? 0 : depth[cur] + 1;
+    for (auto it = chain.rbegin(); it != chain.rend(); ++it) depth[*it] = d++;
+  }
+  std::vector<ecs::Entity> out;
+  out.reserve(es.size());
+  for (std::size_t i = 0; i < es.size(); ++i) out.push_back(registry.create());
+  bool haveActive = registry.view<ActiveCamera>().front() != ecs::Entity::null();
+  for (std::size_t i = 0; i < es.size(); ++i) {
+    const EntityDesc& d = es[i];
+    const ecs::Entity e = out[i];
+    registry.emplace<Name>(e, d.id);
+    registry.emplace<Transform>(e, d.transform);
+    registry.emplace<WorldTransform>(e);
+    if (parentOf[i] != SIZE_MAX) registry.emplace<Parent>(e, out[parentOf[i]]);
+    if (d.dynamic || d.motion) registry.emplace<Dynamic>(e);
+    for (const auto& c : kComponentKeys)
+      if (c.emplace) c.emplace(d, registry, e);
+    if (d.camera && !haveActive) {
+      registry.emplace<ActiveCamera>(e);
+      haveActive = true;
+    }
+  }
+  // World transforms, parents before children (stable by file order within a depth).
+  std::vector<std::size_t> order(es.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return depth[a] < depth[b]; });
+  for (std::size_t i : order) {
+    const glm::mat4 local = toMatrix(es[i].transform);
+    registry.get<WorldTransform>(out[i]).matrix =
+        parentOf[i] == SIZE_MAX ? local : registry.get<WorldTransform>(out[parentOf[i]]).matrix * local;
+  }
+  return out;
+}
+
+}  // namespace bounce::scene

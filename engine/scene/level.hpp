@@ -1,0 +1,58 @@
+#pragma once
+// Levels (README "Level format"). Two steps, so that nothing is ever half-loaded:
+//   Level level = loadLevel(path);           // parse + validate everything; throws InputError
+//   auto entities = instantiate(level, reg); // create entities; cannot fail on a loaded Level
+//
+// Every error is one line "file: /json/pointer: what is wrong (expected …)" (see
+// json_reader.hpp). loadLevel() checks: JSON syntax (byte position), unknown keys, types,
+// missing required keys, non-finite and out-of-range numbers, duplicate ids, unknown parent ids,
+// parent cycles, unknown or repeated effect names, and that mesh assets exist (paths are relative
+// to the level file).
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "engine/ecs/registry.hpp"
+#include "engine/scene/components.hpp"
+#include "engine/scene/effects.hpp"
+
+namespace bounce::scene {
+
+// One entity of the level file, as plain data (file order).
+struct EntityDesc {
+  std::string id;
+  std::string pointer;                // "/entities/3": where it came from, for later messages
+  std::optional<std::string> parent;  // id of another entity
+  bool dynamic = false;               // "dynamic": true, or implied by motion
+  Transform transform;                // identity when the key is absent
+  std::optional<MeshRef> mesh;
+  std::optional<MaterialOverride> material;
+  std::optional<Camera> camera;
+  std::optional<Light> light;
+  std::optional<Motion> motion;  // base = transform
+};
+
+struct Level {
+  std::string name;  // "name", or the file's stem
+  EffectSet effects;
+  glm::vec3 background{0.0f};
+  std::vector<EntityDesc> entities;
+  std::filesystem::path source;  // the level file, absolute
+};
+
+Level loadLevel(const std::filesystem::path& path);
+
+// Replaces level.effects by a comma-separated list (the CLI's --effects LIST). Errors read
+// "<level file>: --effects: unknown effect "x" (expected one of: …)".
+void overrideEffects(Level& level, std::string_view list);
+
+// Creates the level's entities in file order and returns them in that order. Each gets Name,
+// Transform and WorldTransform (computed, parents first); Parent, Dynamic, MeshRef,
+// MaterialOverride, Camera, Light, Motion as described; the first camera also gets ActiveCamera
+// unless the registry already has one. Throws InternalError (before creating anything) if the
+// Level was not produced by loadLevel and breaks its invariants (duplicate/dangling ids).
+std::vector<ecs::Entity> instantiate(const Level& level, ecs::Registry& registry);
+
+}  // namespace bounce::scene
