@@ -35,7 +35,9 @@ class Buffer {
   VkBufferUsageFlags usage() const { return desc_.usage; }
   MemoryUsage memoryUsage() const { return desc_.memory; }
   const std::string& name() const { return desc_.name; }
-  std::byte* mapped() const { return allocation_.mapped; }  // null unless host-visible
+  // Host pointer of Upload/Readback buffers. Null for GpuOnly buffers even where their memory is
+  // host-visible (lavapipe, integrated GPUs), so code that works there works on discrete GPUs.
+  std::byte* mapped() const { return desc_.memory == MemoryUsage::GpuOnly ? nullptr : allocation_.mapped; }
   const Allocation& allocation() const { return allocation_; }
   explicit operator bool() const { return buffer_ != VK_NULL_HANDLE; }
 

@@ -44,30 +44,55 @@ void DescriptorSetLayout::reset() {
 DescriptorAllocator::DescriptorAllocator(Context& ctx, std::string name) : ctx_(ctx), name_(std::move(name)) {}
 
 DescriptorAllocator::~DescriptorAllocator() {
-  for (auto p : pools_) vkDestroyDescriptorPool(ctx_.device(), p, nullptr);
+  for (auto& p : pools_) vkDestroyDescriptorPool(ctx_.device(), p.pool, nullptr);
 }
 
-VkDescriptorPool DescriptorAllocator::createPool(std::uint32_t maxSets) {
-  // Per-set averages typical of our passes; a pool that runs out of one type just makes the
-  // allocator move on to the next pool.
-  const std::pair<VkDescriptorType, std::uint32_t> perSet[] = {
-      {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 2},          {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 4},
-      {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 4}, {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 2},
-      {VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE, 1},          {VK_DESCRIPTOR_TYPE_SAMPLER, 1},
-  };
+namespace {
+// Per-set averages typical of our passes: a pool of N sets holds N·count descriptors of each.
+constexpr std::pair<VkDescriptorType, std::uint32_t> kPerSet[] = {
+    {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 2},          {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 4},
+    {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 4}, {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 2},
+    {VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE, 1},          {VK_DESCRIPTOR_TYPE_SAMPLER, 1},
+};
+}  // namespace
+
+void DescriptorAllocator::refill(Pool& pool) {
+  pool.setsLeft = pool.capacity;
+  for (std::size_t t = 0; t < kTypes; ++t) pool.left[t] = kPerSet[t].second * pool.capacity;
+}
+
+DescriptorAllocator::Pool DescriptorAllocator::createPool(std::uint32_t maxSets) {
+  static_assert(std::size(kPerSet) == kTypes);
   std::vector<VkDescriptorPoolSize> sizes;
-  for (auto [type, n] : perSet) sizes.push_back({type, n * maxSets});
+  for (auto [type, n] : kPerSet) sizes.push_back({type, n * maxSets});
   VkDescriptorPoolCreateInfo ci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
   ci.maxSets = maxSets;
   ci.poolSizeCount = static_cast<std::uint32_t>(sizes.size());
   ci.pPoolSizes = sizes.data();
-  VkDescriptorPool pool = VK_NULL_HANDLE;
-  check(vkCreateDescriptorPool(ctx_.device(), &ci, nullptr, &pool), "vkCreateDescriptorPool");
-  ctx_.setName(VK_OBJECT_TYPE_DESCRIPTOR_POOL, pool, name_ + " pool " + std::to_string(pools_.size()));
-  return pool;
+  Pool p;
+  p.capacity = maxSets;
+  check(vkCreateDescriptorPool(ctx_.device(), &ci, nullptr, &p.pool), "vkCreateDescriptorPool");
+  ctx_.setName(VK_OBJECT_TYPE_DESCRIPTOR_POOL, p.pool, name_ + " pool " + std::to_string(pools_.size()));
+  refill(p);
+  return p;
 }
 
 VkDescriptorSet DescriptorAllocator::allocate(const DescriptorSetLayout& layout) {
+  std::uint32_t need[kTypes] = {};
+  for (auto& b : layout.bindings()) {
+    std::size_t t = 0;
+    while (t < kTypes && kPerSet[t].first != b.type) ++t;
+    if (t == kTypes)
+      throw InternalError("vulkan: descriptor type " + std::to_string(static_cast<int>(b.type)) + " of binding " +
+                          std::to_string(b.binding) + " is not one DescriptorAllocator pools hold");
+    need[t] += b.count;
+  }
+  auto fits = [&](const Pool& p) {
+    if (p.setsLeft == 0) return false;
+    for (std::size_t t = 0; t < kTypes; ++t)
+      if (need[t] > p.left[t]) return false;
+    return true;
+  };
   std::lock_guard lock(mutex_);
   VkDescriptorSetLayout handle = layout.handle();
   VkDescriptorSetAllocateInfo ai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
@@ -80,11 +105,18 @@ VkDescriptorSet DescriptorAllocator::allocate(const DescriptorSetLayout& layout)
       next_size_ = std::min(next_size_ * 2, kMaxPoolSets);
       fresh = true;
     }
-    ai.descriptorPool = pools_[current_];
-    VkDescriptorSet set = VK_NULL_HANDLE;
-    VkResult r = vkAllocateDescriptorSets(ctx_.device(), &ai, &set);
-    if (r == VK_SUCCESS) return set;
-    if (r != VK_ERROR_OUT_OF_POOL_MEMORY && r != VK_ERROR_FRAGMENTED_POOL) check(r, "vkAllocateDescriptorSets");
+    Pool& p = pools_[current_];
+    if (fits(p)) {
+      ai.descriptorPool = p.pool;
+      VkDescriptorSet set = VK_NULL_HANDLE;
+      VkResult r = vkAllocateDescriptorSets(ctx_.device(), &ai, &set);
+      if (r == VK_SUCCESS) {
+        --p.setsLeft;
+        for (std::size_t t = 0; t < kTypes; ++t) p.left[t] -= need[t];
+        return set;
+      }
+      if (r != VK_ERROR_OUT_OF_POOL_MEMORY && r != VK_ERROR_FRAGMENTED_POOL) check(r, "vkAllocateDescriptorSets");
+    }
     if (fresh) throw InternalError("vulkan: a descriptor set does not fit in a fresh pool of '" + name_ + "'");
     ++current_;  // this pool is full; move on to (or create) the next one
   }
@@ -92,7 +124,10 @@ VkDescriptorSet DescriptorAllocator::allocate(const DescriptorSetLayout& layout)
 
 void DescriptorAllocator::reset() {
   std::lock_guard lock(mutex_);
-  for (auto p : pools_) check(vkResetDescriptorPool(ctx_.device(), p, 0), "vkResetDescriptorPool");
+  for (auto& p : pools_) {
+    check(vkResetDescriptorPool(ctx_.device(), p.pool, 0), "vkResetDescriptorPool");
+    refill(p);
+  }
   current_ = 0;
 }
 

@@ -2,7 +2,9 @@
 // Descriptors without bindless (lavapipe has no descriptor indexing):
 //  - DescriptorSetLayout from a plain binding list;
 //  - DescriptorAllocator: a list of pools that grows when one is full (sizes double up to a cap)
-//    and is reset wholesale — one per frame in flight, reset when that frame begins;
+//    and is reset wholesale — one per frame in flight, reset when that frame begins. "Full" is
+//    counted here (sets and descriptors of each type left), not left to the driver: some
+//    drivers (lavapipe) never report a full pool, and the growth must be the same everywhere;
 //  - DescriptorWriter: collects buffer / image / sampler writes and applies them in one call;
 //  - SamplerCache: one VkSampler per distinct SamplerDesc, alive as long as the cache.
 #include <cstdint>
@@ -63,10 +65,18 @@ class DescriptorAllocator {
   std::size_t poolCount() const { return pools_.size(); }
 
  private:
-  VkDescriptorPool createPool(std::uint32_t maxSets);
+  static constexpr std::size_t kTypes = 6;  // descriptor types the pools hold (descriptors.cpp)
+  struct Pool {
+    VkDescriptorPool pool = VK_NULL_HANDLE;
+    std::uint32_t setsLeft = 0;
+    std::uint32_t left[kTypes] = {};  // descriptors left per type
+    std::uint32_t capacity = 0;       // maxSets
+  };
+  Pool createPool(std::uint32_t maxSets);
+  static void refill(Pool& pool);
   Context& ctx_;
   std::string name_;
-  std::vector<VkDescriptorPool> pools_;
+  std::vector<Pool> pools_;
   std::size_t current_ = 0;
   std::uint32_t next_size_ = kFirstPoolSets;
   std::mutex mutex_;

@@ -72,6 +72,11 @@ Image::Image(Context& ctx, const ImageDesc& desc) : ctx_(&ctx), desc_(desc) {
     case ImageType::Tex3D: viewType = VK_IMAGE_VIEW_TYPE_3D; break;
     case ImageType::Cube: viewType = desc.layers > 6 ? VK_IMAGE_VIEW_TYPE_CUBE_ARRAY : VK_IMAGE_VIEW_TYPE_CUBE; break;
   }
+  constexpr VkImageUsageFlags kViewable = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_STORAGE_BIT |
+                                          VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT |
+                                          VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT |
+                                          VK_IMAGE_USAGE_INPUT_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSIENT_ATTACHMENT_BIT;
+  if (!(desc.usage & kViewable)) return;
   try {
     view_ = createView(viewType, 0, desc.mipLevels, 0, desc.layers, desc.name + " view");
   } catch (...) {

@@ -1,5 +1,6 @@
 #pragma once
-// Image: a VkImage with its memory and a default view covering every mip and layer.
+// Image: a VkImage with its memory and a default view covering every mip and layer (made only
+// when the usage allows views: sampled, storage or attachment; transfer-only images have none).
 //   Tex2D: layers > 1 makes a 2D array view.   Tex3D: depth > 1, one layer.
 //   Cube:  layers = 6 · cubes (faces +X −X +Y −Y +Z −Z), a cube or cube-array view.
 // `layout()` is the last known layout of the whole image, kept up to date by the helpers in
@@ -63,6 +64,7 @@ class Image {
   VkImage handle() const { return image_; }
   VkImageView view() const { return view_.handle(); }  // every mip and layer
   const ImageDesc& desc() const { return desc_; }
+  const Allocation& allocation() const { return allocation_; }
   VkFormat format() const { return desc_.format; }
   VkExtent3D extent(std::uint32_t mip = 0) const;
   VkImageAspectFlags aspect() const;

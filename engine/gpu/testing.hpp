@@ -13,7 +13,7 @@
 
 #include "engine/gpu/context.hpp"
 
-namespace bounce::gpu::testing {
+namespace bounce::gpu::testkit {
 
 class ValidationListener : public ::testing::EmptyTestEventListener {
  public:
@@ -46,4 +46,4 @@ inline Context& sharedContext() {
   return *ctx;
 }
 
-}  // namespace bounce::gpu::testing
+}  // namespace bounce::gpu::testkit
