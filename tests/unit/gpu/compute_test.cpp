@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <filesystem>
 
 #include "engine/core/error.hpp"
 #include "engine/gpu/buffer.hpp"
@@ -62,4 +63,24 @@ TEST(Compute, MissingShaderFileIsNamed) {
   } catch (const InternalError& e) {
     EXPECT_NE(std::string(e.what()).find("test/not-there.comp.spv not found"), std::string::npos) << e.what();
   }
+}
+
+TEST(Compute, PipelineCacheSavesAndReloads) {
+  Context& ctx = testkit::sharedContext();
+  auto file = std::filesystem::path(BOUNCE_TEST_OUT) / "gpu" / "pipeline.cache";
+  std::filesystem::remove(file);
+  DescriptorSetLayout setLayout(ctx, {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT}}, "fill");
+  PipelineLayout layout(ctx, {setLayout.handle()}, {{VK_SHADER_STAGE_ALL, 0, sizeof(FillPush)}}, "fill");
+  ShaderModule shader(ctx, "test/fill.comp.spv");
+  {
+    PipelineCache cache(ctx, file);
+    Pipeline p = createComputePipeline(ctx, layout, shader, "cached fill", &cache);
+    cache.save();
+  }
+  // The Vulkan pipeline cache header alone is 16 + VK_UUID_SIZE bytes.
+  ASSERT_TRUE(std::filesystem::exists(file));
+  EXPECT_GE(std::filesystem::file_size(file), 16u + VK_UUID_SIZE);
+  PipelineCache reloaded(ctx, file);
+  Pipeline p = createComputePipeline(ctx, layout, shader, "cached fill again", &reloaded);
+  EXPECT_NE(p.handle(), VK_NULL_HANDLE);
 }
