@@ -1,0 +1,246 @@
+#include "engine/gpu/pipeline.hpp"
+
+#include <cstring>
+#include <utility>
+
+#include "engine/core/error.hpp"
+#include "engine/core/file.hpp"
+#include "engine/gpu/context.hpp"
+
+namespace bounce::gpu {
+
+std::filesystem::path shaderPath(const std::string& relative) {
+  return std::filesystem::path(BOUNCE_SHADER_DIR) / relative;
+}
+
+ShaderModule::ShaderModule(Context& ctx, const std::string& relative) {
+  *this = fromFile(ctx, shaderPath(relative));
+  name_ = relative;
+}
+
+ShaderModule ShaderModule::fromFile(Context& ctx, const std::filesystem::path& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec))
+    throw InternalError("vulkan: shader " + path.string() +
+                        " not found (is its source under shaders/ and the bounce_shaders target built?)");
+  std::vector<std::uint8_t> bytes = readFileBytes(path);
+  constexpr std::uint32_t kSpirvMagic = 0x07230203;
+  std::uint32_t magic = 0;
+  if (bytes.size() >= 4) std::memcpy(&magic, bytes.data(), 4);
+  if (bytes.size() < 20 || bytes.size() % 4 != 0 || magic != kSpirvMagic)
+    throw InternalError("vulkan: shader " + path.string() + " is not SPIR-V (" + std::to_string(bytes.size()) +
+                        " bytes)");
+  std::vector<std::uint32_t> words(bytes.size() / 4);
+  std::memcpy(words.data(), bytes.data(), bytes.size());
+  VkShaderModuleCreateInfo ci{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+  ci.codeSize = bytes.size();
+  ci.pCode = words.data();
+  ShaderModule m;
+  m.ctx_ = &ctx;
+  m.name_ = path.filename().string();
+  check(vkCreateShaderModule(ctx.device(), &ci, nullptr, &m.module_), "vkCreateShaderModule");
+  ctx.setName(VK_OBJECT_TYPE_SHADER_MODULE, m.module_, m.name_);
+  return m;
+}
+
+ShaderModule& ShaderModule::operator=(ShaderModule&& o) noexcept {
+  if (this != &o) {
+    reset();
+    ctx_ = std::exchange(o.ctx_, nullptr);
+    module_ = std::exchange(o.module_, VK_NULL_HANDLE);
+    name_ = std::move(o.name_);
+  }
+  return *this;
+}
+
+void ShaderModule::reset() {
+  if (module_) vkDestroyShaderModule(ctx_->device(), module_, nullptr);
+  module_ = VK_NULL_HANDLE;
+}
+
+PipelineLayout::PipelineLayout(Context& ctx, const std::vector<VkDescriptorSetLayout>& sets,
+                               const std::vector<VkPushConstantRange>& pushConstants, const std::string& name)
+    : ctx_(&ctx) {
+  VkPipelineLayoutCreateInfo ci{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+  ci.setLayoutCount = static_cast<std::uint32_t>(sets.size());
+  ci.pSetLayouts = sets.data();
+  ci.pushConstantRangeCount = static_cast<std::uint32_t>(pushConstants.size());
+  ci.pPushConstantRanges = pushConstants.data();
+  check(vkCreatePipelineLayout(ctx.device(), &ci, nullptr, &layout_), "vkCreatePipelineLayout");
+  ctx.setName(VK_OBJECT_TYPE_PIPELINE_LAYOUT, layout_, name);
+}
+
+PipelineLayout& PipelineLayout::operator=(PipelineLayout&& o) noexcept {
+  if (this != &o) {
+    reset();
+    ctx_ = std::exchange(o.ctx_, nullptr);
+    layout_ = std::exchange(o.layout_, VK_NULL_HANDLE);
+  }
+  return *this;
+}
+
+void PipelineLayout::reset() {
+  if (layout_) vkDestroyPipelineLayout(ctx_->device(), layout_, nullptr);
+  layout_ = VK_NULL_HANDLE;
+}
+
+PipelineCache::PipelineCache(Context& ctx, std::filesystem::path file) : ctx_(ctx), file_(std::move(file)) {
+  std::vector<std::uint8_t> data;
+  std::error_code ec;
+  if (!file_.empty() && std::filesystem::is_regular_file(file_, ec)) data = readFileBytes(file_);
+  VkPipelineCacheCreateInfo ci{VK_STRUCTURE_TYPE_PIPELINE_CACHE_CREATE_INFO};
+  ci.initialDataSize = data.size();
+  ci.pInitialData = data.empty() ? nullptr : data.data();
+  check(vkCreatePipelineCache(ctx.device(), &ci, nullptr, &cache_), "vkCreatePipelineCache");
+}
+
+PipelineCache::~PipelineCache() { vkDestroyPipelineCache(ctx_.device(), cache_, nullptr); }
+
+void PipelineCache::save() const {
+  if (file_.empty()) return;
+  std::size_t size = 0;
+  check(vkGetPipelineCacheData(ctx_.device(), cache_, &size, nullptr), "vkGetPipelineCacheData");
+  std::vector<std::uint8_t> data(size);
+  check(vkGetPipelineCacheData(ctx_.device(), cache_, &size, data.data()), "vkGetPipelineCacheData");
+  data.resize(size);
+  writeFileAtomic(file_, data);
+}
+
+Pipeline::Pipeline(Context& ctx, VkPipeline pipeline, VkPipelineBindPoint bindPoint, VkPipelineLayout layout)
+    : ctx_(&ctx), pipeline_(pipeline), bind_point_(bindPoint), layout_(layout) {}
+
+Pipeline& Pipeline::operator=(Pipeline&& o) noexcept {
+  if (this != &o) {
+    reset();
+    ctx_ = std::exchange(o.ctx_, nullptr);
+    pipeline_ = std::exchange(o.pipeline_, VK_NULL_HANDLE);
+    bind_point_ = o.bind_point_;
+    layout_ = std::exchange(o.layout_, VK_NULL_HANDLE);
+  }
+  return *this;
+}
+
+void Pipeline::reset() {
+  if (pipeline_) vkDestroyPipeline(ctx_->device(), pipeline_, nullptr);
+  pipeline_ = VK_NULL_HANDLE;
+}
+
+Pipeline createComputePipeline(Context& ctx, const PipelineLayout& layout, const ShaderModule& shader,
+                               const std::string& name, const PipelineCache* cache) {
+  VkComputePipelineCreateInfo ci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+  ci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
+  ci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+  ci.stage.module = shader.handle();
+  ci.stage.pName = "main";
+  ci.layout = layout.handle();
+  VkPipeline p = VK_NULL_HANDLE;
+  check(vkCreateComputePipelines(ctx.device(), cache ? cache->handle() : VK_NULL_HANDLE, 1, &ci, nullptr, &p),
+        "vkCreateComputePipelines");
+  ctx.setName(VK_OBJECT_TYPE_PIPELINE, p, name);
+  return Pipeline(ctx, p, VK_PIPELINE_BIND_POINT_COMPUTE, layout.handle());
+}
+
+Pipeline createGraphicsPipeline(Context& ctx, const PipelineLayout& layout, const GraphicsPipelineDesc& desc,
+                                const PipelineCache* cache) {
+  if (!desc.vertex) throw InternalError("vulkan: graphics pipeline '" + desc.name + "' has no vertex shader");
+  std::vector<VkPipelineShaderStageCreateInfo> stages;
+  VkPipelineShaderStageCreateInfo st{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
+  st.stage = VK_SHADER_STAGE_VERTEX_BIT;
+  st.module = desc.vertex->handle();
+  st.pName = "main";
+  stages.push_back(st);
+  if (desc.fragment) {
+    st.stage = VK_SHADER_STAGE_FRAGMENT_BIT;
+    st.module = desc.fragment->handle();
+    stages.push_back(st);
+  }
+
+  std::vector<VkVertexInputBindingDescription> bindings;
+  for (auto& b : desc.bindings)
+    bindings.push_back({b.binding, b.stride, b.perInstance ? VK_VERTEX_INPUT_RATE_INSTANCE : VK_VERTEX_INPUT_RATE_VERTEX});
+  std::vector<VkVertexInputAttributeDescription> attributes;
+  for (auto& a : desc.attributes) attributes.push_back({a.location, a.binding, a.format, a.offset});
+  VkPipelineVertexInputStateCreateInfo vi{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
+  vi.vertexBindingDescriptionCount = static_cast<std::uint32_t>(bindings.size());
+  vi.pVertexBindingDescriptions = bindings.data();
+  vi.vertexAttributeDescriptionCount = static_cast<std::uint32_t>(attributes.size());
+  vi.pVertexAttributeDescriptions = attributes.data();
+
+  VkPipelineInputAssemblyStateCreateInfo ia{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
+  ia.topology = desc.topology;
+  VkPipelineViewportStateCreateInfo vp{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
+  vp.viewportCount = 1;
+  vp.scissorCount = 1;
+  VkPipelineRasterizationStateCreateInfo rs{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
+  rs.polygonMode = desc.polygonMode;
+  rs.cullMode = desc.cull;
+  rs.frontFace = desc.frontFace;
+  rs.depthBiasEnable = desc.depthBias;
+  rs.lineWidth = 1.0f;
+  VkPipelineMultisampleStateCreateInfo ms{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
+  ms.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
+  VkPipelineDepthStencilStateCreateInfo ds{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
+  ds.depthTestEnable = desc.depthTest;
+  ds.depthWriteEnable = desc.depthWrite;
+  ds.depthCompareOp = desc.depthCompare;
+
+  VkPipelineColorBlendAttachmentState att{};
+  att.colorWriteMask =
+      VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
+  if (desc.blend != Blend::None) {
+    att.blendEnable = VK_TRUE;
+    att.colorBlendOp = att.alphaBlendOp = VK_BLEND_OP_ADD;
+    if (desc.blend == Blend::Additive) {
+      att.srcColorBlendFactor = att.dstColorBlendFactor = VK_BLEND_FACTOR_ONE;
+      att.srcAlphaBlendFactor = att.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+    } else {
+      att.srcColorBlendFactor = VK_BLEND_FACTOR_SRC_ALPHA;
+      att.dstColorBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
+      att.srcAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+      att.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
+    }
+  }
+  std::vector<VkPipelineColorBlendAttachmentState> atts(desc.colorFormats.size(), att);
+  VkPipelineColorBlendStateCreateInfo cb{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
+  cb.attachmentCount = static_cast<std::uint32_t>(atts.size());
+  cb.pAttachments = atts.data();
+
+  std::vector<VkDynamicState> dynamic = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
+  if (desc.depthBias) dynamic.push_back(VK_DYNAMIC_STATE_DEPTH_BIAS);
+  VkPipelineDynamicStateCreateInfo dyn{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
+  dyn.dynamicStateCount = static_cast<std::uint32_t>(dynamic.size());
+  dyn.pDynamicStates = dynamic.data();
+
+  VkPipelineRenderingCreateInfo rendering{VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO};
+  rendering.colorAttachmentCount = static_cast<std::uint32_t>(desc.colorFormats.size());
+  rendering.pColorAttachmentFormats = desc.colorFormats.data();
+  rendering.depthAttachmentFormat = desc.depthFormat;
+
+  VkGraphicsPipelineCreateInfo ci{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
+  ci.pNext = &rendering;
+  ci.stageCount = static_cast<std::uint32_t>(stages.size());
+  ci.pStages = stages.data();
+  ci.pVertexInputState = &vi;
+  ci.pInputAssemblyState = &ia;
+  ci.pViewportState = &vp;
+  ci.pRasterizationState = &rs;
+  ci.pMultisampleState = &ms;
+  ci.pDepthStencilState = &ds;
+  ci.pColorBlendState = &cb;
+  ci.pDynamicState = &dyn;
+  ci.layout = layout.handle();
+  VkPipeline p = VK_NULL_HANDLE;
+  check(vkCreateGraphicsPipelines(ctx.device(), cache ? cache->handle() : VK_NULL_HANDLE, 1, &ci, nullptr, &p),
+        "vkCreateGraphicsPipelines");
+  ctx.setName(VK_OBJECT_TYPE_PIPELINE, p, desc.name);
+  return Pipeline(ctx, p, VK_PIPELINE_BIND_POINT_GRAPHICS, layout.handle());
+}
+
+void setViewportAndScissor(VkCommandBuffer cmd, VkExtent2D extent) {
+  VkViewport v{0.0f, 0.0f, static_cast<float>(extent.width), static_cast<float>(extent.height), 0.0f, 1.0f};
+  VkRect2D s{{0, 0}, extent};
+  vkCmdSetViewport(cmd, 0, 1, &v);
+  vkCmdSetScissor(cmd, 0, 1, &s);
+}
+
+}  // namespace bounce::gpu

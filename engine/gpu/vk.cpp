@@ -1,0 +1,51 @@
+#include "engine/gpu/vk.hpp"
+
+#include "engine/core/error.hpp"
+
+namespace bounce::gpu {
+
+const char* resultName(VkResult result) {
+  switch (result) {
+#define BOUNCE_CASE(x) \
+  case x:              \
+    return #x;
+    BOUNCE_CASE(VK_SUCCESS)
+    BOUNCE_CASE(VK_NOT_READY)
+    BOUNCE_CASE(VK_TIMEOUT)
+    BOUNCE_CASE(VK_EVENT_SET)
+    BOUNCE_CASE(VK_EVENT_RESET)
+    BOUNCE_CASE(VK_INCOMPLETE)
+    BOUNCE_CASE(VK_ERROR_OUT_OF_HOST_MEMORY)
+    BOUNCE_CASE(VK_ERROR_OUT_OF_DEVICE_MEMORY)
+    BOUNCE_CASE(VK_ERROR_INITIALIZATION_FAILED)
+    BOUNCE_CASE(VK_ERROR_DEVICE_LOST)
+    BOUNCE_CASE(VK_ERROR_MEMORY_MAP_FAILED)
+    BOUNCE_CASE(VK_ERROR_LAYER_NOT_PRESENT)
+    BOUNCE_CASE(VK_ERROR_EXTENSION_NOT_PRESENT)
+    BOUNCE_CASE(VK_ERROR_FEATURE_NOT_PRESENT)
+    BOUNCE_CASE(VK_ERROR_INCOMPATIBLE_DRIVER)
+    BOUNCE_CASE(VK_ERROR_TOO_MANY_OBJECTS)
+    BOUNCE_CASE(VK_ERROR_FORMAT_NOT_SUPPORTED)
+    BOUNCE_CASE(VK_ERROR_FRAGMENTED_POOL)
+    BOUNCE_CASE(VK_ERROR_UNKNOWN)
+    BOUNCE_CASE(VK_ERROR_OUT_OF_POOL_MEMORY)
+    BOUNCE_CASE(VK_ERROR_INVALID_EXTERNAL_HANDLE)
+    BOUNCE_CASE(VK_ERROR_FRAGMENTATION)
+    BOUNCE_CASE(VK_ERROR_SURFACE_LOST_KHR)
+    BOUNCE_CASE(VK_ERROR_NATIVE_WINDOW_IN_USE_KHR)
+    BOUNCE_CASE(VK_SUBOPTIMAL_KHR)
+    BOUNCE_CASE(VK_ERROR_OUT_OF_DATE_KHR)
+    BOUNCE_CASE(VK_PIPELINE_COMPILE_REQUIRED)
+#undef BOUNCE_CASE
+    default:
+      return "VkResult(unknown)";
+  }
+}
+
+void check(VkResult result, const char* what) {
+  if (result == VK_SUCCESS) return;
+  throw InternalError(std::string("vulkan: ") + what + " failed: " + resultName(result) + " (" +
+                      std::to_string(static_cast<int>(result)) + ")");
+}
+
+}  // namespace bounce::gpu
