@@ -15,6 +15,13 @@ std::size_t CookedAsset::triangleCount() const {
   return n;
 }
 
+std::size_t CookedAsset::droppedTriangleCount() const {
+  std::size_t n = 0;
+  for (const auto& m : meshes)
+    for (const auto& p : m.primitives) n += p.droppedTriangles;
+  return n;
+}
+
 namespace {
 
 std::string at(const std::string& base, std::size_t i) { return base + "/" + std::to_string(i); }

@@ -42,6 +42,9 @@ struct Primitive {
   std::vector<glm::vec4> weights;    // WEIGHTS_0
   std::vector<MorphTarget> targets;
   std::int32_t material = -1;  // index into CookedAsset::materials, -1 = default material
+  // Triangles the cook removed as repairs (zero-area or non-finite; engine/asset/mesh_repair.cpp).
+  // triangles kept + dropped = triangles in the source file.
+  std::uint32_t droppedTriangles = 0;
   bool operator==(const Primitive&) const = default;
 };
 
@@ -182,7 +185,8 @@ struct CookedAsset {
   std::vector<std::int32_t> rootNodes;  // of the default scene
   bool operator==(const CookedAsset&) const = default;
 
-  std::size_t triangleCount() const;
+  std::size_t triangleCount() const;         // kept, over all meshes and primitives
+  std::size_t droppedTriangleCount() const;  // removed by repairs
 };
 
 // Checks every cross reference, vector length and index of `a`; throws InputError naming `file`

@@ -51,8 +51,17 @@ const char* const kSupportedRequired[] = {"KHR_draco_mesh_compression", "KHR_lig
 
 tinygltf::Model loadModel(std::span<const std::uint8_t> bytes, const std::string& file, const std::filesystem::path& baseDir) {
   const GltfContainer container = splitContainer(bytes, file);
-  const nlohmann::json doc = parseJson(container.json, file);
+  nlohmann::json doc = parseJson(container.json, file);
   precheckJson(doc, container, file, baseDir);
+
+  // tinygltf insists that an index accessor has a bufferView, which a Draco primitive's does not
+  // (its indices live in the Draco payload): hand tinygltf a copy without those references.
+  std::vector<std::uint8_t> rewritten;
+  if (dropDracoIndices(doc)) {
+    rewritten = rebuildContainer(doc, container);
+    bytes = rewritten;
+  }
+  const GltfContainer parsed = splitContainer(bytes, file);
 
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(&keepEncodedImage, nullptr);
@@ -65,7 +74,7 @@ tinygltf::Model loadModel(std::span<const std::uint8_t> bytes, const std::string
     if (container.binary)
       ok = loader.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(), unsigned(bytes.size()), base);
     else
-      ok = loader.LoadASCIIFromString(&model, &err, &warn, container.json.data(), unsigned(container.json.size()), base);
+      ok = loader.LoadASCIIFromString(&model, &err, &warn, parsed.json.data(), unsigned(parsed.json.size()), base);
   } catch (const std::exception& e) {
     throwInputError(file, "glTF", std::string("parse failed: ") + e.what(), "a valid glTF 2.0 file");
   }
@@ -278,6 +287,7 @@ bool importPrimitive(const ImportContext& ctx, const tinygltf::Primitive& src, c
   }
 
   const RepairCounts r = repairTriangles(out);
+  out.droppedTriangles = std::uint32_t(r.nonFinite + r.degenerate);
   if (r.nonFinite)
     log::warn(ctx.file + ": " + where + ": dropped " + std::to_string(r.nonFinite) +
               " triangles with NaN/Inf vertex positions (and " + std::to_string(r.removedVertices) + " unused vertices)");

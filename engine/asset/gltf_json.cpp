@@ -145,6 +145,47 @@ void precheckJson(const nlohmann::json& doc, const GltfContainer& container, con
   }
 }
 
+bool dropDracoIndices(nlohmann::json& doc) {
+  bool dropped = false;
+  auto meshes = doc.find("meshes");
+  if (meshes == doc.end() || !meshes->is_array()) return false;
+  for (auto& mesh : *meshes) {
+    if (!mesh.is_object() || !mesh.contains("primitives") || !mesh["primitives"].is_array()) continue;
+    for (auto& prim : mesh["primitives"]) {
+      if (!prim.is_object() || !prim.contains("extensions") || !prim["extensions"].is_object() ||
+          !prim["extensions"].contains("KHR_draco_mesh_compression"))
+        continue;
+      dropped = prim.erase("indices") > 0 || dropped;
+    }
+  }
+  return dropped;
+}
+
+std::vector<std::uint8_t> rebuildContainer(const nlohmann::json& doc, const GltfContainer& original) {
+  std::string text = doc.dump();
+  if (!original.binary) return std::vector<std::uint8_t>(text.begin(), text.end());
+  while (text.size() % 4 != 0) text += ' ';  // chunks are 4-byte aligned, JSON padded with spaces
+  std::vector<std::uint8_t> out;
+  auto put32 = [&](std::uint32_t v) {
+    for (int k = 0; k < 4; ++k) out.push_back(std::uint8_t(v >> (8 * k)));
+  };
+  const std::size_t binPadded = (original.bin.size() + 3) / 4 * 4;
+  const bool hasBin = !original.bin.empty();
+  put32(kGlbMagic);
+  put32(2);
+  put32(std::uint32_t(12 + 8 + text.size() + (hasBin ? 8 + binPadded : 0)));
+  put32(std::uint32_t(text.size()));
+  put32(kChunkJson);
+  out.insert(out.end(), text.begin(), text.end());
+  if (hasBin) {
+    put32(std::uint32_t(binPadded));
+    put32(kChunkBin);
+    out.insert(out.end(), original.bin.begin(), original.bin.end());
+    out.resize(out.size() + binPadded - original.bin.size(), 0);
+  }
+  return out;
+}
+
 std::vector<std::string> externalUris(const nlohmann::json& doc) {
   std::vector<std::string> out;
   if (!doc.is_object()) return out;

@@ -30,6 +30,13 @@ nlohmann::json parseJson(std::string_view text, const std::string& file);
 void precheckJson(const nlohmann::json& doc, const GltfContainer& container, const std::string& file,
                   const std::filesystem::path& baseDir);
 
+// Removes "indices" from every primitive with KHR_draco_mesh_compression; true when any was removed.
+bool dropDracoIndices(nlohmann::json& doc);
+
+// The container bytes for `doc`: plain JSON text, or a GLB with `doc` as JSON chunk and the
+// original BIN chunk.
+std::vector<std::uint8_t> rebuildContainer(const nlohmann::json& doc, const GltfContainer& original);
+
 // Relative URIs of buffers and images (data: URIs excluded), percent-decoded, in file order.
 std::vector<std::string> externalUris(const nlohmann::json& doc);
 

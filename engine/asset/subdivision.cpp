@@ -177,7 +177,8 @@ Primitive subdividePrimitive(const Primitive& p, Subdivision s, const std::strin
     out.indices.insert(out.indices.end(), {corners[f], corners[f + 1], corners[f + 2]});
     if (n == 4) out.indices.insert(out.indices.end(), {corners[f], corners[f + 2], corners[f + 3]});
   }
-  repairTriangles(out);  // limit projection can collapse tiny faces at creases
+  const RepairCounts r = repairTriangles(out);  // limit projection can collapse tiny faces at creases
+  out.droppedTriangles = std::uint32_t(r.nonFinite + r.degenerate);
   // Degenerate tangents (e.g. at some boundary corners): use the area-weighted normal there.
   const auto fallback = areaWeightedNormals(out.positions, out.indices);
   for (std::size_t i = 0; i < out.normals.size(); ++i)
