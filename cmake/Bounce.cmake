@@ -23,7 +23,7 @@ function(bounce_test name)
   target_link_libraries(test_${name} PRIVATE ${ARG_DEPS} GTest::gtest GTest::gtest_main)
   target_compile_options(test_${name} PRIVATE -Wall -Wextra)
   target_compile_definitions(test_${name} PRIVATE
-    BOUNCE_SHARED_DIR="${PROJECT_SOURCE_DIR}/../shared"
+    BOUNCE_SHARED_DIR="${BOUNCE_SHARED_DIR}"
     BOUNCE_TEST_OUT="${PROJECT_BINARY_DIR}/test-out")
   if(NOT ARG_TIMEOUT)
     set(ARG_TIMEOUT 600)

@@ -1,0 +1,280 @@
+#include "engine/render/gpu_scene.hpp"
+
+#include <algorithm>
+#include <glm/gtc/matrix_inverse.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+#include "engine/asset/cook.hpp"
+#include "engine/core/log.hpp"
+#include "engine/gpu/commands.hpp"
+#include "engine/scene/components.hpp"
+#include "engine/scene/systems.hpp"
+#include "engine/scene/transform_math.hpp"
+
+namespace bounce::render {
+namespace {
+
+glm::mat4 nodeLocal(const asset::Node& n) {
+  if (n.hasMatrix) return n.matrix;
+  return glm::translate(glm::mat4(1.0f), n.translation) * glm::mat4_cast(n.rotation) *
+         glm::scale(glm::mat4(1.0f), n.scale);
+}
+
+asset::Subdivision toAsset(const scene::Subdivision& s) {
+  return {static_cast<asset::SubdivisionScheme>(static_cast<std::uint32_t>(s.scheme)),
+          static_cast<std::uint32_t>(s.levels)};
+}
+
+std::string nodeKey(const std::variant<std::string, std::uint32_t>& node) {
+  return std::holds_alternative<std::string>(node) ? std::get<std::string>(node)
+                                                   : std::to_string(std::get<std::uint32_t>(node));
+}
+
+// The glTF node a MeshRef names, or -1 for the default scene. Bad names are input errors.
+int findNode(const asset::CookedAsset& a, const scene::MeshRef& ref) {
+  if (!ref.node) return -1;
+  if (auto* index = std::get_if<std::uint32_t>(&*ref.node)) {
+    if (*index >= a.nodes.size())
+      throwInputError(ref.asset.string(), "/nodes", "node " + std::to_string(*index) + " does not exist",
+                      "an index below " + std::to_string(a.nodes.size()));
+    return static_cast<int>(*index);
+  }
+  const auto& name = std::get<std::string>(*ref.node);
+  for (std::size_t i = 0; i < a.nodes.size(); ++i)
+    if (a.nodes[i].name == name) return static_cast<int>(i);
+  throwInputError(ref.asset.string(), "/nodes", "no node named '" + name + "'", "a node name of the asset");
+}
+
+LightGpu makeLight(LightType type, glm::vec3 color, float intensity, float range, float inner, float outer,
+                   bool shadows, const glm::mat4& world) {
+  LightGpu l{};
+  l.positionType = glm::vec4(glm::vec3(world[3]), static_cast<float>(type));
+  const glm::vec3 dir = glm::normalize(glm::vec3(world * glm::vec4(0, 0, -1, 0)));
+  l.directionRange = glm::vec4(dir, range);
+  l.radiance = glm::vec4(color * intensity, 0.0f);
+  l.cone = glm::vec4(std::cos(outer), std::cos(inner), 0.0f, 0.0f);
+  l.shadow = glm::vec4(shadows ? 0.0f : -1.0f, 0.0f, 0.0f, 0.0f);
+  return l;
+}
+
+}  // namespace
+
+GpuScene::GpuScene(gpu::Context& ctx, const Pipelines& pipelines, gpu::SamplerCache& samplers,
+                   std::filesystem::path cookCache)
+    : ctx_(ctx), pipelines_(pipelines), samplers_(samplers), cache_(std::move(cookCache)),
+      materialDescriptors_(ctx, "materials") {
+  gpu::ImageDesc d;
+  d.format = VK_FORMAT_R8G8B8A8_UNORM;
+  d.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+  d.name = "white";
+  white_ = gpu::Image(ctx_, d);
+  const std::uint8_t texel[4] = {255, 255, 255, 255};
+  gpu::upload(ctx_, white_, texel);
+}
+
+GpuScene::~GpuScene() = default;
+
+std::string GpuScene::key(const scene::MeshRef& ref) {
+  std::string k = ref.asset.string();
+  if (ref.subdivision)
+    k += "|subdiv:" + std::to_string(int(ref.subdivision->scheme)) + ":" + std::to_string(ref.subdivision->levels) +
+         (ref.node ? ":" + nodeKey(*ref.node) : std::string());
+  return k;
+}
+
+void GpuScene::load(ecs::Registry& registry) {
+  registry.view<scene::MeshRef>().each([&](ecs::Entity, scene::MeshRef& ref) { upload(ref); });
+}
+
+const GpuScene::AssetGpu& GpuScene::upload(const scene::MeshRef& ref) {
+  const std::string k = key(ref);
+  if (auto it = assets_.find(k); it != assets_.end()) return *it->second;
+
+  asset::CookOptions options;
+  if (ref.subdivision) {
+    if (ref.node) {
+      options.subdivision[nodeKey(*ref.node)] = toAsset(*ref.subdivision);
+    } else {  // every node with a mesh: learn the node list from a plain cook first
+      auto plain = asset::loadOrCook(ref.asset, cache_, {});
+      for (std::size_t i = 0; i < plain.nodes.size(); ++i)
+        if (plain.nodes[i].mesh >= 0) options.subdivision[std::to_string(i)] = toAsset(*ref.subdivision);
+    }
+  }
+  auto a = std::make_unique<AssetGpu>();
+  a->cpu = asset::loadOrCook(ref.asset, cache_, options);
+  findNode(a->cpu, ref);  // reject a bad node name before anything is uploaded
+
+  for (const auto& mesh : a->cpu.meshes) {
+    auto m = std::make_unique<MeshGpu>();
+    std::vector<MeshVertex> vertices;
+    std::vector<std::uint32_t> indices;
+    for (const auto& p : mesh.primitives) {
+      MeshGpu::Primitive gp;
+      gp.firstIndex = static_cast<std::uint32_t>(indices.size());
+      gp.indexCount = static_cast<std::uint32_t>(p.indices.size());
+      gp.vertexOffset = static_cast<std::int32_t>(vertices.size());
+      gp.material = p.material < 0 ? static_cast<std::uint32_t>(a->cpu.materials.size()) : std::uint32_t(p.material);
+      for (std::size_t v = 0; v < p.positions.size(); ++v) {
+        MeshVertex mv{};
+        std::copy_n(&p.positions[v].x, 3, mv.position);
+        std::copy_n(&p.normals[v].x, 3, mv.normal);
+        if (v < p.uv0.size()) std::copy_n(&p.uv0[v].x, 2, mv.uv);
+        vertices.push_back(mv);
+      }
+      indices.insert(indices.end(), p.indices.begin(), p.indices.end());
+      m->primitives.push_back(gp);
+      triangles_ += p.indices.size() / 3;
+    }
+    if (!vertices.empty()) {
+      m->vertices = gpu::Buffer(ctx_, {vertices.size() * sizeof(MeshVertex),
+                                       VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                       gpu::MemoryUsage::GpuOnly, mesh.name + ".vertices"});
+      gpu::upload(ctx_, m->vertices, gpu::bytesOf(vertices));
+    }
+    if (!indices.empty()) {
+      m->indices = gpu::Buffer(ctx_, {indices.size() * sizeof(std::uint32_t),
+                                      VK_BUFFER_USAGE_INDEX_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                      gpu::MemoryUsage::GpuOnly, mesh.name + ".indices"});
+      gpu::upload(ctx_, m->indices, gpu::bytesOf(indices));
+    }
+    a->meshes.push_back(std::move(m));
+  }
+
+  for (const auto& t : a->cpu.textures) {
+    gpu::ImageDesc d;
+    d.format = t.srgb ? VK_FORMAT_R8G8B8A8_SRGB : VK_FORMAT_R8G8B8A8_UNORM;  // sRGB: sampled as linear
+    d.width = std::max(1u, t.width);
+    d.height = std::max(1u, t.height);
+    d.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    d.name = t.name.empty() ? "texture" : t.name;
+    gpu::Image img(ctx_, d);
+    if (t.pixels.size() == std::size_t(d.width) * d.height * 4) {
+      gpu::upload(ctx_, img, t.pixels);
+    } else {
+      std::vector<std::uint8_t> white(std::size_t(d.width) * d.height * 4, 255);
+      gpu::upload(ctx_, img, white);
+    }
+    a->textures.push_back(std::move(img));
+  }
+
+  VkSampler sampler = samplers_.get({VK_FILTER_LINEAR, VK_SAMPLER_MIPMAP_MODE_LINEAR, VK_SAMPLER_ADDRESS_MODE_REPEAT});
+  auto textureView = [&](const asset::TextureRef& ref) {
+    return ref.texture >= 0 && std::size_t(ref.texture) < a->textures.size() ? a->textures[ref.texture].view()
+                                                                              : white_.view();
+  };
+  for (std::size_t i = 0; i <= a->cpu.materials.size(); ++i) {
+    VkDescriptorSet set = materialDescriptors_.allocate(pipelines_.materialLayout);
+    gpu::DescriptorWriter w;
+    if (i < a->cpu.materials.size()) {
+      w.sampledImage(0, textureView(a->cpu.materials[i].baseColorTexture), sampler)
+          .sampledImage(1, textureView(a->cpu.materials[i].emissiveTexture), sampler);
+    } else {
+      w.sampledImage(0, white_.view(), sampler).sampledImage(1, white_.view(), sampler);
+    }
+    w.update(ctx_, set);
+    a->materialSets.push_back(set);
+  }
+  auto& stored = *(assets_[k] = std::move(a));
+  return stored;
+}
+
+void GpuScene::extract(ecs::Registry& registry, const scene::Level& level, const ExtractOptions& options,
+                       RenderWorld& w) const {
+  w = RenderWorld{};
+  for (const auto& name : level.effects.names()) w.effects.insert(name);
+  w.background = level.background;
+  w.sceneMin = glm::vec3(std::numeric_limits<float>::max());
+  w.sceneMax = glm::vec3(-std::numeric_limits<float>::max());
+
+  // Meshes: every node of the instanced subtree, composed with the entity's world transform.
+  registry.view<scene::MeshRef, scene::WorldTransform>().each(
+      [&](ecs::Entity e, scene::MeshRef& ref, scene::WorldTransform& world) {
+        const AssetGpu& a = *assets_.at(key(ref));
+        const auto* over = registry.tryGet<scene::MaterialOverride>(e);
+        const bool dynamic = registry.has<scene::Dynamic>(e);
+        std::vector<std::pair<int, glm::mat4>> stack;
+        if (int root = findNode(a.cpu, ref); root >= 0) {
+          stack.push_back({root, world.matrix * nodeLocal(a.cpu.nodes[root])});
+        } else {
+          for (int r : a.cpu.rootNodes) stack.push_back({r, world.matrix * nodeLocal(a.cpu.nodes[r])});
+        }
+        while (!stack.empty()) {
+          auto [n, m] = stack.back();
+          stack.pop_back();
+          const asset::Node& node = a.cpu.nodes[n];
+          for (int c : node.children) stack.push_back({c, m * nodeLocal(a.cpu.nodes[c])});
+          if (node.light >= 0) {
+            const asset::Light& L = a.cpu.lights[node.light];
+            w.lights.push_back(makeLight(static_cast<LightType>(L.type), L.color, L.intensity, L.range,
+                                         L.innerConeAngle, L.outerConeAngle, true, m));
+          }
+          if (node.mesh < 0) continue;
+          const auto& meshCpu = a.cpu.meshes[node.mesh];
+          for (int i = 0; i < 8; ++i) {
+            glm::vec3 c{i & 1 ? meshCpu.bounds.max.x : meshCpu.bounds.min.x,
+                        i & 2 ? meshCpu.bounds.max.y : meshCpu.bounds.min.y,
+                        i & 4 ? meshCpu.bounds.max.z : meshCpu.bounds.min.z};
+            glm::vec3 p = glm::vec3(m * glm::vec4(c, 1.0f));
+            w.sceneMin = glm::min(w.sceneMin, p);
+            w.sceneMax = glm::max(w.sceneMax, p);
+          }
+          const MeshGpu& gpuMesh = *a.meshes[node.mesh];
+          for (std::uint32_t p = 0; p < gpuMesh.primitives.size(); ++p) {
+            const auto& prim = gpuMesh.primitives[p];
+            InstanceGpu inst{};
+            inst.model = m;
+            inst.normalMatrix = glm::mat4(glm::inverseTranspose(glm::mat3(m)));
+            glm::vec3 albedo(1.0f), emissive(0.0f);
+            bool baseTex = false, emissiveTex = false;
+            if (prim.material < a.cpu.materials.size()) {
+              const auto& mat = a.cpu.materials[prim.material];
+              albedo = glm::vec3(mat.baseColorFactor);
+              emissive = mat.emissiveFactor;
+              baseTex = mat.baseColorTexture.texture >= 0;
+              emissiveTex = mat.emissiveTexture.texture >= 0;
+            }
+            if (over && over->albedo) albedo = *over->albedo;
+            if (over && over->emissive) emissive = *over->emissive;
+            inst.albedo = glm::vec4(albedo, baseTex ? 1.0f : 0.0f);
+            inst.emissive = glm::vec4(emissive, emissiveTex ? 1.0f : 0.0f);
+            inst.ids = glm::uvec4(e.index(), 0, 0, 0);
+            w.draws.push_back({&gpuMesh, p, static_cast<std::uint32_t>(w.instances.size()),
+                               a.materialSets[prim.material], e.index(), dynamic});
+            w.instances.push_back(inst);
+          }
+        }
+      });
+  if (w.draws.empty()) w.sceneMin = w.sceneMax = glm::vec3(0.0f);
+
+  registry.view<scene::Light, scene::WorldTransform>().each(
+      [&](ecs::Entity, scene::Light& L, scene::WorldTransform& world) {
+        LightType type = L.type == scene::LightType::Point  ? LightType::Point
+                         : L.type == scene::LightType::Spot ? LightType::Spot
+                                                            : LightType::Directional;
+        w.lights.push_back(makeLight(type, L.color, L.intensity, L.range.value_or(0.0f), L.innerConeRad,
+                                     L.outerConeRad, L.shadows, world.matrix));
+      });
+  if (!w.has("shadows"))
+    for (auto& l : w.lights) l.shadow.x = -1.0f;
+  buildShadowLayers(w, options.shadowResolution);
+
+  // Camera: the active camera's world transform (scale removed), glTF-style perspective.
+  const float aspect = float(options.extent.width) / float(options.extent.height);
+  glm::mat4 camWorld(1.0f);
+  scene::Camera cam;
+  if (ecs::Entity c = scene::activeCamera(registry); !c.isNull()) {
+    camWorld = registry.get<scene::WorldTransform>(c).matrix;
+    cam = registry.get<scene::Camera>(c);
+  }
+  for (int i = 0; i < 3; ++i) camWorld[i] = glm::vec4(glm::normalize(glm::vec3(camWorld[i])), 0.0f);
+  w.camera.view = glm::inverse(camWorld);
+  w.camera.proj = perspectiveVk(cam.yfovRad, aspect, cam.near, cam.far);
+  w.camera.viewProj = w.camera.proj * w.camera.view;
+  w.camera.invViewProj = glm::inverse(w.camera.viewProj);
+  w.camera.position = glm::vec4(glm::vec3(camWorld[3]), 1.0f);
+  w.camera.resolution = glm::vec4(options.extent.width, options.extent.height, 1.0f / options.extent.width,
+                                  1.0f / options.extent.height);
+  w.cameraFar = cam.far;
+}
+
+}  // namespace bounce::render

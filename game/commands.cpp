@@ -1,0 +1,41 @@
+#include "game/commands.hpp"
+
+#include <climits>
+
+namespace bounce::game {
+
+const std::vector<cli::CommandSpec>& commandSpecs() {
+  static const cli::OptionSpec device{"--device", "NAME", "Vulkan device (substring of its name; also BOUNCE_DEVICE)"};
+  static const cli::OptionSpec effects{"--effects", "LIST", "replace the level's effects, e.g. direct,shadows"};
+  static const std::vector<cli::CommandSpec> specs = {
+      {"play", "LEVEL [options]", "open a window on a level: fly camera (WASD + mouse), effect and debug-view keys, GPU overlay",
+       {device, effects,
+        {"--frames", "N", "quit after N frames"},
+        {"--screenshot", "FILE", "save the last presented frame as PNG (with --frames)"},
+        {"--resolution", "WxH", "window size (default 1280x720)"},
+        {"--vsync", "on|off", "present with vsync (default on)"}},
+       1, 1},
+      {"capture", "SCRIPT --out DIR [options]", "headless scripted capture: PNG + PFM per captured frame, timings.json",
+       {device, effects, {"--out", "DIR", "output folder (created)"}, {"--resolution", "WxH", "override the script's resolution"}},
+       1, 1},
+      {"profile", "LEVEL [options]", "per-pass GPU time (median and p95 over many frames)",
+       {device, effects,
+        {"--frames", "N", "measured frames (default 60, after 5 warm-up frames)"},
+        {"--resolution", "WxH", "render size (default 1280x720)"},
+        {"--csv", "FILE", "also write pass,object,frames,median_ms,p95_ms"}},
+       1, 1},
+      {"graph", "LEVEL --dot FILE [options]", "write the level's compiled render graph as Graphviz DOT",
+       {effects, {"--dot", "FILE", "output file"}, {"--no-cull", "", "keep passes whose outputs nothing reads"},
+        {"--resolution", "WxH", "render size (default 1280x720)"}},
+       1, 1},
+      {"cook", "FILE... [--out DIR]", "cook glTF/glb files (or every asset of a level .json) into the content cache",
+       {{"--out", "DIR", "cache folder (default: BOUNCE_COOK_CACHE or <build>/cooked)"}}, 1, SIZE_MAX},
+      {"demo", "[options]", "the README's first command: play the default level with a display, else capture + profile it",
+       {device, {"--out", "DIR", "capture folder when headless (default build/demo)"}}, 0, 0},
+  };
+  return specs;
+}
+
+GpuOptions gpuOptions(const cli::Args& args) { return {args.str("--device"), false}; }
+
+}  // namespace bounce::game

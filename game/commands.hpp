@@ -1,0 +1,26 @@
+#pragma once
+// The `bounce` subcommands. Each returns the process exit code (0 success); bad input is thrown
+// as InputError (exit 2) and failures as InternalError (exit 1), see main.cpp.
+#include <vector>
+
+#include "game/cli.hpp"
+
+namespace bounce::game {
+
+const std::vector<cli::CommandSpec>& commandSpecs();
+
+int runPlay(const cli::Args& args);
+int runCapture(const cli::Args& args);
+int runProfile(const cli::Args& args);
+int runGraph(const cli::Args& args);
+int runCook(const cli::Args& args);
+int runDemo(const cli::Args& args);
+
+// The Vulkan context for --device (or BOUNCE_DEVICE), headless unless `windowed`.
+struct GpuOptions {
+  std::string device;
+  bool windowed = false;
+};
+GpuOptions gpuOptions(const cli::Args& args);
+
+}  // namespace bounce::game

@@ -1,0 +1,53 @@
+#pragma once
+// A loaded level ready to simulate and render: the ECS registry, the uploaded GPU scene and the
+// renderer. play, capture and profile all drive one Session:
+//   Session s(ctx, level);  for each frame: s.update(t); s.render(presenter, settings);
+#include <filesystem>
+#include <memory>
+#include <optional>
+
+#include "engine/ecs/registry.hpp"
+#include "engine/gpu/context.hpp"
+#include "engine/render/gpu_scene.hpp"
+#include "engine/render/renderer.hpp"
+#include "engine/scene/level.hpp"
+#include "engine/scene/motion.hpp"
+
+namespace bounce::game {
+
+// Where cooked assets are cached: BOUNCE_COOK_CACHE, else <build dir>/cooked.
+std::filesystem::path cookCacheDir();
+
+// Loads a level and applies an optional --effects override (both validated; errors are InputError).
+scene::Level loadLevelWithEffects(const std::filesystem::path& path, const std::optional<std::vector<std::string>>& effects);
+
+class Session {
+ public:
+  Session(gpu::Context& ctx, scene::Level level);
+
+  // Runs the systems for simulation time t (seconds): camera script, motion, transforms.
+  void update(double t);
+  // Extracts the RenderWorld for `extent` and renders it through `presenter`.
+  void render(gpu::Presenter& presenter, const render::FrameSettings& settings);
+  // The world as extracted by the last render() or extractOnly().
+  const render::RenderWorld& world() const { return world_; }
+  void extractOnly(VkExtent2D extent, std::uint32_t shadowResolution = 1024);
+
+  // A motion script for the active camera (capture scripts); its base is the camera's transform.
+  void setCameraMotion(scene::Motion motion);
+
+  scene::Level& level() { return level_; }
+  ecs::Registry& registry() { return registry_; }
+  render::Renderer& renderer() { return *renderer_; }
+  render::GpuScene& gpuScene() { return *scene_; }
+
+ private:
+  gpu::Context& ctx_;
+  scene::Level level_;
+  ecs::Registry registry_;
+  std::unique_ptr<render::Renderer> renderer_;
+  std::unique_ptr<render::GpuScene> scene_;
+  render::RenderWorld world_;
+};
+
+}  // namespace bounce::game

@@ -1,0 +1,80 @@
+#include "game/timing_stats.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+
+namespace bounce::game {
+
+double percentile(std::vector<double> s, double q) {
+  if (s.empty()) return 0.0;
+  std::sort(s.begin(), s.end());
+  // Nearest rank: the smallest value with at least q of the samples at or below it.
+  std::size_t rank = static_cast<std::size_t>(std::ceil(q * double(s.size())));
+  return s[std::clamp<std::size_t>(rank, 1, s.size()) - 1];
+}
+
+void TimingCollector::collect(const gpu::FrameRing& frames, std::uint64_t warmupFrames) {
+  const std::uint64_t number = frames.lastTimingsFrame();
+  if (number == 0 || number == lastFrame_) return;
+  lastFrame_ = number;
+  if (number <= warmupFrames) return;
+  double total = 0.0;
+  for (const auto& t : frames.lastTimings()) {
+    if (!samples_.count(t.name)) order_.push_back(t.name);
+    samples_[t.name].push_back(t.ms);
+    if (t.depth == 0) total += t.ms;
+  }
+  if (!samples_.count("frame")) order_.push_back("frame");
+  samples_["frame"].push_back(total);
+  ++frames_;
+}
+
+std::vector<PassStats> TimingCollector::stats() const {
+  std::vector<PassStats> rows;
+  for (const auto& name : order_) {
+    if (name == "frame") continue;
+    const auto& s = samples_.at(name);
+    rows.push_back({name, "", s.size(), percentile(s, 0.5), percentile(s, 0.95)});
+  }
+  if (samples_.count("frame")) {
+    const auto& s = samples_.at("frame");
+    rows.push_back({"frame", "", s.size(), percentile(s, 0.5), percentile(s, 0.95)});
+  }
+  return rows;
+}
+
+std::string formatTable(const std::vector<PassStats>& rows) {
+  std::string out;
+  char line[256];
+  std::snprintf(line, sizeof line, "%-24s %-16s %7s %11s %11s\n", "pass", "object", "frames", "median ms", "p95 ms");
+  out += line;
+  for (const auto& r : rows) {
+    std::snprintf(line, sizeof line, "%-24s %-16s %7zu %11.3f %11.3f\n", r.pass.c_str(), r.object.c_str(), r.frames,
+                  r.medianMs, r.p95Ms);
+    out += line;
+  }
+  return out;
+}
+
+std::string formatCsv(const std::vector<PassStats>& rows) {
+  std::string out = "pass,object,frames,median_ms,p95_ms\n";
+  char line[256];
+  for (const auto& r : rows) {
+    std::snprintf(line, sizeof line, "%s,%s,%zu,%.4f,%.4f\n", r.pass.c_str(), r.object.c_str(), r.frames, r.medianMs,
+                  r.p95Ms);
+    out += line;
+  }
+  return out;
+}
+
+std::string formatJson(const std::vector<PassStats>& rows) {
+  nlohmann::json passes = nlohmann::json::array();
+  for (const auto& r : rows)
+    passes.push_back({{"pass", r.pass}, {"object", r.object}, {"frames", r.frames}, {"median_ms", r.medianMs},
+                      {"p95_ms", r.p95Ms}});
+  return nlohmann::json{{"passes", passes}}.dump(2) + "\n";
+}
+
+}  // namespace bounce::game

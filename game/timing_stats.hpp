@@ -1,0 +1,44 @@
+#pragma once
+// Per-pass GPU timings gathered over many frames, reduced to median and 95th percentile (this
+// host's timings vary up to 2× between runs, so single frames mean little: DESIGN.md).
+#include <map>
+#include <string>
+#include <vector>
+
+#include "engine/gpu/frames.hpp"
+
+namespace bounce::game {
+
+struct PassStats {
+  std::string pass;
+  std::string object;  // empty for whole-pass rows (per-object rows come with the GI techniques)
+  std::size_t frames = 0;
+  double medianMs = 0.0;
+  double p95Ms = 0.0;
+};
+
+// Nearest-rank percentile (q in [0, 1]) of unsorted samples; 0 for none.
+double percentile(std::vector<double> samples, double q);
+
+class TimingCollector {
+ public:
+  // Records the ring's most recently resolved frame if it is new and not a warm-up frame.
+  void collect(const gpu::FrameRing& frames, std::uint64_t warmupFrames);
+  // One row per pass in first-seen order, then a "frame" row: the sum of the outermost scopes.
+  std::vector<PassStats> stats() const;
+  std::size_t framesCollected() const { return frames_; }
+
+ private:
+  std::vector<std::string> order_;
+  std::map<std::string, std::vector<double>> samples_;
+  std::uint64_t lastFrame_ = 0;
+  std::size_t frames_ = 0;
+};
+
+std::string formatTable(const std::vector<PassStats>& rows);
+// CSV with the header exactly "pass,object,frames,median_ms,p95_ms".
+std::string formatCsv(const std::vector<PassStats>& rows);
+// {"passes": [{"pass": …, "object": …, "frames": …, "median_ms": …, "p95_ms": …}, …]}
+std::string formatJson(const std::vector<PassStats>& rows);
+
+}  // namespace bounce::game
