@@ -55,11 +55,13 @@ ImageSrgb8::ImageSrgb8(int w, int h, glm::u8vec3 fill) : width(w), height(h) {
 }
 
 glm::u8vec3 ImageSrgb8::at(int x, int y) const {
+  assert(x >= 0 && x < width && y >= 0 && y < height);
   const std::size_t i = (static_cast<std::size_t>(y) * width + x) * 3;
   return {rgb[i], rgb[i + 1], rgb[i + 2]};
 }
 
 void ImageSrgb8::set(int x, int y, glm::u8vec3 c) {
+  assert(x >= 0 && x < width && y >= 0 && y < height);
   const std::size_t i = (static_cast<std::size_t>(y) * width + x) * 3;
   rgb[i] = c.r;
   rgb[i + 1] = c.g;

@@ -9,6 +9,7 @@
 //   A negative scale means little-endian floats, a positive one big-endian; its magnitude is a
 //   conventional "scale factor" that readers (netpbm, OpenImageIO, ours) do not apply.
 //   "Pf" is the one-channel variant; we read it (grey replicated to RGB) and never write it.
+#include <cassert>
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
@@ -33,9 +34,15 @@ struct ImageRGB {
   std::size_t pixelCount() const { return pixels.size(); }
   bool empty() const { return pixels.empty(); }
   bool sameSize(const ImageRGB& o) const { return width == o.width && height == o.height; }
-  // No bounds check beyond an assert: callers loop over [0,width)×[0,height).
-  glm::vec3& at(int x, int y) { return pixels[static_cast<std::size_t>(y) * width + x]; }
-  const glm::vec3& at(int x, int y) const { return pixels[static_cast<std::size_t>(y) * width + x]; }
+  // Bounds are asserted in debug builds only: callers loop over [0,width)×[0,height).
+  glm::vec3& at(int x, int y) { return pixels[index(x, y)]; }
+  const glm::vec3& at(int x, int y) const { return pixels[index(x, y)]; }
+
+ private:
+  std::size_t index(int x, int y) const {
+    assert(x >= 0 && x < width && y >= 0 && y < height);
+    return static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x);
+  }
 };
 
 // a − b, pixel by pixel (InternalError when sizes differ). Used for "with minus without".

@@ -31,7 +31,8 @@ TEST(Golden, MissingThenWrittenThenMatches) {
   const GoldenResult missing = compareToGolden(img, golden, kGoldenTol);
   EXPECT_FALSE(missing.passed);
   EXPECT_TRUE(missing.goldenMissing);
-  EXPECT_EQ(missing.summary, "FAIL " + golden.string() + ": golden missing (run with BOUNCE_UPDATE_GOLDENS=1 to create it)");
+  EXPECT_EQ(missing.summary,
+            "FAIL " + golden.string() + ": golden missing (run with BOUNCE_UPDATE_GOLDENS=1 to create it)");
 
   {
     ScopedEnv env("1");
