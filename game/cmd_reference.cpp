@@ -47,7 +47,7 @@ int runReference(const cli::Args& args) {
   if (res.fromCache) {
     std::printf("served from the cache: %s\n", res.cachePath.c_str());
   } else {
-    std::printf("traced %zu triangles in %.2f s: %.2f M rays, %.2f M rays/s on %d threads\n", res.triangles,
+    std::printf("traced %zu triangles in %.2f s: %.2f M rays, %.2f M rays/s (TBB threads: %d)\n", res.triangles,
                 res.stats.seconds, res.stats.rays * 1e-6, res.stats.raysPerSecond() * 1e-6,
                 tbb::this_task_arena::max_concurrency());
     std::printf("cached: %s\n", res.cachePath.c_str());
