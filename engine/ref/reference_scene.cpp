@@ -1,0 +1,190 @@
+#include "engine/ref/reference_scene.hpp"
+
+#include <glm/gtc/matrix_inverse.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+#include "engine/core/error.hpp"
+#include "engine/scene/systems.hpp"
+
+namespace bounce::ref {
+namespace {
+
+// The helpers below mirror engine/render/gpu_scene.cpp one for one, so both see the same scene.
+
+glm::mat4 nodeLocal(const asset::Node& n) {
+  if (n.hasMatrix) return n.matrix;
+  return glm::translate(glm::mat4(1.0f), n.translation) * glm::mat4_cast(n.rotation) *
+         glm::scale(glm::mat4(1.0f), n.scale);
+}
+
+asset::Subdivision toAsset(const scene::Subdivision& s) {
+  return {static_cast<asset::SubdivisionScheme>(static_cast<std::uint32_t>(s.scheme)),
+          static_cast<std::uint32_t>(s.levels)};
+}
+
+std::string nodeKey(const std::variant<std::string, std::uint32_t>& node) {
+  return std::holds_alternative<std::string>(node) ? std::get<std::string>(node)
+                                                   : std::to_string(std::get<std::uint32_t>(node));
+}
+
+// The glTF node a MeshRef names, or -1 for the default scene. Bad names are input errors.
+int findNode(const asset::CookedAsset& a, const scene::MeshRef& ref) {
+  if (!ref.node) return -1;
+  if (auto* index = std::get_if<std::uint32_t>(&*ref.node)) {
+    if (*index >= a.nodes.size())
+      throwInputError(ref.asset.string(), "/nodes", "node " + std::to_string(*index) + " does not exist",
+                      "an index below " + std::to_string(a.nodes.size()));
+    return static_cast<int>(*index);
+  }
+  const auto& name = std::get<std::string>(*ref.node);
+  for (std::size_t i = 0; i < a.nodes.size(); ++i)
+    if (a.nodes[i].name == name) return static_cast<int>(i);
+  throwInputError(ref.asset.string(), "/nodes", "no node named '" + name + "'", "a node name of the asset");
+}
+
+RefLight makeLight(RefLightType type, glm::vec3 color, float intensity, float range, float inner, float outer,
+                   const glm::mat4& world) {
+  RefLight l;
+  l.type = type;
+  l.position = glm::vec3(world[3]);
+  l.direction = glm::normalize(glm::vec3(world * glm::vec4(0, 0, -1, 0)));
+  l.radiance = color * intensity;
+  l.range = range;
+  l.cosOuter = std::cos(outer);
+  l.cosInner = std::cos(inner);
+  return l;
+}
+
+RefLightType fromAsset(asset::LightType t) {
+  return t == asset::LightType::Point ? RefLightType::Point
+         : t == asset::LightType::Spot ? RefLightType::Spot
+                                       : RefLightType::Directional;
+}
+
+}  // namespace
+
+std::string ReferenceAssets::key(const scene::MeshRef& ref) {
+  std::string k = ref.asset.string();
+  if (ref.subdivision) {
+    k.append("|subdiv:").append(std::to_string(int(ref.subdivision->scheme)));
+    k.append(":").append(std::to_string(ref.subdivision->levels));
+    if (ref.node) k.append(":").append(nodeKey(*ref.node));
+  }
+  return k;
+}
+
+void ReferenceAssets::load(ecs::Registry& registry, const std::filesystem::path& cookCache) {
+  registry.view<scene::MeshRef>().each([&](ecs::Entity, scene::MeshRef& ref) {
+    const std::string k = key(ref);
+    if (entries_.count(k)) return;
+    Entry e;
+    if (ref.subdivision) {  // GpuScene::upload's options: the named node, else every node with a mesh
+      if (ref.node) {
+        e.options.subdivision[nodeKey(*ref.node)] = toAsset(*ref.subdivision);
+      } else {
+        const auto plain = asset::loadOrCook(ref.asset, cookCache, {});
+        for (std::size_t i = 0; i < plain.nodes.size(); ++i)
+          if (plain.nodes[i].mesh >= 0) e.options.subdivision[std::to_string(i)] = toAsset(*ref.subdivision);
+      }
+    }
+    e.cpu = asset::loadOrCook(ref.asset, cookCache, e.options);
+    findNode(e.cpu, ref);  // reject a bad node name before anything is traced
+    e.contentKey = asset::cacheKey(ref.asset, e.options);
+    e.firstTexture = static_cast<std::uint32_t>(textures_.size());
+    for (const auto& t : e.cpu.textures) textures_.push_back(makeTexture(t.width, t.height, t.pixels, t.srgb));
+    entries_.emplace(k, std::move(e));
+  });
+}
+
+const ReferenceAssets::Entry& ReferenceAssets::get(const scene::MeshRef& ref) const {
+  auto it = entries_.find(key(ref));
+  if (it == entries_.end()) throw InternalError("ref::ReferenceAssets: " + ref.asset.string() + " was not loaded");
+  return it->second;
+}
+
+SceneDesc extractScene(ecs::Registry& registry, const scene::Level& level, const ReferenceAssets& assets) {
+  SceneDesc out;
+  out.textures = assets.textures();
+  out.background = level.background;
+
+  registry.view<scene::MeshRef, scene::WorldTransform>().each(
+      [&](ecs::Entity e, scene::MeshRef& ref, scene::WorldTransform& world) {
+        const ReferenceAssets::Entry& a = assets.get(ref);
+        const auto* over = registry.tryGet<scene::MaterialOverride>(e);
+        auto texture = [&](const asset::TextureRef& t) {
+          return t.texture >= 0 && std::size_t(t.texture) < a.cpu.textures.size() ? int(a.firstTexture) + t.texture : -1;
+        };
+        std::vector<std::pair<int, glm::mat4>> stack;
+        if (int root = findNode(a.cpu, ref); root >= 0) {
+          stack.push_back({root, world.matrix * nodeLocal(a.cpu.nodes[root])});
+        } else {
+          for (int r : a.cpu.rootNodes) stack.push_back({r, world.matrix * nodeLocal(a.cpu.nodes[r])});
+        }
+        while (!stack.empty()) {
+          auto [n, m] = stack.back();
+          stack.pop_back();
+          const asset::Node& node = a.cpu.nodes[n];
+          for (int c : node.children) stack.push_back({c, m * nodeLocal(a.cpu.nodes[c])});
+          if (node.light >= 0) {
+            const asset::Light& L = a.cpu.lights[node.light];
+            out.lights.push_back(makeLight(fromAsset(L.type), L.color, L.intensity, L.range, L.innerConeAngle,
+                                           L.outerConeAngle, m));
+          }
+          if (node.mesh < 0) continue;
+          const glm::mat3 normalMatrix = glm::inverseTranspose(glm::mat3(m));
+          for (const asset::Primitive& p : a.cpu.meshes[node.mesh].primitives) {
+            RefMaterial mat;  // the default material (white, no emission) when the primitive has none
+            if (p.material >= 0 && std::size_t(p.material) < a.cpu.materials.size()) {
+              const asset::Material& src = a.cpu.materials[p.material];
+              mat.albedo = glm::vec3(src.baseColorFactor);
+              mat.albedoTexture = texture(src.baseColorTexture);
+              mat.emissive = src.emissiveFactor;
+              mat.emissiveTexture = texture(src.emissiveTexture);
+            }
+            if (over && over->albedo) mat.albedo = *over->albedo;
+            if (over && over->emissive) mat.emissive = *over->emissive;
+            RefMesh mesh;
+            mesh.material = static_cast<std::uint32_t>(out.materials.size());
+            out.materials.push_back(mat);
+            mesh.positions.reserve(p.positions.size());
+            mesh.normals.reserve(p.positions.size());
+            for (std::size_t v = 0; v < p.positions.size(); ++v) {
+              mesh.positions.push_back(glm::vec3(m * glm::vec4(p.positions[v], 1.0f)));
+              // Not renormalised: mesh.vert passes normalMatrix·n on and the fragment normalises
+              // after interpolation, so the interpolation weights match.
+              mesh.normals.push_back(normalMatrix * p.normals[v]);
+            }
+            if (p.uv0.size() == p.positions.size()) mesh.uvs = p.uv0;
+            else if (!p.uv0.empty()) {  // GpuScene zero-fills missing UVs; do the same
+              mesh.uvs.assign(p.positions.size(), glm::vec2(0.0f));
+              std::copy_n(p.uv0.begin(), std::min(p.uv0.size(), p.positions.size()), mesh.uvs.begin());
+            }
+            mesh.indices = p.indices;
+            out.meshes.push_back(std::move(mesh));
+          }
+        }
+      });
+
+  registry.view<scene::Light, scene::WorldTransform>().each(
+      [&](ecs::Entity, scene::Light& L, scene::WorldTransform& world) {
+        const RefLightType type = L.type == scene::LightType::Point  ? RefLightType::Point
+                                  : L.type == scene::LightType::Spot ? RefLightType::Spot
+                                                                     : RefLightType::Directional;
+        out.lights.push_back(makeLight(type, L.color, L.intensity, L.range.value_or(0.0f), L.innerConeRad,
+                                       L.outerConeRad, world.matrix));
+      });
+
+  // Camera: the active camera's world transform with its scale removed, as GpuScene::extract.
+  glm::mat4 camWorld(1.0f);
+  scene::Camera cam;
+  if (ecs::Entity c = scene::activeCamera(registry); !c.isNull()) {
+    camWorld = registry.get<scene::WorldTransform>(c).matrix;
+    cam = registry.get<scene::Camera>(c);
+  }
+  for (int i = 0; i < 3; ++i) camWorld[i] = glm::vec4(glm::normalize(glm::vec3(camWorld[i])), 0.0f);
+  out.camera = {camWorld, cam.yfovRad, cam.near, cam.far};
+  return out;
+}
+
+}  // namespace bounce::ref
