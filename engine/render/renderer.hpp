@@ -40,6 +40,8 @@ class Renderer {
   const Pipelines& pipelines() const { return *pipelines_; }
   gpu::SamplerCache& samplers() { return *samplers_; }
   gpu::FrameRing& frames() { return *frames_; }
+  // The graph's Vulkan backend (tests: transient pooling, VkBackend::createdImages()).
+  const VkBackend& backend() const { return *backend_; }
 
   // Records and submits one frame through `presenter` (which decides the size).
   void render(const RenderWorld& world, gpu::Presenter& presenter, const FrameSettings& settings);

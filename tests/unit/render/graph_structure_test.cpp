@@ -1,0 +1,112 @@
+// The per-frame render graph on a real level (content/levels/cornell-1.json): which passes exist
+// (DOT from Renderer::graphDot) and which run (Renderer::executedPasses), as exact lists. This is
+// "simulate only the effects a scene calls for" and the graph's cull step, seen from the renderer.
+// Also: VkBackend pools transient images per frame slot, so a steady stream of frames creates no
+// new physical images after every slot has recorded once.
+#include <gtest/gtest.h>
+
+#include "engine/gpu/presenter_offscreen.hpp"
+#include "engine/gpu/testing.hpp"
+#include "game/session.hpp"
+
+using namespace bounce;
+
+namespace {
+
+const std::filesystem::path kCornell = std::filesystem::path(BOUNCE_SOURCE_DIR) / "content/levels/cornell-1.json";
+constexpr VkExtent2D kExtent{64, 64};
+using Passes = std::vector<std::string>;
+
+struct Result {
+  Passes executed;
+  std::string dot;
+};
+
+Result renderOnce(const std::optional<std::vector<std::string>>& effects, const render::FrameSettings& settings) {
+  gpu::Context& ctx = gpu::testkit::sharedContext();
+  game::Session session(ctx, game::loadLevelWithEffects(kCornell, effects));
+  session.update(0.0);
+  gpu::OffscreenPresenter presenter(ctx, kExtent);
+  session.render(presenter, settings);
+  Result r;
+  r.executed = session.renderer().executedPasses();
+  r.dot = session.renderer().graphDot(session.world(), kExtent, settings);
+  session.renderer().frames().waitIdle();
+  return r;
+}
+
+// A pass node in the DOT dump: `[label="NAME", shape=box` (graph/dot.cpp), then its style.
+bool hasPass(const std::string& dot, const std::string& name) {
+  return dot.find("[label=\"" + name + "\", shape=box") != std::string::npos;
+}
+bool passCulled(const std::string& dot, const std::string& name) {
+  return dot.find("[label=\"" + name + "\", shape=box, style=\"dashed\"") != std::string::npos;
+}
+
+}  // namespace
+
+TEST(RendererGraph, DirectOnlyHasNoShadowPass) {
+  const Result r = renderOnce(std::vector<std::string>{"direct"}, {});
+  EXPECT_EQ(r.executed, (Passes{"gbuffer", "lighting", "tonemap"}));
+  EXPECT_EQ(r.dot.find("shadow"), std::string::npos) << "no shadow pass, atlas or anything else named so";
+  EXPECT_TRUE(hasPass(r.dot, "gbuffer"));
+  EXPECT_TRUE(hasPass(r.dot, "lighting"));
+  EXPECT_TRUE(hasPass(r.dot, "tonemap"));
+}
+
+TEST(RendererGraph, ShadowsEffectAddsShadowPassFirst) {
+  const Result r = renderOnce(std::vector<std::string>{"direct", "shadows"}, {});
+  EXPECT_EQ(r.executed, (Passes{"shadow", "gbuffer", "lighting", "tonemap"}));
+  EXPECT_TRUE(hasPass(r.dot, "shadow"));
+  EXPECT_FALSE(passCulled(r.dot, "shadow"));
+  EXPECT_NE(r.dot.find("shadow.atlas"), std::string::npos);
+}
+
+TEST(RendererGraph, DebugViewCullsLightingAndSkipsTonemap) {
+  render::FrameSettings s;
+  s.debugView = render::DebugView::Albedo;
+  const Result r = renderOnce(std::nullopt, s);  // the level's own effects: direct, shadows
+  // The debug view reads the shadow atlas (for its shadow mode), so the shadow pass stays.
+  EXPECT_EQ(r.executed, (Passes{"shadow", "gbuffer", "debug-view"}));
+  EXPECT_TRUE(passCulled(r.dot, "lighting"));
+  EXPECT_FALSE(passCulled(r.dot, "debug-view"));
+  EXPECT_FALSE(hasPass(r.dot, "tonemap")) << "a debug view replaces tonemapping: the pass is never added";
+}
+
+TEST(RendererGraph, CullingOffRunsEveryPass) {
+  render::FrameSettings s;
+  s.debugView = render::DebugView::Albedo;
+  s.culling = false;
+  const Result debug = renderOnce(std::nullopt, s);
+  EXPECT_EQ(debug.executed, (Passes{"shadow", "gbuffer", "lighting", "debug-view"}));
+  EXPECT_FALSE(passCulled(debug.dot, "lighting"));
+
+  s.debugView = render::DebugView::None;
+  const Result lit = renderOnce(std::nullopt, s);
+  EXPECT_EQ(lit.executed, (Passes{"shadow", "gbuffer", "lighting", "tonemap"}));
+  EXPECT_EQ(lit.dot.find("dashed"), std::string::npos) << "nothing culled";
+}
+
+TEST(RendererGraph, TransientImagesArePooledAcrossFrames) {
+  gpu::Context& ctx = gpu::testkit::sharedContext();
+  game::Session session(ctx, game::loadLevelWithEffects(kCornell, std::nullopt));
+  gpu::OffscreenPresenter presenter(ctx, kExtent);
+  const std::uint32_t slots = session.renderer().frames().framesInFlight();
+  auto run = [&](int first, int count) {
+    for (int f = first; f < first + count; ++f) {
+      session.update(f / 60.0);  // props move: the graph is rebuilt from a new world every frame
+      session.render(presenter, {});
+    }
+  };
+  run(0, int(slots));
+  const std::size_t afterEverySlot = session.renderer().backend().createdImages();
+  // Transients per frame: five G-buffer targets (albedo, normal, emissive, entity, depth) and the
+  // shadow atlas; all are alive together during lighting, so none can share memory in a frame,
+  // and each frame slot owns its own pool.
+  constexpr std::size_t kTransientsPerFrame = 6;
+  EXPECT_EQ(afterEverySlot, kTransientsPerFrame * slots);
+  run(int(slots), 10 - int(slots));
+  EXPECT_EQ(session.renderer().backend().createdImages(), afterEverySlot) << "10 frames created more images than "
+                                                                          << slots << " did";
+  session.renderer().frames().waitIdle();
+}
