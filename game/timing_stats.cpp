@@ -15,20 +15,19 @@ double percentile(std::vector<double> s, double q) {
   return s[std::clamp<std::size_t>(rank, 1, s.size()) - 1];
 }
 
-void TimingCollector::collect(const gpu::FrameRing& frames, std::uint64_t warmupFrames) {
-  const std::uint64_t number = frames.lastTimingsFrame();
-  if (number == 0 || number == lastFrame_) return;
-  lastFrame_ = number;
-  if (number <= warmupFrames) return;
-  double total = 0.0;
-  for (const auto& t : frames.lastTimings()) {
-    if (!samples_.count(t.name)) order_.push_back(t.name);
-    samples_[t.name].push_back(t.ms);
-    if (t.depth == 0) total += t.ms;
+void TimingCollector::collect(gpu::FrameRing& frames, std::uint64_t warmupFrames) {
+  for (const auto& resolved : frames.takeResolvedTimings()) {
+    if (resolved.frame <= warmupFrames) continue;
+    double total = 0.0;
+    for (const auto& t : resolved.timings) {
+      if (!samples_.count(t.name)) order_.push_back(t.name);
+      samples_[t.name].push_back(t.ms);
+      if (t.depth == 0) total += t.ms;
+    }
+    if (!samples_.count("frame")) order_.push_back("frame");
+    samples_["frame"].push_back(total);
+    ++frames_;
   }
-  if (!samples_.count("frame")) order_.push_back("frame");
-  samples_["frame"].push_back(total);
-  ++frames_;
 }
 
 std::vector<PassStats> TimingCollector::stats() const {

@@ -22,8 +22,8 @@ double percentile(std::vector<double> samples, double q);
 
 class TimingCollector {
  public:
-  // Records the ring's most recently resolved frame if it is new and not a warm-up frame.
-  void collect(const gpu::FrameRing& frames, std::uint64_t warmupFrames);
+  // Records every frame the ring resolved since the last call, except warm-up frames.
+  void collect(gpu::FrameRing& frames, std::uint64_t warmupFrames);
   // One row per pass in first-seen order, then a "frame" row: the sum of the outermost scopes.
   std::vector<PassStats> stats() const;
   std::size_t framesCollected() const { return frames_; }
@@ -31,7 +31,6 @@ class TimingCollector {
  private:
   std::vector<std::string> order_;
   std::map<std::string, std::vector<double>> samples_;
-  std::uint64_t lastFrame_ = 0;
   std::size_t frames_ = 0;
 };
 

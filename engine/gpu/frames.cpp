@@ -1,3 +1,4 @@
+#include <algorithm>
 #include "engine/gpu/frames.hpp"
 
 #include "engine/core/error.hpp"
@@ -47,13 +48,24 @@ FrameRing::~FrameRing() {
 void FrameRing::retire(Frame& f) {
   for (auto& d : f.deletions) d();
   f.deletions.clear();
-  if (f.number > 0 && f.number > last_timings_frame_) {
+  if (f.number > 0 && !f.retired) {
+    f.retired = true;
     auto timings = f.timestamps->resolve();
     if (!timings.empty()) {
-      last_timings_ = std::move(timings);
-      last_timings_frame_ = f.number;
+      resolved_.push_back({f.number, timings});
+      if (f.number > last_timings_frame_) {
+        last_timings_ = std::move(timings);
+        last_timings_frame_ = f.number;
+      }
     }
   }
+}
+
+std::vector<ResolvedTimings> FrameRing::takeResolvedTimings() {
+  std::vector<ResolvedTimings> out = std::move(resolved_);
+  resolved_.clear();
+  std::sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.frame < b.frame; });
+  return out;
 }
 
 Frame& FrameRing::begin() {
@@ -66,6 +78,7 @@ Frame& FrameRing::begin() {
   check(vkResetCommandPool(ctx_.device(), f.pool, 0), "vkResetCommandPool");
   f.descriptors->reset();
   f.number = ++count_;
+  f.retired = false;
   VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
   bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
   check(vkBeginCommandBuffer(f.cmd, &bi), "vkBeginCommandBuffer");

@@ -30,6 +30,13 @@ struct Frame {
   std::unique_ptr<TimestampPool> timestamps;
   std::vector<std::function<void()>> deletions;
   bool recording = false;
+  bool retired = false;  // its timings were resolved (reset when the slot begins again)
+};
+
+// The per-pass timings of one completed frame.
+struct ResolvedTimings {
+  std::uint64_t frame = 0;
+  std::vector<TimingResult> timings;
 };
 
 class FrameRing {
@@ -55,6 +62,9 @@ class FrameRing {
 
   // Timings of the most recently completed frame whose results were resolved.
   const std::vector<TimingResult>& lastTimings() const { return last_timings_; }
+  // Every frame resolved since the last call, oldest first: profiling takes these so that no
+  // frame is lost when waitIdle() resolves several at once.
+  std::vector<ResolvedTimings> takeResolvedTimings();
   std::uint64_t lastTimingsFrame() const { return last_timings_frame_; }
   std::uint32_t framesInFlight() const { return static_cast<std::uint32_t>(frames_.size()); }
 
@@ -65,6 +75,7 @@ class FrameRing {
   std::uint32_t current_ = 0;
   std::uint64_t count_ = 0;
   std::vector<TimingResult> last_timings_;
+  std::vector<ResolvedTimings> resolved_;
   std::uint64_t last_timings_frame_ = 0;
 };
 

@@ -124,11 +124,9 @@ TEST_F(Cli, ProfileCsvHasHeaderAndOneRowPerPassPlusFrame) {
     std::getline(fields, median, ',');
     std::getline(fields, p95, ',');
     EXPECT_EQ(object, "") << row;
-    // Samples come only from the 3 measured frames (warm-up excluded). FrameRing::waitIdle()
-    // resolves the last two frames at once and keeps only the newest's timings, so the final
-    // collect() sees 2 of the 3 today; the bound is ≤ 3 rather than == 3 until that is fixed.
-    EXPECT_GE(std::stoi(frames), 1) << row;
-    EXPECT_LE(std::stoi(frames), 3) << row;
+    // Exactly the 3 measured frames (warm-up excluded): every resolved frame is collected, also
+    // the ones FrameRing::waitIdle() resolves together at the end.
+    EXPECT_EQ(std::stoi(frames), 3) << row;
     EXPECT_GE(std::stod(median), 0.0) << row;
     EXPECT_GE(std::stod(p95), std::stod(median)) << row;
   }
