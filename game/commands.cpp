@@ -32,6 +32,8 @@ const std::vector<cli::CommandSpec>& commandSpecs() {
        {{"--out", "DIR", "cache folder (default: BOUNCE_COOK_CACHE or <build>/cooked)"}}, 1, SIZE_MAX},
       {"demo", "[options]", "the README's first command: play the default level with a display, else capture + profile it",
        {device, {"--out", "DIR", "capture folder when headless (default build/demo)"}}, 0, 0},
+      {"export", "LEVEL OUT.glb [--time T]", "write the composed level as one glTF 2.0 binary (meshes, materials, cameras, lights)",
+       {{"--time", "T", "simulation time in seconds at which dynamic props are placed (default 0)"}}, 2, 2},
   };
   return specs;
 }
