@@ -41,6 +41,8 @@ const std::vector<cli::CommandSpec>& commandSpecs() {
        1, 1},
       {"demo", "[options]", "the README's first command: play the default level with a display, else capture + profile it",
        {device, {"--out", "DIR", "capture folder when headless (default build/demo)"}}, 0, 0},
+      {"export", "LEVEL OUT.glb [--time T]", "write the composed level as one glTF 2.0 binary (meshes, materials, cameras, lights)",
+       {{"--time", "T", "simulation time in seconds at which dynamic props are placed (default 0)"}}, 2, 2},
   };
   return specs;
 }

@@ -16,6 +16,7 @@ int runGraph(const cli::Args& args);
 int runCook(const cli::Args& args);
 int runDemo(const cli::Args& args);
 int runReference(const cli::Args& args);
+int runExport(const cli::Args& args);
 
 // The Vulkan context for --device (or BOUNCE_DEVICE), headless unless `windowed`.
 struct GpuOptions {

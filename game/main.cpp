@@ -31,6 +31,7 @@ int main(int argc, char** argv) {
       if (name == "cook") return game::runCook(args);
       if (name == "demo") return game::runDemo(args);
       if (name == "reference") return game::runReference(args);
+      if (name == "export") return game::runExport(args);
     }
     throwInputError("bounce", name, "unknown command", "one of the commands in 'bounce --help'");
   } catch (const InputError& e) {
