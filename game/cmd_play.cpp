@@ -11,7 +11,7 @@
 #include <chrono>
 #include <cstdio>
 #include <memory>
-#include <optional>
+#include <vector>
 
 #include "engine/core/error.hpp"
 #include "engine/core/log.hpp"
@@ -93,13 +93,6 @@ std::string joined(const std::vector<std::string>& names) {
   return s.empty() ? "(none)" : s;
 }
 
-// The active camera as the level placed it, to give back on R.
-struct CameraStart {
-  ecs::Entity entity = ecs::Entity::null();
-  scene::Transform transform;
-  std::optional<scene::Motion> motion;
-};
-
 std::string onOffArg(const cli::Args& args, const std::string& option, const std::string& fallback) {
   const std::string v = args.str(option, fallback);
   if (v != "on" && v != "off") throwInputError("bounce play", option, "'" + v + "'", "on or off");
@@ -117,6 +110,8 @@ int runPlay(const cli::Args& args) {
   state.overlay = onOffArg(args, "--overlay", args.has("--screenshot") ? "off" : "on") == "on";
   if (args.has("--screenshot") && !frameLimit)
     throwInputError("bounce play", "--screenshot", "needs --frames N", "--frames N --screenshot FILE");
+  const std::vector<ScriptedKey> scripted = parseKeyScript(args.str("--keys"));
+  std::size_t nextScripted = 0;
   scene::Level level = loadLevelWithEffects(args.positional[0], args.list("--effects"));
 
   if (!glfwInit()) throw InternalError("no display: GLFW could not initialise (use 'bounce capture' headless)");
@@ -142,13 +137,7 @@ int runPlay(const cli::Args& args) {
     std::unique_ptr<Overlay> overlay;  // made when first shown: its pipeline costs start-up time
     RollingTimings timings;
 
-    CameraStart start;
-    start.entity = scene::activeCamera(session.registry());
-    if (!start.entity.isNull()) {
-      start.transform = session.registry().get<scene::Transform>(start.entity);
-      if (const auto* m = session.registry().tryGet<scene::Motion>(start.entity)) start.motion = *m;
-    }
-    std::optional<FlyCamera> fly;  // engaged once the user moves: the camera's script is then dropped
+    CameraDriver camera(session.registry(), scene::activeCamera(session.registry()));
     MouseLook mouse;
 
     auto last = std::chrono::steady_clock::now();
@@ -164,6 +153,8 @@ int runPlay(const cli::Args& args) {
       if (frame > 0) timings.addCpuFrameMs(elapsed * 1000.0);
       const double dt = frameLimit ? kFixedStep : wallDt;
 
+      while (nextScripted < scripted.size() && scripted[nextScripted].frame == frame)
+        keys.pressed.push_back(scripted[nextScripted++].key);
       for (int key : keys.pressed) {
         switch (applyKey(key, state, session.level().effects)) {
           case KeyEffect::EffectsChanged:
@@ -173,28 +164,14 @@ int runPlay(const cli::Args& args) {
             swapchain.setVsync(state.vsync);
             log::info(std::string("vsync ") + (state.vsync ? "on" : "off"));
             break;
-          case KeyEffect::ResetCamera:
-            if (!start.entity.isNull()) {
-              session.registry().get<scene::Transform>(start.entity) = start.transform;
-              if (start.motion) session.registry().emplaceOrReplace<scene::Motion>(start.entity, *start.motion);
-              fly.reset();
-            }
-            break;
+          case KeyEffect::ResetCamera: camera.reset(); break;
           case KeyEffect::Handled:
           case KeyEffect::None: break;
         }
       }
       keys.pressed.clear();
 
-      const FlyInput input = pollMovement(window.handle, mouse.poll(window.handle));
-      if (!start.entity.isNull() && (input.move != glm::vec3(0.0f) || input.look != glm::vec2(0.0f))) {
-        auto& transform = session.registry().get<scene::Transform>(start.entity);
-        if (!fly) {
-          session.registry().remove<scene::Motion>(start.entity);  // the user drives the camera now
-          fly.emplace(transform);
-        }
-        transform = fly->step(transform, input, float(dt));
-      }
+      camera.drive(pollMovement(window.handle, mouse.poll(window.handle)), float(dt));
 
       session.update(frameLimit ? double(simSteps) * kFixedStep : simTime);
       if (!state.paused) {
@@ -217,7 +194,7 @@ int runPlay(const cli::Args& args) {
         info.vsync = state.vsync;
         info.paused = state.paused;
         info.culling = state.settings.culling;
-        info.flying = fly.has_value();
+        info.flying = camera.flying();
         info.extent = presenter.extent();
         overlay->build(info, dt);
       }

@@ -2,6 +2,8 @@
 
 #include <GLFW/glfw3.h>
 
+#include "engine/core/error.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -83,6 +85,35 @@ std::string keyMapSummary(const std::string& indent) {
          indent + "  +/- exposure, V vsync, P pause, O overlay, C culling, R reset camera, Esc quit";
 }
 
+std::vector<ScriptedKey> parseKeyScript(const std::string& list) {
+  std::vector<ScriptedKey> out;
+  if (list.empty()) return out;
+  std::string names;
+  for (const auto& b : keyBindings()) {
+    if (!names.empty()) names += ' ';
+    names += b.keyName;
+  }
+  const std::string expected = "KEY@FRAME items separated by commas, KEY one of: " + names;
+  std::size_t pos = 0;
+  while (pos <= list.size()) {
+    const std::size_t comma = std::min(list.find(',', pos), list.size());
+    const std::string item = list.substr(pos, comma - pos);
+    pos = comma + 1;
+    const std::size_t at = item.rfind('@');
+    if (at == std::string::npos || at == 0 || at + 1 == item.size())
+      throwInputError("bounce play", "--keys", "'" + item + "'", expected);
+    const std::string name = item.substr(0, at), frame = item.substr(at + 1);
+    if (frame.size() > 9 || frame.find_first_not_of("0123456789") != std::string::npos)
+      throwInputError("bounce play", "--keys", "'" + item + "': bad frame", "a frame index 0..999999999");
+    const auto& bindings = keyBindings();
+    auto it = std::find_if(bindings.begin(), bindings.end(), [&](const KeyBinding& b) { return name == b.keyName; });
+    if (it == bindings.end()) throwInputError("bounce play", "--keys", "'" + item + "': unknown key", expected);
+    out.push_back({std::stoi(frame), it->key});
+  }
+  std::stable_sort(out.begin(), out.end(), [](const ScriptedKey& a, const ScriptedKey& b) { return a.frame < b.frame; });
+  return out;
+}
+
 scene::EffectSet toggled(scene::EffectSet effects, Effect e) {
   scene::EffectSet out;  // EffectSet can only add: rebuild it without (or with) `e`
   for (int i = 0; i < scene::kEffectCount; ++i) {
@@ -147,6 +178,34 @@ scene::Transform FlyCamera::step(const scene::Transform& current, const FlyInput
   const glm::vec3 right = t.rotation * glm::vec3(1, 0, 0);
   t.translation += (right * move.x + glm::vec3(0, 1, 0) * move.y + forward(t.rotation) * move.z) * speed * dt;
   return t;
+}
+
+// --- CameraDriver ---
+
+CameraDriver::CameraDriver(ecs::Registry& registry, ecs::Entity camera) : registry_(registry), camera_(camera) {
+  if (camera_.isNull()) return;
+  if (const auto* t = registry_.tryGet<scene::Transform>(camera_)) startTransform_ = *t;
+  if (const auto* m = registry_.tryGet<scene::Motion>(camera_)) startMotion_ = *m;
+}
+
+bool CameraDriver::drive(const FlyInput& input, float dt) {
+  if (camera_.isNull()) return false;
+  if (input.move == glm::vec3(0.0f) && input.look == glm::vec2(0.0f)) return flying();
+  scene::Transform* transform = registry_.tryGet<scene::Transform>(camera_);
+  if (!transform) transform = &registry_.emplace<scene::Transform>(camera_, startTransform_);
+  if (!fly_) {
+    registry_.remove<scene::Motion>(camera_);
+    fly_.emplace(*transform);
+  }
+  *transform = fly_->step(*transform, input, dt);
+  return true;
+}
+
+void CameraDriver::reset() {
+  if (camera_.isNull()) return;
+  registry_.emplaceOrReplace<scene::Transform>(camera_, startTransform_);
+  if (startMotion_) registry_.emplaceOrReplace<scene::Motion>(camera_, *startMotion_);
+  fly_.reset();
 }
 
 }  // namespace bounce::game

@@ -4,9 +4,11 @@
 //   - PlayState, what the keys change (effects, debug view, exposure, vsync, pause, overlay);
 //   - FlyCamera, the WASD + mouse-look camera that moves the active camera's scene::Transform.
 // Key codes are GLFW's (GLFW_KEY_*), kept as plain ints here.
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "engine/ecs/registry.hpp"
 #include "engine/render/renderer.hpp"
 #include "engine/scene/components.hpp"
 #include "engine/scene/effects.hpp"
@@ -41,6 +43,14 @@ const std::vector<KeyBinding>& keyBindings();
 std::string keyMapText();
 // A compact key map: lines of at most ~90 characters, each prefixed by `indent` (the help text).
 std::string keyMapSummary(const std::string& indent);
+
+// `--keys` for scripted runs: "KEY@FRAME,KEY@FRAME,…" with KEY a key name of the key map ("2",
+// "F5", "+", "P", "Esc") pressed at the start of frame FRAME (0-based). Sorted by frame, stable.
+struct ScriptedKey {
+  int frame;
+  int key;
+};
+std::vector<ScriptedKey> parseKeyScript(const std::string& list);
 
 // What the keys change. `settings` is passed to Session::render as is.
 struct PlayState {
@@ -97,6 +107,27 @@ class FlyCamera {
 
  private:
   float yaw_ = 0.0f, pitch_ = 0.0f;
+};
+
+// The active camera under user control. The first frame with any fly input takes the camera over
+// for good: its motion script (if any) is removed, so the script and the user never fight over
+// the transform, while every other entity's script keeps running. reset() gives the camera back
+// its start transform and script.
+class CameraDriver {
+ public:
+  // Remembers `camera`'s transform and motion script (a null entity: nothing to drive).
+  CameraDriver(ecs::Registry& registry, ecs::Entity camera);
+  // Applies one frame of input; returns true when the user drives the camera (now or before).
+  bool drive(const FlyInput& input, float dt);
+  void reset();
+  bool flying() const { return fly_.has_value(); }
+
+ private:
+  ecs::Registry& registry_;
+  ecs::Entity camera_;
+  scene::Transform startTransform_;
+  std::optional<scene::Motion> startMotion_;
+  std::optional<FlyCamera> fly_;
 };
 
 }  // namespace bounce::game
