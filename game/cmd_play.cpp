@@ -1,57 +1,219 @@
-// bounce play LEVEL: an interactive window (GLFW + Vulkan swapchain).
+// bounce play LEVEL: an interactive window (GLFW + Vulkan swapchain) with a fly camera, keys for
+// effects, debug views, exposure, vsync and pause, and a GPU-timing overlay (overlay.hpp).
+//
+// Time: with --frames N the simulation steps a fixed 1/60 s per frame (frame f at t = f/60, as a
+// capture script with dt = 1/60), so screenshots are reproducible and comparable with
+// `bounce capture`; otherwise simulation time follows the wall clock. P stops it (motion scripts
+// hold their pose) without stopping rendering or the fly camera.
 #include <GLFW/glfw3.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <memory>
+#include <vector>
 
 #include "engine/core/error.hpp"
+#include "engine/core/log.hpp"
 #include "engine/gpu/commands.hpp"
 #include "engine/gpu/image_io.hpp"
 #include "engine/gpu/presenter_swapchain.hpp"
+#include "engine/scene/systems.hpp"
 #include "game/commands.hpp"
+#include "game/overlay.hpp"
+#include "game/play_controls.hpp"
+#include "game/play_stats.hpp"
 #include "game/session.hpp"
 
 namespace bounce::game {
 
+namespace {
+
+constexpr double kFixedStep = 1.0 / 60.0;  // s per frame with --frames
+constexpr double kMaxFrameDt = 0.1;        // s: a hitch (window drag, breakpoint) moves the camera at most this much
+
+// The window and GLFW itself, released in reverse order whatever happens.
+struct Window {
+  GLFWwindow* handle = nullptr;
+  ~Window() {
+    if (handle) glfwDestroyWindow(handle);
+    glfwTerminate();
+  }
+};
+
+// Key presses since the last poll, in order (movement keys are polled, not queued).
+struct KeyQueue {
+  std::vector<int> pressed;
+};
+
+void onKey(GLFWwindow* window, int key, int /*scancode*/, int action, int /*mods*/) {
+  if (action != GLFW_PRESS) return;
+  static_cast<KeyQueue*>(glfwGetWindowUserPointer(window))->pressed.push_back(key);
+}
+
+// Mouse look while the right button is held: the cursor is hidden and captured meanwhile.
+class MouseLook {
+ public:
+  glm::vec2 poll(GLFWwindow* window) {
+    const bool held = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
+    if (held != held_) {
+      held_ = held;
+      glfwSetInputMode(window, GLFW_CURSOR, held ? GLFW_CURSOR_DISABLED : GLFW_CURSOR_NORMAL);
+      if (held && glfwRawMouseMotionSupported()) glfwSetInputMode(window, GLFW_RAW_MOUSE_MOTION, GLFW_TRUE);
+      glfwGetCursorPos(window, &x_, &y_);
+      return glm::vec2(0.0f);
+    }
+    if (!held) return glm::vec2(0.0f);
+    double x, y;
+    glfwGetCursorPos(window, &x, &y);
+    const glm::vec2 delta(float(x - x_), float(y - y_));
+    x_ = x;
+    y_ = y;
+    return delta;
+  }
+
+ private:
+  bool held_ = false;
+  double x_ = 0.0, y_ = 0.0;
+};
+
+FlyInput pollMovement(GLFWwindow* w, glm::vec2 look) {
+  auto down = [&](int key) { return glfwGetKey(w, key) == GLFW_PRESS ? 1.0f : 0.0f; };
+  FlyInput in;
+  in.move = {down(GLFW_KEY_D) - down(GLFW_KEY_A), down(GLFW_KEY_E) - down(GLFW_KEY_Q),
+             down(GLFW_KEY_W) - down(GLFW_KEY_S)};
+  in.look = look;
+  in.fast = down(GLFW_KEY_LEFT_SHIFT) + down(GLFW_KEY_RIGHT_SHIFT) > 0.0f;
+  return in;
+}
+
+std::string joined(const std::vector<std::string>& names) {
+  std::string s;
+  for (const auto& n : names) s += (s.empty() ? "" : ",") + n;
+  return s.empty() ? "(none)" : s;
+}
+
+std::string onOffArg(const cli::Args& args, const std::string& option, const std::string& fallback) {
+  const std::string v = args.str(option, fallback);
+  if (v != "on" && v != "off") throwInputError("bounce play", option, "'" + v + "'", "on or off");
+  return v;
+}
+
+}  // namespace
+
 int runPlay(const cli::Args& args) {
   const int frameLimit = args.has("--frames") ? args.positiveInt("--frames", 1) : 0;
   const auto res = args.resolution("--resolution").value_or(std::pair{1280, 720});
-  const std::string vsync = args.str("--vsync", "on");
-  if (vsync != "on" && vsync != "off") throwInputError("bounce play", "--vsync", "'" + vsync + "'", "on or off");
+  PlayState state;
+  state.vsync = onOffArg(args, "--vsync", "on") == "on";
+  // Screenshots default to no overlay, so they compare with `bounce capture` pictures.
+  state.overlay = onOffArg(args, "--overlay", args.has("--screenshot") ? "off" : "on") == "on";
   if (args.has("--screenshot") && !frameLimit)
     throwInputError("bounce play", "--screenshot", "needs --frames N", "--frames N --screenshot FILE");
+  const std::vector<ScriptedKey> scripted = parseKeyScript(args.str("--keys"));
+  std::size_t nextScripted = 0;
   scene::Level level = loadLevelWithEffects(args.positional[0], args.list("--effects"));
+
   if (!glfwInit()) throw InternalError("no display: GLFW could not initialise (use 'bounce capture' headless)");
+  Window window;
   glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
-  GLFWwindow* window = glfwCreateWindow(res.first, res.second, ("bounce — " + level.name).c_str(), nullptr, nullptr);
-  if (!window) {
-    glfwTerminate();
-    throw InternalError("could not open a window");
-  }
+  window.handle = glfwCreateWindow(res.first, res.second, ("bounce — " + level.name).c_str(), nullptr, nullptr);
+  if (!window.handle) throw InternalError("could not open a window");
+  KeyQueue keys;
+  glfwSetWindowUserPointer(window.handle, &keys);
+  glfwSetKeyCallback(window.handle, onKey);
+  std::fputs(keyMapText().c_str(), stdout);
+  std::fflush(stdout);
+
   int code = 0;
+  gpu::ContextOptions options;
+  options.deviceName = args.str("--device");
+  options.windowed = true;
+  gpu::Context ctx(options);
   {
-    gpu::ContextOptions options;
-    options.deviceName = args.str("--device");
-    options.windowed = true;
-    gpu::Context ctx(options);
     Session session(ctx, level);
-    gpu::SwapchainPresenter presenter(ctx, window, vsync == "on");
-    const auto start = std::chrono::steady_clock::now();
-    for (int frame = 0; !glfwWindowShouldClose(window) && (!frameLimit || frame < frameLimit); ++frame) {
+    gpu::SwapchainPresenter swapchain(ctx, window.handle, state.vsync);
+    OverlayPresenter presenter(swapchain);
+    std::unique_ptr<Overlay> overlay;  // made when first shown: its pipeline costs start-up time
+    RollingTimings timings;
+
+    CameraDriver camera(session.registry(), scene::activeCamera(session.registry()));
+    MouseLook mouse;
+
+    auto last = std::chrono::steady_clock::now();
+    double simTime = 0.0;
+    std::uint64_t simSteps = 0;
+    for (int frame = 0; !frameLimit || frame < frameLimit; ++frame) {
       glfwPollEvents();
-      const double t = frameLimit ? frame / 60.0 : std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      session.update(t);
-      session.render(presenter, {});
+      if (glfwWindowShouldClose(window.handle) || state.quit) break;
+      const auto now = std::chrono::steady_clock::now();
+      const double elapsed = std::chrono::duration<double>(now - last).count();
+      const double wallDt = std::min(elapsed, kMaxFrameDt);
+      last = now;
+      if (frame > 0) timings.addCpuFrameMs(elapsed * 1000.0);
+      const double dt = frameLimit ? kFixedStep : wallDt;
+
+      while (nextScripted < scripted.size() && scripted[nextScripted].frame == frame)
+        keys.pressed.push_back(scripted[nextScripted++].key);
+      for (int key : keys.pressed) {
+        switch (applyKey(key, state, session.level().effects)) {
+          case KeyEffect::EffectsChanged:
+            log::info("effects: " + joined(session.level().effects.names()));
+            break;
+          case KeyEffect::VsyncChanged:
+            swapchain.setVsync(state.vsync);
+            log::info(std::string("vsync ") + (state.vsync ? "on" : "off"));
+            break;
+          case KeyEffect::ResetCamera: camera.reset(); break;
+          case KeyEffect::Handled:
+          case KeyEffect::None: break;
+        }
+      }
+      keys.pressed.clear();
+
+      camera.drive(pollMovement(window.handle, mouse.poll(window.handle)), float(dt));
+
+      session.update(frameLimit ? double(simSteps) * kFixedStep : simTime);
+      if (!state.paused) {
+        ++simSteps;
+        simTime += dt;
+      }
+
+      if (state.overlay) {
+        if (!overlay)
+          overlay = std::make_unique<Overlay>(ctx, VK_FORMAT_R8G8B8A8_UNORM, session.renderer().frames().framesInFlight());
+        OverlayInfo info;
+        info.title = level.name;
+        info.cpuFrameMs = timings.cpuFrameMedianMs();
+        info.passes = timings.passMedians();
+        info.gpuTotalMs = timings.gpuTotalMedianMs();
+        info.gpuWindow = timings.gpuFrames();
+        info.effects = session.level().effects;
+        info.debugView = state.settings.debugView;
+        info.exposure = state.settings.exposure;
+        info.vsync = state.vsync;
+        info.paused = state.paused;
+        info.culling = state.settings.culling;
+        info.flying = camera.flying();
+        info.extent = presenter.extent();
+        overlay->build(info, dt);
+      }
+      presenter.setOverlay(state.overlay ? overlay.get() : nullptr);
+      session.render(presenter, state.settings);
+      timings.addGpuFrame(session.renderer().frames().lastTimings(), session.renderer().frames().lastTimingsFrame());
     }
     session.renderer().frames().waitIdle();
     if (args.has("--screenshot")) {
-      auto bytes = gpu::readback(ctx, session.renderer().displayImage());
-      auto& img = session.renderer().displayImage();
-      gpu::writePng(args.str("--screenshot"), img.desc().width, img.desc().height, 4, bytes);
+      auto& image = session.renderer().displayImage();
+      const auto bytes = gpu::readback(ctx, image);
+      gpu::writePng(args.str("--screenshot"), image.desc().width, image.desc().height, 4, bytes);
     }
   }
-  glfwDestroyWindow(window);
-  glfwTerminate();
+  if (ctx.validationEnabled() && ctx.validationErrorCount() > 0) {
+    std::fprintf(stderr, "bounce play: %llu Vulkan validation error(s), printed above\n",
+                 static_cast<unsigned long long>(ctx.validationErrorCount()));
+    code = 1;
+  }
   return code;
 }
 

@@ -2,18 +2,25 @@
 
 #include <climits>
 
+#include "game/play_controls.hpp"
+
 namespace bounce::game {
 
 const std::vector<cli::CommandSpec>& commandSpecs() {
   static const cli::OptionSpec device{"--device", "NAME", "Vulkan device (substring of its name; also BOUNCE_DEVICE)"};
   static const cli::OptionSpec effects{"--effects", "LIST", "replace the level's effects, e.g. direct,shadows"};
   static const std::vector<cli::CommandSpec> specs = {
-      {"play", "LEVEL [options]", "open a window on a level: fly camera (WASD + mouse), effect and debug-view keys, GPU overlay",
+      // The key map continues the summary, indented to the overview's column.
+      {"play", "LEVEL [options]",
+       "open a window on a level: fly camera (WASD + mouse), effect and debug-view keys, GPU overlay\n" +
+           keyMapSummary(std::string(14, ' ')),
        {device, effects,
         {"--frames", "N", "quit after N frames"},
         {"--screenshot", "FILE", "save the last presented frame as PNG (with --frames)"},
         {"--resolution", "WxH", "window size (default 1280x720)"},
-        {"--vsync", "on|off", "present with vsync (default on)"}},
+        {"--vsync", "on|off", "present with vsync (default on)"},
+        {"--overlay", "on|off", "GPU-timing overlay (default on; off with --screenshot)"},
+        {"--keys", "KEY@FRAME,...", "press keys at given frames (scripted demos and tests), e.g. 2@0,F3@30"}},
        1, 1},
       {"capture", "SCRIPT --out DIR [options]", "headless scripted capture: PNG + PFM per captured frame, timings.json",
        {device, effects, {"--out", "DIR", "output folder (created)"}, {"--resolution", "WxH", "override the script's resolution"}},

@@ -1,0 +1,83 @@
+#pragma once
+// The play overlay: a Dear ImGui panel (Debian libimgui-dev with its Vulkan backend) drawn onto
+// the renderer's 8-bit display image after tonemapping, so it shows in the window and in a
+// `--overlay on` screenshot but never touches the HDR image captures measure.
+//
+//   Overlay overlay(ctx, VK_FORMAT_R8G8B8A8_UNORM, framesInFlight);
+//   OverlayPresenter presenter(swapchain, overlay);
+//   each frame: overlay.build(info, extent);  session.render(presenter, settings);
+//
+// OverlayPresenter wraps the real presenter: the renderer hands it the display image once the
+// graph has executed, it records the overlay (timestamp scope "overlay", so its GPU cost shows
+// with the passes) and forwards the image. The overlay needs no input: ImGui gets no mouse or
+// keyboard, so no GLFW backend is involved.
+//
+// ImGui 1.86's Vulkan backend draws inside a VkRenderPass (the engine otherwise uses dynamic
+// rendering), so the overlay owns one: a single colour attachment, load and store, in
+// COLOR_ATTACHMENT_OPTIMAL. Framebuffers are made per frame and deleted when the frame retires,
+// which survives resizes without tracking the display image's identity.
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "engine/gpu/context.hpp"
+#include "engine/gpu/frames.hpp"
+#include "engine/gpu/image.hpp"
+#include "engine/gpu/presenter.hpp"
+#include "engine/render/renderer.hpp"
+#include "engine/scene/effects.hpp"
+
+namespace bounce::game {
+
+// What the panel shows; filled by `bounce play` each frame.
+struct OverlayInfo {
+  std::string title;                                   // the level's name
+  double cpuFrameMs = 0.0;                             // median wall time per frame
+  std::vector<std::pair<std::string, double>> passes;  // GPU ms per pass (medians)
+  double gpuTotalMs = 0.0;
+  std::size_t gpuWindow = 0;                           // frames the medians cover
+  scene::EffectSet effects;
+  render::DebugView debugView = render::DebugView::None;
+  float exposure = 1.0f;
+  bool vsync = true, paused = false, culling = true, flying = false;
+  VkExtent2D extent{0, 0};
+};
+
+class Overlay {
+ public:
+  // `targetFormat`: the format of the image record() draws on (the renderer's display image).
+  Overlay(gpu::Context& ctx, VkFormat targetFormat, std::uint32_t framesInFlight);
+  ~Overlay();
+  Overlay(const Overlay&) = delete;
+  Overlay& operator=(const Overlay&) = delete;
+
+  // Lays out this frame's panel for a target of `extent` pixels. Call once per frame, before
+  // the frame is rendered; record() draws what the last build() laid out, once.
+  void build(const OverlayInfo& info, double dtSeconds);
+  // Records the panel onto `target` (mip 0; COLOR_ATTACHMENT usage) in the current frame of
+  // `frames`. Leaves `target` in COLOR_ATTACHMENT_OPTIMAL (its tracked layout says so).
+  void record(gpu::FrameRing& frames, gpu::Image& target);
+
+ private:
+  gpu::Context& ctx_;
+  VkFormat format_;
+  VkRenderPass renderPass_ = VK_NULL_HANDLE;
+  VkDescriptorPool descriptorPool_ = VK_NULL_HANDLE;
+  bool built_ = false;
+};
+
+// A presenter that draws the overlay onto the finished image, then hands it to `inner`.
+class OverlayPresenter : public gpu::Presenter {
+ public:
+  explicit OverlayPresenter(gpu::Presenter& inner) : inner_(inner) {}
+  // nullptr (or never set) draws nothing: screenshots without the overlay.
+  void setOverlay(Overlay* overlay) { overlay_ = overlay; }
+  VkExtent2D extent() const override { return inner_.extent(); }
+  bool present(gpu::FrameRing& frames, gpu::Image& source) override;
+
+ private:
+  gpu::Presenter& inner_;
+  Overlay* overlay_ = nullptr;
+};
+
+}  // namespace bounce::game

@@ -1,0 +1,133 @@
+#pragma once
+// `bounce play` controls, free of GLFW and Vulkan so they can be tested on the CPU:
+//   - the key map (one table: the window's key handler, the start-up print and `--help` all read it);
+//   - PlayState, what the keys change (effects, debug view, exposure, vsync, pause, overlay);
+//   - FlyCamera, the WASD + mouse-look camera that moves the active camera's scene::Transform.
+// Key codes are GLFW's (GLFW_KEY_*), kept as plain ints here.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "engine/ecs/registry.hpp"
+#include "engine/render/renderer.hpp"
+#include "engine/scene/components.hpp"
+#include "engine/scene/effects.hpp"
+
+namespace bounce::game {
+
+enum class PlayAction {
+  ToggleEffect,   // arg: scene::Effect
+  SetDebugView,   // arg: render::DebugView
+  CycleDebugView,
+  ExposureUp,
+  ExposureDown,
+  ToggleVsync,
+  TogglePause,
+  ToggleOverlay,
+  ToggleCulling,
+  ResetCamera,
+  Quit,
+};
+
+struct KeyBinding {
+  int key;              // GLFW_KEY_*
+  const char* keyName;  // as printed: "1", "F3", "Esc"
+  PlayAction action;
+  int arg;              // effect or debug view for the actions that take one
+  std::string help;
+};
+
+// Every discrete key of `bounce play` (movement and mouse look are polled, see FlyCamera).
+const std::vector<KeyBinding>& keyBindings();
+// The full key map, one binding a line, for the start of `bounce play`.
+std::string keyMapText();
+// A compact key map: lines of at most ~90 characters, each prefixed by `indent` (the help text).
+std::string keyMapSummary(const std::string& indent);
+
+// `--keys` for scripted runs: "KEY@FRAME,KEY@FRAME,…" with KEY a key name of the key map ("2",
+// "F5", "+", "P", "Esc") pressed at the start of frame FRAME (0-based). Sorted by frame, stable.
+struct ScriptedKey {
+  int frame;
+  int key;
+};
+std::vector<ScriptedKey> parseKeyScript(const std::string& list);
+
+// What the keys change. `settings` is passed to Session::render as is.
+struct PlayState {
+  render::FrameSettings settings;
+  bool vsync = true;
+  bool paused = false;   // motion scripts hold their pose (simulation time stops)
+  bool overlay = true;
+  bool quit = false;
+};
+
+// What the caller must do after a key beyond updating PlayState.
+enum class KeyEffect { None, Handled, EffectsChanged, VsyncChanged, ResetCamera };
+
+// Applies a key press to `state` and `effects`. Unbound keys return None and change nothing.
+KeyEffect applyKey(int key, PlayState& state, scene::EffectSet& effects);
+
+// `effects` with `e` switched on if it was off and off if it was on; the others unchanged.
+scene::EffectSet toggled(scene::EffectSet effects, scene::Effect e);
+
+// Exposure steps: a quarter stop per key press, clamped to [2^-10, 2^10].
+inline constexpr float kExposureStepStops = 0.25f;
+inline constexpr float kExposureMinStops = -10.0f;
+inline constexpr float kExposureMaxStops = 10.0f;
+
+// One frame of fly-camera input.
+struct FlyInput {
+  glm::vec3 move{0.0f};   // x: right (D − A), y: world up (E − Q), z: forward (W − S); each −1..1
+  glm::vec2 look{0.0f};   // mouse motion in pixels while looking (x right, y down)
+  bool fast = false;      // Shift
+};
+
+// A yaw/pitch fly camera (no roll, as games do). Looking down the camera's local −Z (glTF):
+// yaw turns about world +Y, pitch about the camera's +X, clamped short of straight up/down so
+// the view never flips. Moving is along the view direction and its right vector; Q/E move along
+// world Y. Speeds are in metres per second (the Cornell box is 0.55 m wide).
+class FlyCamera {
+ public:
+  static constexpr float kSpeed = 0.5f;            // m/s
+  static constexpr float kFastFactor = 4.0f;       // with Shift
+  static constexpr float kRadiansPerPixel = 0.0025f;
+  static constexpr float kMaxPitch = 1.5533430f;   // 89 degrees
+
+  // Starts from a transform (its roll is dropped on the first step()).
+  explicit FlyCamera(const scene::Transform& start);
+  // Advances by `dt` seconds and returns the new transform (scale kept from `current`).
+  scene::Transform step(const scene::Transform& current, const FlyInput& input, float dt);
+
+  float yaw() const { return yaw_; }
+  float pitch() const { return pitch_; }
+
+  // The unit view direction (local −Z) of a rotation, and the yaw/pitch that reproduce it.
+  static glm::vec3 forward(const glm::quat& rotation);
+  static glm::quat rotationFromYawPitch(float yaw, float pitch);
+
+ private:
+  float yaw_ = 0.0f, pitch_ = 0.0f;
+};
+
+// The active camera under user control. The first frame with any fly input takes the camera over
+// for good: its motion script (if any) is removed, so the script and the user never fight over
+// the transform, while every other entity's script keeps running. reset() gives the camera back
+// its start transform and script.
+class CameraDriver {
+ public:
+  // Remembers `camera`'s transform and motion script (a null entity: nothing to drive).
+  CameraDriver(ecs::Registry& registry, ecs::Entity camera);
+  // Applies one frame of input; returns true when the user drives the camera (now or before).
+  bool drive(const FlyInput& input, float dt);
+  void reset();
+  bool flying() const { return fly_.has_value(); }
+
+ private:
+  ecs::Registry& registry_;
+  ecs::Entity camera_;
+  scene::Transform startTransform_;
+  std::optional<scene::Motion> startMotion_;
+  std::optional<FlyCamera> fly_;
+};
+
+}  // namespace bounce::game

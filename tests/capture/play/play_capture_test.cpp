@@ -1,0 +1,264 @@
+// `bounce play` end to end: run the real executable in a virtual X server (xvfb-run) with Vulkan
+// validation on (ctest's environment), then check its screenshot — not blank, the Cornell box's red
+// wall on the left and green wall on the right, equal to `bounce capture` of the same frame, and
+// the overlay drawn only when asked for — and its bad-input behaviour.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "engine/gpu/image_io.hpp"
+
+namespace fs = std::filesystem;
+using bounce::gpu::CpuImage;
+
+namespace {
+
+// A blank (or constant) picture has luminance variance 0; the Cornell view measures ~4900 (8-bit
+// levels²: walls, shadows and the lamp-lit floor). 400 (a standard deviation of 20 levels) is far
+// from both.
+constexpr double kMinLumaVariance = 400.0;
+// Mean colour of a third of the image: the wall's channel must exceed both others by this many
+// 8-bit levels. Measured at frame 2 of cornell-1: left R − max(G,B) = 24.6, right
+// G − max(R,B) = 8.5 (the right third also holds the white floor and the prop's shadow).
+constexpr double kLeftRedMargin = 12.0;
+constexpr double kRightGreenMargin = 4.0;
+// Wall pixels: a channel 1.5× both others and above 40 (not shadow). At least this fraction of a
+// third shows its own wall (measured 0.18 red on the left, 0.25 green on the right) ...
+constexpr double kMinWallFraction = 0.08;
+// ... and essentially none shows the opposite wall (measured 0: the walls never swap sides).
+constexpr double kMaxWrongWallFraction = 0.01;
+// play --frames and capture run the same renderer at the same simulation time; they differ only
+// in how t is rounded (f/60 vs f·dt), which could move a few edge pixels (measured: 0 exactly).
+constexpr double kMaxMeanAbsDiffVsCapture = 0.25;
+// What the scripted keys change must show: the capture's frame 0 and frame 2 differ by 0.91
+// (the prop moves 4 mm and turns 3°), with and without shadows by 4.8 (frame 2).
+constexpr double kMinDiffFromMotion = 0.5;
+constexpr double kMinDiffFromShadows = 2.0;
+// The overlay panel (top left) changes the picture under it by tens of levels on average ...
+constexpr double kMinOverlayDiff = 5.0;
+// ... and nothing in the far corner it does not reach (exactly 0 expected; the frame is fixed).
+constexpr double kMaxDiffOutsideOverlay = 0.01;
+
+const fs::path kLevel = fs::path(BOUNCE_SOURCE_DIR) / "content/levels/cornell-1.json";
+
+struct ProcessRun {
+  int code = -1;
+  std::string out, err;
+};
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::string quoted(const std::string& s) { return "'" + s + "'"; }
+
+// Runs `args` with the bounce executable (under xvfb-run when `display`); stdout and stderr go to
+// files in `dir`. xvfb-run -a can lose a race for a server number against a parallel test: that
+// attempt is retried.
+ProcessRun runBounce(const fs::path& dir, const std::string& args, bool display) {
+  fs::create_directories(dir);
+  const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
+  const std::string prefix = display ? "xvfb-run -a " : "";
+  const std::string cmd =
+      prefix + quoted(BOUNCE_EXE) + " " + args + " >" + quoted(out.string()) + " 2>" + quoted(err.string());
+  ProcessRun r;
+  for (int attempt = 0; attempt < 3; ++attempt) {
+    const int status = std::system(cmd.c_str());
+    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    r.out = slurp(out);
+    r.err = slurp(err);
+    if (r.err.find("Xvfb failed to start") == std::string::npos) break;
+  }
+  return r;
+}
+
+bool haveXvfb() { return std::system("command -v xvfb-run >/dev/null 2>&1") == 0; }
+
+std::string lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  return s;
+}
+
+struct Region {
+  std::uint32_t x0, y0, x1, y1;  // half-open pixel rectangle
+};
+
+struct RegionStats {
+  double mean[3] = {0, 0, 0};
+  double redFraction = 0, greenFraction = 0;
+};
+
+std::uint8_t at(const CpuImage& img, std::uint32_t x, std::uint32_t y, int c) {
+  return img.bytes[(std::size_t(y) * img.width + x) * 4 + c];
+}
+
+RegionStats stats(const CpuImage& img, Region r) {
+  RegionStats s;
+  std::size_t n = 0, red = 0, green = 0;
+  for (std::uint32_t y = r.y0; y < r.y1; ++y)
+    for (std::uint32_t x = r.x0; x < r.x1; ++x) {
+      const double R = at(img, x, y, 0), G = at(img, x, y, 1), B = at(img, x, y, 2);
+      s.mean[0] += R;
+      s.mean[1] += G;
+      s.mean[2] += B;
+      red += R > 1.5 * G && R > 1.5 * B && R > 40;
+      green += G > 1.5 * R && G > 1.5 * B && G > 40;
+      ++n;
+    }
+  for (double& m : s.mean) m /= double(n);
+  s.redFraction = double(red) / double(n);
+  s.greenFraction = double(green) / double(n);
+  return s;
+}
+
+double lumaVariance(const CpuImage& img) {
+  double sum = 0, sum2 = 0;
+  const std::size_t n = std::size_t(img.width) * img.height;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double l = 0.2126 * img.bytes[i * 4] + 0.7152 * img.bytes[i * 4 + 1] + 0.0722 * img.bytes[i * 4 + 2];
+    sum += l;
+    sum2 += l * l;
+  }
+  const double mean = sum / double(n);
+  return sum2 / double(n) - mean * mean;
+}
+
+// Mean absolute difference of the RGB channels over a region.
+double meanAbsDiff(const CpuImage& a, const CpuImage& b, Region r) {
+  double sum = 0;
+  for (std::uint32_t y = r.y0; y < r.y1; ++y)
+    for (std::uint32_t x = r.x0; x < r.x1; ++x)
+      for (int c = 0; c < 3; ++c) sum += std::abs(double(at(a, x, y, c)) - double(at(b, x, y, c)));
+  return sum / (3.0 * double(r.x1 - r.x0) * double(r.y1 - r.y0));
+}
+
+Region whole(const CpuImage& img) { return {0, 0, img.width, img.height}; }
+
+void expectCleanRun(const ProcessRun& r) {
+  EXPECT_EQ(r.code, 0) << "stderr:\n" << r.err;
+  EXPECT_EQ(lower(r.err).find("validation"), std::string::npos) << "stderr:\n" << r.err;
+}
+
+const fs::path kOut = fs::path(BOUNCE_TEST_OUT) / "play";
+
+// Frame `index` of cornell-1 at 256×256 through `bounce capture` (headless) with dt = 1/60 s;
+// `extraJson` adds keys to the capture script (e.g. an effects override).
+CpuImage captureFrame(const fs::path& dir, const std::string& extraJson, int index) {
+  fs::create_directories(dir);
+  const fs::path script = dir / "script.json";
+  std::ofstream(script) << R"({"bounce_capture": 1, "level": ")" << kLevel.generic_string()
+                        << R"(", "resolution": [256, 256], "dt": 0.016666666666666666, "frames": )" << index + 1
+                        << R"(, "capture": [)" << index << "]" << extraJson << "}";
+  const ProcessRun r = runBounce(dir, "capture " + quoted(script.string()) + " --out " + quoted(dir.string()), false);
+  expectCleanRun(r);
+  char name[32];
+  std::snprintf(name, sizeof name, "frame-%04d.png", index);
+  return bounce::gpu::readPng(dir / name);
+}
+
+// `bounce play` of cornell-1 for 3 frames at 256×256 in xvfb; the screenshot of frame 2.
+CpuImage playFrames(const fs::path& dir, const std::string& extraArgs) {
+  const fs::path shot = dir / "play.png";
+  const ProcessRun r = runBounce(dir, "play " + quoted(kLevel.string()) + " --frames 3 --screenshot " +
+                                          quoted(shot.string()) + " --resolution 256x256" + extraArgs, true);
+  expectCleanRun(r);
+  return bounce::gpu::readPng(shot);
+}
+
+}  // namespace
+
+TEST(PlayScreenshot, CornellShowsWallsAndMatchesCapture) {
+  if (!haveXvfb()) GTEST_SKIP() << "xvfb-run not installed (Debian package xvfb)";
+  const fs::path dir = kOut / "walls";
+  fs::remove_all(dir);
+  const CpuImage img = playFrames(dir, "");
+  ASSERT_EQ(img.width, 256u);
+  ASSERT_EQ(img.height, 256u);
+
+  EXPECT_GT(lumaVariance(img), kMinLumaVariance);
+  const RegionStats left = stats(img, {0, 0, 256 / 3, 256});
+  const RegionStats right = stats(img, {256 - 256 / 3, 0, 256, 256});
+  EXPECT_GT(left.mean[0] - std::max(left.mean[1], left.mean[2]), kLeftRedMargin);
+  EXPECT_GT(right.mean[1] - std::max(right.mean[0], right.mean[2]), kRightGreenMargin);
+  EXPECT_GT(left.redFraction, kMinWallFraction);
+  EXPECT_GT(right.greenFraction, kMinWallFraction);
+  EXPECT_LT(left.greenFraction, kMaxWrongWallFraction);
+  EXPECT_LT(right.redFraction, kMaxWrongWallFraction);
+
+  // The same frame (index 2, t = 2/60 s) through `bounce capture` (headless, no window).
+  const CpuImage ref = captureFrame(dir / "capture", "", 2);
+  ASSERT_EQ(ref.width, img.width);
+  EXPECT_LT(meanAbsDiff(img, ref, whole(img)), kMaxMeanAbsDiffVsCapture);
+}
+
+// Keys pressed at run time (--keys, as a user would) change the frame exactly as the equivalent
+// capture settings do: P at frame 0 holds the motion at t = 0; 2 at frame 1 removes shadows
+// (and the shadow pass) for frame 2.
+TEST(PlayScreenshot, ScriptedKeysPauseAndToggleShadows) {
+  if (!haveXvfb()) GTEST_SKIP() << "xvfb-run not installed (Debian package xvfb)";
+  const fs::path dir = kOut / "keys";
+  fs::remove_all(dir);
+  const CpuImage frame0 = captureFrame(dir / "capture-0", "", 0);
+  const CpuImage frame2 = captureFrame(dir / "capture-2", "", 2);
+  const CpuImage frame2NoShadows = captureFrame(dir / "capture-2-direct", R"(, "effects": ["direct"])", 2);
+
+  const CpuImage paused = playFrames(dir / "paused", " --keys P@0");
+  EXPECT_LT(meanAbsDiff(paused, frame0, whole(paused)), kMaxMeanAbsDiffVsCapture);
+  EXPECT_GT(meanAbsDiff(paused, frame2, whole(paused)), kMinDiffFromMotion);
+
+  const CpuImage noShadows = playFrames(dir / "no-shadows", " --keys 2@1");
+  EXPECT_LT(meanAbsDiff(noShadows, frame2NoShadows, whole(noShadows)), kMaxMeanAbsDiffVsCapture);
+  EXPECT_GT(meanAbsDiff(noShadows, frame2, whole(noShadows)), kMinDiffFromShadows);
+}
+
+TEST(PlayScreenshot, OverlayOnlyWhenAsked) {
+  if (!haveXvfb()) GTEST_SKIP() << "xvfb-run not installed (Debian package xvfb)";
+  const fs::path dir = kOut / "overlay";
+  fs::remove_all(dir);
+  auto shoot = [&](const std::string& name, const std::string& extra) {
+    const fs::path shot = dir / (name + ".png");
+    const ProcessRun r = runBounce(dir / name, "play " + quoted(kLevel.string()) + " --frames 3 --screenshot " +
+                                            quoted(shot.string()) + " --resolution 640x480" + extra, true);
+    expectCleanRun(r);
+    return bounce::gpu::readPng(shot);
+  };
+  const CpuImage plain = shoot("default", "");
+  const CpuImage with = shoot("on", " --overlay on");
+  ASSERT_EQ(plain.width, 640u);
+  ASSERT_EQ(with.width, 640u);
+  // The panel sits at the top left (its first lines: level name, frame time, GPU table).
+  EXPECT_GT(meanAbsDiff(plain, with, {8, 8, 200, 120}), kMinOverlayDiff);
+  EXPECT_LT(meanAbsDiff(plain, with, {540, 400, 640, 480}), kMaxDiffOutsideOverlay);
+}
+
+TEST(PlayErrors, MissingLevelExits2WithOneLine) {
+  const ProcessRun r = runBounce(kOut / "missing", "play missing.json", false);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_EQ(r.err.rfind("missing.json", 0), 0u) << r.err;  // the line starts with the file
+}
+
+TEST(PlayErrors, BadOnOffValueExits2) {
+  const ProcessRun r = runBounce(kOut / "bad-overlay", "play " + quoted(kLevel.string()) + " --overlay maybe", false);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_EQ(r.err, "bounce play: --overlay: 'maybe' (expected on or off)\n");
+}
+
+TEST(PlayHelp, ListsKeyMapAndOverlayOption) {
+  const ProcessRun r = runBounce(kOut / "help", "play --help", false);
+  EXPECT_EQ(r.code, 0);
+  for (const char* needle : {"W/A/S/D", "1=direct", "9=hbao", "F1=lit", "F6=entity-id", "Esc quit", "--overlay on|off"})
+    EXPECT_NE(r.out.find(needle), std::string::npos) << needle << " missing from:\n" << r.out;
+}
