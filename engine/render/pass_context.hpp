@@ -22,6 +22,7 @@ struct PassContext {
   const RenderWorld* world = nullptr;
   VkDescriptorSet frameSet = VK_NULL_HANDLE;  // set 0: camera UBO, instances, shadow matrices
   gpu::Buffer* lights = nullptr;              // LightGpu[]
+  std::uint32_t lightCount = 0;               // lights the shaders loop over (0 without `direct`)
   gpu::Buffer* shadowMatrices = nullptr;      // mat4 per atlas layer
   gpu::Image* dummyShadowAtlas = nullptr;     // 1×1 depth array bound when there is no shadow pass
   int debugView = 0;                          // 0 = lit; see shaders/passes/debug_view.frag

@@ -112,6 +112,7 @@ void Renderer::writeFrameData(std::uint32_t slot, const RenderWorld& world, Pass
       .buffer(2, b.shadowMatrices)
       .update(ctx_, pc.frameSet);
   pc.lights = &b.lights;
+  pc.lightCount = static_cast<std::uint32_t>(lights.size());
   pc.shadowMatrices = &b.shadowMatrices;
 }
 
@@ -125,7 +126,8 @@ void Renderer::buildGraph(rg::RenderGraph& graph, PassContext& pc, VkExtent2D ex
       graph.importTexture("display", displayDesc, display_ ? importedState(*display_) : rg::ResourceState{}, displayId);
 
   std::optional<rg::Handle<rg::Texture>> atlas;
-  if (pc.world->has("shadows") && !pc.world->shadowLayers.empty())
+  // Shadows only modulate direct light: without `direct` there is nothing to shadow.
+  if (pc.world->has("shadows") && pc.world->has("direct") && !pc.world->shadowLayers.empty())
     atlas = addShadowPass(graph, &pc, s.shadowResolution).atlas;
   const GBuffer& gbuffer = addGBufferPass(graph, &pc, extent);
   const Lighting& lit = addLightingPass(graph, &pc, gbuffer, atlas, hdr);

@@ -59,7 +59,7 @@ const Lighting& addLightingPass(rg::RenderGraph& graph, const PassContext* pc, c
         struct {
           glm::vec4 background;
           std::uint32_t lightCount, shadowsOn;
-        } push{glm::vec4(pc->world->background, 0.0f), static_cast<std::uint32_t>(pc->world->lights.size()),
+        } push{glm::vec4(pc->world->background, 0.0f), pc->lightCount,
                d.atlas ? 1u : 0u};
         p.push(cmd, push);
         vkCmdDraw(cmd, 3, 1, 0, 0);

@@ -68,7 +68,7 @@ rg::Handle<rg::Texture> addDebugViewPass(rg::RenderGraph& graph, const PassConte
         struct {
           std::uint32_t mode, lightCount;
           float far;
-        } push{static_cast<std::uint32_t>(pc->debugView), static_cast<std::uint32_t>(pc->world->lights.size()),
+        } push{static_cast<std::uint32_t>(pc->debugView), pc->lightCount,
                pc->world->cameraFar};
         p.push(cmd, push);
         vkCmdDraw(cmd, 3, 1, 0, 0);

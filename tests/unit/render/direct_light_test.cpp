@@ -129,3 +129,13 @@ TEST(DirectLight, DirectionalLightMatchesCosineLawEverywhere) {
   EXPECT_NEAR(glm::dot(glm::vec3(0, 1, 0), -s.lightDirection), std::cos(glm::radians(30.0f)), 1e-6f);
   expectMatches("plane-directional.json");
 }
+
+// Without `direct` the lights contribute nothing (the floor is not emissive: every pixel is black)
+// and no shadow pass runs, even though `shadows` is named: shadows only modulate direct light.
+TEST(DirectLight, NoDirectEffectMeansNoLightAndNoShadowPass) {
+  const Frame frame = renderLevel(kDataDir / "plane-point.json", 48, 32, std::vector<std::string>{"shadows"});
+  float peak = 0.0f;
+  for (float v : frame.rgb) peak = std::max(peak, std::abs(v));
+  EXPECT_EQ(peak, 0.0f);
+  EXPECT_EQ(frame.passes, (std::vector<std::string>{"gbuffer", "lighting", "tonemap"}));
+}
