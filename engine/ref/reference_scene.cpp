@@ -5,43 +5,11 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "engine/core/error.hpp"
+#include "engine/scene/asset_instances.hpp"
 #include "engine/scene/systems.hpp"
 
 namespace bounce::ref {
 namespace {
-
-// The helpers below mirror engine/render/gpu_scene.cpp one for one, so both see the same scene.
-
-glm::mat4 nodeLocal(const asset::Node& n) {
-  if (n.hasMatrix) return n.matrix;
-  return glm::translate(glm::mat4(1.0f), n.translation) * glm::mat4_cast(n.rotation) *
-         glm::scale(glm::mat4(1.0f), n.scale);
-}
-
-asset::Subdivision toAsset(const scene::Subdivision& s) {
-  return {static_cast<asset::SubdivisionScheme>(static_cast<std::uint32_t>(s.scheme)),
-          static_cast<std::uint32_t>(s.levels)};
-}
-
-std::string nodeKey(const std::variant<std::string, std::uint32_t>& node) {
-  return std::holds_alternative<std::string>(node) ? std::get<std::string>(node)
-                                                   : std::to_string(std::get<std::uint32_t>(node));
-}
-
-// The glTF node a MeshRef names, or -1 for the default scene. Bad names are input errors.
-int findNode(const asset::CookedAsset& a, const scene::MeshRef& ref) {
-  if (!ref.node) return -1;
-  if (auto* index = std::get_if<std::uint32_t>(&*ref.node)) {
-    if (*index >= a.nodes.size())
-      throwInputError(ref.asset.string(), "/nodes", "node " + std::to_string(*index) + " does not exist",
-                      "an index below " + std::to_string(a.nodes.size()));
-    return static_cast<int>(*index);
-  }
-  const auto& name = std::get<std::string>(*ref.node);
-  for (std::size_t i = 0; i < a.nodes.size(); ++i)
-    if (a.nodes[i].name == name) return static_cast<int>(i);
-  throwInputError(ref.asset.string(), "/nodes", "no node named '" + name + "'", "a node name of the asset");
-}
 
 RefLight makeLight(RefLightType type, glm::vec3 color, float intensity, float range, float inner, float outer,
                    const glm::mat4& world) {
@@ -64,32 +32,15 @@ RefLightType fromAsset(asset::LightType t) {
 
 }  // namespace
 
-std::string ReferenceAssets::key(const scene::MeshRef& ref) {
-  std::string k = ref.asset.string();
-  if (ref.subdivision) {
-    k.append("|subdiv:").append(std::to_string(int(ref.subdivision->scheme)));
-    k.append(":").append(std::to_string(ref.subdivision->levels));
-    if (ref.node) k.append(":").append(nodeKey(*ref.node));
-  }
-  return k;
-}
+std::string ReferenceAssets::key(const scene::MeshRef& ref) { return scene::assetKey(ref); }
 
 void ReferenceAssets::load(ecs::Registry& registry, const std::filesystem::path& cookCache) {
   registry.view<scene::MeshRef>().each([&](ecs::Entity, scene::MeshRef& ref) {
     const std::string k = key(ref);
     if (entries_.count(k)) return;
     Entry e;
-    if (ref.subdivision) {  // GpuScene::upload's options: the named node, else every node with a mesh
-      if (ref.node) {
-        e.options.subdivision[nodeKey(*ref.node)] = toAsset(*ref.subdivision);
-      } else {
-        const auto plain = asset::loadOrCook(ref.asset, cookCache, {});
-        for (std::size_t i = 0; i < plain.nodes.size(); ++i)
-          if (plain.nodes[i].mesh >= 0) e.options.subdivision[std::to_string(i)] = toAsset(*ref.subdivision);
-      }
-    }
-    e.cpu = asset::loadOrCook(ref.asset, cookCache, e.options);
-    findNode(e.cpu, ref);  // reject a bad node name before anything is traced
+    e.options = scene::cookOptionsForRef(ref, cookCache);
+    e.cpu = scene::cookForRef(ref, cookCache);
     e.contentKey = asset::cacheKey(ref.asset, e.options);
     e.firstTexture = static_cast<std::uint32_t>(textures_.size());
     for (const auto& t : e.cpu.textures) textures_.push_back(makeTexture(t.width, t.height, t.pixels, t.srgb));
@@ -115,23 +66,14 @@ SceneDesc extractScene(ecs::Registry& registry, const scene::Level& level, const
         auto texture = [&](const asset::TextureRef& t) {
           return t.texture >= 0 && std::size_t(t.texture) < a.cpu.textures.size() ? int(a.firstTexture) + t.texture : -1;
         };
-        std::vector<std::pair<int, glm::mat4>> stack;
-        if (int root = findNode(a.cpu, ref); root >= 0) {
-          stack.push_back({root, world.matrix * nodeLocal(a.cpu.nodes[root])});
-        } else {
-          for (int r : a.cpu.rootNodes) stack.push_back({r, world.matrix * nodeLocal(a.cpu.nodes[r])});
-        }
-        while (!stack.empty()) {
-          auto [n, m] = stack.back();
-          stack.pop_back();
+        scene::forEachInstancedNode(a.cpu, ref, world.matrix, [&](int n, const glm::mat4& m) {
           const asset::Node& node = a.cpu.nodes[n];
-          for (int c : node.children) stack.push_back({c, m * nodeLocal(a.cpu.nodes[c])});
           if (node.light >= 0) {
             const asset::Light& L = a.cpu.lights[node.light];
             out.lights.push_back(makeLight(fromAsset(L.type), L.color, L.intensity, L.range, L.innerConeAngle,
                                            L.outerConeAngle, m));
           }
-          if (node.mesh < 0) continue;
+          if (node.mesh < 0) return;
           const glm::mat3 normalMatrix = glm::inverseTranspose(glm::mat3(m));
           for (const asset::Primitive& p : a.cpu.meshes[node.mesh].primitives) {
             RefMaterial mat;  // the default material (white, no emission) when the primitive has none
@@ -163,7 +105,7 @@ SceneDesc extractScene(ecs::Registry& registry, const scene::Level& level, const
             mesh.indices = p.indices;
             out.meshes.push_back(std::move(mesh));
           }
-        }
+        });
       });
 
   registry.view<scene::Light, scene::WorldTransform>().each(

@@ -7,43 +7,13 @@
 #include "engine/asset/cook.hpp"
 #include "engine/core/log.hpp"
 #include "engine/gpu/commands.hpp"
+#include "engine/scene/asset_instances.hpp"
 #include "engine/scene/components.hpp"
 #include "engine/scene/systems.hpp"
 #include "engine/scene/transform_math.hpp"
 
 namespace bounce::render {
 namespace {
-
-glm::mat4 nodeLocal(const asset::Node& n) {
-  if (n.hasMatrix) return n.matrix;
-  return glm::translate(glm::mat4(1.0f), n.translation) * glm::mat4_cast(n.rotation) *
-         glm::scale(glm::mat4(1.0f), n.scale);
-}
-
-asset::Subdivision toAsset(const scene::Subdivision& s) {
-  return {static_cast<asset::SubdivisionScheme>(static_cast<std::uint32_t>(s.scheme)),
-          static_cast<std::uint32_t>(s.levels)};
-}
-
-std::string nodeKey(const std::variant<std::string, std::uint32_t>& node) {
-  return std::holds_alternative<std::string>(node) ? std::get<std::string>(node)
-                                                   : std::to_string(std::get<std::uint32_t>(node));
-}
-
-// The glTF node a MeshRef names, or -1 for the default scene. Bad names are input errors.
-int findNode(const asset::CookedAsset& a, const scene::MeshRef& ref) {
-  if (!ref.node) return -1;
-  if (auto* index = std::get_if<std::uint32_t>(&*ref.node)) {
-    if (*index >= a.nodes.size())
-      throwInputError(ref.asset.string(), "/nodes", "node " + std::to_string(*index) + " does not exist",
-                      "an index below " + std::to_string(a.nodes.size()));
-    return static_cast<int>(*index);
-  }
-  const auto& name = std::get<std::string>(*ref.node);
-  for (std::size_t i = 0; i < a.nodes.size(); ++i)
-    if (a.nodes[i].name == name) return static_cast<int>(i);
-  throwInputError(ref.asset.string(), "/nodes", "no node named '" + name + "'", "a node name of the asset");
-}
 
 LightGpu makeLight(LightType type, glm::vec3 color, float intensity, float range, float inner, float outer,
                    bool shadows, const glm::mat4& world) {
@@ -74,13 +44,7 @@ GpuScene::GpuScene(gpu::Context& ctx, const Pipelines& pipelines, gpu::SamplerCa
 
 GpuScene::~GpuScene() = default;
 
-std::string GpuScene::key(const scene::MeshRef& ref) {
-  std::string k = ref.asset.string();
-  if (ref.subdivision)
-    k += "|subdiv:" + std::to_string(int(ref.subdivision->scheme)) + ":" + std::to_string(ref.subdivision->levels) +
-         (ref.node ? ":" + nodeKey(*ref.node) : std::string());
-  return k;
-}
+std::string GpuScene::key(const scene::MeshRef& ref) { return scene::assetKey(ref); }
 
 void GpuScene::load(ecs::Registry& registry) {
   registry.view<scene::MeshRef>().each([&](ecs::Entity, scene::MeshRef& ref) { upload(ref); });
@@ -90,19 +54,8 @@ const GpuScene::AssetGpu& GpuScene::upload(const scene::MeshRef& ref) {
   const std::string k = key(ref);
   if (auto it = assets_.find(k); it != assets_.end()) return *it->second;
 
-  asset::CookOptions options;
-  if (ref.subdivision) {
-    if (ref.node) {
-      options.subdivision[nodeKey(*ref.node)] = toAsset(*ref.subdivision);
-    } else {  // every node with a mesh: learn the node list from a plain cook first
-      auto plain = asset::loadOrCook(ref.asset, cache_, {});
-      for (std::size_t i = 0; i < plain.nodes.size(); ++i)
-        if (plain.nodes[i].mesh >= 0) options.subdivision[std::to_string(i)] = toAsset(*ref.subdivision);
-    }
-  }
   auto a = std::make_unique<AssetGpu>();
-  a->cpu = asset::loadOrCook(ref.asset, cache_, options);
-  findNode(a->cpu, ref);  // reject a bad node name before anything is uploaded
+  a->cpu = scene::cookForRef(ref, cache_);
 
   for (const auto& mesh : a->cpu.meshes) {
     auto m = std::make_unique<MeshGpu>();
@@ -192,23 +145,14 @@ void GpuScene::extract(ecs::Registry& registry, const scene::Level& level, const
         const AssetGpu& a = *assets_.at(key(ref));
         const auto* over = registry.tryGet<scene::MaterialOverride>(e);
         const bool dynamic = registry.has<scene::Dynamic>(e);
-        std::vector<std::pair<int, glm::mat4>> stack;
-        if (int root = findNode(a.cpu, ref); root >= 0) {
-          stack.push_back({root, world.matrix * nodeLocal(a.cpu.nodes[root])});
-        } else {
-          for (int r : a.cpu.rootNodes) stack.push_back({r, world.matrix * nodeLocal(a.cpu.nodes[r])});
-        }
-        while (!stack.empty()) {
-          auto [n, m] = stack.back();
-          stack.pop_back();
+        scene::forEachInstancedNode(a.cpu, ref, world.matrix, [&](int n, const glm::mat4& m) {
           const asset::Node& node = a.cpu.nodes[n];
-          for (int c : node.children) stack.push_back({c, m * nodeLocal(a.cpu.nodes[c])});
           if (node.light >= 0) {
             const asset::Light& L = a.cpu.lights[node.light];
             w.lights.push_back(makeLight(static_cast<LightType>(L.type), L.color, L.intensity, L.range,
                                          L.innerConeAngle, L.outerConeAngle, true, m));
           }
-          if (node.mesh < 0) continue;
+          if (node.mesh < 0) return;
           const auto& meshCpu = a.cpu.meshes[node.mesh];
           for (int i = 0; i < 8; ++i) {
             glm::vec3 c{i & 1 ? meshCpu.bounds.max.x : meshCpu.bounds.min.x,
@@ -242,7 +186,7 @@ void GpuScene::extract(ecs::Registry& registry, const scene::Level& level, const
                                a.materialSets[prim.material], e.index(), dynamic});
             w.instances.push_back(inst);
           }
-        }
+        });
       });
   if (w.draws.empty()) w.sceneMin = w.sceneMax = glm::vec3(0.0f);
 

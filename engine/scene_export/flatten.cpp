@@ -8,59 +8,11 @@
 #include "engine/asset/cook.hpp"
 #include "engine/core/error.hpp"
 #include "engine/ecs/registry.hpp"
+#include "engine/scene/asset_instances.hpp"
 #include "engine/scene/systems.hpp"
 
 namespace bounce::scene_export {
 namespace {
-
-std::string nodeKey(const std::variant<std::string, std::uint32_t>& node) {
-  return std::holds_alternative<std::string>(node) ? std::get<std::string>(node)
-                                                   : std::to_string(std::get<std::uint32_t>(node));
-}
-
-asset::Subdivision toAsset(const scene::Subdivision& s) {
-  return {static_cast<asset::SubdivisionScheme>(static_cast<std::uint32_t>(s.scheme)),
-          static_cast<std::uint32_t>(s.levels)};
-}
-
-// Same key and cook options as GpuScene::key/upload, so the export draws what the renderer draws.
-std::string assetKey(const scene::MeshRef& ref) {
-  std::string k = ref.asset.string();
-  if (ref.subdivision) {
-    k += "|subdiv:" + std::to_string(int(ref.subdivision->scheme)) + ":" + std::to_string(ref.subdivision->levels);
-    if (ref.node) k += ':' + nodeKey(*ref.node);
-  }
-  return k;
-}
-
-asset::CookedAsset cookFor(const scene::MeshRef& ref, const std::filesystem::path& cache) {
-  asset::CookOptions options;
-  if (ref.subdivision) {
-    if (ref.node) {
-      options.subdivision[nodeKey(*ref.node)] = toAsset(*ref.subdivision);
-    } else {  // every node with a mesh: learn the node list from a plain cook first
-      const auto plain = asset::loadOrCook(ref.asset, cache, {});
-      for (std::size_t i = 0; i < plain.nodes.size(); ++i)
-        if (plain.nodes[i].mesh >= 0) options.subdivision[std::to_string(i)] = toAsset(*ref.subdivision);
-    }
-  }
-  return asset::loadOrCook(ref.asset, cache, options);
-}
-
-// The node a MeshRef names, or -1 for the default scene; the renderer's messages for bad names.
-int findNode(const asset::CookedAsset& a, const scene::MeshRef& ref) {
-  if (!ref.node) return -1;
-  if (auto* index = std::get_if<std::uint32_t>(&*ref.node)) {
-    if (*index >= a.nodes.size())
-      throwInputError(ref.asset.string(), "/nodes", "node " + std::to_string(*index) + " does not exist",
-                      "an index below " + std::to_string(a.nodes.size()));
-    return static_cast<int>(*index);
-  }
-  const auto& name = std::get<std::string>(*ref.node);
-  for (std::size_t i = 0; i < a.nodes.size(); ++i)
-    if (a.nodes[i].name == name) return static_cast<int>(i);
-  throwInputError(ref.asset.string(), "/nodes", "no node named '" + name + "'", "a node name of the asset");
-}
 
 asset::LightType toAsset(scene::LightType t) {
   switch (t) {
@@ -73,11 +25,7 @@ asset::LightType toAsset(scene::LightType t) {
 
 }  // namespace
 
-glm::mat4 nodeLocal(const asset::Node& n) {
-  if (n.hasMatrix) return n.matrix;
-  return glm::translate(glm::mat4(1.0f), n.translation) * glm::mat4_cast(n.rotation) *
-         glm::scale(glm::mat4(1.0f), n.scale);
-}
+glm::mat4 nodeLocal(const asset::Node& n) { return scene::nodeLocal(n); }
 
 glm::mat4 rigid(const glm::mat4& m) {
   const glm::vec3 z = glm::normalize(glm::vec3(m[2]));
@@ -104,10 +52,9 @@ FlatScene flattenLevel(const scene::Level& level, double timeSeconds, const std:
   std::map<std::string, std::size_t> assetIndex;
   for (const auto& e : level.entities) {
     if (!e.mesh) continue;
-    const std::string k = assetKey(*e.mesh);
+    const std::string k = scene::assetKey(*e.mesh);
     if (assetIndex.count(k)) continue;
-    FlatAsset a{e.mesh->asset, cookFor(*e.mesh, cookCache)};
-    findNode(a.cooked, *e.mesh);  // reject a bad node name before anything is exported
+    FlatAsset a{e.mesh->asset, scene::cookForRef(*e.mesh, cookCache)};  // also rejects a bad node name
     assetIndex[k] = out.assets.size();
     out.assets.push_back(std::move(a));
   }
@@ -125,26 +72,15 @@ FlatScene flattenLevel(const scene::Level& level, double timeSeconds, const std:
     const glm::mat4 world = registry.get<scene::WorldTransform>(e).matrix;
 
     if (const auto* ref = registry.tryGet<scene::MeshRef>(e)) {
-      const std::size_t ai = assetIndex.at(assetKey(*ref));
+      const std::size_t ai = assetIndex.at(scene::assetKey(*ref));
       const asset::CookedAsset& a = out.assets[ai].cooked;
-      // Pre-order walk; the stack holds (node, parent world matrix).
-      std::vector<std::pair<int, glm::mat4>> stack;
-      if (int root = findNode(a, *ref); root >= 0) {
-        stack.push_back({root, world});
-      } else {
-        for (auto r = a.rootNodes.rbegin(); r != a.rootNodes.rend(); ++r) stack.push_back({*r, world});
-      }
-      while (!stack.empty()) {
-        auto [n, parent] = stack.back();
-        stack.pop_back();
+      scene::forEachInstancedNode(a, *ref, world, [&](int n, const glm::mat4& m) {
         const asset::Node& node = a.nodes[std::size_t(n)];
-        const glm::mat4 m = parent * nodeLocal(node);
-        for (auto c = node.children.rbegin(); c != node.children.rend(); ++c) stack.push_back({*c, m});
         const std::string nodeName = node.name.empty() ? "node" + std::to_string(n) : node.name;
         if (node.light >= 0)
           out.lights.push_back({ei, desc.id + "/" + nodeName, a.lights[std::size_t(node.light)], true, rigid(m)});
         if (node.mesh >= 0) out.meshes.push_back({ei, ai, n, node.mesh, m});
-      }
+      });
     }
 
     if (const auto* L = registry.tryGet<scene::Light>(e)) {
