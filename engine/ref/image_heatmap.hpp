@@ -11,7 +11,7 @@
 
 #include <glm/glm.hpp>
 
-#include "engine/ref/image.hpp"
+#include "engine/core/image.hpp"
 #include "engine/ref/metrics.hpp"
 
 namespace bounce::ref {

@@ -24,7 +24,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "engine/ref/image.hpp"
+#include "engine/core/image.hpp"
 
 namespace bounce::ref {
 

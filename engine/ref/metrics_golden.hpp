@@ -12,7 +12,7 @@
 #include <limits>
 #include <string>
 
-#include "engine/ref/image.hpp"
+#include "engine/core/image.hpp"
 #include "engine/ref/metrics.hpp"
 
 namespace bounce::ref {

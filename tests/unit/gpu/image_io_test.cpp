@@ -36,7 +36,8 @@ std::string errorOf(const std::filesystem::path& path) {
 TEST(ImageIo, PngRoundTripIsExact) {
   const std::uint32_t w = 5, h = 3;
   std::vector<std::uint8_t> px(w * h * 4);
-  for (std::size_t i = 0; i < px.size(); ++i) px[i] = static_cast<std::uint8_t>(i * 37 + 11);
+  // Captures are opaque: PNGs are written as RGB and read back with alpha 255.
+  for (std::size_t i = 0; i < px.size(); ++i) px[i] = i % 4 == 3 ? 255 : static_cast<std::uint8_t>(i * 37 + 11);
   writePng(out("rt.png"), w, h, 4, px);
   CpuImage back = readPng(out("rt.png"));
   EXPECT_EQ(back.width, w);
@@ -56,7 +57,7 @@ TEST(ImageIo, PfmRoundTripIsExactAndStoresBottomRowFirst) {
   EXPECT_EQ(back.rgb, img.rgb);
 
   auto bytes = readFileBytes(out("rt.pfm"));
-  std::string header = "PF\n3 2\n-1\n";
+  std::string header = "PF\n3 2\n-1.0\n";
   ASSERT_EQ(bytes.size(), header.size() + 18 * 4);
   EXPECT_EQ(std::string(bytes.begin(), bytes.begin() + header.size()), header);
   float first;
@@ -81,21 +82,9 @@ TEST(ImageIo, PfmReaderAcceptsGreyscaleAndBigEndian) {
   EXPECT_EQ(readPfm(out("be.pfm")).rgb, (std::vector<float>{1.0f, -2.0f, 0.5f}));
 }
 
-TEST(ImageIo, PfmReaderRejectsBadFilesWithOneLineErrors) {
-  writeRaw(out("magic.pfm"), "P6\n1 1\n-1\n", {0, 0, 0});
-  EXPECT_NE(errorOf(out("magic.pfm")).find("magic is 'P6'"), std::string::npos);
-  writeRaw(out("short.pfm"), "PF\n2 2\n-1\n", {0, 0, 0});
-  std::string e = errorOf(out("short.pfm"));
-  EXPECT_NE(e.find("short.pfm"), std::string::npos);
-  EXPECT_NE(e.find("12 bytes of pixels for 2x2 (expected 48 bytes)"), std::string::npos) << e;
-  writeRaw(out("dims.pfm"), "PF\n0 1\n-1\n", {});
-  EXPECT_NE(errorOf(out("dims.pfm")).find("width is '0'"), std::string::npos);
-  writeRaw(out("scale.pfm"), "PF\n1 1\nabc\n", {0, 0, 0});
-  EXPECT_NE(errorOf(out("scale.pfm")).find("scale is 'abc'"), std::string::npos);
-  writeRaw(out("nan.pfm"), "PF\n1 1\n-1\n", {0, std::numeric_limits<float>::quiet_NaN(), 0});
-  EXPECT_NE(errorOf(out("nan.pfm")).find("pixel 0: value is not finite"), std::string::npos);
-  writeRaw(out("empty.pfm"), "", {});
-  EXPECT_NE(errorOf(out("empty.pfm")).find("missing magic"), std::string::npos);
+// The PFM and PNG codecs themselves (hostile headers, truncation, NaN) are tested where they live:
+// tests/unit/metrics/pfm_test.cpp and image_test.cpp. Here: the adapters keep a reader's error.
+TEST(ImageIo, PfmReaderErrorsComeThroughTheAdapter) {
   EXPECT_NE(errorOf(out("does-not-exist.pfm")).find("does-not-exist.pfm"), std::string::npos);
 }
 

@@ -6,7 +6,7 @@
 #include <limits>
 
 #include "engine/core/error.hpp"
-#include "engine/ref/image.hpp"
+#include "engine/core/image.hpp"
 #include "test_util.hpp"
 
 namespace bounce::ref {

@@ -9,7 +9,7 @@
 
 #include "engine/core/error.hpp"
 #include "engine/core/file.hpp"
-#include "engine/ref/image.hpp"
+#include "engine/core/image.hpp"
 #include "test_util.hpp"
 
 namespace bounce::ref {

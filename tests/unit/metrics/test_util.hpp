@@ -7,7 +7,7 @@
 #include <random>
 #include <string>
 
-#include "engine/ref/image.hpp"
+#include "engine/core/image.hpp"
 
 namespace bounce::ref::test {
 

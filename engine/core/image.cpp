@@ -1,4 +1,4 @@
-#include "engine/ref/image.hpp"
+#include "engine/core/image.hpp"
 
 #include <stb_image.h>
 #include <stb_image_write.h>
@@ -13,7 +13,7 @@
 #include "engine/core/error.hpp"
 #include "engine/core/file.hpp"
 
-namespace bounce::ref {
+namespace bounce {
 
 ImageRGB::ImageRGB(int w, int h, glm::vec3 fill) : width(w), height(h) {
   if (w < 0 || h < 0)
@@ -295,4 +295,4 @@ ImageSrgb8 readPng(const std::filesystem::path& path) {
   return img;
 }
 
-}  // namespace bounce::ref
+}  // namespace bounce

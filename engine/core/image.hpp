@@ -19,7 +19,7 @@
 
 #include <glm/glm.hpp>
 
-namespace bounce::ref {
+namespace bounce {
 
 // Linear RGB radiance (renderer units), row-major, row 0 is the TOP row (as on screen).
 struct ImageRGB {
@@ -107,4 +107,4 @@ void writePng(const std::filesystem::path& path, const ImageSrgb8& img);
 // Any PNG stb_image can decode, converted to 8-bit RGB (alpha dropped, grey replicated).
 ImageSrgb8 readPng(const std::filesystem::path& path);
 
-}  // namespace bounce::ref
+}  // namespace bounce
