@@ -60,10 +60,15 @@ glm::dvec3 tracePath(const SceneBvh& bvh, const TraceSettings& settings, std::ui
                      std::uint32_t sample, std::uint64_t& rays) {
   const SceneDesc& scene = bvh.scene();
   math::Pcg32 rng = math::Pcg32::fromIndex(((std::uint64_t(y) * settings.width + x) << 32) | sample);
-  const CameraRay camera = cameraRay(scene.camera, settings.width, settings.height, x, y);
-  glm::vec3 origin = camera.origin, dir = camera.direction;
-  float tMin = camera.tMin, tMax = camera.tMax;
+  const CameraRay camera = cameraRay(bvh.scene().camera, settings.width, settings.height, x, y);
+  return tracePathFrom(bvh, camera.origin, camera.direction, camera.tMin, camera.tMax, settings.bounces, rng, rays);
+}
 
+glm::dvec3 tracePathFrom(const SceneBvh& bvh, glm::vec3 origin, glm::vec3 dir, float tMin, float tMax,
+                         std::uint32_t bounces, math::Pcg32& rng, std::uint64_t& rays, Hit* firstHit,
+                         bool* hitAnything) {
+  const SceneDesc& scene = bvh.scene();
+  if (hitAnything) *hitAnything = false;
   glm::dvec3 radiance(0.0), throughput(1.0);
   for (std::uint32_t depth = 0;; ++depth) {
     Hit hit;
@@ -71,6 +76,10 @@ glm::dvec3 tracePath(const SceneBvh& bvh, const TraceSettings& settings, std::ui
     if (!bvh.intersect(origin, dir, tMin, tMax, hit)) {
       radiance += throughput * glm::dvec3(scene.background);
       break;
+    }
+    if (depth == 0) {
+      if (firstHit) *firstHit = hit;
+      if (hitAnything) *hitAnything = true;
     }
     const RefMaterial& mat = scene.materials[hit.material];
     glm::vec3 albedo = mat.albedo, emissive = mat.emissive;
@@ -102,7 +111,7 @@ glm::dvec3 tracePath(const SceneBvh& bvh, const TraceSettings& settings, std::ui
       radiance += throughput * glm::dvec3(albedo) * kInvPi * irradiance;
     }
 
-    if (depth >= settings.bounces) break;
+    if (depth >= bounces) break;
     // Cosine-weighted bounce: Lambert BRDF ρ/π × cosθ / pdf (cosθ/π) = ρ.
     throughput *= glm::dvec3(albedo);
     if (depth >= kRouletteAfter) {

@@ -30,6 +30,7 @@
 #include <glm/glm.hpp>
 
 #include "engine/gpu/image_io.hpp"
+#include "engine/math/sampling.hpp"
 #include "engine/ref/scene_bvh.hpp"
 
 namespace bounce::ref {
@@ -75,5 +76,13 @@ gpu::FloatImage trace(const SceneBvh& scene, const TraceSettings& settings, Trac
 // One path for pixel (x, y), sample `sample` (exposed for tests); `rays` counts the rays cast.
 glm::dvec3 tracePath(const SceneBvh& scene, const TraceSettings& settings, std::uint32_t x, std::uint32_t y,
                      std::uint32_t sample, std::uint64_t& rays);
+
+// One path from any ray o + t·d (d unit), t in [tMin, tMax): the radiance arriving at o from
+// direction −d, with the same light transport as tracePath (which calls it for camera rays).
+// Probe bakes trace from probe positions with it. `firstHit` (optional) receives the first
+// intersection; the return of `hitAnything` says whether there was one.
+glm::dvec3 tracePathFrom(const SceneBvh& scene, glm::vec3 origin, glm::vec3 dir, float tMin, float tMax,
+                         std::uint32_t bounces, math::Pcg32& rng, std::uint64_t& rays, Hit* firstHit = nullptr,
+                         bool* hitAnything = nullptr);
 
 }  // namespace bounce::ref

@@ -1,0 +1,85 @@
+#pragma once
+// Probe bake (effect `probes`): path-traced radiance SH and visibility moments for every probe of
+// a grid over the level's STATIC geometry (entities marked dynamic, or moved by a motion script,
+// and everything parented to them are left out, as in the DNRT paper: the probes are the static
+// solution L_init that dynamic objects later modify).
+//
+// Per probe, `rays` directions from n×n stratified uniform sphere samples (n = √rays,
+// sh::projectMonteCarlo with a seed from the probe index), each traced with ref::tracePathFrom
+// (multi-bounce, next-event estimation, Russian roulette) and projected to radiance SH:
+//   L_lm = 4π/N Σ_i L(ω_i) Y_lm(ω_i).
+// The first hit distance of each ray, clamped to kMaxDistance·spacing, goes into its direction's
+// visibility bin (mean and mean square, the DDGI moments). A probe whose rays hit back faces more
+// than kBackfaceFraction of the time is inside geometry: it is flagged invalid and gets weight 0.
+// Ringing is removed with the smallest Sloan window that makes the probe's irradiance
+// non-negative along kWindowDirections directions (sh::minimalWindow, applied to radiance: the
+// window and the cosine convolution are both per-band scalings, so they commute).
+//
+// Deterministic (seeds from probe indices, each probe summed in sample order), TBB-parallel, with
+// a progress bar; cached as <cache>/<key>.bin keyed by every input (loadOrBake).
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+#include "engine/gi/probes/probe_volume.hpp"
+#include "engine/ref/scene_bvh.hpp"
+#include "engine/ref/tracer.hpp"
+#include "engine/scene/level.hpp"
+
+namespace bounce::gi::probes {
+
+// Bump whenever the bake's output changes for the same inputs (part of the cache key).
+inline constexpr std::uint32_t kBakerVersion = 1;
+// Back-face hit fraction above which a probe counts as inside geometry (DDGI probe classification
+// uses the same 25%: a probe in open space sees no back faces of closed, consistently wound meshes).
+inline constexpr double kBackfaceFraction = 0.25;
+// Hit distances are clamped to this many spacings: lookups only ever ask about receivers within
+// √3 spacings (plus bias) of a probe, and the clamp keeps open-sky bins from inflating σ².
+inline constexpr float kMaxDistance = 3.0f;
+// Directions checked for negative irradiance when choosing the window (spherical Fibonacci).
+inline constexpr int kWindowDirections = 256;
+
+struct ProbeSettings {
+  float spacing = 0.1f;        // metres between probes (0.1 m: 6×6×6 probes in the Cornell box)
+  int order = 3;               // SH order: 2 (4 coefficients) or 3 (9, "L2")
+  std::uint32_t rays = 256;    // per probe; a square whose root is a multiple of kVisRes (64, 256, 576, 1024, …)
+  std::uint32_t bounces = ref::kUnlimitedBounces;  // indirect bounces after the first hit
+  bool window = true;          // deringing window (off only to show the ringing it removes)
+};
+
+// InputError (`file`: `where`: …) when a setting is out of range.
+void validate(const ProbeSettings& settings, const std::string& file, const std::string& where);
+
+// Probes at the centres of cubic cells of side `spacing` covering [lo, hi] (at least one per
+// axis), so none sits exactly on a bounding wall.
+ProbeGrid gridOverBounds(const glm::vec3& lo, const glm::vec3& hi, float spacing);
+
+struct BakeStats {
+  std::size_t probes = 0;
+  std::uint64_t rays = 0;     // every ray cast (path segments and shadow rays)
+  double seconds = 0.0;
+  std::size_t invalid = 0;    // probes flagged inside geometry
+  double msPerProbe() const { return probes ? 1e3 * seconds / double(probes) : 0.0; }
+};
+
+ProbeVolume bakeProbes(const ref::SceneBvh& scene, const ProbeGrid& grid, const ProbeSettings& settings,
+                       BakeStats* stats = nullptr, const std::string& label = "probes");
+
+// The level without its dynamic entities (and their descendants): what the probes see.
+scene::Level staticLevel(const scene::Level& level);
+
+struct LoadResult {
+  ProbeVolume volume;
+  bool fromCache = false;
+  std::filesystem::path file;  // the cache entry
+  BakeStats stats;             // zero when loaded from the cache
+};
+
+// Loads <probeCache>/<key>.bin when it is valid, else bakes the level's static scene and writes
+// it atomically. The key hashes the level file, the static scene (geometry, materials, textures,
+// lights, background), every asset's content key, the settings, kBakerVersion and kTracerVersion.
+// A corrupt or foreign entry is reported as a warning and re-baked.
+LoadResult loadOrBake(const scene::Level& level, const std::filesystem::path& cookCache,
+                      const std::filesystem::path& probeCache, const ProbeSettings& settings);
+
+}  // namespace bounce::gi::probes

@@ -1,0 +1,32 @@
+#pragma once
+// The probes node (pass `probes`): per-pixel static indirect diffuse from the baked volume for
+// every drawn surface, static or dynamic, added to "lighting.hdr" (shaders/probes/probes.frag).
+// The volume is uploaded once, as three storage buffers (SH, visibility moments, valid flags).
+#include <memory>
+
+#include "engine/gi/probes/probe_volume.hpp"
+#include "engine/gpu/buffer.hpp"
+#include "engine/gpu/descriptors.hpp"
+#include "engine/gpu/pipeline.hpp"
+#include "engine/render/renderer.hpp"
+
+namespace bounce::gi::probes {
+
+class ProbeNode : public render::GraphNode {
+ public:
+  // `pipelines` gives the shared frame layout (set 0: camera).
+  ProbeNode(gpu::Context& ctx, const render::Pipelines& pipelines, ProbeVolume volume);
+  // Reads the G-buffer from the blackboard ("gbuffer.albedo", "gbuffer.normal", "gbuffer.depth"),
+  // blends into "lighting.hdr" and publishes the new version under the same key.
+  void addPasses(rg::RenderGraph& graph, const render::PassContext* pc) override;
+  const ProbeVolume& volume() const { return volume_; }
+
+ private:
+  ProbeVolume volume_;
+  gpu::Buffer sh_, moments_, valid_;
+  gpu::DescriptorSetLayout setLayout_;
+  gpu::PipelineLayout layout_;
+  gpu::Pipeline pipeline_;
+};
+
+}  // namespace bounce::gi::probes

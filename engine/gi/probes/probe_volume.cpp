@@ -1,0 +1,162 @@
+#include "engine/gi/probes/probe_volume.hpp"
+
+#include <cmath>
+#include <cstring>
+
+#include "engine/core/error.hpp"
+#include "engine/core/hash.hpp"
+#include "engine/math/sh.hpp"
+
+namespace bounce::gi::probes {
+
+namespace glsl {
+using namespace glm;
+// GLSL parameter qualifiers: `out int probe[8]` decays to a pointer, so writes reach the caller.
+#define in
+#define out
+#define PROBE_DATA_PARAM const ProbeVolume &volume,
+#define PROBE_VALID(i) (volume.valid[std::size_t(i)] != 0u)
+#define PROBE_MOMENTS(i, b) volume.moments[std::size_t(i) * kVisBins + std::size_t(b)]
+#include "shaders/probes/probe_weights.glsl"
+#undef PROBE_MOMENTS
+#undef PROBE_VALID
+#undef PROBE_DATA_PARAM
+#undef in
+#undef out
+static_assert(kVisRes == 8 && kVisBins == 64, "keep in step with probe_weights.glsl");
+}  // namespace glsl
+
+int visBin(const glm::vec3& dir) { return glsl::probeVisBin(dir); }
+
+glm::vec3 ProbeGrid::position(std::size_t index) const {
+  const std::size_t x = index % count.x, y = (index / count.x) % count.y, z = index / (std::size_t(count.x) * count.y);
+  return origin + spacing * glm::vec3(float(x), float(y), float(z));
+}
+
+void ProbeVolume::weights(const glm::vec3& pos, const glm::vec3& normal, const glm::vec3& view, int probe[8],
+                          float weight[8]) const {
+  const glm::vec3 q = pos + grid.spacing * (bias.normal * normal + bias.view * view);
+  glsl::probeWeights(*this, grid.count, grid.origin, grid.spacing, minVariance(), q, normal, probe, weight);
+}
+
+std::vector<glm::vec3> ProbeVolume::radianceSH(const glm::vec3& pos, const glm::vec3& normal) const {
+  int probe[8];
+  float weight[8];
+  weights(pos, normal, glm::vec3(0.0f), probe, weight);
+  std::vector<glm::vec3> out(std::size_t(coeffs()), glm::vec3(0.0f));
+  for (int k = 0; k < 8; ++k) {
+    if (weight[k] == 0.0f) continue;
+    const glm::vec3* c = &sh[std::size_t(probe[k]) * coeffs()];
+    for (int i = 0; i < coeffs(); ++i) out[i] += weight[k] * c[i];
+  }
+  return out;
+}
+
+glm::vec3 ProbeVolume::irradiance(const glm::vec3& pos, const glm::vec3& normal, const glm::vec3& view) const {
+  int probe[8];
+  float weight[8];
+  weights(pos, normal, view, probe, weight);
+  std::vector<glm::vec3> l(std::size_t(coeffs()), glm::vec3(0.0f));
+  for (int k = 0; k < 8; ++k) {
+    if (weight[k] == 0.0f) continue;
+    const glm::vec3* c = &sh[std::size_t(probe[k]) * coeffs()];
+    for (int i = 0; i < coeffs(); ++i) l[i] += weight[k] * c[i];
+  }
+  return sh::evalIrradiance<glm::vec3, float>(l, normal);
+}
+
+namespace {
+
+constexpr char kMagic[4] = {'B', 'P', 'R', 'B'};
+// Refuse absurd headers before allocating: 2^24 probes is far beyond any level (a 0.02 m grid over
+// a 5 m room is 1.6e7).
+constexpr std::uint64_t kMaxProbes = 1u << 24;
+
+struct Header {
+  char magic[4];
+  std::uint32_t version;
+  std::int32_t count[3];
+  float origin[3];
+  float spacing;
+  std::int32_t order;
+  std::int32_t visBins;
+  float bias[2];
+};
+
+template <class T>
+void append(std::vector<std::uint8_t>& out, const T* data, std::size_t n) {
+  const auto* p = reinterpret_cast<const std::uint8_t*>(data);
+  out.insert(out.end(), p, p + n * sizeof(T));
+}
+
+}  // namespace
+
+std::vector<std::uint8_t> serialize(const ProbeVolume& v) {
+  Header h{};
+  std::memcpy(h.magic, kMagic, 4);
+  h.version = kProbeFormatVersion;
+  for (int i = 0; i < 3; ++i) h.count[i] = v.grid.count[i], h.origin[i] = v.grid.origin[i];
+  h.spacing = v.grid.spacing;
+  h.order = v.order;
+  h.visBins = kVisBins;
+  h.bias[0] = v.bias.normal, h.bias[1] = v.bias.view;
+  std::vector<std::uint8_t> out;
+  append(out, &h, 1);
+  append(out, v.sh.data(), v.sh.size());
+  append(out, v.moments.data(), v.moments.size());
+  append(out, v.valid.data(), v.valid.size());
+  const std::uint64_t sum = hashBytes(out);
+  append(out, &sum, 1);
+  return out;
+}
+
+ProbeVolume deserialize(std::span<const std::uint8_t> bytes, const std::string& name) {
+  auto fail = [&](const std::string& what) { throwInputError(name, "probe volume", what, "a probe cache written by this build"); };
+  if (bytes.size() < sizeof(Header) + sizeof(std::uint64_t)) fail("file too short");
+  Header h;
+  std::memcpy(&h, bytes.data(), sizeof h);
+  if (std::memcmp(h.magic, kMagic, 4) != 0) fail("bad magic");
+  if (h.version != kProbeFormatVersion) fail("format version " + std::to_string(h.version));
+  if (h.order < 2 || h.order > 3) fail("SH order " + std::to_string(h.order));
+  if (h.visBins != kVisBins) fail("visibility bin count " + std::to_string(h.visBins));
+  std::uint64_t probes = 1;
+  for (int i = 0; i < 3; ++i) {
+    if (h.count[i] < 1 || !std::isfinite(h.origin[i])) fail("bad grid");
+    probes *= std::uint64_t(h.count[i]);
+    if (probes > kMaxProbes) fail("too many probes");
+  }
+  if (!std::isfinite(h.spacing) || !(h.spacing > 0.0f) || !std::isfinite(h.bias[0]) || !std::isfinite(h.bias[1]))
+    fail("bad spacing or bias");
+  const std::size_t nSh = std::size_t(probes) * h.order * h.order, nMom = std::size_t(probes) * kVisBins;
+  const std::size_t expected = sizeof(Header) + nSh * sizeof(glm::vec3) + nMom * sizeof(glm::vec2) +
+                               std::size_t(probes) * sizeof(std::uint32_t) + sizeof(std::uint64_t);
+  if (bytes.size() != expected) fail("size " + std::to_string(bytes.size()) + ", header implies " + std::to_string(expected));
+  std::uint64_t sum;
+  std::memcpy(&sum, bytes.data() + expected - sizeof sum, sizeof sum);
+  if (sum != hashBytes(bytes.first(expected - sizeof sum))) fail("checksum mismatch");
+
+  ProbeVolume v;
+  v.grid.count = {h.count[0], h.count[1], h.count[2]};
+  v.grid.origin = {h.origin[0], h.origin[1], h.origin[2]};
+  v.grid.spacing = h.spacing;
+  v.order = h.order;
+  v.bias = {h.bias[0], h.bias[1]};
+  v.sh.resize(nSh);
+  v.moments.resize(nMom);
+  v.valid.resize(std::size_t(probes));
+  const std::uint8_t* p = bytes.data() + sizeof(Header);
+  std::memcpy(v.sh.data(), p, nSh * sizeof(glm::vec3));
+  p += nSh * sizeof(glm::vec3);
+  std::memcpy(v.moments.data(), p, nMom * sizeof(glm::vec2));
+  p += nMom * sizeof(glm::vec2);
+  std::memcpy(v.valid.data(), p, v.valid.size() * sizeof(std::uint32_t));
+  for (const glm::vec3& c : v.sh)
+    if (!std::isfinite(c.x) || !std::isfinite(c.y) || !std::isfinite(c.z)) fail("non-finite SH coefficient");
+  for (const glm::vec2& m : v.moments)
+    if (!std::isfinite(m.x) || !std::isfinite(m.y) || m.x < 0.0f) fail("bad visibility moments");
+  for (std::uint32_t f : v.valid)
+    if (f > 1u) fail("bad valid flag");
+  return v;
+}
+
+}  // namespace bounce::gi::probes
