@@ -2,6 +2,8 @@
 
 #include <cstdlib>
 
+#include "engine/gi/probes/bake.hpp"
+#include "engine/gi/probes/node.hpp"
 #include "engine/scene/components.hpp"
 #include "engine/scene/systems.hpp"
 
@@ -28,6 +30,12 @@ Session::Session(gpu::Context& ctx, scene::Level level) : ctx_(ctx), level_(std:
   renderer_ = std::make_unique<render::Renderer>(ctx_);
   scene_ = std::make_unique<render::GpuScene>(ctx_, renderer_->pipelines(), renderer_->samplers(), cookCacheDir());
   scene_->load(registry_);
+  // Effect `probes`: bake (or load the cached bake of) the static scene, add the probes node.
+  if (level_.effects.has(scene::Effect::Probes)) {
+    auto baked = gi::probes::loadOrBake(level_, cookCacheDir(), std::filesystem::path(BOUNCE_BINARY_DIR) / "probes",
+                                        gi::probes::ProbeSettings{});
+    renderer_->addNode(std::make_shared<gi::probes::ProbeNode>(ctx_, renderer_->pipelines(), std::move(baked.volume)));
+  }
 }
 
 void Session::setCameraMotion(scene::Motion motion) {

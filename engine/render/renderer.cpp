@@ -130,12 +130,14 @@ void Renderer::buildGraph(rg::RenderGraph& graph, PassContext& pc, VkExtent2D ex
   if (pc.world->has("shadows") && pc.world->has("direct") && !pc.world->shadowLayers.empty())
     atlas = addShadowPass(graph, &pc, s.shadowResolution).atlas;
   const GBuffer& gbuffer = addGBufferPass(graph, &pc, extent);
-  const Lighting& lit = addLightingPass(graph, &pc, gbuffer, atlas, hdr);
+  addLightingPass(graph, &pc, gbuffer, atlas, hdr);
+  for (const auto& node : nodes_) node->addPasses(graph, &pc);  // GI terms, added to "lighting.hdr"
+  const auto litHdr = graph.blackboard().get<rg::Texture>("lighting.hdr");
   rg::Handle<rg::Texture> out = s.debugView == DebugView::None
-                                    ? addTonemapPass(graph, &pc, lit.hdr, display)
+                                    ? addTonemapPass(graph, &pc, litHdr, display)
                                     : addDebugViewPass(graph, &pc, gbuffer, atlas, display);
   graph.markOutput(out, rg::Usage::TransferSrc);
-  if (s.keepHdr) graph.markOutput(lit.hdr, rg::Usage::TransferSrc);
+  if (s.keepHdr) graph.markOutput(litHdr, rg::Usage::TransferSrc);
 }
 
 void Renderer::render(const RenderWorld& world, gpu::Presenter& presenter, const FrameSettings& settings) {

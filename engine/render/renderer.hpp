@@ -30,6 +30,17 @@ struct FrameSettings {
   bool keepHdr = false;         // mark the HDR target as an output (captures read it back)
 };
 
+// A GI technique's runtime node (engine/gi/<technique>/node.*). After the lighting pass the
+// renderer calls every node's addPasses in the order they were added; a node reads the G-buffer
+// and "lighting.hdr" from the blackboard, adds its indirect term and re-publishes "lighting.hdr"
+// (tonemapping reads the last version). The owner adds a node only when the level's effects name
+// its technique.
+class GraphNode {
+ public:
+  virtual ~GraphNode() = default;
+  virtual void addPasses(rg::RenderGraph& graph, const PassContext* pc) = 0;
+};
+
 class Renderer {
  public:
   explicit Renderer(gpu::Context& ctx, std::uint32_t framesInFlight = gpu::FrameRing::kDefaultFramesInFlight);
@@ -42,6 +53,8 @@ class Renderer {
   gpu::FrameRing& frames() { return *frames_; }
   // The graph's Vulkan backend (tests: transient pooling, VkBackend::createdImages()).
   const VkBackend& backend() const { return *backend_; }
+
+  void addNode(std::shared_ptr<GraphNode> node) { nodes_.push_back(std::move(node)); }
 
   // Records and submits one frame through `presenter` (which decides the size).
   void render(const RenderWorld& world, gpu::Presenter& presenter, const FrameSettings& settings);
@@ -74,6 +87,7 @@ class Renderer {
   std::vector<SlotBuffers> slots_;
   std::unique_ptr<gpu::Image> hdr_, display_, dummyAtlas_;
   std::vector<std::string> executed_;
+  std::vector<std::shared_ptr<GraphNode>> nodes_;
 };
 
 }  // namespace bounce::render
