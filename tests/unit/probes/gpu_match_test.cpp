@@ -1,0 +1,82 @@
+// The probes pass against the CPU API: render cornell-1 with effects ["probes"] only (no direct
+// light, no emission in the box: the HDR image is exactly the probes term) and compare pixels
+// with ρ/π·max(E(x, n, v), 0) from ProbeVolume::irradiance at the surface the camera ray hits.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "engine/core/file.hpp"
+#include "engine/gi/probes/bake.hpp"
+#include "engine/gpu/image_io.hpp"
+#include "engine/gpu/testing.hpp"
+#include "engine/ref/reference_scene.hpp"
+#include "engine/scene/systems.hpp"
+#include "game/capture_run.hpp"
+#include "game/session.hpp"
+
+using namespace bounce;
+namespace fs = std::filesystem;
+
+namespace {
+constexpr std::uint32_t kSize = 64;
+// HDR is RGBA16F (11-bit mantissa, ~0.05%) and the GPU reconstructs x from a D32 depth while the
+// CPU intersects exactly; near probe-weight edges that moves the result a little: 3% + 1e-4.
+constexpr double kRelTol = 0.03, kAbsTol = 1e-4;
+// Pixels on silhouettes and on the dynamic prop are not compared exactly: at most 5% may differ.
+constexpr double kMaxDisagreeing = 0.05;
+}  // namespace
+
+TEST(ProbeGpu, PassEqualsCpuApiAtEveryPixel) {
+  const fs::path out = fs::path(BOUNCE_TEST_OUT) / "probes-gpu";
+  const fs::path levelPath = fs::path(BOUNCE_SOURCE_DIR) / "content/levels/cornell-1.json";
+  const fs::path script = out / "frame0.json";
+  writeFileAtomic(script, "{\"bounce_capture\": 1, \"level\": \"" + levelPath.string() +
+                              "\", \"resolution\": [64, 64], \"dt\": 0.0166667, \"frames\": 1, \"capture\": [0], "
+                              "\"effects\": [\"probes\"]}");
+  const game::CaptureResult raster = game::runCaptureScript(script, out / "capture");
+  ASSERT_EQ(raster.frames.size(), 1u);
+  const gpu::FloatImage img = gpu::readPfm(raster.frames[0].pfm);
+
+  // The Session baked with the default settings into the build's caches: the same entry loads here.
+  scene::Level level = scene::loadLevel(levelPath);
+  const auto baked = gi::probes::loadOrBake(level, game::cookCacheDir(), fs::path(BOUNCE_BINARY_DIR) / "probes", {});
+  EXPECT_TRUE(baked.fromCache);
+  ecs::Registry registry;
+  scene::instantiate(level, registry);
+  scene::motionSystem(registry, 0.0);
+  scene::transformSystem(registry);
+  ref::ReferenceAssets assets;
+  assets.load(registry, game::cookCacheDir());
+  const ref::SceneBvh bvh(ref::extractScene(registry, level, assets));
+
+  std::size_t compared = 0, disagree = 0;
+  double sum = 0.0;
+  for (std::uint32_t y = 0; y < kSize; ++y)
+    for (std::uint32_t x = 0; x < kSize; ++x) {
+      const ref::CameraRay r = ref::cameraRay(bvh.scene().camera, kSize, kSize, x, y);
+      ref::Hit hit;
+      if (!bvh.intersect(r.origin, r.direction, r.tMin, r.tMax, hit)) continue;
+      glm::vec3 n = hit.shadingNormal;
+      if (glm::dot(n, r.direction) > 0.0f) n = -n;
+      const ref::RefMaterial& m = bvh.scene().materials[hit.material];
+      glm::vec3 albedo = m.albedo;
+      if (m.albedoTexture >= 0) albedo *= bvh.scene().textures[m.albedoTexture].sample(hit.uv);
+      albedo = glm::clamp(albedo, 0.0f, 1.0f);
+      const glm::vec3 e = glm::max(baked.volume.irradiance(hit.position, n, -r.direction), glm::vec3(0.0f));
+      const glm::vec3 want = albedo / 3.14159265f * e;
+      ++compared;
+      bool ok = true;
+      for (int c = 0; c < 3; ++c) {
+        const double got = img.rgb[3 * (std::size_t(y) * kSize + x) + c];
+        ok &= std::abs(got - want[c]) <= kRelTol * std::max<double>(got, want[c]) + kAbsTol;
+        sum += got;
+      }
+      disagree += !ok;
+    }
+  ASSERT_GT(compared, kSize * kSize / 2);
+  EXPECT_GT(sum, 0.0);
+  const double fraction = double(disagree) / double(compared);
+  std::printf("probes pass vs CPU API: %.2f %% of %zu pixels differ\n", 100 * fraction, compared);
+  EXPECT_LE(fraction, kMaxDisagreeing);
+}
