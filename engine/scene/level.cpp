@@ -1,6 +1,7 @@
 #include "engine/scene/level.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <numbers>
 #include <unordered_map>
 
@@ -133,6 +134,41 @@ void parseLight(const json::Node& node, EntityDesc& d, const ParseContext&) {
   d.light = l;
 }
 
+// "dnrt": {"sh": 4|9, "grid": 16|32|64, "inner": 3, "outer": 6, "intrusion": false,
+//          "anti_radiance": "paper"|"improved", "rays": 256} — every key optional (defaults above).
+void parseDnrt(const json::Node& node, EntityDesc& d, const ParseContext&) {
+  const auto o = node.object({"sh", "grid", "inner", "outer", "intrusion", "anti_radiance", "rays"});
+  Dnrt c;
+  if (auto v = o.optional("sh")) {
+    c.shCount = int(v->integer(0, 16));
+    if (c.shCount != 4 && c.shCount != 9) v->fail("SH count " + std::to_string(c.shCount), "4 or 9");
+  }
+  if (auto v = o.optional("grid")) {
+    c.grid = int(v->integer(0, 1024));
+    if (c.grid != 16 && c.grid != 32 && c.grid != 64) v->fail("grid " + std::to_string(c.grid), "16, 32 or 64");
+  }
+  if (auto v = o.optional("inner")) c.innerExtent = v->real(json::Range::closed(1.0, 100.0));
+  if (auto v = o.optional("outer")) c.outerExtent = v->real(json::Range::closed(1.0, 1000.0));
+  if (!(c.outerExtent > c.innerExtent))
+    (o.has("outer") ? o.node().child("outer") : o.node().child("inner"))
+        .fail("outer extent " + json::formatNumber(c.outerExtent) + " is not above inner " +
+                  json::formatNumber(c.innerExtent),
+              "outer > inner (defaults 3 and 6)");
+  if (auto v = o.optional("intrusion")) c.intrusion = v->boolean();
+  if (auto v = o.optional("anti_radiance")) {
+    const std::string m = v->string();
+    if (m != "paper" && m != "improved") v->fail("unknown mode " + json::inQuotes(m), "paper or improved");
+    c.improvedAntiRadiance = m == "improved";
+  }
+  if (auto v = o.optional("rays")) {
+    const auto rays = v->integer(1, 65536);
+    const auto side = std::int64_t(std::lround(std::sqrt(double(rays))));
+    if (side * side != rays) v->fail(std::to_string(rays) + " is not a square", "a square number (e.g. 64, 256)");
+    c.samplesPerAxis = int(side);
+  }
+  d.dnrt = c;
+}
+
 void parseMotionKey(const json::Node& node, EntityDesc& d, const ParseContext&) { d.motion = parseMotion(node); }
 
 // ---- the table ------------------------------------------------------------------------------
@@ -156,6 +192,7 @@ const ComponentKey kComponentKeys[] = {
     {"camera", parseCamera, emplaceIfSet<&EntityDesc::camera>},
     {"light", parseLight, emplaceIfSet<&EntityDesc::light>},
     {"motion", parseMotionKey, emplaceIfSet<&EntityDesc::motion>},
+    {"dnrt", parseDnrt, emplaceIfSet<&EntityDesc::dnrt>},
 };
 
 std::vector<std::string_view> entityKeys() {
@@ -181,6 +218,9 @@ EntityDesc parseEntity(const json::Node& node, const ParseContext& ctx) {
     d.dynamic = true;
     d.motion->base = d.transform;
   }
+  if (d.dnrt && !d.mesh) o.node().child("dnrt").fail("a DNRT field on an entity without a mesh", "a \"mesh\" key");
+  if (d.dnrt && !d.dynamic)
+    o.node().child("dnrt").fail("a DNRT field on a static entity", "\"dynamic\": true or a motion");
   return d;
 }
 

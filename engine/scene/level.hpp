@@ -32,6 +32,7 @@ struct EntityDesc {
   std::optional<Camera> camera;
   std::optional<Light> light;
   std::optional<Motion> motion;  // base = transform
+  std::optional<Dnrt> dnrt;      // needs a mesh and a dynamic entity
 };
 
 struct Level {
