@@ -130,12 +130,20 @@ void Renderer::buildGraph(rg::RenderGraph& graph, PassContext& pc, VkExtent2D ex
   if (pc.world->has("shadows") && pc.world->has("direct") && !pc.world->shadowLayers.empty())
     atlas = addShadowPass(graph, &pc, s.shadowResolution).atlas;
   const GBuffer& gbuffer = addGBufferPass(graph, &pc, extent);
-  const Lighting& lit = addLightingPass(graph, &pc, gbuffer, atlas, hdr);
+  addLightingPass(graph, &pc, gbuffer, atlas, hdr);
+  for (const auto& [effect, node] : nodes_)
+    if (node && pc.world->has(effect)) node(graph, pc);
+  const auto litHdr = graph.blackboard().get<rg::Texture>("lighting.hdr");  // the last node's version
   rg::Handle<rg::Texture> out = s.debugView == DebugView::None
-                                    ? addTonemapPass(graph, &pc, lit.hdr, display)
+                                    ? addTonemapPass(graph, &pc, litHdr, display)
                                     : addDebugViewPass(graph, &pc, gbuffer, atlas, display);
   graph.markOutput(out, rg::Usage::TransferSrc);
-  if (s.keepHdr) graph.markOutput(lit.hdr, rg::Usage::TransferSrc);
+  if (s.keepHdr) graph.markOutput(litHdr, rg::Usage::TransferSrc);
+}
+
+void Renderer::setNode(const std::string& effect, GraphNode node) {
+  if (node) nodes_[effect] = std::move(node);
+  else nodes_.erase(effect);
 }
 
 void Renderer::render(const RenderWorld& world, gpu::Presenter& presenter, const FrameSettings& settings) {

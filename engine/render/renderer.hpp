@@ -4,6 +4,8 @@
 // image to a presenter. The graph holds a pass only for what the frame calls for: no `shadows`
 // effect or no shadow-casting light → no shadow pass (DESIGN.md "simulate only the effects a scene
 // calls for"); a debug view replaces lighting + tonemap.
+#include <functional>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -52,6 +54,14 @@ class Renderer {
   // Names of the passes the last rendered frame executed, in order.
   const std::vector<std::string>& executedPasses() const { return executed_; }
 
+  // A GI technique's render-graph node (DESIGN.md "One shape for every GI technique"), run after
+  // the lighting pass when the world's effects name `effect`, in effect-name order. It reads
+  // "gbuffer.*" and "lighting.hdr" from the blackboard and, when it adds its term, writes
+  // "lighting.hdr" and puts the new version back (tonemap reads whatever is there). It adds no
+  // pass when no entity takes part. An empty function removes the node.
+  using GraphNode = std::function<void(rg::RenderGraph&, PassContext&)>;
+  void setNode(const std::string& effect, GraphNode node);
+
   // Linear HDR radiance of the last frame as float RGB (waits for the GPU; needs keepHdr).
   std::vector<float> readHdr();
   gpu::Image& hdrImage() { return *hdr_; }
@@ -74,6 +84,7 @@ class Renderer {
   std::vector<SlotBuffers> slots_;
   std::unique_ptr<gpu::Image> hdr_, display_, dummyAtlas_;
   std::vector<std::string> executed_;
+  std::map<std::string, GraphNode> nodes_;
 };
 
 }  // namespace bounce::render

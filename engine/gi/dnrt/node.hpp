@@ -1,0 +1,64 @@
+#pragma once
+// The DNRT render-graph node (paper §5.2): one pass "dnrt" that adds every object's L_DNRT
+// (shaders/dnrt/dnrt.frag, Eq. 16) to "lighting.hdr" with additive blending, reading
+// "gbuffer.albedo", "gbuffer.normal" and "gbuffer.depth" from the blackboard.
+//
+// Better than the paper's full-screen pass per object: by default each object rasterises its
+// outer cube (back faces, no depth test), so the cost follows the pixels the cube covers; the
+// paper's mode (a full-screen triangle per object) is NodeSettings::fullScreen, for comparison.
+// Each object's draw sits in its own GPU timestamp scope "dnrt/<name>" inside the pass's scope.
+#include <array>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "engine/gi/dnrt/field.hpp"
+#include "engine/gi/dnrt/gpu_object.hpp"
+#include "engine/gpu/buffer.hpp"
+#include "engine/gpu/descriptors.hpp"
+#include "engine/gpu/image.hpp"
+#include "engine/gpu/pipeline.hpp"
+#include "engine/render/graph/render_graph.hpp"
+#include "engine/render/pass_context.hpp"
+
+namespace bounce::gi::dnrt {
+
+// One field's 3 (4 SH) or 7 (9 SH) RGBA8 3D textures (Table 2), uploaded once.
+class FieldTextures {
+ public:
+  FieldTextures(gpu::Context& ctx, const Field& field, const std::string& name);
+  // Slot 0..6 of the shader's set 2; a 4-SH field answers its texture 0 for slots 3..6 (never read).
+  VkImageView view(int slot) const;
+
+ private:
+  std::vector<std::unique_ptr<gpu::Image>> images_;
+};
+
+struct NodeObject {
+  const FieldTextures* textures = nullptr;  // must outlive the frame's execution
+  DnrtObjectGpu data;                       // packObject(field, world, radiance SH at o)
+  std::string name;                         // timestamp scope "dnrt/<name>" (the entity id)
+};
+
+struct NodeSettings {
+  bool fullScreen = false;  // the paper's full-screen pass per object instead of the outer cube
+};
+
+class Node {
+ public:
+  Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t framesInFlight);
+
+  // Adds the pass when `objects` is not empty (no visible object with a field: no pass, as
+  // DESIGN.md asks) and puts the new "lighting.hdr" version on the blackboard.
+  void addTo(rg::RenderGraph& graph, const render::PassContext& pc, std::vector<NodeObject> objects,
+             NodeSettings settings = {});
+
+ private:
+  gpu::Context& ctx_;
+  gpu::DescriptorSetLayout inputLayout_, fieldLayout_;
+  gpu::PipelineLayout layout_;
+  gpu::Pipeline box_, fullScreen_;
+  std::vector<gpu::Buffer> objectBuffers_;  // per frame slot, DnrtObjectGpu[]
+};
+
+}  // namespace bounce::gi::dnrt
