@@ -9,6 +9,7 @@ layout(set = 1, binding = 0) uniform sampler2D gAlbedo;
 layout(set = 1, binding = 1) uniform sampler2D gNormal;
 layout(set = 1, binding = 2) uniform sampler2D gDepth;
 layout(std430, set = 1, binding = 3) readonly buffer Objects { DnrtObject objects[]; };
+layout(set = 1, binding = 4) uniform usampler2D gEntity;
 // Table 2: 0..2 (m_0..m_3) of R, G, B; 3..5 (m_4..m_7) of R, G, B; 6 (m_8.rgb). 4-SH fields bind
 // texture 0 in slots 3..6 (never read: the SH count is checked first).
 layout(set = 2, binding = 0) uniform sampler3D field0;
@@ -27,6 +28,8 @@ void main() {
   float depth = texelFetch(gDepth, pixel, 0).r;
   if (depth >= 1.0) discard;
   DnrtObject ob = objects[pc.object];
+  // The object's own surface: its field holds filled (interior) values there, not a transfer.
+  if (ob.ids.x != 0u && texelFetch(gEntity, pixel, 0).r == ob.ids.x) discard;
   vec3 r = worldFromDepth(camera.invViewProj, (vec2(pixel) + 0.5) * camera.resolution.zw, depth);
   vec3 q = ((ob.worldToLocal * vec4(r, 1.0)).xyz - ob.centreLocal.xyz) / ob.centreLocal.w;
   float s = dnrtFalloff(q, ob.extents.x, ob.extents.y);

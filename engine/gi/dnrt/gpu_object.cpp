@@ -4,7 +4,8 @@
 
 namespace bounce::gi::dnrt {
 
-DnrtObjectGpu packObject(const Field& field, const glm::mat4& world, const std::array<glm::vec3, 9>& radiance) {
+DnrtObjectGpu packObject(const Field& field, const glm::mat4& world, const std::array<glm::vec3, 9>& radiance,
+                         std::int64_t entityIndex) {
   const Placement pl = place(field, world);
   const auto c = toLocal(irradianceSH(radiance), pl.localToWorldRotation);
   DnrtObjectGpu g;
@@ -24,6 +25,7 @@ DnrtObjectGpu packObject(const Field& field, const glm::mat4& world, const std::
       g.lo[t][k] = field.ranges[t * 4 + std::size_t(k)].lo;
       g.hi[t][k] = field.ranges[t * 4 + std::size_t(k)].hi;
     }
+  g.ids.x = entityIndex >= 0 ? std::uint32_t(entityIndex) + 1u : 0u;
   return g;
 }
 

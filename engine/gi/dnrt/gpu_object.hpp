@@ -20,12 +20,16 @@ struct DnrtObjectGpu {
   glm::vec4 c[9]{};
   glm::vec4 lo[7]{};
   glm::vec4 hi[7]{};
+  glm::uvec4 ids{0u};  // x: the object's entity index + 1 (its own pixels are skipped; 0 = none)
 };
-static_assert(sizeof(DnrtObjectGpu) == 544, "must match DnrtObject in shaders/dnrt/dnrt.glsl (std430)");
+static_assert(sizeof(DnrtObjectGpu) == 560, "must match DnrtObject in shaders/dnrt/dnrt.glsl (std430)");
 
 // `world`: the object's local → world matrix; `worldRadianceSH`: radiance SH at o (world axes), e.g.
 // IrradianceSource::radianceSH(placement centre). Convolves to irradiance and rotates into the
 // object's frame.
-DnrtObjectGpu packObject(const Field& field, const glm::mat4& world, const std::array<glm::vec3, 9>& worldRadianceSH);
+// `entityIndex`: the object's ecs::Entity::index(), so the shader skips the object's own pixels
+// (the field is meaningless on and inside its surface); -1 skips nothing.
+DnrtObjectGpu packObject(const Field& field, const glm::mat4& world, const std::array<glm::vec3, 9>& worldRadianceSH,
+                         std::int64_t entityIndex = -1);
 
 }  // namespace bounce::gi::dnrt

@@ -40,7 +40,7 @@ VkImageView FieldTextures::view(int slot) const {
 
 Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t framesInFlight)
     : ctx_(ctx),
-      inputLayout_(ctx, {{0, kSampled}, {1, kSampled}, {2, kSampled}, {3, kStorage}}, "dnrt.inputs"),
+      inputLayout_(ctx, {{0, kSampled}, {1, kSampled}, {2, kSampled}, {3, kStorage}, {4, kSampled}}, "dnrt.inputs"),
       fieldLayout_(ctx, {{0, kSampled}, {1, kSampled}, {2, kSampled}, {3, kSampled}, {4, kSampled}, {5, kSampled},
                          {6, kSampled}},
                    "dnrt.field"),
@@ -67,7 +67,7 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
   for (const NodeObject& o : objects)
     if (!o.textures) throw InternalError("dnrt: object '" + o.name + "' has no field textures");
   struct Data {
-    rg::Handle<rg::Texture> albedo, normal, depth, hdr;
+    rg::Handle<rg::Texture> albedo, normal, depth, entity, hdr;
   };
   auto& bb = graph.blackboard();
   const render::PassContext* pc = &pcIn;
@@ -77,6 +77,7 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
         d.albedo = b.read(bb.get<rg::Texture>("gbuffer.albedo"), rg::Usage::SampledFragment);
         d.normal = b.read(bb.get<rg::Texture>("gbuffer.normal"), rg::Usage::SampledFragment);
         d.depth = b.read(bb.get<rg::Texture>("gbuffer.depth"), rg::Usage::SampledFragment);
+        d.entity = b.read(bb.get<rg::Texture>("gbuffer.entity"), rg::Usage::SampledFragment);
         d.hdr = b.write(bb.get<rg::Texture>("lighting.hdr"), rg::Usage::ColorAttachment);
       },
       [this, pc, objects = std::move(objects), settings](const Data& d, const rg::PassResources& res,
@@ -99,6 +100,7 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
             .sampledImage(1, view(d.normal), point)
             .sampledImage(2, view(d.depth), point)
             .buffer(3, buffer)
+            .sampledImage(4, view(d.entity), point)
             .update(ctx_, inputs);
 
         gpu::Image& target = pc->backend->image(res.texture(d.hdr));

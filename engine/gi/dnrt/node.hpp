@@ -1,7 +1,8 @@
 #pragma once
 // The DNRT render-graph node (paper §5.2): one pass "dnrt" that adds every object's L_DNRT
 // (shaders/dnrt/dnrt.frag, Eq. 16) to "lighting.hdr" with additive blending, reading
-// "gbuffer.albedo", "gbuffer.normal" and "gbuffer.depth" from the blackboard.
+// "gbuffer.albedo", "gbuffer.normal", "gbuffer.depth" and "gbuffer.entity" (to skip each object's
+// own pixels) from the blackboard.
 //
 // Better than the paper's full-screen pass per object: by default each object rasterises its
 // outer cube (back faces, no depth test), so the cost follows the pixels the cube covers; the
