@@ -3,6 +3,7 @@
 // DNRT: adds one object's L_DNRT (dnrt.glsl) to "lighting.hdr" with additive blending.
 #include "frame.glsl"
 #include "dnrt/dnrt.glsl"
+#include "dnrt/intrusion.glsl"
 
 layout(set = 0, binding = 0) uniform FrameUbo { Camera camera; };
 layout(set = 1, binding = 0) uniform sampler2D gAlbedo;
@@ -19,6 +20,8 @@ layout(set = 2, binding = 3) uniform sampler3D field3;
 layout(set = 2, binding = 4) uniform sampler3D field4;
 layout(set = 2, binding = 5) uniform sampler3D field5;
 layout(set = 2, binding = 6) uniform sampler3D field6;
+// Intrusion map (intrusion.glsl); a 1×1 "nothing near" map for objects without intrusion.
+layout(set = 2, binding = 7) uniform sampler2DArray intrusion;
 layout(push_constant) uniform Push { uint object; uint fullScreen; } pc;
 
 layout(location = 0) out vec4 outRadiance;
@@ -37,6 +40,12 @@ void main() {
   vec3 toO = ob.centreWorld.xyz - r;
   float len = length(toO);
   if (!(len > 1e-6 * ob.centreWorld.w)) discard;  // at o: n_o undefined
+  if (ob.ids.y != 0u) {
+    // Something between o and r: r does not see the object (§5.2.3). Bias: 2% of R plus 2% of the
+    // distance, the size of a 128² texel at 90° and the receiver's own surface in the map.
+    float nearest = texture(intrusion, intrusionCoord(-toO)).r;
+    if (len > nearest + 0.02 * ob.centreWorld.w + 0.02 * len) discard;
+  }
   vec3 nr = texelFetch(gNormal, pixel, 0).xyz;
   float lamb = max(dot(toO / len, nr), 0.0);
   if (lamb <= 0.0) discard;

@@ -18,7 +18,8 @@ struct DnrtObject {
   vec4 c[9];          // rgb: irradiance SH c_j at o, rotated into the local frame
   vec4 lo[7];         // per texture, per component: decoded value of byte 0
   vec4 hi[7];         // … of byte 255
-  uvec4 ids;          // x: entity index + 1 of the object (gbuffer.entity's encoding); 0 = none
+  uvec4 ids;          // x: entity index + 1 of the object (gbuffer.entity's encoding), 0 = none;
+                      // y: 1 when the intrusion map applies (§5.2.3)
 };
 
 float dnrtFalloff(vec3 q, float inner, float outer) {

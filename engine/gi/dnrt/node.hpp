@@ -8,8 +8,13 @@
 // outer cube (back faces, no depth test), so the cost follows the pixels the cube covers; the
 // paper's mode (a full-screen triangle per object) is NodeSettings::fullScreen, for comparison.
 // Each object's draw sits in its own GPU timestamp scope "dnrt/<name>" inside the pass's scope.
+//
+// Intrusion (§5.2.3), per object: a pass "dnrt.cube/<name>" renders every OTHER drawn mesh from o
+// into six 90° views (distance from o, R32F, 128² per face); the object's term then reaches r only
+// if nothing lies between o and r (shaders/dnrt/intrusion.glsl).
 #include <array>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -39,11 +44,17 @@ struct NodeObject {
   const FieldTextures* textures = nullptr;  // must outlive the frame's execution
   DnrtObjectGpu data;                       // packObject(field, world, radiance SH at o)
   std::string name;                         // timestamp scope "dnrt/<name>" (the entity id)
+  bool intrusion = false;                   // render and test an intrusion map (§5.2.3)
 };
 
 struct NodeSettings {
   bool fullScreen = false;  // the paper's full-screen pass per object instead of the outer cube
+  std::uint32_t intrusionResolution = 128;  // texels per cube face
 };
+
+// View-projection of cube face `face` (0..5: +X, −X, +Y, −Y, +Z, −Z) seen from `origin`, 90° square,
+// depth 0..1 (Vulkan): the mapping shaders/dnrt/intrusion.glsl inverts.
+glm::mat4 cubeFaceViewProj(int face, glm::vec3 origin, float nearM, float farM);
 
 class Node {
  public:
@@ -57,8 +68,9 @@ class Node {
  private:
   gpu::Context& ctx_;
   gpu::DescriptorSetLayout inputLayout_, fieldLayout_;
-  gpu::PipelineLayout layout_;
-  gpu::Pipeline box_, fullScreen_;
+  gpu::PipelineLayout layout_, cubeLayout_;
+  gpu::Pipeline box_, fullScreen_, cube_;
+  std::unique_ptr<gpu::Image> noIntrusion_;  // 1×1×6 R32F "nothing nearer than 1e30 m"
   std::vector<gpu::Buffer> objectBuffers_;  // per frame slot, DnrtObjectGpu[]
 };
 

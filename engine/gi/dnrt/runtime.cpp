@@ -42,7 +42,9 @@ std::vector<NodeObject> Runtime::objectsFor(const render::RenderWorld& world) co
     const auto* placed = registry_.tryGet<scene::WorldTransform>(o.entity);
     if (!drawn || !placed) continue;
     const glm::vec3 centre = glm::vec3(placed->matrix * glm::vec4(o.field.centre, 1.0f));
-    out.push_back({o.textures.get(), packObject(o.field, placed->matrix, src.radianceSH(centre), o.entity.index()), o.name});
+    const auto* component = registry_.tryGet<scene::Dnrt>(o.entity);
+    out.push_back({o.textures.get(), packObject(o.field, placed->matrix, src.radianceSH(centre), o.entity.index()), o.name,
+                   component && component->intrusion});
   }
   return out;
 }

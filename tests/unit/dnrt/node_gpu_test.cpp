@@ -228,6 +228,33 @@ TEST(DnrtGpu, RuntimeBakesThroughTheCacheAndOverlappingObjectsAdd) {
   EXPECT_GT(overlap, 1000);
   EXPECT_GT(largest, 0.005f);
   EXPECT_LE(worst, 2.0f * kHalfTol * largest);  // fp16 rounding of each of the frames
+
+  // Intrusion (§5.2.3): box B stands between box A's centre and part of the floor. With A's
+  // intrusion map, that part loses A's term entirely; nothing else changes.
+  std::vector<NodeObject> a = {all[0]}, aIntrusion = {all[0]};
+  aIntrusion[0].intrusion = true;
+  std::vector<float> frames2[2];
+  for (int k = 0; k < 2; ++k) {
+    session.renderer().setNode("dnrt", [&](rg::RenderGraph& graph, render::PassContext& pc) {
+      node.addTo(graph, pc, k == 0 ? a : aIntrusion);
+    });
+    const Frame f = renderOnce(session, ctx);
+    frames2[k] = f.rgb;
+    if (k == 1) {
+      EXPECT_NE(std::find(f.passes.begin(), f.passes.end(), "dnrt.cube/box-a"), f.passes.end());
+    }
+  }
+  int hidden = 0, kept = 0, other = 0;
+  for (std::size_t i = 0; i < frames2[0].size(); ++i) {
+    if (frames2[0][i] == 0.0f) continue;
+    if (frames2[1][i] == 0.0f) ++hidden;
+    else if (frames2[1][i] == frames2[0][i]) ++kept;
+    else ++other;
+  }
+  std::printf("intrusion: %d channel values hidden by box B, %d kept, %d changed otherwise\n", hidden, kept, other);
+  EXPECT_GT(hidden, 30);
+  EXPECT_GT(kept, 10 * hidden);
+  EXPECT_EQ(other, 0);
 }
 
 }  // namespace
