@@ -31,8 +31,6 @@ void main() {
   float depth = texelFetch(gDepth, pixel, 0).r;
   if (depth >= 1.0) discard;
   DnrtObject ob = objects[pc.object];
-  // The object's own surface: its field holds filled (interior) values there, not a transfer.
-  if (ob.ids.x != 0u && texelFetch(gEntity, pixel, 0).r == ob.ids.x) discard;
   vec3 r = worldFromDepth(camera.invViewProj, (vec2(pixel) + 0.5) * camera.resolution.zw, depth);
   vec3 q = ((ob.worldToLocal * vec4(r, 1.0)).xyz - ob.centreLocal.xyz) / ob.centreLocal.w;
   float s = dnrtFalloff(q, ob.extents.x, ob.extents.y);
@@ -49,6 +47,8 @@ void main() {
   vec3 nr = texelFetch(gNormal, pixel, 0).xyz;
   float lamb = max(dot(toO / len, nr), 0.0);
   if (lamb <= 0.0) discard;
+  // The object's own surface: its field holds filled (interior) values there, not a transfer.
+  if (ob.ids.x != 0u && texelFetch(gEntity, pixel, 0).r == ob.ids.x) discard;
   vec3 uvw = dnrtUvw(q, ob.extents.x, ob.extents.w);
   vec4 m0 = ob.lo[0] + (ob.hi[0] - ob.lo[0]) * texture(field0, uvw);
   vec4 m1 = ob.lo[1] + (ob.hi[1] - ob.lo[1]) * texture(field1, uvw);
