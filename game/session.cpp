@@ -3,7 +3,6 @@
 #include <cstdlib>
 
 #include "engine/gi/probes/bake.hpp"
-#include "engine/gi/probes/node.hpp"
 #include "engine/scene/components.hpp"
 #include "engine/scene/systems.hpp"
 
@@ -25,17 +24,54 @@ scene::Level loadLevelWithEffects(const std::filesystem::path& path,
   return level;
 }
 
+namespace {
+gi::probes::ProbeSettings probeSettings(const scene::Level& level) {
+  gi::probes::ProbeSettings s;
+  s.spacing = level.probes.spacing;
+  s.order = level.probes.order;
+  s.rays = level.probes.rays;
+  gi::probes::validate(s, level.source.string(), "/probes");
+  return s;
+}
+}  // namespace
+
 Session::Session(gpu::Context& ctx, scene::Level level) : ctx_(ctx), level_(std::move(level)) {
   scene::instantiate(level_, registry_);
   renderer_ = std::make_unique<render::Renderer>(ctx_);
   scene_ = std::make_unique<render::GpuScene>(ctx_, renderer_->pipelines(), renderer_->samplers(), cookCacheDir());
   scene_->load(registry_);
-  // Effect `probes`: bake (or load the cached bake of) the static scene, add the probes node.
+  // Nodes run in the order set: AO first (a later node may read "ao.term"), then the static
+  // indirect light (probes), then what the dynamic objects change (DNRT).
+  for (gi::ao::Kind kind : {gi::ao::Kind::Ssao, gi::ao::Kind::Hbao}) {
+    if (!level_.effects.has(kind == gi::ao::Kind::Ssao ? scene::Effect::Ssao : scene::Effect::Hbao)) continue;
+    auto& node = ao_[int(kind)];
+    node = std::make_unique<gi::ao::Node>(ctx_, renderer_->pipelines(), kind);
+    renderer_->setNode(gi::ao::kindName(kind), node->node());
+  }
+  // Effect `probes`: bake (or load the cached bake of) the static scene.
   if (level_.effects.has(scene::Effect::Probes)) {
     auto baked = gi::probes::loadOrBake(level_, cookCacheDir(), std::filesystem::path(BOUNCE_BINARY_DIR) / "probes",
-                                        gi::probes::ProbeSettings{});
-    renderer_->addNode(std::make_shared<gi::probes::ProbeNode>(ctx_, renderer_->pipelines(), std::move(baked.volume)));
+                                        probeSettings(level_));
+    probes_ = std::make_unique<gi::probes::ProbeNode>(ctx_, renderer_->pipelines(), std::move(baked.volume));
+    renderer_->setNode("probes", probes_->node());
   }
+  // Effect `dnrt`: a field per `dnrt` entity; c_j from the probes when the level has them.
+  if (level_.effects.has(scene::Effect::Dnrt)) {
+    cpuAssets_ = std::make_unique<ref::ReferenceAssets>();
+    cpuAssets_->load(registry_, cookCacheDir());
+    dnrt_ = std::make_unique<gi::dnrt::Runtime>(ctx_, renderer_->pipelines(), registry_, *cpuAssets_,
+                                                std::filesystem::path(BOUNCE_BINARY_DIR) / "dnrt",
+                                                renderer_->frames().framesInFlight(), level_.background);
+    if (probes_) {
+      probeSource_ = std::make_unique<gi::dnrt::ProbeSource>(probes_->volume());
+      dnrt_->setIrradianceSource(probeSource_.get());
+    }
+    renderer_->setNode("dnrt", dnrt_->node());
+  }
+}
+
+Session::~Session() {
+  if (renderer_) renderer_->frames().waitIdle();
 }
 
 void Session::setCameraMotion(scene::Motion motion) {

@@ -7,6 +7,10 @@
 #include <optional>
 
 #include "engine/ecs/registry.hpp"
+#include "engine/gi/ao/ao.hpp"
+#include "engine/gi/dnrt/probe_source.hpp"
+#include "engine/gi/dnrt/runtime.hpp"
+#include "engine/gi/probes/node.hpp"
 #include "engine/gpu/context.hpp"
 #include "engine/render/gpu_scene.hpp"
 #include "engine/render/renderer.hpp"
@@ -23,7 +27,13 @@ scene::Level loadLevelWithEffects(const std::filesystem::path& path, const std::
 
 class Session {
  public:
+  // Builds only what the level's effects name: probes (bake or cached), DNRT (fields baked or
+  // cached for every `dnrt` entity), SSAO/HBAO; each becomes a renderer node.
   Session(gpu::Context& ctx, scene::Level level);
+  // Waits for the GPU before the nodes, the scene and the renderer go (frames may still use them).
+  ~Session();
+  Session(const Session&) = delete;
+  Session& operator=(const Session&) = delete;
 
   // Runs the systems for simulation time t (seconds): camera script, motion, transforms.
   void update(double t);
@@ -40,6 +50,10 @@ class Session {
   ecs::Registry& registry() { return registry_; }
   render::Renderer& renderer() { return *renderer_; }
   render::GpuScene& gpuScene() { return *scene_; }
+  // The GI runtimes the effects asked for (null otherwise).
+  gi::probes::ProbeNode* probes() { return probes_.get(); }
+  gi::dnrt::Runtime* dnrt() { return dnrt_.get(); }
+  gi::ao::Node* ao(gi::ao::Kind kind) { return ao_[int(kind)].get(); }
 
  private:
   gpu::Context& ctx_;
@@ -47,6 +61,11 @@ class Session {
   ecs::Registry registry_;
   std::unique_ptr<render::Renderer> renderer_;
   std::unique_ptr<render::GpuScene> scene_;
+  std::unique_ptr<gi::ao::Node> ao_[2];
+  std::unique_ptr<gi::probes::ProbeNode> probes_;
+  std::unique_ptr<gi::dnrt::ProbeSource> probeSource_;
+  std::unique_ptr<ref::ReferenceAssets> cpuAssets_;  // DNRT bakes from the CPU copies
+  std::unique_ptr<gi::dnrt::Runtime> dnrt_;
   render::RenderWorld world_;
 };
 

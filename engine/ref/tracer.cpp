@@ -58,7 +58,6 @@ CameraRay cameraRay(const RefCamera& camera, std::uint32_t width, std::uint32_t 
 
 glm::dvec3 tracePath(const SceneBvh& bvh, const TraceSettings& settings, std::uint32_t x, std::uint32_t y,
                      std::uint32_t sample, std::uint64_t& rays) {
-  const SceneDesc& scene = bvh.scene();
   math::Pcg32 rng = math::Pcg32::fromIndex(((std::uint64_t(y) * settings.width + x) << 32) | sample);
   const CameraRay camera = cameraRay(bvh.scene().camera, settings.width, settings.height, x, y);
   return tracePathFrom(bvh, camera.origin, camera.direction, camera.tMin, camera.tMax, settings.bounces, rng, rays);

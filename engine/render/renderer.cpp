@@ -1,5 +1,6 @@
 #include "engine/render/renderer.hpp"
 
+#include <algorithm>
 #include <cstring>
 
 #include "engine/core/error.hpp"
@@ -131,13 +132,24 @@ void Renderer::buildGraph(rg::RenderGraph& graph, PassContext& pc, VkExtent2D ex
     atlas = addShadowPass(graph, &pc, s.shadowResolution).atlas;
   const GBuffer& gbuffer = addGBufferPass(graph, &pc, extent);
   addLightingPass(graph, &pc, gbuffer, atlas, hdr);
-  for (const auto& node : nodes_) node->addPasses(graph, &pc);  // GI terms, added to "lighting.hdr"
-  const auto litHdr = graph.blackboard().get<rg::Texture>("lighting.hdr");
+  for (const auto& [effect, node] : nodes_)
+    if (node && pc.world->has(effect)) node(graph, pc);
+  const auto litHdr = graph.blackboard().get<rg::Texture>("lighting.hdr");  // the last node's version
   rg::Handle<rg::Texture> out = s.debugView == DebugView::None
                                     ? addTonemapPass(graph, &pc, litHdr, display)
                                     : addDebugViewPass(graph, &pc, gbuffer, atlas, display);
   graph.markOutput(out, rg::Usage::TransferSrc);
   if (s.keepHdr) graph.markOutput(litHdr, rg::Usage::TransferSrc);
+}
+
+void Renderer::setNode(const std::string& effect, GraphNode node) {
+  auto it = std::find_if(nodes_.begin(), nodes_.end(), [&](const auto& n) { return n.first == effect; });
+  if (it != nodes_.end()) {
+    if (node) it->second = std::move(node);
+    else nodes_.erase(it);
+  } else if (node) {
+    nodes_.emplace_back(effect, std::move(node));
+  }
 }
 
 void Renderer::render(const RenderWorld& world, gpu::Presenter& presenter, const FrameSettings& settings) {

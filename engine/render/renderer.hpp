@@ -4,6 +4,7 @@
 // image to a presenter. The graph holds a pass only for what the frame calls for: no `shadows`
 // effect or no shadow-casting light → no shadow pass (DESIGN.md "simulate only the effects a scene
 // calls for"); a debug view replaces lighting + tonemap.
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -30,17 +31,6 @@ struct FrameSettings {
   bool keepHdr = false;         // mark the HDR target as an output (captures read it back)
 };
 
-// A GI technique's runtime node (engine/gi/<technique>/node.*). After the lighting pass the
-// renderer calls every node's addPasses in the order they were added; a node reads the G-buffer
-// and "lighting.hdr" from the blackboard, adds its indirect term and re-publishes "lighting.hdr"
-// (tonemapping reads the last version). The owner adds a node only when the level's effects name
-// its technique.
-class GraphNode {
- public:
-  virtual ~GraphNode() = default;
-  virtual void addPasses(rg::RenderGraph& graph, const PassContext* pc) = 0;
-};
-
 class Renderer {
  public:
   explicit Renderer(gpu::Context& ctx, std::uint32_t framesInFlight = gpu::FrameRing::kDefaultFramesInFlight);
@@ -54,8 +44,6 @@ class Renderer {
   // The graph's Vulkan backend (tests: transient pooling, VkBackend::createdImages()).
   const VkBackend& backend() const { return *backend_; }
 
-  void addNode(std::shared_ptr<GraphNode> node) { nodes_.push_back(std::move(node)); }
-
   // Records and submits one frame through `presenter` (which decides the size).
   void render(const RenderWorld& world, gpu::Presenter& presenter, const FrameSettings& settings);
 
@@ -64,6 +52,14 @@ class Renderer {
   std::string graphDot(const RenderWorld& world, VkExtent2D extent, const FrameSettings& settings);
   // Names of the passes the last rendered frame executed, in order.
   const std::vector<std::string>& executedPasses() const { return executed_; }
+
+  // A GI technique's render-graph node (DESIGN.md "One shape for every GI technique"), run after
+  // the lighting pass when the world's effects name `effect`, in the order nodes were first set. It reads
+  // "gbuffer.*" and "lighting.hdr" from the blackboard and, when it adds its term, writes
+  // "lighting.hdr" and puts the new version back (tonemap reads whatever is there). It adds no
+  // pass when no entity takes part. An empty function removes the node.
+  using GraphNode = std::function<void(rg::RenderGraph&, PassContext&)>;
+  void setNode(const std::string& effect, GraphNode node);
 
   // Linear HDR radiance of the last frame as float RGB (waits for the GPU; needs keepHdr).
   std::vector<float> readHdr();
@@ -87,7 +83,8 @@ class Renderer {
   std::vector<SlotBuffers> slots_;
   std::unique_ptr<gpu::Image> hdr_, display_, dummyAtlas_;
   std::vector<std::string> executed_;
-  std::vector<std::shared_ptr<GraphNode>> nodes_;
+  // In registration order: a node that reads another's output (e.g. "ao.term") is set after it.
+  std::vector<std::pair<std::string, GraphNode>> nodes_;
 };
 
 }  // namespace bounce::render

@@ -138,4 +138,17 @@ struct Motion {
 // The entity moves at run time; GI techniques treat it as a dynamic object.
 struct Dynamic {};
 
+// A DNRT transfer field request (engine/gi/dnrt; level key "dnrt", README "Level format").
+// Extents are half-sizes of cubes about the bounding-sphere centre, in units of its radius R.
+struct Dnrt {
+  int shCount = 4;            // 4 or 9
+  int grid = 32;              // 16, 32 or 64 vertices per axis
+  float innerExtent = 3.0f;   // field cube
+  float outerExtent = 6.0f;   // fade-out cube, > innerExtent
+  bool intrusion = false;     // §5.2.3 cube depth map from o (run-time visibility test)
+  bool improvedAntiRadiance = false;  // App. B.2 instead of Eq. 12
+  int samplesPerAxis = 16;    // bake rays per vertex = samplesPerAxis² ("rays", a square)
+  friend bool operator==(const Dnrt&, const Dnrt&) = default;
+};
+
 }  // namespace bounce::scene

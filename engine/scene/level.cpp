@@ -1,6 +1,7 @@
 #include "engine/scene/level.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <numbers>
 #include <unordered_map>
 
@@ -133,6 +134,41 @@ void parseLight(const json::Node& node, EntityDesc& d, const ParseContext&) {
   d.light = l;
 }
 
+// "dnrt": {"sh": 4|9, "grid": 16|32|64, "inner": 3, "outer": 6, "intrusion": false,
+//          "anti_radiance": "paper"|"improved", "rays": 256} — every key optional (defaults above).
+void parseDnrt(const json::Node& node, EntityDesc& d, const ParseContext&) {
+  const auto o = node.object({"sh", "grid", "inner", "outer", "intrusion", "anti_radiance", "rays"});
+  Dnrt c;
+  if (auto v = o.optional("sh")) {
+    c.shCount = int(v->integer(0, 16));
+    if (c.shCount != 4 && c.shCount != 9) v->fail("SH count " + std::to_string(c.shCount), "4 or 9");
+  }
+  if (auto v = o.optional("grid")) {
+    c.grid = int(v->integer(0, 1024));
+    if (c.grid != 16 && c.grid != 32 && c.grid != 64) v->fail("grid " + std::to_string(c.grid), "16, 32 or 64");
+  }
+  if (auto v = o.optional("inner")) c.innerExtent = v->real(json::Range::closed(1.0, 100.0));
+  if (auto v = o.optional("outer")) c.outerExtent = v->real(json::Range::closed(1.0, 1000.0));
+  if (!(c.outerExtent > c.innerExtent))
+    (o.has("outer") ? o.node().child("outer") : o.node().child("inner"))
+        .fail("outer extent " + json::formatNumber(c.outerExtent) + " is not above inner " +
+                  json::formatNumber(c.innerExtent),
+              "outer > inner (defaults 3 and 6)");
+  if (auto v = o.optional("intrusion")) c.intrusion = v->boolean();
+  if (auto v = o.optional("anti_radiance")) {
+    const std::string m = v->string();
+    if (m != "paper" && m != "improved") v->fail("unknown mode " + json::inQuotes(m), "paper or improved");
+    c.improvedAntiRadiance = m == "improved";
+  }
+  if (auto v = o.optional("rays")) {
+    const auto rays = v->integer(1, 65536);
+    const auto side = std::int64_t(std::lround(std::sqrt(double(rays))));
+    if (side * side != rays) v->fail(std::to_string(rays) + " is not a square", "a square number (e.g. 64, 256)");
+    c.samplesPerAxis = int(side);
+  }
+  d.dnrt = c;
+}
+
 void parseMotionKey(const json::Node& node, EntityDesc& d, const ParseContext&) { d.motion = parseMotion(node); }
 
 // ---- the table ------------------------------------------------------------------------------
@@ -156,6 +192,7 @@ const ComponentKey kComponentKeys[] = {
     {"camera", parseCamera, emplaceIfSet<&EntityDesc::camera>},
     {"light", parseLight, emplaceIfSet<&EntityDesc::light>},
     {"motion", parseMotionKey, emplaceIfSet<&EntityDesc::motion>},
+    {"dnrt", parseDnrt, emplaceIfSet<&EntityDesc::dnrt>},
 };
 
 std::vector<std::string_view> entityKeys() {
@@ -181,6 +218,9 @@ EntityDesc parseEntity(const json::Node& node, const ParseContext& ctx) {
     d.dynamic = true;
     d.motion->base = d.transform;
   }
+  if (d.dnrt && !d.mesh) o.node().child("dnrt").fail("a DNRT field on an entity without a mesh", "a \"mesh\" key");
+  if (d.dnrt && !d.dynamic)
+    o.node().child("dnrt").fail("a DNRT field on a static entity", "\"dynamic\": true or a motion");
   return d;
 }
 
@@ -231,7 +271,7 @@ Level loadLevel(const std::filesystem::path& pathIn) {
   const std::string file = pathIn.string();
   const nlohmann::json doc = json::parseFile(pathIn);
   const json::Node root(doc, "", file);
-  const auto o = root.object({"bounce_level", "name", "effects", "background", "entities"});
+  const auto o = root.object({"bounce_level", "name", "effects", "background", "probes", "entities"});
 
   const auto version = o.required("bounce_level", "the format version 1");
   if (const auto v = version.integer(0, 1 << 30); v != 1)
@@ -246,6 +286,22 @@ Level loadLevel(const std::filesystem::path& pathIn) {
   const auto effects = o.required("effects", "an array of effect names (one of: " + knownEffectNames() + ")");
   level.effects = parseEffects(effects);
   if (auto b = o.optional("background")) level.background = b->vec3(json::Range::atLeast(0));
+  if (auto p = o.optional("probes")) {
+    const auto po = p->object({"spacing", "order", "rays"});
+    if (auto v = po.optional("spacing")) level.probes.spacing = float(v->real(json::Range::closed(1e-3, 1e3)));
+    if (auto v = po.optional("order")) {
+      level.probes.order = int(v->integer(0, 16));
+      if (level.probes.order != 2 && level.probes.order != 3)
+        v->fail("SH order " + std::to_string(level.probes.order), "2 or 3");
+    }
+    if (auto v = po.optional("rays")) {
+      const auto rays = v->integer(64, 65536);
+      const auto root = std::int64_t(std::lround(std::sqrt(double(rays))));
+      if (root * root != rays || root % 8 != 0)
+        v->fail(std::to_string(rays) + " rays", "a square whose root is a multiple of 8 (64, 256, 576, 1024, ...)");
+      level.probes.rays = std::uint32_t(rays);
+    }
+  }
 
   const auto entities = o.required("entities", "an array of entities");
   for (const auto& e : entities.array(0, kMaxEntities, "at most " + std::to_string(kMaxEntities) + " entities"))

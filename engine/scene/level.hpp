@@ -32,12 +32,23 @@ struct EntityDesc {
   std::optional<Camera> camera;
   std::optional<Light> light;
   std::optional<Motion> motion;  // base = transform
+  std::optional<Dnrt> dnrt;      // needs a mesh and a dynamic entity
+};
+
+// The level's "probes" object (used when effects name `probes`): the irradiance volume's probe
+// spacing in metres, SH order (2: 4 coefficients, 3: 9) and rays per probe (a square whose root
+// is a multiple of 8, checked by the probe baker).
+struct ProbesConfig {
+  float spacing = 0.1f;
+  int order = 3;
+  std::uint32_t rays = 256;
 };
 
 struct Level {
   std::string name;  // "name", or the file's stem
   EffectSet effects;
   glm::vec3 background{0.0f};
+  ProbesConfig probes;
   std::vector<EntityDesc> entities;
   std::filesystem::path source;  // the level file, absolute
 };

@@ -12,13 +12,17 @@
 
 namespace bounce::gi::probes {
 
-class ProbeNode : public render::GraphNode {
+class ProbeNode {
  public:
   // `pipelines` gives the shared frame layout (set 0: camera).
   ProbeNode(gpu::Context& ctx, const render::Pipelines& pipelines, ProbeVolume volume);
   // Reads the G-buffer from the blackboard ("gbuffer.albedo", "gbuffer.normal", "gbuffer.depth"),
   // blends into "lighting.hdr" and publishes the new version under the same key.
-  void addPasses(rg::RenderGraph& graph, const render::PassContext* pc) override;
+  void addPasses(rg::RenderGraph& graph, const render::PassContext* pc);
+  // For Renderer::setNode("probes", …).
+  render::Renderer::GraphNode node() {
+    return [this](rg::RenderGraph& graph, render::PassContext& pc) { addPasses(graph, &pc); };
+  }
   const ProbeVolume& volume() const { return volume_; }
 
  private:

@@ -110,3 +110,21 @@ TEST(RendererGraph, TransientImagesArePooledAcrossFrames) {
                                                                           << slots << " did";
   session.renderer().frames().waitIdle();
 }
+
+// Every GI effect the level names adds its node, in the order the Session sets them (AO, probes,
+// DNRT), and none runs or is even built when its effect is absent.
+TEST(RendererGraph, GiNodesExistOnlyForNamedEffects) {
+  gpu::Context& ctx = gpu::testkit::sharedContext();
+  {
+    game::Session plain(ctx, game::loadLevelWithEffects(kCornell, std::vector<std::string>{"direct", "shadows"}));
+    EXPECT_EQ(plain.probes(), nullptr);
+    EXPECT_EQ(plain.dnrt(), nullptr);
+    EXPECT_EQ(plain.ao(gi::ao::Kind::Ssao), nullptr);
+  }
+  const Result all = renderOnce(std::vector<std::string>{"direct", "shadows", "ssao", "probes", "dnrt"}, {});
+  EXPECT_EQ(all.executed, (Passes{"shadow", "gbuffer", "lighting", "ssao", "probes", "dnrt", "tonemap"}));
+  const Result probesOnly = renderOnce(std::vector<std::string>{"direct", "probes"}, {});
+  EXPECT_EQ(probesOnly.executed, (Passes{"gbuffer", "lighting", "probes", "tonemap"}));
+  EXPECT_FALSE(hasPass(probesOnly.dot, "dnrt"));
+  EXPECT_FALSE(hasPass(probesOnly.dot, "ssao"));
+}

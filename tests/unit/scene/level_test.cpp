@@ -130,7 +130,7 @@ TEST(Level, EffectsOverrideReplacesAndValidates) {
 TEST(LevelErrors, UnknownKey) {
   EXPECT_EQ(loadError("unknown-key", levelJson(R"({"id": "a", "colour": [1, 1, 1]})")),
             "FILE: /entities/0/colour: unknown key \"colour\" (expected one of: id, parent, dynamic, transform, mesh, "
-            "material, camera, light, motion)");
+            "material, camera, light, motion, dnrt)");
   EXPECT_EQ(loadError("unknown-key-nested", levelJson(R"({"id": "a", "light": {"type": "point", "power": 1}})")),
             "FILE: /entities/0/light/power: unknown key \"power\" (expected one of: type, color, intensity, range, "
             "inner_cone_deg, outer_cone_deg, shadows)");
@@ -273,7 +273,7 @@ TEST(LevelErrors, HostileInput) {
   // A 10 MB key: the message quotes only its start.
   EXPECT_EQ(loadError("big-key", R"({"bounce_level": 1, ")" + big + R"(": 1, "effects": [], "entities": []})"),
             "FILE: /" + std::string(64, 'x') + "...: unknown key \"" + std::string(64, 'x') +
-                "...\" (expected one of: bounce_level, name, effects, background, entities)");
+                "...\" (expected one of: bounce_level, name, effects, background, probes, entities)");
   // Integers beyond 64 bits become doubles: not an integer.
   EXPECT_EQ(loadError("huge-int", R"({"bounce_level": 123456789012345678901234567890, "effects": [], "entities": []})"),
             "FILE: /bounce_level: wrong type: number (expected an integer in [0, 1073741824])");
@@ -294,4 +294,33 @@ TEST(LevelErrors, InstantiateRejectsBrokenHandBuiltLevel) {
   ecs::Registry r;
   EXPECT_THROW(instantiate(level, r), InternalError);
   EXPECT_EQ(r.alive(), 0u);
+}
+
+// The level's "probes" object: defaults when absent, exact values when given, and one-line errors
+// at the offending key (the baker's own checks are in tests/unit/probes).
+TEST(Level, ProbesSettingsParseWithDefaults) {
+  const auto plain = writeTemp("probes-default.json", levelJson(""));
+  const Level a = loadLevel(plain);
+  EXPECT_FLOAT_EQ(a.probes.spacing, 0.1f);
+  EXPECT_EQ(a.probes.order, 3);
+  EXPECT_EQ(a.probes.rays, 256u);
+  const auto set = writeTemp("probes-set.json", R"({"bounce_level": 1, "effects": ["probes"],
+      "probes": {"spacing": 0.25, "order": 2, "rays": 576}, "entities": []})");
+  const Level b = loadLevel(set);
+  EXPECT_FLOAT_EQ(b.probes.spacing, 0.25f);
+  EXPECT_EQ(b.probes.order, 2);
+  EXPECT_EQ(b.probes.rays, 576u);
+}
+
+TEST(LevelErrors, ProbesSettings) {
+  auto with = [](const std::string& probes) {
+    return R"({"bounce_level": 1, "effects": ["probes"], "probes": )" + probes + R"(, "entities": []})";
+  };
+  EXPECT_EQ(loadError("probes-order", with(R"({"order": 4})")), "FILE: /probes/order: SH order 4 (expected 2 or 3)");
+  EXPECT_EQ(loadError("probes-rays", with(R"({"rays": 100})")),
+            "FILE: /probes/rays: 100 rays (expected a square whose root is a multiple of 8 (64, 256, 576, 1024, ...))");
+  EXPECT_EQ(loadError("probes-spacing", with(R"({"spacing": 0})")),
+            "FILE: /probes/spacing: 0 is out of range (expected a number in [0.001, 1000])");
+  EXPECT_EQ(loadError("probes-key", with(R"({"spacng": 0.2})")),
+            "FILE: /probes/spacng: unknown key \"spacng\" (expected one of: spacing, order, rays)");
 }

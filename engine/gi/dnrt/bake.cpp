@@ -1,0 +1,199 @@
+#include "engine/gi/dnrt/bake.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+#include "engine/core/error.hpp"
+#include "engine/core/hash.hpp"
+#include "engine/core/log.hpp"
+#include "engine/core/parallel.hpp"
+#include "engine/core/progress.hpp"
+#include "engine/math/sampling.hpp"
+#include "engine/math/sh.hpp"
+
+namespace bounce::gi::dnrt {
+
+namespace {
+
+// Vertices closer to o than this (units of R) have no usable n_o.
+constexpr double kCentreEpsilon = 1e-6;
+
+glm::vec3 albedoAt(const ref::SceneDesc& scene, const ref::Hit& hit) {
+  if (hit.material >= scene.materials.size()) return glm::vec3(1.0f);
+  const ref::RefMaterial& m = scene.materials[hit.material];
+  glm::vec3 a = m.albedo;
+  if (m.albedoTexture >= 0 && std::size_t(m.albedoTexture) < scene.textures.size())
+    a *= scene.textures[std::size_t(m.albedoTexture)].sample(hit.uv);
+  return glm::clamp(a, glm::vec3(0.0f), glm::vec3(1.0f));  // as gbuffer.frag clamps albedo
+}
+
+// Fills every invalid vertex from its valid 26-neighbours, sweep by sweep (Jacobi: a sweep reads
+// only vertices valid before it, so the result does not depend on visiting order).
+void fillInvalid(int n, int shCount, std::vector<glm::vec3>& values, std::vector<char>& valid) {
+  const auto at = [n](int x, int y, int z) { return (std::size_t(z) * n + y) * n + x; };
+  bool any = std::find(valid.begin(), valid.end(), 1) != valid.end();
+  if (!any) return;  // nothing to fill from: leave zeros
+  for (;;) {
+    std::vector<std::size_t> filled;
+    std::vector<glm::vec3> update;
+    for (int z = 0; z < n; ++z)
+      for (int y = 0; y < n; ++y)
+        for (int x = 0; x < n; ++x) {
+          const std::size_t v = at(x, y, z);
+          if (valid[v]) continue;
+          std::vector<glm::vec3> sum(std::size_t(shCount), glm::vec3(0.0f));
+          int count = 0;
+          for (int dz = -1; dz <= 1; ++dz)
+            for (int dy = -1; dy <= 1; ++dy)
+              for (int dx = -1; dx <= 1; ++dx) {
+                const int xx = x + dx, yy = y + dy, zz = z + dz;
+                if (xx < 0 || yy < 0 || zz < 0 || xx >= n || yy >= n || zz >= n) continue;
+                const std::size_t u = at(xx, yy, zz);
+                if (!valid[u]) continue;
+                for (int j = 0; j < shCount; ++j) sum[std::size_t(j)] += values[u * shCount + j];
+                ++count;
+              }
+          if (count == 0) continue;
+          filled.push_back(v);
+          for (auto& s : sum) update.push_back(s / float(count));
+        }
+    if (filled.empty()) return;
+    for (std::size_t i = 0; i < filled.size(); ++i) {
+      for (int j = 0; j < shCount; ++j) values[filled[i] * shCount + j] = update[i * shCount + j];
+      valid[filled[i]] = 1;
+    }
+  }
+}
+
+}  // namespace
+
+BoundingSphere boundingSphere(const ref::SceneDesc& object) {
+  glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+  std::size_t count = 0;
+  for (const auto& m : object.meshes)
+    for (const auto& p : m.positions) lo = glm::min(lo, p), hi = glm::max(hi, p), ++count;
+  if (count == 0) throw InternalError("dnrt: object has no vertices");
+  BoundingSphere s;
+  s.centre = 0.5f * (lo + hi);
+  for (const auto& m : object.meshes)
+    for (const auto& p : m.positions) s.radius = std::max(s.radius, glm::length(p - s.centre));
+  return s;
+}
+
+BakeResult bake(const ref::SceneDesc& object, const FieldSettings& settings) {
+  checkSettings(settings);
+  const BoundingSphere sphere = boundingSphere(object);
+  if (!(sphere.radius > 0.0f) || !std::isfinite(sphere.radius))
+    throw InternalError("dnrt: object has a degenerate bounding sphere");
+  ref::SceneDesc desc;
+  desc.meshes = object.meshes;
+  desc.materials = object.materials;
+  desc.textures = object.textures;
+  const ref::SceneBvh bvh(std::move(desc));
+  const ref::SceneDesc& scene = bvh.scene();
+
+  const int n = settings.grid, nc = settings.shCount, order = nc == 9 ? 3 : 2;
+  const std::size_t nv = std::size_t(n) * n * n;
+  const int spa = settings.samplesPerAxis;
+  const double samples = double(spa) * spa;
+  // Anti-radiance scale per band: π/Â_l in the improved mode (header comment), 1 in the paper's.
+  std::array<double, 3> kScale{1.0, 1.0, 1.0};
+  if (settings.antiRadiance == AntiRadiance::Improved)
+    for (int l = 0; l < 3; ++l) kScale[std::size_t(l)] = math::kPi / sh::cosineLobeBand(l);
+
+  std::vector<glm::vec3> values(nv * std::size_t(nc), glm::vec3(0.0f));
+  std::vector<char> valid(nv, 0);
+  const glm::dvec3 o(sphere.centre);
+  const double R = sphere.radius;
+  Progress progress("dnrt bake", nv);
+  parallelFor(0, nv, [&](std::size_t v) {
+    const int x = int(v % std::size_t(n)), y = int((v / std::size_t(n)) % std::size_t(n)), z = int(v / (std::size_t(n) * n));
+    const glm::dvec3 q = double(settings.innerExtent) * (-1.0 + 2.0 * glm::dvec3(x, y, z) / double(n - 1));
+    const double dist = glm::length(q);
+    if (dist < kCentreEpsilon) return progress.advance();  // the vertex at o: filled below
+    const glm::dvec3 p = o + R * q;
+    const glm::dvec3 no = -q / dist;
+    math::Pcg32 rng = math::Pcg32::fromIndex(v);
+    const auto us = math::stratified2D(spa, rng);
+    std::array<glm::dvec3, 9> t{}, k{};
+    std::array<double, sh::kMaxCoeffs> yn{}, yw{};
+    int front = 0, back = 0;
+    for (const glm::dvec2& u : us) {
+      const glm::dvec3 w = math::cosineHemisphere(u, no);
+      ref::Hit hit;
+      if (!bvh.intersect(glm::vec3(p), glm::vec3(w), 0.0f, std::numeric_limits<float>::infinity(), hit)) continue;
+      if (glm::dot(glm::dvec3(hit.geometricNormal), w) > 0.0) {
+        ++back;  // seen from inside: p is (probably) inside O
+        continue;
+      }
+      ++front;
+      glm::dvec3 ns(hit.shadingNormal);
+      if (glm::dot(ns, glm::dvec3(hit.geometricNormal)) < 0.0) ns = -ns;  // outward, like the surface
+      const glm::dvec3 rho(albedoAt(scene, hit));
+      sh::evalBasis<double>(order, ns, yn);
+      sh::evalBasis<double>(order, w, yw);
+      for (int j = 0; j < nc; ++j) {
+        const int l = j == 0 ? 0 : (j < 4 ? 1 : 2);
+        t[std::size_t(j)] += yn[std::size_t(j)] * rho;
+        k[std::size_t(j)] += glm::dvec3(yw[std::size_t(j)] * kScale[std::size_t(l)]);
+      }
+    }
+    if (back > front) return progress.advance();  // inside O: filled below
+    const double norm = 1.0 / (math::kPi * samples);
+    for (int j = 0; j < nc; ++j) values[v * nc + std::size_t(j)] = glm::vec3((t[std::size_t(j)] - k[std::size_t(j)]) * norm);
+    valid[v] = 1;
+    progress.advance();
+  }, 16);
+  progress.finish();
+
+  BakeResult result;
+  result.insideVertices = std::size_t(std::count(valid.begin(), valid.end(), 0));
+  fillInvalid(n, nc, values, valid);
+  result.field = quantize(settings, sphere.centre, sphere.radius, values);
+  result.quantization = quantizationError(result.field, values);
+  result.values = std::move(values);
+  return result;
+}
+
+std::string cacheKey(const ref::SceneDesc& object, const FieldSettings& s) {
+  Hasher h;
+  h.str("dnrt-field-v1");
+  h.pod(s.shCount).pod(s.grid).pod(s.innerExtent).pod(s.outerExtent).pod(s.samplesPerAxis).pod(s.antiRadiance);
+  h.u64(object.meshes.size());
+  for (const auto& m : object.meshes) {
+    h.u64(m.positions.size()).bytes(m.positions.data(), m.positions.size() * sizeof(glm::vec3));
+    h.u64(m.normals.size()).bytes(m.normals.data(), m.normals.size() * sizeof(glm::vec3));
+    h.u64(m.uvs.size()).bytes(m.uvs.data(), m.uvs.size() * sizeof(glm::vec2));
+    h.u64(m.indices.size()).bytes(m.indices.data(), m.indices.size() * sizeof(std::uint32_t));
+    h.pod(m.material);
+  }
+  h.u64(object.materials.size());
+  for (const auto& m : object.materials) h.pod(m.albedo).pod(m.albedoTexture);
+  h.u64(object.textures.size());
+  for (const auto& t : object.textures)
+    h.pod(t.width).pod(t.height).bytes(t.texels.data(), t.texels.size() * sizeof(glm::vec3));
+  return h.hex();
+}
+
+Field bakeCached(const ref::SceneDesc& object, const FieldSettings& settings, const std::filesystem::path& cacheDir,
+                 bool* fromCache) {
+  const std::filesystem::path path = cacheDir / ("dnrt-" + cacheKey(object, settings) + ".field");
+  if (std::filesystem::exists(path)) {
+    try {
+      Field f = load(path);
+      if (fromCache) *fromCache = true;
+      return f;
+    } catch (const InputError& e) {
+      log::warn(std::string("dnrt: rebaking a corrupt cached field: ") + e.what());
+    }
+  }
+  BakeResult r = bake(object, settings);
+  std::filesystem::create_directories(cacheDir);
+  save(r.field, path);
+  if (fromCache) *fromCache = false;
+  return std::move(r.field);
+}
+
+}  // namespace bounce::gi::dnrt

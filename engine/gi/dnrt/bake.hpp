@@ -1,0 +1,58 @@
+#pragma once
+// DNRT precompute (paper §5.1, Listing 1): for every vertex p_i of an N³ grid around one object O,
+// Monte-Carlo estimates of
+//   t_j = ∫_D Y_j(n_s) ρ_s / π² (ω·n_o)₊ dω                                  (Eq. 8, reflection)
+//   k_j = ∫_D Y_j(ω) / π² (ω·n_o)₊ dω                                        (Eq. 13, anti-radiance)
+// and m_j = t_j − k_j (§5.1.2), per RGB channel (ρ_s is RGB; k_j is grey), where D is the solid angle
+// O subtends from p_i, n_o = normalize(o − p_i) the intermediate normal (§4.1.4), n_s the surface
+// normal and ρ_s the albedo (factor × texture) at the first hit.
+//
+// Estimator: stratified cosine-weighted directions around n_o (pdf (ω·n_o)/π), ONE ray per
+// direction serving every coefficient (§5.1.1): ∫_D f (ω·n_o)₊ dω ≈ (π/S) Σ_hits f, so
+// t_j ≈ Σ_hits Y_j(n_s) ρ_s / (π S) and k_j ≈ Σ_hits Y_j(ω) / (π S).
+// Improved anti-radiance (App. B.2): L_init(ω) ≈ Σ_j (c_j / Â_l) Y_j(ω) (the radiance whose
+// irradiance the c_j are) instead of I(ω)/π, i.e. k_j scaled by π/Â_l: ×1 (l = 0), ×3/2 (l = 1),
+// ×4 (l = 2). The runtime is unchanged (same c_j).
+//
+// Vertices inside O (most hits are back faces) and the vertex at o itself (n_o undefined) have no
+// meaningful value: they are filled from valid neighbours (repeated averaging of the valid
+// 26-neighbours) so trilinear filtering next to O's surface does not pull in garbage.
+// Deterministic: vertex i draws its samples from Pcg32::fromIndex(i), whatever the thread count.
+#include <cstddef>
+#include <filesystem>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "engine/gi/dnrt/field.hpp"
+#include "engine/ref/scene_bvh.hpp"
+
+namespace bounce::gi::dnrt {
+
+struct BoundingSphere {
+  glm::vec3 centre{0.0f};
+  float radius = 0.0f;
+};
+// Centre of the axis-aligned bounds, radius = farthest vertex from it (a bounding sphere, not the
+// minimal one; exact for spheres and boxes). Throws InternalError on an object without vertices.
+BoundingSphere boundingSphere(const ref::SceneDesc& object);
+
+struct BakeResult {
+  Field field;                    // quantised, what the runtime uploads
+  std::vector<glm::vec3> values;  // unquantised m_j: values[vertex·shCount + j]
+  std::size_t insideVertices = 0;  // vertices detected inside O (or at o) and filled
+  QuantizationError quantization;
+};
+
+// `object`: ONE object's meshes in its local frame (metres), materials and textures.
+BakeResult bake(const ref::SceneDesc& object, const FieldSettings& settings);
+
+// Cache key: every mesh, material and texture byte of `object` plus the settings and format version.
+std::string cacheKey(const ref::SceneDesc& object, const FieldSettings& settings);
+
+// The quantised field from `cacheDir`/dnrt-<key>.field, baking and storing it on a miss (a corrupt
+// cache file is rebaked with a warning). `fromCache` (optional) tells which happened.
+Field bakeCached(const ref::SceneDesc& object, const FieldSettings& settings, const std::filesystem::path& cacheDir,
+                 bool* fromCache = nullptr);
+
+}  // namespace bounce::gi::dnrt

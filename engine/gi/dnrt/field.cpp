@@ -1,0 +1,204 @@
+#include "engine/gi/dnrt/field.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <string>
+
+#include "engine/core/error.hpp"
+#include "engine/core/file.hpp"
+
+namespace bounce::gi::dnrt {
+
+namespace {
+constexpr char kMagic[8] = {'B', 'D', 'N', 'R', 'T', 'F', 'L', 'D'};
+constexpr std::uint32_t kVersion = 1;
+constexpr int kMaxGrid = 256;  // 256³·4·7 bytes = 470 MB: far beyond any sensible field
+}  // namespace
+
+void checkSettings(const FieldSettings& s) {
+  if (s.shCount != 4 && s.shCount != 9) throw InternalError("dnrt: shCount must be 4 or 9");
+  if (s.grid < 2 || s.grid > kMaxGrid) throw InternalError("dnrt: grid must be in [2, 256]");
+  if (!(s.innerExtent > 0.0f) || !(s.outerExtent > s.innerExtent) || !std::isfinite(s.outerExtent))
+    throw InternalError("dnrt: extents must satisfy 0 < inner < outer");
+  if (s.samplesPerAxis < 1 || s.samplesPerAxis > 1024) throw InternalError("dnrt: samplesPerAxis in [1, 1024]");
+  if (s.antiRadiance != AntiRadiance::Paper && s.antiRadiance != AntiRadiance::Improved)
+    throw InternalError("dnrt: unknown anti-radiance mode");
+}
+
+int textureCount(int shCount) { return shCount == 9 ? 7 : 3; }
+
+Slot slotOf(int j, int channel) {
+  if (j < 4) return {channel, j};
+  if (j < 8) return {3 + channel, j - 4};
+  return {6, channel};
+}
+
+void Field::decodeVertex(std::size_t vertex, std::span<glm::vec3> out) const {
+  for (int j = 0; j < settings.shCount; ++j)
+    for (int c = 0; c < 3; ++c) {
+      const Slot s = slotOf(j, c);
+      const Range& r = ranges[std::size_t(s.texture) * 4 + s.component];
+      const float byte = textures[std::size_t(s.texture)][vertex * 4 + std::size_t(s.component)];
+      out[std::size_t(j)][c] = r.lo + (r.hi - r.lo) * (byte / 255.0f);
+    }
+}
+
+Field quantize(const FieldSettings& settings, glm::vec3 centre, float radius, std::span<const glm::vec3> values) {
+  checkSettings(settings);
+  Field f;
+  f.settings = settings;
+  f.centre = centre;
+  f.radius = radius;
+  const std::size_t nv = f.vertexCount(), nc = std::size_t(settings.shCount);
+  if (values.size() != nv * nc) throw InternalError("dnrt::quantize: value count does not match the grid");
+  const int nt = textureCount(settings.shCount);
+  f.ranges.assign(std::size_t(nt) * 4, Range{});
+  std::vector<bool> seen(f.ranges.size(), false);
+  for (std::size_t v = 0; v < nv; ++v)
+    for (int j = 0; j < settings.shCount; ++j)
+      for (int c = 0; c < 3; ++c) {
+        const Slot s = slotOf(j, c);
+        Range& r = f.ranges[std::size_t(s.texture) * 4 + s.component];
+        const float x = values[v * nc + j][c];
+        if (!std::isfinite(x)) throw InternalError("dnrt::quantize: non-finite coefficient");
+        const std::size_t k = std::size_t(s.texture) * 4 + s.component;
+        if (!seen[k]) r = {x, x}, seen[k] = true;
+        r.lo = std::min(r.lo, x), r.hi = std::max(r.hi, x);
+      }
+  f.textures.assign(std::size_t(nt), std::vector<std::uint8_t>(nv * 4, 0));
+  for (std::size_t v = 0; v < nv; ++v)
+    for (int j = 0; j < settings.shCount; ++j)
+      for (int c = 0; c < 3; ++c) {
+        const Slot s = slotOf(j, c);
+        const Range& r = f.ranges[std::size_t(s.texture) * 4 + s.component];
+        const float span = r.hi - r.lo;
+        const float t = span > 0.0f ? (values[v * nc + j][c] - r.lo) / span : 0.0f;
+        f.textures[std::size_t(s.texture)][v * 4 + s.component] =
+            static_cast<std::uint8_t>(std::clamp(std::lround(t * 255.0f), 0L, 255L));
+      }
+  return f;
+}
+
+QuantizationError quantizationError(const Field& field, std::span<const glm::vec3> values) {
+  QuantizationError e;
+  for (const Range& r : field.ranges) e.bound = std::max(e.bound, (r.hi - r.lo) / 510.0f);
+  const std::size_t nc = std::size_t(field.settings.shCount);
+  std::vector<glm::vec3> m(nc);
+  for (std::size_t v = 0; v < field.vertexCount(); ++v) {
+    field.decodeVertex(v, m);
+    for (std::size_t j = 0; j < nc; ++j)
+      for (int c = 0; c < 3; ++c) e.maxAbs = std::max(e.maxAbs, std::abs(m[j][c] - values[v * nc + j][c]));
+  }
+  return e;
+}
+
+namespace {
+
+class Writer {
+ public:
+  template <class T>
+  void put(const T& v) {
+    const auto* p = reinterpret_cast<const std::uint8_t*>(&v);
+    bytes.insert(bytes.end(), p, p + sizeof v);
+  }
+  std::vector<std::uint8_t> bytes;
+};
+
+class Reader {
+ public:
+  Reader(std::span<const std::uint8_t> b, const std::string& file) : bytes_(b), file_(file) {}
+  template <class T>
+  T get(const char* what) {
+    T v;
+    if (bytes_.size() - pos_ < sizeof v) fail(what, "truncated", "a complete DNRT field file");
+    std::memcpy(&v, bytes_.data() + pos_, sizeof v);
+    pos_ += sizeof v;
+    return v;
+  }
+  std::span<const std::uint8_t> take(std::size_t n, const char* what) {
+    if (bytes_.size() - pos_ < n) fail(what, "truncated", "a complete DNRT field file");
+    auto s = bytes_.subspan(pos_, n);
+    pos_ += n;
+    return s;
+  }
+  bool atEnd() const { return pos_ == bytes_.size(); }
+  [[noreturn]] void fail(const std::string& where, const std::string& what, const std::string& expected) const {
+    throwInputError(file_, where, what, expected);
+  }
+
+ private:
+  std::span<const std::uint8_t> bytes_;
+  std::string file_;
+  std::size_t pos_ = 0;
+};
+
+}  // namespace
+
+std::vector<std::uint8_t> serialize(const Field& f) {
+  checkSettings(f.settings);
+  Writer w;
+  for (char c : kMagic) w.put(c);
+  w.put(kVersion);
+  w.put(std::int32_t(f.settings.shCount));
+  w.put(std::int32_t(f.settings.grid));
+  w.put(f.settings.innerExtent);
+  w.put(f.settings.outerExtent);
+  w.put(std::int32_t(f.settings.samplesPerAxis));
+  w.put(std::uint32_t(f.settings.antiRadiance));
+  w.put(f.centre);
+  w.put(f.radius);
+  for (const Range& r : f.ranges) w.put(r);
+  for (const auto& t : f.textures) w.bytes.insert(w.bytes.end(), t.begin(), t.end());
+  return std::move(w.bytes);
+}
+
+Field deserialize(std::span<const std::uint8_t> bytes, const std::string& file) {
+  Reader r(bytes, file);
+  for (char c : kMagic)
+    if (r.get<char>("header") != c) r.fail("header", "not a DNRT field", "magic BDNRTFLD");
+  if (const auto v = r.get<std::uint32_t>("version"); v != kVersion)
+    r.fail("version", "version " + std::to_string(v), "version " + std::to_string(kVersion));
+  Field f;
+  f.settings.shCount = r.get<std::int32_t>("shCount");
+  f.settings.grid = r.get<std::int32_t>("grid");
+  f.settings.innerExtent = r.get<float>("innerExtent");
+  f.settings.outerExtent = r.get<float>("outerExtent");
+  f.settings.samplesPerAxis = r.get<std::int32_t>("samplesPerAxis");
+  f.settings.antiRadiance = static_cast<AntiRadiance>(r.get<std::uint32_t>("antiRadiance"));
+  try {
+    checkSettings(f.settings);
+  } catch (const InternalError& e) {
+    r.fail("settings", e.what(), "shCount 4|9, grid 2..256, 0 < inner < outer");
+  }
+  f.centre = r.get<glm::vec3>("centre");
+  f.radius = r.get<float>("radius");
+  if (!std::isfinite(f.radius) || !(f.radius > 0.0f) || !std::isfinite(f.centre.x + f.centre.y + f.centre.z))
+    r.fail("radius", "non-finite or non-positive bounding sphere", "a finite centre and radius > 0");
+  const int nt = textureCount(f.settings.shCount);
+  f.ranges.resize(std::size_t(nt) * 4);
+  for (Range& rg : f.ranges) {
+    rg = r.get<Range>("ranges");
+    if (!std::isfinite(rg.lo) || !std::isfinite(rg.hi) || rg.hi < rg.lo)
+      r.fail("ranges", "a range is non-finite or inverted", "finite lo <= hi");
+  }
+  const std::size_t texBytes = f.vertexCount() * 4;
+  for (int t = 0; t < nt; ++t) {
+    auto s = r.take(texBytes, "textures");
+    f.textures.emplace_back(s.begin(), s.end());
+  }
+  if (!r.atEnd()) r.fail("textures", "trailing bytes", "exactly N³·4 bytes per texture");
+  return f;
+}
+
+void save(const Field& field, const std::filesystem::path& path) {
+  const auto bytes = serialize(field);
+  writeFileAtomic(path, std::span<const std::uint8_t>(bytes));
+}
+
+Field load(const std::filesystem::path& path) {
+  const auto bytes = readFileBytes(path);
+  return deserialize(bytes, path.string());
+}
+
+}  // namespace bounce::gi::dnrt

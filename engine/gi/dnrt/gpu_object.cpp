@@ -1,0 +1,32 @@
+#include "engine/gi/dnrt/gpu_object.hpp"
+
+#include "engine/gi/dnrt/irradiance_source.hpp"
+
+namespace bounce::gi::dnrt {
+
+DnrtObjectGpu packObject(const Field& field, const glm::mat4& world, const std::array<glm::vec3, 9>& radiance,
+                         std::int64_t entityIndex) {
+  const Placement pl = place(field, world);
+  const auto c = toLocal(irradianceSH(radiance), pl.localToWorldRotation);
+  DnrtObjectGpu g;
+  g.worldToLocal = pl.worldToLocal;
+  // Unit cube → local outer cube about o → world.
+  const float half = field.settings.outerExtent * field.radius;
+  glm::mat4 box(half);
+  box[3] = glm::vec4(field.centre, 1.0f);
+  g.boxToWorld = world * box;
+  g.centreWorld = glm::vec4(pl.centreWorld, pl.radiusWorld);
+  g.centreLocal = glm::vec4(field.centre, field.radius);
+  g.extents = glm::vec4(field.settings.innerExtent, field.settings.outerExtent, float(field.settings.shCount),
+                        float(field.settings.grid));
+  for (int j = 0; j < 9; ++j) g.c[j] = glm::vec4(j < field.settings.shCount ? c[std::size_t(j)] : glm::vec3(0.0f), 0.0f);
+  for (std::size_t t = 0; t < field.textures.size() && t < 7; ++t)
+    for (int k = 0; k < 4; ++k) {
+      g.lo[t][k] = field.ranges[t * 4 + std::size_t(k)].lo;
+      g.hi[t][k] = field.ranges[t * 4 + std::size_t(k)].hi;
+    }
+  g.ids.x = entityIndex >= 0 ? std::uint32_t(entityIndex) + 1u : 0u;
+  return g;
+}
+
+}  // namespace bounce::gi::dnrt

@@ -1,0 +1,232 @@
+#include "engine/gi/dnrt/node.hpp"
+
+#include <cstring>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "engine/core/error.hpp"
+#include "engine/gpu/commands.hpp"
+#include "engine/render/mesh_gpu.hpp"
+#include "engine/render/passes/rendering.hpp"
+
+namespace bounce::gi::dnrt {
+
+namespace {
+constexpr VkDescriptorType kSampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+constexpr VkDescriptorType kStorage = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+constexpr VkFormat kHdrFormat = VK_FORMAT_R16G16B16A16_SFLOAT;  // "lighting.hdr" (renderer.cpp)
+
+struct Push {
+  std::uint32_t object = 0;
+  std::uint32_t fullScreen = 0;
+};
+
+struct CubePush {
+  glm::mat4 viewProj;
+  glm::vec4 origin;
+  std::uint32_t instance = 0, pad[3] = {0, 0, 0};
+};
+
+// Face frames as intrusion.glsl: forward and up hint.
+constexpr float kFaces[6][6] = {{1, 0, 0, 0, -1, 0}, {-1, 0, 0, 0, -1, 0}, {0, 1, 0, 0, 0, 1},
+                                {0, -1, 0, 0, 0, -1}, {0, 0, 1, 0, -1, 0},  {0, 0, -1, 0, -1, 0}};
+}  // namespace
+
+glm::mat4 cubeFaceViewProj(int face, glm::vec3 origin, float nearM, float farM) {
+  const glm::vec3 f(kFaces[face][0], kFaces[face][1], kFaces[face][2]);
+  const glm::vec3 up(kFaces[face][3], kFaces[face][4], kFaces[face][5]);
+  return glm::perspectiveRH_ZO(glm::half_pi<float>(), 1.0f, nearM, farM) * glm::lookAt(origin, origin + f, up);
+}
+
+FieldTextures::FieldTextures(gpu::Context& ctx, const Field& field, const std::string& name) {
+  for (std::size_t t = 0; t < field.textures.size(); ++t) {
+    gpu::ImageDesc d;
+    d.type = gpu::ImageType::Tex3D;
+    d.format = VK_FORMAT_R8G8B8A8_UNORM;
+    d.width = d.height = d.depth = std::uint32_t(field.n());
+    d.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    d.name = "dnrt." + name + "." + std::to_string(t);
+    images_.push_back(std::make_unique<gpu::Image>(ctx, d));
+    gpu::upload(ctx, *images_.back(), field.textures[t]);
+  }
+  if (images_.empty()) throw InternalError("dnrt: a field without textures");
+}
+
+VkImageView FieldTextures::view(int slot) const {
+  const std::size_t i = std::size_t(slot);
+  return (i < images_.size() ? images_[i] : images_[0])->view();
+}
+
+Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t framesInFlight)
+    : ctx_(ctx),
+      inputLayout_(ctx, {{0, kSampled}, {1, kSampled}, {2, kSampled}, {3, kStorage}, {4, kSampled}}, "dnrt.inputs"),
+      fieldLayout_(ctx, {{0, kSampled}, {1, kSampled}, {2, kSampled}, {3, kSampled}, {4, kSampled}, {5, kSampled},
+                         {6, kSampled}, {7, kSampled}},
+                   "dnrt.field"),
+      layout_(ctx, {shared.frameLayout.handle(), inputLayout_.handle(), fieldLayout_.handle()},
+              {VkPushConstantRange{VK_SHADER_STAGE_ALL, 0, sizeof(Push)}}, "dnrt"),
+      cubeLayout_(ctx, {shared.frameLayout.handle()}, {VkPushConstantRange{VK_SHADER_STAGE_ALL, 0, sizeof(CubePush)}},
+                  "dnrt.cube"),
+      objectBuffers_(framesInFlight) {
+  gpu::ShaderModule vert(ctx, "dnrt/dnrt.vert.spv"), frag(ctx, "dnrt/dnrt.frag.spv");
+  gpu::GraphicsPipelineDesc d;
+  d.vertex = &vert;
+  d.fragment = &frag;
+  d.colorFormats = {kHdrFormat};
+  d.blend = gpu::Blend::Additive;
+  d.cull = VK_CULL_MODE_FRONT_BIT;  // back faces of the cube: each covered pixel once, inside or out
+  d.name = "dnrt.box";
+  box_ = gpu::createGraphicsPipeline(ctx, layout_, d);
+  d.cull = VK_CULL_MODE_NONE;
+  d.name = "dnrt.fullscreen";
+  fullScreen_ = gpu::createGraphicsPipeline(ctx, layout_, d);
+
+  gpu::ShaderModule cubeVert(ctx, "dnrt/cube_depth.vert.spv"), cubeFrag(ctx, "dnrt/cube_depth.frag.spv");
+  gpu::GraphicsPipelineDesc c;
+  c.vertex = &cubeVert;
+  c.fragment = &cubeFrag;
+  c.bindings = {{0, 32, false}};  // render::MeshGpu vertices: position, normal, uv0 (32 bytes)
+  c.attributes = {{0, 0, VK_FORMAT_R32G32B32_SFLOAT, 0}};
+  c.colorFormats = {VK_FORMAT_R32_SFLOAT};
+  c.depthFormat = VK_FORMAT_D32_SFLOAT;
+  c.depthTest = c.depthWrite = true;
+  c.depthCompare = VK_COMPARE_OP_LESS;
+  c.name = "dnrt.cube";
+  cube_ = gpu::createGraphicsPipeline(ctx, cubeLayout_, c);
+
+  gpu::ImageDesc none;
+  none.format = VK_FORMAT_R32_SFLOAT;
+  none.layers = 6;
+  none.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+  none.name = "dnrt.no-intrusion";
+  noIntrusion_ = std::make_unique<gpu::Image>(ctx, none);
+  const float far[6] = {1e30f, 1e30f, 1e30f, 1e30f, 1e30f, 1e30f};
+  gpu::upload(ctx, *noIntrusion_, {reinterpret_cast<const std::uint8_t*>(far), sizeof far});
+}
+
+void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::vector<NodeObject> objects,
+                 NodeSettings settings) {
+  if (objects.empty()) return;
+  for (const NodeObject& o : objects)
+    if (!o.textures) throw InternalError("dnrt: object '" + o.name + "' has no field textures");
+  auto& bb = graph.blackboard();
+  const render::PassContext* pc = &pcIn;
+  // Intrusion maps first, one pass per object that asks (timed as "dnrt.cube/<name>").
+  std::vector<std::optional<rg::Handle<rg::Texture>>> maps(objects.size());
+  const std::uint32_t res = settings.intrusionResolution;
+  for (std::size_t i = 0; i < objects.size(); ++i) {
+    NodeObject& o = objects[i];
+    o.data.ids.y = o.intrusion ? 1u : 0u;
+    if (!o.intrusion) continue;
+    struct CubeData {
+      rg::Handle<rg::Texture> map, depth;
+    };
+    const glm::vec3 origin(o.data.centreWorld);
+    const float radius = o.data.centreWorld.w, reach = o.data.extents.y * radius * 1.75f;  // > √3·outer
+    const std::uint32_t self = o.data.ids.x;  // entity + 1 of the object, whose own mesh is skipped
+    const auto& cube = graph.addPass<CubeData>(
+        "dnrt.cube/" + o.name,
+        [&](rg::Builder& b, CubeData& d) {
+          d.map = b.write(b.create<rg::Texture>("dnrt.intrusion." + o.name,
+                                                rg::TextureDesc{res, res, 1, 6, 1, rg::Format::R32F, false}),
+                          rg::Usage::ColorAttachment);
+          d.depth = b.write(b.create<rg::Texture>("dnrt.intrusion-depth." + o.name,
+                                                  rg::TextureDesc{res, res, 1, 1, 1, rg::Format::D32F, false}),
+                            rg::Usage::DepthAttachment);
+        },
+        [this, pc, origin, radius, reach, self, res](const CubeData& d, const rg::PassResources& r,
+                                                     rg::CommandContext& c) {
+          VkCommandBuffer cmd = pc->cmd(c);
+          gpu::Image& map = pc->backend->image(r.texture(d.map));
+          gpu::Image& depth = pc->backend->image(r.texture(d.depth));
+          for (int face = 0; face < 6; ++face) {
+            render::Attachment color{pc->frameView(map, VK_IMAGE_VIEW_TYPE_2D, std::uint32_t(face), 1)};
+            color.clear.color = {{1e30f, 0.0f, 0.0f, 0.0f}};
+            render::Attachment z{depth.view()};
+            z.clear.depthStencil = {1.0f, 0};
+            render::beginRendering(ctx_, cmd, {res, res}, {&color, 1}, &z);
+            cube_.bind(cmd);
+            cube_.bindSet(cmd, 0, pc->frameSet);
+            CubePush push{cubeFaceViewProj(face, origin, 0.05f * radius, reach), glm::vec4(origin, 0.0f)};
+            for (const render::DrawItem& draw : pc->world->draws) {
+              if (draw.entity + 1u == self) continue;
+              const auto& prim = draw.mesh->primitives[draw.primitive];
+              VkDeviceSize offset = 0;
+              VkBuffer vb = draw.mesh->vertices.handle();
+              vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
+              vkCmdBindIndexBuffer(cmd, draw.mesh->indices.handle(), 0, VK_INDEX_TYPE_UINT32);
+              push.instance = draw.instance;
+              cube_.push(cmd, push);
+              vkCmdDrawIndexed(cmd, prim.indexCount, 1, prim.firstIndex, prim.vertexOffset, 0);
+            }
+            ctx_.cmdEndRendering(cmd);
+          }
+        });
+    maps[i] = cube.map;
+  }
+
+  struct Data {
+    rg::Handle<rg::Texture> albedo, normal, depth, entity, hdr;
+    std::vector<std::optional<rg::Handle<rg::Texture>>> maps;
+  };
+  const auto& data = graph.addPass<Data>(
+      "dnrt",
+      [&](rg::Builder& b, Data& d) {
+        d.albedo = b.read(bb.get<rg::Texture>("gbuffer.albedo"), rg::Usage::SampledFragment);
+        d.normal = b.read(bb.get<rg::Texture>("gbuffer.normal"), rg::Usage::SampledFragment);
+        d.depth = b.read(bb.get<rg::Texture>("gbuffer.depth"), rg::Usage::SampledFragment);
+        d.entity = b.read(bb.get<rg::Texture>("gbuffer.entity"), rg::Usage::SampledFragment);
+        d.hdr = b.write(bb.get<rg::Texture>("lighting.hdr"), rg::Usage::ColorAttachment);
+        for (const auto& m : maps) d.maps.push_back(m ? std::optional(b.read(*m, rg::Usage::SampledFragment)) : std::nullopt);
+      },
+      [this, pc, objects = std::move(objects), settings](const Data& d, const rg::PassResources& res,
+                                                          rg::CommandContext& c) {
+        VkCommandBuffer cmd = pc->cmd(c);
+        // This slot's object records (the ring waited for the slot's fence before the frame began).
+        gpu::Buffer& buffer = objectBuffers_[pc->frame().slot % objectBuffers_.size()];
+        const VkDeviceSize bytes = objects.size() * sizeof(DnrtObjectGpu);
+        if (!buffer || buffer.size() < bytes)
+          buffer = gpu::Buffer(ctx_, {bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::Upload, "dnrt.objects"});
+        for (std::size_t i = 0; i < objects.size(); ++i)
+          std::memcpy(buffer.mapped() + i * sizeof(DnrtObjectGpu), &objects[i].data, sizeof(DnrtObjectGpu));
+
+        VkSampler point = pc->samplers->get({VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST});
+        VkSampler linear = pc->samplers->get({VK_FILTER_LINEAR, VK_SAMPLER_MIPMAP_MODE_NEAREST});
+        auto view = [&](rg::Handle<rg::Texture> h) { return pc->backend->image(res.texture(h)).view(); };
+        VkDescriptorSet inputs = pc->frame().descriptors->allocate(inputLayout_);
+        gpu::DescriptorWriter()
+            .sampledImage(0, view(d.albedo), point)
+            .sampledImage(1, view(d.normal), point)
+            .sampledImage(2, view(d.depth), point)
+            .buffer(3, buffer)
+            .sampledImage(4, view(d.entity), point)
+            .update(ctx_, inputs);
+
+        gpu::Image& target = pc->backend->image(res.texture(d.hdr));
+        render::Attachment color{target.view(), res.keepsContents(d.hdr)};
+        const VkExtent2D extent{target.desc().width, target.desc().height};
+        render::beginRendering(ctx_, cmd, extent, {&color, 1}, nullptr);
+        const gpu::Pipeline& p = settings.fullScreen ? fullScreen_ : box_;
+        p.bind(cmd);
+        p.bindSet(cmd, 0, pc->frameSet);
+        p.bindSet(cmd, 1, inputs);
+        gpu::TimestampPool* ts = pc->frame().timestamps.get();
+        for (std::size_t i = 0; i < objects.size(); ++i) {
+          VkDescriptorSet fieldSet = pc->frame().descriptors->allocate(fieldLayout_);
+          gpu::DescriptorWriter w;
+          for (int s = 0; s < 7; ++s) w.sampledImage(std::uint32_t(s), objects[i].textures->view(s), linear);
+          gpu::Image& map = d.maps[i] ? pc->backend->image(res.texture(*d.maps[i])) : *noIntrusion_;
+          w.sampledImage(7, pc->frameView(map, VK_IMAGE_VIEW_TYPE_2D_ARRAY, 0, 6), point);
+          w.update(ctx_, fieldSet);
+          p.bindSet(cmd, 2, fieldSet);
+          p.push(cmd, Push{std::uint32_t(i), settings.fullScreen ? 1u : 0u});
+          if (ts) ts->begin(cmd, "dnrt/" + objects[i].name);
+          vkCmdDraw(cmd, settings.fullScreen ? 3 : 36, 1, 0, 0);
+          if (ts) ts->end(cmd);
+        }
+        ctx_.cmdEndRendering(cmd);
+      });
+  bb.put("lighting.hdr", data.hdr);
+}
+
+}  // namespace bounce::gi::dnrt

@@ -1,0 +1,77 @@
+#pragma once
+// The DNRT render-graph node (paper §5.2): one pass "dnrt" that adds every object's L_DNRT
+// (shaders/dnrt/dnrt.frag, Eq. 16) to "lighting.hdr" with additive blending, reading
+// "gbuffer.albedo", "gbuffer.normal", "gbuffer.depth" and "gbuffer.entity" (to skip each object's
+// own pixels) from the blackboard.
+//
+// Better than the paper's full-screen pass per object: by default each object rasterises its
+// outer cube (back faces, no depth test), so the cost follows the pixels the cube covers; the
+// paper's mode (a full-screen triangle per object) is NodeSettings::fullScreen, for comparison.
+// Each object's draw sits in its own GPU timestamp scope "dnrt/<name>" inside the pass's scope.
+//
+// Intrusion (§5.2.3), per object: a pass "dnrt.cube/<name>" renders every OTHER drawn mesh from o
+// into six 90° views (distance from o, R32F, 128² per face); the object's term then reaches r only
+// if nothing lies between o and r (shaders/dnrt/intrusion.glsl).
+#include <array>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "engine/gi/dnrt/field.hpp"
+#include "engine/gi/dnrt/gpu_object.hpp"
+#include "engine/gpu/buffer.hpp"
+#include "engine/gpu/descriptors.hpp"
+#include "engine/gpu/image.hpp"
+#include "engine/gpu/pipeline.hpp"
+#include "engine/render/graph/render_graph.hpp"
+#include "engine/render/pass_context.hpp"
+
+namespace bounce::gi::dnrt {
+
+// One field's 3 (4 SH) or 7 (9 SH) RGBA8 3D textures (Table 2), uploaded once.
+class FieldTextures {
+ public:
+  FieldTextures(gpu::Context& ctx, const Field& field, const std::string& name);
+  // Slot 0..6 of the shader's set 2; a 4-SH field answers its texture 0 for slots 3..6 (never read).
+  VkImageView view(int slot) const;
+
+ private:
+  std::vector<std::unique_ptr<gpu::Image>> images_;
+};
+
+struct NodeObject {
+  const FieldTextures* textures = nullptr;  // must outlive the frame's execution
+  DnrtObjectGpu data;                       // packObject(field, world, radiance SH at o)
+  std::string name;                         // timestamp scope "dnrt/<name>" (the entity id)
+  bool intrusion = false;                   // render and test an intrusion map (§5.2.3)
+};
+
+struct NodeSettings {
+  bool fullScreen = false;  // the paper's full-screen pass per object instead of the outer cube
+  std::uint32_t intrusionResolution = 128;  // texels per cube face
+};
+
+// View-projection of cube face `face` (0..5: +X, −X, +Y, −Y, +Z, −Z) seen from `origin`, 90° square,
+// depth 0..1 (Vulkan): the mapping shaders/dnrt/intrusion.glsl inverts.
+glm::mat4 cubeFaceViewProj(int face, glm::vec3 origin, float nearM, float farM);
+
+class Node {
+ public:
+  Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t framesInFlight);
+
+  // Adds the pass when `objects` is not empty (no visible object with a field: no pass, as
+  // DESIGN.md asks) and puts the new "lighting.hdr" version on the blackboard.
+  void addTo(rg::RenderGraph& graph, const render::PassContext& pc, std::vector<NodeObject> objects,
+             NodeSettings settings = {});
+
+ private:
+  gpu::Context& ctx_;
+  gpu::DescriptorSetLayout inputLayout_, fieldLayout_;
+  gpu::PipelineLayout layout_, cubeLayout_;
+  gpu::Pipeline box_, fullScreen_, cube_;
+  std::unique_ptr<gpu::Image> noIntrusion_;  // 1×1×6 R32F "nothing nearer than 1e30 m"
+  std::vector<gpu::Buffer> objectBuffers_;  // per frame slot, DnrtObjectGpu[]
+};
+
+}  // namespace bounce::gi::dnrt

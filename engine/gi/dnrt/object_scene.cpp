@@ -1,0 +1,48 @@
+#include "engine/gi/dnrt/object_scene.hpp"
+
+#include "engine/core/error.hpp"
+
+namespace bounce::gi::dnrt {
+
+ref::SceneDesc objectScene(ecs::Registry& registry, ecs::Entity entity, const ref::ReferenceAssets& assets) {
+  const auto* mesh = registry.tryGet<scene::MeshRef>(entity);
+  if (!mesh) throw InternalError("dnrt::objectScene: entity has no mesh");
+  ecs::Registry one;
+  const ecs::Entity e = one.create();
+  one.emplace<scene::MeshRef>(e, *mesh);
+  one.emplace<scene::WorldTransform>(e);  // identity: the object's local frame
+  if (const auto* over = registry.tryGet<scene::MaterialOverride>(entity)) one.emplace<scene::MaterialOverride>(e, *over);
+  ref::SceneDesc all = ref::extractScene(one, scene::Level{}, assets);
+
+  ref::SceneDesc out;
+  out.meshes = std::move(all.meshes);
+  out.materials = std::move(all.materials);
+  std::vector<int> remap(all.textures.size(), -1);
+  for (ref::RefMaterial& m : out.materials) {
+    m.emissiveTexture = -1;  // DNRT reflects albedo only (Eq. 8)
+    const int t = m.albedoTexture;
+    if (t < 0 || std::size_t(t) >= all.textures.size()) {
+      m.albedoTexture = -1;
+      continue;
+    }
+    if (remap[std::size_t(t)] < 0) {
+      remap[std::size_t(t)] = int(out.textures.size());
+      out.textures.push_back(all.textures[std::size_t(t)]);
+    }
+    m.albedoTexture = remap[std::size_t(t)];
+  }
+  return out;
+}
+
+FieldSettings settingsFrom(const scene::Dnrt& c) {
+  FieldSettings s;
+  s.shCount = c.shCount;
+  s.grid = c.grid;
+  s.innerExtent = c.innerExtent;
+  s.outerExtent = c.outerExtent;
+  s.samplesPerAxis = c.samplesPerAxis;
+  s.antiRadiance = c.improvedAntiRadiance ? AntiRadiance::Improved : AntiRadiance::Paper;
+  return s;
+}
+
+}  // namespace bounce::gi::dnrt

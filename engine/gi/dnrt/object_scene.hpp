@@ -1,0 +1,19 @@
+#pragma once
+// ONE entity's geometry in its own local frame, for its DNRT bake: the same expansion, materials
+// and textures the reference tracer sees (ref::extractScene run on a registry holding only a copy of
+// the entity at the identity transform), lights dropped, textures pruned to those it uses (so the
+// bake's cache key depends on this object alone).
+#include "engine/ecs/registry.hpp"
+#include "engine/gi/dnrt/field.hpp"
+#include "engine/ref/reference_scene.hpp"
+#include "engine/scene/components.hpp"
+
+namespace bounce::gi::dnrt {
+
+// `entity` must have a MeshRef whose asset `assets` has loaded (ReferenceAssets::load).
+ref::SceneDesc objectScene(ecs::Registry& registry, ecs::Entity entity, const ref::ReferenceAssets& assets);
+
+// The bake settings a level component asks for.
+FieldSettings settingsFrom(const scene::Dnrt& component);
+
+}  // namespace bounce::gi::dnrt

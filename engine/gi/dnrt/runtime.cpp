@@ -1,0 +1,58 @@
+#include "engine/gi/dnrt/runtime.hpp"
+
+#include <algorithm>
+
+#include "engine/gi/dnrt/bake.hpp"
+#include "engine/gi/dnrt/object_scene.hpp"
+
+namespace bounce::gi::dnrt {
+
+Runtime::Runtime(gpu::Context& ctx, const render::Pipelines& pipelines, ecs::Registry& registry,
+                 const ref::ReferenceAssets& assets, const std::filesystem::path& cacheDir,
+                 std::uint32_t framesInFlight, glm::vec3 background)
+    : registry_(registry), background_(background) {
+  std::vector<ecs::Entity> entities;
+  registry.view<scene::Dnrt, scene::MeshRef>().each([&](ecs::Entity e, scene::Dnrt&, scene::MeshRef&) {
+    entities.push_back(e);
+  });
+  std::sort(entities.begin(), entities.end());  // deterministic order (ecs::Entity orders by index)
+  for (ecs::Entity e : entities) {
+    Object o;
+    o.entity = e;
+    const auto* name = registry.tryGet<scene::Name>(e);
+    o.name = name ? name->id : std::to_string(e.index());
+    bool cached = false;
+    o.field = bakeCached(objectScene(registry, e, assets), settingsFrom(registry.get<scene::Dnrt>(e)), cacheDir, &cached);
+    baked_ += cached ? 0 : 1;
+    o.textures = std::make_unique<FieldTextures>(ctx, o.field, o.name);
+    objects_.push_back(std::move(o));
+  }
+  node_ = std::make_unique<Node>(ctx, pipelines, framesInFlight);
+}
+
+void Runtime::setIrradianceSource(const IrradianceSource* source) { source_ = source; }
+
+std::vector<NodeObject> Runtime::objectsFor(const render::RenderWorld& world) const {
+  std::vector<NodeObject> out;
+  const IrradianceSource& src = source_ ? *source_ : static_cast<const IrradianceSource&>(background_);
+  for (const Object& o : objects_) {
+    if (!registry_.valid(o.entity)) continue;
+    const bool drawn = std::any_of(world.draws.begin(), world.draws.end(),
+                                   [&](const render::DrawItem& d) { return d.entity == o.entity.index(); });
+    const auto* placed = registry_.tryGet<scene::WorldTransform>(o.entity);
+    if (!drawn || !placed) continue;
+    const glm::vec3 centre = glm::vec3(placed->matrix * glm::vec4(o.field.centre, 1.0f));
+    const auto* component = registry_.tryGet<scene::Dnrt>(o.entity);
+    out.push_back({o.textures.get(), packObject(o.field, placed->matrix, src.radianceSH(centre), o.entity.index()), o.name,
+                   component && component->intrusion});
+  }
+  return out;
+}
+
+render::Renderer::GraphNode Runtime::node() {
+  return [this](rg::RenderGraph& graph, render::PassContext& pc) {
+    node_->addTo(graph, pc, objectsFor(*pc.world), settings_);
+  };
+}
+
+}  // namespace bounce::gi::dnrt

@@ -1,0 +1,61 @@
+#pragma once
+// DNRT for one level, end to end: bakes (through the cache) a field for every entity with a `dnrt`
+// component and a mesh, uploads it, and each frame packs the visible ones (§5.2.1: placement,
+// c_j at o rotated into the object's frame) for the node. What a session does to enable DNRT:
+//
+//   gi::dnrt::Runtime dnrt(ctx, renderer.pipelines(), registry, assets, cacheDir, framesInFlight);
+//   dnrt.setIrradianceSource(&probeVolume);                  // optional; default: the background
+//   renderer.setNode("dnrt", dnrt.node());                   // runs only when effects name dnrt
+//
+// Objects count as visible when the frame draws them (RenderWorld::draws names their entity).
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "engine/ecs/registry.hpp"
+#include "engine/gi/dnrt/irradiance_source.hpp"
+#include "engine/gi/dnrt/node.hpp"
+#include "engine/ref/reference_scene.hpp"
+#include "engine/render/renderer.hpp"
+
+namespace bounce::gi::dnrt {
+
+class Runtime {
+ public:
+  // `assets` must have loaded the registry's MeshRefs. `background`: the uniform radiance used as
+  // c_j source until setIrradianceSource() names another (a level's "background").
+  Runtime(gpu::Context& ctx, const render::Pipelines& pipelines, ecs::Registry& registry,
+          const ref::ReferenceAssets& assets, const std::filesystem::path& cacheDir, std::uint32_t framesInFlight,
+          glm::vec3 background = glm::vec3(0.0f));
+
+  // Where c_j come from (not owned; must outlive the runtime); null restores the background.
+  void setIrradianceSource(const IrradianceSource* source);
+  NodeSettings& settings() { return settings_; }
+  std::size_t objectCount() const { return objects_.size(); }
+  const Field& field(std::size_t i) const { return objects_[i].field; }
+  // Baked this run (the others came from the cache).
+  std::size_t bakedCount() const { return baked_; }
+
+  // The frame's visible objects, packed for the node (textures owned by this runtime).
+  std::vector<NodeObject> objectsFor(const render::RenderWorld& world) const;
+  // For Renderer::setNode("dnrt", …): adds the node for the visible objects of the frame.
+  render::Renderer::GraphNode node();
+
+ private:
+  struct Object {
+    ecs::Entity entity;
+    std::string name;
+    Field field;
+    std::unique_ptr<FieldTextures> textures;
+  };
+  ecs::Registry& registry_;
+  ConstantEnvironment background_;
+  const IrradianceSource* source_ = nullptr;
+  NodeSettings settings_;
+  std::vector<Object> objects_;
+  std::unique_ptr<Node> node_;
+  std::size_t baked_ = 0;
+};
+
+}  // namespace bounce::gi::dnrt

@@ -1,0 +1,116 @@
+// The level's "dnrt" component and one entity's local-frame scene for its bake.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "engine/core/error.hpp"
+#include "engine/gi/dnrt/bake.hpp"
+#include "engine/gi/dnrt/object_scene.hpp"
+#include "engine/scene/level.hpp"
+
+namespace bounce::gi::dnrt {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path outDir() {
+  const fs::path d = fs::path(BOUNCE_TEST_OUT) / "dnrt";
+  fs::create_directories(d);
+  return d;
+}
+
+// A one-entity level in the test folder whose mesh is the Cornell prop asset.
+fs::path writeLevel(const std::string& name, const std::string& dnrtJson, bool dynamic = true) {
+  const fs::path asset = fs::path(BOUNCE_SOURCE_DIR) / "content/src/BoxTextured/glTF-Draco-gltfpipeline/BoxTextured.gltf";
+  const fs::path path = outDir() / name;
+  std::ofstream(path) << R"({"bounce_level": 1, "effects": ["direct", "dnrt"], "entities": [{"id": "prop", )"
+                      << (dynamic ? R"("dynamic": true, )" : "") << R"("mesh": {"asset": ")"
+                      << fs::relative(asset, outDir()).generic_string() << R"("}, "dnrt": )" << dnrtJson << "}]}";
+  return path;
+}
+
+TEST(DnrtLevel, CornellPropsCarryFields) {
+  for (const char* name : {"cornell-1.json", "cornell-5.json", "cornell-10.json"}) {
+    const scene::Level level = scene::loadLevel(fs::path(BOUNCE_SOURCE_DIR) / "content/levels" / name);
+    int withField = 0;
+    for (const auto& e : level.entities)
+      if (e.dnrt) {
+        ++withField;
+        EXPECT_TRUE(e.dynamic);
+        EXPECT_EQ(e.dnrt->shCount, 4);
+        EXPECT_EQ(e.dnrt->grid, 32);
+      }
+    EXPECT_EQ(withField, name == std::string("cornell-1.json") ? 1 : name == std::string("cornell-5.json") ? 5 : 10);
+  }
+}
+
+TEST(DnrtLevel, ParsesEverySetting) {
+  const scene::Level level = scene::loadLevel(writeLevel(
+      "dnrt-all.json",
+      R"({"sh": 9, "grid": 16, "inner": 2.5, "outer": 4, "intrusion": true, "anti_radiance": "improved", "rays": 64})"));
+  ASSERT_TRUE(level.entities[0].dnrt);
+  const scene::Dnrt& d = *level.entities[0].dnrt;
+  EXPECT_EQ(d.shCount, 9);
+  EXPECT_EQ(d.grid, 16);
+  EXPECT_EQ(d.innerExtent, 2.5f);
+  EXPECT_EQ(d.outerExtent, 4.0f);
+  EXPECT_TRUE(d.intrusion);
+  EXPECT_TRUE(d.improvedAntiRadiance);
+  EXPECT_EQ(d.samplesPerAxis, 8);
+  const FieldSettings s = settingsFrom(d);
+  EXPECT_EQ(s.antiRadiance, AntiRadiance::Improved);
+  EXPECT_NO_THROW(checkSettings(s));
+}
+
+TEST(DnrtLevel, RejectsBadSettingsWithOneLine) {
+  const std::pair<const char*, const char*> cases[] = {
+      {R"({"sh": 16})", "/entities/0/dnrt/sh"},
+      {R"({"grid": 20})", "/entities/0/dnrt/grid"},
+      {R"({"inner": 5, "outer": 4})", "/entities/0/dnrt/outer"},
+      {R"({"anti_radiance": "better"})", "/entities/0/dnrt/anti_radiance"},
+      {R"({"rays": 200})", "/entities/0/dnrt/rays"},
+      {R"({"speed": 1})", "speed"},
+  };
+  for (const auto& [json, where] : cases) {
+    try {
+      scene::loadLevel(writeLevel("dnrt-bad.json", json));
+      ADD_FAILURE() << json;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(where), std::string::npos) << e.what();
+      EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos);
+    }
+  }
+  EXPECT_THROW(scene::loadLevel(writeLevel("dnrt-static.json", "{}", false)), InputError);
+}
+
+TEST(DnrtLevel, ObjectSceneIsTheEntityInItsLocalFrame) {
+  const scene::Level level = scene::loadLevel(fs::path(BOUNCE_SOURCE_DIR) / "content/levels/cornell-1.json");
+  ecs::Registry registry;
+  const auto entities = scene::instantiate(level, registry);
+  ref::ReferenceAssets assets;
+  assets.load(registry, outDir() / "cooked");
+  ecs::Entity prop;
+  for (std::size_t i = 0; i < entities.size(); ++i)
+    if (level.entities[i].dnrt) prop = entities[i];
+  ASSERT_FALSE(prop.isNull());
+  const ref::SceneDesc s = objectScene(registry, prop, assets);
+  ASSERT_FALSE(s.meshes.empty());
+  EXPECT_TRUE(s.lights.empty());
+  // BoxTextured: a unit cube about the origin with one base-colour texture; the level's translation
+  // (0, 0.42, 0) and scale 0.07 are not applied.
+  ASSERT_EQ(s.textures.size(), 1u);
+  const BoundingSphere b = boundingSphere(s);
+  EXPECT_NEAR(glm::length(b.centre), 0.0f, 1e-5f);
+  EXPECT_NEAR(b.radius, std::sqrt(3.0f) / 2.0f, 1e-4f);
+  // A tiny bake of the textured box: coefficients finite, the cube's interior detected.
+  FieldSettings fs;
+  fs.grid = 7;
+  fs.samplesPerAxis = 4;
+  const BakeResult r = bake(s, fs);
+  EXPECT_GT(r.insideVertices, 0u);
+  for (const glm::vec3& v : r.values) EXPECT_TRUE(std::isfinite(v.x + v.y + v.z));
+}
+
+}  // namespace
+}  // namespace bounce::gi::dnrt

@@ -1,0 +1,261 @@
+// The DNRT node on the GPU (lavapipe on CPU-only machines): cornell-1 with its prop's field, lit by
+// a constant environment, rendered with and without the node. Under uniform light the object only
+// removes light (L_DNRT = ρ_r L (R/d)² (ρ_s − 1) ≤ 0 for ρ_s ≤ 1), so the lack-of-light effect
+// must darken the surfaces near the prop and brighten nothing.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+
+#include "engine/gi/dnrt/bake.hpp"
+#include "engine/gi/dnrt/irradiance_source.hpp"
+#include "engine/gi/dnrt/node.hpp"
+#include "engine/gi/dnrt/object_scene.hpp"
+#include "engine/gi/dnrt/runtime.hpp"
+#include "engine/gpu/presenter_offscreen.hpp"
+#include "engine/gpu/testing.hpp"
+#include "game/session.hpp"
+#include "tests/unit/render/analytic.hpp"
+
+namespace bounce::gi::dnrt {
+namespace {
+
+namespace fs = std::filesystem;
+
+// fp16 rounding of the HDR target (11-bit mantissa: 5e-4 relative) on values ≲ 1.
+constexpr float kHalfTol = 2e-3f;
+// The ambient radiance of the constant environment (W/(m²·sr)).
+constexpr float kAmbient = 2.0f;
+
+struct Frame {
+  std::vector<float> rgb;
+  std::vector<std::string> passes;
+};
+
+Frame renderOnce(game::Session& session, gpu::Context& ctx) {
+  gpu::OffscreenPresenter presenter(ctx, {160, 120});
+  render::FrameSettings settings;
+  settings.keepHdr = true;
+  session.render(presenter, settings);
+  return {session.renderer().readHdr(), session.renderer().executedPasses()};
+}
+
+TEST(DnrtGpu, PropDarkensItsSurroundingsAndBrightensNothing) {
+  gpu::Context& ctx = gpu::testkit::sharedContext();
+  game::Session session(ctx, game::loadLevelWithEffects(fs::path(BOUNCE_SOURCE_DIR) / "content/levels/cornell-1.json",
+                                                        std::vector<std::string>{"direct", "dnrt"}));
+  session.update(0.0);
+  ecs::Registry& reg = session.registry();
+  ref::ReferenceAssets assets;
+  assets.load(reg, fs::path(BOUNCE_TEST_OUT) / "dnrt" / "cooked");
+  ecs::Entity prop;
+  reg.view<scene::Dnrt>().each([&](ecs::Entity e, scene::Dnrt&) { prop = e; });
+  ASSERT_FALSE(prop.isNull());
+  FieldSettings fs = settingsFrom(reg.get<scene::Dnrt>(prop));
+  fs.grid = 16;  // CI-sized bake
+  fs.samplesPerAxis = 8;
+  const BakeResult baked = bake(objectScene(reg, prop, assets), fs);
+  const FieldTextures textures(ctx, baked.field, "prop");
+  Node node(ctx, session.renderer().pipelines(), gpu::FrameRing::kDefaultFramesInFlight);
+  const ConstantEnvironment env{glm::vec3(kAmbient)};
+  bool fullScreen = false;
+  session.renderer().setNode("dnrt", [&](rg::RenderGraph& graph, render::PassContext& pc) {
+    const glm::mat4 world = reg.get<scene::WorldTransform>(prop).matrix;
+    const glm::vec3 o = glm::vec3(world * glm::vec4(baked.field.centre, 1.0f));
+    NodeObject obj{&textures, packObject(baked.field, world, env.radianceSH(o), prop.index()), "prop"};
+    node.addTo(graph, pc, {obj}, NodeSettings{fullScreen});
+  });
+  const Frame with = renderOnce(session, ctx);
+  fullScreen = true;
+  const Frame withFull = renderOnce(session, ctx);
+  session.renderer().setNode("dnrt", {});
+  const Frame without = renderOnce(session, ctx);
+
+  EXPECT_NE(std::find(with.passes.begin(), with.passes.end(), "dnrt"), with.passes.end());
+  EXPECT_EQ(std::find(without.passes.begin(), without.passes.end(), "dnrt"), without.passes.end());
+  ASSERT_EQ(with.rgb.size(), without.rgb.size());
+  std::size_t darkened = 0, brightened = 0;
+  double removed = 0.0, modeDiff = 0.0;
+  for (std::size_t i = 0; i < with.rgb.size(); ++i) {
+    const float d = with.rgb[i] - without.rgb[i];
+    const float tol = kHalfTol * std::max(1.0f, std::abs(without.rgb[i]));
+    if (d < -tol) ++darkened, removed -= d;
+    if (d > tol) ++brightened;
+    modeDiff = std::max(modeDiff, double(std::abs(withFull.rgb[i] - with.rgb[i])));
+  }
+  std::printf("dnrt: %zu of %zu channel values darkened (total %.3f), %zu brightened; box vs full screen max diff %.2g\n",
+              darkened, with.rgb.size(), removed, brightened, modeDiff);
+  EXPECT_GT(darkened, 300u);  // the prop's neighbourhood covers hundreds of pixels at 160×120
+  EXPECT_EQ(brightened, 0u);
+  // The box covers every pixel with a non-zero term: both modes give the same image.
+  EXPECT_LT(modeDiff, kHalfTol);
+}
+
+// The shader against its CPU mirror (evaluate.hpp), pixel by pixel: a rotated 9-SH box above a
+// floor, lit by radiance with l = 1 and l = 2 content (so the SH rotation into the object frame
+// matters), no other light: the HDR image IS L_DNRT. Camera straight down; floor points from the
+// level file (tests/unit/render/analytic.hpp).
+TEST(DnrtGpu, ShaderMatchesCpuEvaluationOnTheFloor) {
+  gpu::Context& ctx = gpu::testkit::sharedContext();
+  const fs::path levelPath = fs::path(BOUNCE_SOURCE_DIR) / "tests/data/dnrt/floor-box.json";
+  game::Session session(ctx, game::loadLevelWithEffects(levelPath, std::nullopt));
+  session.update(0.0);
+  ecs::Registry& reg = session.registry();
+  ref::ReferenceAssets assets;
+  assets.load(reg, fs::path(BOUNCE_TEST_OUT) / "dnrt" / "cooked");
+  ecs::Entity box;
+  reg.view<scene::Dnrt>().each([&](ecs::Entity e, scene::Dnrt&) { box = e; });
+  ASSERT_FALSE(box.isNull());
+  const BakeResult baked = bake(objectScene(reg, box, assets), settingsFrom(reg.get<scene::Dnrt>(box)));
+  const FieldTextures textures(ctx, baked.field, "box");
+  Node node(ctx, session.renderer().pipelines(), gpu::FrameRing::kDefaultFramesInFlight);
+  std::array<glm::vec3, 9> sky{};
+  const float v[9] = {3.0f, 0.8f, 1.4f, -0.6f, 0.5f, -0.9f, 0.7f, 0.4f, -1.1f};
+  for (int i = 0; i < 9; ++i) sky[std::size_t(i)] = v[i] * glm::vec3(1.0f, 0.8f, 0.6f);
+  const glm::mat4 world = reg.get<scene::WorldTransform>(box).matrix;
+  session.renderer().setNode("dnrt", [&](rg::RenderGraph& graph, render::PassContext& pc) {
+    node.addTo(graph, pc, {NodeObject{&textures, packObject(baked.field, world, sky), "box"}});
+  });
+  constexpr std::uint32_t kW = 96, kH = 96;
+  gpu::OffscreenPresenter presenter(ctx, {kW, kH});
+  render::FrameSettings settings;
+  settings.keepHdr = true;
+  session.render(presenter, settings);
+  const std::vector<float> rgb = session.renderer().readHdr();
+
+  const rtest::FloorScene floor = rtest::readFloorScene(session.level());
+  const Placement pl = place(baked.field, world);
+  const auto c = toLocal(irradianceSH(sky), pl.localToWorldRotation);
+  // Bound of the GPU/CPU difference per channel. Filtering UNORM8 texels may round the filtered
+  // value to 8 bits again (llvmpipe does; Vulkan leaves filtering precision to the implementation):
+  // up to half a step (hi − lo)/510 per coefficient, times ρ_r |c_j| ((n_o·n_r)₊ s ≤ 1).
+  glm::vec3 filterBound(0.0f);
+  for (int j = 0; j < 9; ++j)
+    for (int ch = 0; ch < 3; ++ch) {
+      const Slot sl = slotOf(j, ch);
+      const Range& r = baked.field.ranges[std::size_t(sl.texture) * 4 + sl.component];
+      filterBound[ch] += floor.albedo[ch] * std::abs(c[std::size_t(j)][ch]) * (r.hi - r.lo) / 510.0f;
+    }
+  // fp16 output: 11-bit mantissa, relative rounding 2^-11 ≈ 5e-4 (1e-3 for the blend's two roundings).
+  constexpr float kHalfRel = 1e-3f;
+  float largest = 0.0f, worst = 0.0f, worstRatio = 0.0f;
+  int compared = 0;
+  for (std::uint32_t y = 0; y < kH; ++y)
+    for (std::uint32_t x = 0; x < kW; ++x) {
+      const auto p = rtest::floorPoint(floor, kW, kH, x, y);
+      if (!p) continue;
+      // Skip the floor hidden by the box (box half-diagonal 0.087 at height ≤ 0.21, seen from 1 m).
+      if (glm::length(glm::vec2(p->x - 0.05f, p->z + 0.03f)) < 0.15f) continue;
+      const glm::vec3 want = evaluate(baked.field, pl, c, *p, glm::vec3(0, 1, 0), floor.albedo);
+      const std::size_t i = (std::size_t(y) * kW + x) * 3;
+      const glm::vec3 got(rgb[i], rgb[i + 1], rgb[i + 2]);
+      largest = std::max(largest, glm::length(want));
+      for (int ch = 0; ch < 3; ++ch) {
+        const float err = std::abs(got[ch] - want[ch]);
+        worst = std::max(worst, err);
+        worstRatio = std::max(worstRatio, err / (filterBound[ch] + kHalfRel * std::abs(want[ch])));
+      }
+      ++compared;
+    }
+  std::printf("dnrt shader vs CPU: %d floor pixels, largest |L_DNRT| %.4f, worst |difference| %.2g = %.2f of its bound "
+              "(filter bound %.2g %.2g %.2g)\n",
+              compared, largest, worst, worstRatio, filterBound.x, filterBound.y, filterBound.z);
+  EXPECT_GT(compared, 5000);
+  EXPECT_GT(largest, 0.01f);
+  EXPECT_LE(worstRatio, 1.0f);
+}
+
+// The level path (Runtime: bake through the cache, upload, pack the drawn objects each frame) and
+// the hard case of overlapping volumes: two objects' terms add (blending is additive), so the
+// frame with both equals the sum of the frames with each alone.
+TEST(DnrtGpu, RuntimeBakesThroughTheCacheAndOverlappingObjectsAdd) {
+  gpu::Context& ctx = gpu::testkit::sharedContext();
+  const fs::path levelPath = fs::path(BOUNCE_SOURCE_DIR) / "tests/data/dnrt/two-boxes.json";
+  game::Session session(ctx, game::loadLevelWithEffects(levelPath, std::nullopt));
+  session.update(0.0);
+  ref::ReferenceAssets assets;
+  assets.load(session.registry(), fs::path(BOUNCE_TEST_OUT) / "dnrt" / "cooked");
+  const fs::path cache = fs::path(BOUNCE_TEST_OUT) / "dnrt" / "runtime-cache";
+  fs::remove_all(cache);
+  const auto frames = gpu::FrameRing::kDefaultFramesInFlight;
+  {
+    Runtime first(ctx, session.renderer().pipelines(), session.registry(), assets, cache, frames);
+    EXPECT_EQ(first.objectCount(), 2u);
+    EXPECT_EQ(first.bakedCount(), 2u);
+  }
+  Runtime dnrt(ctx, session.renderer().pipelines(), session.registry(), assets, cache, frames,
+               session.level().background);
+  EXPECT_EQ(dnrt.bakedCount(), 0u);  // both from the cache
+  ASSERT_EQ(dnrt.objectCount(), 2u);
+  EXPECT_EQ(dnrt.field(1).settings.shCount, 9);
+
+  session.renderer().setNode("dnrt", dnrt.node());
+  const Frame both = renderOnce(session, ctx);
+  EXPECT_NE(std::find(both.passes.begin(), both.passes.end(), "dnrt"), both.passes.end());
+  const std::vector<NodeObject> all = dnrt.objectsFor(session.world());
+  ASSERT_EQ(all.size(), 2u);
+  Node node(ctx, session.renderer().pipelines(), frames);
+  std::vector<float> alone[2];
+  for (int k = 0; k < 2; ++k) {
+    session.renderer().setNode("dnrt", [&](rg::RenderGraph& graph, render::PassContext& pc) {
+      node.addTo(graph, pc, {all[std::size_t(k)]});
+    });
+    alone[k] = renderOnce(session, ctx).rgb;
+  }
+  // Each object's own pixels are skipped (gbuffer.entity). For these convex boxes that changes
+  // nothing: their own surfaces face away from o, so (n_o·n_r)₊ = 0 there already (the skip is for
+  // concave objects, whose inner faces see o through the filled interior values).
+  std::vector<NodeObject> anonymous = all;
+  for (NodeObject& o : anonymous) o.data.ids = glm::uvec4(0u);
+  session.renderer().setNode("dnrt", [&](rg::RenderGraph& graph, render::PassContext& pc) {
+    node.addTo(graph, pc, anonymous);
+  });
+  const std::vector<float> selfLit = renderOnce(session, ctx).rgb;
+  int ownPixels = 0;
+  for (std::size_t i = 0; i < both.rgb.size(); ++i) ownPixels += selfLit[i] != both.rgb[i] ? 1 : 0;
+  EXPECT_EQ(ownPixels, 0);
+
+  float largest = 0.0f, worst = 0.0f;
+  int overlap = 0;
+  for (std::size_t i = 0; i < both.rgb.size(); ++i) {
+    largest = std::max(largest, std::abs(both.rgb[i]));
+    worst = std::max(worst, std::abs(both.rgb[i] - alone[0][i] - alone[1][i]));
+    overlap += alone[0][i] != 0.0f && alone[1][i] != 0.0f ? 1 : 0;
+  }
+  std::printf("two objects: %d overlapping channel values, largest |L| %.4f, worst |both - a - b| %.2g\n", overlap,
+              largest, worst);
+  EXPECT_GT(overlap, 1000);
+  EXPECT_GT(largest, 0.005f);
+  EXPECT_LE(worst, 2.0f * kHalfTol * largest);  // fp16 rounding of each of the frames
+
+  // Intrusion (§5.2.3): box B stands between box A's centre and part of the floor. With A's
+  // intrusion map, that part loses A's term entirely; nothing else changes.
+  std::vector<NodeObject> a = {all[0]}, aIntrusion = {all[0]};
+  aIntrusion[0].intrusion = true;
+  std::vector<float> frames2[2];
+  for (int k = 0; k < 2; ++k) {
+    session.renderer().setNode("dnrt", [&](rg::RenderGraph& graph, render::PassContext& pc) {
+      node.addTo(graph, pc, k == 0 ? a : aIntrusion);
+    });
+    const Frame f = renderOnce(session, ctx);
+    frames2[k] = f.rgb;
+    if (k == 1) {
+      EXPECT_NE(std::find(f.passes.begin(), f.passes.end(), "dnrt.cube/box-a"), f.passes.end());
+    }
+  }
+  int hidden = 0, kept = 0, other = 0;
+  for (std::size_t i = 0; i < frames2[0].size(); ++i) {
+    if (frames2[0][i] == 0.0f) continue;
+    if (frames2[1][i] == 0.0f) ++hidden;
+    else if (frames2[1][i] == frames2[0][i]) ++kept;
+    else ++other;
+  }
+  std::printf("intrusion: %d channel values hidden by box B, %d kept, %d changed otherwise\n", hidden, kept, other);
+  EXPECT_GT(hidden, 30);
+  EXPECT_GT(kept, 10 * hidden);
+  EXPECT_EQ(other, 0);
+}
+
+}  // namespace
+}  // namespace bounce::gi::dnrt
