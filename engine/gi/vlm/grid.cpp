@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "engine/core/parallel.hpp"
+#include "engine/math/sampling.hpp"
 
 namespace bounce::vlm {
 
@@ -190,6 +191,24 @@ Grid buildGridScatter(std::span<const GridLight> lights, const GridDesc& desc) {
   g.overflowCells = overflow;
   g.candidates = offsets[cells];
   return g;
+}
+
+}  // namespace bounce::vlm
+
+namespace bounce::vlm {
+
+std::vector<GridLight> randomGridScene(std::uint32_t count, std::uint64_t seed) {
+  std::vector<GridLight> lights(count);
+  const float size = 1.5f / std::cbrt(float(std::max(count, 1u)));
+  parallelFor(0, count, [&](std::size_t i) {
+    math::Pcg32 rng(seed, i);  // one stream per light: the same scene whatever the thread count
+    auto next3 = [&] { return glm::vec3(rng.nextFloat(), rng.nextFloat(), rng.nextFloat()); };
+    const glm::vec3 c = next3();
+    GridLight& l = lights[i];
+    l.v0 = c + (next3() - 0.5f) * size, l.v1 = c + (next3() - 0.5f) * size, l.v2 = c + (next3() - 0.5f) * size;
+    l.weight = 0.1f + rng.nextFloat();
+  }, 1024);
+  return lights;
 }
 
 }  // namespace bounce::vlm

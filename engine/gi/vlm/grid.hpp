@@ -86,3 +86,12 @@ Grid buildGridGather(std::span<const GridLight> lights, const GridDesc& desc);
 Grid buildGridScatter(std::span<const GridLight> lights, const GridDesc& desc);
 
 }  // namespace bounce::vlm
+
+namespace bounce::vlm {
+
+// A random benchmark/test scene in the unit cube: `count` triangles of random orientation, each
+// about 1.5 mean spacings wide (so neighbouring hemispheres overlap as in a simplified real mesh),
+// weights in [0.1, 1.1). Deterministic for a seed.
+std::vector<GridLight> randomGridScene(std::uint32_t count, std::uint64_t seed);
+
+}  // namespace bounce::vlm
