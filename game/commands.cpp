@@ -50,6 +50,14 @@ const std::vector<cli::CommandSpec>& commandSpecs() {
        {device, {"--out", "DIR", "capture folder when headless (default build/demo)"}}, 0, 0},
       {"export", "LEVEL OUT.glb [--time T]", "write the composed level as one glTF 2.0 binary (meshes, materials, cameras, lights)",
        {{"--time", "T", "simulation time in seconds at which dynamic props are placed (default 0)"}}, 2, 2},
+      {"bench", "vlm-grid [options]", "time the VLM grid builds (scatter vs gather) on a random scene; prints one line",
+       {{"--lights", "N", "virtual lights (default 10000)"},
+        {"--grid", "G", "cells per axis (default 50)"},
+        {"--k", "K", "candidates per cell (default 32)"},
+        {"--range", "R", "active-hemisphere range (default 2.5)"},
+        {"--runs", "N", "builds per timing; the median is printed (default 3)"},
+        {"--no-gather", "", "skip the gather build (it is O(cells × lights))"}},
+       1, 1},
   };
   return specs;
 }

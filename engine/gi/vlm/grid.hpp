@@ -1,0 +1,97 @@
+#pragma once
+// The VLM acceleration grid (thesis chapter 4): a uniform 3D grid over the scene whose cells each
+// hold a fixed-size list of K candidate virtual lights (indices into the light array; unused slots
+// hold kNullLight, the "special virtual light that generates no illumination" of §4.1). Memory:
+// cells × K × 4 bytes.
+//
+// A light is a candidate for a cell when the cell touches its active hemisphere (§4.2): the half of
+// the sphere about the light's centroid, of radius range × (farthest vertex distance), on the
+// emitting side. The thesis's test is per point; a cell holds candidates for every point inside it,
+// so here the test is cell-box against half-sphere, conservative: the box overlaps the sphere's
+// bounding box, the sphere, and the open half-space in front of the light.
+//
+// Two builds that give identical grids:
+//  - gather (the thesis's): every cell tests every light — O(cells × lights), kept as the reference
+//    and the benchmark baseline;
+//  - scatter: every light visits only the cells under its hemisphere's bounding box — O(touched
+//    cells) — counted, prefix-summed and filled in parallel (TBB), then each cell sorted.
+// Overflow (more than K candidates): a cell keeps the K with the largest upper bound on the
+// irradiance they can deliver anywhere in the cell, E ≤ min(π, A/d²)·L (F ≤ 1 and F ≤ A/(π d²),
+// d the distance from the light's bounding sphere to the cell), ties broken by light index; the
+// number of overflowing cells is reported. Lists are stored in that order (largest bound first), so
+// both builds agree slot for slot.
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace bounce::vlm {
+
+inline constexpr std::uint32_t kNullLight = 0xFFFFFFFFu;
+
+// What the grid needs of a virtual light: its triangle (counter-clockwise from the emitting side)
+// and a weight for the overflow ranking (its radiance's largest channel, or 1 for geometry only).
+struct GridLight {
+  glm::vec3 v0, v1, v2;
+  float weight = 1.0f;
+};
+
+struct GridDesc {
+  glm::vec3 origin{0.0f};    // world-space minimum corner
+  glm::vec3 cellSize{1.0f};  // world units per cell along each axis
+  glm::uvec3 dims{1u};       // cells along each axis
+  std::uint32_t k = 32;      // candidates per cell
+  float range = 2.5f;        // active-hemisphere range parameter (§4.2)
+
+  std::uint64_t cellCount() const { return std::uint64_t(dims.x) * dims.y * dims.z; }
+};
+
+// A grid of dims³ cells covering box [lo, hi] (padded so no extent is zero).
+GridDesc fitGrid(glm::vec3 lo, glm::vec3 hi, glm::uvec3 dims, std::uint32_t k, float range);
+
+// The active hemisphere of one light; radius 0 for a degenerate (zero-area) light, which is never
+// a candidate anywhere.
+struct ActiveHemisphere {
+  glm::vec3 centre{0.0f};
+  glm::vec3 normal{0.0f};  // unit, the emitting side
+  float radius = 0.0f;     // range × farthest vertex distance
+  float extent = 0.0f;     // farthest vertex distance (the light's own bounding sphere)
+  float area = 0.0f;
+  float weight = 0.0f;
+};
+ActiveHemisphere activeHemisphere(const GridLight& light, float range);
+
+// The cell's world box.
+void cellBox(const GridDesc& desc, glm::uvec3 cell, glm::vec3& lo, glm::vec3& hi);
+// True when the hemisphere may light some point of box [lo, hi] (see the header comment).
+bool touchesCell(const ActiveHemisphere& h, glm::vec3 lo, glm::vec3 hi);
+// Upper bound on the irradiance the light can deliver inside [lo, hi], per unit weight × weight.
+float cellBound(const ActiveHemisphere& h, glm::vec3 lo, glm::vec3 hi);
+
+struct Grid {
+  GridDesc desc;
+  std::vector<std::uint32_t> slots;  // cellCount × k; kNullLight in unused slots
+  std::uint64_t overflowCells = 0;   // cells that had more than k candidates
+  std::uint64_t candidates = 0;      // (light, cell) pairs before truncation
+
+  // The cell holding world point p, or -1 outside the grid.
+  std::int64_t cellOf(glm::vec3 p) const;
+  std::span<const std::uint32_t> cell(std::uint64_t index) const {
+    return {slots.data() + index * desc.k, desc.k};
+  }
+};
+
+Grid buildGridGather(std::span<const GridLight> lights, const GridDesc& desc);
+Grid buildGridScatter(std::span<const GridLight> lights, const GridDesc& desc);
+
+}  // namespace bounce::vlm
+
+namespace bounce::vlm {
+
+// A random benchmark/test scene in the unit cube: `count` triangles of random orientation, each
+// about 1.5 mean spacings wide (so neighbouring hemispheres overlap as in a simplified real mesh),
+// weights in [0.1, 1.1). Deterministic for a seed.
+std::vector<GridLight> randomGridScene(std::uint32_t count, std::uint64_t seed);
+
+}  // namespace bounce::vlm

@@ -1,0 +1,54 @@
+// `bounce bench vlm-grid`: times the VLM grid builds (engine/gi/vlm/grid.hpp) on a random scene —
+// the scatter build against the thesis's gather build (Table 5.2 analogue) — and prints one line:
+//   lights=N grid=G k=K scatter_ms=… gather_ms=… overflow_cells=…
+// Each time is the median of --runs builds. CPU-only (TBB on every core).
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+
+#include "engine/core/error.hpp"
+#include "engine/gi/vlm/grid.hpp"
+#include "game/commands.hpp"
+
+namespace bounce::game {
+
+namespace {
+
+template <class F>
+double medianMs(int runs, F&& build) {
+  std::vector<double> ms;
+  for (int r = 0; r < runs; ++r) {
+    const auto t0 = std::chrono::steady_clock::now();
+    build();
+    ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+  }
+  std::sort(ms.begin(), ms.end());
+  return ms[ms.size() / 2];
+}
+
+}  // namespace
+
+int runBench(const cli::Args& args) {
+  const std::string what = args.positional.at(0);
+  if (what != "vlm-grid") throwInputError("bounce bench", "benchmark", "unknown benchmark '" + what + "'", "vlm-grid");
+  const int lights = args.positiveInt("--lights", 10000);
+  const int grid = args.positiveInt("--grid", 50);
+  const int k = args.positiveInt("--k", 32);
+  const int runs = args.positiveInt("--runs", 3);
+  const double range = args.has("--range") ? std::stod(args.str("--range")) : 2.5;
+  if (!(range > 0.0 && range < 100.0)) throwInputError("bounce bench", "--range", "out of range", "0 < range < 100");
+  if (grid > 512) throwInputError("bounce bench", "--grid", "too many cells", "a grid of at most 512³");
+
+  const auto scene = vlm::randomGridScene(std::uint32_t(lights), 1);
+  const auto desc = vlm::fitGrid(glm::vec3(0.0f), glm::vec3(1.0f), glm::uvec3(std::uint32_t(grid)), std::uint32_t(k), float(range));
+  vlm::Grid scatter, gather;
+  const double scatterMs = medianMs(runs, [&] { scatter = vlm::buildGridScatter(scene, desc); });
+  const double gatherMs = args.has("--no-gather") ? 0.0 : medianMs(runs, [&] { gather = vlm::buildGridGather(scene, desc); });
+  if (!args.has("--no-gather") && gather.slots != scatter.slots)
+    throw InternalError("bench vlm-grid: scatter and gather builds disagree");
+  std::printf("lights=%d grid=%d k=%d scatter_ms=%.2f gather_ms=%.2f overflow_cells=%llu\n", lights, grid, k, scatterMs,
+              gatherMs, static_cast<unsigned long long>(scatter.overflowCells));
+  return 0;
+}
+
+}  // namespace bounce::game

@@ -1,0 +1,107 @@
+// The VLM grid (engine/gi/vlm/grid.hpp): the scatter build equals the thesis's gather build slot for
+// slot on random scenes, lists are complete when they do not overflow, and overflow keeps the
+// lights with the largest irradiance bound.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "engine/gi/vlm/grid.hpp"
+#include "engine/math/sampling.hpp"
+
+using namespace bounce;
+
+namespace {
+
+std::vector<vlm::GridLight> randomLights(std::uint32_t count, float size, std::uint64_t seed) {
+  math::Pcg32 rng(seed, 1);
+  std::vector<vlm::GridLight> lights(count);
+  for (auto& l : lights) {
+    const glm::vec3 c(rng.nextFloat(), rng.nextFloat(), rng.nextFloat());
+    auto jitter = [&] { return (glm::vec3(rng.nextFloat(), rng.nextFloat(), rng.nextFloat()) - 0.5f) * size; };
+    l.v0 = c + jitter(), l.v1 = c + jitter(), l.v2 = c + jitter();
+    l.weight = 0.1f + rng.nextFloat();
+  }
+  lights[0].v2 = lights[0].v1;  // one degenerate light: never a candidate
+  return lights;
+}
+
+}  // namespace
+
+TEST(VlmGrid, ScatterEqualsGatherOnRandomScenes) {
+  struct Case {
+    std::uint32_t lights, dims, k;
+    float size, range;
+  };
+  const Case cases[] = {{500, 8, 4, 0.1f, 2.5f}, {2000, 12, 16, 0.05f, 1.5f}, {1000, 10, 64, 0.2f, 4.5f}, {300, 5, 2, 0.3f, 3.5f}};
+  for (std::size_t i = 0; i < std::size(cases); ++i) {
+    const Case& c = cases[i];
+    const auto lights = randomLights(c.lights, c.size, 17 + i);
+    const auto desc = vlm::fitGrid(glm::vec3(0.0f), glm::vec3(1.0f), glm::uvec3(c.dims), c.k, c.range);
+    const vlm::Grid gather = vlm::buildGridGather(lights, desc);
+    const vlm::Grid scatter = vlm::buildGridScatter(lights, desc);
+    EXPECT_EQ(scatter.slots, gather.slots) << "case " << i;
+    EXPECT_EQ(scatter.overflowCells, gather.overflowCells) << "case " << i;
+    EXPECT_EQ(scatter.candidates, gather.candidates) << "case " << i;
+    EXPECT_GT(gather.candidates, 0u);
+    if (c.k <= 4) {
+      EXPECT_GT(gather.overflowCells, 0u) << "case " << i << " should overflow";
+    }
+    // The degenerate light 0 appears nowhere.
+    EXPECT_EQ(std::count(gather.slots.begin(), gather.slots.end(), 0u), 0);
+  }
+}
+
+TEST(VlmGrid, ListsAreCompleteWithoutOverflowAndExcludeTheBackSide) {
+  const auto lights = randomLights(400, 0.1f, 5);
+  const auto desc = vlm::fitGrid(glm::vec3(0.0f), glm::vec3(1.0f), glm::uvec3(10), 256, 2.5f);
+  const vlm::Grid g = vlm::buildGridScatter(lights, desc);
+  ASSERT_EQ(g.overflowCells, 0u);
+  math::Pcg32 rng(8, 2);
+  int inside = 0, behind = 0;
+  for (std::uint32_t l = 1; l < lights.size(); ++l) {
+    const auto h = vlm::activeHemisphere(lights[l], desc.range);
+    for (int s = 0; s < 20; ++s) {
+      const glm::vec3 p = h.centre + (glm::vec3(rng.nextFloat(), rng.nextFloat(), rng.nextFloat()) * 2.0f - 1.0f) * h.radius;
+      const std::int64_t cell = g.cellOf(p);
+      if (cell < 0) continue;
+      const auto list = g.cell(std::uint64_t(cell));
+      const bool listed = std::find(list.begin(), list.end(), l) != list.end();
+      const glm::vec3 d = p - h.centre;
+      if (glm::dot(d, d) < h.radius * h.radius && glm::dot(d, h.normal) > 0.0f) {
+        ++inside;
+        EXPECT_TRUE(listed) << "light " << l << " missing from the cell of a point in its active hemisphere";
+      }
+      // A cell lying wholly behind the light's plane never lists it.
+      glm::vec3 lo, hi;
+      const std::uint64_t ci = std::uint64_t(cell);
+      vlm::cellBox(desc, {std::uint32_t(ci % 10), std::uint32_t(ci / 10 % 10), std::uint32_t(ci / 100)}, lo, hi);
+      const glm::vec3 mid = 0.5f * (lo + hi), half = 0.5f * (hi - lo);
+      if (glm::dot(h.normal, mid - h.centre) + glm::dot(glm::abs(h.normal), half) < 0.0f) {
+        ++behind;
+        EXPECT_FALSE(listed);
+      }
+    }
+  }
+  EXPECT_GT(inside, 1000);
+  EXPECT_GT(behind, 100);
+}
+
+TEST(VlmGrid, OverflowKeepsTheLargestBounds) {
+  const auto lights = randomLights(800, 0.15f, 9);
+  const auto desc = vlm::fitGrid(glm::vec3(0.0f), glm::vec3(1.0f), glm::uvec3(6), 3, 3.5f);
+  const vlm::Grid small = vlm::buildGridScatter(lights, desc);
+  auto all = desc;
+  all.k = 4096;
+  const vlm::Grid full = vlm::buildGridScatter(lights, all);
+  ASSERT_EQ(full.overflowCells, 0u);
+  ASSERT_GT(small.overflowCells, 0u);
+  std::uint64_t overflowing = 0;
+  for (std::uint64_t c = 0; c < desc.cellCount(); ++c) {
+    const auto kept = small.cell(c);
+    const auto every = full.cell(c);
+    // Full lists are stored best first, so the truncated list is exactly their prefix.
+    EXPECT_TRUE(std::equal(kept.begin(), kept.end(), every.begin())) << "cell " << c;
+    if (every[desc.k] != vlm::kNullLight) ++overflowing;
+  }
+  EXPECT_EQ(overflowing, small.overflowCells);
+}
