@@ -75,7 +75,11 @@ TechniqueRender renderTechnique(gpu::Context& ctx, gpu::OffscreenPresenter& pres
   session.render(presenter, settings);
   TechniqueRender out;
   out.executedPasses = session.renderer().executedPasses();
-  if (timings && !rowAvailable(row, out.executedPasses)) return out;  // the caller skips the row
+  if (timings && !rowAvailable(row, out.executedPasses)) {
+    // Session does not wait for its frames when destroyed, and its GPU scene goes first.
+    session.renderer().frames().waitIdle();
+    return out;  // the caller skips the row
+  }
   if (timings) {
     // The pose is fixed at `time`: every measured frame renders the same image.
     for (std::uint32_t f = 1; f < kAccuracyWarmupFrames + measuredFrames; ++f) {

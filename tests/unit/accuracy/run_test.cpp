@@ -16,10 +16,15 @@ namespace {
 constexpr std::uint32_t kSize = 48;
 constexpr std::uint32_t kSpp = 16;  // the full reference's noise stays well below the indirect light it shows
 // Direct light vs the bounces-0 reference: they agree everywhere but shadow-map edges and
-// contact corners (raster_match_test: 0.4 % of a 64×64 view beyond 2 %). Measured here: 0.028.
-constexpr double kMaxDirectVsDirectRef = 0.08;
+// contact corners (raster_match_test: 0.4 % of a 64×64 view beyond 2 %). Measured here on
+// lavapipe: 0.011; the bound leaves room for another driver's shadow-map filtering.
+constexpr double kMaxDirectVsDirectRef = 0.04;
+// The same for the prop's effect alone (its own pixels and its shadow; PCF penumbra vs a hard
+// traced shadow is the only disagreement). Measured here: 0.005.
+constexpr double kMaxDirectEffectVsDirectRef = 0.05;
 // The closed Cornell box gets a large share of its light by bouncing; direct light alone
-// misses it. Measured here: 0.55; the bound leaves room for the reference's 16-spp noise.
+// misses it. Measured here: 0.89 (part of it the reference's 16-spp noise); the bound is far
+// above anything shadow-map differences could explain.
 constexpr double kMinDirectVsFullRef = 0.3;
 
 class AccuracyRun : public ::testing::Test {
@@ -75,6 +80,7 @@ TEST_F(AccuracyRun, DirectAgreesWithTheDirectReferenceAndMissesIndirectLight) {
   std::printf("direct: rel_rmse %.4f vs bounces 0, %.4f vs full; effect %.4f / %.4f\n", direct.relRmse, full.relRmse,
               direct.effectRelRmse, full.effectRelRmse);
   EXPECT_LT(direct.relRmse, kMaxDirectVsDirectRef);
+  EXPECT_LT(direct.effectRelRmse, kMaxDirectEffectVsDirectRef);
   EXPECT_GT(full.relRmse, kMinDirectVsFullRef);
   EXPECT_GT(full.relRmse, direct.relRmse);
   // The prop's effect is visible in both references (it casts a shadow and is seen).
