@@ -58,6 +58,20 @@ std::string csvField(const std::string& s) {
   return out + "\"";
 }
 
+// Rows with the same technique, effects and setting apart from "ref=…" render the same image.
+std::string renderKey(const AccuracyRow& row) {
+  std::string setting;
+  std::size_t start = 0;
+  while (start <= row.setting.size()) {
+    std::size_t end = row.setting.find(';', start);
+    if (end == std::string::npos) end = row.setting.size();
+    const std::string item = row.setting.substr(start, end - start);
+    if (item.rfind("ref=", 0) != 0) setting += item + ";";
+    start = end + 1;
+  }
+  return row.technique + "|" + joinList(row.effects) + "|" + setting;
+}
+
 // The rasteriser's image of one configuration. With `timings` it also times the row's passes,
 // and returns no image when the renderer lacks one of them (rowAvailable).
 struct TechniqueRender {
@@ -188,32 +202,53 @@ AccuracyReport runAccuracy(const AccuracyOptions& options) {
   gpu::Context ctx({options.device});
   gpu::OffscreenPresenter presenter(ctx, {options.width, options.height});
   Progress progress("accuracy " + options.level.filename().string(), rows.size());
+  // Rows that differ only in the reference they are compared with share one render and one
+  // timing (the same configuration timed twice would show two numbers for one cost).
+  struct Rendered {
+    ImageRGB with, without;
+    double gpuMs = 0.0;
+    std::vector<std::string> executedPasses;
+    bool available = false;
+  };
+  std::map<std::string, Rendered> rendered;
   for (const auto& row : rows) {
-    scene::Level with = level, without = staticLevel;
-    for (scene::Level* l : {&with, &without}) {
-      scene::overrideEffects(*l, joinList(row.effects));
-      if (row.configure) row.configure(*l);
+    const std::string key = renderKey(row);
+    if (!rendered.count(key)) {
+      scene::Level with = level, without = staticLevel;
+      for (scene::Level* l : {&with, &without}) {
+        scene::overrideEffects(*l, joinList(row.effects));
+        if (row.configure) row.configure(*l);
+      }
+      TimingCollector timings;
+      TechniqueRender techWith = renderTechnique(ctx, presenter, with, time, row, options.measuredFrames, &timings);
+      Rendered& r = rendered[key];
+      r.executedPasses = techWith.executedPasses;
+      r.available = rowAvailable(row, techWith.executedPasses);
+      if (r.available) {
+        r.with = std::move(techWith.image);
+        r.without = renderTechnique(ctx, presenter, without, time, row, options.measuredFrames, nullptr).image;
+        for (const auto& s : timings.stats())
+          for (const auto& p : row.passes)
+            if (s.pass == p) r.gpuMs += s.medianMs;
+      }
     }
-    TimingCollector timings;
-    TechniqueRender techWith = renderTechnique(ctx, presenter, with, time, row, options.measuredFrames, &timings);
-    if (!rowAvailable(row, techWith.executedPasses)) {
+    const Rendered& tech = rendered.at(key);
+    if (!tech.available) {
       report.notes.push_back("skipped " + row.technique + " " + row.setting + ": the renderer ran " +
-                             joinList(techWith.executedPasses) + " but the row needs " + joinList(row.passes));
+                             joinList(tech.executedPasses) + " but the row needs " + joinList(row.passes));
       progress.advance();
       continue;
     }
-    const ImageRGB techWithout =
-        renderTechnique(ctx, presenter, without, time, row, options.measuredFrames, nullptr).image;
+    const ImageRGB& techWith = tech.with;
+    const ImageRGB& techWithout = tech.without;
 
     AccuracyResult result;
     result.row = row;
-    for (const auto& s : timings.stats())
-      for (const auto& p : row.passes)
-        if (s.pass == p) result.gpuMs += s.medianMs;
+    result.gpuMs = tech.gpuMs;
     const ImageRGB& refWith = reference(true, row.referenceBounces);
     const ImageRGB& refWithout = reference(false, row.referenceBounces);
-    result.relRmse = ref::relativeRmse(techWith.image, refWith);
-    const ref::ObjectEffectError effect = ref::objectEffectError(techWith.image, techWithout, refWith, refWithout);
+    result.relRmse = ref::relativeRmse(techWith, refWith);
+    const ref::ObjectEffectError effect = ref::objectEffectError(techWith, techWithout, refWith, refWithout);
     result.referenceEffectIsZero = effect.referenceEffectIsZero;
     result.effectRelRmse = effect.referenceEffectIsZero ? std::numeric_limits<double>::quiet_NaN() : effect.relativeError;
     if (effect.referenceEffectIsZero)
@@ -223,8 +258,10 @@ AccuracyReport runAccuracy(const AccuracyOptions& options) {
     ref::ComparisonOptions panel;
     const double mean = meanValue(refWith);
     if (mean > 0.0) panel.exposure = float(kPanelMiddleGrey / mean);
-    result.heatMap = options.out / ("heatmap-" + slug(row.technique) + "-" + slug(row.setting) + ".png");
-    writePng(result.heatMap, ref::comparisonImage(refWith, techWith.image, panel).image);
+    const std::string name = slug(row.technique) + "-" + slug(row.setting);
+    result.heatMap = options.out / ("heatmap-" + name + ".png");
+    writePfm(options.out / ("image-" + name + ".pfm"), techWith);
+    writePng(result.heatMap, ref::comparisonImage(refWith, techWith, panel).image);
     report.rows.push_back(std::move(result));
     progress.advance();
   }

@@ -9,13 +9,14 @@
 //   effect_rel_rmse ref::objectEffectError(techWith, techWithout, refWith, refWithout).relativeError,
 //                   "without" = the level minus its dynamic entities (accuracy_level.hpp); "nan"
 //                   when the reference effect is zero (no dynamic objects, or none visible).
-// The reference is the row's: bounces 0 ("ref=direct") or unlimited ("ref=all"). References are
+// Rows whose settings differ only in "ref=…" share one render and one timing. The reference is the row's: bounces 0 ("ref=direct") or unlimited ("ref=all"). References are
 // cached by renderReference; the bounces-0 one is traced with 1 spp, which is exact (camera rays
 // go through pixel centres and next-event estimation to punctual lights draws no random numbers).
 //
 // Files in `out`: accuracy.csv, accuracy.png (tools/plot_accuracy.py, when /usr/bin/python3 has
 // matplotlib), heatmap-<technique>-<setting>.png per row ("reference | technique | error",
-// engine/ref/image_heatmap.hpp), and <level>-static.json (the level without dynamic entities,
+// engine/ref/image_heatmap.hpp) with the technique's linear image image-<technique>-<setting>.pfm,
+// and <level>-static.json (the level without dynamic entities,
 // which the reference tracer reads).
 #include <cstdint>
 #include <filesystem>

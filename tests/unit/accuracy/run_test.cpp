@@ -17,11 +17,13 @@ constexpr std::uint32_t kSize = 48;
 constexpr std::uint32_t kSpp = 16;  // the full reference's noise stays well below the indirect light it shows
 // Direct light vs the bounces-0 reference: they agree everywhere but shadow-map edges and
 // contact corners (raster_match_test: 0.4 % of a 64×64 view beyond 2 %). Measured here on
-// lavapipe: 0.011; the bound leaves room for another driver's shadow-map filtering.
-constexpr double kMaxDirectVsDirectRef = 0.04;
-// The same for the prop's effect alone (its own pixels and its shadow; PCF penumbra vs a hard
-// traced shadow is the only disagreement). Measured here: 0.005.
-constexpr double kMaxDirectEffectVsDirectRef = 0.05;
+// lavapipe: 0.011. The prop hangs 8 cm under the lamp, so its lit top is far brighter than the
+// mean: one silhouette pixel of it that the two rasterise differently adds up to ~0.08 (seen at
+// 128×128), and the bound allows for that on another driver.
+constexpr double kMaxDirectVsDirectRef = 0.15;
+// The same for the prop's effect alone (its own pixels and its shadow). Measured here: 0.005;
+// the same silhouette pixel gives ~0.07 at 128×128.
+constexpr double kMaxDirectEffectVsDirectRef = 0.15;
 // The closed Cornell box gets a large share of its light by bouncing; direct light alone
 // misses it. Measured here: 0.89 (part of it the reference's 16-spp noise); the bound is far
 // above anything shadow-map differences could explain.
@@ -83,6 +85,7 @@ TEST_F(AccuracyRun, DirectAgreesWithTheDirectReferenceAndMissesIndirectLight) {
   EXPECT_LT(direct.effectRelRmse, kMaxDirectEffectVsDirectRef);
   EXPECT_GT(full.relRmse, kMinDirectVsFullRef);
   EXPECT_GT(full.relRmse, direct.relRmse);
+  EXPECT_EQ(direct.gpuMs, full.gpuMs) << "one configuration, rendered and timed once for both references";
   // The prop's effect is visible in both references (it casts a shadow and is seen).
   EXPECT_FALSE(direct.referenceEffectIsZero);
   EXPECT_FALSE(full.referenceEffectIsZero);
