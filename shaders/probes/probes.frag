@@ -15,11 +15,12 @@ layout(set = 1, binding = 2) uniform sampler2D gDepth;
 layout(std430, set = 1, binding = 3) readonly buffer ProbeSh { float probeSh[]; };      // probe × order² × RGB
 layout(std430, set = 1, binding = 4) readonly buffer ProbeMoments { vec2 probeMoments[]; };
 layout(std430, set = 1, binding = 5) readonly buffer ProbeValid { uint probeValid[]; };
+layout(set = 1, binding = 6) uniform sampler2D aoTerm;  // "ao.term" (1 = unoccluded) when bias.w = 1
 
 layout(push_constant) uniform Push {
   vec4 originSpacing;  // xyz: probe (0,0,0) position, w: spacing (m)
   ivec4 countOrder;    // xyz: probes per axis, w: SH order (2 or 3)
-  vec4 bias;           // x: normal bias (m), y: view bias (m), z: Chebyshev variance floor (m²)
+  vec4 bias;           // x: normal bias (m), y: view bias (m), z: Chebyshev variance floor (m²), w: 1 = multiply by aoTerm
 } pc;
 
 #define PROBE_DATA_PARAM
@@ -56,5 +57,6 @@ void main() {
     for (int i = 0; i < coeffs; ++i)
       L[i] += weight[k] * vec3(probeSh[base + 3 * i], probeSh[base + 3 * i + 1], probeSh[base + 3 * i + 2]);
   }
-  outRadiance = vec4(albedo * kInvPi * max(shIrradiance9(L, n), vec3(0.0)), 0.0);
+  float ao = pc.bias.w > 0.5 ? texelFetch(aoTerm, pixel, 0).r : 1.0;
+  outRadiance = vec4(albedo * kInvPi * ao * max(shIrradiance9(L, n), vec3(0.0)), 0.0);
 }

@@ -36,7 +36,8 @@ ProbeNode::ProbeNode(gpu::Context& ctx, const render::Pipelines& pipelines, Prob
                   {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                   {3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                   {4, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                  {5, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}},
+                  {5, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                  {6, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}},
                  "probes") {
   static_assert(sizeof(glm::vec3) == 12 && sizeof(glm::vec2) == 8, "std430 float[] / vec2[] layouts");
   layout_ = gpu::PipelineLayout(ctx, {pipelines.frameLayout.handle(), setLayout_.handle()},
@@ -54,9 +55,13 @@ ProbeNode::ProbeNode(gpu::Context& ctx, const render::Pipelines& pipelines, Prob
 
 void ProbeNode::addPasses(rg::RenderGraph& graph, const render::PassContext* pc) {
   struct Data {
-    rg::Handle<rg::Texture> albedo, normal, depth, hdr;
+    rg::Handle<rg::Texture> albedo, normal, depth, hdr, ao;
   };
   auto& bb = graph.blackboard();
+  // An AO node (ssao/hbao) set before this one publishes "ao.term": the indirect term is then
+  // multiplied by it, the way the DNRT paper's baselines use AO (§6.4). Without one, binding 6
+  // repeats the albedo and the shader ignores it.
+  const bool withAo = bb.contains("ao.term");
   const auto& data = graph.addPass<Data>(
       "probes",
       [&](rg::Builder& b, Data& d) {
@@ -64,8 +69,9 @@ void ProbeNode::addPasses(rg::RenderGraph& graph, const render::PassContext* pc)
         d.normal = b.read(bb.get<rg::Texture>("gbuffer.normal"), rg::Usage::SampledFragment);
         d.depth = b.read(bb.get<rg::Texture>("gbuffer.depth"), rg::Usage::SampledFragment);
         d.hdr = b.write(bb.get<rg::Texture>("lighting.hdr"), rg::Usage::ColorAttachment);
+        if (withAo) d.ao = b.read(bb.get<rg::Texture>("ao.term"), rg::Usage::SampledFragment);
       },
-      [this, pc](const Data& d, const rg::PassResources& res, rg::CommandContext& c) {
+      [this, pc, withAo](const Data& d, const rg::PassResources& res, rg::CommandContext& c) {
         VkCommandBuffer cmd = pc->cmd(c);
         VkSampler point = pc->samplers->get({VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST});
         auto view = [&](rg::Handle<rg::Texture> h) { return pc->backend->image(res.texture(h)).view(); };
@@ -77,6 +83,7 @@ void ProbeNode::addPasses(rg::RenderGraph& graph, const render::PassContext* pc)
             .buffer(3, sh_)
             .buffer(4, moments_)
             .buffer(5, valid_)
+            .sampledImage(6, view(withAo ? d.ao : d.albedo), point)
             .update(*pc->gpu, set);
         gpu::Image& target = pc->backend->image(res.texture(d.hdr));
         render::Attachment color{target.view(), true};  // additive: keep the direct light
@@ -88,7 +95,7 @@ void ProbeNode::addPasses(rg::RenderGraph& graph, const render::PassContext* pc)
         const ProbeGrid& g = volume_.grid;
         const Push push{glm::vec4(g.origin, g.spacing), glm::ivec4(g.count, volume_.order),
                         glm::vec4(g.spacing * volume_.bias.normal, g.spacing * volume_.bias.view,
-                                  volume_.minVariance(), 0.0f)};
+                                  volume_.minVariance(), withAo ? 1.0f : 0.0f)};
         pipeline_.push(cmd, push);
         vkCmdDraw(cmd, 3, 1, 0, 0);
         pc->gpu->cmdEndRendering(cmd);

@@ -1,0 +1,284 @@
+#include "game/accuracy.hpp"
+
+#include <sys/wait.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <limits>
+#include <map>
+
+#include "engine/core/error.hpp"
+#include "engine/core/file.hpp"
+#include "engine/core/progress.hpp"
+#include "engine/gpu/presenter_offscreen.hpp"
+#include "engine/ref/image_heatmap.hpp"
+#include "engine/ref/metrics.hpp"
+#include "engine/ref/reference.hpp"
+#include "game/accuracy_level.hpp"
+#include "game/session.hpp"
+#include "game/timing_stats.hpp"
+
+namespace bounce::game {
+namespace {
+
+// Heat-map panels are exposed so that the reference's mean lands on middle grey (0.18,
+// Reinhard et al. 2002, "Photographic tone reproduction"): the Cornell levels' radiances are
+// ~0.05, which plain exposure 1 draws nearly black.
+constexpr double kPanelMiddleGrey = 0.18;
+
+std::string joinList(const std::vector<std::string>& items) {
+  std::string s;
+  for (const auto& e : items) s += (s.empty() ? "" : ",") + e;
+  return s;
+}
+
+// "spacing=0.25m;ref=all" → "spacing-0.25m-ref-all": a file-name-safe form of a setting.
+std::string slug(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    const bool keep = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '.' || c == '_';
+    out += keep ? c : '-';
+  }
+  return out;
+}
+
+// A path quoted for /bin/sh: inside single quotes only the quote itself needs escaping.
+std::string shellQuote(const std::string& s) {
+  std::string out = "'";
+  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+// A CSV field: quoted (RFC 4180) only when it holds a comma, quote or line break.
+std::string csvField(const std::string& s) {
+  if (s.find_first_of(",\"\n") == std::string::npos) return s;
+  std::string out = "\"";
+  for (char c : s) out += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return out + "\"";
+}
+
+// Rows with the same technique, effects and setting apart from "ref=…" render the same image.
+std::string renderKey(const AccuracyRow& row) {
+  std::string setting;
+  std::size_t start = 0;
+  while (start <= row.setting.size()) {
+    std::size_t end = row.setting.find(';', start);
+    if (end == std::string::npos) end = row.setting.size();
+    const std::string item = row.setting.substr(start, end - start);
+    if (item.rfind("ref=", 0) != 0) setting += item + ";";
+    start = end + 1;
+  }
+  return row.technique + "|" + joinList(row.effects) + "|" + setting;
+}
+
+// The rasteriser's image of one configuration. With `timings` it also times the row's passes,
+// and returns no image when the renderer lacks one of them (rowAvailable).
+struct TechniqueRender {
+  ImageRGB image;
+  std::vector<std::string> executedPasses;
+};
+
+TechniqueRender renderTechnique(gpu::Context& ctx, gpu::OffscreenPresenter& presenter, scene::Level level,
+                                double time, const AccuracyRow& row, std::uint32_t measuredFrames,
+                                TimingCollector* timings) {
+  Session session(ctx, std::move(level));
+  session.update(time);
+  render::FrameSettings settings;
+  settings.keepHdr = true;
+  session.render(presenter, settings);
+  TechniqueRender out;
+  out.executedPasses = session.renderer().executedPasses();
+  if (timings && !rowAvailable(row, out.executedPasses)) {
+    // Session does not wait for its frames when destroyed, and its GPU scene goes first.
+    session.renderer().frames().waitIdle();
+    return out;  // the caller skips the row
+  }
+  if (timings) {
+    // The pose is fixed at `time`: every measured frame renders the same image.
+    for (std::uint32_t f = 1; f < kAccuracyWarmupFrames + measuredFrames; ++f) {
+      session.render(presenter, settings);
+      timings->collect(session.renderer().frames(), kAccuracyWarmupFrames);
+    }
+  }
+  const VkExtent2D extent = presenter.extent();
+  gpu::FloatImage hdr{extent.width, extent.height, session.renderer().readHdr()};
+  if (timings) timings->collect(session.renderer().frames(), kAccuracyWarmupFrames);
+  out.image = toImageRgb(hdr);
+  return out;
+}
+
+}  // namespace
+
+ImageRGB toImageRgb(const gpu::FloatImage& image) {
+  if (image.rgb.size() != std::size_t(image.width) * image.height * 3)
+    throw InternalError("accuracy: float image of " + std::to_string(image.width) + "x" + std::to_string(image.height) +
+                        " holds " + std::to_string(image.rgb.size()) + " values");
+  ImageRGB out(int(image.width), int(image.height));
+  for (std::size_t i = 0; i < out.pixels.size(); ++i)
+    out.pixels[i] = glm::vec3(image.rgb[3 * i], image.rgb[3 * i + 1], image.rgb[3 * i + 2]);
+  return out;
+}
+
+std::string formatAccuracyCsv(const std::vector<AccuracyResult>& results) {
+  std::string out = std::string(kAccuracyCsvHeader) + "\n";
+  char numbers[128];
+  for (const auto& r : results) {
+    // %.6g keeps small errors readable; NaN prints as "nan", which the plot script skips.
+    std::snprintf(numbers, sizeof numbers, "%.6g,%.6g,%.6g", r.gpuMs, r.relRmse, r.effectRelRmse);
+    out += csvField(r.row.technique) + "," + csvField(r.row.setting) + "," + numbers + "\n";
+  }
+  return out;
+}
+
+std::string formatAccuracyTable(const std::vector<AccuracyResult>& results) {
+  std::string out;
+  char line[256];
+  std::snprintf(line, sizeof line, "%-10s %-34s %9s %9s %16s\n", "technique", "setting", "gpu ms", "rel rmse",
+                "effect rel rmse");
+  out += line;
+  for (const auto& r : results) {
+    std::snprintf(line, sizeof line, "%-10s %-34s %9.4f %9.4f %16.4f\n", r.row.technique.c_str(), r.row.setting.c_str(),
+                  r.gpuMs, r.relRmse, r.effectRelRmse);
+    out += line;
+  }
+  return out;
+}
+
+bool plotAccuracy(const std::filesystem::path& csv, const std::filesystem::path& png, std::string& why) {
+  const std::filesystem::path script = std::filesystem::path(BOUNCE_SOURCE_DIR) / "tools" / "plot_accuracy.py";
+  const std::string cmd =
+      "/usr/bin/python3 " + shellQuote(script.string()) + " " + shellQuote(csv.string()) + " " + shellQuote(png.string());
+  const int status = std::system(cmd.c_str());
+  if (status == -1 || !WIFEXITED(status)) {
+    why = "could not run /usr/bin/python3";
+    return false;
+  }
+  // The script's exit codes: 0 drawn, 3 matplotlib missing; /bin/sh gives 127 for no python3.
+  switch (WEXITSTATUS(status)) {
+    case 0: return true;
+    case 3: why = "/usr/bin/python3 has no matplotlib (Debian: python3-matplotlib)"; return false;
+    case 127: why = "/usr/bin/python3 not found"; return false;
+    default: why = script.string() + " failed with exit code " + std::to_string(WEXITSTATUS(status)); return false;
+  }
+}
+
+AccuracyReport runAccuracy(const AccuracyOptions& options) {
+  // 1. Inputs, validated before any work: the level, its rows, the level without dynamic objects.
+  const scene::Level level = scene::loadLevel(options.level);
+  const std::vector<AccuracyRow> rows = options.rows ? *options.rows : accuracyRows();
+  for (const auto& row : rows) {
+    scene::Level check = level;
+    scene::overrideEffects(check, joinList(row.effects));  // unknown effect names are InputError
+  }
+  const scene::Level staticLevel = withoutDynamicEntities(level);
+  std::filesystem::create_directories(options.out);
+  const std::filesystem::path staticPath = options.out / (options.level.stem().string() + "-static.json");
+  writeFileAtomic(staticPath, withoutDynamicEntitiesJson(level));
+  const double time = double(options.frame) * ref::kLevelFrameDt;
+
+  // 2. References, with and without the dynamic objects, for every reference kind a row uses.
+  std::map<std::pair<bool, std::uint32_t>, ImageRGB> references;
+  auto reference = [&](bool withDynamic, std::optional<std::uint32_t> bounces) -> const ImageRGB& {
+    const std::uint32_t b = bounces.value_or(ref::kUnlimitedBounces);
+    auto& slot = references[{withDynamic, b}];
+    if (slot.empty()) {
+      ref::ReferenceRequest r;
+      r.input = withDynamic ? options.level : staticPath;
+      r.frame = options.frame;
+      r.spp = b == 0 ? 1u : options.spp;  // bounces 0 is exact with one sample (header comment)
+      r.bounces = bounces;
+      r.resolution = std::pair{options.width, options.height};
+      r.cacheDir = options.referenceCache;
+      r.cookCache = options.cookCache;
+      r.progress = options.progress;
+      slot = toImageRgb(ref::renderReference(r).image);
+    }
+    return slot;
+  };
+
+  // 3. Each row: render with and without, time, compare, draw its heat map.
+  AccuracyReport report;
+  gpu::Context ctx({options.device});
+  gpu::OffscreenPresenter presenter(ctx, {options.width, options.height});
+  Progress progress("accuracy " + options.level.filename().string(), rows.size());
+  // Rows that differ only in the reference they are compared with share one render and one
+  // timing (the same configuration timed twice would show two numbers for one cost).
+  struct Rendered {
+    ImageRGB with, without;
+    double gpuMs = 0.0;
+    std::vector<std::string> executedPasses;
+    bool available = false;
+  };
+  std::map<std::string, Rendered> rendered;
+  for (const auto& row : rows) {
+    const std::string key = renderKey(row);
+    if (!rendered.count(key)) {
+      scene::Level with = level, without = staticLevel;
+      for (scene::Level* l : {&with, &without}) {
+        scene::overrideEffects(*l, joinList(row.effects));
+        if (row.configure) row.configure(*l);
+      }
+      TimingCollector timings;
+      TechniqueRender techWith = renderTechnique(ctx, presenter, with, time, row, options.measuredFrames, &timings);
+      Rendered& r = rendered[key];
+      r.executedPasses = techWith.executedPasses;
+      r.available = rowAvailable(row, techWith.executedPasses);
+      if (r.available) {
+        r.with = std::move(techWith.image);
+        r.without = renderTechnique(ctx, presenter, without, time, row, options.measuredFrames, nullptr).image;
+        for (const auto& s : timings.stats())
+          for (const auto& p : row.passes)
+            if (s.pass == p) r.gpuMs += s.medianMs;
+      }
+    }
+    const Rendered& tech = rendered.at(key);
+    if (!tech.available) {
+      report.notes.push_back("skipped " + row.technique + " " + row.setting + ": the renderer ran " +
+                             joinList(tech.executedPasses) + " but the row needs " + joinList(row.passes));
+      progress.advance();
+      continue;
+    }
+    const ImageRGB& techWith = tech.with;
+    const ImageRGB& techWithout = tech.without;
+
+    AccuracyResult result;
+    result.row = row;
+    result.gpuMs = tech.gpuMs;
+    const ImageRGB& refWith = reference(true, row.referenceBounces);
+    const ImageRGB& refWithout = reference(false, row.referenceBounces);
+    result.relRmse = ref::relativeRmse(techWith, refWith);
+    const ref::ObjectEffectError effect = ref::objectEffectError(techWith, techWithout, refWith, refWithout);
+    result.referenceEffectIsZero = effect.referenceEffectIsZero;
+    result.effectRelRmse = effect.referenceEffectIsZero ? std::numeric_limits<double>::quiet_NaN() : effect.relativeError;
+    if (effect.referenceEffectIsZero)
+      report.notes.push_back(row.technique + " " + row.setting +
+                             ": the reference shows no effect of dynamic objects; effect_rel_rmse is nan");
+
+    ref::ComparisonOptions panel;
+    const double mean = meanValue(refWith);
+    if (mean > 0.0) panel.exposure = float(kPanelMiddleGrey / mean);
+    const std::string name = slug(row.technique) + "-" + slug(row.setting);
+    result.heatMap = options.out / ("heatmap-" + name + ".png");
+    writePfm(options.out / ("image-" + name + ".pfm"), techWith);
+    writePng(result.heatMap, ref::comparisonImage(refWith, techWith, panel).image);
+    report.rows.push_back(std::move(result));
+    progress.advance();
+  }
+  progress.finish();
+
+  // 4. The CSV and the chart.
+  report.csv = options.out / "accuracy.csv";
+  writeFileAtomic(report.csv, formatAccuracyCsv(report.rows));
+  if (options.chart) {
+    std::string why;
+    const std::filesystem::path png = options.out / "accuracy.png";
+    if (plotAccuracy(report.csv, png, why))
+      report.chart = png;
+    else
+      report.notes.push_back("no chart: " + why);
+  }
+  return report;
+}
+
+}  // namespace bounce::game

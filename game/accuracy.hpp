@@ -1,0 +1,83 @@
+#pragma once
+// `bounce accuracy LEVEL`: every available technique configuration (accuracy_rows.hpp) rendered
+// by the rasteriser and compared with the path-traced reference (engine/ref) of the same frame.
+//
+// Per row (one line of accuracy.csv, header exactly `technique,setting,gpu_ms,rel_rmse,effect_rel_rmse`):
+//   gpu_ms          median over `measuredFrames` frames (after kWarmupFrames) of the summed GPU
+//                   time of the row's lighting passes (AccuracyRow::passes), in milliseconds;
+//   rel_rmse        ref::relativeRmse(technique, reference) over the whole image;
+//   effect_rel_rmse ref::objectEffectError(techWith, techWithout, refWith, refWithout).relativeError,
+//                   "without" = the level minus its dynamic entities (accuracy_level.hpp); "nan"
+//                   when the reference effect is zero (no dynamic objects, or none visible).
+// Rows whose settings differ only in "ref=…" share one render and one timing. The reference is the row's: bounces 0 ("ref=direct") or unlimited ("ref=all"). References are
+// cached by renderReference; the bounces-0 one is traced with 1 spp, which is exact (camera rays
+// go through pixel centres and next-event estimation to punctual lights draws no random numbers).
+//
+// Files in `out`: accuracy.csv, accuracy.png (tools/plot_accuracy.py, when /usr/bin/python3 has
+// matplotlib), heatmap-<technique>-<setting>.png per row ("reference | technique | error",
+// engine/ref/image_heatmap.hpp) with the technique's linear image image-<technique>-<setting>.pfm,
+// and <level>-static.json (the level without dynamic entities,
+// which the reference tracer reads).
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "engine/core/image.hpp"
+#include "engine/gpu/image_io.hpp"
+#include "game/accuracy_rows.hpp"
+
+namespace bounce::game {
+
+// First frames of each measured session, not timed: they compile pipelines (DESIGN.md).
+inline constexpr std::uint32_t kAccuracyWarmupFrames = 5;
+
+struct AccuracyOptions {
+  std::filesystem::path level;
+  std::filesystem::path out;
+  std::uint32_t spp = 64;  // reference samples per pixel (the full reference; bounces 0 uses 1)
+  std::uint32_t width = 256, height = 256;
+  std::uint32_t frame = 0;  // simulation time frame · ref::kLevelFrameDt
+  std::string device;       // Vulkan device name substring (empty: default)
+  std::uint32_t measuredFrames = 20;
+  std::filesystem::path referenceCache;  // renderReference's cache folder
+  std::filesystem::path cookCache;
+  bool progress = true;  // progress bars (they are quiet in CI and off a terminal anyway)
+  bool chart = true;     // run tools/plot_accuracy.py
+  std::optional<std::vector<AccuracyRow>> rows;  // empty: accuracyRows()
+};
+
+struct AccuracyResult {
+  AccuracyRow row;
+  double gpuMs = 0.0;
+  double relRmse = 0.0;
+  double effectRelRmse = 0.0;       // NaN when referenceEffectIsZero
+  bool referenceEffectIsZero = false;
+  std::filesystem::path heatMap;
+};
+
+struct AccuracyReport {
+  std::vector<AccuracyResult> rows;  // in accuracyRows() order, skipped rows left out
+  std::vector<std::string> notes;    // one line per skipped row or missing output
+  std::filesystem::path csv;
+  std::optional<std::filesystem::path> chart;  // empty when no chart was drawn (see notes)
+};
+
+// Runs every row. Bad input (level, options) throws InputError before anything is rendered.
+AccuracyReport runAccuracy(const AccuracyOptions& options);
+
+// The CSV text: the exact header, then one line per result.
+inline constexpr const char* kAccuracyCsvHeader = "technique,setting,gpu_ms,rel_rmse,effect_rel_rmse";
+std::string formatAccuracyCsv(const std::vector<AccuracyResult>& results);
+// A fixed-width table of the same numbers for the terminal.
+std::string formatAccuracyTable(const std::vector<AccuracyResult>& results);
+
+// Linear float image conversions between the GPU readback / tracer format and the metrics one.
+ImageRGB toImageRgb(const gpu::FloatImage& image);
+
+// Draws the chart from a CSV with tools/plot_accuracy.py under /usr/bin/python3. Returns false
+// and fills `why` when it cannot (no python3, no matplotlib, script failure).
+bool plotAccuracy(const std::filesystem::path& csv, const std::filesystem::path& png, std::string& why);
+
+}  // namespace bounce::game

@@ -1,0 +1,94 @@
+#include "game/accuracy_rows.hpp"
+
+#include <algorithm>
+#include <cstdio>
+
+namespace bounce::game {
+namespace {
+
+// Direct light with shadow maps. Its own passes are the shadow atlas and the lighting pass (the
+// G-buffer is shared by every technique, the tonemap is display). Compared with both references:
+// bounces 0 is what it simulates (the two agree up to shadow-map edges: tests/unit/ref
+// raster_match_test), the full one shows what leaving out indirect light costs.
+void addDirect(std::vector<AccuracyRow>& rows) {
+  for (const bool full : {false, true}) {
+    AccuracyRow r;
+    r.technique = "direct";
+    r.setting = full ? "ref=all" : "ref=direct";
+    r.effects = {"direct", "shadows"};
+    if (!full) r.referenceBounces = 0;
+    r.passes = {"shadow", "lighting"};
+    rows.push_back(std::move(r));
+  }
+}
+
+// The baked irradiance volume (engine/gi/probes, issue 3 §3): two probe spacings × two SH orders,
+// on top of direct light, against the full reference. Spacing and order reach the bake through
+// the level's "probes" settings (`configure`).
+void addProbes(std::vector<AccuracyRow>& rows) {
+  for (const double spacing : {0.25, 0.125})  // metres; the Cornell box is 0.55 m wide
+    for (const int order : {2, 3}) {          // SH order as bands: 2 = L1 (4 coefficients), 3 = L2 (9)
+      AccuracyRow r;
+      r.technique = "probes";
+      char setting[96];
+      std::snprintf(setting, sizeof setting, "spacing=%gm;sh_order=%d;ref=all", spacing, order);
+      r.setting = setting;
+      r.effects = {"direct", "shadows", "probes"};
+      r.passes = {"shadow", "lighting", "probes"};
+      r.configure = [spacing, order](scene::Level& level) {
+        level.probes.spacing = float(spacing);
+        level.probes.order = order;
+      };
+      rows.push_back(std::move(r));
+    }
+}
+
+// The DNRT paper's baselines (§6.4): screen-space AO darkening the probes' indirect light around
+// every object, dynamic ones included. Same probes as the DNRT rows (level defaults).
+void addAo(std::vector<AccuracyRow>& rows) {
+  for (const char* kind : {"ssao", "hbao"}) {
+    AccuracyRow r;
+    r.technique = kind;
+    r.setting = "radius=0.1m;ref=all";
+    r.effects = {"direct", "shadows", "probes", kind};
+    r.passes = {"shadow", "lighting", kind, "probes"};
+    rows.push_back(std::move(r));
+  }
+}
+
+// DNRT (engine/gi/dnrt, issue 4) on top of probes: what the dynamic objects add and take away,
+// with 4 and 9 SH coefficients in every object's field. Its effect_rel_rmse is the number that
+// matters (the static part is the probes').
+void addDnrt(std::vector<AccuracyRow>& rows) {
+  for (const int shCount : {4, 9}) {
+    AccuracyRow r;
+    r.technique = "dnrt";
+    r.setting = "sh=" + std::to_string(shCount) + ";ref=all";
+    r.effects = {"direct", "shadows", "probes", "dnrt"};
+    r.passes = {"shadow", "lighting", "probes", "dnrt"};
+    r.configure = [shCount](scene::Level& level) {
+      for (auto& e : level.entities)
+        if (e.dnrt) e.dnrt->shCount = shCount;
+    };
+    rows.push_back(std::move(r));
+  }
+}
+
+}  // namespace
+
+std::vector<AccuracyRow> accuracyRows() {
+  std::vector<AccuracyRow> rows;
+  addDirect(rows);
+  addProbes(rows);
+  addAo(rows);
+  addDnrt(rows);
+  return rows;
+}
+
+bool rowAvailable(const AccuracyRow& row, const std::vector<std::string>& executedPasses) {
+  return std::all_of(row.passes.begin(), row.passes.end(), [&](const std::string& p) {
+    return std::find(executedPasses.begin(), executedPasses.end(), p) != executedPasses.end();
+  });
+}
+
+}  // namespace bounce::game

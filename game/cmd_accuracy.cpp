@@ -1,0 +1,43 @@
+// bounce accuracy LEVEL: every available technique configuration against the path-traced
+// reference; accuracy.csv, an error-vs-GPU-ms chart and per-row heat maps (game/accuracy.hpp).
+#include <charconv>
+#include <cstdio>
+
+#include "engine/core/error.hpp"
+#include "game/accuracy.hpp"
+#include "game/commands.hpp"
+#include "game/session.hpp"
+
+namespace bounce::game {
+
+int runAccuracy(const cli::Args& args) {
+  AccuracyOptions o;
+  o.level = args.positional[0];
+  o.out = args.str("--out", "accuracy");
+  o.spp = std::uint32_t(args.positiveInt("--spp", int(o.spp)));
+  o.measuredFrames = std::uint32_t(args.positiveInt("--frames", int(o.measuredFrames)));
+  if (auto res = args.resolution("--resolution")) {
+    o.width = std::uint32_t(res->first);
+    o.height = std::uint32_t(res->second);
+  }
+  if (args.has("--frame")) {  // 0 is a valid frame, which Args::positiveInt rejects
+    const std::string v = args.str("--frame");
+    const auto [end, ec] = std::from_chars(v.data(), v.data() + v.size(), o.frame);
+    if (v.empty() || ec != std::errc() || end != v.data() + v.size())
+      throwInputError("bounce accuracy", "--frame", "'" + v + "' is not a valid frame", "a non-negative integer");
+  }
+  o.device = args.str("--device");
+  o.referenceCache = std::filesystem::path(BOUNCE_BINARY_DIR) / "reference";
+  o.cookCache = cookCacheDir();
+
+  const AccuracyReport report = game::runAccuracy(o);
+  std::printf("accuracy %s frame %u: %ux%u, reference %u spp\n", o.level.filename().c_str(), o.frame, o.width, o.height,
+              o.spp);
+  std::printf("%s", formatAccuracyTable(report.rows).c_str());
+  for (const auto& note : report.notes) std::printf("note: %s\n", note.c_str());
+  std::printf("wrote %s\n", report.csv.c_str());
+  if (report.chart) std::printf("wrote %s\n", report.chart->c_str());
+  return 0;
+}
+
+}  // namespace bounce::game

@@ -1,0 +1,89 @@
+// accuracy.csv's exact shape, the row table's invariants, and the effect metric's zero.
+#include <gtest/gtest.h>
+
+#include <set>
+#include <sstream>
+
+#include "engine/ref/metrics.hpp"
+#include "game/accuracy.hpp"
+
+namespace bounce::game {
+namespace {
+
+std::vector<std::string> lines(const std::string& text) {
+  std::vector<std::string> out;
+  std::istringstream in(text);
+  for (std::string l; std::getline(in, l);) out.push_back(l);
+  return out;
+}
+
+TEST(AccuracyCsv, ExactHeaderThenOneLinePerResult) {
+  std::vector<AccuracyResult> results(2);
+  results[0].row.technique = "direct";
+  results[0].row.setting = "ref=direct";
+  results[0].gpuMs = 0.25;
+  results[0].relRmse = 0.03125;
+  results[0].effectRelRmse = 0.5;
+  results[1].row.technique = "probes";
+  results[1].row.setting = "a,b";  // a comma must be quoted, not split into a sixth column
+  results[1].effectRelRmse = std::numeric_limits<double>::quiet_NaN();
+  const auto l = lines(formatAccuracyCsv(results));
+  ASSERT_EQ(l.size(), 3u);
+  EXPECT_EQ(l[0], "technique,setting,gpu_ms,rel_rmse,effect_rel_rmse");
+  EXPECT_EQ(l[1], "direct,ref=direct,0.25,0.03125,0.5");
+  EXPECT_EQ(l[2], "probes,\"a,b\",0,0,nan");
+  EXPECT_EQ(lines(formatAccuracyCsv({})), std::vector<std::string>{kAccuracyCsvHeader});
+}
+
+TEST(AccuracyRows, EffectNamesValidSettingsUniqueAndCommaFree) {
+  const auto rows = accuracyRows();
+  std::set<std::pair<std::string, std::string>> seen;
+  std::size_t direct = 0, probes = 0, ao = 0, dnrt = 0;
+  for (const auto& r : rows) {
+    EXPECT_TRUE(scene::effectFromName(r.technique).has_value()) << r.technique;
+    EXPECT_EQ(r.setting.find(','), std::string::npos) << r.setting;
+    EXPECT_TRUE(seen.insert({r.technique, r.setting}).second) << "duplicate row " << r.technique << " " << r.setting;
+    EXPECT_NE(std::find(r.effects.begin(), r.effects.end(), r.technique), r.effects.end())
+        << r.technique << " must be among its own effects";
+    EXPECT_FALSE(r.passes.empty()) << r.technique;
+    // The setting names the reference the row is compared with.
+    const bool full = !r.referenceBounces;
+    EXPECT_NE(r.setting.find(full ? "ref=all" : "ref=direct"), std::string::npos) << r.setting;
+    direct += r.technique == "direct";
+    probes += r.technique == "probes";
+    ao += r.technique == "ssao" || r.technique == "hbao";
+    dnrt += r.technique == "dnrt";
+  }
+  EXPECT_EQ(direct, 2u);  // against the bounces-0 and the full reference
+  EXPECT_EQ(probes, 4u);  // two spacings × two SH orders
+  EXPECT_EQ(ao, 2u);      // SSAO and HBAO over probes (the DNRT paper's baselines)
+  EXPECT_EQ(dnrt, 2u);    // 4 and 9 SH coefficients per field
+}
+
+TEST(AccuracyRows, AvailableOnlyWhenTheRendererRanEveryPass) {
+  AccuracyRow row;
+  row.passes = {"shadow", "lighting", "probes"};
+  EXPECT_FALSE(rowAvailable(row, {"shadow", "gbuffer", "lighting", "tonemap"}));
+  EXPECT_TRUE(rowAvailable(row, {"shadow", "gbuffer", "probes", "lighting", "tonemap"}));
+}
+
+TEST(EffectMetric, TechniqueEqualToTheReferenceScoresZero) {
+  gpu::FloatImage with{4, 3, std::vector<float>(36)}, without{4, 3, std::vector<float>(36)};
+  for (std::size_t i = 0; i < 36; ++i) {
+    with.rgb[i] = 0.1f + 0.01f * float(i);
+    without.rgb[i] = i % 5 == 0 ? 0.05f : with.rgb[i];  // the object changes every 5th value
+  }
+  const ImageRGB w = toImageRgb(with), wo = toImageRgb(without);
+  ASSERT_EQ(w.width, 4);
+  ASSERT_EQ(w.height, 3);
+  EXPECT_EQ(w.at(1, 2), glm::vec3(with.rgb[27], with.rgb[28], with.rgb[29]));  // row-major, top row first
+  const ref::ObjectEffectError e = ref::objectEffectError(w, wo, w, wo);
+  EXPECT_FALSE(e.referenceEffectIsZero);
+  EXPECT_EQ(e.relativeError, 0.0);
+  EXPECT_EQ(e.effectRmse, 0.0);
+  // …and leaving the effect out entirely scores 1 (the metric's scale, metrics.hpp).
+  EXPECT_DOUBLE_EQ(ref::objectEffectError(wo, wo, w, wo).relativeError, 1.0);
+}
+
+}  // namespace
+}  // namespace bounce::game

@@ -1,0 +1,126 @@
+// `bounce accuracy` end to end on the Cornell level at a small size: the CSV rows, the direct
+// technique against both references, heat maps and the chart.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+#include "engine/core/image.hpp"
+#include "engine/gpu/testing.hpp"
+#include "game/accuracy.hpp"
+
+namespace bounce::game {
+namespace {
+
+constexpr std::uint32_t kSize = 48;
+constexpr std::uint32_t kSpp = 16;  // the full reference's noise stays well below the indirect light it shows
+// Direct light vs the bounces-0 reference: they agree everywhere but shadow-map edges and
+// contact corners (raster_match_test: 0.4 % of a 64×64 view beyond 2 %). Measured here on
+// lavapipe: 0.011. The prop hangs 8 cm under the lamp, so its lit top is far brighter than the
+// mean: one silhouette pixel of it that the two rasterise differently adds up to ~0.08 (seen at
+// 128×128), and the bound allows for that on another driver.
+constexpr double kMaxDirectVsDirectRef = 0.15;
+// The same for the prop's effect alone (its own pixels and its shadow). Measured here: 0.005;
+// the same silhouette pixel gives ~0.07 at 128×128.
+constexpr double kMaxDirectEffectVsDirectRef = 0.15;
+// The closed Cornell box gets a large share of its light by bouncing; direct light alone
+// misses it. Measured here: 0.89 (part of it the reference's 16-spp noise); the bound is far
+// above anything shadow-map differences could explain.
+constexpr double kMinDirectVsFullRef = 0.3;
+// Probes at 0.125 m (4×4×4 in the 0.55 m box) restore most of the bounced light: measured here
+// 0.42 against direct's 0.89 (both mostly the 16-spp reference's noise and the probes' low
+// frequency). The bound asks for a clear improvement, not the measured value.
+constexpr double kMaxProbesVsDirectRatio = 0.75;
+
+class AccuracyRun : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    AccuracyOptions o;
+    o.level = std::filesystem::path(BOUNCE_SOURCE_DIR) / "content/levels/cornell-1.json";
+    o.out = std::filesystem::path(BOUNCE_TEST_OUT) / "accuracy" / "run";
+    o.spp = kSpp;
+    o.width = o.height = kSize;
+    o.measuredFrames = 2;
+    o.referenceCache = std::filesystem::path(BOUNCE_TEST_OUT) / "accuracy" / "reference";
+    o.cookCache = std::filesystem::path(BOUNCE_TEST_OUT) / "accuracy" / "cooked";
+    o.progress = false;
+    report_ = new AccuracyReport(runAccuracy(o));
+  }
+  static void TearDownTestSuite() {
+    delete report_;
+    report_ = nullptr;
+  }
+  static const AccuracyResult& row(const std::string& technique, const std::string& setting) {
+    for (const auto& r : report_->rows)
+      if (r.row.technique == technique && r.row.setting == setting) return r;
+    throw std::runtime_error("no row " + technique + " " + setting);
+  }
+  static AccuracyReport* report_;
+};
+AccuracyReport* AccuracyRun::report_ = nullptr;
+
+TEST_F(AccuracyRun, CsvHasTheExactHeaderAndOneLinePerConfigurationRun) {
+  std::ifstream in(report_->csv);
+  std::vector<std::string> lines;
+  for (std::string l; std::getline(in, l);) lines.push_back(l);
+  ASSERT_FALSE(lines.empty());
+  EXPECT_EQ(lines[0], "technique,setting,gpu_ms,rel_rmse,effect_rel_rmse");
+  EXPECT_EQ(lines.size(), 1 + report_->rows.size());
+  // Every configuration either ran or was skipped with a note; both direct rows run today.
+  std::size_t skipped = 0;
+  for (const auto& n : report_->notes) skipped += n.rfind("skipped ", 0) == 0;
+  EXPECT_EQ(report_->rows.size() + skipped, accuracyRows().size());
+  EXPECT_NO_THROW(row("direct", "ref=direct"));
+  EXPECT_NO_THROW(row("direct", "ref=all"));
+  for (const auto& r : report_->rows) {
+    EXPECT_GT(r.gpuMs, 0.0) << r.row.setting << ": the shadow and lighting passes were timed";
+    const ImageSrgb8 heat = readPng(r.heatMap);
+    EXPECT_GE(heat.width, int(3 * kSize)) << "reference | technique | heat map";
+  }
+}
+
+TEST_F(AccuracyRun, DirectAgreesWithTheDirectReferenceAndMissesIndirectLight) {
+  const AccuracyResult& direct = row("direct", "ref=direct");
+  const AccuracyResult& full = row("direct", "ref=all");
+  std::printf("direct: rel_rmse %.4f vs bounces 0, %.4f vs full; effect %.4f / %.4f\n", direct.relRmse, full.relRmse,
+              direct.effectRelRmse, full.effectRelRmse);
+  EXPECT_LT(direct.relRmse, kMaxDirectVsDirectRef);
+  EXPECT_LT(direct.effectRelRmse, kMaxDirectEffectVsDirectRef);
+  EXPECT_GT(full.relRmse, kMinDirectVsFullRef);
+  EXPECT_GT(full.relRmse, direct.relRmse);
+  EXPECT_EQ(direct.gpuMs, full.gpuMs) << "one configuration, rendered and timed once for both references";
+  // The prop's effect is visible in both references (it casts a shadow and is seen).
+  EXPECT_FALSE(direct.referenceEffectIsZero);
+  EXPECT_FALSE(full.referenceEffectIsZero);
+}
+
+// Every row of every technique whose node exists runs (none skipped), and indirect light from the
+// probes is closer to the full reference than direct light alone.
+TEST_F(AccuracyRun, EveryTechniqueRunsAndProbesAddTheMissingBounce) {
+  EXPECT_EQ(report_->rows.size(), accuracyRows().size());
+  const double direct = row("direct", "ref=all").relRmse;
+  const double probes = row("probes", "spacing=0.125m;sh_order=3;ref=all").relRmse;
+  EXPECT_LT(probes, kMaxProbesVsDirectRatio * direct);
+  for (const auto& r : report_->rows) {
+    EXPECT_TRUE(std::isfinite(r.relRmse) && std::isfinite(r.effectRelRmse)) << r.row.technique << " " << r.row.setting;
+    EXPECT_GT(r.gpuMs, 0.0) << r.row.technique << " " << r.row.setting;
+  }
+}
+
+TEST_F(AccuracyRun, ChartIsAValidPng) {
+  if (std::system("/usr/bin/python3 -c 'import matplotlib' >/dev/null 2>&1") != 0)
+    GTEST_SKIP() << "/usr/bin/python3 has no matplotlib (Debian python3-matplotlib)";
+  ASSERT_TRUE(report_->chart.has_value());
+  std::ifstream in(*report_->chart, std::ios::binary);
+  char signature[8] = {};
+  in.read(signature, 8);
+  EXPECT_EQ(std::string(signature, 8), std::string("\x89PNG\r\n\x1a\n", 8));
+  const ImageSrgb8 chart = readPng(*report_->chart);
+  EXPECT_GT(chart.width, 100);
+  EXPECT_GT(chart.height, 100);
+}
+
+}  // namespace
+}  // namespace bounce::game
