@@ -57,21 +57,32 @@ void addAo(std::vector<AccuracyRow>& rows) {
 }
 
 // DNRT (engine/gi/dnrt, issue 4) on top of probes: what the dynamic objects add and take away,
-// with 4 and 9 SH coefficients in every object's field. Its effect_rel_rmse is the number that
-// matters (the static part is the probes').
+// for every field setting the paper's tables vary: SH count (Table 7), grid resolution, intrusion
+// (Table 6) and the anti-radiance of Eq. 12 vs App. B.2. Applied to every `dnrt` entity. Its
+// effect_rel_rmse is the number that matters (the static part is the probes').
 void addDnrt(std::vector<AccuracyRow>& rows) {
-  for (const int shCount : {4, 9}) {
-    AccuracyRow r;
-    r.technique = "dnrt";
-    r.setting = "sh=" + std::to_string(shCount) + ";ref=all";
-    r.effects = {"direct", "shadows", "probes", "dnrt"};
-    r.passes = {"shadow", "lighting", "probes", "dnrt"};
-    r.configure = [shCount](scene::Level& level) {
-      for (auto& e : level.entities)
-        if (e.dnrt) e.dnrt->shCount = shCount;
-    };
-    rows.push_back(std::move(r));
-  }
+  for (const int shCount : {4, 9})
+    for (const int grid : {16, 32, 64})
+      for (const bool intrusion : {false, true})
+        for (const bool improved : {false, true}) {
+          AccuracyRow r;
+          r.technique = "dnrt";
+          r.setting = "sh=" + std::to_string(shCount) + ";grid=" + std::to_string(grid) +
+                      ";intrusion=" + (intrusion ? "on" : "off") + ";anti_radiance=" + (improved ? "improved" : "paper") +
+                      ";ref=all";
+          r.effects = {"direct", "shadows", "probes", "dnrt"};
+          r.passes = {"shadow", "lighting", "probes", "dnrt"};
+          r.configure = [=](scene::Level& level) {
+            for (auto& e : level.entities)
+              if (e.dnrt) {
+                e.dnrt->shCount = shCount;
+                e.dnrt->grid = grid;
+                e.dnrt->intrusion = intrusion;
+                e.dnrt->improvedAntiRadiance = improved;
+              }
+          };
+          rows.push_back(std::move(r));
+        }
 }
 
 }  // namespace
@@ -82,6 +93,15 @@ std::vector<AccuracyRow> accuracyRows() {
   addProbes(rows);
   addAo(rows);
   addDnrt(rows);
+  return rows;
+}
+
+std::vector<AccuracyRow> accuracyRows(const std::vector<std::string>& techniques) {
+  std::vector<AccuracyRow> rows = accuracyRows();
+  if (techniques.empty()) return rows;
+  std::erase_if(rows, [&](const AccuracyRow& r) {
+    return std::find(techniques.begin(), techniques.end(), r.technique) == techniques.end();
+  });
   return rows;
 }
 

@@ -31,6 +31,8 @@ struct AccuracyRow {
 
 // Every configuration of every technique, in CSV order.
 std::vector<AccuracyRow> accuracyRows();
+// Only the rows of the named techniques (the CLI's --rows); all of them when the list is empty.
+std::vector<AccuracyRow> accuracyRows(const std::vector<std::string>& techniques);
 
 // True when every pass the row names is among `executedPasses` (Renderer::executedPasses() of a
 // frame rendered with the row's effects).

@@ -5,6 +5,7 @@
 
 #include "engine/core/error.hpp"
 #include "game/accuracy.hpp"
+#include "game/accuracy_rows.hpp"
 #include "game/commands.hpp"
 #include "game/session.hpp"
 
@@ -27,6 +28,12 @@ int runAccuracy(const cli::Args& args) {
       throwInputError("bounce accuracy", "--frame", "'" + v + "' is not a valid frame", "a non-negative integer");
   }
   o.device = args.str("--device");
+  if (const auto techniques = args.list("--rows")) {
+    for (const auto& t : *techniques)
+      if (!scene::effectFromName(t))
+        throwInputError("bounce accuracy", "--rows", "unknown technique '" + t + "'", "effect names: " + scene::knownEffectNames());
+    o.rows = accuracyRows(*techniques);
+  }
   o.referenceCache = std::filesystem::path(BOUNCE_BINARY_DIR) / "reference";
   o.cookCache = cookCacheDir();
 

@@ -18,6 +18,7 @@ int runDemo(const cli::Args& args);
 int runReference(const cli::Args& args);
 int runExport(const cli::Args& args);
 int runBench(const cli::Args& args);
+int runBake(const cli::Args& args);
 int runAccuracy(const cli::Args& args);
 
 // The Vulkan context for --device (or BOUNCE_DEVICE), headless unless `windowed`.

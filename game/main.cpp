@@ -33,6 +33,7 @@ int main(int argc, char** argv) {
       if (name == "reference") return game::runReference(args);
       if (name == "export") return game::runExport(args);
       if (name == "bench") return game::runBench(args);
+      if (name == "bake") return game::runBake(args);
       if (name == "accuracy") return game::runAccuracy(args);
     }
     throwInputError("bounce", name, "unknown command", "one of the commands in 'bounce --help'");

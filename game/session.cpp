@@ -24,7 +24,9 @@ scene::Level loadLevelWithEffects(const std::filesystem::path& path,
   return level;
 }
 
-namespace {
+std::filesystem::path probeCacheDir() { return std::filesystem::path(BOUNCE_BINARY_DIR) / "probes"; }
+std::filesystem::path dnrtCacheDir() { return std::filesystem::path(BOUNCE_BINARY_DIR) / "dnrt"; }
+
 gi::probes::ProbeSettings probeSettings(const scene::Level& level) {
   gi::probes::ProbeSettings s;
   s.spacing = level.probes.spacing;
@@ -33,7 +35,6 @@ gi::probes::ProbeSettings probeSettings(const scene::Level& level) {
   gi::probes::validate(s, level.source.string(), "/probes");
   return s;
 }
-}  // namespace
 
 Session::Session(gpu::Context& ctx, scene::Level level) : ctx_(ctx), level_(std::move(level)) {
   scene::instantiate(level_, registry_);
@@ -50,7 +51,7 @@ Session::Session(gpu::Context& ctx, scene::Level level) : ctx_(ctx), level_(std:
   }
   // Effect `probes`: bake (or load the cached bake of) the static scene.
   if (level_.effects.has(scene::Effect::Probes)) {
-    auto baked = gi::probes::loadOrBake(level_, cookCacheDir(), std::filesystem::path(BOUNCE_BINARY_DIR) / "probes",
+    auto baked = gi::probes::loadOrBake(level_, cookCacheDir(), probeCacheDir(),
                                         probeSettings(level_));
     probes_ = std::make_unique<gi::probes::ProbeNode>(ctx_, renderer_->pipelines(), std::move(baked.volume));
     renderer_->setNode("probes", probes_->node());
@@ -60,7 +61,7 @@ Session::Session(gpu::Context& ctx, scene::Level level) : ctx_(ctx), level_(std:
     cpuAssets_ = std::make_unique<ref::ReferenceAssets>();
     cpuAssets_->load(registry_, cookCacheDir());
     dnrt_ = std::make_unique<gi::dnrt::Runtime>(ctx_, renderer_->pipelines(), registry_, *cpuAssets_,
-                                                std::filesystem::path(BOUNCE_BINARY_DIR) / "dnrt",
+                                                dnrtCacheDir(),
                                                 renderer_->frames().framesInFlight(), level_.background);
     if (probes_) {
       probeSource_ = std::make_unique<gi::dnrt::ProbeSource>(probes_->volume());

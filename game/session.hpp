@@ -10,6 +10,7 @@
 #include "engine/gi/ao/ao.hpp"
 #include "engine/gi/dnrt/probe_source.hpp"
 #include "engine/gi/dnrt/runtime.hpp"
+#include "engine/gi/probes/bake.hpp"
 #include "engine/gi/probes/node.hpp"
 #include "engine/gpu/context.hpp"
 #include "engine/render/gpu_scene.hpp"
@@ -24,6 +25,12 @@ std::filesystem::path cookCacheDir();
 
 // Loads a level and applies an optional --effects override (both validated; errors are InputError).
 scene::Level loadLevelWithEffects(const std::filesystem::path& path, const std::optional<std::vector<std::string>>& effects);
+
+// Where bakes are cached: <build dir>/probes and <build dir>/dnrt.
+std::filesystem::path probeCacheDir();
+std::filesystem::path dnrtCacheDir();
+// The probe bake settings of a level's "probes" object (InputError when the baker rejects them).
+gi::probes::ProbeSettings probeSettings(const scene::Level& level);
 
 class Session {
  public:

@@ -177,9 +177,14 @@ std::string cacheKey(const ref::SceneDesc& object, const FieldSettings& s) {
   return h.hex();
 }
 
+std::filesystem::path cachePath(const ref::SceneDesc& object, const FieldSettings& settings,
+                                const std::filesystem::path& cacheDir) {
+  return cacheDir / ("dnrt-" + cacheKey(object, settings) + ".field");
+}
+
 Field bakeCached(const ref::SceneDesc& object, const FieldSettings& settings, const std::filesystem::path& cacheDir,
                  bool* fromCache) {
-  const std::filesystem::path path = cacheDir / ("dnrt-" + cacheKey(object, settings) + ".field");
+  const std::filesystem::path path = cachePath(object, settings, cacheDir);
   if (std::filesystem::exists(path)) {
     try {
       Field f = load(path);

@@ -50,6 +50,10 @@ BakeResult bake(const ref::SceneDesc& object, const FieldSettings& settings);
 // Cache key: every mesh, material and texture byte of `object` plus the settings and format version.
 std::string cacheKey(const ref::SceneDesc& object, const FieldSettings& settings);
 
+// Where bakeCached keeps the field: `cacheDir`/dnrt-<cacheKey>.field.
+std::filesystem::path cachePath(const ref::SceneDesc& object, const FieldSettings& settings,
+                                const std::filesystem::path& cacheDir);
+
 // The quantised field from `cacheDir`/dnrt-<key>.field, baking and storing it on a miss (a corrupt
 // cache file is rebaked with a warning). `fromCache` (optional) tells which happened.
 Field bakeCached(const ref::SceneDesc& object, const FieldSettings& settings, const std::filesystem::path& cacheDir,

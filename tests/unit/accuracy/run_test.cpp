@@ -34,6 +34,14 @@ constexpr double kMinDirectVsFullRef = 0.3;
 // frequency). The bound asks for a clear improvement, not the measured value.
 constexpr double kMaxProbesVsDirectRatio = 0.75;
 
+// Every row but DNRT's 64³ fields: 4 of those bakes would add about a minute of CI time and test
+// nothing the 16³ and 32³ rows do not (the bake and the node do not depend on N).
+std::vector<AccuracyRow> testRows() {
+  std::vector<AccuracyRow> rows = accuracyRows();
+  std::erase_if(rows, [](const AccuracyRow& r) { return r.setting.find("grid=64") != std::string::npos; });
+  return rows;
+}
+
 class AccuracyRun : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
@@ -46,6 +54,7 @@ class AccuracyRun : public ::testing::Test {
     o.referenceCache = std::filesystem::path(BOUNCE_TEST_OUT) / "accuracy" / "reference";
     o.cookCache = std::filesystem::path(BOUNCE_TEST_OUT) / "accuracy" / "cooked";
     o.progress = false;
+    o.rows = testRows();
     report_ = new AccuracyReport(runAccuracy(o));
   }
   static void TearDownTestSuite() {
@@ -71,7 +80,7 @@ TEST_F(AccuracyRun, CsvHasTheExactHeaderAndOneLinePerConfigurationRun) {
   // Every configuration either ran or was skipped with a note; both direct rows run today.
   std::size_t skipped = 0;
   for (const auto& n : report_->notes) skipped += n.rfind("skipped ", 0) == 0;
-  EXPECT_EQ(report_->rows.size() + skipped, accuracyRows().size());
+  EXPECT_EQ(report_->rows.size() + skipped, testRows().size());
   EXPECT_NO_THROW(row("direct", "ref=direct"));
   EXPECT_NO_THROW(row("direct", "ref=all"));
   for (const auto& r : report_->rows) {
@@ -99,7 +108,7 @@ TEST_F(AccuracyRun, DirectAgreesWithTheDirectReferenceAndMissesIndirectLight) {
 // Every row of every technique whose node exists runs (none skipped), and indirect light from the
 // probes is closer to the full reference than direct light alone.
 TEST_F(AccuracyRun, EveryTechniqueRunsAndProbesAddTheMissingBounce) {
-  EXPECT_EQ(report_->rows.size(), accuracyRows().size());
+  EXPECT_EQ(report_->rows.size(), testRows().size());
   const double direct = row("direct", "ref=all").relRmse;
   const double probes = row("probes", "spacing=0.125m;sh_order=3;ref=all").relRmse;
   EXPECT_LT(probes, kMaxProbesVsDirectRatio * direct);

@@ -142,3 +142,30 @@ TEST_F(Cli, CookWritesIntoOutputFolder) {
     if (e.is_regular_file() && e.file_size() > 0) ++files;
   EXPECT_GE(files, 1u) << "cook wrote nothing into " << out;
 }
+
+// `bounce bake`: one line per bake; --force bakes, a second run finds both entries in the cache,
+// a level whose effects need no bake says so, and an unknown effect is bad input.
+TEST_F(Cli, BakeReportsEachBakeThenTheCache) {
+  const std::string effects = "direct,probes,dnrt";
+  const Outcome forced = bounce({"bake", kCornell.string(), "--effects", effects, "--force"});
+  ASSERT_EQ(forced.code, 0) << forced.err;
+  const auto first = lines(forced.out);
+  ASSERT_EQ(first.size(), 2u) << forced.out;
+  EXPECT_EQ(first[0].rfind("probes  6x6x6 at 0.1 m, SH order 3, 256 rays: ", 0), 0u) << first[0];
+  EXPECT_EQ(first[1].rfind("dnrt    prop-textured-box: 32^3 x 256 rays, 4 SH: ", 0), 0u) << first[1];
+  EXPECT_EQ(forced.out.find("cached"), std::string::npos);
+
+  const Outcome again = bounce({"bake", kCornell.string(), "--effects", effects});
+  ASSERT_EQ(again.code, 0) << again.err;
+  const auto second = lines(again.out);
+  ASSERT_EQ(second.size(), 2u) << again.out;
+  for (const auto& l : second) EXPECT_NE(l.find(": cached "), std::string::npos) << l;
+
+  const Outcome none = bounce({"bake", kCornell.string(), "--effects", "direct,shadows"});
+  EXPECT_EQ(none.code, 0);
+  EXPECT_EQ(none.out, "nothing to bake: the effects name neither probes nor dnrt\n");
+
+  const Outcome bad = bounce({"bake", kCornell.string(), "--effects", "direct,glow"});
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_EQ(lines(bad.err).size(), 1u) << bad.err;
+}
