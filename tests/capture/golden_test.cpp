@@ -1,6 +1,8 @@
 // Golden-image capture tests: the shipped capture scripts content/captures/cornell-{1,5,10}.json
 // (256×256, 61 frames, frames 0 and 60 captured) run through runCaptureScript, and every captured
-// PFM (linear radiance) is compared with tests/capture/goldens/cornell-N-frame-NNNN.pfm.
+// PFM (linear radiance) is compared with tests/capture/goldens/cornell-N-frame-NNNN.pfm. The
+// levels name direct, shadows, probes and dnrt, so the goldens hold the probes' static indirect
+// light and every prop's DNRT transfer (engine/gi/probes, engine/gi/dnrt) on top of direct light.
 //
 //   BOUNCE_UPDATE_GOLDENS=1 ctest -R CaptureGolden     rewrites the goldens from this machine
 //
