@@ -66,6 +66,10 @@ Field quantize(const FieldSettings& settings, glm::vec3 centre, float radius, st
         if (!seen[k]) r = {x, x}, seen[k] = true;
         r.lo = std::min(r.lo, x), r.hi = std::max(r.hi, x);
       }
+  // Decoding computes lo + (hi − lo)·t in float (here and in dnrt.frag): a span that overflows
+  // would turn every texel into Inf or NaN.
+  for (const Range& r : f.ranges)
+    if (!std::isfinite(r.hi - r.lo)) throw InternalError("dnrt::quantize: coefficient range too wide for float");
   f.textures.assign(std::size_t(nt), std::vector<std::uint8_t>(nv * 4, 0));
   for (std::size_t v = 0; v < nv; ++v)
     for (int j = 0; j < settings.shCount; ++j)
@@ -179,8 +183,8 @@ Field deserialize(std::span<const std::uint8_t> bytes, const std::string& file) 
   f.ranges.resize(std::size_t(nt) * 4);
   for (Range& rg : f.ranges) {
     rg = r.get<Range>("ranges");
-    if (!std::isfinite(rg.lo) || !std::isfinite(rg.hi) || rg.hi < rg.lo)
-      r.fail("ranges", "a range is non-finite or inverted", "finite lo <= hi");
+    if (!std::isfinite(rg.lo) || !std::isfinite(rg.hi) || rg.hi < rg.lo || !std::isfinite(rg.hi - rg.lo))
+      r.fail("ranges", "a range is non-finite, inverted or too wide", "finite lo <= hi with a finite hi - lo");
   }
   const std::size_t texBytes = f.vertexCount() * 4;
   for (int t = 0; t < nt; ++t) {
