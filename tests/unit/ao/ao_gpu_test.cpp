@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -79,4 +80,60 @@ INSTANTIATE_TEST_SUITE_P(Baselines, Ao, ::testing::Values(Kind::Ssao, Kind::Hbao
                          [](const auto& info) { return std::string(kindName(info.param)); });
 
 }  // namespace
+}  // namespace bounce::gi::ao
+
+namespace bounce::gi::ao {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct LitFrame {
+  std::vector<float> hdr;  // RGB
+  std::vector<float> ao;   // empty without an AO effect
+};
+
+LitFrame renderLit(const std::vector<std::string>& effects) {
+  gpu::Context& ctx = gpu::testkit::sharedContext();
+  const fs::path level = fs::path(BOUNCE_SOURCE_DIR) / "content/levels/cornell-1.json";
+  game::Session session(ctx, game::loadLevelWithEffects(level, effects));
+  session.update(0.0);
+  gpu::OffscreenPresenter presenter(ctx, {128, 96});
+  render::FrameSettings settings;
+  settings.keepHdr = true;
+  session.render(presenter, settings);
+  LitFrame f;
+  f.hdr = session.renderer().readHdr();
+  if (Node* node = session.ao(Kind::Ssao)) {
+    const auto bytes = gpu::readback(ctx, *node->image());
+    for (std::size_t i = 0; i < bytes.size() / 2; ++i) {
+      std::uint16_t h;
+      std::memcpy(&h, &bytes[i * 2], 2);
+      f.ao.push_back(gpu::halfToFloat(h));
+    }
+  }
+  return f;
+}
+
+}  // namespace
+
+// With an AO effect the probes node multiplies its indirect term by "ao.term" (the DNRT paper's
+// baseline, §6.4): (probes+ssao − direct) = (probes − direct) · ao at every pixel. The HDR target is
+// fp16, and each frame rounds its sum once: 2 half-precision steps (2·2⁻¹¹) of the brightest value.
+TEST(AoProbes, ProbesTermIsMultipliedByTheAoTerm) {
+  const LitFrame direct = renderLit({"direct"});
+  const LitFrame probes = renderLit({"direct", "probes"});
+  const LitFrame both = renderLit({"direct", "probes", "ssao"});
+  ASSERT_EQ(both.ao.size() * 3, both.hdr.size());
+  const float brightest = *std::max_element(probes.hdr.begin(), probes.hdr.end());
+  const float tol = 2.0f * std::ldexp(1.0f, -11) * brightest;
+  double darkened = 0.0;
+  for (std::size_t i = 0; i < both.hdr.size(); ++i) {
+    const float indirect = probes.hdr[i] - direct.hdr[i];
+    const float expected = direct.hdr[i] + indirect * both.ao[i / 3];
+    ASSERT_NEAR(both.hdr[i], expected, tol) << "pixel " << i / 3 << " channel " << i % 3;
+    darkened += indirect - (both.hdr[i] - direct.hdr[i]);
+  }
+  EXPECT_GT(darkened, 0.0) << "SSAO takes some indirect light away";
+}
+
 }  // namespace bounce::gi::ao
