@@ -48,6 +48,11 @@ vec3 gridIrradiance(GridGpu g, vec3 x, vec3 n, uint tag) {
     if (i == kNullLight || i >= pc.counts.x) break;  // lists are packed: the rest are null lights
     VlmLight vl = vlmLights[i];
     if (tag != 0u && uint(vl.v0.w + 0.5) == tag) continue;
+    // Cheap rejections before the clip (same answer as vlmFormFactor's: it returns 0 for both):
+    // the receiver behind the one-sided light, or the whole triangle below the horizon.
+    vec3 r0 = vl.v0.xyz - x, r1 = vl.v1.xyz - x, r2 = vl.v2.xyz - x;
+    if (!(dot(cross(vl.v1.xyz - vl.v0.xyz, vl.v2.xyz - vl.v0.xyz), -r0) > 0.0)) continue;
+    if (max(dot(n, r0), max(dot(n, r1), dot(n, r2))) < 0.0) continue;
     float f = vlmFormFactor(x, n, vl.v0.xyz, vl.v1.xyz, vl.v2.xyz);
     if (f <= 0.0) continue;
     vec3 L = texelFetch(vlmRadiance, ivec2(i % pc.counts.z, i / pc.counts.z), 0).rgb;
