@@ -221,3 +221,29 @@ TEST(VlmGpu, PassesOnlyWithTheVlmEffect) {
 
 }  // namespace
 }  // namespace bounce::vlm
+
+namespace bounce::vlm {
+namespace {
+
+// Capture of the shipped Cornell VLM level (content/levels/cornell-vlm.json): the node only adds
+// light (every L_k, F_k, ρ ≥ 0), and the bleed takes the colour of the nearer wall's virtual light:
+// red-dominated in the left third of the image (red wall); in the right third (near the green wall;
+// the big red wall still reaches it) the green share is at least twice the left third's.
+TEST(VlmGpu, CornellLevelBleedsWallColours) {
+  const fs::path level = fs::path(BOUNCE_SOURCE_DIR) / "content/levels/cornell-vlm.json";
+  const Frame with = render(level, {"direct", "shadows", "vlm"}), without = render(level, {"direct", "shadows"});
+  glm::dvec3 left(0.0), right(0.0);
+  for (int py = 0; py < int(kExtent.height); ++py)
+    for (int px = 0; px < int(kExtent.width); ++px) {
+      const glm::dvec3 d = pixel(with, px, py) - pixel(without, px, py);
+      for (int c = 0; c < 3; ++c) EXPECT_GE(d[c], -kHalfRel * pixel(with, px, py)[c]) << px << "," << py;
+      if (px < int(kExtent.width) / 3) left += d;
+      if (px >= 2 * int(kExtent.width) / 3) right += d;
+    }
+  EXPECT_GT(left.r, 2.0 * left.g);
+  EXPECT_GT(right.g / right.r, 2.0 * left.g / left.r) << "left " << left.r << "," << left.g << " right " << right.r
+                                                       << "," << right.g;
+}
+
+}  // namespace
+}  // namespace bounce::vlm
