@@ -22,7 +22,7 @@ function(bounce_test name)
   cmake_parse_arguments(ARG "GPU" "TIMEOUT" "SOURCES;DEPS" ${ARGN})
   add_executable(test_${name} ${ARG_SOURCES})
   target_link_libraries(test_${name} PRIVATE ${ARG_DEPS} GTest::gtest GTest::gtest_main)
-  target_compile_options(test_${name} PRIVATE -Wall -Wextra)
+  target_compile_options(test_${name} PRIVATE -Wall -Wextra $<$<CXX_COMPILER_ID:GNU>:-Wno-restrict>)
   target_compile_definitions(test_${name} PRIVATE
     BOUNCE_SHARED_DIR="${BOUNCE_SHARED_DIR}"
     BOUNCE_TEST_OUT="${PROJECT_BINARY_DIR}/test-out")

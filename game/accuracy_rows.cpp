@@ -85,6 +85,29 @@ void addDnrt(std::vector<AccuracyRow>& rows) {
         }
 }
 
+// Virtual Light Meshes (engine/gi/vlm, issue 5 §7): the thesis's range parameter (Fig. 5.6: too
+// small a range leaves blocky cut-offs) × candidates per cell K (Table 5.3), on top of direct
+// light. A VLM simulates exactly one diffuse bounce (§3.6), so it is compared with the one-bounce
+// reference. Range and K reach the grid through the level's "vlm" settings.
+void addVlm(std::vector<AccuracyRow>& rows) {
+  for (const double range : {1.5, 2.5, 3.5, 4.5})
+    for (const int k : {10, 20, 30, 60}) {
+      AccuracyRow r;
+      r.technique = "vlm";
+      char setting[96];
+      std::snprintf(setting, sizeof setting, "range=%g;k=%d;ref=1bounce", range, k);
+      r.setting = setting;
+      r.effects = {"direct", "shadows", "vlm"};
+      r.referenceBounces = 1;
+      r.passes = {"shadow", "lighting", "vlm.lights", "vlm"};
+      r.configure = [range, k](scene::Level& level) {
+        level.vlm.range = float(range);
+        level.vlm.k = k;
+      };
+      rows.push_back(std::move(r));
+    }
+}
+
 }  // namespace
 
 std::vector<AccuracyRow> accuracyRows() {
@@ -93,6 +116,7 @@ std::vector<AccuracyRow> accuracyRows() {
   addProbes(rows);
   addAo(rows);
   addDnrt(rows);
+  addVlm(rows);
   return rows;
 }
 

@@ -16,7 +16,8 @@ namespace bounce::game {
 struct AccuracyRow {
   std::string technique;  // CSV `technique`: the effect name (direct, probes, dnrt, vlm, ssao, hbao, sl, rtf)
   // CSV `setting`: key=value pairs joined by ';' (never a comma, so the CSV needs no quoting),
-  // ending with the reference the row is compared with: "ref=direct" (bounces 0) or "ref=all".
+  // ending with the reference the row is compared with: "ref=direct" (bounces 0), "ref=1bounce"
+  // (bounces 1) or "ref=all".
   std::string setting;
   std::vector<std::string> effects;               // the level's effects for this row
   std::optional<std::uint32_t> referenceBounces;  // empty: the full multi-bounce reference

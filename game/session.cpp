@@ -42,7 +42,7 @@ Session::Session(gpu::Context& ctx, scene::Level level) : ctx_(ctx), level_(std:
   scene_ = std::make_unique<render::GpuScene>(ctx_, renderer_->pipelines(), renderer_->samplers(), cookCacheDir());
   scene_->load(registry_);
   // Nodes run in the order set: AO first (a later node may read "ao.term"), then the static
-  // indirect light (probes), then what the dynamic objects change (DNRT).
+  // indirect light (probes), then what the dynamic objects change (DNRT), then the virtual lights.
   for (gi::ao::Kind kind : {gi::ao::Kind::Ssao, gi::ao::Kind::Hbao}) {
     if (!level_.effects.has(kind == gi::ao::Kind::Ssao ? scene::Effect::Ssao : scene::Effect::Hbao)) continue;
     auto& node = ao_[int(kind)];
@@ -68,6 +68,12 @@ Session::Session(gpu::Context& ctx, scene::Level level) : ctx_(ctx), level_(std:
       dnrt_->setIrradianceSource(probeSource_.get());
     }
     renderer_->setNode("dnrt", dnrt_->node());
+  }
+  // Effect `vlm`: only when some entity carries virtual lights (issue 5).
+  if (level_.effects.has(scene::Effect::Vlm) && registry_.view<scene::Vlm>().front() != ecs::Entity::null()) {
+    vlm_ = std::make_unique<vlm::Runtime>(ctx_, renderer_->pipelines(), registry_, vlm::settingsFrom(level_.vlm),
+                                          cookCacheDir(), renderer_->frames().framesInFlight());
+    renderer_->setNode("vlm", vlm_->node());
   }
 }
 

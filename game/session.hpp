@@ -12,6 +12,7 @@
 #include "engine/gi/dnrt/runtime.hpp"
 #include "engine/gi/probes/bake.hpp"
 #include "engine/gi/probes/node.hpp"
+#include "engine/gi/vlm/node.hpp"
 #include "engine/gpu/context.hpp"
 #include "engine/render/gpu_scene.hpp"
 #include "engine/render/renderer.hpp"
@@ -35,7 +36,8 @@ gi::probes::ProbeSettings probeSettings(const scene::Level& level);
 class Session {
  public:
   // Builds only what the level's effects name: probes (bake or cached), DNRT (fields baked or
-  // cached for every `dnrt` entity), SSAO/HBAO; each becomes a renderer node.
+  // cached for every `dnrt` entity), VLM (when an entity carries `vlm`), SSAO/HBAO; each becomes a
+  // renderer node.
   Session(gpu::Context& ctx, scene::Level level);
   // Waits for the GPU before the nodes, the scene and the renderer go (frames may still use them).
   ~Session();
@@ -60,6 +62,7 @@ class Session {
   // The GI runtimes the effects asked for (null otherwise).
   gi::probes::ProbeNode* probes() { return probes_.get(); }
   gi::dnrt::Runtime* dnrt() { return dnrt_.get(); }
+  vlm::Runtime* vlm() { return vlm_.get(); }
   gi::ao::Node* ao(gi::ao::Kind kind) { return ao_[int(kind)].get(); }
 
  private:
@@ -73,6 +76,7 @@ class Session {
   std::unique_ptr<gi::dnrt::ProbeSource> probeSource_;
   std::unique_ptr<ref::ReferenceAssets> cpuAssets_;  // DNRT bakes from the CPU copies
   std::unique_ptr<gi::dnrt::Runtime> dnrt_;
+  std::unique_ptr<vlm::Runtime> vlm_;
   render::RenderWorld world_;
 };
 

@@ -35,7 +35,11 @@ std::vector<PassStats> TimingCollector::stats() const {
   for (const auto& name : order_) {
     if (name == "frame") continue;
     const auto& s = samples_.at(name);
-    rows.push_back({name, "", s.size(), percentile(s, 0.5), percentile(s, 0.95)});
+    // A per-object scope is named "<pass>/<object>" (e.g. "dnrt/prop-red-box"): its row names both.
+    const auto slash = name.find('/');
+    const std::string pass = slash == std::string::npos ? name : name.substr(0, slash);
+    const std::string object = slash == std::string::npos ? std::string() : name.substr(slash + 1);
+    rows.push_back({pass, object, s.size(), percentile(s, 0.5), percentile(s, 0.95)});
   }
   if (samples_.count("frame")) {
     const auto& s = samples_.at("frame");

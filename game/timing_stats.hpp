@@ -11,7 +11,7 @@ namespace bounce::game {
 
 struct PassStats {
   std::string pass;
-  std::string object;  // empty for whole-pass rows (per-object rows come with the GI techniques)
+  std::string object;  // empty for whole-pass rows; the entity id for a per-object scope "<pass>/<object>"
   std::size_t frames = 0;
   double medianMs = 0.0;
   double p95Ms = 0.0;
@@ -25,6 +25,8 @@ class TimingCollector {
   // Records every frame the ring resolved since the last call, except warm-up frames.
   void collect(gpu::FrameRing& frames, std::uint64_t warmupFrames);
   // One row per pass in first-seen order, then a "frame" row: the sum of the outermost scopes.
+  // A scope named "<pass>/<object>" becomes a row with that pass and object. A per-object row
+  // counts only the frames that drew the object.
   std::vector<PassStats> stats() const;
   std::size_t framesCollected() const { return frames_; }
 

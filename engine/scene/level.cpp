@@ -169,6 +169,28 @@ void parseDnrt(const json::Node& node, EntityDesc& d, const ParseContext&) {
   d.dnrt = c;
 }
 
+// "vlm": {"tag": int ≥ 1, "color": [r,g,b], "intensity": float, "reflectance": [r,g,b]} — tag
+// required; the mesh is attached in parseEntity (the "mesh" key is read first).
+void parseVlm(const json::Node& node, EntityDesc& d, const ParseContext&) {
+  const auto o = node.object({"tag", "color", "intensity", "reflectance"});
+  Vlm v;
+  v.tag = int(o.required("tag", "an integer id >= 1").integer(1, 1 << 24));
+  if (auto c = o.optional("color")) v.color = c->vec3(json::Range::atLeast(0));
+  if (auto i = o.optional("intensity")) v.intensity = i->real(json::Range::closed(0, 1e6));
+  if (auto r = o.optional("reflectance")) v.reflectance = r->vec3(json::Range::closed(0, 1));
+  d.vlm = v;
+}
+
+void parseVlmTag(const json::Node& node, EntityDesc& d, const ParseContext&) {
+  d.vlmTag = VlmTag{int(node.integer(1, 1 << 24))};
+}
+
+// A `vlm` entity's mesh is virtual-light geometry: it goes into the Vlm component, not MeshRef,
+// so the renderer and the reference never see it as real geometry.
+void emplaceMesh(const EntityDesc& d, ecs::Registry& r, ecs::Entity e) {
+  if (d.mesh && !d.vlm) r.emplace<MeshRef>(e, *d.mesh);
+}
+
 void parseMotionKey(const json::Node& node, EntityDesc& d, const ParseContext&) { d.motion = parseMotion(node); }
 
 // ---- the table ------------------------------------------------------------------------------
@@ -187,12 +209,14 @@ void emplaceIfSet(const EntityDesc& d, ecs::Registry& r, ecs::Entity e) {
 
 const ComponentKey kComponentKeys[] = {
     {"transform", parseTransform, nullptr},  // every entity gets a Transform: see instantiate()
-    {"mesh", parseMesh, emplaceIfSet<&EntityDesc::mesh>},
+    {"mesh", parseMesh, emplaceMesh},
     {"material", parseMaterial, emplaceIfSet<&EntityDesc::material>},
     {"camera", parseCamera, emplaceIfSet<&EntityDesc::camera>},
     {"light", parseLight, emplaceIfSet<&EntityDesc::light>},
     {"motion", parseMotionKey, emplaceIfSet<&EntityDesc::motion>},
     {"dnrt", parseDnrt, emplaceIfSet<&EntityDesc::dnrt>},
+    {"vlm", parseVlm, emplaceIfSet<&EntityDesc::vlm>},
+    {"vlm_tag", parseVlmTag, emplaceIfSet<&EntityDesc::vlmTag>},
 };
 
 std::vector<std::string_view> entityKeys() {
@@ -221,6 +245,13 @@ EntityDesc parseEntity(const json::Node& node, const ParseContext& ctx) {
   if (d.dnrt && !d.mesh) o.node().child("dnrt").fail("a DNRT field on an entity without a mesh", "a \"mesh\" key");
   if (d.dnrt && !d.dynamic)
     o.node().child("dnrt").fail("a DNRT field on a static entity", "\"dynamic\": true or a motion");
+  if (d.vlm) {
+    if (!d.mesh) o.node().child("vlm").fail("a VLM on an entity without a mesh", "a \"mesh\" key");
+    if (d.dnrt) o.node().child("dnrt").fail("a DNRT field on a VLM entity (not drawn)", "no \"dnrt\" key");
+    if (d.vlmTag) o.node().child("vlm_tag").fail("a vlm_tag on a VLM entity (the tag is in \"vlm\")", "no \"vlm_tag\" key");
+    d.vlm->mesh = *d.mesh;
+    if (d.material) d.vlm->albedoOverride = d.material->albedo;
+  }
   return d;
 }
 
@@ -271,7 +302,7 @@ Level loadLevel(const std::filesystem::path& pathIn) {
   const std::string file = pathIn.string();
   const nlohmann::json doc = json::parseFile(pathIn);
   const json::Node root(doc, "", file);
-  const auto o = root.object({"bounce_level", "name", "effects", "background", "probes", "entities"});
+  const auto o = root.object({"bounce_level", "name", "effects", "background", "probes", "vlm", "entities"});
 
   const auto version = o.required("bounce_level", "the format version 1");
   if (const auto v = version.integer(0, 1 << 30); v != 1)
@@ -301,6 +332,13 @@ Level loadLevel(const std::filesystem::path& pathIn) {
         v->fail(std::to_string(rays) + " rays", "a square whose root is a multiple of 8 (64, 256, 576, 1024, ...)");
       level.probes.rays = std::uint32_t(rays);
     }
+  }
+
+  if (auto p = o.optional("vlm")) {
+    const auto vo = p->object({"grid", "k", "range"});
+    if (auto v = vo.optional("grid")) level.vlm.grid = int(v->integer(1, 256));
+    if (auto v = vo.optional("k")) level.vlm.k = int(v->integer(1, 256));
+    if (auto v = vo.optional("range")) level.vlm.range = float(v->real(json::Range::closed(1.0, 100.0)));
   }
 
   const auto entities = o.required("entities", "an array of entities");

@@ -20,6 +20,28 @@
 
 namespace bounce::scene {
 
+// A Virtual Light Mesh (engine/gi/vlm, VLM thesis §3.1; level key "vlm", README "Level format"):
+// every triangle of `mesh` is a one-sided diffuse virtual light (emitting on its counter-clockwise
+// side). The entity is NOT drawn as real geometry and is not part of the path-traced reference: it
+// only stands for light bounced by the real geometry tagged `tag` (§3.4). Emitted radiance per
+// triangle: L = reflectance · E / π × color × intensity (§3.3, §3.5), E the irradiance from the real
+// lights. Lives here (not components.hpp) while the VLM work owns only the level files.
+struct Vlm {
+  MeshRef mesh;                          // the virtual-light geometry (glTF)
+  int tag = 0;                           // ≥ 1; real geometry with the same vlm_tag skips it
+  glm::vec3 color{1.0f};                 // HDR hue override (§3.5)
+  float intensity = 1.0f;                // scale override (§3.5)
+  std::optional<glm::vec3> reflectance;  // default: the material albedo (level override, else glTF)
+  std::optional<glm::vec3> albedoOverride;  // the entity's "material" albedo, when given
+  friend bool operator==(const Vlm&, const Vlm&) = default;
+};
+
+// Real geometry's VLM id (§3.4): a pixel of this entity ignores virtual lights with the same tag.
+struct VlmTag {
+  int tag = 0;  // ≥ 1
+  friend bool operator==(const VlmTag&, const VlmTag&) = default;
+};
+
 // One entity of the level file, as plain data (file order).
 struct EntityDesc {
   std::string id;
@@ -33,6 +55,8 @@ struct EntityDesc {
   std::optional<Light> light;
   std::optional<Motion> motion;  // base = transform
   std::optional<Dnrt> dnrt;      // needs a mesh and a dynamic entity
+  std::optional<Vlm> vlm;        // needs a mesh (then not drawn); moves with a dynamic entity
+  std::optional<VlmTag> vlmTag;  // on real geometry (not on a vlm entity)
 };
 
 // The level's "probes" object (used when effects name `probes`): the irradiance volume's probe
@@ -44,11 +68,20 @@ struct ProbesConfig {
   std::uint32_t rays = 256;
 };
 
+// The level's "vlm" object (used when effects name `vlm`): the acceleration grid (thesis ch. 4):
+// cells per axis over the scene bounds, candidates per cell K and the active-hemisphere range.
+struct VlmConfig {
+  int grid = 16;
+  int k = 32;
+  float range = 2.5f;
+};
+
 struct Level {
   std::string name;  // "name", or the file's stem
   EffectSet effects;
   glm::vec3 background{0.0f};
   ProbesConfig probes;
+  VlmConfig vlm;
   std::vector<EntityDesc> entities;
   std::filesystem::path source;  // the level file, absolute
 };

@@ -38,7 +38,7 @@ TEST(AccuracyCsv, ExactHeaderThenOneLinePerResult) {
 TEST(AccuracyRows, EffectNamesValidSettingsUniqueAndCommaFree) {
   const auto rows = accuracyRows();
   std::set<std::pair<std::string, std::string>> seen;
-  std::size_t direct = 0, probes = 0, ao = 0, dnrt = 0;
+  std::size_t direct = 0, probes = 0, ao = 0, dnrt = 0, vlm = 0;
   for (const auto& r : rows) {
     EXPECT_TRUE(scene::effectFromName(r.technique).has_value()) << r.technique;
     EXPECT_EQ(r.setting.find(','), std::string::npos) << r.setting;
@@ -47,17 +47,22 @@ TEST(AccuracyRows, EffectNamesValidSettingsUniqueAndCommaFree) {
         << r.technique << " must be among its own effects";
     EXPECT_FALSE(r.passes.empty()) << r.technique;
     // The setting names the reference the row is compared with.
-    const bool full = !r.referenceBounces;
-    EXPECT_NE(r.setting.find(full ? "ref=all" : "ref=direct"), std::string::npos) << r.setting;
+    const std::string ref = !r.referenceBounces        ? "ref=all"
+                            : *r.referenceBounces == 0 ? "ref=direct"
+                            : *r.referenceBounces == 1 ? "ref=1bounce"
+                                                       : "ref=" + std::to_string(*r.referenceBounces) + "bounces";
+    EXPECT_TRUE(r.setting.ends_with(ref)) << r.setting << " should end with " << ref;
     direct += r.technique == "direct";
     probes += r.technique == "probes";
     ao += r.technique == "ssao" || r.technique == "hbao";
     dnrt += r.technique == "dnrt";
+    vlm += r.technique == "vlm";
   }
   EXPECT_EQ(direct, 2u);  // against the bounces-0 and the full reference
   EXPECT_EQ(probes, 4u);  // two spacings × two SH orders
   EXPECT_EQ(ao, 2u);      // SSAO and HBAO over probes (the DNRT paper's baselines)
   EXPECT_EQ(dnrt, 24u);   // {4, 9} SH × grid {16, 32, 64} × intrusion {off, on} × anti-radiance {paper, improved}
+  EXPECT_EQ(vlm, 16u);    // range {1.5, 2.5, 3.5, 4.5} × K {10, 20, 30, 60}, against one bounce
 }
 
 TEST(AccuracyRows, AvailableOnlyWhenTheRendererRanEveryPass) {

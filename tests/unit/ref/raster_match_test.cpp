@@ -28,7 +28,8 @@ TEST(RasterMatch, DirectOnlyReferenceEqualsTheRasterisersDirectLighting) {
   const auto level = std::filesystem::path(BOUNCE_SOURCE_DIR) / "content/levels/cornell-1.json";
   const auto script = out / "frame0.json";
   writeFileAtomic(script, "{\"bounce_capture\": 1, \"level\": \"" + level.string() +
-                              "\", \"resolution\": [64, 64], \"dt\": 0.0166667, \"frames\": 1, \"capture\": [0]}");
+                              "\", \"resolution\": [64, 64], \"dt\": 0.0166667, \"frames\": 1, \"capture\": [0], "
+                              "\"effects\": [\"direct\", \"shadows\"]}");  // the rasteriser's direct light only
   const game::CaptureResult raster = game::runCaptureScript(script, out / "capture");
   ASSERT_EQ(raster.frames.size(), 1u);
   const gpu::FloatImage gpuImage = gpu::readPfm(raster.frames[0].pfm);

@@ -65,10 +65,13 @@ TEST(RendererGraph, ShadowsEffectAddsShadowPassFirst) {
 TEST(RendererGraph, DebugViewCullsLightingAndSkipsTonemap) {
   render::FrameSettings s;
   s.debugView = render::DebugView::Albedo;
-  const Result r = renderOnce(std::nullopt, s);  // the level's own effects: direct, shadows
-  // The debug view reads the shadow atlas (for its shadow mode), so the shadow pass stays.
+  const Result r = renderOnce(std::nullopt, s);  // the level's own effects: direct, shadows, probes, dnrt
+  // The debug view reads the shadow atlas (for its shadow mode), so the shadow pass stays; the GI
+  // nodes only add to "lighting.hdr", which nothing reads, so they go with the lighting pass.
   EXPECT_EQ(r.executed, (Passes{"shadow", "gbuffer", "debug-view"}));
   EXPECT_TRUE(passCulled(r.dot, "lighting"));
+  EXPECT_TRUE(passCulled(r.dot, "probes"));
+  EXPECT_TRUE(passCulled(r.dot, "dnrt"));
   EXPECT_FALSE(passCulled(r.dot, "debug-view"));
   EXPECT_FALSE(hasPass(r.dot, "tonemap")) << "a debug view replaces tonemapping: the pass is never added";
 }
@@ -77,13 +80,13 @@ TEST(RendererGraph, CullingOffRunsEveryPass) {
   render::FrameSettings s;
   s.debugView = render::DebugView::Albedo;
   s.culling = false;
-  const Result debug = renderOnce(std::nullopt, s);
-  EXPECT_EQ(debug.executed, (Passes{"shadow", "gbuffer", "lighting", "debug-view"}));
+  const Result debug = renderOnce(std::nullopt, s);  // direct, shadows, probes, dnrt
+  EXPECT_EQ(debug.executed, (Passes{"shadow", "gbuffer", "lighting", "probes", "dnrt", "debug-view"}));
   EXPECT_FALSE(passCulled(debug.dot, "lighting"));
 
   s.debugView = render::DebugView::None;
   const Result lit = renderOnce(std::nullopt, s);
-  EXPECT_EQ(lit.executed, (Passes{"shadow", "gbuffer", "lighting", "tonemap"}));
+  EXPECT_EQ(lit.executed, (Passes{"shadow", "gbuffer", "lighting", "probes", "dnrt", "tonemap"}));
   EXPECT_EQ(lit.dot.find("dashed"), std::string::npos) << "nothing culled";
 }
 

@@ -130,7 +130,7 @@ TEST(Level, EffectsOverrideReplacesAndValidates) {
 TEST(LevelErrors, UnknownKey) {
   EXPECT_EQ(loadError("unknown-key", levelJson(R"({"id": "a", "colour": [1, 1, 1]})")),
             "FILE: /entities/0/colour: unknown key \"colour\" (expected one of: id, parent, dynamic, transform, mesh, "
-            "material, camera, light, motion, dnrt)");
+            "material, camera, light, motion, dnrt, vlm, vlm_tag)");
   EXPECT_EQ(loadError("unknown-key-nested", levelJson(R"({"id": "a", "light": {"type": "point", "power": 1}})")),
             "FILE: /entities/0/light/power: unknown key \"power\" (expected one of: type, color, intensity, range, "
             "inner_cone_deg, outer_cone_deg, shadows)");
@@ -273,7 +273,7 @@ TEST(LevelErrors, HostileInput) {
   // A 10 MB key: the message quotes only its start.
   EXPECT_EQ(loadError("big-key", R"({"bounce_level": 1, ")" + big + R"(": 1, "effects": [], "entities": []})"),
             "FILE: /" + std::string(64, 'x') + "...: unknown key \"" + std::string(64, 'x') +
-                "...\" (expected one of: bounce_level, name, effects, background, probes, entities)");
+                "...\" (expected one of: bounce_level, name, effects, background, probes, vlm, entities)");
   // Integers beyond 64 bits become doubles: not an integer.
   EXPECT_EQ(loadError("huge-int", R"({"bounce_level": 123456789012345678901234567890, "effects": [], "entities": []})"),
             "FILE: /bounce_level: wrong type: number (expected an integer in [0, 1073741824])");
@@ -323,4 +323,51 @@ TEST(LevelErrors, ProbesSettings) {
             "FILE: /probes/spacing: 0 is out of range (expected a number in [0.001, 1000])");
   EXPECT_EQ(loadError("probes-key", with(R"({"spacng": 0.2})")),
             "FILE: /probes/spacng: unknown key \"spacng\" (expected one of: spacing, order, rays)");
+}
+
+// The "vlm" component (virtual lights, engine/gi/vlm) and "vlm_tag" (real geometry's id, thesis
+// §3.4): exact data, the entity's mesh moves into the Vlm component (a VLM is never drawn), and
+// one-line errors.
+TEST(Level, VlmComponentsParseAndInstantiate) {
+  const auto path = writeTemp("vlm.json", levelJson(R"({"id": "wall", "mesh": {"asset": ")" + boxAsset() +
+                                                    R"("}, "vlm_tag": 3},
+      {"id": "light", "mesh": {"asset": ")" + boxAsset() + R"("}, "material": {"albedo": [0.5, 0.1, 0.1]},
+       "vlm": {"tag": 3, "color": [1, 0.5, 0.25], "intensity": 2}})",
+                                                    R"(["direct", "vlm"])"));
+  const Level level = loadLevel(path);
+  ASSERT_EQ(level.entities.size(), 2u);
+  EXPECT_EQ(level.entities[0].vlmTag, VlmTag{3});
+  ASSERT_TRUE(level.entities[1].vlm);
+  const Vlm& v = *level.entities[1].vlm;
+  EXPECT_EQ(v.tag, 3);
+  EXPECT_EQ(v.color, glm::vec3(1.0f, 0.5f, 0.25f));
+  EXPECT_FLOAT_EQ(v.intensity, 2.0f);
+  EXPECT_FALSE(v.reflectance);
+  EXPECT_EQ(v.albedoOverride, glm::vec3(0.5f, 0.1f, 0.1f));
+  EXPECT_EQ(v.mesh, *level.entities[1].mesh);
+  ecs::Registry r;
+  const auto es = instantiate(level, r);
+  EXPECT_TRUE(r.has<MeshRef>(es[0]));
+  EXPECT_EQ(r.get<VlmTag>(es[0]).tag, 3);
+  EXPECT_FALSE(r.has<MeshRef>(es[1]));  // virtual geometry is not drawn
+  EXPECT_EQ(r.get<Vlm>(es[1]), v);
+  EXPECT_EQ(level.vlm.grid, 16);
+  EXPECT_EQ(level.vlm.k, 32);
+  EXPECT_FLOAT_EQ(level.vlm.range, 2.5f);
+}
+
+TEST(LevelErrors, VlmComponents) {
+  const std::string mesh = R"("mesh": {"asset": ")" + boxAsset() + R"("})";
+  EXPECT_EQ(loadError("vlm-no-mesh", levelJson(R"({"id": "a", "vlm": {"tag": 1}})")),
+            "FILE: /entities/0/vlm: a VLM on an entity without a mesh (expected a \"mesh\" key)");
+  EXPECT_EQ(loadError("vlm-no-tag", levelJson(R"({"id": "a", )" + mesh + R"(, "vlm": {}})")),
+            "FILE: /entities/0/vlm: missing required key \"tag\" (expected an integer id >= 1)");
+  EXPECT_EQ(loadError("vlm-tag-zero", levelJson(R"({"id": "a", )" + mesh + R"(, "vlm_tag": 0})")),
+            "FILE: /entities/0/vlm_tag: 0 is out of range (expected an integer in [1, 16777216])");
+  EXPECT_EQ(loadError("vlm-both", levelJson(R"({"id": "a", )" + mesh + R"(, "vlm": {"tag": 1}, "vlm_tag": 1})")),
+            "FILE: /entities/0/vlm_tag: a vlm_tag on a VLM entity (the tag is in \"vlm\") (expected no \"vlm_tag\" key)");
+  EXPECT_EQ(loadError("vlm-key", levelJson(R"({"id": "a", )" + mesh + R"(, "vlm": {"tag": 1, "colour": [1, 1, 1]}})")),
+            "FILE: /entities/0/vlm/colour: unknown key \"colour\" (expected one of: tag, color, intensity, reflectance)");
+  EXPECT_EQ(loadError("vlm-settings", R"({"bounce_level": 1, "effects": ["vlm"], "vlm": {"range": 0.5}, "entities": []})"),
+            "FILE: /vlm/range: 0.5 is out of range (expected a number in [1, 100])");
 }

@@ -1,0 +1,249 @@
+#include "engine/gi/vlm/node.hpp"
+
+#include <algorithm>
+#include <cstring>
+
+#include "engine/render/passes/rendering.hpp"
+#include "engine/scene/components.hpp"
+
+namespace bounce::vlm {
+namespace {
+
+constexpr VkDescriptorType kSampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+constexpr VkDescriptorType kStorage = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+// Phase-1 target: one RGBA32F texel per virtual light, rows of at most this many texels.
+constexpr std::uint32_t kRadianceRow = 1024;
+// The grids cover the scene bounds padded by this fraction of their diagonal on every side, so
+// receivers on the bounding walls fall inside a cell.
+constexpr float kBoundsPad = 0.02f;
+
+struct LightsPush {
+  std::uint32_t count, width, lightCount, shadowsOn;
+  float lift;
+};
+struct GridGpu {
+  glm::vec4 originK, cellBase;
+  glm::ivec4 dims;
+};
+struct ShadePush {
+  GridGpu grids[2];
+  glm::uvec4 counts;
+};
+static_assert(sizeof(ShadePush) <= 128, "push constants: 128 bytes guaranteed");
+
+GridGpu gridGpu(const Grid* g, std::uint32_t firstSlot) {
+  if (!g || g->slots.empty()) return {glm::vec4(0.0f), glm::vec4(1.0f, 1.0f, 1.0f, 0.0f), glm::ivec4(0)};
+  return {glm::vec4(g->desc.origin, float(g->desc.k)), glm::vec4(g->desc.cellSize, float(firstSlot)),
+          glm::ivec4(glm::ivec3(g->desc.dims), 1)};
+}
+
+// Grows `buffer` to hold `bytes` (at least 16: a zero-sized binding is invalid) and copies `data`.
+void fill(gpu::Context& ctx, gpu::Buffer& buffer, const void* data, std::size_t bytes, const char* name) {
+  const VkDeviceSize size = std::max<VkDeviceSize>(16, bytes);
+  if (!buffer || buffer.size() < size)
+    buffer = gpu::Buffer(ctx, {size, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::Upload, name});
+  if (bytes) std::memcpy(buffer.mapped(), data, bytes);
+}
+
+std::vector<GridLight> gridLights(std::span<const VirtualLight> lights) {
+  std::vector<GridLight> out;
+  out.reserve(lights.size());
+  for (const auto& l : lights) out.push_back({l.v0, l.v1, l.v2, std::max({l.scale.r, l.scale.g, l.scale.b, 1e-6f})});
+  return out;
+}
+
+}  // namespace
+
+NodeSettings settingsFrom(const scene::VlmConfig& config) {
+  NodeSettings s;
+  s.grid = config.grid;
+  s.k = std::uint32_t(config.k);
+  s.range = config.range;
+  return s;
+}
+
+Runtime::Runtime(gpu::Context& ctx, const render::Pipelines& pipelines, ecs::Registry& registry, NodeSettings settings,
+                 const std::filesystem::path& cookCache, std::uint32_t framesInFlight)
+    : ctx_(ctx),
+      registry_(registry),
+      settings_(settings),
+      meshes_(collectVlms(registry, cookCache)),
+      lightsLayout_(ctx, {{0, kStorage}, {1, kSampled}, {2, kStorage}, {3, kStorage}}, "vlm.lights"),
+      shadeLayout_(ctx,
+                   {{0, kSampled}, {1, kSampled}, {2, kSampled}, {3, kSampled}, {4, kStorage}, {5, kSampled},
+                    {6, kStorage}, {7, kStorage}},
+                   "vlm"),
+      lightsPipelineLayout_(ctx, {lightsLayout_.handle()}, {{VK_SHADER_STAGE_ALL, 0, sizeof(LightsPush)}}, "vlm.lights"),
+      shadePipelineLayout_(ctx, {pipelines.frameLayout.handle(), shadeLayout_.handle()},
+                           {{VK_SHADER_STAGE_ALL, 0, sizeof(ShadePush)}}, "vlm"),
+      buffers_(std::max(1u, framesInFlight)) {
+  for (const VlmMesh& m : meshes_)
+    if (!m.dynamic) {
+      const auto* placed = registry.tryGet<scene::WorldTransform>(m.entity);
+      appendPlaced(m, placed ? placed->matrix : glm::mat4(1.0f), staticLights_);
+    }
+  gpu::ShaderModule vert(ctx, "passes/fullscreen.vert.spv");
+  gpu::ShaderModule lightsFrag(ctx, "vlm/vlm_lights.frag.spv"), shadeFrag(ctx, "vlm/vlm.frag.spv");
+  gpu::GraphicsPipelineDesc d;
+  d.vertex = &vert;
+  d.fragment = &lightsFrag;
+  d.colorFormats = {VK_FORMAT_R32G32B32A32_SFLOAT};
+  d.name = "vlm.lights";
+  lightsPipeline_ = gpu::createGraphicsPipeline(ctx, lightsPipelineLayout_, d);
+  d.fragment = &shadeFrag;
+  d.colorFormats = {VK_FORMAT_R16G16B16A16_SFLOAT};
+  d.blend = gpu::Blend::Additive;
+  d.name = "vlm";
+  shadePipeline_ = gpu::createGraphicsPipeline(ctx, shadePipelineLayout_, d);
+}
+
+std::size_t Runtime::lightCount() const {
+  std::size_t n = 0;
+  for (const auto& m : meshes_) n += m.local.size();
+  return n;
+}
+
+std::uint64_t Runtime::overflowCells() const { return staticGrid_.overflowCells + dynamicOverflow_; }
+
+GridDesc Runtime::gridFor(const render::RenderWorld& world) const {
+  glm::vec3 lo = world.sceneMin, hi = world.sceneMax;
+  const float pad = kBoundsPad * glm::length(hi - lo) + 1e-3f;
+  const auto dims = glm::uvec3(std::uint32_t(std::max(1, settings_.grid)));
+  return fitGrid(lo - pad, hi + pad, dims, settings_.k, settings_.range);
+}
+
+FrameData Runtime::prepare(const render::RenderWorld& world) {
+  FrameData f;
+  const GridDesc desc = gridFor(world);
+  // The static grid is built once (§4.3), over the bounds of the first frame's scene.
+  if (!staticBuilt_) {
+    staticGrid_ = buildGridScatter(gridLights(staticLights_), desc);
+    staticBuilt_ = true;
+  }
+  f.lights = staticLights_;
+  f.staticCount = std::uint32_t(staticLights_.size());
+  f.staticGrid = &staticGrid_;
+  std::vector<VirtualLight> moving;
+  for (const VlmMesh& m : meshes_) {
+    const auto* placed = registry_.tryGet<scene::WorldTransform>(m.entity);
+    if (m.dynamic && registry_.valid(m.entity) && placed) appendPlaced(m, placed->matrix, moving);
+  }
+  if (!moving.empty()) {
+    f.dynamicGrid = buildGridScatter(gridLights(moving), desc);
+    for (auto& s : f.dynamicGrid.slots)
+      if (s != kNullLight) s += f.staticCount;
+  }
+  dynamicOverflow_ = f.dynamicGrid.overflowCells;
+  f.lights.insert(f.lights.end(), moving.begin(), moving.end());
+  registry_.view<scene::VlmTag>().each([&](ecs::Entity e, scene::VlmTag& t) {
+    if (f.entityTags.size() <= e.index()) f.entityTags.resize(e.index() + 1, 0u);
+    f.entityTags[e.index()] = std::uint32_t(t.tag);
+  });
+  return f;
+}
+
+void Runtime::addTo(rg::RenderGraph& graph, render::PassContext& pc) {
+  FrameData f = prepare(*pc.world);
+  if (f.lights.empty()) return;
+  // Packed now, copied into this frame slot's buffers when phase 1 records (the ring has waited
+  // for the slot's fence by then).
+  std::vector<VlmLightGpu> packed;
+  packed.reserve(f.lights.size());
+  for (const auto& l : f.lights) packed.push_back(pack(l));
+  std::vector<std::uint32_t> slots = staticGrid_.slots;
+  const auto dynamicFirst = std::uint32_t(slots.size());
+  slots.insert(slots.end(), f.dynamicGrid.slots.begin(), f.dynamicGrid.slots.end());
+
+  const auto count = std::uint32_t(f.lights.size());
+  const std::uint32_t width = std::min(count, kRadianceRow), height = (count + width - 1) / width;
+  const ShadePush shade{{gridGpu(&staticGrid_, 0), gridGpu(&f.dynamicGrid, dynamicFirst)},
+                        glm::uvec4(count, std::uint32_t(f.entityTags.size()), width, 0)};
+  const render::PassContext* ctx = &pc;
+  auto& bb = graph.blackboard();
+
+  // Phase 1: one texel per virtual light.
+  struct LightsData {
+    rg::Handle<rg::Texture> radiance;
+    std::optional<rg::Handle<rg::Texture>> atlas;
+  };
+  const bool shadows = bb.contains("shadow.atlas");
+  const auto& lights = graph.addPass<LightsData>(
+      "vlm.lights",
+      [&](rg::Builder& b, LightsData& d) {
+        d.radiance = b.write(b.create<rg::Texture>("vlm.radiance", rg::TextureDesc{width, height, 1, 1, 1, rg::Format::RGBA32F, false}),
+                             rg::Usage::ColorAttachment);
+        if (shadows) d.atlas = b.read(bb.get<rg::Texture>("shadow.atlas"), rg::Usage::SampledFragment);
+      },
+      [this, ctx, count, width, height, packed = std::move(packed), slots = std::move(slots),
+       tags = std::move(f.entityTags)](const LightsData& d, const rg::PassResources& res, rg::CommandContext& c) {
+        VkCommandBuffer cmd = ctx->cmd(c);
+        SlotBuffers& buf = buffers_[ctx->frame().slot % buffers_.size()];
+        fill(ctx_, buf.lights, packed.data(), packed.size() * sizeof(VlmLightGpu), "vlm.lights");
+        fill(ctx_, buf.slots, slots.data(), slots.size() * 4, "vlm.slots");
+        fill(ctx_, buf.tags, tags.data(), tags.size() * 4, "vlm.tags");
+        VkSampler compare = ctx->samplers->get({VK_FILTER_LINEAR, VK_SAMPLER_MIPMAP_MODE_NEAREST,
+                                                VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, 1.0f, true});
+        gpu::Image& atlas = d.atlas ? ctx->backend->image(res.texture(*d.atlas)) : *ctx->dummyShadowAtlas;
+        VkDescriptorSet set = ctx->frame().descriptors->allocate(lightsLayout_);
+        gpu::DescriptorWriter()
+            .buffer(0, buf.lights)
+            .sampledImage(1, ctx->frameView(atlas, VK_IMAGE_VIEW_TYPE_2D_ARRAY, 0, atlas.desc().layers), compare)
+            .buffer(2, *ctx->shadowMatrices)
+            .buffer(3, *ctx->lights)
+            .update(*ctx->gpu, set);
+        gpu::Image& target = ctx->backend->image(res.texture(d.radiance));
+        render::Attachment color{target.view(), false};
+        render::beginRendering(*ctx->gpu, cmd, {width, height}, {&color, 1}, nullptr);
+        lightsPipeline_.bind(cmd);
+        lightsPipeline_.bindSet(cmd, 0, set);
+        lightsPipeline_.push(cmd, LightsPush{count, width, ctx->lightCount, d.atlas ? 1u : 0u, settings_.shadowLift});
+        vkCmdDraw(cmd, 3, 1, 0, 0);
+        ctx->gpu->cmdEndRendering(cmd);
+      });
+  const rg::Handle<rg::Texture> radiance = lights.radiance;
+
+  // Phase 2: full screen, additive into "lighting.hdr".
+  struct ShadeData {
+    rg::Handle<rg::Texture> albedo, normal, depth, entity, radiance, hdr;
+  };
+  const auto& data = graph.addPass<ShadeData>(
+      "vlm",
+      [&](rg::Builder& b, ShadeData& d) {
+        d.albedo = b.read(bb.get<rg::Texture>("gbuffer.albedo"), rg::Usage::SampledFragment);
+        d.normal = b.read(bb.get<rg::Texture>("gbuffer.normal"), rg::Usage::SampledFragment);
+        d.depth = b.read(bb.get<rg::Texture>("gbuffer.depth"), rg::Usage::SampledFragment);
+        d.entity = b.read(bb.get<rg::Texture>("gbuffer.entity"), rg::Usage::SampledFragment);
+        d.radiance = b.read(radiance, rg::Usage::SampledFragment);
+        d.hdr = b.write(bb.get<rg::Texture>("lighting.hdr"), rg::Usage::ColorAttachment);
+      },
+      [this, ctx, shade](const ShadeData& d, const rg::PassResources& res, rg::CommandContext& c) {
+        VkCommandBuffer cmd = ctx->cmd(c);
+        SlotBuffers& buf = buffers_[ctx->frame().slot % buffers_.size()];
+        VkSampler point = ctx->samplers->get({VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST});
+        auto view = [&](rg::Handle<rg::Texture> h) { return ctx->backend->image(res.texture(h)).view(); };
+        VkDescriptorSet set = ctx->frame().descriptors->allocate(shadeLayout_);
+        gpu::DescriptorWriter()
+            .sampledImage(0, view(d.albedo), point)
+            .sampledImage(1, view(d.normal), point)
+            .sampledImage(2, view(d.depth), point)
+            .sampledImage(3, view(d.entity), point)
+            .buffer(4, buf.lights)
+            .sampledImage(5, view(d.radiance), point)
+            .buffer(6, buf.slots)
+            .buffer(7, buf.tags)
+            .update(*ctx->gpu, set);
+        gpu::Image& target = ctx->backend->image(res.texture(d.hdr));
+        render::Attachment color{target.view(), true};  // additive: keep the direct light
+        const VkExtent2D extent{target.desc().width, target.desc().height};
+        render::beginRendering(*ctx->gpu, cmd, extent, {&color, 1}, nullptr);
+        shadePipeline_.bind(cmd);
+        shadePipeline_.bindSet(cmd, 0, ctx->frameSet);
+        shadePipeline_.bindSet(cmd, 1, set);
+        shadePipeline_.push(cmd, shade);
+        vkCmdDraw(cmd, 3, 1, 0, 0);
+        ctx->gpu->cmdEndRendering(cmd);
+      });
+  bb.put("lighting.hdr", data.hdr);
+}
+
+}  // namespace bounce::vlm

@@ -1,0 +1,49 @@
+#pragma once
+// Virtual Light Meshes of a level (thesis §3.1): every entity with a scene::Vlm component gives
+// its mesh's triangles, each a one-sided diffuse virtual light, in the entity's local frame (glTF
+// node transforms applied); each frame they are placed with the entity's world matrix, so VLMs on
+// dynamic entities move with them (§3.5 "animation", issue 5 §5).
+#include <cstdint>
+#include <filesystem>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "engine/ecs/registry.hpp"
+
+namespace bounce::vlm {
+
+// One virtual light. scale = reflectance × colour × intensity (§3.3, §3.5): the emitted radiance is
+// L = scale · E / π for the irradiance E the real lights deliver to it (phase 1).
+struct VirtualLight {
+  glm::vec3 v0{0.0f}, v1{0.0f}, v2{0.0f};  // counter-clockwise seen from the emitting side
+  glm::vec3 scale{0.0f};
+  std::uint32_t tag = 0;  // §3.4 id; 0 = none
+};
+
+// std430 mirror of VlmLight in shaders/vlm/vlm_common.glsl.
+struct VlmLightGpu {
+  glm::vec4 v0, v1, v2, scale;  // v0.w = tag as a float (exact below 2^24: level.cpp caps tags there)
+};
+static_assert(sizeof(VlmLightGpu) == 64);
+VlmLightGpu pack(const VirtualLight& l);
+
+struct VlmMesh {
+  ecs::Entity entity;
+  std::string name;  // the entity's id
+  bool dynamic = false;
+  std::vector<VirtualLight> local;  // entity-local triangles
+};
+
+// Every `vlm` entity of the registry (sorted by entity), its asset cooked through `cookCache`.
+// Reflectance per triangle: the component's "reflectance", else its "material" albedo, else the
+// glTF primitive's base colour factor. InputError for a broken asset.
+std::vector<VlmMesh> collectVlms(ecs::Registry& registry, const std::filesystem::path& cookCache);
+
+// Appends `mesh`'s triangles placed by `world`; a mirroring matrix (det < 0) swaps two vertices so
+// the emitting side stays the one the artist modelled.
+void appendPlaced(const VlmMesh& mesh, const glm::mat4& world, std::vector<VirtualLight>& out);
+
+}  // namespace bounce::vlm
