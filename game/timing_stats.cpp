@@ -51,10 +51,10 @@ std::vector<PassStats> TimingCollector::stats() const {
 std::string formatTable(const std::vector<PassStats>& rows) {
   std::string out;
   char line[256];
-  std::snprintf(line, sizeof line, "%-24s %-16s %7s %11s %11s\n", "pass", "object", "frames", "median ms", "p95 ms");
+  std::snprintf(line, sizeof line, "%-24s %-20s %7s %11s %11s\n", "pass", "object", "frames", "median ms", "p95 ms");
   out += line;
   for (const auto& r : rows) {
-    std::snprintf(line, sizeof line, "%-24s %-16s %7zu %11.3f %11.3f\n", r.pass.c_str(), r.object.c_str(), r.frames,
+    std::snprintf(line, sizeof line, "%-24s %-20s %7zu %11.3f %11.3f\n", r.pass.c_str(), r.object.c_str(), r.frames,
                   r.medianMs, r.p95Ms);
     out += line;
   }
