@@ -38,6 +38,26 @@ void weld(const MakeSource& s, std::vector<glm::vec3>& pos, std::vector<std::uin
     if (glm::length(faceCross(pos, &all[t])) > 0.0f) idx.insert(idx.end(), &all[t], &all[t] + 3);
 }
 
+// Angle-weighted vertex normals of a triangle list (the pseudo-normal: independent of how the faces
+// around a vertex are triangulated, so a cube corner gets exactly (±1, ±1, ±1)/√3); `firstFace`
+// gets the first incident face normal (for vertices whose faces cancel out).
+std::vector<glm::vec3> vertexNormals(const std::vector<glm::vec3>& p, const std::vector<std::uint32_t>& idx,
+                                     std::vector<glm::vec3>* firstFace = nullptr) {
+  std::vector<glm::vec3> n(p.size(), glm::vec3(0.0f));
+  if (firstFace) firstFace->assign(p.size(), glm::vec3(0.0f));
+  for (std::size_t t = 0; t + 2 < idx.size(); t += 3) {
+    const glm::vec3 f = glm::normalize(faceCross(p, &idx[t]));
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t v = idx[t + std::size_t(k)];
+      const glm::vec3 a = glm::normalize(p[idx[t + std::size_t((k + 1) % 3)]] - p[v]);
+      const glm::vec3 b = glm::normalize(p[idx[t + std::size_t((k + 2) % 3)]] - p[v]);
+      n[v] += f * std::acos(std::clamp(glm::dot(a, b), -1.0f, 1.0f));
+      if (firstFace && (*firstFace)[v] == glm::vec3(0.0f)) (*firstFace)[v] = f;
+    }
+  }
+  return n;
+}
+
 // `idx` reduced to at most `target` triangles (make.hpp, step 2).
 std::vector<std::uint32_t> simplify(const std::vector<glm::vec3>& pos, const std::vector<std::uint32_t>& idx,
                                     std::size_t target) {
@@ -64,19 +84,23 @@ std::vector<std::uint32_t> simplify(const std::vector<glm::vec3>& pos, const std
   return kept;
 }
 
-// Shares of the budget, proportional to each source's triangles, at least 1 each. Smallest first,
-// so what a small mesh cannot use (it has fewer triangles than its share) goes to the larger ones.
-std::vector<std::size_t> shares(const std::vector<std::size_t>& counts, std::size_t budget) {
+// Shares of the budget, proportional to each source's surface area (light is emitted per unit area:
+// a large wall needs more virtual lights than a small detailed prop), at least 1 each, water-filled:
+// sources are served in increasing order of triangles per area, so what one cannot use (it has
+// fewer triangles than its share) goes to the others.
+std::vector<std::size_t> shares(const std::vector<std::size_t>& counts, const std::vector<double>& areas, std::size_t budget) {
   std::vector<std::size_t> order(counts.size()), out(counts.size(), 0);
   std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return counts[a] < counts[b]; });
-  std::size_t left = budget, total = std::accumulate(counts.begin(), counts.end(), std::size_t(0));
+  auto density = [&](std::size_t i) { return areas[i] > 0.0 ? double(counts[i]) / areas[i] : HUGE_VAL; };
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return density(a) < density(b); });
+  std::size_t left = budget;
+  double total = std::accumulate(areas.begin(), areas.end(), 0.0);
   for (std::size_t k = 0; k < order.size(); ++k) {
     const std::size_t i = order[k], after = order.size() - k - 1;
-    const std::size_t fair = total ? std::size_t(double(left) * double(counts[i]) / double(total)) : 0;
-    out[i] = std::clamp<std::size_t>(std::min(counts[i], fair), 1, left - after);  // left ≥ after + 1 holds
+    const double fair = total > 0.0 ? double(left) * areas[i] / total : 0.0;
+    out[i] = std::clamp<std::size_t>(std::min(counts[i], std::size_t(fair)), 1, left - after);  // left ≥ after + 1 holds
     left -= out[i];
-    total -= counts[i];
+    total -= areas[i];
   }
   return out;
 }
@@ -95,6 +119,7 @@ MakeResult makeVlm(std::span<const MakeSource> sources, const MakeOptions& optio
   std::vector<std::vector<glm::vec3>> welded(sources.size());
   std::vector<std::vector<std::uint32_t>> indices(sources.size());
   std::vector<std::size_t> counts;
+  std::vector<double> areas;
   for (std::size_t i = 0; i < sources.size(); ++i) {
     for (std::uint32_t v : sources[i].indices)
       if (v >= sources[i].positions.size())
@@ -102,8 +127,11 @@ MakeResult makeVlm(std::span<const MakeSource> sources, const MakeOptions& optio
                         "indices below " + std::to_string(sources[i].positions.size()));
     weld(sources[i], welded[i], indices[i]);
     counts.push_back(indices[i].size() / 3);
+    double area = 0.0;
+    for (std::size_t t = 0; t < indices[i].size(); t += 3) area += 0.5 * double(glm::length(faceCross(welded[i], &indices[i][t])));
+    areas.push_back(area);
   }
-  const std::vector<std::size_t> share = shares(counts, options.triangles);
+  const std::vector<std::size_t> share = shares(counts, areas, options.triangles);
 
   std::uint32_t nextTag = 1;
   for (const auto& s : sources) nextTag = std::max(nextTag, s.tag + 1);
@@ -111,6 +139,10 @@ MakeResult makeVlm(std::span<const MakeSource> sources, const MakeOptions& optio
   for (std::size_t i = 0; i < sources.size(); ++i) {
     const auto& pos = welded[i];
     const std::vector<std::uint32_t> kept = simplify(pos, indices[i], share[i]);
+    // meshoptimizer 0.18 can leave a few folded-over slivers where border edges of a flat region
+    // collapse: a kept triangle facing away from the source surface at its corners (the sum of the
+    // source's vertex normals there) would emit backwards, so it is dropped.
+    const std::vector<glm::vec3> sourceNormals = vertexNormals(pos, indices[i]);
     MadeMesh m;
     m.source = sources[i].name;
     m.albedo = sources[i].albedo;
@@ -121,7 +153,9 @@ MakeResult makeVlm(std::span<const MakeSource> sources, const MakeOptions& optio
     std::vector<std::uint32_t> newIndex(pos.size(), UINT32_MAX);
     std::vector<glm::vec3> p;
     for (std::size_t t = 0; t + 2 < kept.size(); t += 3) {
-      if (!(glm::length(faceCross(pos, &kept[t])) > 0.0f)) continue;  // sloppy collapses may leave slivers
+      const glm::vec3 f = faceCross(pos, &kept[t]);
+      if (!(glm::length(f) > 0.0f)) continue;  // zero-area sliver
+      if (glm::dot(f, sourceNormals[kept[t]] + sourceNormals[kept[t + 1]] + sourceNormals[kept[t + 2]]) <= 0.0f) continue;
       for (int k = 0; k < 3; ++k) {
         const std::uint32_t v = kept[t + std::size_t(k)];
         if (newIndex[v] == UINT32_MAX) {
@@ -131,21 +165,9 @@ MakeResult makeVlm(std::span<const MakeSource> sources, const MakeOptions& optio
         m.indices.push_back(newIndex[v]);
       }
     }
-    // Angle-weighted vertex normals (the pseudo-normal: independent of how the faces around a
-    // vertex are triangulated, so a cube corner gets exactly (±1, ±1, ±1)/√3), then the smallest
-    // cosine to an incident face (step 3).
-    std::vector<glm::vec3> n(p.size(), glm::vec3(0.0f));
-    std::vector<glm::vec3> firstFace(p.size(), glm::vec3(0.0f));
-    for (std::size_t t = 0; t < m.indices.size(); t += 3) {
-      const glm::vec3 f = glm::normalize(faceCross(p, &m.indices[t]));
-      for (int k = 0; k < 3; ++k) {
-        const std::uint32_t v = m.indices[t + k];
-        const glm::vec3 a = glm::normalize(p[m.indices[t + (k + 1) % 3]] - p[v]);
-        const glm::vec3 b = glm::normalize(p[m.indices[t + (k + 2) % 3]] - p[v]);
-        n[v] += f * std::acos(std::clamp(glm::dot(a, b), -1.0f, 1.0f));
-        if (firstFace[v] == glm::vec3(0.0f)) firstFace[v] = f;
-      }
-    }
+    // Vertex normals of the simplified mesh, then the smallest cosine to an incident face (step 3).
+    std::vector<glm::vec3> firstFace;
+    std::vector<glm::vec3> n = vertexNormals(p, m.indices, &firstFace);
     std::vector<float> minCos(p.size(), 1.0f);
     for (std::size_t v = 0; v < p.size(); ++v)
       n[v] = glm::length(n[v]) > 0.0f ? glm::normalize(n[v]) : firstFace[v];  // opposite faces cancel: use one

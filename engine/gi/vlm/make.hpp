@@ -4,7 +4,7 @@
 // desired performance budget. Finally, they must adjust the simplified mesh to make it adhere to
 // the previously discussed restrictions" — here done as a first draft the artist then edits:
 //   1. sources: the real geometry, one per level entity (or per glTF mesh node of one asset);
-//   2. simplify each to its share of the triangle budget with meshoptimizer (positions welded first
+//   2. simplify each to its share of the triangle budget (shares by surface area, water-filled) with meshoptimizer (positions welded first
 //      so hard-edge seams can collapse); a share below what topology-preserving simplification
 //      reaches goes to meshopt_simplifySloppy, and as a last resort keeps the largest triangles;
 //   3. offset every vertex along −normal so the virtual geometry sits BEHIND the real surface it
