@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "engine/gi/vlm/make.hpp"
 #include "engine/gpu/presenter_offscreen.hpp"
 #include "engine/gpu/testing.hpp"
 #include "game/session.hpp"
@@ -76,6 +77,52 @@ TEST(VlmGpu, IntensityOverrideDoublesTheVlmTerm) {
   doubled.vlm()->setOverrides({});
   const std::vector<float> back = render(doubled);
   for (std::size_t i = 0; i < a.size(); ++i) EXPECT_NEAR(back[i], a[i], kHalfRel * a[i] + kTermAbs) << "value " << i;
+}
+
+// A plain `mesh` entity whose glTF node carries extras.bounce_vlm (here written by vlm-make's
+// writer: a 0.4 m quad at y = 1 facing down onto the floor, tag 7) is a VLM: the VLM passes run
+// and the floor receives light in the quad's colour.
+TEST(VlmGpu, GltfExtrasNodeLightsTheFloor) {
+  const fs::path dir = fs::path(BOUNCE_TEST_OUT) / "vlm";
+  fs::create_directories(dir);
+  MakeResult r;
+  MadeMesh quad;
+  quad.source = "quad";
+  quad.tag = 7;
+  quad.albedo = glm::vec3(0.9f, 0.2f, 0.1f);
+  quad.positions = {{-0.2f, 1.0f, -0.2f}, {0.2f, 1.0f, -0.2f}, {-0.2f, 1.0f, 0.2f}, {0.2f, 1.0f, 0.2f}};
+  quad.normals.assign(4, glm::vec3(0, -1, 0));
+  quad.indices = {0, 1, 2, 1, 3, 2};  // counter-clockwise seen from below: emits towards −Y
+  r.meshes.push_back(quad);
+  writeVlmGltf(r, dir / "extras-quad.gltf");
+  const fs::path level = dir / "extras.json";
+  const std::string box = (fs::path(BOUNCE_SOURCE_DIR) / "content/src/Box/glTF-Binary/Box.glb").generic_string();
+  std::ofstream(level) << R"({"bounce_level": 1, "effects": ["direct", "vlm"], "vlm": {"grid": 8, "k": 16, "range": 100},
+    "entities": [
+    {"id": "floor", "transform": {"translation": [0, -0.01, 0], "scale": [4, 0.02, 4]},
+     "mesh": {"asset": ")" << box << R"("}, "material": {"albedo": [0.8, 0.8, 0.8]}},
+    {"id": "camera", "transform": {"translation": [0, 3, 0], "rotation_euler_deg": [-90, 0, 0]},
+     "camera": {"yfov_deg": 60, "near": 0.1, "far": 10}},
+    {"id": "lamp", "transform": {"translation": [0, 0.5, 0]}, "light": {"type": "point", "intensity": 2}},
+    {"id": "lights", "mesh": {"asset": "extras-quad.gltf"}}]})";
+  gpu::Context& ctx = gpu::testkit::sharedContext();
+  game::Session with(ctx, game::loadLevelWithEffects(level, {}));
+  game::Session without(ctx, game::loadLevelWithEffects(level, std::vector<std::string>{"direct"}));
+  ASSERT_TRUE(with.vlm());
+  EXPECT_EQ(with.vlm()->lightCount(), 2u);
+  EXPECT_EQ(with.vlm()->tags(), std::vector<std::uint32_t>{7});
+  with.update(0.0);
+  without.update(0.0);
+  const std::vector<float> a = render(with), b = render(without);
+  EXPECT_EQ(with.renderer().executedPasses(),
+            (std::vector<std::string>{"gbuffer", "lighting", "vlm.lights", "vlm", "tonemap"}));
+  glm::dvec3 sum(0.0);
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    EXPECT_GE(a[i] - b[i], -kHalfRel * a[i]) << "the VLM only adds light";
+    sum[i % 3] += a[i] - b[i];
+  }
+  EXPECT_GT(sum.r, 1.0) << "the quad (lit from below by the lamp) lights the floor";
+  EXPECT_GT(sum.r, 4.0 * sum.g) << "in the quad's reflectance: red (no paired real geometry for tag 7)";
 }
 
 }  // namespace
