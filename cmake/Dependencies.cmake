@@ -12,6 +12,9 @@ find_package(PkgConfig REQUIRED)
 # Draco: Debian ships a CMake package config.
 find_package(draco CONFIG REQUIRED)
 
+# meshoptimizer (libmeshoptimizer-dev ships a CMake package config): `bounce vlm-make` simplifies with it.
+find_package(meshoptimizer CONFIG REQUIRED)
+
 # tinygltf (header-only, Debian builds it against system nlohmann-json and stb).
 find_path(TINYGLTF_INCLUDE_DIR tiny_gltf.h REQUIRED)
 

@@ -138,6 +138,10 @@ int runPlay(const cli::Args& args) {
     RollingTimings timings;
 
     CameraDriver camera(session.registry(), scene::activeCamera(session.registry()));
+    if (session.vlm()) {  // live per-tag VLM overrides start from the level's (T, ]/[, H)
+      state.vlm.tags = session.vlm()->tags();
+      state.vlm.overrides = session.level().vlm.overrides;
+    }
     MouseLook mouse;
 
     auto last = std::chrono::steady_clock::now();
@@ -165,6 +169,10 @@ int runPlay(const cli::Args& args) {
             log::info(std::string("vsync ") + (state.vsync ? "on" : "off"));
             break;
           case KeyEffect::ResetCamera: camera.reset(); break;
+          case KeyEffect::VlmChanged:
+            if (session.vlm()) session.vlm()->setOverrides(state.vlm.overrides);
+            log::info(vlmControlText(state.vlm));
+            break;
           case KeyEffect::Handled:
           case KeyEffect::None: break;
         }
@@ -196,6 +204,7 @@ int runPlay(const cli::Args& args) {
         info.culling = state.settings.culling;
         info.flying = camera.flying();
         info.extent = presenter.extent();
+        info.vlm = vlmControlText(state.vlm);
         overlay->build(info, dt);
       }
       presenter.setOverlay(state.overlay ? overlay.get() : nullptr);

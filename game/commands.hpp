@@ -20,6 +20,7 @@ int runExport(const cli::Args& args);
 int runBench(const cli::Args& args);
 int runBake(const cli::Args& args);
 int runAccuracy(const cli::Args& args);
+int runVlmMake(const cli::Args& args);
 
 // The Vulkan context for --device (or BOUNCE_DEVICE), headless unless `windowed`.
 struct GpuOptions {

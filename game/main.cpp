@@ -35,6 +35,7 @@ int main(int argc, char** argv) {
       if (name == "bench") return game::runBench(args);
       if (name == "bake") return game::runBake(args);
       if (name == "accuracy") return game::runAccuracy(args);
+      if (name == "vlm-make") return game::runVlmMake(args);
     }
     throwInputError("bounce", name, "unknown command", "one of the commands in 'bounce --help'");
   } catch (const InputError& e) {

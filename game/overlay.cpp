@@ -102,6 +102,7 @@ void layoutPanel(const OverlayInfo& info) {
     ImGui::TextColored(ImVec4(1.0f, 0.75f, 0.3f, 1.0f), "PAUSED");
   }
   ImGui::TextDisabled(info.flying ? "flying (R resets the camera)" : "WASD/QE move, right mouse looks");
+  if (!info.vlm.empty()) ImGui::TextUnformatted(info.vlm.c_str());  // per-tag VLM overrides (T, ]/[, H)
   ImGui::End();
 }
 

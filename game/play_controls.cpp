@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <sstream>
 
 namespace bounce::game {
@@ -48,6 +49,10 @@ std::vector<KeyBinding> makeBindings() {
   b.push_back({GLFW_KEY_O, "O", PlayAction::ToggleOverlay, 0, "overlay on/off"});
   b.push_back({GLFW_KEY_C, "C", PlayAction::ToggleCulling, 0, "render-graph culling on/off"});
   b.push_back({GLFW_KEY_R, "R", PlayAction::ResetCamera, 0, "reset the camera (and its motion script)"});
+  b.push_back({GLFW_KEY_T, "T", PlayAction::VlmNextTag, 0, "VLM: select the next tag (none, then each tag)"});
+  b.push_back({GLFW_KEY_RIGHT_BRACKET, "]", PlayAction::VlmIntensityUp, 0, "VLM: selected tag's intensity x1.41"});
+  b.push_back({GLFW_KEY_LEFT_BRACKET, "[", PlayAction::VlmIntensityDown, 0, "VLM: selected tag's intensity /1.41"});
+  b.push_back({GLFW_KEY_H, "H", PlayAction::VlmNextHue, 0, "VLM: rotate the selected tag's hue by 30 degrees"});
   b.push_back({GLFW_KEY_ESCAPE, "Esc", PlayAction::Quit, 0, "quit"});
   return b;
 }
@@ -82,7 +87,8 @@ std::string keyMapSummary(const std::string& indent) {
   return indent + "keys: W/A/S/D move, Q/E down/up, Shift faster, hold right mouse to look\n" +
          indent + "  effects: " + effects + "\n" +
          indent + "  views: " + views + ", 0 cycles\n" +
-         indent + "  +/- exposure, V vsync, P pause, O overlay, C culling, R reset camera, Esc quit";
+         indent + "  +/- exposure, V vsync, P pause, O overlay, C culling, R reset camera, Esc quit\n" +
+         indent + "  VLM: T selects a tag, ]/[ its intensity up/down, H rotates its hue";
 }
 
 std::vector<ScriptedKey> parseKeyScript(const std::string& list) {
@@ -145,8 +151,43 @@ KeyEffect applyKey(int key, PlayState& state, scene::EffectSet& effects) {
     case PlayAction::ToggleCulling: state.settings.culling = !state.settings.culling; return KeyEffect::Handled;
     case PlayAction::ResetCamera: return KeyEffect::ResetCamera;
     case PlayAction::Quit: state.quit = true; return KeyEffect::Handled;
+    case PlayAction::VlmNextTag: {
+      VlmControl& v = state.vlm;
+      if (v.tags.empty()) return KeyEffect::Handled;
+      v.selected = v.selected + 1 >= int(v.tags.size()) ? -1 : v.selected + 1;
+      return KeyEffect::Handled;
+    }
+    case PlayAction::VlmIntensityUp:
+    case PlayAction::VlmIntensityDown:
+    case PlayAction::VlmNextHue: {
+      VlmControl& v = state.vlm;
+      if (v.selected < 0 || v.selected >= int(v.tags.size())) return KeyEffect::Handled;  // nothing selected
+      scene::VlmOverride& o = v.overrides[int(v.tags[std::size_t(v.selected)])];
+      if (it->action == PlayAction::VlmNextHue) {
+        o.hueDeg = std::fmod(o.hueDeg + kVlmHueStepDeg + 360.0f, 360.0f);
+      } else {
+        const float f = it->action == PlayAction::VlmIntensityUp ? kVlmIntensityStep : 1.0f / kVlmIntensityStep;
+        o.intensity = std::clamp(o.intensity * f, kVlmIntensityMin, kVlmIntensityMax);
+      }
+      return KeyEffect::VlmChanged;
+    }
   }
   return KeyEffect::None;
+}
+
+std::string vlmControlText(const VlmControl& vlm) {
+  if (vlm.tags.empty()) return {};
+  std::string list;
+  for (std::uint32_t t : vlm.tags) list += (list.empty() ? "" : " ") + std::to_string(t);
+  if (vlm.selected < 0 || vlm.selected >= int(vlm.tags.size()))
+    return "VLM tags [" + list + "]: T selects one, ]/[ intensity, H hue";
+  const int tag = int(vlm.tags[std::size_t(vlm.selected)]);
+  scene::VlmOverride o;
+  if (auto it = vlm.overrides.find(tag); it != vlm.overrides.end()) o = it->second;
+  char text[160];
+  std::snprintf(text, sizeof text, "VLM tag %d of [%s]: intensity %.2f, hue %.0f deg", tag, list.c_str(),
+                double(o.intensity), double(o.hueDeg));
+  return text;
 }
 
 // --- FlyCamera ---

@@ -4,6 +4,7 @@
 //   - PlayState, what the keys change (effects, debug view, exposure, vsync, pause, overlay);
 //   - FlyCamera, the WASD + mouse-look camera that moves the active camera's scene::Transform.
 // Key codes are GLFW's (GLFW_KEY_*), kept as plain ints here.
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -12,6 +13,7 @@
 #include "engine/render/renderer.hpp"
 #include "engine/scene/components.hpp"
 #include "engine/scene/effects.hpp"
+#include "engine/scene/level.hpp"
 
 namespace bounce::game {
 
@@ -27,6 +29,10 @@ enum class PlayAction {
   ToggleCulling,
   ResetCamera,
   Quit,
+  VlmNextTag,        // select the next VLM tag (none → first → … → last → none)
+  VlmIntensityUp,    // the selected tag's override intensity × kVlmIntensityStep
+  VlmIntensityDown,  // ÷ kVlmIntensityStep
+  VlmNextHue,        // its hue rotated by kVlmHueStepDeg (thesis Fig. 5.5)
 };
 
 struct KeyBinding {
@@ -52,8 +58,23 @@ struct ScriptedKey {
 };
 std::vector<ScriptedKey> parseKeyScript(const std::string& list);
 
+// The live per-tag VLM overrides (§3.5, Fig. 5.5): which tag the keys act on and the overrides the
+// VLM runtime applies (vlm::Runtime::setOverrides). Starts from the level's "vlm.overrides".
+struct VlmControl {
+  std::vector<std::uint32_t> tags;  // the level's VLM tags, sorted (vlm::Runtime::tags())
+  int selected = -1;                // index into tags, -1 = none selected
+  std::map<int, scene::VlmOverride> overrides;
+};
+inline constexpr float kVlmIntensityStep = 1.4142135f;  // half a stop per key press
+inline constexpr float kVlmIntensityMin = 1.0f / 256.0f, kVlmIntensityMax = 256.0f;
+inline constexpr float kVlmHueStepDeg = 30.0f;
+// One overlay line: "VLM tag 1 of [1 2 3]: intensity 2.00, hue 30 deg", or the key hint when
+// nothing is selected; empty when the level has no VLM.
+std::string vlmControlText(const VlmControl& vlm);
+
 // What the keys change. `settings` is passed to Session::render as is.
 struct PlayState {
+  VlmControl vlm;
   render::FrameSettings settings;
   bool vsync = true;
   bool paused = false;   // motion scripts hold their pose (simulation time stops)
@@ -62,7 +83,7 @@ struct PlayState {
 };
 
 // What the caller must do after a key beyond updating PlayState.
-enum class KeyEffect { None, Handled, EffectsChanged, VsyncChanged, ResetCamera };
+enum class KeyEffect { None, Handled, EffectsChanged, VsyncChanged, ResetCamera, VlmChanged };
 
 // Applies a key press to `state` and `effects`. Unbound keys return None and change nothing.
 KeyEffect applyKey(int key, PlayState& state, scene::EffectSet& effects);

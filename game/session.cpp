@@ -69,8 +69,9 @@ Session::Session(gpu::Context& ctx, scene::Level level) : ctx_(ctx), level_(std:
     }
     renderer_->setNode("dnrt", dnrt_->node());
   }
-  // Effect `vlm`: only when some entity carries virtual lights (issue 5).
-  if (level_.effects.has(scene::Effect::Vlm) && registry_.view<scene::Vlm>().front() != ecs::Entity::null()) {
+  // Effect `vlm`: only when some entity carries virtual lights (issue 5): a `vlm` component, or a
+  // mesh whose glTF nodes say extras.bounce_vlm.
+  if (level_.effects.has(scene::Effect::Vlm) && !vlm::collectVlms(registry_, cookCacheDir()).empty()) {
     vlm_ = std::make_unique<vlm::Runtime>(ctx_, renderer_->pipelines(), registry_, vlm::settingsFrom(level_.vlm),
                                           cookCacheDir(), renderer_->frames().framesInFlight());
     renderer_->setNode("vlm", vlm_->node());

@@ -21,7 +21,8 @@ namespace bounce::asset {
 
 // Bump when cook() output changes for the same input (it is part of every cache key and stored in
 // every cooked file, so old cache entries are re-cooked, never trusted).
-inline constexpr std::uint32_t kCookerVersion = 1;
+// 2: reads extras.bounce_vlm into Node::vlm.
+inline constexpr std::uint32_t kCookerVersion = 2;
 
 struct CookOptions {
   // false: images are checked (header read) but not decoded; Texture::pixels stays empty.

@@ -81,6 +81,17 @@ void validate(const CookedAsset& a, const std::string& file) {
     ref(where + "/camera", n.camera, a.cameras.size());
     ref(where + "/light", n.light, a.lights.size());
     ref(where + "/skin", n.skin, a.skins.size());
+    if (n.vlm.present) {  // the same rules as the importer's extras.bounce_vlm check
+      const NodeVlm& v = n.vlm;
+      auto in = [](glm::vec3 c, float lo, float hi) {
+        return std::isfinite(c.x + c.y + c.z) && glm::all(glm::greaterThanEqual(c, glm::vec3(lo))) &&
+               glm::all(glm::lessThanEqual(c, glm::vec3(hi)));
+      };
+      if (n.mesh < 0 || v.tag < 1 || v.tag > (1u << 24) || !in(v.color, 0.0f, 3e38f) ||
+          !(v.intensity >= 0.0f && v.intensity <= 1e6f) || !in(v.reflectance, 0.0f, 1.0f))
+        throwInputError(file, where + "/vlm", "invalid bounce_vlm extras", "a mesh node, tag in [1, 2^24], colour >= 0, "
+                                                                           "intensity in [0, 1e6], reflectance in [0, 1]");
+    }
     for (std::size_t c = 0; c < n.children.size(); ++c) {
       need(at(where + "/children", c), n.children[c], a.nodes.size());
       if (++parents[std::size_t(n.children[c])] > 1 || std::size_t(n.children[c]) == i)

@@ -95,6 +95,23 @@ struct Subdivision {
   bool operator==(const Subdivision&) const = default;
 };
 
+// A node's extras.bounce_vlm (README "Virtual Light Meshes", VLM thesis §3.4–3.5): when the asset
+// is referenced from a level entity, this node's mesh is a Virtual Light Mesh (one-sided diffuse
+// virtual lights), never real geometry: the renderer, the reference and the exporter skip it and
+// engine/gi/vlm collects it. The has* flags say which keys the file gave (an entity's `vlm`
+// component overrides those, and fills in the others: engine/gi/vlm/vlm_mesh.hpp).
+struct NodeVlm {
+  bool present = false;
+  std::uint32_t tag = 0;  // ≥ 1 when present (§3.4 id)
+  bool hasColor = false;
+  glm::vec3 color{1.0f};  // HDR hue (§3.5)
+  bool hasIntensity = false;
+  float intensity = 1.0f;  // scale (§3.5)
+  bool hasReflectance = false;
+  glm::vec3 reflectance{1.0f};  // in [0, 1]
+  bool operator==(const NodeVlm&) const = default;
+};
+
 struct Node {
   std::string name;
   // Local transform: `matrix` when hasMatrix, else T * R * S (glTF order).
@@ -109,6 +126,7 @@ struct Node {
   std::int32_t light = -1;
   std::int32_t skin = -1;
   Subdivision subdivision;  // as requested (extras.subdivision or CookOptions); mesh is already refined
+  NodeVlm vlm;              // extras.bounce_vlm; real-geometry consumers skip nodes with vlm.present
   bool operator==(const Node&) const = default;
 };
 

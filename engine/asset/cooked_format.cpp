@@ -138,6 +138,8 @@ template <class S> void io(S& s, Texture& t) { s(t.name); s(t.width); s(t.height
 template <class S> void io(S& s, Node& n) {
   s(n.name); s(n.hasMatrix); s(n.matrix); s(n.translation); s(n.rotation); s(n.scale); s(n.children);
   s(n.mesh); s(n.camera); s(n.light); s(n.skin); s.enumeration(n.subdivision.scheme, 2); s(n.subdivision.levels);
+  s(n.vlm.present); s(n.vlm.tag); s(n.vlm.hasColor); s(n.vlm.color); s(n.vlm.hasIntensity); s(n.vlm.intensity);
+  s(n.vlm.hasReflectance); s(n.vlm.reflectance);
 }
 template <class S> void io(S& s, Camera& c) {
   s(c.name); s.enumeration(c.type, 1); s(c.yfov); s(c.aspectRatio); s(c.xmag); s(c.ymag); s(c.znear); s(c.zfar);

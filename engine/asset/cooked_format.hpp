@@ -22,7 +22,8 @@
 
 namespace bounce::asset {
 
-inline constexpr std::uint32_t kCookedFormatVersion = 1;
+// 2: nodes carry extras.bounce_vlm (NodeVlm).
+inline constexpr std::uint32_t kCookedFormatVersion = 2;
 
 enum class SectionType : std::uint32_t {
   Info = 1,  // source name, root nodes

@@ -42,6 +42,43 @@ Subdivision parseSubdivision(const ImportContext& ctx, const tinygltf::Value& v,
   return s;
 }
 
+// extras.bounce_vlm: {"tag": N, "color": [r,g,b], "intensity": x, "reflectance": [r,g,b]}, tag required
+// (1 ≤ N ≤ 2^24, as the level's "vlm" component), colour ≥ 0, intensity in [0, 1e6], reflectance in
+// [0, 1]; unknown keys are errors (a typo would silently change the light otherwise).
+NodeVlm parseVlmExtras(const ImportContext& ctx, const tinygltf::Value& v, const std::string& where, bool hasMesh) {
+  const std::string form = "{\"tag\": N, \"color\": [r, g, b], \"intensity\": x, \"reflectance\": [r, g, b]}";
+  if (!v.IsObject()) ctx.fail(where, "not an object", form);
+  if (!hasMesh) ctx.fail(where, "a VLM on a node without a mesh", "bounce_vlm on a node with a mesh");
+  for (const std::string& key : v.Keys())
+    if (key != "tag" && key != "color" && key != "intensity" && key != "reflectance")
+      ctx.fail(where + "/" + key, "unknown key \"" + key + "\"", "one of: tag, color, intensity, reflectance");
+  auto number = [&](const tinygltf::Value& x, const std::string& at, double lo, double hi, const std::string& expected) {
+    const double d = x.IsNumber() ? x.GetNumberAsDouble() : std::nan("");
+    if (!(d >= lo && d <= hi)) ctx.fail(at, x.IsNumber() ? "out of range" : "not a number", expected);
+    return d;
+  };
+  auto vec3 = [&](const char* key, double lo, double hi, const std::string& expected) {
+    const tinygltf::Value& a = v.Get(key);
+    const std::string at = where + "/" + key;
+    if (!a.IsArray() || a.ArrayLen() != 3) ctx.fail(at, "not an array of 3 numbers", expected);
+    glm::vec3 out;
+    for (int k = 0; k < 3; ++k) out[k] = float(number(a.Get(k), ptr(at, std::size_t(k)), lo, hi, expected));
+    return out;
+  };
+  NodeVlm n;
+  n.present = true;
+  if (!v.Has("tag")) ctx.fail(where, "missing required key \"tag\"", "an integer id >= 1");
+  const tinygltf::Value& tag = v.Get("tag");
+  const double t = number(tag, where + "/tag", 1, double(1 << 24), "an integer id in [1, 16777216]");
+  if (t != std::floor(t)) ctx.fail(where + "/tag", "not an integer", "an integer id in [1, 16777216]");
+  n.tag = std::uint32_t(t);
+  if ((n.hasColor = v.Has("color"))) n.color = vec3("color", 0.0, 3e38, "3 numbers >= 0");
+  if ((n.hasIntensity = v.Has("intensity")))
+    n.intensity = float(number(v.Get("intensity"), where + "/intensity", 0.0, 1e6, "a number in [0, 1e6]"));
+  if ((n.hasReflectance = v.Has("reflectance"))) n.reflectance = vec3("reflectance", 0.0, 1.0, "3 numbers in [0, 1]");
+  return n;
+}
+
 void importNodes(const ImportContext& ctx, CookedAsset& out) {
   const auto& m = ctx.model;
   for (std::size_t i = 0; i < m.nodes.size(); ++i) {
@@ -85,6 +122,8 @@ void importNodes(const ImportContext& ctx, CookedAsset& out) {
     }
     if (src.extras.IsObject() && src.extras.Has("subdivision"))
       n.subdivision = parseSubdivision(ctx, src.extras.Get("subdivision"), where + "/extras/subdivision");
+    if (src.extras.IsObject() && src.extras.Has("bounce_vlm"))
+      n.vlm = parseVlmExtras(ctx, src.extras.Get("bounce_vlm"), where + "/extras/bounce_vlm", src.mesh != -1);
     out.nodes.push_back(std::move(n));
   }
 

@@ -73,7 +73,7 @@ SceneDesc extractScene(ecs::Registry& registry, const scene::Level& level, const
             out.lights.push_back(makeLight(fromAsset(L.type), L.color, L.intensity, L.range, L.innerConeAngle,
                                            L.outerConeAngle, m));
           }
-          if (node.mesh < 0) return;
+          if (node.mesh < 0 || node.vlm.present) return;  // extras.bounce_vlm: virtual light, not real geometry
           const glm::mat3 normalMatrix = glm::inverseTranspose(glm::mat3(m));
           for (const asset::Primitive& p : a.cpu.meshes[node.mesh].primitives) {
             RefMaterial mat;  // the default material (white, no emission) when the primitive has none

@@ -152,7 +152,7 @@ void GpuScene::extract(ecs::Registry& registry, const scene::Level& level, const
             w.lights.push_back(makeLight(static_cast<LightType>(L.type), L.color, L.intensity, L.range,
                                          L.innerConeAngle, L.outerConeAngle, true, m));
           }
-          if (node.mesh < 0) return;
+          if (node.mesh < 0 || node.vlm.present) return;  // extras.bounce_vlm: virtual light, not real geometry
           const auto& meshCpu = a.cpu.meshes[node.mesh];
           for (int i = 0; i < 8; ++i) {
             glm::vec3 c{i & 1 ? meshCpu.bounds.max.x : meshCpu.bounds.min.x,

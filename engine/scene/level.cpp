@@ -181,6 +181,27 @@ void parseVlm(const json::Node& node, EntityDesc& d, const ParseContext&) {
   d.vlm = v;
 }
 
+// "overrides": {"TAG": {"intensity": x, "color": [r,g,b], "hue_deg": h}}: keys are decimal tags
+// (1 ≤ TAG ≤ 2^24, no sign, no leading zero), every inner key optional.
+std::map<int, VlmOverride> parseVlmOverrides(const json::Node& node) {
+  if (!node.raw().is_object()) node.wrongType("an object {\"TAG\": {\"intensity\": x, \"color\": [r, g, b], \"hue_deg\": h}}");
+  std::map<int, VlmOverride> out;
+  for (const auto& [key, _] : node.raw().items()) {
+    const json::Node entry = node.child(key);
+    const bool digits = !key.empty() && key.size() <= 8 && key[0] != '0' &&
+                        key.find_first_not_of("0123456789") == std::string::npos;
+    if (!digits || std::stoi(key) > (1 << 24))
+      entry.fail("key " + json::inQuotes(key) + " is not a tag", "a decimal tag id in [1, 16777216]");
+    const auto o = entry.object({"intensity", "color", "hue_deg"});
+    VlmOverride v;
+    if (auto i = o.optional("intensity")) v.intensity = i->real(json::Range::closed(0, 1e6));
+    if (auto c = o.optional("color")) v.color = c->vec3(json::Range::atLeast(0));
+    if (auto h = o.optional("hue_deg")) v.hueDeg = h->real(json::Range::closed(-360, 360));
+    out[std::stoi(key)] = v;
+  }
+  return out;
+}
+
 void parseVlmTag(const json::Node& node, EntityDesc& d, const ParseContext&) {
   d.vlmTag = VlmTag{int(node.integer(1, 1 << 24))};
 }
@@ -335,10 +356,11 @@ Level loadLevel(const std::filesystem::path& pathIn) {
   }
 
   if (auto p = o.optional("vlm")) {
-    const auto vo = p->object({"grid", "k", "range"});
+    const auto vo = p->object({"grid", "k", "range", "overrides"});
     if (auto v = vo.optional("grid")) level.vlm.grid = int(v->integer(1, 256));
     if (auto v = vo.optional("k")) level.vlm.k = int(v->integer(1, 256));
     if (auto v = vo.optional("range")) level.vlm.range = float(v->real(json::Range::closed(1.0, 100.0)));
+    if (auto v = vo.optional("overrides")) level.vlm.overrides = parseVlmOverrides(*v);
   }
 
   const auto entities = o.required("entities", "an array of entities");

@@ -9,6 +9,7 @@
 // parent cycles, unknown or repeated effect names, and that mesh assets exist (paths are relative
 // to the level file).
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -26,12 +27,15 @@ namespace bounce::scene {
 // only stands for light bounced by the real geometry tagged `tag` (§3.4). Emitted radiance per
 // triangle: L = reflectance · E / π × color × intensity (§3.3, §3.5), E the irradiance from the real
 // lights. Lives here (not components.hpp) while the VLM work owns only the level files.
+// Keys not given (color, intensity, reflectance) come from the glTF node's extras.bounce_vlm when it
+// has them (given keys override the extras), else the defaults: color [1,1,1], intensity 1,
+// reflectance as engine/gi/vlm/vlm_mesh.hpp says.
 struct Vlm {
   MeshRef mesh;                          // the virtual-light geometry (glTF)
   int tag = 0;                           // ≥ 1; real geometry with the same vlm_tag skips it
-  glm::vec3 color{1.0f};                 // HDR hue override (§3.5)
-  float intensity = 1.0f;                // scale override (§3.5)
-  std::optional<glm::vec3> reflectance;  // default: the material albedo (level override, else glTF)
+  std::optional<glm::vec3> color;        // HDR hue override (§3.5); default [1,1,1]
+  std::optional<float> intensity;        // scale override (§3.5); default 1
+  std::optional<glm::vec3> reflectance;  // default: see engine/gi/vlm/vlm_mesh.hpp
   std::optional<glm::vec3> albedoOverride;  // the entity's "material" albedo, when given
   friend bool operator==(const Vlm&, const Vlm&) = default;
 };
@@ -70,10 +74,22 @@ struct ProbesConfig {
 
 // The level's "vlm" object (used when effects name `vlm`): the acceleration grid (thesis ch. 4):
 // cells per axis over the scene bounds, candidates per cell K and the active-hemisphere range.
+// Per-tag artistic overrides (§3.5, thesis Fig. 5.5): every virtual light with tag `t` emits
+//   L' = hueRotate(L, hueDeg) · color · intensity
+// on top of its own colour and intensity; hueDeg rotates the hue about the grey axis (0 = none).
+// `bounce play` changes them live (game/play_controls.hpp).
+struct VlmOverride {
+  float intensity = 1.0f;
+  glm::vec3 color{1.0f};
+  float hueDeg = 0.0f;
+  friend bool operator==(const VlmOverride&, const VlmOverride&) = default;
+};
+
 struct VlmConfig {
   int grid = 16;
   int k = 32;
   float range = 2.5f;
+  std::map<int, VlmOverride> overrides;  // "overrides": {"TAG": {...}}, by tag
 };
 
 struct Level {

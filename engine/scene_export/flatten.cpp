@@ -79,7 +79,7 @@ FlatScene flattenLevel(const scene::Level& level, double timeSeconds, const std:
         const std::string nodeName = node.name.empty() ? "node" + std::to_string(n) : node.name;
         if (node.light >= 0)
           out.lights.push_back({ei, desc.id + "/" + nodeName, a.lights[std::size_t(node.light)], true, rigid(m)});
-        if (node.mesh >= 0) out.meshes.push_back({ei, ai, n, node.mesh, m});
+        if (node.mesh >= 0 && !node.vlm.present) out.meshes.push_back({ei, ai, n, node.mesh, m});  // VLM nodes are not real
       });
     }
 

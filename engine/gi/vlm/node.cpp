@@ -59,6 +59,7 @@ NodeSettings settingsFrom(const scene::VlmConfig& config) {
   s.grid = config.grid;
   s.k = std::uint32_t(config.k);
   s.range = config.range;
+  s.overrides = config.overrides;
   return s;
 }
 
@@ -82,6 +83,11 @@ Runtime::Runtime(gpu::Context& ctx, const render::Pipelines& pipelines, ecs::Reg
       const auto* placed = registry.tryGet<scene::WorldTransform>(m.entity);
       appendPlaced(m, placed ? placed->matrix : glm::mat4(1.0f), staticLights_);
     }
+  {
+    std::vector<VirtualLight> all;
+    for (const VlmMesh& m : meshes_) all.insert(all.end(), m.local.begin(), m.local.end());
+    tags_ = tagsOf(all);
+  }
   gpu::ShaderModule vert(ctx, "passes/fullscreen.vert.spv");
   gpu::ShaderModule lightsFrag(ctx, "vlm/vlm_lights.frag.spv"), shadeFrag(ctx, "vlm/vlm.frag.spv");
   gpu::GraphicsPipelineDesc d;
@@ -135,6 +141,11 @@ FrameData Runtime::prepare(const render::RenderWorld& world) {
   }
   dynamicOverflow_ = f.dynamicGrid.overflowCells;
   f.lights.insert(f.lights.end(), moving.begin(), moving.end());
+  // Artistic per-tag overrides (§3.5) on this frame's copy; the grids keep the unmodified bounds.
+  if (!settings_.overrides.empty())
+    for (VirtualLight& l : f.lights)
+      if (auto it = settings_.overrides.find(int(l.tag)); it != settings_.overrides.end())
+        l.scale = applyOverride(l.scale, it->second);
   registry_.view<scene::VlmTag>().each([&](ecs::Entity e, scene::VlmTag& t) {
     if (f.entityTags.size() <= e.index()) f.entityTags.resize(e.index() + 1, 0u);
     f.entityTags[e.index()] = std::uint32_t(t.tag);

@@ -11,6 +11,7 @@
 //   vlm::Runtime vlm(ctx, renderer.pipelines(), registry, level.vlm, cookCache, framesInFlight);
 //   renderer.setNode("vlm", vlm.node());
 #include <filesystem>
+#include <map>
 #include <vector>
 
 #include "engine/gi/vlm/grid.hpp"
@@ -30,6 +31,9 @@ struct NodeSettings {
   // Phase 1 tests shadow visibility this far in front of the virtual light (metres): VLMs sit just
   // behind the real surface they stand for (§3.4), which would otherwise shadow them.
   float shadowLift = 0.02f;
+  // Per-tag intensity/hue overrides (level "vlm.overrides", live keys in `bounce play`), applied
+  // to the packed lights every frame (prepare()).
+  std::map<int, scene::VlmOverride> overrides;
 };
 NodeSettings settingsFrom(const scene::VlmConfig& config);
 
@@ -50,6 +54,10 @@ class Runtime {
   std::size_t vlmCount() const { return meshes_.size(); }
   std::size_t lightCount() const;  // virtual lights (triangles) over every VLM
   const NodeSettings& settings() const { return settings_; }
+  // The tags of every virtual light, sorted (what `bounce play` cycles through).
+  const std::vector<std::uint32_t>& tags() const { return tags_; }
+  // Replaces the per-tag overrides; the next prepare() applies them.
+  void setOverrides(std::map<int, scene::VlmOverride> overrides) { settings_.overrides = std::move(overrides); }
   // Cells that had more than K candidates in the static grid / in the last dynamic grid.
   std::uint64_t overflowCells() const;
 
@@ -69,6 +77,7 @@ class Runtime {
   NodeSettings settings_;
   std::vector<VlmMesh> meshes_;
   std::vector<VirtualLight> staticLights_;
+  std::vector<std::uint32_t> tags_;
   Grid staticGrid_;
   bool staticBuilt_ = false;
   std::uint64_t dynamicOverflow_ = 0;

@@ -12,6 +12,7 @@
 #include <glm/glm.hpp>
 
 #include "engine/ecs/registry.hpp"
+#include "engine/scene/level.hpp"
 
 namespace bounce::vlm {
 
@@ -37,10 +38,25 @@ struct VlmMesh {
   std::vector<VirtualLight> local;  // entity-local triangles
 };
 
-// Every `vlm` entity of the registry (sorted by entity), its asset cooked through `cookCache`.
-// Reflectance per triangle: the component's "reflectance", else its "material" albedo, else the
-// glTF primitive's base colour factor. InputError for a broken asset.
+// Every VLM of the registry (sorted by entity), assets cooked through `cookCache`:
+//   - an entity with a `vlm` component: every mesh node of its instanced subtree;
+//   - an entity with a plain `mesh`: the nodes whose glTF extras say "bounce_vlm" (its other nodes
+//     are real geometry, drawn as usual).
+// Per node, each key is the first given of: the entity's `vlm` component, the node's
+// extras.bounce_vlm, the default. tag: component, extras (a mesh node of a `vlm` entity without
+// extras takes the component's tag). color [1,1,1] and intensity 1 by default. reflectance:
+// component, extras, the `vlm` entity's "material" albedo, then the PAIRED real material's albedo
+// (the area-weighted mean base colour — level albedo override, else the glTF base colour factor;
+// textures are not averaged — of the real geometry whose vlm_tag equals the tag, §3.4), and last
+// the VLM primitive's own base colour factor. InputError for a broken asset.
 std::vector<VlmMesh> collectVlms(ecs::Registry& registry, const std::filesystem::path& cookCache);
+
+// Per-tag artistic override (§3.5, Fig. 5.5) applied to a light's scale: the hue rotated by
+// o.hueDeg about the grey axis (Rodrigues; negative channels clamped to 0), times o.color and
+// o.intensity.
+glm::vec3 applyOverride(glm::vec3 scale, const scene::VlmOverride& o);
+// The tags of `lights`, sorted, each once (0 = none is left out).
+std::vector<std::uint32_t> tagsOf(std::span<const VirtualLight> lights);
 
 // Appends `mesh`'s triangles placed by `world`; a mirroring matrix (det < 0) swaps two vertices so
 // the emitting side stays the one the artist modelled.

@@ -120,6 +120,42 @@ TEST(PlayKeys, TogglesAndUnboundKeys) {
   EXPECT_EQ(effects.names(), std::vector<std::string>{"shadows"});
 }
 
+// Per-tag VLM overrides (thesis Fig. 5.5): T walks none → each tag → none; ]/[ scale the selected
+// tag's intensity by exactly kVlmIntensityStep; H turns its hue by 30° modulo 360. Without a
+// selection (or without VLMs) the keys change nothing.
+TEST(PlayKeys, VlmKeysSelectATagAndChangeItsOverride) {
+  PlayState state;
+  scene::EffectSet effects;
+  EXPECT_EQ(applyKey(GLFW_KEY_T, state, effects), KeyEffect::Handled);
+  EXPECT_EQ(state.vlm.selected, -1) << "no VLM in the level: nothing to select";
+  EXPECT_EQ(vlmControlText(state.vlm), "");
+
+  state.vlm.tags = {1, 3};
+  state.vlm.overrides[3] = {2.0f, glm::vec3(1.0f), 0.0f};  // as the level's "vlm.overrides" gave it
+  EXPECT_EQ(applyKey(GLFW_KEY_RIGHT_BRACKET, state, effects), KeyEffect::Handled);
+  EXPECT_TRUE(state.vlm.overrides.count(1) == 0) << "nothing selected: no override made";
+  EXPECT_EQ(vlmControlText(state.vlm), "VLM tags [1 3]: T selects one, ]/[ intensity, H hue");
+
+  applyKey(GLFW_KEY_T, state, effects);
+  EXPECT_EQ(state.vlm.selected, 0);
+  EXPECT_EQ(applyKey(GLFW_KEY_RIGHT_BRACKET, state, effects), KeyEffect::VlmChanged);
+  EXPECT_EQ(applyKey(GLFW_KEY_RIGHT_BRACKET, state, effects), KeyEffect::VlmChanged);
+  EXPECT_FLOAT_EQ(state.vlm.overrides.at(1).intensity, kVlmIntensityStep * kVlmIntensityStep);  // = 2
+  applyKey(GLFW_KEY_LEFT_BRACKET, state, effects);
+  EXPECT_FLOAT_EQ(state.vlm.overrides.at(1).intensity, kVlmIntensityStep);
+  for (int i = 0; i < 13; ++i) EXPECT_EQ(applyKey(GLFW_KEY_H, state, effects), KeyEffect::VlmChanged);
+  EXPECT_FLOAT_EQ(state.vlm.overrides.at(1).hueDeg, 30.0f) << "13 × 30° = 390° = 30°";
+  EXPECT_EQ(vlmControlText(state.vlm), "VLM tag 1 of [1 3]: intensity 1.41, hue 30 deg");
+
+  applyKey(GLFW_KEY_T, state, effects);  // tag 3 keeps the level's override and builds on it
+  applyKey(GLFW_KEY_LEFT_BRACKET, state, effects);
+  EXPECT_FLOAT_EQ(state.vlm.overrides.at(3).intensity, 2.0f / kVlmIntensityStep);
+  for (int i = 0; i < 40; ++i) applyKey(GLFW_KEY_RIGHT_BRACKET, state, effects);
+  EXPECT_FLOAT_EQ(state.vlm.overrides.at(3).intensity, kVlmIntensityMax) << "clamped";
+  applyKey(GLFW_KEY_T, state, effects);
+  EXPECT_EQ(state.vlm.selected, -1) << "past the last tag: none again";
+}
+
 TEST(FlyCameraTest, StartsWhereTheLevelPointsIt) {
   // cornell-1's camera: pitched 18° down, no yaw.
   const scene::Transform start = cameraAt({-18.0f, 0.0f, 0.0f});

@@ -341,7 +341,7 @@ TEST(Level, VlmComponentsParseAndInstantiate) {
   const Vlm& v = *level.entities[1].vlm;
   EXPECT_EQ(v.tag, 3);
   EXPECT_EQ(v.color, glm::vec3(1.0f, 0.5f, 0.25f));
-  EXPECT_FLOAT_EQ(v.intensity, 2.0f);
+  EXPECT_FLOAT_EQ(v.intensity.value(), 2.0f);
   EXPECT_FALSE(v.reflectance);
   EXPECT_EQ(v.albedoOverride, glm::vec3(0.5f, 0.1f, 0.1f));
   EXPECT_EQ(v.mesh, *level.entities[1].mesh);
