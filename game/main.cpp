@@ -1,5 +1,6 @@
 // bounce: the Bounce executable. `bounce --help` lists the commands; exit codes: 0 success,
-// 2 bad input (one line naming the file, the place and what was expected), 1 internal error.
+// 2 bad input (one line naming the file, the place and what was expected), 1 internal error —
+// also when a Vulkan validation error was reported during the command (game::exitCodeAfterCommand).
 #include <cstdio>
 #include <cstring>
 #include <string>
@@ -24,17 +25,17 @@ int main(int argc, char** argv) {
         std::fputs(cli::helpText(spec).c_str(), stdout);
         return 0;
       }
-      if (name == "play") return game::runPlay(args);
-      if (name == "capture") return game::runCapture(args);
-      if (name == "profile") return game::runProfile(args);
-      if (name == "graph") return game::runGraph(args);
-      if (name == "cook") return game::runCook(args);
-      if (name == "demo") return game::runDemo(args);
-      if (name == "reference") return game::runReference(args);
-      if (name == "export") return game::runExport(args);
-      if (name == "bench") return game::runBench(args);
-      if (name == "bake") return game::runBake(args);
-      if (name == "accuracy") return game::runAccuracy(args);
+      if (name == "play") return game::exitCodeAfterCommand(name, game::runPlay(args));
+      if (name == "capture") return game::exitCodeAfterCommand(name, game::runCapture(args));
+      if (name == "profile") return game::exitCodeAfterCommand(name, game::runProfile(args));
+      if (name == "graph") return game::exitCodeAfterCommand(name, game::runGraph(args));
+      if (name == "cook") return game::exitCodeAfterCommand(name, game::runCook(args));
+      if (name == "demo") return game::exitCodeAfterCommand(name, game::runDemo(args));
+      if (name == "reference") return game::exitCodeAfterCommand(name, game::runReference(args));
+      if (name == "export") return game::exitCodeAfterCommand(name, game::runExport(args));
+      if (name == "bench") return game::exitCodeAfterCommand(name, game::runBench(args));
+      if (name == "bake") return game::exitCodeAfterCommand(name, game::runBake(args));
+      if (name == "accuracy") return game::exitCodeAfterCommand(name, game::runAccuracy(args));
     }
     throwInputError("bounce", name, "unknown command", "one of the commands in 'bounce --help'");
   } catch (const InputError& e) {
