@@ -12,7 +12,7 @@ int runGraph(const cli::Args& args) {
   if (!args.has("--dot")) throwInputError("bounce graph", "--dot", "missing", "an output file");
   const auto res = args.resolution("--resolution").value_or(std::pair{1280, 720});
   scene::Level level = loadLevelWithEffects(args.positional[0], args.list("--effects"));
-  gpu::Context ctx;
+  gpu::Context ctx({args.str("--device")});
   Session session(ctx, level);
   session.update(0.0);
   const VkExtent2D extent{std::uint32_t(res.first), std::uint32_t(res.second)};

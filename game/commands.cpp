@@ -1,6 +1,9 @@
 #include "game/commands.hpp"
 
 #include <climits>
+#include <cstdio>
+
+#include "engine/gpu/context.hpp"
 
 #include "game/play_controls.hpp"
 
@@ -32,7 +35,7 @@ const std::vector<cli::CommandSpec>& commandSpecs() {
         {"--csv", "FILE", "also write pass,object,frames,median_ms,p95_ms"}},
        1, 1},
       {"graph", "LEVEL --dot FILE [options]", "write the level's compiled render graph as Graphviz DOT",
-       {effects, {"--dot", "FILE", "output file"}, {"--no-cull", "", "keep passes whose outputs nothing reads"},
+       {device, effects, {"--dot", "FILE", "output file"}, {"--no-cull", "", "keep passes whose outputs nothing reads"},
         {"--resolution", "WxH", "render size (default 1280x720)"}},
        1, 1},
       {"cook", "FILE... [--out DIR]", "cook glTF/glb files (or every asset of a level .json) into the content cache",
@@ -82,5 +85,15 @@ const std::vector<cli::CommandSpec>& commandSpecs() {
 }
 
 GpuOptions gpuOptions(const cli::Args& args) { return {args.str("--device"), false}; }
+
+int exitCodeAfterCommand(const std::string& command, int code) {
+  const std::uint64_t errors = gpu::validationErrorsTotal();
+  if (errors == 0) return code;
+  // A command that already failed (exit 1) has said why; play prints its own count.
+  if (code != 1)
+    std::fprintf(stderr, "bounce %s: %llu Vulkan validation error(s), printed above\n", command.c_str(),
+                 static_cast<unsigned long long>(errors));
+  return 1;
+}
 
 }  // namespace bounce::game

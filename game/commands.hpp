@@ -1,6 +1,7 @@
 #pragma once
 // The `bounce` subcommands. Each returns the process exit code (0 success); bad input is thrown
 // as InputError (exit 2) and failures as InternalError (exit 1), see main.cpp.
+#include <string>
 #include <vector>
 
 #include "game/cli.hpp"
@@ -28,5 +29,12 @@ struct GpuOptions {
   bool windowed = false;
 };
 GpuOptions gpuOptions(const cli::Args& args);
+
+// The process exit code once `command` returned `code`: 1 when any Context of the process counted
+// a Vulkan validation error (gpu::validationErrorsTotal()), so every run with validation on — the
+// tests start `bounce` as a child process with BOUNCE_VALIDATION=1 — fails on one; else `code`.
+// Prints one line `bounce COMMAND: N Vulkan validation error(s), printed above` unless the command
+// already failed with exit 1.
+int exitCodeAfterCommand(const std::string& command, int code);
 
 }  // namespace bounce::game

@@ -1,8 +1,10 @@
 // bounce: the Bounce executable. `bounce --help` lists the commands; exit codes: 0 success,
-// 2 bad input (one line naming the file, the place and what was expected), 1 internal error.
+// 2 bad input (one line naming the file, the place and what was expected), 1 internal error —
+// also when a Vulkan validation error was reported during the command (game::exitCodeAfterCommand).
 #include <cstdio>
 #include <cstring>
 #include <string>
+#include <utility>
 
 #include "engine/core/error.hpp"
 #include "game/commands.hpp"
@@ -24,18 +26,17 @@ int main(int argc, char** argv) {
         std::fputs(cli::helpText(spec).c_str(), stdout);
         return 0;
       }
-      if (name == "play") return game::runPlay(args);
-      if (name == "capture") return game::runCapture(args);
-      if (name == "profile") return game::runProfile(args);
-      if (name == "graph") return game::runGraph(args);
-      if (name == "cook") return game::runCook(args);
-      if (name == "demo") return game::runDemo(args);
-      if (name == "reference") return game::runReference(args);
-      if (name == "export") return game::runExport(args);
-      if (name == "bench") return game::runBench(args);
-      if (name == "bake") return game::runBake(args);
-      if (name == "accuracy") return game::runAccuracy(args);
-      if (name == "vlm-make") return game::runVlmMake(args);
+      using Run = int (*)(const cli::Args&);
+      static const std::pair<const char*, Run> kRunners[] = {
+          {"play", game::runPlay},           {"capture", game::runCapture},
+          {"profile", game::runProfile},     {"graph", game::runGraph},
+          {"cook", game::runCook},           {"demo", game::runDemo},
+          {"reference", game::runReference}, {"export", game::runExport},
+          {"bench", game::runBench},         {"bake", game::runBake},
+          {"accuracy", game::runAccuracy},   {"vlm-make", game::runVlmMake},
+      };
+      for (const auto& [command, run] : kRunners)
+        if (name == command) return game::exitCodeAfterCommand(name, run(args));
     }
     throwInputError("bounce", name, "unknown command", "one of the commands in 'bounce --help'");
   } catch (const InputError& e) {

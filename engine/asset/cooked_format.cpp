@@ -73,6 +73,7 @@ class Reader {
   }
   void bytes(void* p, std::size_t n) {
     if (n > remaining()) fail("section ends early", std::to_string(n) + " more bytes");
+    if (n == 0) return;  // an empty array's data() may be null, and memcpy(null, …, 0) is UB (UBSan, fuzzing)
     std::memcpy(p, data_.data() + at_, n);
     at_ += n;
   }

@@ -8,7 +8,8 @@
 //
 // Besides the goldens, each capture must look like a Cornell box: not blank, red wall on the left,
 // green wall on the right (tonemapped PNG), and the moving props must change the image between
-// frame 0 and frame 60. A last test captures one short script twice: lavapipe is deterministic,
+// frame 0 and frame 60; timings.json is read back and must hold one row per executed pass with
+// median and p95 numbers over every frame. A last test captures one short script twice: lavapipe is deterministic,
 // so the two runs must be bit-identical.
 #include <gtest/gtest.h>
 
@@ -18,6 +19,8 @@
 #include <fstream>
 #include <iterator>
 #include <sstream>
+
+#include <nlohmann/json.hpp>
 
 #include "engine/gpu/image_io.hpp"
 #include "engine/gpu/testing.hpp"
@@ -128,6 +131,45 @@ double luminanceStdDev(const gpu::CpuImage& img) {
   return std::sqrt(std::max(0.0, sumSq / double(pixels) - mean * mean));
 }
 
+// timings.json read back: {"passes": [{"pass", "object", "frames", "median_ms", "p95_ms"}, ...]},
+// one row per executed pass in order (plus DNRT's per-object rows) and a last `frame` row (the sum
+// of the passes), every simulated frame timed.
+void checkTimingsJson(const fs::path& file, const game::CaptureResult& result, std::size_t simulatedFrames) {
+  std::ifstream f(file);
+  ASSERT_TRUE(f) << "no " << file;
+  const nlohmann::json j = nlohmann::json::parse(f);
+  ASSERT_TRUE(j.is_object());
+  ASSERT_EQ(j.size(), 1u);
+  const auto& rows = j.at("passes");
+  ASSERT_TRUE(rows.is_array());
+  ASSERT_EQ(rows.size(), result.passes.size());
+  std::vector<std::string> wholePasses;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const auto& r = rows[i];
+    SCOPED_TRACE(r.dump());
+    ASSERT_EQ(r.size(), 5u);
+    EXPECT_EQ(r.at("pass").get<std::string>(), result.passes[i].pass);
+    EXPECT_EQ(r.at("object").get<std::string>(), result.passes[i].object);
+    ASSERT_TRUE(r.at("frames").is_number_unsigned());
+    ASSERT_TRUE(r.at("median_ms").is_number());
+    ASSERT_TRUE(r.at("p95_ms").is_number());
+    const double median = r.at("median_ms").get<double>(), p95 = r.at("p95_ms").get<double>();
+    EXPECT_TRUE(std::isfinite(median) && median >= 0.0);
+    EXPECT_GE(p95, median);
+    if (r.at("object").get<std::string>().empty()) {
+      wholePasses.push_back(r.at("pass").get<std::string>());
+      EXPECT_EQ(r.at("frames").get<std::size_t>(), simulatedFrames);  // every frame, whole passes
+    } else {
+      EXPECT_GE(r.at("frames").get<std::size_t>(), 1u);
+      EXPECT_LE(r.at("frames").get<std::size_t>(), simulatedFrames);
+    }
+  }
+  ASSERT_FALSE(wholePasses.empty());
+  EXPECT_EQ(wholePasses.back(), "frame");
+  wholePasses.pop_back();
+  EXPECT_EQ(wholePasses, result.executedPasses);
+}
+
 bool updatingGoldens() {
   const char* v = std::getenv("BOUNCE_UPDATE_GOLDENS");
   return v && std::string(v) == "1";
@@ -146,6 +188,7 @@ void checkCornellCapture(int props) {
   ASSERT_EQ(result.frames.size(), 2u);
   EXPECT_EQ(result.frames[0].index, 0u);
   EXPECT_EQ(result.frames[1].index, 60u);
+  checkTimingsJson(out / "timings.json", result, 61);
 
   std::vector<gpu::FloatImage> hdr;
   for (const auto& frame : result.frames) {

@@ -3,12 +3,15 @@
 // seed: the same inputs on every run), and fails on the first exception that escapes the target.
 //
 //   fuzz_gltf_import [--iterations N] asset-path...   (paths relative to BOUNCE_SHARED_DIR)
+//   fuzz_gltf_import --write-seeds DIR asset-path...  writes the seeds as DIR/seed-N (a libFuzzer
+//                                                     corpus, see CMakeLists.txt) and exits
 #include "tests/fuzz/fuzz_target.hpp"
 
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
 #include <filesystem>
+#include <fstream>
 #include <random>
 #include <string>
 
@@ -69,11 +72,13 @@ bool run(const std::vector<std::uint8_t>& input, const std::string& what) {
 int main(int argc, char** argv) {
   std::size_t iterations = 2000;
   std::vector<std::string> paths;
+  std::filesystem::path seedDir;
   const char* env = std::getenv("BOUNCE_SHARED_DIR");
   const std::filesystem::path shared = env && *env ? env : BOUNCE_SHARED_DIR;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--iterations" && i + 1 < argc) iterations = std::strtoull(argv[++i], nullptr, 10);
+    else if (a == "--write-seeds" && i + 1 < argc) seedDir = argv[++i];
     else paths.push_back((shared / a).string());
   }
   std::vector<std::vector<std::uint8_t>> seeds;
@@ -86,6 +91,19 @@ int main(int argc, char** argv) {
   if (seeds.empty()) {
     std::fprintf(stderr, "no seeds given\n");
     return 1;
+  }
+  if (!seedDir.empty()) {
+    std::filesystem::create_directories(seedDir);
+    for (std::size_t s = 0; s < seeds.size(); ++s) {
+      std::ofstream f(seedDir / ("seed-" + std::to_string(s)), std::ios::binary | std::ios::trunc);
+      f.write(reinterpret_cast<const char*>(seeds[s].data()), std::streamsize(seeds[s].size()));
+      if (!f) {
+        std::fprintf(stderr, "cannot write %s\n", (seedDir / ("seed-" + std::to_string(s))).c_str());
+        return 1;
+      }
+    }
+    std::printf("wrote %zu seeds to %s\n", seeds.size(), seedDir.c_str());
+    return 0;
   }
   for (std::size_t s = 0; s < seeds.size(); ++s)
     if (!run(seeds[s], "seed " + std::to_string(s))) return 1;

@@ -12,6 +12,12 @@ namespace {
 
 // Interpolation is a weighted sum of 8 floats with weights that sum to 1: a few float ulps.
 constexpr float kInterpTol = 1e-5f;
+// Chebyshev weight of a probe deep behind an occluder: σ²/(σ² + 0.3²) = 1e-4/0.0901, cubed
+// ≈ 1.4e-9; a bound 7× above it still fails a test that forgot the visibility term (weight ~1/2).
+constexpr float kOccludedWeightMax = 1e-8f;
+// The remaining probe renormalised to weight 1: a division of a float by itself plus a sum with
+// a 1e-9 term, within one ulp of 1 (1.2e-7); 1e-6 allows ~8 ulps.
+constexpr float kRenormalisedTol = 1e-6f;
 
 // 2×2×2 probes 1 m apart, every probe open (mean hit distance 10 m, so Chebyshev is 1) and a
 // distinct radiance SH per probe; no bias, so the lookup point is the receiver itself.
@@ -85,8 +91,8 @@ TEST(ProbeLookup, ChebyshevCutsAProbeBehindAnOccluder) {
   v.weights({0.5f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f}, glm::vec3(0.0f), probe, weight);
   // Chebyshev: σ²/(σ² + 0.3²) = 1e-4/0.0901, cubed ≈ 1.4e-9 → probe 1's share is below 1e-8.
   EXPECT_EQ(probe[1], 1);
-  EXPECT_LT(weight[1], 1e-8f);
-  EXPECT_NEAR(weight[0], 1.0f, 1e-6f);
+  EXPECT_LT(weight[1], kOccludedWeightMax);
+  EXPECT_NEAR(weight[0], 1.0f, kRenormalisedTol);
 }
 
 TEST(ProbeFormat, RoundTripsAndRejectsEveryCorruption) {

@@ -15,6 +15,9 @@ namespace {
 
 // Float matrix maths in glm's projection vs the tracer's double-precision ray.
 constexpr float kNdcTolerance = 2e-5f;
+// Bilinear texture filtering in float: the sRGB decode (std::pow) and a lerp of values in [0, 1],
+// each within a few ulps (ulp(1) = 1.2e-7); 1e-6 allows ~8.
+constexpr float kFilterTol = 1e-6f;
 
 TEST(Camera, RayGoesThroughPixelCentreOfTheRasterisersProjection) {
   RefCamera cam = test::lookAt({0.3f, 1.2f, 2.0f}, {-0.2f, 0.1f, 0.0f}, {0, 1, 0}, 72.0f);
@@ -43,13 +46,13 @@ TEST(Texture, BilinearFilterOfSrgbDecodedTexels) {
   const std::vector<std::uint8_t> rgba = {128, 128, 128, 255, 255, 0, 255, 255};
   const RefTexture t = makeTexture(2, 1, rgba, true);
   const float a = std::pow((128.0f / 255.0f + 0.055f) / 1.055f, 2.4f);
-  EXPECT_NEAR(t.sample({0.25f, 0.5f}).x, a, 1e-6f);                   // texel centre: that texel
-  EXPECT_NEAR(t.sample({0.5f, 0.5f}).x, 0.5f * (a + 1.0f), 1e-6f);   // between centres: the linear mean
-  EXPECT_NEAR(t.sample({0.5f, 0.5f}).y, 0.5f * a, 1e-6f);            // green of texel 1 is 0
-  EXPECT_NEAR(t.sample({0.0f, 0.5f}).x, 0.5f * (a + 1.0f), 1e-6f);   // REPEAT: the edge blends both ends
-  EXPECT_NEAR(t.sample({1.25f, -3.5f}).x, a, 1e-6f);                 // periodic in u and v
+  EXPECT_NEAR(t.sample({0.25f, 0.5f}).x, a, kFilterTol);                   // texel centre: that texel
+  EXPECT_NEAR(t.sample({0.5f, 0.5f}).x, 0.5f * (a + 1.0f), kFilterTol);   // between centres: the linear mean
+  EXPECT_NEAR(t.sample({0.5f, 0.5f}).y, 0.5f * a, kFilterTol);            // green of texel 1 is 0
+  EXPECT_NEAR(t.sample({0.0f, 0.5f}).x, 0.5f * (a + 1.0f), kFilterTol);   // REPEAT: the edge blends both ends
+  EXPECT_NEAR(t.sample({1.25f, -3.5f}).x, a, kFilterTol);                 // periodic in u and v
   const RefTexture linear = makeTexture(2, 1, rgba, false);
-  EXPECT_NEAR(linear.sample({0.25f, 0.5f}).x, 128.0f / 255.0f, 1e-6f);
+  EXPECT_NEAR(linear.sample({0.25f, 0.5f}).x, 128.0f / 255.0f, kFilterTol);
   const RefTexture broken = makeTexture(3, 3, rgba, true);  // wrong pixel count: white, as GpuScene
   EXPECT_EQ(broken.sample({0.3f, 0.3f}), glm::vec3(1.0f));
 }

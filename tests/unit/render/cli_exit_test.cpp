@@ -1,6 +1,6 @@
 // The `bounce` executable as users run it: exit codes (0 success, 2 bad input), the one-line error
-// format `file: /json/pointer: what (expected …)`, and the files `graph`, `profile` and `cook`
-// write. Each command runs as a child process (std::system) with stdout/stderr in files under
+// format `file: /json/pointer: what (expected …)`, the files `graph`, `profile` and `cook`
+// write, `--help` of every command, and `cook LEVEL`. Each command runs as a child process (std::system) with stdout/stderr in files under
 // BOUNCE_TEST_OUT/render-cli/<test name>/.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
@@ -170,4 +170,81 @@ TEST_F(Cli, BakeReportsEachBakeThenTheCache) {
   const Outcome bad = bounce({"bake", kCornell.string(), "--effects", "direct,glow"});
   EXPECT_EQ(bad.code, 2);
   EXPECT_EQ(lines(bad.err).size(), 1u) << bad.err;
+}
+
+// Every command listed by `bounce --help` answers `bounce COMMAND --help` with exit 0, its usage
+// line first and nothing on stderr — without its required arguments.
+TEST_F(Cli, EveryCommandHasHelp) {
+  const Outcome overview = bounce({"--help"});
+  ASSERT_EQ(overview.code, 0) << overview.err;
+  std::vector<std::string> names;
+  bool inCommands = false;
+  for (const auto& line : lines(overview.out)) {
+    if (line == "commands:") inCommands = true;
+    else if (line.empty()) inCommands = false;
+    // A command row is "  name  summary"; continuation lines (play's key map) are indented deeper.
+    else if (inCommands && line.size() > 2 && line[0] == ' ' && line[1] == ' ' && line[2] != ' ')
+      names.push_back(line.substr(2, line.find(' ', 2) - 2));
+  }
+  for (const char* expected : {"play", "capture", "profile", "graph", "cook", "reference", "demo", "accuracy", "bake",
+                               "export", "bench"})
+    EXPECT_NE(std::find(names.begin(), names.end(), expected), names.end()) << expected << " missing from --help";
+  for (const auto& name : names) {
+    SCOPED_TRACE(name);
+    const Outcome r = bounce({name, "--help"});
+    EXPECT_EQ(r.code, 0) << r.err;
+    EXPECT_EQ(r.err, "");
+    const auto out = lines(r.out);
+    ASSERT_FALSE(out.empty());
+    EXPECT_EQ(out[0].rfind("usage: bounce " + name + " ", 0), 0u) << out[0];
+    EXPECT_NE(r.out.find("  --help "), std::string::npos);
+  }
+  // The key map is part of play's help (README "Playing" quotes it).
+  EXPECT_NE(bounce({"play", "--help"}).out.find("keys: W/A/S/D move"), std::string::npos);
+}
+
+// `bounce cook LEVEL` cooks each asset the level names once, into the same cache entry as cooking
+// that asset file itself; a Cornell level gives one entry per distinct asset path.
+TEST_F(Cli, CookLevelCooksEveryAssetItUses) {
+  auto entries = [](const fs::path& dir) {
+    std::vector<std::string> names;
+    if (fs::exists(dir))
+      for (const auto& e : fs::recursive_directory_iterator(dir))
+        if (e.is_regular_file() && e.path().extension() == ".bcook") names.push_back(e.path().filename().string());
+    std::sort(names.begin(), names.end());
+    return names;
+  };
+  const fs::path level = kSource / "tests/data/render/plane-debug.json";  // quad.gltf, used twice
+  const Outcome fromLevel = bounce({"cook", level.string(), "--out", (dir_ / "level").string()});
+  ASSERT_EQ(fromLevel.code, 0) << fromLevel.err;
+  const Outcome fromFile =
+      bounce({"cook", (kSource / "tests/data/render/quad.gltf").string(), "--out", (dir_ / "file").string()});
+  ASSERT_EQ(fromFile.code, 0) << fromFile.err;
+  const auto a = entries(dir_ / "level"), b = entries(dir_ / "file");
+  ASSERT_EQ(a.size(), 1u);
+  EXPECT_EQ(a, b);
+  EXPECT_EQ(readText(dir_ / "level" / a[0]), readText(dir_ / "file" / b[0]));
+
+  // Distinct "asset" paths of cornell-1 (each resolved against the level's folder).
+  const std::string text = readText(kCornell);
+  std::vector<std::string> assets;
+  for (std::size_t at = text.find("\"asset\""); at != std::string::npos; at = text.find("\"asset\"", at + 1)) {
+    const std::size_t open = text.find('"', text.find(':', at) + 1), close = text.find('"', open + 1);
+    assets.push_back(text.substr(open + 1, close - open - 1));
+  }
+  std::sort(assets.begin(), assets.end());
+  assets.erase(std::unique(assets.begin(), assets.end()), assets.end());
+  ASSERT_GE(assets.size(), 2u);
+  const Outcome cornell = bounce({"cook", kCornell.string(), "--out", (dir_ / "cornell").string()});
+  ASSERT_EQ(cornell.code, 0) << cornell.err;
+  EXPECT_EQ(entries(dir_ / "cornell").size(), assets.size());
+}
+
+TEST_F(Cli, GraphTakesDevice) {
+  // A device name that matches nothing is an internal error listing the devices (exit 1), so
+  // --device reaches the Context; an empty match is not silently ignored.
+  const Outcome r = bounce({"graph", kCornell.string(), "--dot", (dir_ / "g.dot").string(), "--device", "no-such-gpu"});
+  EXPECT_EQ(r.code, 1) << r.err;
+  EXPECT_NE(r.err.find("no-such-gpu"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "g.dot"));
 }
