@@ -196,6 +196,7 @@ int runPlay(const cli::Args& args) {
         info.culling = state.settings.culling;
         info.flying = camera.flying();
         info.extent = presenter.extent();
+        if (session.vlm()) info.vlmOverflow = vlm::formatOverflow(session.vlm()->overflow());
         overlay->build(info, dt);
       }
       presenter.setOverlay(state.overlay ? overlay.get() : nullptr);

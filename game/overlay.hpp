@@ -41,6 +41,7 @@ struct OverlayInfo {
   float exposure = 1.0f;
   bool vsync = true, paused = false, culling = true, flying = false;
   VkExtent2D extent{0, 0};
+  std::string vlmOverflow;  // vlm::formatOverflow() when the VLM node runs, else empty
 };
 
 class Overlay {

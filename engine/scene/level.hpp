@@ -74,6 +74,7 @@ struct VlmConfig {
   int grid = 16;
   int k = 32;
   float range = 2.5f;
+  float conservativeThreshold = 0.0f;  // "conservative_threshold"; 0 = off (engine/gi/vlm/grid.hpp)
 };
 
 struct Level {

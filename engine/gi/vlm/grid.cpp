@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstdio>
 #include <memory>
 
 #include "engine/core/parallel.hpp"
@@ -49,17 +50,58 @@ std::vector<ActiveHemisphere> hemispheres(std::span<const GridLight> lights, flo
   return h;
 }
 
-// Cells whose boxes may overlap [c − r, c + r]: one cell of padding each side so that rounding in
-// the index arithmetic can never leave out a cell that touchesCell() accepts.
+// The cells [lo, hi] along each axis whose boxes (cellBox) overlap the half-ball's box [h.lo, h.hi]
+// exactly as touchesCell() compares them in float: the floor() guess is corrected cell by cell, so
+// no padding is needed (a cell of padding each side would visit (n+3)³ instead of (n+1)³ cells).
+// Empty (lo > hi) when the box misses the grid.
 void cellRange(const GridDesc& d, const ActiveHemisphere& h, glm::uvec3& lo, glm::uvec3& hi) {
   for (int a = 0; a < 3; ++a) {
-    const float f0 = std::floor((h.centre[a] - h.radius - d.origin[a]) / d.cellSize[a]) - 1.0f;
-    const float f1 = std::floor((h.centre[a] + h.radius - d.origin[a]) / d.cellSize[a]) + 1.0f;
-    const float top = float(d.dims[a]) - 1.0f;
-    lo[a] = std::uint32_t(std::clamp(f0, 0.0f, top));
-    hi[a] = std::uint32_t(std::clamp(f1, 0.0f, top));
-    if (f1 < 0.0f || f0 > top) hi[a] = 0, lo[a] = 1;  // wholly outside: empty range
+    const auto n = std::int64_t(d.dims[a]);
+    auto cellLo = [&](std::int64_t c) { return d.origin[a] + float(c) * d.cellSize[a]; };
+    auto cellHi = [&](std::int64_t c) { return d.origin[a] + float(c + 1) * d.cellSize[a]; };
+    // First cell with cellHi ≥ h.lo, last cell with cellLo ≤ h.hi.
+    std::int64_t first = std::clamp<std::int64_t>(std::int64_t(std::floor((h.lo[a] - d.origin[a]) / d.cellSize[a])), 0, n - 1);
+    while (first > 0 && !(cellHi(first - 1) < h.lo[a])) --first;
+    while (first < n && cellHi(first) < h.lo[a]) ++first;
+    std::int64_t last = std::clamp<std::int64_t>(std::int64_t(std::floor((h.hi[a] - d.origin[a]) / d.cellSize[a])), 0, n - 1);
+    while (last < n - 1 && !(cellLo(last + 1) > h.hi[a])) ++last;
+    while (last >= 0 && cellLo(last) > h.hi[a]) --last;
+    if (first > last) {
+      lo = glm::uvec3(1u), hi = glm::uvec3(0u);
+      return;
+    }
+    lo[a] = std::uint32_t(first), hi[a] = std::uint32_t(last);
   }
+}
+
+// Both builds end here: `entries[offsets[c] .. offsets[c+1])` are cell c's candidates in any
+// order. Sorts and truncates every list (conservative mode first sizes the lists, header comment).
+Grid finishGrid(const GridDesc& desc, const std::vector<std::uint64_t>& offsets, std::vector<Entry>& entries) {
+  const std::size_t cells = desc.cellCount();
+  GridDesc built = desc;
+  std::vector<std::uint32_t> above;
+  const bool conservative = desc.conservativeThreshold > 0.0f;
+  if (conservative) {
+    above.assign(cells, 0u);
+    parallelFor(0, cells, [&](std::size_t i) {
+      std::uint32_t n = 0;
+      for (std::uint64_t e = offsets[i]; e < offsets[i + 1]; ++e) n += entries[e].bound >= desc.conservativeThreshold;
+      above[i] = n;
+    }, 256);
+    const std::uint32_t need = cells ? *std::max_element(above.begin(), above.end()) : 0u;
+    built.k = std::clamp(need, desc.k, std::max(desc.k, desc.maxK));
+  }
+  Grid g = emptyGrid(built);
+  std::atomic<std::uint64_t> overflow{0}, dropped{0};
+  parallelFor(0, cells, [&](std::size_t i) {
+    if (finishCell(entries.data() + offsets[i], entries.data() + offsets[i + 1], built.k, g.slots.data() + i * built.k))
+      overflow.fetch_add(1, std::memory_order_relaxed);
+    if (conservative && above[i] > built.k) dropped.fetch_add(above[i] - built.k, std::memory_order_relaxed);
+  }, 256);
+  g.overflowCells = overflow;
+  g.droppedAboveThreshold = dropped;
+  g.candidates = offsets[cells];
+  return g;
 }
 
 }  // namespace
@@ -87,6 +129,13 @@ ActiveHemisphere activeHemisphere(const GridLight& l, float range) {
                                  glm::dot(l.v2 - h.centre, l.v2 - h.centre)}));
   h.radius = range * h.extent;
   h.weight = l.weight;
+  // Box of the half-ball {|p − c| ≤ r, n·(p − c) ≥ 0}: along axis a it reaches c ± r on the side
+  // the normal points to, and only the rim disc, r·√(1 − n_a²), on the other.
+  for (int a = 0; a < 3; ++a) {
+    const float rim = h.radius * std::sqrt(std::max(0.0f, 1.0f - h.normal[a] * h.normal[a]));
+    h.lo[a] = h.centre[a] - (h.normal[a] > 0.0f ? rim : h.radius);
+    h.hi[a] = h.centre[a] + (h.normal[a] < 0.0f ? rim : h.radius);
+  }
   return h;
 }
 
@@ -98,7 +147,7 @@ void cellBox(const GridDesc& d, glm::uvec3 c, glm::vec3& lo, glm::vec3& hi) {
 bool touchesCell(const ActiveHemisphere& h, glm::vec3 lo, glm::vec3 hi) {
   if (!(h.radius > 0.0f)) return false;
   // Bounding boxes first: cheap, and part of the predicate so both builds agree bit for bit.
-  if (glm::any(glm::greaterThan(h.centre - h.radius, hi)) || glm::any(glm::lessThan(h.centre + h.radius, lo))) return false;
+  if (glm::any(glm::greaterThan(h.lo, hi)) || glm::any(glm::lessThan(h.hi, lo))) return false;
   const glm::vec3 closest = glm::clamp(h.centre, lo, hi) - h.centre;
   if (glm::dot(closest, closest) > h.radius * h.radius) return false;
   // Some corner strictly in front of the light's plane (the box's support point along the normal).
@@ -123,45 +172,58 @@ std::int64_t Grid::cellOf(glm::vec3 p) const {
 }
 
 Grid buildGridGather(std::span<const GridLight> lights, const GridDesc& desc) {
-  Grid g = emptyGrid(desc);
   const auto hs = hemispheres(lights, desc.range);
-  std::atomic<std::uint64_t> overflow{0}, candidates{0};
+  const std::size_t cells = desc.cellCount();
   const std::uint32_t nx = desc.dims.x, ny = desc.dims.y;
+  std::vector<std::vector<Entry>> found(cells);
   // The thesis's build (§4.2): each cell evaluates the heuristic for every light.
-  parallelFor(0, desc.cellCount(), [&](std::size_t i) {
+  parallelFor(0, cells, [&](std::size_t i) {
     const glm::uvec3 c(std::uint32_t(i % nx), std::uint32_t((i / nx) % ny), std::uint32_t(i / (std::size_t(nx) * ny)));
     glm::vec3 lo, hi;
     cellBox(desc, c, lo, hi);
-    std::vector<Entry> found;
     for (std::uint32_t l = 0; l < hs.size(); ++l)
-      if (touchesCell(hs[l], lo, hi)) found.push_back({l, cellBound(hs[l], lo, hi)});
-    candidates += found.size();
-    if (finishCell(found.data(), found.data() + found.size(), desc.k, g.slots.data() + i * desc.k)) ++overflow;
+      if (touchesCell(hs[l], lo, hi)) found[i].push_back({l, cellBound(hs[l], lo, hi)});
   }, 16);
-  g.overflowCells = overflow;
-  g.candidates = candidates;
-  return g;
+  std::vector<std::uint64_t> offsets(cells + 1, 0);
+  for (std::size_t i = 0; i < cells; ++i) offsets[i + 1] = offsets[i] + found[i].size();
+  std::vector<Entry> entries(offsets[cells]);
+  parallelFor(0, cells, [&](std::size_t i) { std::copy(found[i].begin(), found[i].end(), entries.begin() + std::ptrdiff_t(offsets[i])); }, 256);
+  return finishGrid(desc, offsets, entries);
 }
 
 Grid buildGridScatter(std::span<const GridLight> lights, const GridDesc& desc) {
-  Grid g = emptyGrid(desc);
   const auto hs = hemispheres(lights, desc.range);
   const std::size_t cells = desc.cellCount();
   const std::uint32_t nx = desc.dims.x, ny = desc.dims.y;
   auto counts = std::make_unique<std::atomic<std::uint32_t>[]>(cells);
   for (std::size_t i = 0; i < cells; ++i) counts[i].store(0, std::memory_order_relaxed);
 
-  // Visits every cell under light l's hemisphere box that the heuristic accepts.
+  // Visits every cell under light l's half-ball box that the heuristic accepts. Slabs and rows
+  // whose distance from the centre along z (and y) alone exceeds the radius are skipped: touchesCell
+  // would reject each of their cells (its squared distance x² + y² + z² is at least y² + z² in
+  // float too: rounding is monotone), so the result is the same.
   auto forEachCell = [&](std::uint32_t l, auto&& fn) {
+    const ActiveHemisphere& h = hs[l];
+    const float r2 = h.radius * h.radius;
+    auto axisGap = [&](int a, std::uint32_t c) {
+      const float lo = desc.origin[a] + float(c) * desc.cellSize[a], hi = desc.origin[a] + float(c + 1) * desc.cellSize[a];
+      const float g = std::clamp(h.centre[a], lo, hi) - h.centre[a];
+      return g * g;
+    };
     glm::uvec3 lo, hi;
-    cellRange(desc, hs[l], lo, hi);
-    for (std::uint32_t z = lo.z; z <= hi.z; ++z)
-      for (std::uint32_t y = lo.y; y <= hi.y; ++y)
+    cellRange(desc, h, lo, hi);
+    for (std::uint32_t z = lo.z; z <= hi.z; ++z) {
+      const float dz2 = axisGap(2, z);
+      if (dz2 > r2) continue;
+      for (std::uint32_t y = lo.y; y <= hi.y; ++y) {
+        if (axisGap(1, y) + dz2 > r2) continue;
         for (std::uint32_t x = lo.x; x <= hi.x; ++x) {
           glm::vec3 blo, bhi;
           cellBox(desc, {x, y, z}, blo, bhi);
-          if (touchesCell(hs[l], blo, bhi)) fn((std::size_t(z) * ny + y) * nx + x, blo, bhi);
+          if (touchesCell(h, blo, bhi)) fn((std::size_t(z) * ny + y) * nx + x, blo, bhi);
         }
+      }
+    }
   };
   // Pass 1: count per cell.
   parallelFor(0, hs.size(), [&](std::size_t l) {
@@ -183,14 +245,22 @@ Grid buildGridScatter(std::span<const GridLight> lights, const GridDesc& desc) {
         entries[offsets[cell] + slot] = {std::uint32_t(l), cellBound(hs[l], blo, bhi)};
       });
   }, 64);
-  std::atomic<std::uint64_t> overflow{0};
-  parallelFor(0, cells, [&](std::size_t i) {
-    if (finishCell(entries.data() + offsets[i], entries.data() + offsets[i + 1], desc.k, g.slots.data() + i * desc.k))
-      overflow.fetch_add(1, std::memory_order_relaxed);
-  }, 256);
-  g.overflowCells = overflow;
-  g.candidates = offsets[cells];
-  return g;
+  return finishGrid(desc, offsets, entries);
+}
+
+std::string formatOverflow(const OverflowReport& r) {
+  char line[256];
+  std::snprintf(line, sizeof line, "vlm overflow: static %llu/%llu cells, dynamic %llu/%llu (most %llu), K %u",
+                static_cast<unsigned long long>(r.staticCells), static_cast<unsigned long long>(r.cellsPerGrid),
+                static_cast<unsigned long long>(r.dynamicCells), static_cast<unsigned long long>(r.cellsPerGrid),
+                static_cast<unsigned long long>(r.dynamicMaxCells), r.k);
+  std::string out = line;
+  if (r.conservative) {
+    std::snprintf(line, sizeof line, ", conservative: %llu candidates above the threshold dropped",
+                  static_cast<unsigned long long>(r.droppedAboveThreshold));
+    out += line;
+  }
+  return out;
 }
 
 }  // namespace bounce::vlm

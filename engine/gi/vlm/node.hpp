@@ -11,6 +11,8 @@
 //   vlm::Runtime vlm(ctx, renderer.pipelines(), registry, level.vlm, cookCache, framesInFlight);
 //   renderer.setNode("vlm", vlm.node());
 #include <filesystem>
+#include <span>
+#include <string>
 #include <vector>
 
 #include "engine/gi/vlm/grid.hpp"
@@ -30,6 +32,8 @@ struct NodeSettings {
   // Phase 1 tests shadow visibility this far in front of the virtual light (metres): VLMs sit just
   // behind the real surface they stand for (§3.4), which would otherwise shadow them.
   float shadowLift = 0.02f;
+  // Conservative overflow mode (grid.hpp) when > 0: level key vlm.conservative_threshold.
+  float conservativeThreshold = 0.0f;
 };
 NodeSettings settingsFrom(const scene::VlmConfig& config);
 
@@ -40,7 +44,15 @@ struct FrameData {
   const Grid* staticGrid = nullptr;      // indices into lights
   Grid dynamicGrid;                      // indices already offset by staticCount
   std::vector<std::uint32_t> entityTags; // vlm_tag per entity index (0 = none)
+  // The lights of each dynamic VLM: lights[first, first + count), lit by phase 1 under the
+  // timestamp scope "vlm.lights/<name>" (a per-object row in `bounce profile`).
+  struct Range {
+    std::string name;
+    std::uint32_t first = 0, count = 0;
+  };
+  std::vector<Range> dynamicRanges;
 };
+
 
 class Runtime {
  public:
@@ -52,6 +64,13 @@ class Runtime {
   const NodeSettings& settings() const { return settings_; }
   // Cells that had more than K candidates in the static grid / in the last dynamic grid.
   std::uint64_t overflowCells() const;
+  OverflowReport overflow() const { return overflow_; }
+
+  // For benchmarks (`bounce bench vlm-lights|vlm-k`): replaces the static lights and/or the
+  // settings; the static grid is rebuilt on the next frame.
+  void replaceStaticLights(std::vector<VirtualLight> lights);
+  void setSettings(const NodeSettings& settings);
+  std::span<const VirtualLight> staticLights() const { return staticLights_; }
 
   // Places the lights for `world` (its scene bounds fix the grids) and builds the dynamic grid.
   FrameData prepare(const render::RenderWorld& world);
@@ -71,7 +90,7 @@ class Runtime {
   std::vector<VirtualLight> staticLights_;
   Grid staticGrid_;
   bool staticBuilt_ = false;
-  std::uint64_t dynamicOverflow_ = 0;
+  OverflowReport overflow_;
   gpu::DescriptorSetLayout lightsLayout_, shadeLayout_;
   gpu::PipelineLayout lightsPipelineLayout_, shadePipelineLayout_;
   gpu::Pipeline lightsPipeline_, shadePipeline_;

@@ -135,6 +135,27 @@ TEST_F(Cli, ProfileCsvHasHeaderAndOneRowPerPassPlusFrame) {
   EXPECT_EQ(objects, (std::vector<std::string>{"", "", "", "", "", "prop-textured-box", "", ""}));
 }
 
+// The Cornell VLM level: phase 1 gives the dynamic VLM on the moving prop its own row
+// ("vlm.lights/<entity>", issue 5 §7), and the table ends with the grids' overflow line (the
+// level's 20 virtual lights never fill K = 32 slots, so no cell overflows). The CSV stays five
+// timing columns.
+TEST_F(Cli, ProfileOfCornellVlmHasPerObjectVlmRowAndOverflowLine) {
+  const fs::path csv = dir_ / "profile-vlm.csv";
+  const Outcome r = bounce({"profile", (kSource / "content/levels/cornell-vlm.json").string(), "--frames", "3",
+                            "--resolution", "64x64", "--csv", csv.string()});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto rows = lines(readText(csv));
+  ASSERT_FALSE(rows.empty());
+  EXPECT_EQ(rows[0], "pass,object,frames,median_ms,p95_ms");
+  std::vector<std::string> vlmRows;
+  for (std::size_t i = 1; i < rows.size(); ++i)
+    if (rows[i].rfind("vlm", 0) == 0) vlmRows.push_back(rows[i].substr(0, rows[i].find(',', rows[i].find(',') + 1)));
+  EXPECT_EQ(vlmRows, (std::vector<std::string>{"vlm.lights,", "vlm.lights,vlm-prop", "vlm,"}));
+  const auto out = lines(r.out);
+  ASSERT_FALSE(out.empty());
+  EXPECT_EQ(out.back(), "vlm overflow: static 0/4096 cells, dynamic 0/4096 (most 0), K 32");
+}
+
 TEST_F(Cli, CookWritesIntoOutputFolder) {
   const fs::path out = dir_ / "cooked";
   const Outcome r = bounce({"cook", (fs::path(BOUNCE_SHARED_DIR) / "assets/Box/glTF/Box.gltf").string(), "--out", out.string()});
