@@ -1,6 +1,7 @@
 // `bounce bench vlm-grid`: times the VLM grid builds (engine/gi/vlm/grid.hpp) on a random scene —
 // the scatter build against the thesis's gather build (Table 5.2 analogue) — and prints one line:
-//   lights=N grid=G k=K scatter_ms=… gather_ms=… overflow_cells=…
+//   lights=N grid=G k=K scatter_ms=… gather_ms=… overflow_cells=… candidates=…
+// (candidates: (light, cell) pairs the heuristic accepted, before truncation to K).
 // Each time is the median of --runs builds. CPU-only (TBB on every core). With --no-gather (the
 // gather build is O(cells × lights): 100³ cells × 100k lights is 10¹¹ tests) gather_ms=skipped.
 // `bounce bench vlm-lights|vlm-k`: GPU benches, game/bench_vlm_gpu.hpp.
@@ -54,8 +55,9 @@ int runBench(const cli::Args& args) {
     throw InternalError("bench vlm-grid: scatter and gather builds disagree");
   char gatherText[32] = "skipped";
   if (!args.has("--no-gather")) std::snprintf(gatherText, sizeof gatherText, "%.2f", gatherMs);
-  std::printf("lights=%d grid=%d k=%d scatter_ms=%.2f gather_ms=%s overflow_cells=%llu\n", lights, grid, k, scatterMs,
-              gatherText, static_cast<unsigned long long>(scatter.overflowCells));
+  std::printf("lights=%d grid=%d k=%d scatter_ms=%.2f gather_ms=%s overflow_cells=%llu candidates=%llu\n", lights, grid, k,
+              scatterMs, gatherText, static_cast<unsigned long long>(scatter.overflowCells),
+              static_cast<unsigned long long>(scatter.candidates));
   return 0;
 }
 

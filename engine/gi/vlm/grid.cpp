@@ -15,6 +15,26 @@ namespace {
 
 constexpr float kPi = 3.14159265358979f;
 
+// The heuristic and the bound (public as touchesCell / cellBound), inline for the builds' loops.
+inline bool touches(const ActiveHemisphere& h, glm::vec3 lo, glm::vec3 hi) {
+  if (!(h.radius > 0.0f)) return false;
+  // Bounding boxes first: cheap, and part of the predicate so both builds agree bit for bit.
+  if (glm::any(glm::greaterThan(h.lo, hi)) || glm::any(glm::lessThan(h.hi, lo))) return false;
+  const glm::vec3 closest = glm::clamp(h.centre, lo, hi) - h.centre;
+  if (glm::dot(closest, closest) > h.radius * h.radius) return false;
+  // Some corner strictly in front of the light's plane (the box's support point along the normal).
+  const glm::vec3 mid = 0.5f * (lo + hi), half = 0.5f * (hi - lo);
+  return glm::dot(h.normal, mid - h.centre) + glm::dot(glm::abs(h.normal), half) > 0.0f;
+}
+
+inline float bound(const ActiveHemisphere& h, glm::vec3 lo, glm::vec3 hi) {
+  const glm::vec3 closest = glm::clamp(h.centre, lo, hi) - h.centre;
+  const float d = std::max(glm::length(closest) - h.extent, 0.0f);
+  // E = π L F with F ≤ 1 and F ≤ A/(π d²): E ≤ L · min(π, A/d²).
+  const float shape = d > 0.0f ? std::min(kPi, h.area / (d * d)) : kPi;
+  return h.weight * shape;
+}
+
 struct Entry {
   std::uint32_t light;
   float bound;
@@ -29,8 +49,15 @@ bool before(const Entry& a, const Entry& b) {
 // Sorts a cell's candidates, keeps the first k, pads with kNullLight. Returns whether it overflowed.
 bool finishCell(Entry* begin, Entry* end, std::uint32_t k, std::uint32_t* out) {
   const std::size_t n = std::size_t(end - begin);
-  if (n > k) std::partial_sort(begin, begin + k, end, before);
-  else std::sort(begin, end, before);
+  auto order = [](const Entry& a, const Entry& b) { return before(a, b); };  // inlined, unlike a function pointer
+  // The order is total (one entry per light in a cell), so nth_element picks a unique set: the
+  // same list as a partial_sort, in O(n + k log k) rather than O(n log k).
+  if (n > k) {
+    std::nth_element(begin, begin + k, end, order);
+    std::sort(begin, begin + k, order);
+  } else {
+    std::sort(begin, end, order);
+  }
   const std::size_t kept = std::min<std::size_t>(n, k);
   for (std::size_t i = 0; i < kept; ++i) out[i] = begin[i].light;
   for (std::size_t i = kept; i < k; ++i) out[i] = kNullLight;
@@ -74,33 +101,33 @@ void cellRange(const GridDesc& d, const ActiveHemisphere& h, glm::uvec3& lo, glm
   }
 }
 
-// Both builds end here: `entries[offsets[c] .. offsets[c+1])` are cell c's candidates in any
-// order. Sorts and truncates every list (conservative mode first sizes the lists, header comment).
-Grid finishGrid(const GridDesc& desc, const std::vector<std::uint64_t>& offsets, std::vector<Entry>& entries) {
+// Both builds end here. `visit(fn)` calls fn(cell, begin, end) once for every cell, in parallel,
+// with that cell's candidates [begin, end) in any order (fn may reorder them). Sorts and truncates
+// every list; conservative mode first visits once more to size the lists (header comment).
+template <class Visit>
+Grid finishGrid(const GridDesc& desc, Visit&& visit) {
   const std::size_t cells = desc.cellCount();
   GridDesc built = desc;
   std::vector<std::uint32_t> above;
   const bool conservative = desc.conservativeThreshold > 0.0f;
   if (conservative) {
     above.assign(cells, 0u);
-    parallelFor(0, cells, [&](std::size_t i) {
-      std::uint32_t n = 0;
-      for (std::uint64_t e = offsets[i]; e < offsets[i + 1]; ++e) n += entries[e].bound >= desc.conservativeThreshold;
-      above[i] = n;
-    }, 256);
+    visit([&](std::size_t i, Entry* begin, Entry* end) {
+      above[i] = std::uint32_t(std::count_if(begin, end, [&](const Entry& e) { return e.bound >= desc.conservativeThreshold; }));
+    });
     const std::uint32_t need = cells ? *std::max_element(above.begin(), above.end()) : 0u;
     built.k = std::clamp(need, desc.k, std::max(desc.k, desc.maxK));
   }
   Grid g = emptyGrid(built);
-  std::atomic<std::uint64_t> overflow{0}, dropped{0};
-  parallelFor(0, cells, [&](std::size_t i) {
-    if (finishCell(entries.data() + offsets[i], entries.data() + offsets[i + 1], built.k, g.slots.data() + i * built.k))
-      overflow.fetch_add(1, std::memory_order_relaxed);
+  std::atomic<std::uint64_t> overflow{0}, dropped{0}, candidates{0};
+  visit([&](std::size_t i, Entry* begin, Entry* end) {
+    candidates.fetch_add(std::uint64_t(end - begin), std::memory_order_relaxed);
+    if (finishCell(begin, end, built.k, g.slots.data() + i * built.k)) overflow.fetch_add(1, std::memory_order_relaxed);
     if (conservative && above[i] > built.k) dropped.fetch_add(above[i] - built.k, std::memory_order_relaxed);
-  }, 256);
+  });
   g.overflowCells = overflow;
   g.droppedAboveThreshold = dropped;
-  g.candidates = offsets[cells];
+  g.candidates = candidates;
   return g;
 }
 
@@ -144,24 +171,9 @@ void cellBox(const GridDesc& d, glm::uvec3 c, glm::vec3& lo, glm::vec3& hi) {
   hi = d.origin + glm::vec3(c + 1u) * d.cellSize;
 }
 
-bool touchesCell(const ActiveHemisphere& h, glm::vec3 lo, glm::vec3 hi) {
-  if (!(h.radius > 0.0f)) return false;
-  // Bounding boxes first: cheap, and part of the predicate so both builds agree bit for bit.
-  if (glm::any(glm::greaterThan(h.lo, hi)) || glm::any(glm::lessThan(h.hi, lo))) return false;
-  const glm::vec3 closest = glm::clamp(h.centre, lo, hi) - h.centre;
-  if (glm::dot(closest, closest) > h.radius * h.radius) return false;
-  // Some corner strictly in front of the light's plane (the box's support point along the normal).
-  const glm::vec3 mid = 0.5f * (lo + hi), half = 0.5f * (hi - lo);
-  return glm::dot(h.normal, mid - h.centre) + glm::dot(glm::abs(h.normal), half) > 0.0f;
-}
+bool touchesCell(const ActiveHemisphere& h, glm::vec3 lo, glm::vec3 hi) { return touches(h, lo, hi); }
 
-float cellBound(const ActiveHemisphere& h, glm::vec3 lo, glm::vec3 hi) {
-  const glm::vec3 closest = glm::clamp(h.centre, lo, hi) - h.centre;
-  const float d = std::max(glm::length(closest) - h.extent, 0.0f);
-  // E = π L F with F ≤ 1 and F ≤ A/(π d²): E ≤ L · min(π, A/d²).
-  const float shape = d > 0.0f ? std::min(kPi, h.area / (d * d)) : kPi;
-  return h.weight * shape;
-}
+float cellBound(const ActiveHemisphere& h, glm::vec3 lo, glm::vec3 hi) { return bound(h, lo, hi); }
 
 std::int64_t Grid::cellOf(glm::vec3 p) const {
   const glm::vec3 f = glm::floor((p - desc.origin) / desc.cellSize);
@@ -182,70 +194,98 @@ Grid buildGridGather(std::span<const GridLight> lights, const GridDesc& desc) {
     glm::vec3 lo, hi;
     cellBox(desc, c, lo, hi);
     for (std::uint32_t l = 0; l < hs.size(); ++l)
-      if (touchesCell(hs[l], lo, hi)) found[i].push_back({l, cellBound(hs[l], lo, hi)});
+      if (touches(hs[l], lo, hi)) found[i].push_back({l, bound(hs[l], lo, hi)});
   }, 16);
-  std::vector<std::uint64_t> offsets(cells + 1, 0);
-  for (std::size_t i = 0; i < cells; ++i) offsets[i + 1] = offsets[i] + found[i].size();
-  std::vector<Entry> entries(offsets[cells]);
-  parallelFor(0, cells, [&](std::size_t i) { std::copy(found[i].begin(), found[i].end(), entries.begin() + std::ptrdiff_t(offsets[i])); }, 256);
-  return finishGrid(desc, offsets, entries);
+  return finishGrid(desc, [&](auto&& fn) {
+    parallelFor(0, cells, [&](std::size_t i) { fn(i, found[i].data(), found[i].data() + found[i].size()); }, 256);
+  });
 }
 
 Grid buildGridScatter(std::span<const GridLight> lights, const GridDesc& desc) {
   const auto hs = hemispheres(lights, desc.range);
-  const std::size_t cells = desc.cellCount();
   const std::uint32_t nx = desc.dims.x, ny = desc.dims.y;
-  auto counts = std::make_unique<std::atomic<std::uint32_t>[]>(cells);
-  for (std::size_t i = 0; i < cells; ++i) counts[i].store(0, std::memory_order_relaxed);
+  // Two levels, so that no step writes to memory at random: lights are binned into blocks of
+  // kBlock³ cells (a light's half-ball box covers a few blocks), then each block, on one thread,
+  // scatters its lights into per-cell lists that stay in cache and finishes its cells.
+  constexpr std::uint32_t kBlock = 8;
+  const glm::uvec3 blocks = (desc.dims + (kBlock - 1u)) / kBlock;
+  const std::size_t blockCount = std::size_t(blocks.x) * blocks.y * blocks.z;
+  std::vector<glm::uvec3> rangeLo(hs.size()), rangeHi(hs.size());
+  std::vector<std::uint8_t> live(hs.size(), 0);
+  parallelFor(0, hs.size(), [&](std::size_t l) {
+    if (!(hs[l].radius > 0.0f)) return;
+    cellRange(desc, hs[l], rangeLo[l], rangeHi[l]);
+    live[l] = glm::all(glm::lessThanEqual(rangeLo[l], rangeHi[l]));
+  }, 1024);
+  auto forEachBlock = [&](std::size_t l, auto&& fn) {
+    const glm::uvec3 b0 = rangeLo[l] / kBlock, b1 = rangeHi[l] / kBlock;
+    for (std::uint32_t z = b0.z; z <= b1.z; ++z)
+      for (std::uint32_t y = b0.y; y <= b1.y; ++y)
+        for (std::uint32_t x = b0.x; x <= b1.x; ++x) fn((std::size_t(z) * blocks.y + y) * blocks.x + x);
+  };
+  // Bin: count, prefix-sum, fill (the order inside a block does not matter: cells are sorted).
+  auto counts = std::make_unique<std::atomic<std::uint32_t>[]>(blockCount);
+  for (std::size_t b = 0; b < blockCount; ++b) counts[b].store(0, std::memory_order_relaxed);
+  parallelFor(0, hs.size(), [&](std::size_t l) {
+    if (live[l]) forEachBlock(l, [&](std::size_t b) { counts[b].fetch_add(1, std::memory_order_relaxed); });
+  }, 1024);
+  std::vector<std::uint64_t> offsets(blockCount + 1, 0);
+  for (std::size_t b = 0; b < blockCount; ++b) {
+    offsets[b + 1] = offsets[b] + counts[b].load(std::memory_order_relaxed);
+    counts[b].store(0, std::memory_order_relaxed);
+  }
+  std::vector<std::uint32_t> binned(offsets[blockCount]);
+  parallelFor(0, hs.size(), [&](std::size_t l) {
+    if (live[l])
+      forEachBlock(l, [&](std::size_t b) { binned[offsets[b] + counts[b].fetch_add(1, std::memory_order_relaxed)] = std::uint32_t(l); });
+  }, 1024);
 
-  // Visits every cell under light l's half-ball box that the heuristic accepts. Slabs and rows
-  // whose distance from the centre along z (and y) alone exceeds the radius are skipped: touchesCell
-  // would reject each of their cells (its squared distance x² + y² + z² is at least y² + z² in
-  // float too: rounding is monotone), so the result is the same.
-  auto forEachCell = [&](std::uint32_t l, auto&& fn) {
-    const ActiveHemisphere& h = hs[l];
-    const float r2 = h.radius * h.radius;
-    auto axisGap = [&](int a, std::uint32_t c) {
-      const float lo = desc.origin[a] + float(c) * desc.cellSize[a], hi = desc.origin[a] + float(c + 1) * desc.cellSize[a];
-      const float g = std::clamp(h.centre[a], lo, hi) - h.centre[a];
-      return g * g;
-    };
-    glm::uvec3 lo, hi;
-    cellRange(desc, h, lo, hi);
-    for (std::uint32_t z = lo.z; z <= hi.z; ++z) {
-      const float dz2 = axisGap(2, z);
-      if (dz2 > r2) continue;
-      for (std::uint32_t y = lo.y; y <= hi.y; ++y) {
-        if (axisGap(1, y) + dz2 > r2) continue;
-        for (std::uint32_t x = lo.x; x <= hi.x; ++x) {
-          glm::vec3 blo, bhi;
-          cellBox(desc, {x, y, z}, blo, bhi);
-          if (touchesCell(h, blo, bhi)) fn((std::size_t(z) * ny + y) * nx + x, blo, bhi);
+  // Per block: every cell of the block under each binned light's half-ball box that the heuristic
+  // accepts. Slabs and rows whose distance from the centre along z (and y) alone exceeds the
+  // radius are skipped: touchesCell would reject each of their cells (its squared distance
+  // x² + y² + z² is at least y² + z² in float too: rounding is monotone), so nothing changes.
+  auto visit = [&](auto&& fn) {
+    parallelFor(0, blockCount, [&](std::size_t b) {
+      const glm::uvec3 bc(std::uint32_t(b % blocks.x), std::uint32_t(b / blocks.x % blocks.y),
+                          std::uint32_t(b / (std::size_t(blocks.x) * blocks.y)));
+      const glm::uvec3 c0 = bc * kBlock, c1 = glm::min(c0 + kBlock, desc.dims) - 1u;
+      // Per-thread lists, reused from block to block (their capacity stays).
+      static thread_local std::vector<std::vector<Entry>> local;
+      local.resize(kBlock * kBlock * kBlock);
+      for (auto& list : local) list.clear();
+      for (std::uint64_t i = offsets[b]; i < offsets[b + 1]; ++i) {
+        const std::uint32_t l = binned[i];
+        const ActiveHemisphere& h = hs[l];
+        const float r2 = h.radius * h.radius;
+        auto axisGap = [&](int a, std::uint32_t c) {
+          const float lo = desc.origin[a] + float(c) * desc.cellSize[a], hi = desc.origin[a] + float(c + 1) * desc.cellSize[a];
+          const float g = std::clamp(h.centre[a], lo, hi) - h.centre[a];
+          return g * g;
+        };
+        const glm::uvec3 lo = glm::max(rangeLo[l], c0), hi = glm::min(rangeHi[l], c1);
+        for (std::uint32_t z = lo.z; z <= hi.z; ++z) {
+          const float dz2 = axisGap(2, z);
+          if (dz2 > r2) continue;
+          for (std::uint32_t y = lo.y; y <= hi.y; ++y) {
+            if (axisGap(1, y) + dz2 > r2) continue;
+            for (std::uint32_t x = lo.x; x <= hi.x; ++x) {
+              glm::vec3 blo, bhi;
+              cellBox(desc, {x, y, z}, blo, bhi);
+              if (touches(h, blo, bhi))
+                local[((z - c0.z) * kBlock + (y - c0.y)) * kBlock + (x - c0.x)].push_back({l, bound(h, blo, bhi)});
+            }
+          }
         }
       }
-    }
+      for (std::uint32_t z = c0.z; z <= c1.z; ++z)
+        for (std::uint32_t y = c0.y; y <= c1.y; ++y)
+          for (std::uint32_t x = c0.x; x <= c1.x; ++x) {
+            auto& list = local[((z - c0.z) * kBlock + (y - c0.y)) * kBlock + (x - c0.x)];
+            fn((std::size_t(z) * ny + y) * nx + x, list.data(), list.data() + list.size());
+          }
+    });
   };
-  // Pass 1: count per cell.
-  parallelFor(0, hs.size(), [&](std::size_t l) {
-    if (hs[l].radius > 0.0f)
-      forEachCell(std::uint32_t(l), [&](std::size_t cell, glm::vec3, glm::vec3) { counts[cell].fetch_add(1, std::memory_order_relaxed); });
-  }, 64);
-  // Exclusive prefix sum into offsets; counts become per-cell write cursors.
-  std::vector<std::uint64_t> offsets(cells + 1, 0);
-  for (std::size_t i = 0; i < cells; ++i) {
-    offsets[i + 1] = offsets[i] + counts[i].load(std::memory_order_relaxed);
-    counts[i].store(0, std::memory_order_relaxed);
-  }
-  std::vector<Entry> entries(offsets[cells]);
-  // Pass 2: fill. The order within a cell depends on thread timing; finishCell's sort removes it.
-  parallelFor(0, hs.size(), [&](std::size_t l) {
-    if (hs[l].radius > 0.0f)
-      forEachCell(std::uint32_t(l), [&](std::size_t cell, glm::vec3 blo, glm::vec3 bhi) {
-        const std::uint32_t slot = counts[cell].fetch_add(1, std::memory_order_relaxed);
-        entries[offsets[cell] + slot] = {std::uint32_t(l), cellBound(hs[l], blo, bhi)};
-      });
-  }, 64);
-  return finishGrid(desc, offsets, entries);
+  return finishGrid(desc, visit);
 }
 
 std::string formatOverflow(const OverflowReport& r) {

@@ -13,8 +13,10 @@
 // Two builds that give identical grids:
 //  - gather (the thesis's): every cell tests every light — O(cells × lights), kept as the reference
 //    and the benchmark baseline;
-//  - scatter: every light visits only the cells under its hemisphere's bounding box — O(touched
-//    cells) — counted, prefix-summed and filled in parallel (TBB), then each cell sorted.
+//  - scatter: every light visits only the cells under its half-ball's bounding box — O(touched
+//    cells). Lights are first binned (count, prefix sum, fill) into blocks of 8³ cells; then each
+//    block, in parallel (TBB), scatters its lights into its own cells' lists, which stay in cache,
+//    and sorts them: no locks, no random writes to a grid-sized array.
 // Overflow (more than K candidates): a cell keeps the K with the largest upper bound on the
 // irradiance they can deliver anywhere in the cell, E ≤ min(π, A/d²)·L (F ≤ 1 and F ≤ A/(π d²),
 // d the distance from the light's bounding sphere to the cell), ties broken by light index; the
