@@ -124,7 +124,8 @@ struct Bench {
 std::vector<int> counts(const cli::Args& args, const std::string& option, std::vector<int> fallback) {
   if (!args.has(option)) return fallback;
   std::vector<int> out;
-  for (const auto& s : *args.list(option)) {
+  const auto items = *args.list(option);  // a copy: list() returns by value
+  for (const auto& s : items) {
     std::size_t used = 0;
     int v = 0;
     try {
