@@ -15,24 +15,39 @@ namespace {
 
 constexpr float kPi = 3.14159265358979f;
 
-// The heuristic and the bound (public as touchesCell / cellBound), inline for the builds' loops.
+// The heuristic and the bound (public as touchesCell / cellBound), split per axis so the scatter
+// build can compute a row's y and z parts once. Both builds combine the parts in the same order,
+// x + (y + z), so they agree bit for bit.
+struct AxisTerms {
+  bool overlaps;  // the cell's extent meets the half-ball box's along this axis
+  float gap2;     // squared distance from the centre to the cell along this axis
+  float front;    // this axis's share of n·(support point − centre), the box's furthest corner along n
+};
+inline AxisTerms axisTerms(const ActiveHemisphere& h, int a, float lo, float hi) {
+  const float g = std::clamp(h.centre[a], lo, hi) - h.centre[a];
+  return {!(h.lo[a] > hi) && !(h.hi[a] < lo), g * g,
+          h.normal[a] * (0.5f * (lo + hi) - h.centre[a]) + std::abs(h.normal[a]) * (0.5f * (hi - lo))};
+}
+// Given the y + z parts: inside the sphere, and some corner strictly in front of the light's plane.
+inline bool accepts(const ActiveHemisphere& h, const AxisTerms& x, float yzGap2, float yzFront) {
+  return x.overlaps && x.gap2 + yzGap2 <= h.radius * h.radius && x.front + yzFront > 0.0f;
+}
+// E = π L F with F ≤ 1 and F ≤ A/(π d²): E ≤ L · min(π, A/d²), d from the light's bounding sphere.
+inline float boundAt(const ActiveHemisphere& h, float gap2) {
+  const float d = std::max(std::sqrt(gap2) - h.extent, 0.0f);
+  const float shape = d > 0.0f ? std::min(kPi, h.area / (d * d)) : kPi;
+  return h.weight * shape;
+}
+
 inline bool touches(const ActiveHemisphere& h, glm::vec3 lo, glm::vec3 hi) {
   if (!(h.radius > 0.0f)) return false;
-  // Bounding boxes first: cheap, and part of the predicate so both builds agree bit for bit.
-  if (glm::any(glm::greaterThan(h.lo, hi)) || glm::any(glm::lessThan(h.hi, lo))) return false;
-  const glm::vec3 closest = glm::clamp(h.centre, lo, hi) - h.centre;
-  if (glm::dot(closest, closest) > h.radius * h.radius) return false;
-  // Some corner strictly in front of the light's plane (the box's support point along the normal).
-  const glm::vec3 mid = 0.5f * (lo + hi), half = 0.5f * (hi - lo);
-  return glm::dot(h.normal, mid - h.centre) + glm::dot(glm::abs(h.normal), half) > 0.0f;
+  const AxisTerms x = axisTerms(h, 0, lo.x, hi.x), y = axisTerms(h, 1, lo.y, hi.y), z = axisTerms(h, 2, lo.z, hi.z);
+  return y.overlaps && z.overlaps && accepts(h, x, y.gap2 + z.gap2, y.front + z.front);
 }
 
 inline float bound(const ActiveHemisphere& h, glm::vec3 lo, glm::vec3 hi) {
-  const glm::vec3 closest = glm::clamp(h.centre, lo, hi) - h.centre;
-  const float d = std::max(glm::length(closest) - h.extent, 0.0f);
-  // E = π L F with F ≤ 1 and F ≤ A/(π d²): E ≤ L · min(π, A/d²).
-  const float shape = d > 0.0f ? std::min(kPi, h.area / (d * d)) : kPi;
-  return h.weight * shape;
+  const AxisTerms x = axisTerms(h, 0, lo.x, hi.x), y = axisTerms(h, 1, lo.y, hi.y), z = axisTerms(h, 2, lo.z, hi.z);
+  return boundAt(h, x.gap2 + (y.gap2 + z.gap2));
 }
 
 struct Entry {
@@ -241,9 +256,9 @@ Grid buildGridScatter(std::span<const GridLight> lights, const GridDesc& desc) {
   }, 1024);
 
   // Per block: every cell of the block under each binned light's half-ball box that the heuristic
-  // accepts. Slabs and rows whose distance from the centre along z (and y) alone exceeds the
-  // radius are skipped: touchesCell would reject each of their cells (its squared distance
-  // x² + y² + z² is at least y² + z² in float too: rounding is monotone), so nothing changes.
+  // accepts, with the y and z terms computed once per row. Slabs and rows whose distance from the
+  // centre along z (and y) alone exceeds the radius are skipped: touchesCell would reject each of
+  // their cells (x² + (y² + z²) ≥ y² + z² ≥ z² in float too: rounding is monotone).
   auto visit = [&](auto&& fn) {
     parallelFor(0, blockCount, [&](std::size_t b) {
       const glm::uvec3 bc(std::uint32_t(b % blocks.x), std::uint32_t(b / blocks.x % blocks.y),
@@ -257,22 +272,20 @@ Grid buildGridScatter(std::span<const GridLight> lights, const GridDesc& desc) {
         const std::uint32_t l = binned[i];
         const ActiveHemisphere& h = hs[l];
         const float r2 = h.radius * h.radius;
-        auto axisGap = [&](int a, std::uint32_t c) {
-          const float lo = desc.origin[a] + float(c) * desc.cellSize[a], hi = desc.origin[a] + float(c + 1) * desc.cellSize[a];
-          const float g = std::clamp(h.centre[a], lo, hi) - h.centre[a];
-          return g * g;
-        };
+        auto cellLo = [&](int a, std::uint32_t c) { return desc.origin[a] + float(c) * desc.cellSize[a]; };
+        auto cellHi = [&](int a, std::uint32_t c) { return desc.origin[a] + float(c + 1) * desc.cellSize[a]; };
         const glm::uvec3 lo = glm::max(rangeLo[l], c0), hi = glm::min(rangeHi[l], c1);
         for (std::uint32_t z = lo.z; z <= hi.z; ++z) {
-          const float dz2 = axisGap(2, z);
-          if (dz2 > r2) continue;
+          const AxisTerms zt = axisTerms(h, 2, cellLo(2, z), cellHi(2, z));
+          if (!zt.overlaps || zt.gap2 > r2) continue;
           for (std::uint32_t y = lo.y; y <= hi.y; ++y) {
-            if (axisGap(1, y) + dz2 > r2) continue;
+            const AxisTerms yt = axisTerms(h, 1, cellLo(1, y), cellHi(1, y));
+            const float yzGap2 = yt.gap2 + zt.gap2, yzFront = yt.front + zt.front;
+            if (!yt.overlaps || yzGap2 > r2) continue;
+            auto* row = local.data() + ((z - c0.z) * kBlock + (y - c0.y)) * kBlock;
             for (std::uint32_t x = lo.x; x <= hi.x; ++x) {
-              glm::vec3 blo, bhi;
-              cellBox(desc, {x, y, z}, blo, bhi);
-              if (touches(h, blo, bhi))
-                local[((z - c0.z) * kBlock + (y - c0.y)) * kBlock + (x - c0.x)].push_back({l, bound(h, blo, bhi)});
+              const AxisTerms xt = axisTerms(h, 0, cellLo(0, x), cellHi(0, x));
+              if (accepts(h, xt, yzGap2, yzFront)) row[x - c0.x].push_back({l, boundAt(h, xt.gap2 + yzGap2)});
             }
           }
         }
