@@ -227,9 +227,11 @@ AccuracyReport runAccuracy(const AccuracyOptions& options) {
       if (r.available) {
         r.with = std::move(techWith.image);
         r.without = renderTechnique(ctx, presenter, without, time, row, options.measuredFrames, nullptr).image;
+        // Whole-pass rows only: a per-object row ("dnrt/<id>", "vlm.lights/<id>") is nested inside
+        // its pass's scope, so adding it would count its time twice.
         for (const auto& s : timings.stats())
           for (const auto& p : row.passes)
-            if (s.pass == p) r.gpuMs += s.medianMs;
+            if (s.pass == p && s.object.empty()) r.gpuMs += s.medianMs;
       }
     }
     const Rendered& tech = rendered.at(key);

@@ -1,13 +1,17 @@
 // `bounce bench vlm-grid`: times the VLM grid builds (engine/gi/vlm/grid.hpp) on a random scene —
 // the scatter build against the thesis's gather build (Table 5.2 analogue) — and prints one line:
-//   lights=N grid=G k=K scatter_ms=… gather_ms=… overflow_cells=…
-// Each time is the median of --runs builds. CPU-only (TBB on every core).
+//   lights=N grid=G k=K scatter_ms=… gather_ms=… overflow_cells=… candidates=…
+// (candidates: (light, cell) pairs the heuristic accepted, before truncation to K).
+// Each time is the median of --runs builds. CPU-only (TBB on every core). With --no-gather (the
+// gather build is O(cells × lights): 100³ cells × 100k lights is 10¹¹ tests) gather_ms=skipped.
+// `bounce bench vlm-lights|vlm-k`: GPU benches, game/bench_vlm_gpu.hpp.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 
 #include "engine/core/error.hpp"
 #include "engine/gi/vlm/grid.hpp"
+#include "game/bench_vlm_gpu.hpp"
 #include "game/commands.hpp"
 
 namespace bounce::game {
@@ -30,7 +34,10 @@ double medianMs(int runs, F&& build) {
 
 int runBench(const cli::Args& args) {
   const std::string what = args.positional.at(0);
-  if (what != "vlm-grid") throwInputError("bounce bench", "benchmark", "unknown benchmark '" + what + "'", "vlm-grid");
+  if (what == "vlm-lights") return runBenchVlmLights(args);
+  if (what == "vlm-k") return runBenchVlmK(args);
+  if (what != "vlm-grid")
+    throwInputError("bounce bench", "benchmark", "unknown benchmark '" + what + "'", "vlm-grid, vlm-lights or vlm-k");
   const int lights = args.positiveInt("--lights", 10000);
   const int grid = args.positiveInt("--grid", 50);
   const int k = args.positiveInt("--k", 32);
@@ -46,8 +53,11 @@ int runBench(const cli::Args& args) {
   const double gatherMs = args.has("--no-gather") ? 0.0 : medianMs(runs, [&] { gather = vlm::buildGridGather(scene, desc); });
   if (!args.has("--no-gather") && gather.slots != scatter.slots)
     throw InternalError("bench vlm-grid: scatter and gather builds disagree");
-  std::printf("lights=%d grid=%d k=%d scatter_ms=%.2f gather_ms=%.2f overflow_cells=%llu\n", lights, grid, k, scatterMs,
-              gatherMs, static_cast<unsigned long long>(scatter.overflowCells));
+  char gatherText[32] = "skipped";
+  if (!args.has("--no-gather")) std::snprintf(gatherText, sizeof gatherText, "%.2f", gatherMs);
+  std::printf("lights=%d grid=%d k=%d scatter_ms=%.2f gather_ms=%s overflow_cells=%llu candidates=%llu\n", lights, grid, k,
+              scatterMs, gatherText, static_cast<unsigned long long>(scatter.overflowCells),
+              static_cast<unsigned long long>(scatter.candidates));
   return 0;
 }
 

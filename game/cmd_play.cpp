@@ -205,6 +205,7 @@ int runPlay(const cli::Args& args) {
         info.flying = camera.flying();
         info.extent = presenter.extent();
         info.vlm = vlmControlText(state.vlm);
+        if (session.vlm()) info.vlmOverflow = vlm::formatOverflow(session.vlm()->overflow());
         overlay->build(info, dt);
       }
       presenter.setOverlay(state.overlay ? overlay.get() : nullptr);

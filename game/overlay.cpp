@@ -81,6 +81,7 @@ void layoutPanel(const OverlayInfo& info) {
     ImGui::Text("%7.2f", info.gpuTotalMs);
     ImGui::EndTable();
   }
+  if (!info.vlmOverflow.empty()) ImGui::TextUnformatted(info.vlmOverflow.c_str());
   ImGui::Separator();
   ImGui::TextUnformatted("effects (keys 1-9)");
   for (int i = 0; i < scene::kEffectCount; ++i) {

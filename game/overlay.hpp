@@ -42,6 +42,7 @@ struct OverlayInfo {
   bool vsync = true, paused = false, culling = true, flying = false;
   VkExtent2D extent{0, 0};
   std::string vlm;  // vlmControlText(): the selected VLM tag and its overrides; empty: no VLM
+  std::string vlmOverflow;  // vlm::formatOverflow() when the VLM node runs, else empty
 };
 
 class Overlay {

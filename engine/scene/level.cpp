@@ -356,11 +356,14 @@ Level loadLevel(const std::filesystem::path& pathIn) {
   }
 
   if (auto p = o.optional("vlm")) {
-    const auto vo = p->object({"grid", "k", "range", "overrides"});
+    const auto vo = p->object({"grid", "k", "range", "overrides", "conservative_threshold"});
     if (auto v = vo.optional("grid")) level.vlm.grid = int(v->integer(1, 256));
     if (auto v = vo.optional("k")) level.vlm.k = int(v->integer(1, 256));
     if (auto v = vo.optional("range")) level.vlm.range = float(v->real(json::Range::closed(1.0, 100.0)));
     if (auto v = vo.optional("overrides")) level.vlm.overrides = parseVlmOverrides(*v);
+    // Conservative overflow mode: a light is dropped from a cell only below this irradiance bound.
+    if (auto v = vo.optional("conservative_threshold"))
+      level.vlm.conservativeThreshold = float(v->real(json::Range::greaterThan(0.0)));
   }
 
   const auto entities = o.required("entities", "an array of entities");

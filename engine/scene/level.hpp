@@ -90,6 +90,7 @@ struct VlmConfig {
   int k = 32;
   float range = 2.5f;
   std::map<int, VlmOverride> overrides;  // "overrides": {"TAG": {...}}, by tag
+  float conservativeThreshold = 0.0f;  // "conservative_threshold"; 0 = off (engine/gi/vlm/grid.hpp)
 };
 
 struct Level {

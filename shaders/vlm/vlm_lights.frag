@@ -1,7 +1,9 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 // VLM phase 1 (thesis §3.3, Fig. 3.4 top): the radiance every virtual light emits this frame.
-// One fragment per light (texel i = light i, row-major in a `width`-wide target):
+// One fragment per light (texel i = light i, row-major in a `width`-wide target); one draw per
+// range [first, first + count) of lights (the static VLMs, then each dynamic VLM under its own
+// timestamp scope), texels outside the range keep what the clear or another draw wrote:
 //   E   = 1/S Σ_s Σ_i E_i(p_s) (n_l·l_i)₊ V_i(p_s)       [W/m²; S = 4 points of the triangle]
 //   L   = scale · E / π,  scale = reflectance × colour × intensity     [W/(m²·sr)]
 // with E_i the real light's irradiance at normal incidence (lights.glsl, the lighting pass's own
@@ -18,11 +20,12 @@ layout(std430, set = 0, binding = 2) readonly buffer ShadowMatrices { mat4 shado
 layout(std430, set = 0, binding = 3) readonly buffer Lights { Light lights[]; };
 
 layout(push_constant) uniform Push {
-  uint count;       // virtual lights
+  uint count;       // virtual lights this draw lights
   uint width;       // texels per row of the target
   uint lightCount;  // real lights
   uint shadowsOn;   // 0: no shadow atlas this frame
   float lift;       // metres
+  uint first;       // the first virtual light this draw lights
 } pc;
 
 layout(location = 0) in vec2 inUv;
@@ -32,10 +35,7 @@ const float kInvPi = 0.31830988618379067;
 
 void main() {
   uint index = uint(gl_FragCoord.y) * pc.width + uint(gl_FragCoord.x);
-  if (index >= pc.count) {
-    outRadiance = vec4(0.0);
-    return;
-  }
+  if (index < pc.first || index - pc.first >= pc.count) discard;
   VlmLight vl = vlmLights[index];
   vec3 ln = cross(vl.v1.xyz - vl.v0.xyz, vl.v2.xyz - vl.v0.xyz);
   float len = length(ln);

@@ -1,8 +1,10 @@
-// Golden-image capture tests: the shipped capture scripts content/captures/cornell-{1,5,10}.json
+// Golden-image capture tests: the shipped capture scripts content/captures/cornell-{1,5,10,vlm}.json
 // (256×256, 61 frames, frames 0 and 60 captured) run through runCaptureScript, and every captured
-// PFM (linear radiance) is compared with tests/capture/goldens/cornell-N-frame-NNNN.pfm. The
-// levels name direct, shadows, probes and dnrt, so the goldens hold the probes' static indirect
-// light and every prop's DNRT transfer (engine/gi/probes, engine/gi/dnrt) on top of direct light.
+// PFM (linear radiance) is compared with tests/capture/goldens/<script>-frame-NNNN.pfm. The
+// cornell-N levels name direct, shadows, probes and dnrt, so their goldens hold the probes' static
+// indirect light and every prop's DNRT transfer (engine/gi/probes, engine/gi/dnrt) on top of direct
+// light; cornell-vlm names direct, shadows and vlm: its golden holds the Virtual Light Meshes' one
+// bounce (engine/gi/vlm) from the red and green walls and the moving red prop.
 //
 //   BOUNCE_UPDATE_GOLDENS=1 ctest -R CaptureGolden     rewrites the goldens from this machine
 //
@@ -180,8 +182,7 @@ std::string readBytes(const fs::path& p) {
   return {std::istreambuf_iterator<char>(f), {}};
 }
 
-void checkCornellCapture(int props) {
-  const std::string name = "cornell-" + std::to_string(props);
+void checkCornellCapture(const std::string& name) {
   const fs::path out = fs::path(BOUNCE_TEST_OUT) / "capture-golden" / name;
   fs::remove_all(out);
   const game::CaptureResult result = game::runCaptureScript(kSource / "content/captures" / (name + ".json"), out);
@@ -224,9 +225,10 @@ void checkCornellCapture(int props) {
 
 }  // namespace
 
-TEST(CaptureGolden, Cornell1) { checkCornellCapture(1); }
-TEST(CaptureGolden, Cornell5) { checkCornellCapture(5); }
-TEST(CaptureGolden, Cornell10) { checkCornellCapture(10); }
+TEST(CaptureGolden, Cornell1) { checkCornellCapture("cornell-1"); }
+TEST(CaptureGolden, Cornell5) { checkCornellCapture("cornell-5"); }
+TEST(CaptureGolden, Cornell10) { checkCornellCapture("cornell-10"); }
+TEST(CaptureGolden, CornellVlm) { checkCornellCapture("cornell-vlm"); }
 
 TEST(CaptureGolden, SameScriptTwiceIsBitIdentical) {
   const fs::path script = kSource / "tests/data/render/determinism.json";

@@ -7,21 +7,28 @@
 // A light is a candidate for a cell when the cell touches its active hemisphere (§4.2): the half of
 // the sphere about the light's centroid, of radius range × (farthest vertex distance), on the
 // emitting side. The thesis's test is per point; a cell holds candidates for every point inside it,
-// so here the test is cell-box against half-sphere, conservative: the box overlaps the sphere's
+// so here the test is cell-box against half-sphere, conservative: the box overlaps the half-ball's
 // bounding box, the sphere, and the open half-space in front of the light.
 //
 // Two builds that give identical grids:
 //  - gather (the thesis's): every cell tests every light — O(cells × lights), kept as the reference
 //    and the benchmark baseline;
-//  - scatter: every light visits only the cells under its hemisphere's bounding box — O(touched
-//    cells) — counted, prefix-summed and filled in parallel (TBB), then each cell sorted.
+//  - scatter: every light visits only the cells under its half-ball's bounding box — O(touched
+//    cells). Lights are first binned (count, prefix sum, fill) into blocks of 8³ cells; then each
+//    block, in parallel (TBB), scatters its lights into its own cells' lists, which stay in cache,
+//    and sorts them: no locks, no random writes to a grid-sized array.
 // Overflow (more than K candidates): a cell keeps the K with the largest upper bound on the
 // irradiance they can deliver anywhere in the cell, E ≤ min(π, A/d²)·L (F ≤ 1 and F ≤ A/(π d²),
 // d the distance from the light's bounding sphere to the cell), ties broken by light index; the
 // number of overflowing cells is reported. Lists are stored in that order (largest bound first), so
 // both builds agree slot for slot.
+// Conservative mode (issue 5 §4; GridDesc::conservativeThreshold > 0): a light is dropped from a
+// cell only when its bound there is below the threshold. Every list grows to the largest number of
+// above-threshold candidates any cell has (at least K, at most maxK slots); the (light, cell) pairs
+// above the threshold that still do not fit are counted in Grid::droppedAboveThreshold.
 #include <cstdint>
 #include <span>
+#include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -43,6 +50,11 @@ struct GridDesc {
   glm::uvec3 dims{1u};       // cells along each axis
   std::uint32_t k = 32;      // candidates per cell
   float range = 2.5f;        // active-hemisphere range parameter (§4.2)
+  // Conservative overflow mode when > 0: lights whose cellBound is at least this are never dropped
+  // while maxK allows (units of cellBound: the irradiance, W/m², the light could deliver into the
+  // cell if it received irradiance π itself, i.e. emitted radiance = weight).
+  float conservativeThreshold = 0.0f;
+  std::uint32_t maxK = 256;  // conservative mode: lists grow up to this many slots
 
   std::uint64_t cellCount() const { return std::uint64_t(dims.x) * dims.y * dims.z; }
 };
@@ -59,6 +71,7 @@ struct ActiveHemisphere {
   float extent = 0.0f;     // farthest vertex distance (the light's own bounding sphere)
   float area = 0.0f;
   float weight = 0.0f;
+  glm::vec3 lo{0.0f}, hi{0.0f};  // bounding box of the half-ball (tighter than the sphere's)
 };
 ActiveHemisphere activeHemisphere(const GridLight& light, float range);
 
@@ -70,10 +83,13 @@ bool touchesCell(const ActiveHemisphere& h, glm::vec3 lo, glm::vec3 hi);
 float cellBound(const ActiveHemisphere& h, glm::vec3 lo, glm::vec3 hi);
 
 struct Grid {
-  GridDesc desc;
+  GridDesc desc;                     // desc.k: the slots per cell built (conservative mode may grow it)
   std::vector<std::uint32_t> slots;  // cellCount × k; kNullLight in unused slots
   std::uint64_t overflowCells = 0;   // cells that had more than k candidates
   std::uint64_t candidates = 0;      // (light, cell) pairs before truncation
+  // Conservative mode: (light, cell) pairs whose bound reached the threshold but did not fit in
+  // maxK slots (0 otherwise).
+  std::uint64_t droppedAboveThreshold = 0;
 
   // The cell holding world point p, or -1 outside the grid.
   std::int64_t cellOf(glm::vec3 p) const;
@@ -84,6 +100,21 @@ struct Grid {
 
 Grid buildGridGather(std::span<const GridLight> lights, const GridDesc& desc);
 Grid buildGridScatter(std::span<const GridLight> lights, const GridDesc& desc);
+
+// What the grids dropped (shown by the `bounce play` overlay and `bounce profile`).
+struct OverflowReport {
+  std::uint64_t cellsPerGrid = 0;
+  std::uint32_t k = 0;                       // slots per cell as built (conservative mode may grow it)
+  std::uint64_t staticCells = 0;             // overflowing cells of the static grid
+  std::uint64_t dynamicCells = 0;            // ... of the last dynamic grid
+  std::uint64_t dynamicMaxCells = 0;         // ... most in any dynamic grid built so far
+  std::uint64_t droppedAboveThreshold = 0;   // conservative mode: static + last dynamic grid
+  bool conservative = false;
+};
+// One line for the `bounce play` overlay and the `bounce profile` footer, e.g.
+//   "vlm overflow: static 12/4096 cells, dynamic 3/4096 (most 5), K 32"
+// with ", conservative: 7 candidates above the threshold dropped" in conservative mode.
+std::string formatOverflow(const OverflowReport& report);
 
 }  // namespace bounce::vlm
 

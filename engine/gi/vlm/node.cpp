@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstring>
 
+#include "engine/gpu/timestamps.hpp"
 #include "engine/render/passes/rendering.hpp"
 #include "engine/scene/components.hpp"
 
@@ -20,6 +21,7 @@ constexpr float kBoundsPad = 0.02f;
 struct LightsPush {
   std::uint32_t count, width, lightCount, shadowsOn;
   float lift;
+  std::uint32_t first;
 };
 struct GridGpu {
   glm::vec4 originK, cellBase;
@@ -60,6 +62,7 @@ NodeSettings settingsFrom(const scene::VlmConfig& config) {
   s.k = std::uint32_t(config.k);
   s.range = config.range;
   s.overrides = config.overrides;
+  s.conservativeThreshold = config.conservativeThreshold;
   return s;
 }
 
@@ -109,13 +112,26 @@ std::size_t Runtime::lightCount() const {
   return n;
 }
 
-std::uint64_t Runtime::overflowCells() const { return staticGrid_.overflowCells + dynamicOverflow_; }
+std::uint64_t Runtime::overflowCells() const { return overflow_.staticCells + overflow_.dynamicCells; }
+
+void Runtime::replaceStaticLights(std::vector<VirtualLight> lights) {
+  staticLights_ = std::move(lights);
+  staticBuilt_ = false;
+}
+
+void Runtime::setSettings(const NodeSettings& settings) {
+  settings_ = settings;
+  staticBuilt_ = false;
+  overflow_ = {};
+}
 
 GridDesc Runtime::gridFor(const render::RenderWorld& world) const {
   glm::vec3 lo = world.sceneMin, hi = world.sceneMax;
   const float pad = kBoundsPad * glm::length(hi - lo) + 1e-3f;
   const auto dims = glm::uvec3(std::uint32_t(std::max(1, settings_.grid)));
-  return fitGrid(lo - pad, hi + pad, dims, settings_.k, settings_.range);
+  GridDesc d = fitGrid(lo - pad, hi + pad, dims, settings_.k, settings_.range);
+  d.conservativeThreshold = settings_.conservativeThreshold;
+  return d;
 }
 
 FrameData Runtime::prepare(const render::RenderWorld& world) {
@@ -132,14 +148,23 @@ FrameData Runtime::prepare(const render::RenderWorld& world) {
   std::vector<VirtualLight> moving;
   for (const VlmMesh& m : meshes_) {
     const auto* placed = registry_.tryGet<scene::WorldTransform>(m.entity);
-    if (m.dynamic && registry_.valid(m.entity) && placed) appendPlaced(m, placed->matrix, moving);
+    if (!m.dynamic || !registry_.valid(m.entity) || !placed) continue;
+    const auto first = std::uint32_t(moving.size());
+    appendPlaced(m, placed->matrix, moving);
+    f.dynamicRanges.push_back({m.name, f.staticCount + first, std::uint32_t(moving.size()) - first});
   }
   if (!moving.empty()) {
     f.dynamicGrid = buildGridScatter(gridLights(moving), desc);
     for (auto& s : f.dynamicGrid.slots)
       if (s != kNullLight) s += f.staticCount;
   }
-  dynamicOverflow_ = f.dynamicGrid.overflowCells;
+  overflow_.cellsPerGrid = desc.cellCount();
+  overflow_.k = staticGrid_.desc.k;
+  overflow_.staticCells = staticGrid_.overflowCells;
+  overflow_.dynamicCells = f.dynamicGrid.overflowCells;
+  overflow_.dynamicMaxCells = std::max(overflow_.dynamicMaxCells, f.dynamicGrid.overflowCells);
+  overflow_.droppedAboveThreshold = staticGrid_.droppedAboveThreshold + f.dynamicGrid.droppedAboveThreshold;
+  overflow_.conservative = settings_.conservativeThreshold > 0.0f;
   f.lights.insert(f.lights.end(), moving.begin(), moving.end());
   // Artistic per-tag overrides (§3.5) on this frame's copy; the grids keep the unmodified bounds.
   if (!settings_.overrides.empty())
@@ -185,7 +210,8 @@ void Runtime::addTo(rg::RenderGraph& graph, render::PassContext& pc) {
                              rg::Usage::ColorAttachment);
         if (shadows) d.atlas = b.read(bb.get<rg::Texture>("shadow.atlas"), rg::Usage::SampledFragment);
       },
-      [this, ctx, count, width, height, packed = std::move(packed), slots = std::move(slots),
+      [this, ctx, width, height, staticCount = f.staticCount, ranges = std::move(f.dynamicRanges),
+       packed = std::move(packed), slots = std::move(slots),
        tags = std::move(f.entityTags)](const LightsData& d, const rg::PassResources& res, rg::CommandContext& c) {
         VkCommandBuffer cmd = ctx->cmd(c);
         SlotBuffers& buf = buffers_[ctx->frame().slot % buffers_.size()];
@@ -207,8 +233,23 @@ void Runtime::addTo(rg::RenderGraph& graph, render::PassContext& pc) {
         render::beginRendering(*ctx->gpu, cmd, {width, height}, {&color, 1}, nullptr);
         lightsPipeline_.bind(cmd);
         lightsPipeline_.bindSet(cmd, 0, set);
-        lightsPipeline_.push(cmd, LightsPush{count, width, ctx->lightCount, d.atlas ? 1u : 0u, settings_.shadowLift});
-        vkCmdDraw(cmd, 3, 1, 0, 0);
+        // One draw per range, scissored to the rows holding it: the static lights, then each
+        // dynamic VLM in its own timestamp scope (issue 5 §7: per-object cost rows).
+        auto draw = [&](std::uint32_t first, std::uint32_t n) {
+          const std::uint32_t row0 = first / width, row1 = (first + n - 1) / width;
+          const VkRect2D scissor{{0, std::int32_t(row0)}, {width, row1 - row0 + 1}};
+          vkCmdSetScissor(cmd, 0, 1, &scissor);
+          lightsPipeline_.push(cmd, LightsPush{n, width, ctx->lightCount, d.atlas ? 1u : 0u, settings_.shadowLift, first});
+          vkCmdDraw(cmd, 3, 1, 0, 0);
+        };
+        if (staticCount) draw(0, staticCount);
+        gpu::TimestampPool* ts = ctx->frame().timestamps.get();
+        for (const auto& r : ranges) {
+          if (!r.count) continue;
+          if (ts) ts->begin(cmd, "vlm.lights/" + r.name);
+          draw(r.first, r.count);
+          if (ts) ts->end(cmd);
+        }
         ctx->gpu->cmdEndRendering(cmd);
       });
   const rg::Handle<rg::Texture> radiance = lights.radiance;

@@ -12,6 +12,8 @@
 //   renderer.setNode("vlm", vlm.node());
 #include <filesystem>
 #include <map>
+#include <span>
+#include <string>
 #include <vector>
 
 #include "engine/gi/vlm/grid.hpp"
@@ -34,6 +36,8 @@ struct NodeSettings {
   // Per-tag intensity/hue overrides (level "vlm.overrides", live keys in `bounce play`), applied
   // to the packed lights every frame (prepare()).
   std::map<int, scene::VlmOverride> overrides;
+  // Conservative overflow mode (grid.hpp) when > 0: level key vlm.conservative_threshold.
+  float conservativeThreshold = 0.0f;
 };
 NodeSettings settingsFrom(const scene::VlmConfig& config);
 
@@ -44,7 +48,15 @@ struct FrameData {
   const Grid* staticGrid = nullptr;      // indices into lights
   Grid dynamicGrid;                      // indices already offset by staticCount
   std::vector<std::uint32_t> entityTags; // vlm_tag per entity index (0 = none)
+  // The lights of each dynamic VLM: lights[first, first + count), lit by phase 1 under the
+  // timestamp scope "vlm.lights/<name>" (a per-object row in `bounce profile`).
+  struct Range {
+    std::string name;
+    std::uint32_t first = 0, count = 0;
+  };
+  std::vector<Range> dynamicRanges;
 };
+
 
 class Runtime {
  public:
@@ -60,6 +72,13 @@ class Runtime {
   void setOverrides(std::map<int, scene::VlmOverride> overrides) { settings_.overrides = std::move(overrides); }
   // Cells that had more than K candidates in the static grid / in the last dynamic grid.
   std::uint64_t overflowCells() const;
+  OverflowReport overflow() const { return overflow_; }
+
+  // For benchmarks (`bounce bench vlm-lights|vlm-k`): replaces the static lights and/or the
+  // settings; the static grid is rebuilt on the next frame.
+  void replaceStaticLights(std::vector<VirtualLight> lights);
+  void setSettings(const NodeSettings& settings);
+  std::span<const VirtualLight> staticLights() const { return staticLights_; }
 
   // Places the lights for `world` (its scene bounds fix the grids) and builds the dynamic grid.
   FrameData prepare(const render::RenderWorld& world);
@@ -80,7 +99,7 @@ class Runtime {
   std::vector<std::uint32_t> tags_;
   Grid staticGrid_;
   bool staticBuilt_ = false;
-  std::uint64_t dynamicOverflow_ = 0;
+  OverflowReport overflow_;
   gpu::DescriptorSetLayout lightsLayout_, shadeLayout_;
   gpu::PipelineLayout lightsPipelineLayout_, shadePipelineLayout_;
   gpu::Pipeline lightsPipeline_, shadePipeline_;

@@ -135,6 +135,58 @@ TEST_F(Cli, ProfileCsvHasHeaderAndOneRowPerPassPlusFrame) {
   EXPECT_EQ(objects, (std::vector<std::string>{"", "", "", "", "", "prop-textured-box", "", ""}));
 }
 
+// The Cornell VLM level: phase 1 gives the dynamic VLM on the moving prop its own row
+// ("vlm.lights/<entity>", issue 5 §7), and the table ends with the grids' overflow line (the
+// level's 20 virtual lights never fill K = 32 slots, so no cell overflows). The CSV stays five
+// timing columns.
+TEST_F(Cli, ProfileOfCornellVlmHasPerObjectVlmRowAndOverflowLine) {
+  const fs::path csv = dir_ / "profile-vlm.csv";
+  const Outcome r = bounce({"profile", (kSource / "content/levels/cornell-vlm.json").string(), "--frames", "3",
+                            "--resolution", "64x64", "--csv", csv.string()});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto rows = lines(readText(csv));
+  ASSERT_FALSE(rows.empty());
+  EXPECT_EQ(rows[0], "pass,object,frames,median_ms,p95_ms");
+  std::vector<std::string> vlmRows;
+  for (std::size_t i = 1; i < rows.size(); ++i)
+    if (rows[i].rfind("vlm", 0) == 0) vlmRows.push_back(rows[i].substr(0, rows[i].find(',', rows[i].find(',') + 1)));
+  EXPECT_EQ(vlmRows, (std::vector<std::string>{"vlm.lights,", "vlm.lights,vlm-prop", "vlm,"}));
+  const auto out = lines(r.out);
+  ASSERT_FALSE(out.empty());
+  EXPECT_EQ(out.back(), "vlm overflow: static 0/4096 cells, dynamic 0/4096 (most 0), K 32");
+}
+
+// The VLM benches print one line per setting in a fixed shape; the numbers are not checked (no
+// timed tests), the structure and the settings are. Tiny frames keep this cheap on lavapipe.
+TEST_F(Cli, VlmBenchesPrintOneLinePerSetting) {
+  const Outcome lightsRun =
+      bounce({"bench", "vlm-lights", "--counts", "20,40", "--resolution", "32x32", "--frames", "1"});
+  ASSERT_EQ(lightsRun.code, 0) << lightsRun.err;
+  const auto l = lines(lightsRun.out);
+  ASSERT_EQ(l.size(), 2u) << lightsRun.out;
+  EXPECT_EQ(l[0].rfind("lights=20 grid=1 k=20 32x32 vlm_ms=", 0), 0u) << l[0];
+  EXPECT_EQ(l[1].rfind("lights=40 grid=1 k=40 32x32 vlm_ms=", 0), 0u) << l[1];
+  EXPECT_NE(l[1].find(" vlm_lights_ms="), std::string::npos) << l[1];
+
+  const Outcome kRun = bounce({"bench", "vlm-k", "--counts", "10", "--lights", "60", "--resolution", "32x32", "--frames", "1"});
+  ASSERT_EQ(kRun.code, 0) << kRun.err;
+  const auto k = lines(kRun.out);
+  ASSERT_EQ(k.size(), 1u) << kRun.out;
+  EXPECT_EQ(k[0].rfind("k=10 lights=60 grid=16 32x32 vlm_ms=", 0), 0u) << k[0];
+  // Range 100 and 60 lights: every cell lists more than 10 candidates.
+  EXPECT_NE(k[0].find(" overflow_cells=4096/4096 frames=1"), std::string::npos) << k[0];
+
+  const Outcome grid = bounce({"bench", "vlm-grid", "--lights", "200", "--grid", "4", "--runs", "1", "--no-gather"});
+  ASSERT_EQ(grid.code, 0) << grid.err;
+  EXPECT_EQ(grid.out.rfind("lights=200 grid=4 k=32 scatter_ms=", 0), 0u) << grid.out;
+  EXPECT_NE(grid.out.find(" gather_ms=skipped overflow_cells="), std::string::npos) << grid.out;
+
+  const Outcome bad = bounce({"bench", "vlm-lights", "--counts", "20,x"});
+  EXPECT_EQ(bad.code, 2);
+  ASSERT_EQ(lines(bad.err).size(), 1u) << bad.err;
+  EXPECT_NE(bad.err.find("--counts"), std::string::npos) << bad.err;
+}
+
 TEST_F(Cli, CookWritesIntoOutputFolder) {
   const fs::path out = dir_ / "cooked";
   const Outcome r = bounce({"cook", (fs::path(BOUNCE_SHARED_DIR) / "assets/Box/glTF/Box.gltf").string(), "--out", out.string()});

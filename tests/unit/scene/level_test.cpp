@@ -371,3 +371,19 @@ TEST(LevelErrors, VlmComponents) {
   EXPECT_EQ(loadError("vlm-settings", R"({"bounce_level": 1, "effects": ["vlm"], "vlm": {"range": 0.5}, "entities": []})"),
             "FILE: /vlm/range: 0.5 is out of range (expected a number in [1, 100])");
 }
+
+// vlm.conservative_threshold (engine/gi/vlm/grid.hpp conservative overflow mode): off by default,
+// a positive number when given.
+TEST(Level, VlmConservativeThreshold) {
+  const auto on = writeTemp("vlm-conservative.json",
+                            R"({"bounce_level": 1, "effects": ["vlm"], "vlm": {"conservative_threshold": 0.25}, "entities": []})");
+  EXPECT_FLOAT_EQ(loadLevel(on).vlm.conservativeThreshold, 0.25f);
+  const auto off = writeTemp("vlm-default.json", R"({"bounce_level": 1, "effects": ["vlm"], "entities": []})");
+  EXPECT_EQ(loadLevel(off).vlm.conservativeThreshold, 0.0f);
+  EXPECT_EQ(loadError("vlm-conservative-zero",
+                      R"({"bounce_level": 1, "effects": ["vlm"], "vlm": {"conservative_threshold": 0}, "entities": []})"),
+            "FILE: /vlm/conservative_threshold: 0 is out of range (expected a number > 0)");
+  EXPECT_EQ(loadError("vlm-conservative-type",
+                      R"({"bounce_level": 1, "effects": ["vlm"], "vlm": {"conservative_threshold": "high"}, "entities": []})"),
+            "FILE: /vlm/conservative_threshold: wrong type: string (expected a number > 0)");
+}

@@ -105,3 +105,91 @@ TEST(VlmGrid, OverflowKeepsTheLargestBounds) {
   }
   EXPECT_EQ(overflowing, small.overflowCells);
 }
+
+namespace {
+
+// Brute force: how many of cell c's candidates have a bound of at least `threshold`.
+std::uint32_t aboveThreshold(std::span<const vlm::GridLight> lights, const vlm::GridDesc& desc, std::uint64_t c,
+                             float threshold) {
+  glm::vec3 lo, hi;
+  vlm::cellBox(desc, {std::uint32_t(c % desc.dims.x), std::uint32_t(c / desc.dims.x % desc.dims.y),
+                      std::uint32_t(c / (std::uint64_t(desc.dims.x) * desc.dims.y))},
+               lo, hi);
+  std::uint32_t n = 0;
+  for (const auto& l : lights) {
+    const auto h = vlm::activeHemisphere(l, desc.range);
+    if (vlm::touchesCell(h, lo, hi) && vlm::cellBound(h, lo, hi) >= threshold) ++n;
+  }
+  return n;
+}
+
+}  // namespace
+
+// Conservative overflow mode (issue 5 §4): no light whose bound reaches the threshold is dropped
+// while maxK allows; the lists grow to the largest such count (never below K); both builds agree;
+// with a small maxK the pairs that still do not fit are counted exactly.
+TEST(VlmGrid, ConservativeModeKeepsEveryLightAboveTheThreshold) {
+  const auto lights = randomLights(800, 0.15f, 9);
+  auto desc = vlm::fitGrid(glm::vec3(0.0f), glm::vec3(1.0f), glm::uvec3(6), 3, 3.5f);
+  const vlm::Grid plain = vlm::buildGridScatter(lights, desc);
+  ASSERT_GT(plain.overflowCells, 0u);
+  EXPECT_EQ(plain.droppedAboveThreshold, 0u);
+  auto all = desc;
+  all.k = 4096;
+  const vlm::Grid full = vlm::buildGridScatter(lights, all);
+
+  desc.conservativeThreshold = 2.0f;  // of cellBound's range here, about (0.03, 3.5): keeps a few per cell
+  std::uint32_t need = 0;
+  std::vector<std::uint32_t> above(desc.cellCount());
+  for (std::uint64_t c = 0; c < desc.cellCount(); ++c) need = std::max(need, above[c] = aboveThreshold(lights, desc, c, 2.0f));
+  ASSERT_GT(need, desc.k) << "the threshold should force longer lists than K";
+  ASSERT_LT(need, desc.maxK);
+
+  const vlm::Grid scatter = vlm::buildGridScatter(lights, desc);
+  const vlm::Grid gather = vlm::buildGridGather(lights, desc);
+  EXPECT_EQ(scatter.slots, gather.slots);
+  EXPECT_EQ(scatter.desc.k, need);
+  EXPECT_EQ(gather.desc.k, need);
+  EXPECT_EQ(scatter.droppedAboveThreshold, 0u);
+  EXPECT_EQ(scatter.overflowCells, gather.overflowCells);
+  for (std::uint64_t c = 0; c < desc.cellCount(); ++c) {
+    // Best first: the list is the full list's prefix, so it holds every above-threshold light.
+    const auto kept = scatter.cell(c);
+    const auto every = full.cell(c);
+    EXPECT_TRUE(std::equal(kept.begin(), kept.end(), every.begin())) << "cell " << c;
+    EXPECT_GE(std::size_t(std::count_if(kept.begin(), kept.end(), [](std::uint32_t i) { return i != vlm::kNullLight; })),
+              std::size_t(above[c]));
+  }
+
+  // maxK below what the threshold asks for: lists stop at maxK and the rest is counted.
+  desc.maxK = desc.k + 1;
+  const vlm::Grid capped = vlm::buildGridScatter(lights, desc);
+  EXPECT_EQ(capped.desc.k, desc.maxK);
+  std::uint64_t dropped = 0;
+  for (std::uint32_t a : above) dropped += a > desc.maxK ? a - desc.maxK : 0;
+  ASSERT_GT(dropped, 0u);
+  EXPECT_EQ(capped.droppedAboveThreshold, dropped);
+  EXPECT_EQ(vlm::buildGridGather(lights, desc).droppedAboveThreshold, dropped);
+
+  // A threshold no bound reaches changes nothing but the report.
+  desc.maxK = 256;
+  desc.conservativeThreshold = 1e6f;
+  const vlm::Grid high = vlm::buildGridScatter(lights, desc);
+  EXPECT_EQ(high.slots, plain.slots);
+  EXPECT_EQ(high.desc.k, plain.desc.k);
+}
+
+TEST(VlmGrid, OverflowLineNamesBothGridsAndTheConservativeCount) {
+  vlm::OverflowReport r;
+  r.cellsPerGrid = 4096;
+  r.k = 32;
+  r.staticCells = 12;
+  r.dynamicCells = 3;
+  r.dynamicMaxCells = 5;
+  EXPECT_EQ(vlm::formatOverflow(r), "vlm overflow: static 12/4096 cells, dynamic 3/4096 (most 5), K 32");
+  r.conservative = true;
+  r.droppedAboveThreshold = 7;
+  EXPECT_EQ(vlm::formatOverflow(r),
+            "vlm overflow: static 12/4096 cells, dynamic 3/4096 (most 5), K 32, conservative: 7 candidates above the "
+            "threshold dropped");
+}
