@@ -227,9 +227,7 @@ AccuracyReport runAccuracy(const AccuracyOptions& options) {
       if (r.available) {
         r.with = std::move(techWith.image);
         r.without = renderTechnique(ctx, presenter, without, time, row, options.measuredFrames, nullptr).image;
-        for (const auto& s : timings.stats())
-          for (const auto& p : row.passes)
-            if (s.pass == p) r.gpuMs += s.medianMs;
+        r.gpuMs = rowGpuMs(row, timings.stats());
       }
     }
     const Rendered& tech = rendered.at(key);

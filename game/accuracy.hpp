@@ -3,8 +3,9 @@
 // by the rasteriser and compared with the path-traced reference (engine/ref) of the same frame.
 //
 // Per row (one line of accuracy.csv, header exactly `technique,setting,gpu_ms,rel_rmse,effect_rel_rmse`):
-//   gpu_ms          median over `measuredFrames` frames (after kWarmupFrames) of the summed GPU
-//                   time of the row's lighting passes (AccuracyRow::passes), in milliseconds;
+//   gpu_ms          the sum of the medians over `measuredFrames` frames (after kWarmupFrames) of
+//                   the GPU time of the row's lighting passes (AccuracyRow::passes and the
+//                   optionalPasses that ran), outermost scopes only (rowGpuMs), in milliseconds;
 //   rel_rmse        ref::relativeRmse(technique, reference) over the whole image;
 //   effect_rel_rmse ref::objectEffectError(techWith, techWithout, refWith, refWithout).relativeError,
 //                   "without" = the level minus its dynamic entities (accuracy_level.hpp); "nan"

@@ -30,7 +30,8 @@ double medianMs(int runs, F&& build) {
 
 int runBench(const cli::Args& args) {
   const std::string what = args.positional.at(0);
-  if (what != "vlm-grid") throwInputError("bounce bench", "benchmark", "unknown benchmark '" + what + "'", "vlm-grid");
+  if (what == "dnrt") return runBenchDnrt(args);  // bench_dnrt.cpp
+  if (what != "vlm-grid") throwInputError("bounce bench", "benchmark", "unknown benchmark '" + what + "'", "vlm-grid or dnrt");
   const int lights = args.positiveInt("--lights", 10000);
   const int grid = args.positiveInt("--grid", 50);
   const int k = args.positiveInt("--k", 32);
