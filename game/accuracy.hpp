@@ -3,8 +3,9 @@
 // by the rasteriser and compared with the path-traced reference (engine/ref) of the same frame.
 //
 // Per row (one line of accuracy.csv, header exactly `technique,setting,gpu_ms,rel_rmse,effect_rel_rmse`):
-//   gpu_ms          median over `measuredFrames` frames (after kWarmupFrames) of the summed GPU
-//                   time of the row's lighting passes (AccuracyRow::passes), in milliseconds;
+//   gpu_ms          the sum of the medians over `measuredFrames` frames (after kWarmupFrames) of
+//                   the GPU time of the row's lighting passes (AccuracyRow::passes and the
+//                   optionalPasses that ran), outermost scopes only (rowGpuMs), in milliseconds;
 //   rel_rmse        ref::relativeRmse(technique, reference) over the whole image;
 //   effect_rel_rmse ref::objectEffectError(techWith, techWithout, refWith, refWithout).relativeError,
 //                   "without" = the level minus its dynamic entities (accuracy_level.hpp); "nan"
@@ -26,6 +27,7 @@
 
 #include "engine/core/image.hpp"
 #include "engine/gpu/image_io.hpp"
+#include "engine/ref/metrics.hpp"
 #include "game/accuracy_rows.hpp"
 
 namespace bounce::game {
@@ -54,6 +56,11 @@ struct AccuracyResult {
   double relRmse = 0.0;
   double effectRelRmse = 0.0;       // NaN when referenceEffectIsZero
   bool referenceEffectIsZero = false;
+  // effect_rel_rmse over the pixels where the dynamic objects' effect is indirect only: neither
+  // seen nor shadowing anything (indirectOnlyMask). That is the part DNRT, VLM, SL and RTF
+  // model; a technique that leaves it out scores 1 there. NaN when the reference effect there is
+  // zero. Terminal table only (the CSV's columns are fixed).
+  double indirectEffectRelRmse = 0.0;
   std::filesystem::path heatMap;
 };
 
@@ -72,6 +79,11 @@ inline constexpr const char* kAccuracyCsvHeader = "technique,setting,gpu_ms,rel_
 std::string formatAccuracyCsv(const std::vector<AccuracyResult>& results);
 // A fixed-width table of the same numbers for the terminal.
 std::string formatAccuracyTable(const std::vector<AccuracyResult>& results);
+
+// Pixels where two direct-only (bounces 0) references, with and without the dynamic objects,
+// agree: the objects are not seen there and cast no shadow there. The excluded region grows by
+// one pixel so that silhouettes the rasteriser draws a pixel off stay out as well.
+ref::PixelMask indirectOnlyMask(const ImageRGB& directWith, const ImageRGB& directWithout);
 
 // Linear float image conversions between the GPU readback / tracer format and the metrics one.
 ImageRGB toImageRgb(const gpu::FloatImage& image);

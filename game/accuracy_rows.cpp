@@ -72,6 +72,7 @@ void addDnrt(std::vector<AccuracyRow>& rows) {
                       ";ref=all";
           r.effects = {"direct", "shadows", "probes", "dnrt"};
           r.passes = {"shadow", "lighting", "probes", "dnrt"};
+          r.optionalPasses = {"dnrt.cube"};  // the intrusion maps (one outermost pass per object)
           r.configure = [=](scene::Level& level) {
             for (auto& e : level.entities)
               if (e.dnrt) {
@@ -133,6 +134,17 @@ bool rowAvailable(const AccuracyRow& row, const std::vector<std::string>& execut
   return std::all_of(row.passes.begin(), row.passes.end(), [&](const std::string& p) {
     return std::find(executedPasses.begin(), executedPasses.end(), p) != executedPasses.end();
   });
+}
+
+double rowGpuMs(const AccuracyRow& row, const std::vector<PassStats>& stats) {
+  const auto named = [&](const std::string& pass) {
+    return std::find(row.passes.begin(), row.passes.end(), pass) != row.passes.end() ||
+           std::find(row.optionalPasses.begin(), row.optionalPasses.end(), pass) != row.optionalPasses.end();
+  };
+  double ms = 0.0;
+  for (const PassStats& s : stats)
+    if (s.depth == 0 && s.pass != "frame" && named(s.pass)) ms += s.medianMs;
+  return ms;
 }
 
 }  // namespace bounce::game

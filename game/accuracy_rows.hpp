@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "engine/scene/level.hpp"
+#include "game/timing_stats.hpp"
 
 namespace bounce::game {
 
@@ -25,6 +26,10 @@ struct AccuracyRow {
   // row shares): their summed median GPU time is the row's gpu_ms, and the row is available
   // only when the renderer executes all of them.
   std::vector<std::string> passes;
+  // Passes that count towards gpu_ms when the renderer runs them but are not required for the row
+  // to be available: DNRT's intrusion maps "dnrt.cube/<object>", present only on objects with
+  // intrusion on (so the intrusion-off rows of the same technique still run).
+  std::vector<std::string> optionalPasses;
   // Per-technique settings beyond the effect list (probe spacing, SH order, …), applied to the
   // level before it is rendered, with and without its dynamic entities alike. May be empty.
   std::function<void(scene::Level&)> configure;
@@ -38,5 +43,11 @@ std::vector<AccuracyRow> accuracyRows(const std::vector<std::string>& techniques
 // True when every pass the row names is among `executedPasses` (Renderer::executedPasses() of a
 // frame rendered with the row's effects).
 bool rowAvailable(const AccuracyRow& row, const std::vector<std::string>& executedPasses);
+
+// The row's gpu_ms from one session's timings: the sum of the medians of every OUTERMOST scope
+// (PassStats::depth 0) whose pass is in `passes` or `optionalPasses`. Per-object passes such as
+// "dnrt.cube/<object>" are outermost and each counts; per-object scopes nested in a pass
+// ("dnrt/<object>" inside "dnrt") are already part of that pass's time and are not added again.
+double rowGpuMs(const AccuracyRow& row, const std::vector<PassStats>& stats);
 
 }  // namespace bounce::game

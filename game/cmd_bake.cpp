@@ -77,9 +77,11 @@ void bakeDnrt(const scene::Level& level, bool force) {
     const double seconds = secondsSince(start);
     std::filesystem::create_directories(path.parent_path());
     gi::dnrt::save(r.field, path);
-    std::printf("dnrt    %s: %d^3 x %d rays, %d SH: %.3f s, %zu vertices inside filled, 8-bit error %.3g (bound %.3g) -> %s\n",
+    std::printf("dnrt    %s: %d^3 x %d rays, %d SH: %.3f s, %zu vertices inside filled, 8-bit error %.3g (bound %.3g), "
+                "ranges %s -> %s\n",
                 name.c_str(), n, rays, settings.shCount, seconds, r.insideVertices, r.quantization.maxAbs,
-                r.quantization.bound, path.c_str());
+                r.quantization.bound, r.withinAnalyticBound ? "inside the analytic bound (Table 1)" : "OUT OF BOUND",
+                path.c_str());
   }
 }
 

@@ -36,8 +36,9 @@ int runBench(const cli::Args& args) {
   const std::string what = args.positional.at(0);
   if (what == "vlm-lights") return runBenchVlmLights(args);
   if (what == "vlm-k") return runBenchVlmK(args);
+  if (what == "dnrt") return runBenchDnrt(args);  // bench_dnrt.cpp
   if (what != "vlm-grid")
-    throwInputError("bounce bench", "benchmark", "unknown benchmark '" + what + "'", "vlm-grid, vlm-lights or vlm-k");
+    throwInputError("bounce bench", "benchmark", "unknown benchmark '" + what + "'", "vlm-grid, vlm-lights, vlm-k or dnrt");
   const int lights = args.positiveInt("--lights", 10000);
   const int grid = args.positiveInt("--grid", 50);
   const int k = args.positiveInt("--k", 32);

@@ -72,9 +72,10 @@ const std::vector<cli::CommandSpec>& commandSpecs() {
         {"--offset", "M", "metres behind the real surface, along -normal (default 0.005)"},
         {"--node", "NAME", "with a glTF asset: only this node's subtree"}},
        1, 1},
-      {"bench", "vlm-grid|vlm-lights|vlm-k [options]",
+      {"bench", "vlm-grid|vlm-lights|vlm-k|dnrt [options]",
        "vlm-grid: time the VLM grid builds (scatter vs gather) on a random scene, one line; vlm-lights / vlm-k: GPU ms\n"
-       "              of the VLM passes vs lights per pixel without a grid / vs cell list size K, one line per setting",
+       "              of the VLM passes vs lights per pixel without a grid / vs cell list size K, one line per setting;\n"
+       "              dnrt: the DNRT paper's Tables 6-8 (GPU ms, ratios)",
        {device,
         {"--lights", "N", "virtual lights (vlm-grid default 10000; vlm-k default 240)"},
         {"--grid", "G", "vlm-grid: cells per axis (default 50)"},
@@ -84,9 +85,14 @@ const std::vector<cli::CommandSpec>& commandSpecs() {
         {"--no-gather", "", "vlm-grid: skip the gather build (it is O(cells × lights); needed for 100^3 x 100k)"},
         {"--counts", "LIST", "vlm-lights: light counts (default 20,40,...,240); vlm-k: K values (default 10,20,...,120)"},
         {"--level", "FILE", "vlm-lights/vlm-k: a level with a VLM (default content/levels/cornell-vlm.json)"},
-        {"--resolution", "WxH", "vlm-lights/vlm-k: render size (default 1280x720)"},
-        {"--frames", "N", "vlm-lights/vlm-k: timed frames per setting, medians printed (default 3)"},
-        {"--warmup", "N", "vlm-lights/vlm-k: untimed frames after each change (default 1)"}},
+        {"--resolution", "WxH", "vlm-lights/vlm-k/dnrt: render size (default 1280x720)"},
+        {"--frames", "N", "vlm-lights/vlm-k: timed frames per setting (default 3); dnrt: per session (default 30, after 5 warm-up)"},
+        {"--warmup", "N", "vlm-lights/vlm-k: untimed frames after each change (default 1)"},
+        // bench dnrt (game/bench_dnrt.hpp)
+        {"--levels", "LIST", "dnrt: Table 8 levels, names in content/levels or .json (default cornell-1,cornell-5,cornell-10)"},
+        {"--variant-levels", "LIST", "dnrt: levels for the SH/grid/intrusion/mode rows (default cornell-1,cornell-10; none)"},
+        {"--rays", "N", "dnrt: bake rays per grid vertex for every field (a square; default each entity's)"},
+        {"--csv", "FILE", "dnrt: also write the rows as CSV"}},
        1, 1},
   };
   return specs;

@@ -19,6 +19,7 @@ int runDemo(const cli::Args& args);
 int runReference(const cli::Args& args);
 int runExport(const cli::Args& args);
 int runBench(const cli::Args& args);
+int runBenchDnrt(const cli::Args& args);  // `bench dnrt` (bench_dnrt.hpp)
 int runBake(const cli::Args& args);
 int runAccuracy(const cli::Args& args);
 int runVlmMake(const cli::Args& args);

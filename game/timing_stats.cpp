@@ -22,6 +22,7 @@ void TimingCollector::collect(gpu::FrameRing& frames, std::uint64_t warmupFrames
     for (const auto& t : resolved.timings) {
       if (!samples_.count(t.name)) order_.push_back(t.name);
       samples_[t.name].push_back(t.ms);
+      depth_[t.name] = t.depth;
       if (t.depth == 0) total += t.ms;
     }
     if (!samples_.count("frame")) order_.push_back("frame");
@@ -39,7 +40,7 @@ std::vector<PassStats> TimingCollector::stats() const {
     const auto slash = name.find('/');
     const std::string pass = slash == std::string::npos ? name : name.substr(0, slash);
     const std::string object = slash == std::string::npos ? std::string() : name.substr(slash + 1);
-    rows.push_back({pass, object, s.size(), percentile(s, 0.5), percentile(s, 0.95)});
+    rows.push_back({pass, object, s.size(), percentile(s, 0.5), percentile(s, 0.95), depth_.at(name)});
   }
   if (samples_.count("frame")) {
     const auto& s = samples_.at("frame");

@@ -15,6 +15,10 @@ struct PassStats {
   std::size_t frames = 0;
   double medianMs = 0.0;
   double p95Ms = 0.0;
+  // Nesting depth of the scope: 0 for an outermost one (the "frame" row sums those). A nested
+  // scope (DNRT's "dnrt/<object>" inside "dnrt") is already part of its parent's time, while a
+  // per-object pass such as "dnrt.cube/<object>" is outermost.
+  std::uint32_t depth = 0;
 };
 
 // Nearest-rank percentile (q in [0, 1]) of unsorted samples; 0 for none.
@@ -33,6 +37,7 @@ class TimingCollector {
  private:
   std::vector<std::string> order_;
   std::map<std::string, std::vector<double>> samples_;
+  std::map<std::string, std::uint32_t> depth_;  // of each scope name (the same every frame)
   std::size_t frames_ = 0;
 };
 

@@ -148,6 +148,9 @@ struct Dnrt {
   bool intrusion = false;     // §5.2.3 cube depth map from o (run-time visibility test)
   bool improvedAntiRadiance = false;  // App. B.2 instead of Eq. 12
   int samplesPerAxis = 16;    // bake rays per vertex = samplesPerAxis² ("rays", a square)
+  // Run time only ("mode"): false = rasterise the outer cube ("box", the default), true = the
+  // paper's full-screen pass for this object ("fullscreen", §5.2.2), kept for comparison.
+  bool fullScreen = false;
   friend bool operator==(const Dnrt&, const Dnrt&) = default;
 };
 

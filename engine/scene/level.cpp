@@ -135,9 +135,10 @@ void parseLight(const json::Node& node, EntityDesc& d, const ParseContext&) {
 }
 
 // "dnrt": {"sh": 4|9, "grid": 16|32|64, "inner": 3, "outer": 6, "intrusion": false,
-//          "anti_radiance": "paper"|"improved", "rays": 256} — every key optional (defaults above).
+//          "anti_radiance": "paper"|"improved", "rays": 256, "mode": "box"|"fullscreen"} — every key
+//          optional (defaults above).
 void parseDnrt(const json::Node& node, EntityDesc& d, const ParseContext&) {
-  const auto o = node.object({"sh", "grid", "inner", "outer", "intrusion", "anti_radiance", "rays"});
+  const auto o = node.object({"sh", "grid", "inner", "outer", "intrusion", "anti_radiance", "rays", "mode"});
   Dnrt c;
   if (auto v = o.optional("sh")) {
     c.shCount = int(v->integer(0, 16));
@@ -165,6 +166,11 @@ void parseDnrt(const json::Node& node, EntityDesc& d, const ParseContext&) {
     const auto side = std::int64_t(std::lround(std::sqrt(double(rays))));
     if (side * side != rays) v->fail(std::to_string(rays) + " is not a square", "a square number (e.g. 64, 256)");
     c.samplesPerAxis = int(side);
+  }
+  if (auto v = o.optional("mode")) {
+    const std::string m = v->string();
+    if (m != "box" && m != "fullscreen") v->fail("unknown mode " + json::inQuotes(m), "box or fullscreen");
+    c.fullScreen = m == "fullscreen";
   }
   d.dnrt = c;
 }

@@ -153,6 +153,10 @@ BakeResult bake(const ref::SceneDesc& object, const FieldSettings& settings) {
   fillInvalid(n, nc, values, valid);
   result.field = quantize(settings, sphere.centre, sphere.radius, values);
   result.quantization = quantizationError(result.field, values);
+  result.withinAnalyticBound = rangesWithinAnalyticBound(result.field);
+  if (!result.withinAnalyticBound)
+    log::warn("dnrt: a coefficient range exceeds the estimator's analytic bound (field.hpp analyticRange, "
+              "inside the paper's Table 1): the bake is wrong");
   result.values = std::move(values);
   return result;
 }

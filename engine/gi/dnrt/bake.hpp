@@ -42,6 +42,7 @@ struct BakeResult {
   std::vector<glm::vec3> values;  // unquantised m_j: values[vertex·shCount + j]
   std::size_t insideVertices = 0;  // vertices detected inside O (or at o) and filled
   QuantizationError quantization;
+  bool withinAnalyticBound = true;  // rangesWithinAnalyticBound(field): false is a bug (warned)
 };
 
 // `object`: ONE object's meshes in its local frame (metres), materials and textures.

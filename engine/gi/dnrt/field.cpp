@@ -28,6 +28,47 @@ void checkSettings(const FieldSettings& s) {
 
 int textureCount(int shCount) { return shCount == 9 ? 7 : 3; }
 
+namespace {
+// max over unit vectors of |Y_j| for the real orthonormal basis (index l(l+1)+m): Y_00 = 0.2821;
+// band 1 0.4886·(y, z, x) → 0.4886; band 2: 1.0925·xy, yz, xz → 0.5463 (at |xy| = ½),
+// 0.3154·(3z² − 1) → 0.6308 (at z = ±1), 0.5463·(x² − y²) → 0.5463.
+constexpr float kMaxAbsY[9] = {0.28209479f, 0.48860251f, 0.48860251f, 0.48860251f, 0.54627422f,
+                               0.54627422f, 0.63078313f, 0.54627422f, 0.54627422f};
+constexpr float kPiF = 3.14159265358979f;
+// Table 1 of the paper, [lo, hi] per m_j.
+constexpr float kTable1[9][2] = {{-0.2820f, 0.0f},    {-0.9772f, 0.9772f}, {-0.9772f, 0.9772f},
+                                 {-0.9772f, 0.9772f}, {-2.1850f, 2.1850f}, {-2.1850f, 2.1850f},
+                                 {-1.2615f, 1.2615f}, {-2.1850f, 2.1850f}, {-1.0925f, 1.0925f}};
+// Float rounding of the estimator's sums (accumulated in double, stored as float).
+constexpr float kBoundSlack = 1e-6f;
+}  // namespace
+
+Range analyticRange(int j, AntiRadiance mode) {
+  if (j < 0 || j >= 9) throw InternalError("dnrt::analyticRange: j out of range");
+  if (j == 0) return {-kMaxAbsY[0] / kPiF, 0.0f};
+  const int l = j < 4 ? 1 : 2;
+  // s_l = π/Â_l: Â_1 = 2π/3, Â_2 = π/4 (bake.hpp, App. B.2).
+  const float s = mode == AntiRadiance::Improved ? (l == 1 ? 1.5f : 4.0f) : 1.0f;
+  const float b = (1.0f + s) * kMaxAbsY[j] / kPiF;
+  return {-b, b};
+}
+
+Range table1Range(int j) {
+  if (j < 0 || j >= 9) throw InternalError("dnrt::table1Range: j out of range");
+  return {kTable1[j][0], kTable1[j][1]};
+}
+
+bool rangesWithinAnalyticBound(const Field& f) {
+  for (int j = 0; j < f.settings.shCount; ++j)
+    for (int c = 0; c < 3; ++c) {
+      const Slot s = slotOf(j, c);
+      const Range& r = f.ranges[std::size_t(s.texture) * 4 + s.component];
+      const Range b = analyticRange(j, f.settings.antiRadiance);
+      if (r.lo < b.lo - kBoundSlack || r.hi > b.hi + kBoundSlack) return false;
+    }
+  return true;
+}
+
 Slot slotOf(int j, int channel) {
   if (j < 4) return {channel, j};
   if (j < 8) return {3 + channel, j - 4};

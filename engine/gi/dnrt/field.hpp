@@ -51,6 +51,18 @@ struct Range {
   float lo = 0.0f, hi = 0.0f;
 };
 
+// The range the bake's estimator (bake.hpp) confines m_j to, whatever the object: with S rays,
+// t_j = Σ_hits Y_j(n_s) ρ_s / (π S) and k_j = s_l Σ_hits Y_j(ω) / (π S) (s_l = π/Â_l in the
+// improved mode, 1 in the paper's), at most S hits and ρ_s in [0, 1], so
+//   m_0 ∈ [−Y_00/π, 0]   (one hit adds Y_00 (ρ_s − 1) ≤ 0),
+//   |m_j| ≤ (1 + s_l) max|Y_j| / π   for j ≥ 1 (max|Y_j| over the sphere: 0.4886 for l = 1;
+//   0.5463 for j = 4, 5, 7, 8; 0.6308 for j = 6).
+// A baked range outside it means a bug, not an unusual object (bake() warns).
+Range analyticRange(int j, AntiRadiance mode);
+// The paper's Table 1 range for m_j, j < 9. Every analyticRange lies inside it (the paper's
+// bounds are 2·(SH normalisation constant of Y_j), looser than ours by about π).
+Range table1Range(int j);
+
 // Where coefficient j, channel c lives: texture index and component (Table 2).
 struct Slot {
   int texture = 0, component = 0;
@@ -72,6 +84,10 @@ struct Field {
   // Decoded m_j (RGB) at one vertex: out.size() >= shCount.
   void decodeVertex(std::size_t vertex, std::span<glm::vec3> out) const;
 };
+
+// True when each of the field's slot ranges lies inside analyticRange of its coefficient (up to
+// float rounding of the estimator's sum: 1e-6).
+bool rangesWithinAnalyticBound(const Field& field);
 
 // Unquantised coefficients: values[vertex · shCount + j] = m_j (RGB), vertex as Field::vertexIndex.
 // Quantises with per-slot ranges taken from the data (min/max), so nothing saturates.

@@ -206,12 +206,17 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
         render::Attachment color{target.view(), res.keepsContents(d.hdr)};
         const VkExtent2D extent{target.desc().width, target.desc().height};
         render::beginRendering(ctx_, cmd, extent, {&color, 1}, nullptr);
-        const gpu::Pipeline& p = settings.fullScreen ? fullScreen_ : box_;
-        p.bind(cmd);
-        p.bindSet(cmd, 0, pc->frameSet);
-        p.bindSet(cmd, 1, inputs);
         gpu::TimestampPool* ts = pc->frame().timestamps.get();
+        const gpu::Pipeline* bound = nullptr;
         for (std::size_t i = 0; i < objects.size(); ++i) {
+          const bool full = settings.fullScreen || objects[i].fullScreen;
+          const gpu::Pipeline& p = full ? fullScreen_ : box_;
+          if (bound != &p) {  // bind on a change of mode (per object: the level's "mode")
+            p.bind(cmd);
+            p.bindSet(cmd, 0, pc->frameSet);
+            p.bindSet(cmd, 1, inputs);
+            bound = &p;
+          }
           VkDescriptorSet fieldSet = pc->frame().descriptors->allocate(fieldLayout_);
           gpu::DescriptorWriter w;
           for (int s = 0; s < 7; ++s) w.sampledImage(std::uint32_t(s), objects[i].textures->view(s), linear);
@@ -219,9 +224,9 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
           w.sampledImage(7, pc->frameView(map, VK_IMAGE_VIEW_TYPE_2D_ARRAY, 0, 6), point);
           w.update(ctx_, fieldSet);
           p.bindSet(cmd, 2, fieldSet);
-          p.push(cmd, Push{std::uint32_t(i), settings.fullScreen ? 1u : 0u});
+          p.push(cmd, Push{std::uint32_t(i), full ? 1u : 0u});
           if (ts) ts->begin(cmd, "dnrt/" + objects[i].name);
-          vkCmdDraw(cmd, settings.fullScreen ? 3 : 36, 1, 0, 0);
+          vkCmdDraw(cmd, full ? 3 : 36, 1, 0, 0);
           if (ts) ts->end(cmd);
         }
         ctx_.cmdEndRendering(cmd);

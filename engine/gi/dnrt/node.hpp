@@ -6,7 +6,8 @@
 //
 // Better than the paper's full-screen pass per object: by default each object rasterises its
 // outer cube (back faces, no depth test), so the cost follows the pixels the cube covers; the
-// paper's mode (a full-screen triangle per object) is NodeSettings::fullScreen, for comparison.
+// paper's mode (a full-screen triangle per object) is NodeObject::fullScreen (the level's
+// "mode": "fullscreen") or NodeSettings::fullScreen for all objects, for comparison.
 // Each object's draw sits in its own GPU timestamp scope "dnrt/<name>" inside the pass's scope.
 //
 // Intrusion (§5.2.3), per object: a pass "dnrt.cube/<name>" renders every OTHER drawn mesh from o
@@ -45,10 +46,11 @@ struct NodeObject {
   DnrtObjectGpu data;                       // packObject(field, world, radiance SH at o)
   std::string name;                         // timestamp scope "dnrt/<name>" (the entity id)
   bool intrusion = false;                   // render and test an intrusion map (§5.2.3)
+  bool fullScreen = false;                  // the paper's full-screen pass for this object (level "mode")
 };
 
 struct NodeSettings {
-  bool fullScreen = false;  // the paper's full-screen pass per object instead of the outer cube
+  bool fullScreen = false;  // every object in the paper's full-screen mode, whatever NodeObject::fullScreen says
   std::uint32_t intrusionResolution = 128;  // texels per cube face
 };
 

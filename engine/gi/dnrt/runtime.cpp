@@ -44,7 +44,7 @@ std::vector<NodeObject> Runtime::objectsFor(const render::RenderWorld& world) co
     const glm::vec3 centre = glm::vec3(placed->matrix * glm::vec4(o.field.centre, 1.0f));
     const auto* component = registry_.tryGet<scene::Dnrt>(o.entity);
     out.push_back({o.textures.get(), packObject(o.field, placed->matrix, src.radianceSH(centre), o.entity.index()), o.name,
-                   component && component->intrusion});
+                   component && component->intrusion, component && component->fullScreen});
   }
   return out;
 }

@@ -33,11 +33,9 @@ glm::vec3 gridPoint(const Field& f, int x, int y, int z) {
   return e * (-1.0f + 2.0f * glm::vec3(x, y, z) / float(f.n() - 1));
 }
 
-// Sphere of radius R, albedo ρ_s, uniform radiance L; a receiver of albedo ρ_r facing the centre at
-// distance d receives ρ_r ρ_s L (R/d)² reflected and loses ρ_r L (R/d)² (the solid angle of the
-// sphere weighted by cosine is π(R/d)²), so L_DNRT = ρ_r L (R/d)² (ρ_s − 1).
+// Sphere of radius R, albedo ρ_s, uniform radiance L: testing::sphereClosedForm.
 glm::vec3 sphereTruth(glm::vec3 rhoR, glm::vec3 L, double dOverR, glm::vec3 rhoS) {
-  return rhoR * L * float(1.0 / (dOverR * dOverR)) * (rhoS - 1.0f);
+  return testing::sphereClosedForm(rhoR, L, dOverR, rhoS);
 }
 
 // Error statistics over the grid vertices outside the object. Monte-Carlo noise dominates: the hit
@@ -198,17 +196,30 @@ TEST(DnrtBake, IsDeterministicAndScaleInvariant) {
   }
 }
 
-// Table 1's ranges: the paper's bound on every m_j (its m_0 range [−Y_00, 0], ±2·max|Y_j| for j ≥ 1).
+// Table 1's ranges: the paper's bound on every m_j (its m_0 range [−Y_00, 0], ±2·(normalisation
+// constant of Y_j) for j ≥ 1). The estimator's own bound (analyticRange) is tighter and inside it.
+TEST(DnrtBake, AnalyticRangesLieInsidePaperTable1) {
+  for (AntiRadiance mode : {AntiRadiance::Paper, AntiRadiance::Improved})
+    for (int j = 0; j < 9; ++j) {
+      const Range a = analyticRange(j, mode), t = table1Range(j);
+      EXPECT_LT(a.lo, a.hi) << j;
+      EXPECT_GE(a.lo, t.lo) << j;
+      EXPECT_LE(a.hi, t.hi) << j;
+    }
+  EXPECT_EQ(analyticRange(0, AntiRadiance::Paper).hi, 0.0f);  // m_0 = Y_00/π² ∫ (ρ_s − 1) ≤ 0
+}
+
 TEST(DnrtBake, CoefficientRangesLieInsidePaperTable1) {
-  const float table1[9][2] = {{-0.2820f, 0.0f},    {-0.9772f, 0.9772f}, {-0.9772f, 0.9772f},
-                              {-0.9772f, 0.9772f}, {-2.1850f, 2.1850f}, {-2.1850f, 2.1850f},
-                              {-1.2615f, 1.2615f}, {-2.1850f, 2.1850f}, {-1.0925f, 1.0925f}};
+  float table1[9][2];
+  for (int j = 0; j < 9; ++j) table1[j][0] = table1Range(j).lo, table1[j][1] = table1Range(j).hi;
   FieldSettings s = ciSettings(9);
   s.grid = 8;
   s.samplesPerAxis = 8;
   for (AntiRadiance mode : {AntiRadiance::Paper, AntiRadiance::Improved}) {
     s.antiRadiance = mode;
     const BakeResult r = bake(testing::twoToneSphere(glm::vec3(0.0f), 1.0f, glm::vec3(1.0f), glm::vec3(0.0f)), s);
+    EXPECT_TRUE(r.withinAnalyticBound);
+    EXPECT_TRUE(rangesWithinAnalyticBound(r.field));
     for (int j = 0; j < 9; ++j)
       for (int c = 0; c < 3; ++c) {
         const Slot sl = slotOf(j, c);

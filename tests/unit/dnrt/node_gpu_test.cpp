@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 
@@ -59,16 +60,20 @@ TEST(DnrtGpu, PropDarkensItsSurroundingsAndBrightensNothing) {
   const FieldTextures textures(ctx, baked.field, "prop");
   Node node(ctx, session.renderer().pipelines(), gpu::FrameRing::kDefaultFramesInFlight);
   const ConstantEnvironment env{glm::vec3(kAmbient)};
-  bool fullScreen = false;
+  bool fullScreen = false, objectFullScreen = false;
   session.renderer().setNode("dnrt", [&](rg::RenderGraph& graph, render::PassContext& pc) {
     const glm::mat4 world = reg.get<scene::WorldTransform>(prop).matrix;
     const glm::vec3 o = glm::vec3(world * glm::vec4(baked.field.centre, 1.0f));
     NodeObject obj{&textures, packObject(baked.field, world, env.radianceSH(o), prop.index()), "prop"};
+    obj.fullScreen = objectFullScreen;  // the level's "mode": "fullscreen"
     node.addTo(graph, pc, {obj}, NodeSettings{fullScreen});
   });
   const Frame with = renderOnce(session, ctx);
   fullScreen = true;
   const Frame withFull = renderOnce(session, ctx);
+  fullScreen = false, objectFullScreen = true;
+  const Frame withObjectFull = renderOnce(session, ctx);
+  EXPECT_EQ(withObjectFull.rgb, withFull.rgb) << "per-object and node-wide full-screen mode draw the same";
   session.renderer().setNode("dnrt", {});
   const Frame without = renderOnce(session, ctx);
 
@@ -255,6 +260,62 @@ TEST(DnrtGpu, RuntimeBakesThroughTheCacheAndOverlappingObjectsAdd) {
   EXPECT_GT(hidden, 30);
   EXPECT_GT(kept, 10 * hidden);
   EXPECT_EQ(other, 0);
+}
+
+// Hard case: many objects over one pixel. Ten copies of box A at the same place (ten draws, ten
+// additive blends into the same fp16 pixels) must add up to ten times one copy: finite, bounded,
+// and equal within the rounding of the blends.
+TEST(DnrtGpu, TenObjectsOverOnePixelAddUpToTenTimesOne) {
+  constexpr int kCopies = 10;
+  gpu::Context& ctx = gpu::testkit::sharedContext();
+  const fs::path levelPath = fs::path(BOUNCE_SOURCE_DIR) / "tests/data/dnrt/two-boxes.json";
+  game::Session session(ctx, game::loadLevelWithEffects(levelPath, std::nullopt));
+  session.update(0.0);
+  ref::ReferenceAssets assets;
+  assets.load(session.registry(), fs::path(BOUNCE_TEST_OUT) / "dnrt" / "cooked");
+  const auto frames = gpu::FrameRing::kDefaultFramesInFlight;
+  // Its own cache folder: RuntimeBakesThroughTheCache… empties its folder and may run in parallel.
+  Runtime dnrt(ctx, session.renderer().pipelines(), session.registry(), assets,
+               fs::path(BOUNCE_TEST_OUT) / "dnrt" / "many-cache", frames, session.level().background);
+  session.renderer().setNode("dnrt", dnrt.node());
+  renderOnce(session, ctx);  // extracts the world the objects are packed from
+  const std::vector<NodeObject> all = dnrt.objectsFor(session.world());
+  ASSERT_EQ(all.size(), 2u);
+  Node node(ctx, session.renderer().pipelines(), frames);
+  const auto renderWith = [&](std::vector<NodeObject> objects) {
+    session.renderer().setNode("dnrt", [&, objects](rg::RenderGraph& graph, render::PassContext& pc) {
+      node.addTo(graph, pc, objects);
+    });
+    return renderOnce(session, ctx).rgb;
+  };
+  std::vector<NodeObject> copies;
+  for (int k = 0; k < kCopies; ++k) {
+    copies.push_back(all[0]);
+    copies.back().name = "box-a-" + std::to_string(k);  // one timestamp scope each
+  }
+  const std::vector<float> one = renderWith({all[0]}), many = renderWith(copies);
+  session.renderer().setNode("dnrt", {});
+  const std::vector<float> base = renderOnce(session, ctx).rgb;
+  ASSERT_EQ(one.size(), many.size());
+  // Each blend rounds the running sum to fp16 (relative 2^-11 of |base + k·v| after the k-th), and
+  // `one` carries one such rounding: |many − base − N(one − base)| ≤ 2^-11 (N (|base| + N |v|) +
+  // N (|base| + |v|)), with a factor 2 for the rounding of the blend's inputs.
+  constexpr float kHalfUlp = 1.0f / 2048.0f;
+  float largest = 0.0f, worstRatio = 0.0f;
+  int covered = 0;
+  for (std::size_t i = 0; i < one.size(); ++i) {
+    ASSERT_TRUE(std::isfinite(many[i])) << i;
+    const float v = one[i] - base[i], got = many[i] - base[i], want = float(kCopies) * v;
+    const float bound = 2.0f * kHalfUlp * kCopies * (2.0f * std::abs(base[i]) + (kCopies + 1) * std::abs(v)) + 1e-7f;
+    worstRatio = std::max(worstRatio, std::abs(got - want) / bound);
+    largest = std::max(largest, std::abs(got));
+    covered += v != 0.0f ? 1 : 0;
+  }
+  std::printf("%d copies: %d channel values covered, largest |sum| %.4f, worst error %.2f of its fp16 bound\n", kCopies,
+              covered, largest, worstRatio);
+  EXPECT_GT(covered, 1000);
+  EXPECT_GT(largest, 0.01f);
+  EXPECT_LE(worstRatio, 1.0f);
 }
 
 }  // namespace

@@ -50,4 +50,8 @@ ref::SceneDesc twoToneSphere(glm::vec3 c, float r, glm::vec3 rhoTop, glm::vec3 r
   return build(c, r, rings, true, rhoTop, rhoBottom);
 }
 
+glm::vec3 sphereClosedForm(glm::vec3 rhoR, glm::vec3 L, double dOverR, glm::vec3 rhoS) {
+  return rhoR * L * float(1.0 / (dOverR * dOverR)) * (rhoS - 1.0f);
+}
+
 }  // namespace bounce::gi::dnrt::testing

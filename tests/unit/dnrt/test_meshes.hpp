@@ -14,4 +14,10 @@ ref::SceneDesc sphere(glm::vec3 c, float r, glm::vec3 rho, int rings = 48);
 // about any axis but z, so rotation tests see every coefficient).
 ref::SceneDesc twoToneSphere(glm::vec3 c, float r, glm::vec3 rhoTop, glm::vec3 rhoBottom, int rings = 32);
 
+// The closed form the sphere tests check against (issue #4 §6): a sphere of radius R and albedo
+// ρ_s under uniform radiance L; a receiver of albedo ρ_r facing the centre at distance d receives
+// ρ_r ρ_s L (R/d)² reflected and loses ρ_r L (R/d)² (the sphere's cosine-weighted solid angle is
+// π(R/d)²), so L_DNRT = ρ_r L (R/d)² (ρ_s − 1).
+glm::vec3 sphereClosedForm(glm::vec3 rhoR, glm::vec3 L, double dOverR, glm::vec3 rhoS);
+
 }  // namespace bounce::gi::dnrt::testing

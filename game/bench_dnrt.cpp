@@ -1,0 +1,325 @@
+#include "game/bench_dnrt.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <limits>
+
+#include "engine/core/error.hpp"
+#include "engine/core/progress.hpp"
+#include "engine/gi/dnrt/bake.hpp"
+#include "engine/gi/dnrt/object_scene.hpp"
+#include "engine/gpu/presenter_offscreen.hpp"
+#include "engine/ref/reference_scene.hpp"
+#include "engine/scene/components.hpp"
+#include "engine/scene/systems.hpp"
+#include "engine/core/file.hpp"
+#include "game/commands.hpp"
+#include "game/session.hpp"
+#include "game/timing_stats.hpp"
+
+namespace bounce::game {
+namespace {
+
+constexpr std::uint64_t kWarmupFrames = 5;  // first draws compile pipelines (DESIGN.md machine facts)
+constexpr double kFrameDt = 1.0 / 60.0;     // the levels' motion advanced as in `bounce profile`
+const double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// One session to measure: a level with its effects and DNRT settings applied.
+struct Job {
+  std::string table, level, setting;
+  scene::Level configured;
+};
+
+// The paper's standard configuration (§7.2.2: Table 4 configuration 2) and the one-setting changes.
+struct Variant {
+  const char* setting;
+  std::function<void(scene::Dnrt&)> apply;
+};
+const std::vector<Variant>& variants() {
+  static const std::vector<Variant> v = {
+      {"basic", [](scene::Dnrt&) {}},
+      {"sh=9", [](scene::Dnrt& d) { d.shCount = 9; }},
+      {"grid=16", [](scene::Dnrt& d) { d.grid = 16; }},
+      {"grid=64", [](scene::Dnrt& d) { d.grid = 64; }},
+      {"intrusion=on", [](scene::Dnrt& d) { d.intrusion = true; }},
+      {"mode=fullscreen", [](scene::Dnrt& d) { d.fullScreen = true; }},
+  };
+  return v;
+}
+
+void forEachDnrt(scene::Level& level, const std::function<void(scene::Dnrt&)>& f) {
+  for (auto& e : level.entities)
+    if (e.dnrt) f(*e.dnrt);
+}
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// Bakes the fields of `level` the cache lacks (what Session would bake on construction), timed.
+void bakeMissing(const scene::Level& level, DnrtBenchRow& row) {
+  ecs::Registry registry;
+  scene::instantiate(level, registry);
+  scene::transformSystem(registry);
+  ref::ReferenceAssets assets;
+  assets.load(registry, cookCacheDir());
+  std::vector<ecs::Entity> entities;
+  registry.view<scene::Dnrt, scene::MeshRef>().each(
+      [&](ecs::Entity e, scene::Dnrt&, scene::MeshRef&) { entities.push_back(e); });
+  for (ecs::Entity e : entities) {
+    const ref::SceneDesc object = gi::dnrt::objectScene(registry, e, assets);
+    const gi::dnrt::FieldSettings settings = gi::dnrt::settingsFrom(registry.get<scene::Dnrt>(e));
+    const auto start = std::chrono::steady_clock::now();
+    bool cached = true;
+    gi::dnrt::bakeCached(object, settings, dnrtCacheDir(), &cached);
+    if (cached) continue;
+    ++row.fieldsBaked;
+    row.bakeSeconds += secondsSince(start);
+  }
+}
+
+// The medians of one session's passes, as DnrtBenchRow defines them.
+void fillTimes(const std::vector<PassStats>& stats, DnrtBenchRow& row) {
+  row.frameMs = row.dnrtMs = row.ssaoMs = row.hbaoMs = kNaN;
+  row.cubeMs = 0.0;
+  double perObject = 0.0;
+  for (const PassStats& s : stats) {
+    if (s.pass == "frame") row.frameMs = s.medianMs;
+    if (s.depth != 0 && s.pass == "dnrt" && !s.object.empty()) perObject += s.medianMs, ++row.objects;
+    if (s.depth != 0 || !s.object.empty()) {
+      if (s.depth == 0 && s.pass == "dnrt.cube") row.cubeMs += s.medianMs;
+      continue;
+    }
+    if (s.pass == "dnrt") row.dnrtMs = s.medianMs;
+    if (s.pass == "ssao") row.ssaoMs = s.medianMs;
+    if (s.pass == "hbao") row.hbaoMs = s.medianMs;
+  }
+  row.perObjectMs = row.objects > 0 ? perObject / row.objects : kNaN;
+}
+
+const DnrtBenchRow* findRow(const DnrtBenchReport& r, const std::string& table, const std::string& level,
+                            const std::string& setting) {
+  for (const auto& row : r.rows)
+    if (row.table == table && row.level == level && row.setting == setting) return &row;
+  return nullptr;
+}
+
+void addRatios(DnrtBenchReport& report, const DnrtBenchOptions& options) {
+  auto& out = report.ratios;
+  // Table 8: the level with the fewest and the most objects.
+  const DnrtBenchRow *fewest = nullptr, *most = nullptr;
+  for (const auto& row : report.rows) {
+    if (row.table != "8" || row.objects == 0) continue;
+    if (!fewest || row.objects < fewest->objects) fewest = &row;
+    if (!most || row.objects > most->objects) most = &row;
+  }
+  if (fewest) {
+    const bool one = fewest->objects == 1;
+    out.push_back({"DNRT(" + std::to_string(fewest->objects) + " obj) / SSAO, " + fewest->level,
+                   fewest->dnrtMs / fewest->ssaoMs, one ? 0.1 : 0.0});
+    out.push_back({"DNRT(" + std::to_string(fewest->objects) + " obj) / HBAO, " + fewest->level,
+                   fewest->dnrtMs / fewest->hbaoMs, 0.0});
+  }
+  if (fewest && most && most != fewest) {
+    const bool tenToOne = fewest->objects == 1 && most->objects == 10;
+    out.push_back({"DNRT(" + std::to_string(most->objects) + ") / DNRT(" + std::to_string(fewest->objects) + ")",
+                   most->dnrtMs / fewest->dnrtMs, tenToOne ? 5.0 : 0.0});
+    out.push_back({"per-object DNRT(" + std::to_string(most->objects) + ") / (" + std::to_string(fewest->objects) + ")",
+                   most->perObjectMs / fewest->perObjectMs, 0.0});
+  }
+  for (const auto& path : options.variantLevels) {
+    const std::string level = path.stem().string();
+    const DnrtBenchRow* basic = findRow(report, "variant", level, "basic");
+    if (!basic) continue;
+    const auto ratio = [&](const char* setting, const std::string& name, double goal, bool withCube) {
+      const DnrtBenchRow* v = findRow(report, "variant", level, setting);
+      const double num = v ? v->dnrtMs + (withCube ? v->cubeMs : 0.0) : kNaN;
+      out.push_back({name + ", " + level, num / basic->dnrtMs, goal});
+    };
+    ratio("sh=9", "9 SH / 4 SH", 1.5, false);
+    ratio("intrusion=on", "intrusion / basic, shader", 0.0, false);
+    ratio("intrusion=on", "intrusion / basic, shader + cube maps", 0.0, true);
+    if (const DnrtBenchRow* v = findRow(report, "variant", level, "intrusion=on"))
+      out.push_back({"intrusion / basic, frame, " + level, v->frameMs / basic->frameMs, 0.0});
+    ratio("mode=fullscreen", "fullscreen / box", 0.0, false);
+    ratio("grid=16", "grid 16 / grid 32", 0.0, false);
+    ratio("grid=64", "grid 64 / grid 32", 0.0, false);
+  }
+}
+
+std::string fmt(double v, const char* spec = "%9.3f") {
+  char b[32];
+  if (std::isnan(v)) return std::string(9, ' ').replace(8, 1, "-");
+  std::snprintf(b, sizeof b, spec, v);
+  return b;
+}
+
+}  // namespace
+
+std::filesystem::path benchLevelPath(const std::string& name) {
+  if (name.size() > 5 && name.ends_with(".json")) return name;
+  return std::filesystem::path(BOUNCE_SOURCE_DIR) / "content" / "levels" / (name + ".json");
+}
+
+DnrtBenchReport runDnrtBench(const DnrtBenchOptions& options) {
+  // 1. Every level and setting, validated before any work.
+  if (options.frames < 1) throw InternalError("bench dnrt: frames must be positive");
+  std::vector<Job> jobs;
+  for (const auto& path : options.levels) {
+    scene::Level level = scene::loadLevel(path);
+    std::string effects;
+    for (const auto& e : level.effects.names()) effects += (effects.empty() ? "" : ",") + e;
+    for (const char* method : {"dnrt", "ssao", "hbao"})
+      if (!level.effects.has(*scene::effectFromName(method)))
+        effects += std::string(effects.empty() ? "" : ",") + method;
+    scene::overrideEffects(level, effects);
+    if (options.raysPerVertex) forEachDnrt(level, [&](scene::Dnrt& d) { d.samplesPerAxis = *options.raysPerVertex; });
+    jobs.push_back({"8", path.stem().string(), "all", std::move(level)});
+  }
+  for (const auto& path : options.variantLevels) {
+    const scene::Level level = scene::loadLevel(path);
+    if (!level.effects.has(scene::Effect::Dnrt))
+      throwInputError(path.string(), "/effects", "does not name dnrt", "a level whose effects name dnrt");
+    for (const Variant& v : variants()) {
+      scene::Level configured = level;
+      forEachDnrt(configured, [&](scene::Dnrt& d) {
+        d.shCount = 4, d.grid = 32, d.intrusion = false, d.fullScreen = false;  // the paper's standard
+        if (options.raysPerVertex) d.samplesPerAxis = *options.raysPerVertex;
+        v.apply(d);
+      });
+      jobs.push_back({"variant", path.stem().string(), v.setting, std::move(configured)});
+    }
+  }
+
+  // 2. One session per job, all on one device and one presenter.
+  DnrtBenchReport report;
+  gpu::Context ctx({options.device});
+  report.device = ctx.deviceName();
+  gpu::OffscreenPresenter presenter(ctx, {options.width, options.height});
+  Progress progress("bench dnrt", jobs.size());
+  for (Job& job : jobs) {
+    DnrtBenchRow row;
+    row.table = job.table, row.level = job.level, row.setting = job.setting;
+    bakeMissing(job.configured, row);
+    TimingCollector timings;
+    {
+      Session session(ctx, job.configured);
+      const std::uint64_t total = std::uint64_t(options.frames) + kWarmupFrames;
+      for (std::uint64_t f = 0; f < total; ++f) {
+        session.update(double(f) * kFrameDt);
+        session.render(presenter, {});
+        timings.collect(session.renderer().frames(), kWarmupFrames);
+      }
+      session.renderer().frames().waitIdle();
+      timings.collect(session.renderer().frames(), kWarmupFrames);
+    }
+    fillTimes(timings.stats(), row);
+    report.rows.push_back(std::move(row));
+    progress.advance();
+  }
+  progress.finish();
+  addRatios(report, options);
+  return report;
+}
+
+std::string formatDnrtBench(const DnrtBenchReport& report, const DnrtBenchOptions& options) {
+  std::string out;
+  char line[320];
+  std::snprintf(line, sizeof line, "bench dnrt  %ux%u  %d frames after %llu warm-up  device %s\n", options.width,
+                options.height, options.frames, static_cast<unsigned long long>(kWarmupFrames), report.device.c_str());
+  out += line;
+  bool header8 = false, headerV = false;
+  for (const auto& r : report.rows) {
+    if (r.table == "8" && !header8) {
+      out += "\nTable 8 analogue: DNRT, SSAO and HBAO in one session per level (GPU ms, medians)\n";
+      std::snprintf(line, sizeof line, "%-14s %7s %9s %9s %9s %9s %9s %7s %7s\n", "level", "objects", "frame", "dnrt",
+                    "dnrt/obj", "ssao", "hbao", "baked", "bake s");
+      out += line;
+      header8 = true;
+    }
+    if (r.table == "variant" && !headerV) {
+      out += "\nTables 6/7, grid, mode: DNRT alone, one setting changed from basic (sh=4 grid=32 intrusion=off "
+             "mode=box)\n";
+      std::snprintf(line, sizeof line, "%-14s %-16s %7s %9s %9s %9s %9s %7s %7s\n", "level", "setting", "objects",
+                    "frame", "dnrt", "dnrt/obj", "cube maps", "baked", "bake s");
+      out += line;
+      headerV = true;
+    }
+    if (r.table == "8")
+      std::snprintf(line, sizeof line, "%-14s %7d %s %s %s %s %s %7d %7.1f\n", r.level.c_str(), r.objects,
+                    fmt(r.frameMs).c_str(), fmt(r.dnrtMs).c_str(), fmt(r.perObjectMs).c_str(), fmt(r.ssaoMs).c_str(),
+                    fmt(r.hbaoMs).c_str(), r.fieldsBaked, r.bakeSeconds);
+    else
+      std::snprintf(line, sizeof line, "%-14s %-16s %7d %s %s %s %s %7d %7.1f\n", r.level.c_str(), r.setting.c_str(),
+                    r.objects, fmt(r.frameMs).c_str(), fmt(r.dnrtMs).c_str(), fmt(r.perObjectMs).c_str(),
+                    fmt(r.cubeMs).c_str(), r.fieldsBaked, r.bakeSeconds);
+    out += line;
+  }
+  out += "\nRatios (same run)\n";
+  for (const auto& q : report.ratios) {
+    std::string goal;
+    if (q.goal > 0.0) {
+      char g[64];
+      std::snprintf(g, sizeof g, "goal <= %g: %s", q.goal,
+                    std::isnan(q.value) ? "not measured" : (q.value <= q.goal ? "met" : "missed"));
+      goal = g;
+    }
+    std::snprintf(line, sizeof line, "  %-52s %s  %s\n", q.name.c_str(), fmt(q.value, "%9.3f").c_str(), goal.c_str());
+    out += line;
+  }
+  return out;
+}
+
+std::string formatDnrtBenchCsv(const DnrtBenchReport& report) {
+  std::string out = "table,level,setting,objects,frame_ms,dnrt_ms,per_object_ms,cube_ms,ssao_ms,hbao_ms,fields_baked,bake_s\n";
+  char line[320];
+  for (const auto& r : report.rows) {
+    std::snprintf(line, sizeof line, "%s,%s,%s,%d,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%d,%.3f\n", r.table.c_str(),
+                  r.level.c_str(), r.setting.c_str(), r.objects, r.frameMs, r.dnrtMs, r.perObjectMs, r.cubeMs, r.ssaoMs,
+                  r.hbaoMs, r.fieldsBaked, r.bakeSeconds);
+    out += line;
+  }
+  return out;
+}
+
+int runBenchDnrt(const cli::Args& args) {
+  DnrtBenchOptions o;
+  const auto levels = [&](const char* option, std::vector<std::string> fallback) {
+    std::vector<std::filesystem::path> out;
+    const auto names = args.list(option).value_or(fallback);
+    if (names == std::vector<std::string>{"none"}) return out;
+    for (const auto& n : names) {
+      const std::filesystem::path p = benchLevelPath(n);
+      if (!std::filesystem::exists(p))
+        throwInputError("bounce bench", option, "no level " + n + " (" + p.string() + ")",
+                        "level names in content/levels (cornell-1) or .json paths");
+      out.push_back(p);
+    }
+    return out;
+  };
+  o.levels = levels("--levels", {"cornell-1", "cornell-5", "cornell-10"});
+  o.variantLevels = levels("--variant-levels", {"cornell-1", "cornell-10"});
+  if (o.levels.empty() && o.variantLevels.empty())
+    throwInputError("bounce bench", "--levels", "nothing to measure", "at least one level in --levels or --variant-levels");
+  const auto res = args.resolution("--resolution").value_or(std::pair{1280, 720});
+  o.width = std::uint32_t(res.first), o.height = std::uint32_t(res.second);
+  o.frames = args.positiveInt("--frames", 30);
+  if (args.has("--rays")) {
+    const int rays = args.positiveInt("--rays", 256);
+    const int side = int(std::lround(std::sqrt(double(rays))));
+    if (side * side != rays || side > 256)
+      throwInputError("bounce bench", "--rays", std::to_string(rays) + " is not a square up to 65536",
+                      "a square number of rays per grid vertex, e.g. 64, 256");
+    o.raysPerVertex = side;
+  }
+  o.device = args.str("--device");
+  const DnrtBenchReport report = runDnrtBench(o);
+  std::printf("%s", formatDnrtBench(report, o).c_str());
+  if (args.has("--csv")) writeFileAtomic(args.str("--csv"), formatDnrtBenchCsv(report));
+  return 0;
+}
+
+}  // namespace bounce::game

@@ -1,0 +1,77 @@
+#pragma once
+// `bounce bench dnrt`: the DNRT paper's performance tables from one command, measured with the
+// GPU timestamps of `bounce profile` (median over --frames frames of the levels' scripted motion,
+// after kWarmupFrames):
+//
+//  - Table 8 analogue, per level (default cornell-1, -5, -10): ONE session with DNRT, SSAO and HBAO
+//    all on (the level's effects plus ssao, hbao), so the three methods' costs are measured side
+//    by side over the same frames: frame ms, DNRT ms (the "dnrt" pass), mean per-object DNRT ms,
+//    SSAO ms, HBAO ms.
+//  - Tables 6 and 7 and the grid and mode comparisons, per variant level (default cornell-1,
+//    cornell-10): DNRT alone (the level's effects), once with the paper's standard configuration
+//    (sh=4, grid=32, intrusion off; the outer-cube raster) and once per changed setting: sh=9
+//    (Table 7), grid=16 and grid=64, intrusion=on (Table 6: its cube maps are the "dnrt.cube"
+//    passes, reported apart from the shader), mode=fullscreen (the paper's full-screen pass).
+//    Settings reach every `dnrt` entity as in `bounce accuracy` (accuracy_rows.cpp).
+//  - The goal ratios of issue #4: DNRT(1 object)/SSAO ≤ 0.1, DNRT(10)/DNRT(1) ≤ 5, 9 SH/4 SH ≤ 1.5,
+//    and for reference intrusion/basic, fullscreen/box and grid 16, 64 against 32.
+//
+// Fields are baked through the DNRT cache (<build>/dnrt) before each session; the seconds spent
+// baking are reported per row, apart from the timings. Timings are not tested (DESIGN.md): the
+// structure of the report is (tests/unit/dnrt/bench_gpu_test.cpp).
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace bounce::game {
+
+struct DnrtBenchOptions {
+  std::vector<std::filesystem::path> levels;         // Table 8 rows
+  std::vector<std::filesystem::path> variantLevels;  // Table 6/7, grid and mode rows
+  std::uint32_t width = 1280, height = 720;
+  int frames = 30;                  // measured frames per session
+  std::optional<int> raysPerVertex;  // a square; empty: each entity's own "rays"
+  std::string device;
+};
+
+// One measured session. Times are medians in ms; NaN where the pass did not run.
+struct DnrtBenchRow {
+  std::string table;    // "8" (all methods) or "variant"
+  std::string level;    // the level file's stem
+  std::string setting;  // Table 8: "all"; variants: "basic" or the changed setting ("sh=9", …)
+  int objects = 0;      // DNRT objects timed (per-object scopes seen)
+  double frameMs = 0.0;
+  double dnrtMs = 0.0;       // the "dnrt" pass (every object's draw inside it)
+  double perObjectMs = 0.0;  // mean of the per-object "dnrt/<object>" medians
+  double cubeMs = 0.0;       // the intrusion maps: sum of the "dnrt.cube/<object>" passes (0 when off)
+  double ssaoMs = 0.0, hbaoMs = 0.0;
+  int fieldsBaked = 0;       // fields missing from the cache before this session
+  double bakeSeconds = 0.0;  // time spent baking them
+};
+
+struct DnrtBenchRatio {
+  std::string name;
+  double value = 0.0;  // NaN when a row it needs is missing
+  double goal = 0.0;   // the issue's bound, 0 when the ratio is only reported
+};
+
+struct DnrtBenchReport {
+  std::string device;
+  std::vector<DnrtBenchRow> rows;
+  std::vector<DnrtBenchRatio> ratios;
+};
+
+// Validates every level and option first (InputError), then runs the sessions.
+DnrtBenchReport runDnrtBench(const DnrtBenchOptions& options);
+// The tables and ratios for the terminal.
+std::string formatDnrtBench(const DnrtBenchReport& report, const DnrtBenchOptions& options);
+// CSV, header exactly
+// "table,level,setting,objects,frame_ms,dnrt_ms,per_object_ms,cube_ms,ssao_ms,hbao_ms,fields_baked,bake_s".
+std::string formatDnrtBenchCsv(const DnrtBenchReport& report);
+
+// "cornell-1" → <source>/content/levels/cornell-1.json; a path ending in .json is taken as is.
+std::filesystem::path benchLevelPath(const std::string& name);
+
+}  // namespace bounce::game

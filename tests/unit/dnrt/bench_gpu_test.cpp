@@ -1,0 +1,74 @@
+// `bounce bench dnrt` at a tiny size: the report's structure, never its speed (no timed tests):
+// every row present in order, every timed pass measured (> 0 ms), the intrusion maps only where
+// intrusion is on, and every ratio finite with the goals attached.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <sstream>
+
+#include "engine/gpu/testing.hpp"
+#include "game/bench_dnrt.hpp"
+
+namespace bounce::game {
+namespace {
+
+TEST(DnrtBench, ReportHasEveryRowTimedAndFiniteRatios) {
+  DnrtBenchOptions o;
+  o.levels = {benchLevelPath("cornell-1")};
+  o.variantLevels = {benchLevelPath("cornell-1")};
+  o.width = 64, o.height = 36;
+  o.frames = 2;
+  o.raysPerVertex = 2;  // 4 rays per vertex: the 64³ field bakes in about a second
+  const DnrtBenchReport r = runDnrtBench(o);
+
+  const std::vector<std::string> settings = {"all",     "basic",        "sh=9",           "grid=16",
+                                             "grid=64", "intrusion=on", "mode=fullscreen"};
+  ASSERT_EQ(r.rows.size(), settings.size());
+  for (std::size_t i = 0; i < r.rows.size(); ++i) {
+    const DnrtBenchRow& row = r.rows[i];
+    EXPECT_EQ(row.setting, settings[i]);
+    EXPECT_EQ(row.table, i == 0 ? "8" : "variant");
+    EXPECT_EQ(row.level, "cornell-1");
+    EXPECT_EQ(row.objects, 1) << row.setting << ": the prop is drawn in every frame";
+    EXPECT_GT(row.frameMs, 0.0) << row.setting;
+    EXPECT_GT(row.dnrtMs, 0.0) << row.setting;
+    EXPECT_GT(row.perObjectMs, 0.0) << row.setting;
+    EXPECT_LE(row.perObjectMs, row.dnrtMs) << row.setting << ": the object's scope lies inside the pass";
+    EXPECT_GE(row.bakeSeconds, 0.0);
+    if (row.setting == "intrusion=on")
+      EXPECT_GT(row.cubeMs, 0.0);
+    else
+      EXPECT_EQ(row.cubeMs, 0.0) << row.setting;
+    if (row.table == "8") {
+      EXPECT_GT(row.ssaoMs, 0.0);
+      EXPECT_GT(row.hbaoMs, 0.0);
+    } else {
+      EXPECT_TRUE(std::isnan(row.ssaoMs)) << row.setting << ": DNRT alone";
+    }
+  }
+  const std::vector<std::pair<std::string, double>> goals = {
+      {"DNRT(1 obj) / SSAO, cornell-1", 0.1}, {"9 SH / 4 SH, cornell-1", 1.5}, {"fullscreen / box, cornell-1", 0.0}};
+  for (const auto& [name, goal] : goals) {
+    bool found = false;
+    for (const DnrtBenchRatio& q : r.ratios)
+      if (q.name == name) {
+        found = true;
+        EXPECT_EQ(q.goal, goal) << name;
+      }
+    EXPECT_TRUE(found) << name;
+  }
+  EXPECT_EQ(r.ratios.size(), 2u + 7u);  // DNRT/SSAO, DNRT/HBAO (one Table 8 level) + 7 per variant level
+  for (const DnrtBenchRatio& q : r.ratios) EXPECT_TRUE(std::isfinite(q.value) && q.value > 0.0) << q.name;
+
+  std::istringstream csv(formatDnrtBenchCsv(r));
+  std::string line;
+  std::getline(csv, line);
+  EXPECT_EQ(line, "table,level,setting,objects,frame_ms,dnrt_ms,per_object_ms,cube_ms,ssao_ms,hbao_ms,fields_baked,bake_s");
+  int lines = 0;
+  while (std::getline(csv, line)) ++lines;
+  EXPECT_EQ(lines, int(settings.size()));
+  EXPECT_NE(formatDnrtBench(r, o).find("goal <= 0.1"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace bounce::game
