@@ -42,7 +42,7 @@ void TimestampPool::begin(VkCommandBuffer cmd, const std::string& name) {
   auto query = static_cast<std::uint32_t>(2 * scopes_.size());
   scopes_.push_back({name, static_cast<std::uint32_t>(open_.size()), query});
   open_.push_back(static_cast<std::int64_t>(scopes_.size() - 1));
-  vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, pool_, query);
+  vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, pool_, query);
 }
 
 void TimestampPool::end(VkCommandBuffer cmd) {

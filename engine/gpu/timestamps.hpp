@@ -4,15 +4,9 @@
 // FrameRing keeps one TimestampPool per frame in flight, so reading frame N's results never
 // waits on frame N+1.
 //
-// Each scope writes both its begin and its end at BOTTOM_OF_PIPE: the begin waits for the work
-// recorded before the scope, the end for the scope's own, so a pass is charged for its own work
-// only. (A TOP_OF_PIPE begin does not wait: on lavapipe, which shades a render pass's draws when
-// it flushes, the previous pass's shading then landed in the next scope — measured: cornell-1 at
-// 1280x720 showed probes 1.3 ms and dnrt 486 ms; with both stamps at bottom-of-pipe, at 640x360,
-// probes 158 ms and dnrt 136 ms. Any stamp but top-of-pipe flushes there, so many tiny scopes
-// perturb what they measure a little — DESIGN.md "Machine facts". A scope inside a render pass,
-// such as DNRT's per-object draws, measures only what runs before the flush on lavapipe — the
-// pass row is the cost; on a GPU both are meaningful.)
+// Each scope writes its begin at TOP_OF_PIPE and its end at BOTTOM_OF_PIPE: the end waits for
+// the scope's work. (On lavapipe, any stage other than top-of-pipe flushes, so many tiny scopes
+// perturb what they measure a little — DESIGN.md "Machine facts".)
 #include <cstdint>
 #include <string>
 #include <vector>
