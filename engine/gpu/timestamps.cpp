@@ -17,7 +17,7 @@ TimestampPool::TimestampPool(Context& ctx, std::uint32_t maxScopes) : ctx_(ctx),
   period_ns_ = ctx.limits().timestampPeriod;
   VkQueryPoolCreateInfo ci{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
   ci.queryType = VK_QUERY_TYPE_TIMESTAMP;
-  ci.queryCount = 2 * max_scopes_;
+  ci.queryCount = kQueriesPerScope * max_scopes_;
   check(vkCreateQueryPool(ctx.device(), &ci, nullptr, &pool_), "vkCreateQueryPool");
   ctx.setName(VK_OBJECT_TYPE_QUERY_POOL, pool_, "timestamps");
 }
@@ -30,7 +30,7 @@ void TimestampPool::reset(VkCommandBuffer cmd) {
   scopes_.clear();
   open_.clear();
   dropped_ = 0;
-  if (supported_) vkCmdResetQueryPool(cmd, pool_, 0, 2 * max_scopes_);
+  if (supported_) vkCmdResetQueryPool(cmd, pool_, 0, kQueriesPerScope * max_scopes_);
 }
 
 void TimestampPool::begin(VkCommandBuffer cmd, const std::string& name) {
@@ -39,10 +39,12 @@ void TimestampPool::begin(VkCommandBuffer cmd, const std::string& name) {
     open_.push_back(-1);
     return;
   }
-  auto query = static_cast<std::uint32_t>(2 * scopes_.size());
+  auto query = static_cast<std::uint32_t>(kQueriesPerScope * scopes_.size());
   scopes_.push_back({name, static_cast<std::uint32_t>(open_.size()), query});
   open_.push_back(static_cast<std::int64_t>(scopes_.size() - 1));
-  vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, pool_, query);
+  vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, pool_, query);
+  // A second stamp, never read, only to close the begin stamp's batch (see the header).
+  vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, pool_, query + 2);
 }
 
 void TimestampPool::end(VkCommandBuffer cmd) {
@@ -57,7 +59,7 @@ std::vector<TimingResult> TimestampPool::resolve() {
   std::vector<TimingResult> out;
   if (!supported_ || scopes_.empty()) return out;
   if (!open_.empty()) throw InternalError("vulkan: timestamp scope '" + scopes_[0].name + "' is still open (end() missing)");
-  std::vector<std::uint64_t> ticks(2 * scopes_.size());
+  std::vector<std::uint64_t> ticks(kQueriesPerScope * scopes_.size());
   check(vkGetQueryPoolResults(ctx_.device(), pool_, 0, static_cast<std::uint32_t>(ticks.size()),
                               ticks.size() * sizeof(std::uint64_t), ticks.data(), sizeof(std::uint64_t),
                               VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),

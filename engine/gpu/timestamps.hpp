@@ -4,9 +4,15 @@
 // FrameRing keeps one TimestampPool per frame in flight, so reading frame N's results never
 // waits on frame N+1.
 //
-// Each scope writes its begin at TOP_OF_PIPE and its end at BOTTOM_OF_PIPE: the end waits for
-// the scope's work. (On lavapipe, any stage other than top-of-pipe flushes, so many tiny scopes
-// perturb what they measure a little — DESIGN.md "Machine facts".)
+// Each scope writes its begin and its end at BOTTOM_OF_PIPE, and right after the begin one more
+// stamp that is never read. Why: on lavapipe a stamp is executed by llvmpipe's rasteriser as a
+// command binned into every tile of the current batch ("scene"), and the query keeps the latest
+// tile's time; any stage but top-of-pipe first flushes the batch so far. A begin stamp that shares
+// its batch with the pass's draws therefore reads ~when the last tile *started* — the pass then
+// measured only its last tile (cornell-1, 1280x720: `probes` read 1.6 ms while adding it cost
+// ~0.8 s of wall time per frame). The extra stamp flushes the begin stamp's batch on its own, so
+// the draws start a new one; the end stamp flushes the draws. On a GPU the extra stamp costs
+// nothing measurable. Any flush perturbs lavapipe a little — DESIGN.md "Machine facts".
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -16,6 +22,9 @@
 namespace bounce::gpu {
 
 class Context;
+
+// Queries per scope: begin, end, and the stamp that closes the begin stamp's batch.
+inline constexpr std::uint32_t kQueriesPerScope = 3;
 
 struct TimingResult {
   std::string name;
@@ -50,7 +59,7 @@ class TimestampPool {
   struct Scope {
     std::string name;
     std::uint32_t depth;
-    std::uint32_t query;  // begin query; end = query + 1
+    std::uint32_t query;  // begin query; end = query + 1; query + 2 closes the begin stamp's batch
   };
   Context& ctx_;
   VkQueryPool pool_ = VK_NULL_HANDLE;
