@@ -14,6 +14,8 @@
 #include <stb_image_write.h>
 #include <tiny_gltf.h>
 
+#include "engine/asset/gltf_buffer.hpp"
+
 #include "engine/core/error.hpp"
 #include "engine/core/file.hpp"
 #include "engine/core/log.hpp"
@@ -125,31 +127,9 @@ class GlbBuilder {
     model_.nodes.push_back(std::move(n));
   }
 
-  // A bufferView over `bytes` appended to the one buffer, 4-byte aligned (every component type
-  // written here is 4 bytes, and glTF requires accessor offsets aligned to their component size).
-  int addView(const void* bytes, std::size_t size, int target) {
-    auto& data = model_.buffers[0].data;
-    data.resize((data.size() + 3) & ~std::size_t(3), 0);
-    tinygltf::BufferView v;
-    v.buffer = 0;
-    v.byteOffset = data.size();
-    v.byteLength = size;
-    v.target = target;
-    const auto* p = static_cast<const unsigned char*>(bytes);
-    data.insert(data.end(), p, p + size);
-    model_.bufferViews.push_back(v);
-    return int(model_.bufferViews.size() - 1);
-  }
-
   template <class T>
   int addAccessor(const std::vector<T>& values, int componentType, int type, int target) {
-    tinygltf::Accessor a;
-    a.bufferView = addView(values.data(), values.size() * sizeof(T), target);
-    a.componentType = componentType;
-    a.type = type;
-    a.count = values.size();
-    model_.accessors.push_back(std::move(a));
-    return int(model_.accessors.size() - 1);
+    return asset::appendAccessor(model_, values.data(), values.size(), sizeof(T), componentType, type, target);
   }
 
   PrimGeometry writeGeometry(const std::vector<glm::vec3>& positions, const std::vector<glm::vec3>& normals,
@@ -212,7 +192,7 @@ class GlbBuilder {
       tinygltf::Image image;
       image.name = t.name.empty() ? s_.assets[asset].source.stem().string() + "/texture" + std::to_string(index) : t.name;
       image.mimeType = "image/png";
-      image.bufferView = addView(png.data(), png.size(), 0);  // images: no target
+      image.bufferView = asset::appendBufferView(model_, png.data(), png.size(), 0);  // images: no target
       model_.images.push_back(std::move(image));
       if (model_.samplers.empty()) {  // the renderer's sampler: linear, mipmapped, repeat
         tinygltf::Sampler s;

@@ -3,6 +3,8 @@
 #include <nlohmann/json.hpp>
 #include <tiny_gltf.h>
 
+#include "engine/asset/gltf_buffer.hpp"
+
 #include <charconv>
 #include <limits>
 #include <sstream>
@@ -127,27 +129,8 @@ void writeVlmGltf(const MakeResult& result, const std::filesystem::path& out) {
   model.asset.version = "2.0";
   model.asset.generator = "bounce vlm-make";
   model.buffers.resize(1);
-  auto view = [&](const void* bytes, std::size_t size, int target) {
-    auto& data = model.buffers[0].data;
-    data.resize((data.size() + 3) & ~std::size_t(3), 0);  // 4-byte aligned accessors
-    tinygltf::BufferView v;
-    v.buffer = 0;
-    v.byteOffset = data.size();
-    v.byteLength = size;
-    v.target = target;
-    const auto* p = static_cast<const unsigned char*>(bytes);
-    data.insert(data.end(), p, p + size);
-    model.bufferViews.push_back(v);
-    return int(model.bufferViews.size() - 1);
-  };
   auto accessor = [&](const void* bytes, std::size_t count, std::size_t elementSize, int component, int type, int target) {
-    tinygltf::Accessor a;
-    a.bufferView = view(bytes, count * elementSize, target);
-    a.componentType = component;
-    a.type = type;
-    a.count = count;
-    model.accessors.push_back(std::move(a));
-    return int(model.accessors.size() - 1);
+    return asset::appendAccessor(model, bytes, count, elementSize, component, type, target);
   };
   tinygltf::Scene scene;
   scene.name = "vlm";
