@@ -61,14 +61,11 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
 
 // Bakes the fields of `level` the cache lacks (what Session would bake on construction), timed.
 void bakeMissing(const scene::Level& level, DnrtBenchRow& row) {
-  ecs::Registry registry;
-  scene::instantiate(level, registry);
-  scene::transformSystem(registry);
-  ref::ReferenceAssets assets;
-  assets.load(registry, cookCacheDir());
-  std::vector<ecs::Entity> entities;
-  registry.view<scene::Dnrt, scene::MeshRef>().each(
-      [&](ecs::Entity e, scene::Dnrt&, scene::MeshRef&) { entities.push_back(e); });
+  gi::dnrt::LevelObjects objects;
+  gi::dnrt::loadLevelObjects(level, cookCacheDir(), objects);
+  auto& registry = objects.registry;
+  const auto& assets = objects.assets;
+  const auto& entities = objects.entities;
   for (ecs::Entity e : entities) {
     const ref::SceneDesc object = gi::dnrt::objectScene(registry, e, assets);
     const gi::dnrt::FieldSettings settings = gi::dnrt::settingsFrom(registry.get<scene::Dnrt>(e));

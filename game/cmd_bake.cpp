@@ -43,15 +43,11 @@ void bakeProbes(const scene::Level& level, bool force) {
 }
 
 void bakeDnrt(const scene::Level& level, bool force) {
-  ecs::Registry registry;
-  scene::instantiate(level, registry);
-  scene::transformSystem(registry);
-  ref::ReferenceAssets assets;
-  assets.load(registry, cookCacheDir());
-  std::vector<ecs::Entity> entities;
-  registry.view<scene::Dnrt, scene::MeshRef>().each(
-      [&](ecs::Entity e, scene::Dnrt&, scene::MeshRef&) { entities.push_back(e); });
-  std::sort(entities.begin(), entities.end());
+  gi::dnrt::LevelObjects objects;
+  gi::dnrt::loadLevelObjects(level, cookCacheDir(), objects);
+  auto& registry = objects.registry;
+  const auto& assets = objects.assets;
+  const auto& entities = objects.entities;
   if (entities.empty()) std::printf("dnrt    no entity has a dnrt component\n");
   for (ecs::Entity e : entities) {
     const std::string name = registry.get<scene::Name>(e).id;

@@ -1,8 +1,21 @@
 #include "engine/gi/dnrt/object_scene.hpp"
 
 #include "engine/core/error.hpp"
+#include "engine/scene/systems.hpp"
+
+#include <algorithm>
 
 namespace bounce::gi::dnrt {
+
+void loadLevelObjects(const scene::Level& level, const std::filesystem::path& cookCache, LevelObjects& out) {
+  scene::instantiate(level, out.registry);
+  scene::transformSystem(out.registry);
+  out.assets.load(out.registry, cookCache);
+  out.entities.clear();
+  out.registry.view<scene::Dnrt, scene::MeshRef>().each(
+      [&](ecs::Entity e, scene::Dnrt&, scene::MeshRef&) { out.entities.push_back(e); });
+  std::sort(out.entities.begin(), out.entities.end());
+}
 
 ref::SceneDesc objectScene(ecs::Registry& registry, ecs::Entity entity, const ref::ReferenceAssets& assets) {
   const auto* mesh = registry.tryGet<scene::MeshRef>(entity);

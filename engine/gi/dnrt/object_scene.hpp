@@ -7,11 +7,25 @@
 #include "engine/gi/dnrt/field.hpp"
 #include "engine/ref/reference_scene.hpp"
 #include "engine/scene/components.hpp"
+#include "engine/scene/level.hpp"
+
+#include <filesystem>
+#include <vector>
 
 namespace bounce::gi::dnrt {
 
 // `entity` must have a MeshRef whose asset `assets` has loaded (ReferenceAssets::load).
 ref::SceneDesc objectScene(ecs::Registry& registry, ecs::Entity entity, const ref::ReferenceAssets& assets);
+
+// A level's entities that carry a DNRT field, with what objectScene() needs to describe them: the
+// level instantiated at t = 0 (transforms resolved) and its reference assets. What bake-only tools
+// (bounce bake, bounce bench dnrt) iterate; filled in place (the registry is not movable).
+struct LevelObjects {
+  ecs::Registry registry;
+  ref::ReferenceAssets assets;
+  std::vector<ecs::Entity> entities;  // with scene::Dnrt and scene::MeshRef, ascending
+};
+void loadLevelObjects(const scene::Level& level, const std::filesystem::path& cookCache, LevelObjects& out);
 
 // The bake settings a level component asks for.
 FieldSettings settingsFrom(const scene::Dnrt& component);
