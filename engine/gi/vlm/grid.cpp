@@ -1,89 +1,53 @@
 #include "engine/gi/vlm/grid.hpp"
 
+#include "engine/gi/vlm/grid_detail.hpp"
+
 #include <algorithm>
-#include <atomic>
+#include <bit>
 #include <cmath>
 #include <cstdio>
-#include <memory>
 
 #include "engine/core/parallel.hpp"
 #include "engine/math/sampling.hpp"
 
 namespace bounce::vlm {
 
-namespace {
+namespace detail {
 
-constexpr float kPi = 3.14159265358979f;
-
-// The heuristic and the bound (public as touchesCell / cellBound), split per axis so the scatter
-// build can compute a row's y and z parts once. Both builds combine the parts in the same order,
-// x + (y + z), so they agree bit for bit.
-struct AxisTerms {
-  bool overlaps;  // the cell's extent meets the half-ball box's along this axis
-  float gap2;     // squared distance from the centre to the cell along this axis
-  float front;    // this axis's share of n·(support point − centre), the box's furthest corner along n
-};
-inline AxisTerms axisTerms(const ActiveHemisphere& h, int a, float lo, float hi) {
-  const float g = std::clamp(h.centre[a], lo, hi) - h.centre[a];
-  return {!(h.lo[a] > hi) && !(h.hi[a] < lo), g * g,
-          h.normal[a] * (0.5f * (lo + hi) - h.centre[a]) + std::abs(h.normal[a]) * (0.5f * (hi - lo))};
-}
-// Given the y + z parts: inside the sphere, and some corner strictly in front of the light's plane.
-inline bool accepts(const ActiveHemisphere& h, const AxisTerms& x, float yzGap2, float yzFront) {
-  return x.overlaps && x.gap2 + yzGap2 <= h.radius * h.radius && x.front + yzFront > 0.0f;
-}
-// E = π L F with F ≤ 1 and F ≤ A/(π d²): E ≤ L · min(π, A/d²), d from the light's bounding sphere.
-inline float boundAt(const ActiveHemisphere& h, float gap2) {
-  const float d = std::max(std::sqrt(gap2) - h.extent, 0.0f);
-  const float shape = d > 0.0f ? std::min(kPi, h.area / (d * d)) : kPi;
-  return h.weight * shape;
-}
-
-inline bool touches(const ActiveHemisphere& h, glm::vec3 lo, glm::vec3 hi) {
-  if (!(h.radius > 0.0f)) return false;
-  const AxisTerms x = axisTerms(h, 0, lo.x, hi.x), y = axisTerms(h, 1, lo.y, hi.y), z = axisTerms(h, 2, lo.z, hi.z);
-  return y.overlaps && z.overlaps && accepts(h, x, y.gap2 + z.gap2, y.front + z.front);
-}
-
-inline float bound(const ActiveHemisphere& h, glm::vec3 lo, glm::vec3 hi) {
-  const AxisTerms x = axisTerms(h, 0, lo.x, hi.x), y = axisTerms(h, 1, lo.y, hi.y), z = axisTerms(h, 2, lo.z, hi.z);
-  return boundAt(h, x.gap2 + (y.gap2 + z.gap2));
-}
-
-struct Entry {
-  std::uint32_t light;
-  float bound;
-};
-
-// Canonical order inside a cell: largest bound first, then lowest index, so that any build that
-// finds the same candidate set produces the same list.
-bool before(const Entry& a, const Entry& b) {
-  return a.bound != b.bound ? a.bound > b.bound : a.light < b.light;
-}
-
-// Sorts a cell's candidates, keeps the first k, pads with kNullLight. Returns whether it overflowed.
-bool finishCell(Entry* begin, Entry* end, std::uint32_t k, std::uint32_t* out) {
-  const std::size_t n = std::size_t(end - begin);
-  auto order = [](const Entry& a, const Entry& b) { return before(a, b); };  // inlined, unlike a function pointer
-  // The order is total (one entry per light in a cell), so nth_element picks a unique set: the
-  // same list as a partial_sort, in O(n + k log k) rather than O(n log k).
-  if (n > k) {
-    std::nth_element(begin, begin + k, end, order);
-    std::sort(begin, begin + k, order);
-  } else {
-    std::sort(begin, end, order);
+void selectBest(std::uint64_t* a, std::uint32_t n, std::uint32_t k) {
+  static thread_local std::vector<std::uint64_t> partitioned;
+  partitioned.resize(n);
+  std::uint64_t* t = partitioned.data();
+  std::uint32_t lo = 0, hi = n;  // all of [0, lo) < all of [lo, hi) < all of [hi, n)
+  while (lo < k && k < hi) {
+    // Pivot: from five keys spread over the range, the one whose rank among them is nearest k's
+    // rank in the range (k is ~2/3 of the way for K 32 among ~48 candidates), moved to the end.
+    const std::uint32_t last = hi - 1, span = hi - lo;
+    std::uint32_t at[5];
+    for (std::uint32_t s = 0; s < 5; ++s) at[s] = lo + std::uint32_t(std::uint64_t(span - 1) * s / 4);
+    for (std::uint32_t s = 1; s < 5; ++s)
+      for (std::uint32_t t = s; t > 0 && a[at[t]] < a[at[t - 1]]; --t) std::swap(at[t], at[t - 1]);
+    const std::uint32_t pick = at[std::min<std::uint32_t>(4, std::uint32_t((std::uint64_t(k - lo) * 5) / span))];
+    std::swap(a[pick], a[last]);
+    const std::uint64_t pivot = a[last];
+    // Smaller keys fill t from lo upwards, larger ones from last downwards; each key is written to
+    // both free ends and only its side's end moves, so there is no branch on the comparison.
+    std::uint32_t less = lo, more = last;
+    for (std::uint32_t j = lo; j < last; ++j) {
+      const std::uint64_t key = a[j];
+      const bool smaller = key < pivot;
+      t[less] = key;
+      t[more] = key;
+      less += smaller;
+      more -= !smaller;
+    }
+    t[less] = pivot;  // the one slot left, between the sides
+    std::copy(t + lo, t + hi, a + lo);
+    const std::uint32_t i = less;
+    if (i + 1 == k || i == k) return;
+    if (i > k) hi = i;
+    else lo = i + 1;
   }
-  const std::size_t kept = std::min<std::size_t>(n, k);
-  for (std::size_t i = 0; i < kept; ++i) out[i] = begin[i].light;
-  for (std::size_t i = kept; i < k; ++i) out[i] = kNullLight;
-  return n > k;
-}
-
-Grid emptyGrid(const GridDesc& desc) {
-  Grid g;
-  g.desc = desc;
-  g.slots.assign(desc.cellCount() * desc.k, kNullLight);
-  return g;
 }
 
 std::vector<ActiveHemisphere> hemispheres(std::span<const GridLight> lights, float range) {
@@ -92,20 +56,25 @@ std::vector<ActiveHemisphere> hemispheres(std::span<const GridLight> lights, flo
   return h;
 }
 
-// The cells [lo, hi] along each axis whose boxes (cellBox) overlap the half-ball's box [h.lo, h.hi]
-// exactly as touchesCell() compares them in float: the floor() guess is corrected cell by cell, so
-// no padding is needed (a cell of padding each side would visit (n+3)³ instead of (n+1)³ cells).
-// Empty (lo > hi) when the box misses the grid.
+// The floor() guess (it may be a cell off either way) is corrected cell by cell, so no padding is
+// needed (a cell of padding each side would visit (n+3)³ instead of (n+1)³ cells).
 void cellRange(const GridDesc& d, const ActiveHemisphere& h, glm::uvec3& lo, glm::uvec3& hi) {
+  const glm::vec3 perCell = 1.0f / d.cellSize;  // only the first guess uses it
   for (int a = 0; a < 3; ++a) {
     const auto n = std::int64_t(d.dims[a]);
     auto cellLo = [&](std::int64_t c) { return d.origin[a] + float(c) * d.cellSize[a]; };
     auto cellHi = [&](std::int64_t c) { return d.origin[a] + float(c + 1) * d.cellSize[a]; };
     // First cell with cellHi ≥ h.lo, last cell with cellLo ≤ h.hi.
-    std::int64_t first = std::clamp<std::int64_t>(std::int64_t(std::floor((h.lo[a] - d.origin[a]) / d.cellSize[a])), 0, n - 1);
+    // The guess is clamped in float (NaN to 0) before it becomes an integer; truncation is floor
+    // there, the values being ≥ 0.
+    auto guess = [&](float p) {
+      const float f = (p - d.origin[a]) * perCell[a];
+      return std::int64_t(f >= 0.0f ? std::min(f, float(n - 1)) : 0.0f);
+    };
+    std::int64_t first = guess(h.lo[a]);
     while (first > 0 && !(cellHi(first - 1) < h.lo[a])) --first;
     while (first < n && cellHi(first) < h.lo[a]) ++first;
-    std::int64_t last = std::clamp<std::int64_t>(std::int64_t(std::floor((h.hi[a] - d.origin[a]) / d.cellSize[a])), 0, n - 1);
+    std::int64_t last = guess(h.hi[a]);
     while (last < n - 1 && !(cellLo(last + 1) > h.hi[a])) ++last;
     while (last >= 0 && cellLo(last) > h.hi[a]) --last;
     if (first > last) {
@@ -116,37 +85,9 @@ void cellRange(const GridDesc& d, const ActiveHemisphere& h, glm::uvec3& lo, glm
   }
 }
 
-// Both builds end here. `visit(fn)` calls fn(cell, begin, end) once for every cell, in parallel,
-// with that cell's candidates [begin, end) in any order (fn may reorder them). Sorts and truncates
-// every list; conservative mode first visits once more to size the lists (header comment).
-template <class Visit>
-Grid finishGrid(const GridDesc& desc, Visit&& visit) {
-  const std::size_t cells = desc.cellCount();
-  GridDesc built = desc;
-  std::vector<std::uint32_t> above;
-  const bool conservative = desc.conservativeThreshold > 0.0f;
-  if (conservative) {
-    above.assign(cells, 0u);
-    visit([&](std::size_t i, Entry* begin, Entry* end) {
-      above[i] = std::uint32_t(std::count_if(begin, end, [&](const Entry& e) { return e.bound >= desc.conservativeThreshold; }));
-    });
-    const std::uint32_t need = cells ? *std::max_element(above.begin(), above.end()) : 0u;
-    built.k = std::clamp(need, desc.k, std::max(desc.k, desc.maxK));
-  }
-  Grid g = emptyGrid(built);
-  std::atomic<std::uint64_t> overflow{0}, dropped{0}, candidates{0};
-  visit([&](std::size_t i, Entry* begin, Entry* end) {
-    candidates.fetch_add(std::uint64_t(end - begin), std::memory_order_relaxed);
-    if (finishCell(begin, end, built.k, g.slots.data() + i * built.k)) overflow.fetch_add(1, std::memory_order_relaxed);
-    if (conservative && above[i] > built.k) dropped.fetch_add(above[i] - built.k, std::memory_order_relaxed);
-  });
-  g.overflowCells = overflow;
-  g.droppedAboveThreshold = dropped;
-  g.candidates = candidates;
-  return g;
-}
+}  // namespace detail
 
-}  // namespace
+using namespace detail;
 
 GridDesc fitGrid(glm::vec3 lo, glm::vec3 hi, glm::uvec3 dims, std::uint32_t k, float range) {
   GridDesc d;
@@ -202,103 +143,23 @@ Grid buildGridGather(std::span<const GridLight> lights, const GridDesc& desc) {
   const auto hs = hemispheres(lights, desc.range);
   const std::size_t cells = desc.cellCount();
   const std::uint32_t nx = desc.dims.x, ny = desc.dims.y;
-  std::vector<std::vector<Entry>> found(cells);
   // The thesis's build (§4.2): each cell evaluates the heuristic for every light.
-  parallelFor(0, cells, [&](std::size_t i) {
-    const glm::uvec3 c(std::uint32_t(i % nx), std::uint32_t((i / nx) % ny), std::uint32_t(i / (std::size_t(nx) * ny)));
-    glm::vec3 lo, hi;
-    cellBox(desc, c, lo, hi);
-    for (std::uint32_t l = 0; l < hs.size(); ++l)
-      if (touches(hs[l], lo, hi)) found[i].push_back({l, bound(hs[l], lo, hi)});
-  }, 16);
-  return finishGrid(desc, [&](auto&& fn) {
-    parallelFor(0, cells, [&](std::size_t i) { fn(i, found[i].data(), found[i].data() + found[i].size()); }, 256);
-  });
-}
-
-Grid buildGridScatter(std::span<const GridLight> lights, const GridDesc& desc) {
-  const auto hs = hemispheres(lights, desc.range);
-  const std::uint32_t nx = desc.dims.x, ny = desc.dims.y;
-  // Two levels, so that no step writes to memory at random: lights are binned into blocks of
-  // kBlock³ cells (a light's half-ball box covers a few blocks), then each block, on one thread,
-  // scatters its lights into per-cell lists that stay in cache and finishes its cells.
-  constexpr std::uint32_t kBlock = 8;
-  const glm::uvec3 blocks = (desc.dims + (kBlock - 1u)) / kBlock;
-  const std::size_t blockCount = std::size_t(blocks.x) * blocks.y * blocks.z;
-  std::vector<glm::uvec3> rangeLo(hs.size()), rangeHi(hs.size());
-  std::vector<std::uint8_t> live(hs.size(), 0);
-  parallelFor(0, hs.size(), [&](std::size_t l) {
-    if (!(hs[l].radius > 0.0f)) return;
-    cellRange(desc, hs[l], rangeLo[l], rangeHi[l]);
-    live[l] = glm::all(glm::lessThanEqual(rangeLo[l], rangeHi[l]));
-  }, 1024);
-  auto forEachBlock = [&](std::size_t l, auto&& fn) {
-    const glm::uvec3 b0 = rangeLo[l] / kBlock, b1 = rangeHi[l] / kBlock;
-    for (std::uint32_t z = b0.z; z <= b1.z; ++z)
-      for (std::uint32_t y = b0.y; y <= b1.y; ++y)
-        for (std::uint32_t x = b0.x; x <= b1.x; ++x) fn((std::size_t(z) * blocks.y + y) * blocks.x + x);
+  auto pass = [&](std::uint32_t capacity, auto&& makeCell, auto&& done) {
+    parallelFor(0, cells, [&](std::size_t i) {
+      static thread_local std::vector<std::uint64_t> scratch;
+      scratch.resize(capacity);
+      auto cell = makeCell(scratch.data());
+      const glm::uvec3 c(std::uint32_t(i % nx), std::uint32_t((i / nx) % ny), std::uint32_t(i / (std::size_t(nx) * ny)));
+      glm::vec3 lo, hi;
+      cellBox(desc, c, lo, hi);
+      for (std::uint32_t l = 0; l < hs.size(); ++l)
+        if (touches(hs[l], lo, hi)) cell.offer(rankKey(bound(hs[l], lo, hi), l));
+      done(i, cell);
+    }, 16);
   };
-  // Bin: count, prefix-sum, fill (the order inside a block does not matter: cells are sorted).
-  auto counts = std::make_unique<std::atomic<std::uint32_t>[]>(blockCount);
-  for (std::size_t b = 0; b < blockCount; ++b) counts[b].store(0, std::memory_order_relaxed);
-  parallelFor(0, hs.size(), [&](std::size_t l) {
-    if (live[l]) forEachBlock(l, [&](std::size_t b) { counts[b].fetch_add(1, std::memory_order_relaxed); });
-  }, 1024);
-  std::vector<std::uint64_t> offsets(blockCount + 1, 0);
-  for (std::size_t b = 0; b < blockCount; ++b) {
-    offsets[b + 1] = offsets[b] + counts[b].load(std::memory_order_relaxed);
-    counts[b].store(0, std::memory_order_relaxed);
-  }
-  std::vector<std::uint32_t> binned(offsets[blockCount]);
-  parallelFor(0, hs.size(), [&](std::size_t l) {
-    if (live[l])
-      forEachBlock(l, [&](std::size_t b) { binned[offsets[b] + counts[b].fetch_add(1, std::memory_order_relaxed)] = std::uint32_t(l); });
-  }, 1024);
-
-  // Per block: every cell of the block under each binned light's half-ball box that the heuristic
-  // accepts, with the y and z terms computed once per row. Slabs and rows whose distance from the
-  // centre along z (and y) alone exceeds the radius are skipped: touchesCell would reject each of
-  // their cells (x² + (y² + z²) ≥ y² + z² ≥ z² in float too: rounding is monotone).
-  auto visit = [&](auto&& fn) {
-    parallelFor(0, blockCount, [&](std::size_t b) {
-      const glm::uvec3 bc(std::uint32_t(b % blocks.x), std::uint32_t(b / blocks.x % blocks.y),
-                          std::uint32_t(b / (std::size_t(blocks.x) * blocks.y)));
-      const glm::uvec3 c0 = bc * kBlock, c1 = glm::min(c0 + kBlock, desc.dims) - 1u;
-      // Per-thread lists, reused from block to block (their capacity stays).
-      static thread_local std::vector<std::vector<Entry>> local;
-      local.resize(kBlock * kBlock * kBlock);
-      for (auto& list : local) list.clear();
-      for (std::uint64_t i = offsets[b]; i < offsets[b + 1]; ++i) {
-        const std::uint32_t l = binned[i];
-        const ActiveHemisphere& h = hs[l];
-        const float r2 = h.radius * h.radius;
-        auto cellLo = [&](int a, std::uint32_t c) { return desc.origin[a] + float(c) * desc.cellSize[a]; };
-        auto cellHi = [&](int a, std::uint32_t c) { return desc.origin[a] + float(c + 1) * desc.cellSize[a]; };
-        const glm::uvec3 lo = glm::max(rangeLo[l], c0), hi = glm::min(rangeHi[l], c1);
-        for (std::uint32_t z = lo.z; z <= hi.z; ++z) {
-          const AxisTerms zt = axisTerms(h, 2, cellLo(2, z), cellHi(2, z));
-          if (!zt.overlaps || zt.gap2 > r2) continue;
-          for (std::uint32_t y = lo.y; y <= hi.y; ++y) {
-            const AxisTerms yt = axisTerms(h, 1, cellLo(1, y), cellHi(1, y));
-            const float yzGap2 = yt.gap2 + zt.gap2, yzFront = yt.front + zt.front;
-            if (!yt.overlaps || yzGap2 > r2) continue;
-            auto* row = local.data() + ((z - c0.z) * kBlock + (y - c0.y)) * kBlock;
-            for (std::uint32_t x = lo.x; x <= hi.x; ++x) {
-              const AxisTerms xt = axisTerms(h, 0, cellLo(0, x), cellHi(0, x));
-              if (accepts(h, xt, yzGap2, yzFront)) row[x - c0.x].push_back({l, boundAt(h, xt.gap2 + yzGap2)});
-            }
-          }
-        }
-      }
-      for (std::uint32_t z = c0.z; z <= c1.z; ++z)
-        for (std::uint32_t y = c0.y; y <= c1.y; ++y)
-          for (std::uint32_t x = c0.x; x <= c1.x; ++x) {
-            auto& list = local[((z - c0.z) * kBlock + (y - c0.y)) * kBlock + (x - c0.x)];
-            fn((std::size_t(z) * ny + y) * nx + x, list.data(), list.data() + list.size());
-          }
-    });
-  };
-  return finishGrid(desc, visit);
+  Grid g;
+  finishGrid(desc, pass, g);
+  return g;
 }
 
 std::string formatOverflow(const OverflowReport& r) {

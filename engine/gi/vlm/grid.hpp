@@ -10,23 +10,25 @@
 // so here the test is cell-box against half-sphere, conservative: the box overlaps the half-ball's
 // bounding box, the sphere, and the open half-space in front of the light.
 //
-// Two builds that give identical grids:
-//  - gather (the thesis's): every cell tests every light — O(cells × lights), kept as the reference
-//    and the benchmark baseline;
-//  - scatter: every light visits only the cells under its half-ball's bounding box — O(touched
-//    cells). Lights are first binned (count, prefix sum, fill) into blocks of 8³ cells; then each
-//    block, in parallel (TBB), scatters its lights into its own cells' lists, which stay in cache,
-//    and sorts them: no locks, no random writes to a grid-sized array.
+// Two builds that give identical grids, slot for slot:
+//  - gather (the thesis's, grid.cpp): every cell tests every light — O(cells × lights), kept as the
+//    reference and the benchmark baseline;
+//  - scatter (grid_scatter.cpp): every light visits only the cells under its half-ball's bounding
+//    box — O(touched cells). Lights are binned into blocks of 8³ cells in increasing index; each
+//    block, in parallel (TBB), offers its lights to its own cells' lists, which stay in cache: no
+//    locks, no random writes to a grid-sized array.
 // Overflow (more than K candidates): a cell keeps the K with the largest upper bound on the
 // irradiance they can deliver anywhere in the cell, E ≤ min(π, A/d²)·L (F ≤ 1 and F ≤ A/(π d²),
 // d the distance from the light's bounding sphere to the cell), ties broken by light index; the
-// number of overflowing cells is reported. Lists are stored in that order (largest bound first), so
-// both builds agree slot for slot.
+// number of overflowing cells is reported. A list's order is not sorted: it is what the shared
+// per-cell list (grid_detail.hpp: CandidateList) leaves when offered a cell's candidates in
+// increasing light index, which both builds do. Lists are packed, unused slots last.
 // Conservative mode (issue 5 §4; GridDesc::conservativeThreshold > 0): a light is dropped from a
 // cell only when its bound there is below the threshold. Every list grows to the largest number of
 // above-threshold candidates any cell has (at least K, at most maxK slots); the (light, cell) pairs
 // above the threshold that still do not fit are counted in Grid::droppedAboveThreshold.
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <string>
 #include <vector>
@@ -100,6 +102,23 @@ struct Grid {
 
 Grid buildGridGather(std::span<const GridLight> lights, const GridDesc& desc);
 Grid buildGridScatter(std::span<const GridLight> lights, const GridDesc& desc);
+
+// Repeated scatter builds (the per-frame dynamic grid) keep their working memory here and build
+// into a Grid whose slots are reused, so after the first build nothing is allocated and no fresh
+// page is touched (at 100k lights into 50³ first-touch page faults cost about as much as the
+// build itself). The result is the same as buildGridScatter's.
+class GridScatterBuilder {
+ public:
+  GridScatterBuilder();
+  ~GridScatterBuilder();
+  GridScatterBuilder(GridScatterBuilder&&) noexcept;
+  GridScatterBuilder& operator=(GridScatterBuilder&&) noexcept;
+  void build(std::span<const GridLight> lights, const GridDesc& desc, Grid& out);
+
+ private:
+  struct Scratch;
+  std::unique_ptr<Scratch> scratch_;
+};
 
 // What the grids dropped (shown by the `bounce play` overlay and `bounce profile`).
 struct OverflowReport {

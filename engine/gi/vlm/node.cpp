@@ -154,7 +154,7 @@ FrameData Runtime::prepare(const render::RenderWorld& world) {
     f.dynamicRanges.push_back({m.name, f.staticCount + first, std::uint32_t(moving.size()) - first});
   }
   if (!moving.empty()) {
-    f.dynamicGrid = buildGridScatter(gridLights(moving), desc);
+    dynamicBuilder_.build(gridLights(moving), desc, f.dynamicGrid);
     for (auto& s : f.dynamicGrid.slots)
       if (s != kNullLight) s += f.staticCount;
   }

@@ -99,6 +99,7 @@ class Runtime {
   std::vector<std::uint32_t> tags_;
   Grid staticGrid_;
   bool staticBuilt_ = false;
+  GridScatterBuilder dynamicBuilder_;  // the dynamic grid's working memory, kept from frame to frame
   OverflowReport overflow_;
   gpu::DescriptorSetLayout lightsLayout_, shadeLayout_;
   gpu::PipelineLayout lightsPipelineLayout_, shadePipelineLayout_;
