@@ -4,7 +4,8 @@
 // added to "lighting.hdr":
 //   E(x) = Σ_k π L_k F_k(x, n),   L_o += ρ(x)/π · E(x)
 // over the candidates of x's cell in the static and the dynamic grid (K slots each, kNullLight
-// ends a list), skipping lights whose tag equals the pixel's (§3.4). F_k is Eq. 3.1 with horizon
+// ends a list), skipping lights whose tag equals the pixel's (§3.4). Each draw shades one range of
+// lights (push constant lightRange): the static ones, or one dynamic VLM's. F_k is Eq. 3.1 with horizon
 // clipping (vlm/form_factor.glsl); L_k comes from phase 1 (vlm_lights.frag).
 #include "frame.glsl"
 #include "vlm/form_factor.glsl"
@@ -28,6 +29,8 @@ struct GridGpu {
 layout(push_constant) uniform Push {
   GridGpu grids[2];  // 0 static, 1 dynamic
   uvec4 counts;      // x virtual lights, y entity tags, z radiance texels per row
+  uvec4 lightRange;  // x first, y end: this draw shades lights [first, end) only (node.cpp: the
+                     // static grid's draw, then one draw per dynamic VLM)
 } pc;
 
 layout(location = 0) in vec2 inUv;
@@ -46,6 +49,7 @@ vec3 gridIrradiance(GridGpu g, vec3 x, vec3 n, uint tag) {
   for (uint s = 0u; s < k; ++s) {
     uint i = slots[base + s];
     if (i == kNullLight || i >= pc.counts.x) break;  // lists are packed: the rest are null lights
+    if (i < pc.lightRange.x || i >= pc.lightRange.y) continue;
     VlmLight vl = vlmLights[i];
     if (tag != 0u && uint(vl.v0.w + 0.5) == tag) continue;
     // Cheap rejections before the clip (same answer as vlmFormFactor's: it returns 0 for both):

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <limits>
 
 #include "engine/gpu/timestamps.hpp"
 #include "engine/render/passes/rendering.hpp"
@@ -30,6 +31,7 @@ struct GridGpu {
 struct ShadePush {
   GridGpu grids[2];
   glm::uvec4 counts;
+  glm::uvec4 lightRange;  // x first, y end: only lights[first, end) are shaded by this draw
 };
 static_assert(sizeof(ShadePush) <= 128, "push constants: 128 bytes guaranteed");
 
@@ -55,6 +57,25 @@ std::vector<GridLight> gridLights(std::span<const VirtualLight> lights) {
 }
 
 }  // namespace
+
+// The pixels of a `extent` image that world box [lo, hi] covers under `viewProj` (the whole image
+// when a corner is at or behind the camera plane, or the box is empty). Pixel = (ndc · ½ + ½) ·
+// size, as frame.glsl's worldFromDepth inverts it.
+VkRect2D screenRect(const glm::mat4& viewProj, glm::vec3 lo, glm::vec3 hi, VkExtent2D extent) {
+  const VkRect2D whole{{0, 0}, extent};
+  if (!glm::all(glm::lessThanEqual(lo, hi))) return whole;
+  glm::vec2 a(std::numeric_limits<float>::max()), b(-std::numeric_limits<float>::max());
+  for (int corner = 0; corner < 8; ++corner) {
+    const glm::vec3 p(corner & 1 ? hi.x : lo.x, corner & 2 ? hi.y : lo.y, corner & 4 ? hi.z : lo.z);
+    const glm::vec4 clip = viewProj * glm::vec4(p, 1.0f);
+    if (!(clip.w > 1e-6f)) return whole;
+    const glm::vec2 pixel = (glm::vec2(clip) / clip.w * 0.5f + 0.5f) * glm::vec2(extent.width, extent.height);
+    a = glm::min(a, pixel), b = glm::max(b, pixel);
+  }
+  const glm::vec2 size(extent.width, extent.height);
+  a = glm::clamp(glm::floor(a), glm::vec2(0.0f), size), b = glm::clamp(glm::ceil(b), glm::vec2(0.0f), size);
+  return {{std::int32_t(a.x), std::int32_t(a.y)}, {std::uint32_t(b.x - a.x), std::uint32_t(b.y - a.y)}};
+}
 
 NodeSettings settingsFrom(const scene::VlmConfig& config) {
   NodeSettings s;
@@ -151,7 +172,14 @@ FrameData Runtime::prepare(const render::RenderWorld& world) {
     if (!m.dynamic || !registry_.valid(m.entity) || !placed) continue;
     const auto first = std::uint32_t(moving.size());
     appendPlaced(m, placed->matrix, moving);
-    f.dynamicRanges.push_back({m.name, f.staticCount + first, std::uint32_t(moving.size()) - first});
+    FrameData::Range r{m.name, f.staticCount + first, std::uint32_t(moving.size()) - first};
+    r.lo = glm::vec3(std::numeric_limits<float>::max()), r.hi = -r.lo;
+    for (std::size_t i = first; i < moving.size(); ++i) {
+      const ActiveHemisphere h = activeHemisphere({moving[i].v0, moving[i].v1, moving[i].v2, 1.0f}, desc.range);
+      if (h.radius > 0.0f) r.lo = glm::min(r.lo, h.lo), r.hi = glm::max(r.hi, h.hi);
+    }
+    r.lo -= desc.cellSize, r.hi += desc.cellSize;
+    f.dynamicRanges.push_back(std::move(r));
   }
   if (!moving.empty()) {
     dynamicBuilder_.build(gridLights(moving), desc, f.dynamicGrid);
@@ -192,8 +220,13 @@ void Runtime::addTo(rg::RenderGraph& graph, render::PassContext& pc) {
 
   const auto count = std::uint32_t(f.lights.size());
   const std::uint32_t width = std::min(count, kRadianceRow), height = (count + width - 1) / width;
-  const ShadePush shade{{gridGpu(&staticGrid_, 0), gridGpu(&f.dynamicGrid, dynamicFirst)},
-                        glm::uvec4(count, std::uint32_t(f.entityTags.size()), width, 0)};
+  // Phase 2 draws the static grid over the whole image, then each dynamic VLM over the pixels its
+  // lights can reach, in its own timestamp scope, from the dynamic grid with only its lights.
+  const glm::uvec4 counts(count, std::uint32_t(f.entityTags.size()), width, 0);
+  const ShadePush staticShade{{gridGpu(&staticGrid_, 0), gridGpu(nullptr, 0)}, counts, glm::uvec4(0, f.staticCount, 0, 0)};
+  const ShadePush dynamicShade{{gridGpu(nullptr, 0), gridGpu(&f.dynamicGrid, dynamicFirst)}, counts, glm::uvec4(0)};
+  const std::vector<FrameData::Range> objects = f.dynamicRanges;
+  const glm::mat4 viewProj = pc.world->camera.viewProj;
   const render::PassContext* ctx = &pc;
   auto& bb = graph.blackboard();
 
@@ -268,7 +301,8 @@ void Runtime::addTo(rg::RenderGraph& graph, render::PassContext& pc) {
         d.radiance = b.read(radiance, rg::Usage::SampledFragment);
         d.hdr = b.write(bb.get<rg::Texture>("lighting.hdr"), rg::Usage::ColorAttachment);
       },
-      [this, ctx, shade](const ShadeData& d, const rg::PassResources& res, rg::CommandContext& c) {
+      [this, ctx, staticShade, dynamicShade, objects, viewProj, staticCount = f.staticCount](
+          const ShadeData& d, const rg::PassResources& res, rg::CommandContext& c) {
         VkCommandBuffer cmd = ctx->cmd(c);
         SlotBuffers& buf = buffers_[ctx->frame().slot % buffers_.size()];
         VkSampler point = ctx->samplers->get({VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST});
@@ -291,8 +325,22 @@ void Runtime::addTo(rg::RenderGraph& graph, render::PassContext& pc) {
         shadePipeline_.bind(cmd);
         shadePipeline_.bindSet(cmd, 0, ctx->frameSet);
         shadePipeline_.bindSet(cmd, 1, set);
-        shadePipeline_.push(cmd, shade);
-        vkCmdDraw(cmd, 3, 1, 0, 0);
+        if (staticCount) {
+          shadePipeline_.push(cmd, staticShade);
+          vkCmdDraw(cmd, 3, 1, 0, 0);
+        }
+        gpu::TimestampPool* ts = ctx->frame().timestamps.get();
+        for (const auto& o : objects) {
+          const VkRect2D scissor = screenRect(viewProj, o.lo, o.hi, extent);
+          if (!o.count || !scissor.extent.width || !scissor.extent.height) continue;
+          if (ts) ts->begin(cmd, "vlm/" + o.name);
+          vkCmdSetScissor(cmd, 0, 1, &scissor);
+          ShadePush push = dynamicShade;
+          push.lightRange = glm::uvec4(o.first, o.first + o.count, 0, 0);
+          shadePipeline_.push(cmd, push);
+          vkCmdDraw(cmd, 3, 1, 0, 0);
+          if (ts) ts->end(cmd);
+        }
         ctx->gpu->cmdEndRendering(cmd);
       });
   bb.put("lighting.hdr", data.hdr);

@@ -41,6 +41,11 @@ struct NodeSettings {
 };
 NodeSettings settingsFrom(const scene::VlmConfig& config);
 
+// The pixels of an `extent` image that world box [lo, hi] covers under `viewProj` (the whole
+// image when a corner is at or behind the camera plane, or the box is empty; width 0 when it
+// projects outside). Phase 2 scissors each dynamic VLM's draw to it.
+VkRect2D screenRect(const glm::mat4& viewProj, glm::vec3 lo, glm::vec3 hi, VkExtent2D extent);
+
 // One frame's lights and grids as the passes read them (exposed for tests and the overlay).
 struct FrameData {
   std::vector<VirtualLight> lights;      // static first, then dynamic
@@ -49,10 +54,13 @@ struct FrameData {
   Grid dynamicGrid;                      // indices already offset by staticCount
   std::vector<std::uint32_t> entityTags; // vlm_tag per entity index (0 = none)
   // The lights of each dynamic VLM: lights[first, first + count), lit by phase 1 under the
-  // timestamp scope "vlm.lights/<name>" (a per-object row in `bounce profile`).
+  // timestamp scope "vlm.lights/<name>" and shaded by phase 2 under "vlm/<name>" (per-object rows
+  // in `bounce profile`). [lo, hi]: the world box its lights can reach through the dynamic grid
+  // (their half-ball boxes grown by one cell), which bounds phase 2's pixels for it.
   struct Range {
     std::string name;
     std::uint32_t first = 0, count = 0;
+    glm::vec3 lo{0.0f}, hi{0.0f};
   };
   std::vector<Range> dynamicRanges;
 };

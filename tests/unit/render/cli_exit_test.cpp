@@ -135,8 +135,8 @@ TEST_F(Cli, ProfileCsvHasHeaderAndOneRowPerPassPlusFrame) {
   EXPECT_EQ(objects, (std::vector<std::string>{"", "", "", "", "", "prop-textured-box", "", ""}));
 }
 
-// The Cornell VLM level: phase 1 gives the dynamic VLM on the moving prop its own row
-// ("vlm.lights/<entity>", issue 5 §7), and the table ends with the grids' overflow line (the
+// The Cornell VLM level: both phases give the dynamic VLM on the moving prop its own row
+// ("vlm.lights/<entity>" and "vlm/<entity>", issue 5 §7), and the table ends with the grids' overflow line (the
 // level's 20 virtual lights never fill K = 32 slots, so no cell overflows). The CSV stays five
 // timing columns.
 TEST_F(Cli, ProfileOfCornellVlmHasPerObjectVlmRowAndOverflowLine) {
@@ -150,7 +150,7 @@ TEST_F(Cli, ProfileOfCornellVlmHasPerObjectVlmRowAndOverflowLine) {
   std::vector<std::string> vlmRows;
   for (std::size_t i = 1; i < rows.size(); ++i)
     if (rows[i].rfind("vlm", 0) == 0) vlmRows.push_back(rows[i].substr(0, rows[i].find(',', rows[i].find(',') + 1)));
-  EXPECT_EQ(vlmRows, (std::vector<std::string>{"vlm.lights,", "vlm.lights,vlm-prop", "vlm,"}));
+  EXPECT_EQ(vlmRows, (std::vector<std::string>{"vlm.lights,", "vlm.lights,vlm-prop", "vlm,", "vlm,vlm-prop"}));
   const auto out = lines(r.out);
   ASSERT_FALSE(out.empty());
   EXPECT_EQ(out.back(), "vlm overflow: static 0/4096 cells, dynamic 0/4096 (most 0), K 32");

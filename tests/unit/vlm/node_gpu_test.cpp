@@ -11,6 +11,8 @@
 #include <filesystem>
 #include <fstream>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include "engine/gi/vlm/reference.hpp"
 #include "engine/gpu/presenter_offscreen.hpp"
 #include "engine/gpu/testing.hpp"
@@ -45,13 +47,15 @@ struct Scene {
   int floorTag = 0;                  // 0: the floor has no vlm_tag
   bool moving = false;               // the VLM cube orbits (radius 0.6 m about `cube`, axis +Y, 8 s)
   glm::vec3 lamp{0.6f, 0.6f, 0.1f};  // point light, 2 W/sr
+  float range = 100.0f;              // active-hemisphere range: 100 lists every light everywhere
 };
 
 fs::path writeLevel(const std::string& name, const Scene& s) {
   const fs::path path = outDir() / (name + ".json");
   std::ofstream f(path);
   auto v3 = [](glm::vec3 v) { return "[" + std::to_string(v.x) + ", " + std::to_string(v.y) + ", " + std::to_string(v.z) + "]"; };
-  f << R"({"bounce_level": 1, "effects": ["direct", "vlm"], "vlm": {"grid": 8, "k": 16, "range": 100}, "entities": [
+  f << R"({"bounce_level": 1, "effects": ["direct", "vlm"], "vlm": {"grid": 8, "k": 16, "range": )" << s.range
+    << R"(}, "entities": [
     {"id": "floor", "transform": {"translation": [0, -0.01, 0], "scale": [4, 0.02, 4]},
      "mesh": {"asset": ")" << boxAsset() << R"("}, "material": {"albedo": [0.8, 0.8, 0.8]})"
     << (s.floorTag ? ", \"vlm_tag\": " + std::to_string(s.floorTag) : "") << R"(},
@@ -209,6 +213,50 @@ TEST(VlmGpu, DynamicVlmBleedMovesWithItsEntity) {
   EXPECT_NEAR(p0.z, 0.0, kAcross);
   EXPECT_LT(p2.z, -kAlong);
   EXPECT_NEAR(p2.x, 0.0, kAcross);
+}
+
+// Phase 2 draws a dynamic VLM on its own, scissored to the pixels its lights can reach through the
+// grid (issue 5 §7: a per-object row). With a short range (1.5: the grid lists the cube's lights
+// near it only) that rectangle is a part of the image; the image must still equal the one where
+// the same cube, at the same place, is static (drawn with the static grid over the whole image):
+// the same lists, radiance and sums, so the same floats.
+TEST(VlmGpu, DynamicVlmDrawEqualsTheSameVlmStatic) {
+  const glm::vec3 centre(0.0f, 0.3f, 0.0f), atTimeZero = centre + glm::vec3(0.6f, 0.0f, 0.0f);  // the orbit starts at +X
+  Scene moving{centre, 0, true, centre};
+  moving.range = 1.5f;
+  Scene still{atTimeZero, 0, false, centre};
+  still.range = 1.5f;
+  const Frame base = render(writeLevel("scissor-base", still), {"direct"});
+  const Frame dyn = render(writeLevel("scissor-moving", moving), {"direct", "vlm"}, 0.0);
+  const Frame fixed = render(writeLevel("scissor-still", still), {"direct", "vlm"}, 0.0);
+  int lit = 0, unlit = 0;
+  for (int py = 0; py < int(kExtent.height); ++py)
+    for (int px = 0; px < int(kExtent.width); ++px) {
+      const glm::dvec3 a = pixel(dyn, px, py), b = pixel(fixed, px, py);
+      for (int c = 0; c < 3; ++c) EXPECT_EQ(a[c], b[c]) << px << "," << py;
+      (pixel(fixed, px, py).r > pixel(base, px, py).r ? lit : unlit)++;
+    }
+  EXPECT_GT(lit, 200) << "the cube lights the floor";
+  EXPECT_GT(unlit, 1000) << "range 1.5 should leave much of the floor outside the lights' cells";
+}
+
+TEST(VlmScreenRect, BoxInFrontIsItsProjectionAndABoxAroundTheCameraIsTheWholeImage) {
+  // Camera at the origin looking down −Z, 90° field of view, square 100 × 100 image.
+  const glm::mat4 viewProj = glm::perspective(glm::radians(90.0f), 1.0f, 0.1f, 100.0f);
+  const VkRect2D r = screenRect(viewProj, glm::vec3(-1.0f, -1.0f, -4.0f), glm::vec3(1.0f, 1.0f, -2.0f), {100, 100});
+  // The near face (z = −2) spans ndc ±0.5: pixels 25 … 75, rounded outwards (±1: tan 45° in float).
+  EXPECT_NEAR(r.offset.x, 25, 1);
+  EXPECT_NEAR(r.offset.y, 25, 1);
+  EXPECT_NEAR(int(r.extent.width), 50, 2);
+  EXPECT_NEAR(int(r.extent.height), 50, 2);
+  const VkRect2D around = screenRect(viewProj, glm::vec3(-1.0f), glm::vec3(1.0f), {100, 100});
+  EXPECT_EQ(around.offset.x, 0);
+  EXPECT_EQ(around.extent.width, 100u);
+  EXPECT_EQ(around.extent.height, 100u);
+  const VkRect2D off = screenRect(viewProj, glm::vec3(10.0f, -1.0f, -4.0f), glm::vec3(12.0f, 1.0f, -2.0f), {100, 100});
+  EXPECT_EQ(off.extent.width, 0u) << "a box right of the frustum covers no pixel";
+  const VkRect2D empty = screenRect(viewProj, glm::vec3(1.0f), glm::vec3(-1.0f), {100, 100});
+  EXPECT_EQ(empty.extent.width, 100u) << "an empty box (no emitting light) falls back to the whole image";
 }
 
 // The node exists only for the `vlm` effect: exact pass lists.
