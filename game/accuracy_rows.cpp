@@ -7,16 +7,17 @@ namespace bounce::game {
 namespace {
 
 // Direct light with shadow maps. Its own passes are the shadow atlas and the lighting pass (the
-// G-buffer is shared by every technique, the tonemap is display). Compared with both references:
+// G-buffer is shared by every technique, the tonemap is display). Compared with three references:
 // bounces 0 is what it simulates (the two agree up to shadow-map edges: tests/unit/ref
-// raster_match_test), the full one shows what leaving out indirect light costs.
+// raster_match_test), the full one shows what leaving out indirect light costs, and the one-bounce
+// one is the baseline of the VLM rows (what a single diffuse bounce has to close).
 void addDirect(std::vector<AccuracyRow>& rows) {
-  for (const bool full : {false, true}) {
+  for (const int bounces : {0, -1, 1}) {  // −1: the full reference
     AccuracyRow r;
     r.technique = "direct";
-    r.setting = full ? "ref=all" : "ref=direct";
+    r.setting = bounces == 0 ? "ref=direct" : bounces == 1 ? "ref=1bounce" : "ref=all";
     r.effects = {"direct", "shadows"};
-    if (!full) r.referenceBounces = 0;
+    if (bounces >= 0) r.referenceBounces = bounces;
     r.passes = {"shadow", "lighting"};
     rows.push_back(std::move(r));
   }

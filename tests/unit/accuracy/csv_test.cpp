@@ -58,7 +58,7 @@ TEST(AccuracyRows, EffectNamesValidSettingsUniqueAndCommaFree) {
     dnrt += r.technique == "dnrt";
     vlm += r.technique == "vlm";
   }
-  EXPECT_EQ(direct, 2u);  // against the bounces-0 and the full reference
+  EXPECT_EQ(direct, 3u);  // against the bounces-0, the full and the one-bounce reference
   EXPECT_EQ(probes, 4u);  // two spacings × two SH orders
   EXPECT_EQ(ao, 2u);      // SSAO and HBAO over probes (the DNRT paper's baselines)
   EXPECT_EQ(dnrt, 24u);   // {4, 9} SH × grid {16, 32, 64} × intrusion {off, on} × anti-radiance {paper, improved}
