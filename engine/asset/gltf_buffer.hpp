@@ -1,7 +1,8 @@
 #pragma once
-// Appending binary data to a tinygltf::Model being written (bounce export, bounce vlm-make): one
-// buffer, 4-byte aligned views (every component type Bounce writes is 4 bytes, and glTF requires
-// accessor offsets aligned to their component size), one accessor per call.
+// Writing a tinygltf::Model (bounce export, bounce vlm-make): binary data appended to one buffer in
+// 4-byte aligned views (every component type Bounce writes is 4 bytes, and glTF requires accessor
+// offsets aligned to their component size), one accessor per call; and floats as legible JSON.
+#include <charconv>
 #include <cstddef>
 #include <tiny_gltf.h>
 
@@ -32,6 +33,16 @@ inline int appendAccessor(tinygltf::Model& model, const void* bytes, std::size_t
   a.count = count;
   model.accessors.push_back(std::move(a));
   return int(model.accessors.size() - 1);
+}
+
+// The double whose shortest decimal form is the float's shortest one: 0.92f is written "0.92", not
+// "0.9200000166893005", and still reads back as exactly 0.92f. The JSON stays legible in other tools.
+inline double shortestDecimal(float f) {
+  char text[32];
+  const auto r = std::to_chars(text, text + sizeof text, f);
+  double d = f;
+  std::from_chars(text, r.ptr, d);
+  return d;
 }
 
 }  // namespace bounce::asset

@@ -1,7 +1,6 @@
 // FlatScene → glTF 2.0 binary through tinygltf's writer. The layout is described in export.hpp;
 // this file only builds the tinygltf::Model (one buffer: vertex data, indices and PNG images).
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -46,15 +45,8 @@ bool decomposable(const glm::mat4& m) {
 
 bool isIdentity(const glm::mat4& m) { return m == glm::mat4(1.0f); }
 
-// The double whose shortest decimal form is the float's shortest one: 0.92f is written "0.92", not
-// "0.9200000166893005", and still reads back as exactly 0.92f. The JSON stays legible in other tools.
-double shortest(float f) {
-  char text[32];
-  const auto r = std::to_chars(text, text + sizeof text, f);
-  double d = f;
-  std::from_chars(text, r.ptr, d);
-  return d;
-}
+// Floats as their shortest decimal form (asset::shortestDecimal).
+double shortest(float f) { return asset::shortestDecimal(f); }
 
 std::vector<double> shortest(std::initializer_list<float> values) {
   std::vector<double> out;

@@ -5,7 +5,6 @@
 
 #include "engine/asset/gltf_buffer.hpp"
 
-#include <charconv>
 #include <limits>
 #include <sstream>
 
@@ -58,15 +57,6 @@ bool dynamicOrUnder(ecs::Registry& r, ecs::Entity e) {
     e = p ? p->entity : ecs::Entity::null();
   }
   return false;
-}
-
-// The float's shortest decimal form (legible JSON that reads back exactly).
-double shortest(float f) {
-  char text[32];
-  const auto r = std::to_chars(text, text + sizeof text, f);
-  double d = f;
-  std::from_chars(text, r.ptr, d);
-  return d;
 }
 
 }  // namespace
@@ -138,7 +128,8 @@ void writeVlmGltf(const MakeResult& result, const std::filesystem::path& out) {
     if (m.indices.empty()) continue;
     tinygltf::Material mat;
     mat.name = m.source;
-    mat.pbrMetallicRoughness.baseColorFactor = {shortest(m.albedo.r), shortest(m.albedo.g), shortest(m.albedo.b), 1.0};
+    mat.pbrMetallicRoughness.baseColorFactor = {asset::shortestDecimal(m.albedo.r), asset::shortestDecimal(m.albedo.g),
+                                                 asset::shortestDecimal(m.albedo.b), 1.0};
     mat.pbrMetallicRoughness.metallicFactor = 0.0;
     mat.pbrMetallicRoughness.roughnessFactor = 1.0;
     model.materials.push_back(mat);

@@ -91,15 +91,13 @@ TEST(DnrtLevel, RejectsBadSettingsWithOneLine) {
 }
 
 TEST(DnrtLevel, ObjectSceneIsTheEntityInItsLocalFrame) {
-  const scene::Level level = scene::loadLevel(fs::path(BOUNCE_SOURCE_DIR) / "content/levels/cornell-1.json");
-  ecs::Registry registry;
-  const auto entities = scene::instantiate(level, registry);
-  ref::ReferenceAssets assets;
-  assets.load(registry, outDir() / "cooked");
-  ecs::Entity prop;
-  for (std::size_t i = 0; i < entities.size(); ++i)
-    if (level.entities[i].dnrt) prop = entities[i];
-  ASSERT_FALSE(prop.isNull());
+  LevelObjects objects;  // cornell-1 and its one DNRT prop, as bounce bake loads them
+  loadLevelObjects(scene::loadLevel(fs::path(BOUNCE_SOURCE_DIR) / "content/levels/cornell-1.json"), outDir() / "cooked",
+                   objects);
+  ASSERT_EQ(objects.entities.size(), 1u);
+  ecs::Registry& registry = objects.registry;
+  const ref::ReferenceAssets& assets = objects.assets;
+  const ecs::Entity prop = objects.entities[0];
   const ref::SceneDesc s = objectScene(registry, prop, assets);
   ASSERT_FALSE(s.meshes.empty());
   EXPECT_TRUE(s.lights.empty());
@@ -123,15 +121,13 @@ TEST(DnrtLevel, ObjectSceneIsTheEntityInItsLocalFrame) {
 // bound and therefore inside the paper's Table 1. 8×8 rays instead of the level's 16×16 keep the
 // bake under a second; the bound holds for any ray count (field.hpp).
 TEST(DnrtLevel, CornellPropFieldRangesLieInsideTable1) {
-  const scene::Level level = scene::loadLevel(fs::path(BOUNCE_SOURCE_DIR) / "content/levels/cornell-1.json");
-  ecs::Registry registry;
-  const auto entities = scene::instantiate(level, registry);
-  ref::ReferenceAssets assets;
-  assets.load(registry, outDir() / "cooked");
-  ecs::Entity prop;
-  for (std::size_t i = 0; i < entities.size(); ++i)
-    if (level.entities[i].dnrt) prop = entities[i];
-  ASSERT_FALSE(prop.isNull());
+  LevelObjects objects;  // cornell-1 and its one DNRT prop, as bounce bake loads them
+  loadLevelObjects(scene::loadLevel(fs::path(BOUNCE_SOURCE_DIR) / "content/levels/cornell-1.json"), outDir() / "cooked",
+                   objects);
+  ASSERT_EQ(objects.entities.size(), 1u);
+  ecs::Registry& registry = objects.registry;
+  const ref::ReferenceAssets& assets = objects.assets;
+  const ecs::Entity prop = objects.entities[0];
   const ref::SceneDesc object = objectScene(registry, prop, assets);
   FieldSettings shipped = settingsFrom(registry.get<scene::Dnrt>(prop));
   ASSERT_EQ(shipped.grid, 32);
