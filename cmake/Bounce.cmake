@@ -11,8 +11,7 @@ function(bounce_library name)
   # GCC 12 reports a false -Wrestrict inside libstdc++ string concatenation (GCC bug 105329).
   target_compile_options(bounce_${name} PRIVATE -Wall -Wextra $<$<CXX_COMPILER_ID:GNU>:-Wno-restrict>)
   target_compile_definitions(bounce_${name} PUBLIC
-    BOUNCE_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
-    BOUNCE_SHADER_DIR="${PROJECT_BINARY_DIR}/shaders")
+    BOUNCE_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 endfunction()
 
 # bounce_test(NAME SOURCES ... DEPS ... [GPU]): a GoogleTest executable registered with ctest,

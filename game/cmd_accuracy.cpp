@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "engine/core/error.hpp"
+#include "engine/core/paths.hpp"
 #include "game/accuracy.hpp"
 #include "game/accuracy_rows.hpp"
 #include "game/commands.hpp"
@@ -34,7 +35,7 @@ int runAccuracy(const cli::Args& args) {
         throwInputError("bounce accuracy", "--rows", "unknown technique '" + t + "'", "effect names: " + scene::knownEffectNames());
     o.rows = accuracyRows(*techniques);
   }
-  o.referenceCache = std::filesystem::path(BOUNCE_BINARY_DIR) / "reference";
+  o.referenceCache = cacheDir("reference");
   o.cookCache = cookCacheDir();
 
   const AccuracyReport report = game::runAccuracy(o);

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "engine/core/paths.hpp"
 #include "game/capture_run.hpp"
 #include "game/commands.hpp"
 
@@ -35,7 +36,7 @@ int runDemo(const cli::Args& args) {
     return runPlay(play);
   }
   const std::filesystem::path out =
-      args.has("--out") ? std::filesystem::path(args.str("--out")) : std::filesystem::path(BOUNCE_BINARY_DIR) / "demo";
+      args.has("--out") ? std::filesystem::path(args.str("--out")) : defaultOutputRoot() / "demo";
   std::printf("no display: capturing %s into %s\n", (kContent / kDefaultCapture).c_str(), out.c_str());
   CaptureOverrides o;
   o.device = args.str("--device");

@@ -6,6 +6,7 @@
 #include <tbb/task_arena.h>
 
 #include "engine/core/error.hpp"
+#include "engine/core/paths.hpp"
 #include "engine/gpu/image_io.hpp"
 #include "engine/ref/reference.hpp"
 #include "game/commands.hpp"
@@ -36,7 +37,7 @@ int runReference(const cli::Args& args) {
   r.bounces = nonNegative(args, "--bounces");
   if (auto res = args.resolution("--resolution")) r.resolution = std::pair{std::uint32_t(res->first), std::uint32_t(res->second)};
   r.effects = args.list("--effects");
-  r.cacheDir = std::filesystem::path(BOUNCE_BINARY_DIR) / "reference";
+  r.cacheDir = cacheDir("reference");
   r.cookCache = cookCacheDir();
 
   const ref::ReferenceResult res = ref::renderReference(r);

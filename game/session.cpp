@@ -2,6 +2,7 @@
 
 #include <cstdlib>
 
+#include "engine/core/paths.hpp"
 #include "engine/gi/probes/bake.hpp"
 #include "engine/scene/components.hpp"
 #include "engine/scene/systems.hpp"
@@ -10,7 +11,7 @@ namespace bounce::game {
 
 std::filesystem::path cookCacheDir() {
   if (const char* env = std::getenv("BOUNCE_COOK_CACHE"); env && *env) return env;
-  return std::filesystem::path(BOUNCE_BINARY_DIR) / "cooked";
+  return cacheDir("cooked");
 }
 
 scene::Level loadLevelWithEffects(const std::filesystem::path& path,
@@ -24,8 +25,8 @@ scene::Level loadLevelWithEffects(const std::filesystem::path& path,
   return level;
 }
 
-std::filesystem::path probeCacheDir() { return std::filesystem::path(BOUNCE_BINARY_DIR) / "probes"; }
-std::filesystem::path dnrtCacheDir() { return std::filesystem::path(BOUNCE_BINARY_DIR) / "dnrt"; }
+std::filesystem::path probeCacheDir() { return cacheDir("probes"); }
+std::filesystem::path dnrtCacheDir() { return cacheDir("dnrt"); }
 
 gi::probes::ProbeSettings probeSettings(const scene::Level& level) {
   gi::probes::ProbeSettings s;

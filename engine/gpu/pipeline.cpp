@@ -5,12 +5,13 @@
 
 #include "engine/core/error.hpp"
 #include "engine/core/file.hpp"
+#include "engine/core/paths.hpp"
 #include "engine/gpu/context.hpp"
 
 namespace bounce::gpu {
 
 std::filesystem::path shaderPath(const std::string& relative) {
-  return std::filesystem::path(BOUNCE_SHADER_DIR) / relative;
+  return shaderDir() / relative;
 }
 
 ShaderModule::ShaderModule(Context& ctx, const std::string& relative) {

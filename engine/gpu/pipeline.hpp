@@ -16,13 +16,13 @@ namespace bounce::gpu {
 
 class Context;
 
-// Absolute path of a compiled shader: BOUNCE_SHADER_DIR/<relative>, e.g. "test/fill.comp.spv".
+// Absolute path of a compiled shader: shaderDir()/<relative> (engine/core/paths.hpp), e.g. "test/fill.comp.spv".
 std::filesystem::path shaderPath(const std::string& relative);
 
 class ShaderModule {
  public:
   ShaderModule() = default;
-  // Loads BOUNCE_SHADER_DIR/<relative>; a missing or malformed file is an InternalError naming it.
+  // Loads shaderDir()/<relative>; a missing or malformed file is an InternalError naming it.
   ShaderModule(Context& ctx, const std::string& relative);
   static ShaderModule fromFile(Context& ctx, const std::filesystem::path& path);
   ~ShaderModule() { reset(); }

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "engine/core/file.hpp"
+#include "engine/core/paths.hpp"
 #include "engine/gi/probes/bake.hpp"
 #include "engine/gpu/image_io.hpp"
 #include "engine/gpu/testing.hpp"
@@ -40,7 +41,7 @@ TEST(ProbeGpu, PassEqualsCpuApiAtEveryPixel) {
 
   // The Session baked with the default settings into the build's caches: the same entry loads here.
   scene::Level level = scene::loadLevel(levelPath);
-  const auto baked = gi::probes::loadOrBake(level, game::cookCacheDir(), fs::path(BOUNCE_BINARY_DIR) / "probes", {});
+  const auto baked = gi::probes::loadOrBake(level, game::cookCacheDir(), bounce::cacheDir("probes"), {});
   EXPECT_TRUE(baked.fromCache);
   ecs::Registry registry;
   scene::instantiate(level, registry);
