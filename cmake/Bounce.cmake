@@ -10,8 +10,9 @@ function(bounce_library name)
   target_link_libraries(bounce_${name} PUBLIC ${ARG_DEPS})
   # GCC 12 reports a false -Wrestrict inside libstdc++ string concatenation (GCC bug 105329).
   target_compile_options(bounce_${name} PRIVATE -Wall -Wextra $<$<CXX_COMPILER_ID:GNU>:-Wno-restrict>)
-  target_compile_definitions(bounce_${name} PUBLIC
-    BOUNCE_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
+  # No source or build path is compiled in: engine and game find shaders, content and caches at
+  # run time (engine/core/paths.hpp), so a build or an installed prefix can be moved. Only tests
+  # get BOUNCE_SOURCE_DIR (bounce_test below), for their data.
 endfunction()
 
 # bounce_test(NAME SOURCES ... DEPS ... [GPU]): a GoogleTest executable registered with ctest,
@@ -23,6 +24,7 @@ function(bounce_test name)
   target_link_libraries(test_${name} PRIVATE ${ARG_DEPS} GTest::gtest GTest::gtest_main)
   target_compile_options(test_${name} PRIVATE -Wall -Wextra $<$<CXX_COMPILER_ID:GNU>:-Wno-restrict>)
   target_compile_definitions(test_${name} PRIVATE
+    BOUNCE_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
     BOUNCE_SHARED_DIR="${BOUNCE_SHARED_DIR}"
     BOUNCE_TEST_OUT="${PROJECT_BINARY_DIR}/test-out")
   if(NOT ARG_TIMEOUT)

@@ -11,6 +11,7 @@
 
 #include "engine/core/error.hpp"
 #include "engine/core/file.hpp"
+#include "engine/core/paths.hpp"
 #include "engine/core/progress.hpp"
 #include "engine/gpu/presenter_offscreen.hpp"
 #include "engine/ref/image_heatmap.hpp"
@@ -171,7 +172,7 @@ std::string formatAccuracyTable(const std::vector<AccuracyResult>& results) {
 }
 
 bool plotAccuracy(const std::filesystem::path& csv, const std::filesystem::path& png, std::string& why) {
-  const std::filesystem::path script = std::filesystem::path(BOUNCE_SOURCE_DIR) / "tools" / "plot_accuracy.py";
+  const std::filesystem::path script = toolsDir() / "plot_accuracy.py";
   const std::string cmd =
       "/usr/bin/python3 " + shellQuote(script.string()) + " " + shellQuote(csv.string()) + " " + shellQuote(png.string());
   const int status = std::system(cmd.c_str());

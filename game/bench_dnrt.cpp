@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "engine/core/error.hpp"
+#include "engine/core/paths.hpp"
 #include "engine/core/progress.hpp"
 #include "engine/gi/dnrt/bake.hpp"
 #include "engine/gi/dnrt/object_scene.hpp"
@@ -158,7 +159,7 @@ std::string fmt(double v, const char* spec = "%9.3f") {
 
 std::filesystem::path benchLevelPath(const std::string& name) {
   if (name.size() > 5 && name.ends_with(".json")) return name;
-  return std::filesystem::path(BOUNCE_SOURCE_DIR) / "content" / "levels" / (name + ".json");
+  return contentDir() / "levels" / (name + ".json");
 }
 
 DnrtBenchReport runDnrtBench(const DnrtBenchOptions& options) {

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "engine/core/error.hpp"
+#include "engine/core/paths.hpp"
 #include "engine/gpu/presenter_offscreen.hpp"
 #include "game/session.hpp"
 #include "game/timing_stats.hpp"
@@ -61,7 +62,7 @@ struct Bench {
 
   explicit Bench(const cli::Args& args)
       : level(loadLevelWithEffects(args.has("--level") ? args.str("--level")
-                                                       : std::string(BOUNCE_SOURCE_DIR) + "/content/levels/cornell-vlm.json",
+                                                       : (contentDir() / "levels" / "cornell-vlm.json").string(),
                                    std::nullopt)),
         ctx({args.str("--device")}) {
     const auto res = args.resolution("--resolution").value_or(std::pair{1280, 720});

@@ -13,7 +13,6 @@
 namespace bounce::game {
 
 namespace {
-const std::filesystem::path kContent = std::filesystem::path(BOUNCE_SOURCE_DIR) / "content";
 const char* kDefaultLevel = "levels/cornell-5.json";
 const char* kDefaultCapture = "captures/cornell-5.json";
 
@@ -28,8 +27,9 @@ bool displayAvailable() {
 }  // namespace
 
 int runDemo(const cli::Args& args) {
+  const std::filesystem::path content = contentDir();
   if (displayAvailable()) {
-    const std::string level = (kContent / kDefaultLevel).string();
+    const std::string level = (content / kDefaultLevel).string();
     const char* argv[] = {level.c_str()};
     cli::Args play = cli::parse(commandSpecs()[0], 1, argv, 0);
     if (args.has("--device")) play.values["--device"] = args.str("--device");
@@ -37,10 +37,10 @@ int runDemo(const cli::Args& args) {
   }
   const std::filesystem::path out =
       args.has("--out") ? std::filesystem::path(args.str("--out")) : defaultOutputRoot() / "demo";
-  std::printf("no display: capturing %s into %s\n", (kContent / kDefaultCapture).c_str(), out.c_str());
+  std::printf("no display: capturing %s into %s\n", (content / kDefaultCapture).c_str(), out.c_str());
   CaptureOverrides o;
   o.device = args.str("--device");
-  CaptureResult r = runCaptureScript(kContent / kDefaultCapture, out, o);
+  CaptureResult r = runCaptureScript(content / kDefaultCapture, out, o);
   for (const auto& f : r.frames) std::printf("  %s\n  %s\n", f.png.c_str(), f.pfm.c_str());
   std::printf("per-pass GPU cost (all frames of the capture):\n%s", formatTable(r.passes).c_str());
   return 0;

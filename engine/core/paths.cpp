@@ -1,7 +1,7 @@
 #include "engine/core/paths.hpp"
 
 #include <cstdlib>
-#include <string>
+#include <initializer_list>
 #include <system_error>
 
 namespace bounce {
@@ -9,10 +9,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::optional<fs::path> envPath(const char* name) {
+std::string envString(const char* name) {
   const char* v = std::getenv(name);
-  if (v == nullptr || *v == '\0') return std::nullopt;
-  return fs::path(v);
+  return v ? std::string(v) : std::string();
 }
 
 bool isDir(const fs::path& p) {
@@ -20,7 +19,53 @@ bool isDir(const fs::path& p) {
   return fs::is_directory(p, ec);
 }
 
+// The first candidate that is an existing folder, else `fallback`. Empty candidates are skipped.
+fs::path firstDir(std::initializer_list<fs::path> candidates, const fs::path& fallback) {
+  for (const auto& c : candidates)
+    if (!c.empty() && isDir(c)) return c;
+  return fallback;
+}
+
+std::optional<fs::path> findBuildTree(const fs::path& exeDir) {
+  std::error_code ec;
+  for (fs::path dir = exeDir; !dir.empty(); dir = dir.parent_path()) {
+    if (fs::is_regular_file(dir / "CMakeCache.txt", ec)) return dir;
+    if (dir == dir.root_path()) break;
+  }
+  return std::nullopt;
+}
+
 }  // namespace
+
+PathEnv PathEnv::fromProcess() {
+  return {envString("BOUNCE_SHADER_DIR"), envString("BOUNCE_CONTENT"), envString("BOUNCE_CACHE"),
+          envString("XDG_CACHE_HOME"), envString("HOME")};
+}
+
+Layout resolveLayout(const fs::path& exeDir, const PathEnv& env, const fs::path& cwd) {
+  Layout l;
+  l.buildTree = findBuildTree(exeDir);
+  const fs::path build = l.buildTree.value_or(fs::path());
+  const fs::path share = exeDir.parent_path() / "share" / "bounce";
+  const auto inBuild = [&](const char* name) { return build.empty() ? fs::path() : build / name; };
+
+  l.shaders = !env.shaderDir.empty()
+                  ? fs::path(env.shaderDir)
+                  : firstDir({inBuild("shaders"), exeDir / "shaders"}, share / "shaders");
+  l.content = !env.content.empty()
+                  ? fs::path(env.content)
+                  : firstDir({exeDir / "content", share / "content", inBuild("content")}, cwd / "content");
+  l.tools = firstDir({exeDir / "tools", share / "tools", inBuild("tools")}, cwd / "tools");
+
+  if (!env.cache.empty()) l.cacheRoot = env.cache;
+  else if (!build.empty()) l.cacheRoot = build / "cache";
+  else if (!env.xdgCache.empty()) l.cacheRoot = fs::path(env.xdgCache) / "bounce";
+  else if (!env.home.empty()) l.cacheRoot = fs::path(env.home) / ".cache" / "bounce";
+  else l.cacheRoot = cwd / ".bounce-cache";
+
+  l.outputRoot = build.empty() ? cwd : build;
+  return l;
+}
 
 fs::path executableDir() {
   std::error_code ec;
@@ -29,48 +74,19 @@ fs::path executableDir() {
   return exe.parent_path();
 }
 
-std::optional<fs::path> buildTreeDir() {
+Layout currentLayout() {
   std::error_code ec;
-  for (fs::path dir = executableDir(); !dir.empty(); dir = dir.parent_path()) {
-    if (fs::is_regular_file(dir / "CMakeCache.txt", ec)) return dir;
-    if (dir == dir.root_path()) break;
-  }
-  return std::nullopt;
+  return resolveLayout(executableDir(), PathEnv::fromProcess(), fs::current_path(ec));
 }
 
-fs::path shaderDir() {
-  if (auto env = envPath("BOUNCE_SHADER_DIR")) return *env;
-  if (auto build = buildTreeDir(); build && isDir(*build / "shaders")) return *build / "shaders";
-  const fs::path exe = executableDir();
-  if (isDir(exe / "shaders")) return exe / "shaders";
-  return exe.parent_path() / "share" / "bounce" / "shaders";
-}
+std::optional<fs::path> buildTreeDir() { return findBuildTree(executableDir()); }
 
-fs::path contentDir() {
-  if (auto env = envPath("BOUNCE_CONTENT")) return *env;
-  const fs::path exe = executableDir();
-  if (isDir(exe / "content")) return exe / "content";
-  if (isDir(exe.parent_path() / "share" / "bounce" / "content")) return exe.parent_path() / "share" / "bounce" / "content";
-#ifdef BOUNCE_SOURCE_DIR
-  if (buildTreeDir() && isDir(fs::path(BOUNCE_SOURCE_DIR) / "content")) return fs::path(BOUNCE_SOURCE_DIR) / "content";
-#endif
-  return fs::current_path() / "content";
-}
-
-fs::path cacheRoot() {
-  if (auto env = envPath("BOUNCE_CACHE")) return *env;
-  if (auto build = buildTreeDir()) return *build / "cache";
-  if (auto xdg = envPath("XDG_CACHE_HOME")) return *xdg / "bounce";
-  if (auto home = envPath("HOME")) return *home / ".cache" / "bounce";
-  return fs::current_path() / ".bounce-cache";
-}
+fs::path shaderDir() { return currentLayout().shaders; }
+fs::path contentDir() { return currentLayout().content; }
+fs::path toolsDir() { return currentLayout().tools; }
+fs::path cacheRoot() { return currentLayout().cacheRoot; }
+fs::path defaultOutputRoot() { return currentLayout().outputRoot; }
 
 fs::path cacheDir(std::string_view kind) { return cacheRoot() / std::string(kind); }
-
-fs::path defaultOutputRoot() {
-  if (auto build = buildTreeDir()) return *build;
-  std::error_code ec;
-  return fs::current_path(ec);
-}
 
 }  // namespace bounce
