@@ -109,7 +109,7 @@ TEST_F(PathsTest, InstalledCacheFallsBackFromXdgToHomeToCwd) {
 }
 
 TEST_F(PathsTest, FoldersBesideTheExecutableWinOverShare) {
-  // A flat unpacked folder (scripts/gpu-bench.sh's layout may use it): bounce, shaders/, content/, tools/.
+  // A flat folder, bounce beside its data (a hand-made copy): bounce, shaders/, content/, tools/.
   const fs::path flat = dir("flat");
   for (const char* d : {"shaders", "content", "tools"}) dir(fs::path("flat") / d);
   dir("share/bounce/content");  // flat/../share/bounce: must lose to flat/content
