@@ -256,7 +256,7 @@ cmd_run() {
     for row in "${rows[@]}"; do
       set -- $row
       local lights=$1 grid=$2; shift 2
-      step "vlm-grid-$lights-$grid" "$bx" bench vlm-grid --lights "$lights" --grid "$grid" --runs 3 "$@"
+      step "vlm-grid-$lights-$grid${1:+-nogather}" "$bx" bench vlm-grid --lights "$lights" --grid "$grid" --runs 3 "$@"
     done
   fi
 
