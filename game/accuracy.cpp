@@ -19,6 +19,7 @@
 #include "game/accuracy_level.hpp"
 #include "game/session.hpp"
 #include "game/timing_stats.hpp"
+#include "game/render_limits.hpp"
 
 namespace bounce::game {
 namespace {
@@ -225,6 +226,7 @@ AccuracyReport runAccuracy(const AccuracyOptions& options) {
   // 3. Each row: render with and without, time, compare, draw its heat map.
   AccuracyReport report;
   gpu::Context ctx({options.device});
+  checkRenderSize(ctx, {std::uint32_t(options.width), std::uint32_t(options.height)}, "bounce accuracy", "--resolution");
   gpu::OffscreenPresenter presenter(ctx, {options.width, options.height});
   Progress progress("accuracy " + options.level.filename().string(), rows.size());
   // Rows that differ only in the reference they are compared with share one render and one

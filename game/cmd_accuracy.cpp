@@ -9,12 +9,13 @@
 #include "game/accuracy_rows.hpp"
 #include "game/commands.hpp"
 #include "game/session.hpp"
+#include "game/viewer_level.hpp"
 
 namespace bounce::game {
 
 int runAccuracy(const cli::Args& args) {
   AccuracyOptions o;
-  o.level = args.positional[0];
+  o.level = levelPathFor(args.positional[0]);
   o.out = args.str("--out", "accuracy");
   o.spp = std::uint32_t(args.positiveInt("--spp", int(o.spp)));
   o.measuredFrames = std::uint32_t(args.positiveInt("--frames", int(o.measuredFrames)));
