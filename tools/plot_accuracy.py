@@ -83,8 +83,8 @@ def plot_chart(rows, png, plt):
     log_x = bool(times) and max(times) / min(times) > LOG_X_SPAN
 
     ncols = max(1, len(kinds))
-    fig = plt.figure(figsize=(4.2 * ncols + 7.5, 8.5))
-    grid = gridspec.GridSpec(2, ncols + 1, figure=fig, width_ratios=[1] * ncols + [1.9], wspace=0.35, hspace=0.35,
+    fig = plt.figure(figsize=(4.2 * ncols + 8.5, 8.5))
+    grid = gridspec.GridSpec(2, ncols + 1, figure=fig, width_ratios=[1] * ncols + [2.1], wspace=0.35, hspace=0.35,
                              left=0.06, right=0.99, top=0.92, bottom=0.08)
     on_front = set()
     for col, kind in enumerate(kinds):
@@ -125,16 +125,18 @@ def plot_chart(rows, png, plt):
     # The settings table.
     tab = fig.add_subplot(grid[:, ncols])
     tab.axis("off")
-    lines = [f"{'#':>3} {'technique':<9} {'setting':<30} {'ms':>8} {'rel rmse':>9} {'effect':>7}"]
+    lines = [f"{'#':>3} {'technique':<9} {'setting':<48} {'ms':>7} {'rel rmse':>8} {'effect':>6}"]
     for i, r in enumerate(rows):
         star = "*" if i in on_front else " "
         setting = setting_without_ref(r[1])
-        if len(setting) > 30:
-            setting = setting[:29] + "~"
-        lines.append(f"{i + 1:>3}{star}{r[0]:<9} {setting:<30} {r[2]:>8.2f} {r[3]:>9.4f} {r[4]:>7.3f}")
+        setting = setting.replace("anti_radiance=", "anti=").replace("intrusion=", "intr=")
+        if len(setting) > 48:
+            setting = setting[:47] + "~"
+        lines.append(f"{i + 1:>3}{star}{r[0]:<9} {setting:<48} {r[2]:>7.2f} {r[3]:>8.4f} {r[4]:>6.3f}")
     lines.append("")
     lines.append("* on the Pareto front of its reference's image error")
-    tab.text(0.0, 1.0, "\n".join(lines), family="monospace", fontsize=9 if len(rows) < 30 else 6.5, va="top",
+    lines.append("(intr = intrusion, anti = anti_radiance)")
+    tab.text(0.0, 1.0, "\n".join(lines), family="monospace", fontsize=8.5 if len(rows) < 30 else 7, va="top",
              transform=tab.transAxes)
     fig.savefig(png, dpi=110)
     plt.close(fig)
@@ -166,13 +168,13 @@ def title_heatmap(file, technique, setting, scale, plt):
     panel = (w - 8) // 3
     bar = 8 + 4  # colour bar and its gap, which the labelled bar below replaces
     fig = plt.figure(figsize=(max(6.0, w / 80.0), (h - bar) / 80.0 + 1.6), dpi=100)
-    ax = fig.add_axes([0.02, 0.22, 0.96, 0.64])
+    ax = fig.add_axes([0.02, 0.2, 0.96, 0.56])
     ax.imshow(image[: h - bar], interpolation="nearest")
     ax.set_xticks([panel / 2, panel + 4 + panel / 2, 2 * (panel + 4) + panel / 2])
     ax.set_xticklabels(["reference", technique, "error |image - reference|"], fontsize=8)
     ax.xaxis.tick_top()
     ax.set_yticks([])
-    fig.suptitle(f"{technique}  {setting}", fontsize=10)
+    fig.suptitle(f"{technique}  {setting}", fontsize=10, y=0.98)
     cax = fig.add_axes([0.55, 0.1, 0.43, 0.05])
     mappable = matplotlib.cm.ScalarMappable(norm=matplotlib.colors.Normalize(0.0, scale), cmap="viridis")
     cb = fig.colorbar(mappable, cax=cax, orientation="horizontal")
