@@ -3,6 +3,7 @@
 #include <GLFW/glfw3.h>
 
 #include "engine/core/error.hpp"
+#include "engine/core/suggest.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -117,7 +118,11 @@ std::vector<ScriptedKey> parseKeyScript(const std::string& list) {
       throwInputError("bounce play", "--keys", "'" + item + "': bad frame", "a frame index 0..999999999");
     const auto& bindings = keyBindings();
     auto it = std::find_if(bindings.begin(), bindings.end(), [&](const KeyBinding& b) { return name == b.keyName; });
-    if (it == bindings.end()) throwInputError("bounce play", "--keys", "'" + item + "': unknown key", expected);
+    if (it == bindings.end()) {
+      std::vector<std::string> names;
+      for (const auto& b : bindings) names.emplace_back(b.keyName);
+      throwInputError("bounce play", "--keys", "'" + item + "': unknown key" + didYouMean(name, names), expected);
+    }
     out.push_back({std::stoi(frame), it->key});
   }
   std::stable_sort(out.begin(), out.end(), [](const ScriptedKey& a, const ScriptedKey& b) { return a.frame < b.frame; });

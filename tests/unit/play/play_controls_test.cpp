@@ -315,3 +315,23 @@ TEST(PlayKeys, F12TakesAScreenshot) {
   EXPECT_EQ(applyKey(GLFW_KEY_F12, state, effects), KeyEffect::Screenshot);
   EXPECT_EQ(parseKeyScript("F12@3").at(0).key, GLFW_KEY_F12);
 }
+
+TEST(PlayKeys, MisspeltKeySuggestsTheNearest) {
+  try {
+    parseKeyScript("esc@3");
+    FAIL() << "expected an error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("'esc@3': unknown key, did you mean \"Esc\"?"), std::string::npos) << e.what();
+  }
+}
+
+TEST(PlayKeys, MisspeltEffectSuggestsTheNearest) {
+  scene::Level level;
+  level.source = "L.json";
+  try {
+    scene::overrideEffects(level, "direct,shadow");
+    FAIL() << "expected an error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("unknown effect \"shadow\", did you mean \"shadows\"?"), std::string::npos) << e.what();
+  }
+}

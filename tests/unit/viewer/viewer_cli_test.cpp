@@ -173,3 +173,32 @@ TEST_F(ViewerCli, ReferenceOfAGltfFileWritesAPngPreview) {
   const auto expected = bounce::game::tonemapToSrgb8(bounce::gpu::readPfm(out));
   EXPECT_EQ(std::vector<std::uint8_t>(preview.bytes.begin(), preview.bytes.end()), expected);
 }
+
+// Issue 16: a misspelt command is answered with the nearest one; a level given to `capture` (and
+// a capture script to `play`/`profile`) says what the file is.
+TEST_F(ViewerCli, MisspeltCommandAndSwappedFileKindsAreNamed) {
+  const Outcome typo = bounce({"captur", "x"});
+  EXPECT_EQ(typo.code, 2);
+  EXPECT_EQ(typo.err, "bounce: captur: unknown command, did you mean \"capture\"? (expected one of the commands in 'bounce --help')\n");
+  const fs::path level = fs::path(BOUNCE_SOURCE_DIR) / "content/levels/cornell-1.json";
+  const Outcome asScript = bounce({"capture", level.string(), "--out", (dir_ / "o").string()});
+  EXPECT_EQ(asScript.code, 2);
+  EXPECT_NE(asScript.err.find("cornell-1.json: /bounce_level: this is a level, not a capture script"), std::string::npos)
+      << asScript.err;
+  const fs::path script = fs::path(BOUNCE_SOURCE_DIR) / "content/captures/cornell-1.json";
+  const Outcome asLevel = bounce({"profile", script.string(), "--frames", "1"});
+  EXPECT_EQ(asLevel.code, 2);
+  EXPECT_NE(asLevel.err.find("cornell-1.json: /bounce_capture: this is a capture script, not a level"), std::string::npos)
+      << asLevel.err;
+}
+
+// Issue 16: a render size the device cannot hold is refused before any work, exit 2, one line.
+TEST_F(ViewerCli, OversizedResolutionIsRefusedUpFront) {
+  // 16384² needs ~16 GiB of frame images: refused on lavapipe (system memory) and on GPUs with
+  // less than 32 GiB; a larger device renders it, and then there is nothing to refuse.
+  const Outcome r = bounce({"profile", kDuck.string(), "--frames", "1", "--resolution", "16384x16384"});
+  if (r.code == 0) GTEST_SKIP() << "this device holds 16384x16384 frames";
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_NE(r.err.find("bounce profile: --resolution: 16384x16384"), std::string::npos) << r.err;
+}
