@@ -166,6 +166,10 @@ int runPlay(const cli::Args& args) {
   if (args.has("--screenshot") && !frameLimit)
     throwInputError("bounce play", "--screenshot", "needs --frames N", "--frames N --screenshot FILE");
   const std::vector<ScriptedKey> scripted = parseKeyScript(args.str("--keys"));
+  if (frameLimit && !scripted.empty() && scripted.back().frame >= frameLimit)  // it would never be pressed
+    throwInputError("bounce play", "--keys", "a key at frame " + std::to_string(scripted.back().frame) + " after the last frame (" +
+                                                 std::to_string(frameLimit - 1) + ")",
+                    "frames below --frames " + std::to_string(frameLimit));
   std::size_t nextScripted = 0;
   scene::Level level = loadLevelWithEffects(args.positional[0], args.list("--effects"));
 

@@ -202,3 +202,10 @@ TEST_F(ViewerCli, OversizedResolutionIsRefusedUpFront) {
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   EXPECT_NE(r.err.find("bounce profile: --resolution: 16384x16384"), std::string::npos) << r.err;
 }
+
+// Issue 16: a scripted key after the last frame was silently ignored.
+TEST_F(ViewerCli, ScriptedKeyAfterTheLastFrameIsBadInput) {
+  const Outcome r = bounce({"play", kDuck.string(), "--frames", "3", "--keys", "F3@100"});
+  EXPECT_EQ(r.code, 2);
+  EXPECT_EQ(r.err, "bounce play: --keys: a key at frame 100 after the last frame (2) (expected frames below --frames 3)\n");
+}
