@@ -8,9 +8,11 @@
 #include <cstdlib>
 #include <limits>
 #include <map>
+#include <set>
 
 #include "engine/core/error.hpp"
 #include "engine/core/file.hpp"
+#include "engine/core/hash.hpp"
 #include "engine/core/paths.hpp"
 #include "engine/core/progress.hpp"
 #include "engine/gpu/presenter_offscreen.hpp"
@@ -20,6 +22,7 @@
 #include "game/accuracy_level.hpp"
 #include "game/session.hpp"
 #include "game/timing_stats.hpp"
+#include "game/render_limits.hpp"
 
 namespace bounce::game {
 namespace {
@@ -160,21 +163,64 @@ std::string formatAccuracyCsv(const std::vector<AccuracyResult>& results) {
 std::string formatAccuracyTable(const std::vector<AccuracyResult>& results) {
   std::string out;
   char line[256];
-  std::snprintf(line, sizeof line, "%-10s %-56s %9s %9s %16s %14s\n", "technique", "setting", "gpu ms", "rel rmse",
-                "effect rel rmse", "indirect-only");
+  std::snprintf(line, sizeof line, "%-10s %-56s %9s %9s %16s %14s %6s\n", "technique", "setting", "gpu ms", "rel rmse",
+                "effect rel rmse", "indirect-only", "pareto");
   out += line;
   for (const auto& r : results) {
-    std::snprintf(line, sizeof line, "%-10s %-56s %9.4f %9.4f %16.4f %14.4f\n", r.row.technique.c_str(),
-                  r.row.setting.c_str(), r.gpuMs, r.relRmse, r.effectRelRmse, r.indirectEffectRelRmse);
+    std::snprintf(line, sizeof line, "%-10s %-56s %9.4f %9.4f %16.4f %14.4f %6s\n", r.row.technique.c_str(),
+                  r.row.setting.c_str(), r.gpuMs, r.relRmse, r.effectRelRmse, r.indirectEffectRelRmse, r.pareto ? "*" : "");
     out += line;
+  }
+  // The front per reference, cheapest first: the rows worth their cost.
+  std::map<std::string, std::vector<const AccuracyResult*>> fronts;
+  for (const auto& r : results)
+    if (r.pareto) fronts[referenceKind(r.row.setting)].push_back(&r);
+  for (auto& [kind, rows] : fronts) {
+    std::stable_sort(rows.begin(), rows.end(), [](auto* a, auto* b) { return a->gpuMs < b->gpuMs; });
+    out += "Pareto front vs ref=" + kind + " (cheapest first):";
+    for (const auto* r : rows) {
+      std::snprintf(line, sizeof line, " %s %s (%.2f ms, %.4f);", r->row.technique.c_str(), r->row.setting.c_str(), r->gpuMs,
+                    r->relRmse);
+      out += line;
+    }
+    out.back() = '\n';
   }
   return out;
 }
 
-bool plotAccuracy(const std::filesystem::path& csv, const std::filesystem::path& png, std::string& why) {
+std::string referenceKind(const std::string& setting) {
+  std::size_t start = 0;
+  while (start <= setting.size()) {
+    std::size_t end = setting.find(';', start);
+    if (end == std::string::npos) end = setting.size();
+    if (setting.compare(start, 4, "ref=") == 0) return setting.substr(start + 4, end - start - 4);
+    start = end + 1;
+  }
+  return "all";
+}
+
+void markParetoFront(std::vector<AccuracyResult>& results) {
+  std::map<std::string, std::vector<AccuracyResult*>> byKind;
+  for (auto& r : results) {
+    r.pareto = false;
+    if (std::isfinite(r.gpuMs) && std::isfinite(r.relRmse)) byKind[referenceKind(r.row.setting)].push_back(&r);
+  }
+  for (auto& [kind, rows] : byKind) {
+    std::stable_sort(rows.begin(), rows.end(), [](const AccuracyResult* a, const AccuracyResult* b) {
+      return a->gpuMs != b->gpuMs ? a->gpuMs < b->gpuMs : a->relRmse < b->relRmse;
+    });
+    double best = std::numeric_limits<double>::infinity();
+    for (AccuracyResult* r : rows)
+      if (r->relRmse < best) r->pareto = true, best = r->relRmse;
+  }
+}
+
+bool plotAccuracy(const std::filesystem::path& csv, const std::filesystem::path& png, std::string& why,
+                  const std::filesystem::path& heatmaps) {
   const std::filesystem::path script = toolsDir() / "plot_accuracy.py";
-  const std::string cmd =
+  std::string cmd =
       "/usr/bin/python3 " + shellQuote(script.string()) + " " + shellQuote(csv.string()) + " " + shellQuote(png.string());
+  if (!heatmaps.empty()) cmd += " " + shellQuote(heatmaps.string());
   const int status = std::system(cmd.c_str());
   if (status == -1 || !WIFEXITED(status)) {
     why = "could not run /usr/bin/python3";
@@ -199,7 +245,11 @@ AccuracyReport runAccuracy(const AccuracyOptions& options) {
   }
   const scene::Level staticLevel = withoutDynamicEntities(level);
   std::filesystem::create_directories(options.out);
-  const std::filesystem::path staticPath = options.out / (options.level.stem().string() + "-static.json");
+  // The static level is the tracer's input, not a result: it lives in the cache, not in `out`.
+  const std::filesystem::path staticPath =
+      cacheDir("levels") / (options.level.stem().string() + "-" + Hasher().str(level.source.string()).hex().substr(0, 8) +
+                            "-static.json");
+  std::filesystem::create_directories(staticPath.parent_path());
   writeFileAtomic(staticPath, withoutDynamicEntitiesJson(level));
   const double time = double(options.frame) * ref::kLevelFrameDt;
 
@@ -226,6 +276,7 @@ AccuracyReport runAccuracy(const AccuracyOptions& options) {
   // 3. Each row: render with and without, time, compare, draw its heat map.
   AccuracyReport report;
   gpu::Context ctx({options.device});
+  checkRenderSize(ctx, {std::uint32_t(options.width), std::uint32_t(options.height)}, "bounce accuracy", "--resolution");
   gpu::OffscreenPresenter presenter(ctx, {options.width, options.height});
   Progress progress("accuracy " + options.level.filename().string(), rows.size());
   // Rows that differ only in the reference they are compared with share one render and one
@@ -292,19 +343,72 @@ AccuracyReport runAccuracy(const AccuracyOptions& options) {
     const std::string name = slug(row.technique) + "-" + slug(row.setting);
     result.heatMap = options.out / ("heatmap-" + name + ".png");
     writePfm(options.out / ("image-" + name + ".pfm"), techWith);
-    writePng(result.heatMap, ref::comparisonImage(refWith, techWith, panel).image);
+    const ref::Comparison comparison = ref::comparisonImage(refWith, techWith, panel);
+    result.heatMapScale = comparison.scale;
+    writePng(result.heatMap, comparison.image);
     report.rows.push_back(std::move(result));
     progress.advance();
   }
   progress.finish();
 
-  // 4. The CSV and the chart.
+  markParetoFront(report.rows);
+
+  // 4. What limits the numbers: too few timed frames, a noisy reference.
+  if (options.measuredFrames < kMinTrustedFrames)
+    report.warnings.push_back("--frames " + std::to_string(options.measuredFrames) + ": GPU ms are medians of fewer than " +
+                              std::to_string(kMinTrustedFrames) + " frames and vary by up to 2x between runs; use --frames " +
+                              std::to_string(kMinTrustedFrames) + " or more");
+  std::set<std::uint32_t> noiseDone;
+  for (const auto& r : report.rows) {
+    const std::uint32_t b = r.row.referenceBounces.value_or(ref::kUnlimitedBounces);
+    if (b == 0 || options.spp < 2 || !noiseDone.insert(b).second) continue;  // bounces 0 is exact with 1 spp
+    // The first half of the samples is the spp/2 reference (sample s is drawn from index s, so it
+    // is a prefix); the second half is 2·full − first.
+    ref::ReferenceRequest half;
+    half.input = options.level;
+    half.frame = options.frame;
+    half.spp = options.spp / 2;
+    half.bounces = r.row.referenceBounces;
+    half.resolution = std::pair{options.width, options.height};
+    half.cacheDir = options.referenceCache;
+    half.cookCache = options.cookCache;
+    half.progress = options.progress;
+    const ImageRGB first = toImageRgb(ref::renderReference(half).image);
+    const ImageRGB& full = reference(true, r.row.referenceBounces);
+    ImageRGB second = full;
+    for (std::size_t i = 0; i < second.pixels.size(); ++i) second.pixels[i] = 2.0f * full.pixels[i] - first.pixels[i];
+    const double noise = ref::relativeRmse(first, second) / 2.0;
+    const std::string kind = referenceKind(r.row.setting);
+    report.referenceNoise.emplace_back(kind, noise);
+    double best = std::numeric_limits<double>::infinity();
+    for (const auto& o : report.rows)
+      if (referenceKind(o.row.setting) == kind) best = std::min(best, o.relRmse);
+    if (noise > kMaxReferenceNoiseShare * best) {
+      char text[320];
+      std::snprintf(text, sizeof text,
+                    "reference ref=%s: its own noise (rel. RMSE ~%.4f, from two half-sample references) is more than a "
+                    "third of the best row's error (%.4f): differences between rows below ~%.4f are noise; raise --spp "
+                    "(noise falls as 1/sqrt(spp))",
+                    kind.c_str(), noise, best, noise);
+      report.warnings.push_back(text);
+    }
+  }
+
+  // 5. The CSV and the chart.
   report.csv = options.out / "accuracy.csv";
   writeFileAtomic(report.csv, formatAccuracyCsv(report.rows));
+  std::string heatmaps = "file,technique,setting,scale\n";
+  for (const auto& r : report.rows) {
+    char scale[32];
+    std::snprintf(scale, sizeof scale, "%.6g", r.heatMapScale);
+    heatmaps += csvField(r.heatMap.string()) + "," + csvField(r.row.technique) + "," + csvField(r.row.setting) + "," + scale + "\n";
+  }
+  const std::filesystem::path heatmapsCsv = options.out / "heatmaps.csv";
+  writeFileAtomic(heatmapsCsv, heatmaps);
   if (options.chart) {
     std::string why;
     const std::filesystem::path png = options.out / "accuracy.png";
-    if (plotAccuracy(report.csv, png, why))
+    if (plotAccuracy(report.csv, png, why, heatmapsCsv))
       report.chart = png;
     else
       report.notes.push_back("no chart: " + why);

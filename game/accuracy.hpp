@@ -17,8 +17,8 @@
 // Files in `out`: accuracy.csv, accuracy.png (tools/plot_accuracy.py, when /usr/bin/python3 has
 // matplotlib), heatmap-<technique>-<setting>.png per row ("reference | technique | error",
 // engine/ref/image_heatmap.hpp) with the technique's linear image image-<technique>-<setting>.pfm,
-// and <level>-static.json (the level without dynamic entities,
-// which the reference tracer reads).
+// heatmaps.csv (which the chart script reads to title the heat maps). The level without dynamic
+// entities, which the reference tracer reads, goes to <cache>/levels, not `out`.
 #include <cstdint>
 #include <filesystem>
 #include <optional>
@@ -62,14 +62,35 @@ struct AccuracyResult {
   // zero. Terminal table only (the CSV's columns are fixed).
   double indirectEffectRelRmse = 0.0;
   std::filesystem::path heatMap;
+  double heatMapScale = 0.0;  // the error the heat map's top colour stands for
+  // On the Pareto front of the rows scored against the same reference: no such row is both
+  // cheaper (gpu_ms) and more accurate (rel_rmse) — markParetoFront().
+  bool pareto = false;
 };
 
 struct AccuracyReport {
   std::vector<AccuracyResult> rows;  // in accuracyRows() order, skipped rows left out
   std::vector<std::string> notes;    // one line per skipped row or missing output
+  // What makes the numbers less than they seem: timings over fewer than kMinTrustedFrames frames;
+  // a reference whose own noise (estimated from its two half-sample halves) exceeds
+  // kMaxReferenceNoiseShare of the best row's error against it.
+  std::vector<std::string> warnings;
+  // Per reference kind ("ref=all", …) traced with more than one sample: the full reference's
+  // estimated relative RMSE, relRmse(A, B) / 2 with A the first and B the second half of its
+  // samples (A − B has twice the full image's noise amplitude).
+  std::vector<std::pair<std::string, double>> referenceNoise;
   std::filesystem::path csv;
   std::optional<std::filesystem::path> chart;  // empty when no chart was drawn (see notes)
 };
+
+inline constexpr std::uint32_t kMinTrustedFrames = 10;
+inline constexpr double kMaxReferenceNoiseShare = 1.0 / 3.0;
+
+// Sets AccuracyResult::pareto: per reference kind (the setting's "ref=…"), rows sorted by gpu_ms
+// (ties: lower error first) are on the front when their rel_rmse is below every cheaper row's.
+void markParetoFront(std::vector<AccuracyResult>& results);
+// The setting's "ref=…" value ("all" when it names none).
+std::string referenceKind(const std::string& setting);
 
 // Runs every row. Bad input (level, options) throws InputError before anything is rendered.
 AccuracyReport runAccuracy(const AccuracyOptions& options);
@@ -90,6 +111,8 @@ ImageRGB toImageRgb(const gpu::FloatImage& image);
 
 // Draws the chart from a CSV with tools/plot_accuracy.py under /usr/bin/python3. Returns false
 // and fills `why` when it cannot (no python3, no matplotlib, script failure).
-bool plotAccuracy(const std::filesystem::path& csv, const std::filesystem::path& png, std::string& why);
+// With `heatmaps` (file,technique,setting,scale per heat map) the script also titles the heat maps.
+bool plotAccuracy(const std::filesystem::path& csv, const std::filesystem::path& png, std::string& why,
+                  const std::filesystem::path& heatmaps = {});
 
 }  // namespace bounce::game

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "engine/core/error.hpp"
+#include "engine/core/suggest.hpp"
 
 namespace bounce::cli {
 namespace {
@@ -91,7 +92,11 @@ Args parse(const CommandSpec& spec, int argc, const char* const* argv, int first
         inlineValue = true;
       }
       const OptionSpec* o = find(spec, a);
-      if (!o) fail(spec.name, a, "unknown option", "one of the options in 'bounce " + spec.name + " --help'");
+      if (!o) {
+        std::vector<std::string> names{"--help"};
+        for (const auto& option : spec.options) names.push_back(option.name);
+        fail(spec.name, a, "unknown option" + didYouMean(a, names), "one of the options in 'bounce " + spec.name + " --help'");
+      }
       if (!o->valueName.empty() && !inlineValue) {
         if (i + 1 >= argc) fail(spec.name, a, "missing value", o->valueName);
         value = argv[++i];

@@ -2,6 +2,7 @@
 // reference; accuracy.csv, an error-vs-GPU-ms chart and per-row heat maps (game/accuracy.hpp).
 #include <charconv>
 #include <cstdio>
+#include <map>
 
 #include "engine/core/error.hpp"
 #include "engine/core/paths.hpp"
@@ -9,12 +10,13 @@
 #include "game/accuracy_rows.hpp"
 #include "game/commands.hpp"
 #include "game/session.hpp"
+#include "game/viewer_level.hpp"
 
 namespace bounce::game {
 
 int runAccuracy(const cli::Args& args) {
   AccuracyOptions o;
-  o.level = args.positional[0];
+  o.level = levelPathFor(args.positional[0]);
   o.out = args.str("--out", "accuracy");
   o.spp = std::uint32_t(args.positiveInt("--spp", int(o.spp)));
   o.measuredFrames = std::uint32_t(args.positiveInt("--frames", int(o.measuredFrames)));
@@ -42,7 +44,22 @@ int runAccuracy(const cli::Args& args) {
   std::printf("accuracy %s frame %u: %ux%u, reference %u spp\n", o.level.filename().c_str(), o.frame, o.width, o.height,
               o.spp);
   std::printf("%s", formatAccuracyTable(report.rows).c_str());
-  for (const auto& note : report.notes) std::printf("note: %s\n", note.c_str());
+  // Skipped rows: one note per technique (a level without VLMs skips all 16 vlm rows for one reason).
+  std::map<std::string, std::pair<int, std::string>> skipped;  // technique → count, first reason
+  for (const auto& note : report.notes) {
+    if (note.rfind("skipped ", 0) == 0) {
+      const std::string technique = note.substr(8, note.find(' ', 8) - 8);
+      auto& [count, reason] = skipped[technique];
+      if (count++ == 0) reason = note.substr(note.find(':') == std::string::npos ? note.size() : note.find(':'));
+      continue;
+    }
+    std::printf("note: %s\n", note.c_str());
+  }
+  for (const auto& [technique, what] : skipped)
+    std::printf("note: skipped %d %s row%s%s\n", what.first, technique.c_str(), what.first == 1 ? "" : "s", what.second.c_str());
+  for (const auto& [kind, noise] : report.referenceNoise)
+    std::printf("reference ref=%s: estimated noise (rel. RMSE) %.4f\n", kind.c_str(), noise);
+  for (const auto& warning : report.warnings) std::printf("warning: %s\n", warning.c_str());
   std::printf("wrote %s\n", report.csv.c_str());
   if (report.chart) std::printf("wrote %s\n", report.chart->c_str());
   return 0;

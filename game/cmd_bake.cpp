@@ -26,10 +26,11 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
 
 void bakeProbes(const scene::Level& level, bool force) {
   const gi::probes::ProbeSettings settings = probeSettings(level);
-  gi::probes::LoadResult r = gi::probes::loadOrBake(level, cookCacheDir(), probeCacheDir(), settings);
+  // One line per bake: this command prints it, so the bake's own log line is off.
+  gi::probes::LoadResult r = gi::probes::loadOrBake(level, cookCacheDir(), probeCacheDir(), settings, false);
   if (r.fromCache && force) {
     std::filesystem::remove(r.file);
-    r = gi::probes::loadOrBake(level, cookCacheDir(), probeCacheDir(), settings);
+    r = gi::probes::loadOrBake(level, cookCacheDir(), probeCacheDir(), settings, false);
   }
   const auto& g = r.volume.grid;
   if (r.fromCache) {

@@ -13,6 +13,8 @@
 #include "game/commands.hpp"
 #include "game/session.hpp"
 #include "game/timing_stats.hpp"
+#include "game/viewer_level.hpp"
+#include "game/render_limits.hpp"
 
 namespace bounce::game {
 
@@ -26,6 +28,8 @@ CaptureResult runCaptureScript(const std::filesystem::path& scriptPath, const st
   if (overrides.resolution) extent = {std::uint32_t(overrides.resolution->first), std::uint32_t(overrides.resolution->second)};
 
   gpu::Context ctx({overrides.device});
+  checkRenderSize(ctx, extent, overrides.resolution ? "bounce capture" : script.source.string(),
+                  overrides.resolution ? "--resolution" : "/resolution");
   Session session(ctx, std::move(level));
   if (script.camera) session.setCameraMotion(*script.camera);
   gpu::OffscreenPresenter presenter(ctx, extent);
@@ -69,7 +73,7 @@ int runCapture(const cli::Args& args) {
   o.device = args.str("--device");
   o.effects = args.list("--effects");
   o.resolution = args.resolution("--resolution");
-  auto result = runCaptureScript(args.positional[0], args.str("--out"), o);
+  auto result = runCaptureScript(captureScriptPathFor(args.positional[0]), args.str("--out"), o);
   for (const auto& f : result.frames) std::printf("frame %u: %s %s\n", f.index, f.png.c_str(), f.pfm.c_str());
   std::printf("%s", formatTable(result.passes).c_str());
   return 0;

@@ -9,6 +9,7 @@
 #include "engine/scene_export/export.hpp"
 #include "game/commands.hpp"
 #include "game/session.hpp"
+#include "game/viewer_level.hpp"
 
 namespace bounce::game {
 namespace {
@@ -27,7 +28,7 @@ double timeOption(const cli::Args& args) {
 }  // namespace
 
 int runExport(const cli::Args& args) {
-  const std::filesystem::path levelPath = args.positional[0];
+  const std::filesystem::path levelPath = levelPathFor(args.positional[0]);
   const std::filesystem::path out = args.positional[1];
   if (out.extension() != ".glb")
     throwInputError("bounce export", "OUT", "'" + out.string() + "' does not end in .glb", "an output file name ending in .glb");

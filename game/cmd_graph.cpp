@@ -5,6 +5,7 @@
 #include "engine/core/file.hpp"
 #include "game/commands.hpp"
 #include "game/session.hpp"
+#include "game/render_limits.hpp"
 
 namespace bounce::game {
 
@@ -13,6 +14,7 @@ int runGraph(const cli::Args& args) {
   const auto res = args.resolution("--resolution").value_or(std::pair{1280, 720});
   scene::Level level = loadLevelWithEffects(args.positional[0], args.list("--effects"));
   gpu::Context ctx({args.str("--device")});
+  checkRenderSize(ctx, {std::uint32_t(res.first), std::uint32_t(res.second)}, "bounce graph", "--resolution");
   Session session(ctx, level);
   session.update(0.0);
   const VkExtent2D extent{std::uint32_t(res.first), std::uint32_t(res.second)};

@@ -1,4 +1,4 @@
-// bounce play LEVEL: an interactive window (GLFW + Vulkan swapchain) with a fly camera, keys for
+// bounce play LEVEL|FILE.glb: an interactive window (GLFW + Vulkan swapchain) with a fly/orbit camera, keys for
 // effects, debug views, exposure, vsync and pause, and a GPU-timing overlay (overlay.hpp).
 //
 // Time: with --frames N the simulation steps a fixed 1/60 s per frame (frame f at t = f/60, as a
@@ -8,6 +8,8 @@
 #include <GLFW/glfw3.h>
 
 #include <algorithm>
+#include <filesystem>
+#include <utility>
 #include <chrono>
 #include <cstdio>
 #include <memory>
@@ -15,6 +17,7 @@
 
 #include "engine/core/error.hpp"
 #include "engine/core/log.hpp"
+#include "engine/core/paths.hpp"
 #include "engine/gpu/commands.hpp"
 #include "engine/gpu/image_io.hpp"
 #include "engine/gpu/presenter_swapchain.hpp"
@@ -24,6 +27,7 @@
 #include "game/play_controls.hpp"
 #include "game/play_stats.hpp"
 #include "game/session.hpp"
+#include "game/render_limits.hpp"
 
 namespace bounce::game {
 
@@ -41,14 +45,47 @@ struct Window {
   }
 };
 
-// Key presses since the last poll, in order (movement keys are polled, not queued).
+// Key presses and wheel steps since the last poll, in order (movement keys are polled, not queued).
 struct KeyQueue {
   std::vector<int> pressed;
+  double wheel = 0.0;
 };
 
 void onKey(GLFWwindow* window, int key, int /*scancode*/, int action, int /*mods*/) {
   if (action != GLFW_PRESS) return;
   static_cast<KeyQueue*>(glfwGetWindowUserPointer(window))->pressed.push_back(key);
+}
+
+void onScroll(GLFWwindow* window, double /*x*/, double y) {
+  static_cast<KeyQueue*>(glfwGetWindowUserPointer(window))->wheel += y;
+}
+
+// Cursor motion while the left button is held (orbit); the cursor stays visible, as in viewers.
+class MouseDrag {
+ public:
+  glm::vec2 poll(GLFWwindow* window) {
+    const bool held = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
+    double x, y;
+    glfwGetCursorPos(window, &x, &y);
+    const glm::vec2 delta = held && held_ ? glm::vec2(float(x - x_), float(y - y_)) : glm::vec2(0.0f);
+    held_ = held;
+    x_ = x;
+    y_ = y;
+    return delta;
+  }
+
+ private:
+  bool held_ = false;
+  double x_ = 0.0, y_ = 0.0;
+};
+
+// The orbit pivot's distance: where the view ray passes the centre of everything drawn (for a
+// glTF file's level, about the model's centre, which its camera looks at), at least 1 % of the
+// scene's size ahead.
+float orbitDistance(const render::RenderWorld& world, const scene::Transform& camera) {
+  const glm::vec3 centre = 0.5f * (world.sceneMin + world.sceneMax);
+  const float size = std::max(glm::length(world.sceneMax - world.sceneMin), 1e-3f);
+  return std::max(glm::dot(centre - camera.translation, FlyCamera::forward(camera.rotation)), 0.01f * size);
 }
 
 // Mouse look while the right button is held: the cursor is hidden and captured meanwhile.
@@ -77,12 +114,14 @@ class MouseLook {
   double x_ = 0.0, y_ = 0.0;
 };
 
-FlyInput pollMovement(GLFWwindow* w, glm::vec2 look) {
+FlyInput pollMovement(GLFWwindow* w, glm::vec2 look, glm::vec2 orbit, float zoom) {
   auto down = [&](int key) { return glfwGetKey(w, key) == GLFW_PRESS ? 1.0f : 0.0f; };
   FlyInput in;
   in.move = {down(GLFW_KEY_D) - down(GLFW_KEY_A), down(GLFW_KEY_E) - down(GLFW_KEY_Q),
              down(GLFW_KEY_W) - down(GLFW_KEY_S)};
   in.look = look;
+  in.orbit = orbit;
+  in.zoom = zoom;
   in.fast = down(GLFW_KEY_LEFT_SHIFT) + down(GLFW_KEY_RIGHT_SHIFT) > 0.0f;
   return in;
 }
@@ -99,6 +138,22 @@ std::string onOffArg(const cli::Args& args, const std::string& option, const std
   return v;
 }
 
+// F12: the frame just rendered as <output root>/screenshots/<level>-<frame>.png (display, as
+// shown without the overlay) and .pfm (linear HDR radiance, as `bounce capture` writes).
+void writeScreenshot(gpu::Context& ctx, Session& session, const std::string& levelName, int frame) {
+  session.renderer().frames().waitIdle();
+  const std::filesystem::path dir = defaultOutputRoot() / "screenshots";
+  std::filesystem::create_directories(dir);
+  char name[64];
+  std::snprintf(name, sizeof name, "-%06d", frame);
+  const std::filesystem::path png = dir / (levelName + name + ".png"), pfm = dir / (levelName + name + ".pfm");
+  auto& image = session.renderer().displayImage();
+  gpu::writePng(png, image.desc().width, image.desc().height, 4, gpu::readback(ctx, image));
+  gpu::writePfm(pfm, {image.desc().width, image.desc().height, session.renderer().readHdr()});
+  std::printf("screenshot: %s %s\n", png.c_str(), pfm.c_str());
+  std::fflush(stdout);
+}
+
 }  // namespace
 
 int runPlay(const cli::Args& args) {
@@ -111,6 +166,10 @@ int runPlay(const cli::Args& args) {
   if (args.has("--screenshot") && !frameLimit)
     throwInputError("bounce play", "--screenshot", "needs --frames N", "--frames N --screenshot FILE");
   const std::vector<ScriptedKey> scripted = parseKeyScript(args.str("--keys"));
+  if (frameLimit && !scripted.empty() && scripted.back().frame >= frameLimit)  // it would never be pressed
+    throwInputError("bounce play", "--keys", "a key at frame " + std::to_string(scripted.back().frame) + " after the last frame (" +
+                                                 std::to_string(frameLimit - 1) + ")",
+                    "frames below --frames " + std::to_string(frameLimit));
   std::size_t nextScripted = 0;
   scene::Level level = loadLevelWithEffects(args.positional[0], args.list("--effects"));
 
@@ -122,14 +181,18 @@ int runPlay(const cli::Args& args) {
   KeyQueue keys;
   glfwSetWindowUserPointer(window.handle, &keys);
   glfwSetKeyCallback(window.handle, onKey);
-  std::fputs(keyMapText().c_str(), stdout);
-  std::fflush(stdout);
+  glfwSetScrollCallback(window.handle, onScroll);
+  if (!frameLimit && scripted.empty()) {  // a person at the window: tell them the keys
+    std::fputs(keyMapText().c_str(), stdout);
+    std::fflush(stdout);
+  }
 
   int code = 0;
   gpu::ContextOptions options;
   options.deviceName = args.str("--device");
   options.windowed = true;
   gpu::Context ctx(options);
+  checkRenderSize(ctx, {std::uint32_t(res.first), std::uint32_t(res.second)}, "bounce play", "--resolution");
   {
     Session session(ctx, level);
     gpu::SwapchainPresenter swapchain(ctx, window.handle, state.vsync);
@@ -143,6 +206,9 @@ int runPlay(const cli::Args& args) {
       state.vlm.overrides = session.level().vlm.overrides;
     }
     MouseLook mouse;
+    MouseDrag drag;
+    bool overlayWantsMouse = false;  // last frame's: the panel, not the camera, gets the mouse
+    bool screenshotPending = false;  // F12 or the panel's button: the next frame is written
 
     auto last = std::chrono::steady_clock::now();
     double simTime = 0.0;
@@ -173,13 +239,18 @@ int runPlay(const cli::Args& args) {
             if (session.vlm()) session.vlm()->setOverrides(state.vlm.overrides);
             log::info(vlmControlText(state.vlm));
             break;
+          case KeyEffect::Screenshot: screenshotPending = true; break;
           case KeyEffect::Handled:
           case KeyEffect::None: break;
         }
       }
       keys.pressed.clear();
 
-      camera.drive(pollMovement(window.handle, mouse.poll(window.handle)), float(dt));
+      const glm::vec2 dragged = drag.poll(window.handle);
+      camera.drive(pollMovement(window.handle, mouse.poll(window.handle), overlayWantsMouse ? glm::vec2(0.0f) : dragged,
+                                overlayWantsMouse ? 0.0f : float(keys.wheel)),
+                   float(dt));
+      keys.wheel = 0.0;
 
       session.update(frameLimit ? double(simSteps) * kFixedStep : simTime);
       if (!state.paused) {
@@ -189,7 +260,8 @@ int runPlay(const cli::Args& args) {
 
       if (state.overlay) {
         if (!overlay)
-          overlay = std::make_unique<Overlay>(ctx, VK_FORMAT_R8G8B8A8_UNORM, session.renderer().frames().framesInFlight());
+          overlay = std::make_unique<Overlay>(ctx, VK_FORMAT_R8G8B8A8_UNORM, session.renderer().frames().framesInFlight(),
+                                              window.handle);
         OverlayInfo info;
         info.title = level.name;
         info.cpuFrameMs = timings.cpuFrameMedianMs();
@@ -206,10 +278,25 @@ int runPlay(const cli::Args& args) {
         info.extent = presenter.extent();
         info.vlm = vlmControlText(state.vlm);
         if (session.vlm()) info.vlmOverflow = vlm::formatOverflow(session.vlm()->overflow());
-        overlay->build(info, dt);
+        const OverlayActions actions = overlay->build(info, dt);
+        if (actions.exposure) state.settings.exposure = *actions.exposure;
+        if (actions.debugView) state.settings.debugView = *actions.debugView;
+        screenshotPending = screenshotPending || actions.screenshot;
+        overlayWantsMouse = actions.wantsMouse;
+      } else {
+        overlayWantsMouse = false;
       }
-      presenter.setOverlay(state.overlay ? overlay.get() : nullptr);
-      session.render(presenter, state.settings);
+      const bool shoot = std::exchange(screenshotPending, false);
+      render::FrameSettings settings = state.settings;
+      settings.keepHdr = shoot;
+      presenter.setOverlay(state.overlay && !shoot ? overlay.get() : nullptr);
+      session.render(presenter, settings);
+      if (shoot) writeScreenshot(ctx, session, level.source.stem().string(), frame);
+      if (frame == 0) {  // the first extract knows the scene bounds
+        const ecs::Entity cam = scene::activeCamera(session.registry());
+        if (const auto* t = cam.isNull() ? nullptr : session.registry().tryGet<scene::Transform>(cam))
+          camera.setOrbitDistance(orbitDistance(session.world(), *t));
+      }
       timings.addGpuFrame(session.renderer().frames().lastTimings(), session.renderer().frames().lastTimingsFrame());
     }
     session.renderer().frames().waitIdle();

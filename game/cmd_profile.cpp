@@ -9,6 +9,7 @@
 #include "game/commands.hpp"
 #include "game/session.hpp"
 #include "game/timing_stats.hpp"
+#include "game/render_limits.hpp"
 
 namespace bounce::game {
 
@@ -22,6 +23,7 @@ int runProfile(const cli::Args& args) {
   const auto res = args.resolution("--resolution").value_or(std::pair{1280, 720});
   scene::Level level = loadLevelWithEffects(args.positional[0], args.list("--effects"));
   gpu::Context ctx({args.str("--device")});
+  checkRenderSize(ctx, {std::uint32_t(res.first), std::uint32_t(res.second)}, "bounce profile", "--resolution");
   Session session(ctx, level);
   gpu::OffscreenPresenter presenter(ctx, {std::uint32_t(res.first), std::uint32_t(res.second)});
   TimingCollector timings;

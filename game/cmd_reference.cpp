@@ -10,7 +10,9 @@
 #include "engine/gpu/image_io.hpp"
 #include "engine/ref/reference.hpp"
 #include "game/commands.hpp"
+#include "game/display_tonemap.hpp"
 #include "game/session.hpp"
+#include "game/viewer_level.hpp"
 
 namespace bounce::game {
 namespace {
@@ -31,7 +33,7 @@ std::optional<std::uint32_t> nonNegative(const cli::Args& args, const std::strin
 int runReference(const cli::Args& args) {
   if (!args.has("--out")) throwInputError("bounce reference", "--out", "missing", "an output file FILE.pfm");
   ref::ReferenceRequest r;
-  r.input = args.positional[0];
+  r.input = levelPathFor(args.positional[0]);  // a glTF file: its viewer level
   r.frame = nonNegative(args, "--frame").value_or(0);
   if (args.has("--spp")) r.spp = static_cast<std::uint32_t>(args.positiveInt("--spp", 1));
   r.bounces = nonNegative(args, "--bounces");
@@ -41,7 +43,13 @@ int runReference(const cli::Args& args) {
   r.cookCache = cookCacheDir();
 
   const ref::ReferenceResult res = ref::renderReference(r);
-  gpu::writePfm(args.str("--out"), res.image);
+  const std::filesystem::path out = args.str("--out");
+  gpu::writePfm(out, res.image);
+  // A preview beside it, tonemapped as the renderer's display is (exposure 1).
+  std::filesystem::path preview = out;
+  preview.replace_extension(".png");
+  if (preview != out)
+    gpu::writePng(preview, res.image.width, res.image.height, 4, tonemapToSrgb8(res.image));
   const std::string bounces = r.bounces ? std::to_string(*r.bounces) : "unlimited";
   std::printf("reference %s frame %u (t = %.4f s): %ux%u, %u spp, bounces %s\n", r.input.filename().c_str(), r.frame,
               res.timeSeconds, res.image.width, res.image.height, r.spp.value_or(ref::kDefaultSpp), bounces.c_str());
@@ -53,7 +61,7 @@ int runReference(const cli::Args& args) {
                 tbb::this_task_arena::max_concurrency());
     std::printf("cached: %s\n", res.cachePath.c_str());
   }
-  std::printf("wrote %s\n", args.str("--out").c_str());
+  std::printf("wrote %s%s\n", out.c_str(), preview != out ? (" and the preview " + preview.string()).c_str() : "");
   return 0;
 }
 

@@ -14,7 +14,7 @@ const std::vector<cli::CommandSpec>& commandSpecs() {
   static const cli::OptionSpec effects{"--effects", "LIST", "replace the level's effects, e.g. direct,shadows"};
   static const std::vector<cli::CommandSpec> specs = {
       // The key map continues the summary, indented to the overview's column.
-      {"play", "LEVEL [options]",
+      {"play", "(LEVEL|FILE.glb) [options]",
        "open a window on a level: fly camera (WASD + mouse), effect and debug-view keys, GPU overlay\n" +
            keyMapSummary(std::string(14, ' ')),
        {device, effects,
@@ -50,7 +50,7 @@ const std::vector<cli::CommandSpec>& commandSpecs() {
         {"--resolution", "WxH", "image size (default: the script's, else 256x256)"}},
        1, 1},
       {"demo", "[options]", "the README's first command: play the default level with a display, else capture + profile it",
-       {device, {"--out", "DIR", "capture folder when headless (default build/demo)"}}, 0, 0},
+       {device, {"--out", "DIR", "capture folder when headless (default <build>/demo, e.g. build/release/demo)"}}, 0, 0},
       {"accuracy", "LEVEL [options]",
        "every technique configuration vs the path-traced reference: accuracy.csv, error-vs-GPU-ms chart, heat maps",
        {device,
@@ -72,6 +72,9 @@ const std::vector<cli::CommandSpec>& commandSpecs() {
         {"--offset", "M", "metres behind the real surface, along -normal (default 0.005)"},
         {"--node", "NAME", "with a glTF asset: only this node's subtree"}},
        1, 1},
+      {"level", "FILE.glb|FILE.gltf --out LEVEL.json",
+       "write the level that play/capture/profile/accuracy make for a glTF file (asset, framing camera, sun, ground), to edit",
+       {{"--out", "FILE", "output level .json (asset paths relative to it)"}}, 1, 1},
       {"bench", "vlm-grid|vlm-lights|vlm-k|dnrt [options]",
        "vlm-grid: time the VLM grid builds (scatter vs gather) on a random scene, one line; vlm-lights / vlm-k: GPU ms\n"
        "              of the VLM passes vs lights per pixel without a grid / vs cell list size K, one line per setting;\n"

@@ -23,6 +23,7 @@ int runBenchDnrt(const cli::Args& args);  // `bench dnrt` (bench_dnrt.hpp)
 int runBake(const cli::Args& args);
 int runAccuracy(const cli::Args& args);
 int runVlmMake(const cli::Args& args);
+int runLevel(const cli::Args& args);  // cmd_level.cpp
 
 // The Vulkan context for --device (or BOUNCE_DEVICE), headless unless `windowed`.
 struct GpuOptions {

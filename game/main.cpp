@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "engine/core/error.hpp"
+#include "engine/core/suggest.hpp"
 #include "game/commands.hpp"
 
 using namespace bounce;
@@ -34,11 +35,14 @@ int main(int argc, char** argv) {
           {"reference", game::runReference}, {"export", game::runExport},
           {"bench", game::runBench},         {"bake", game::runBake},
           {"accuracy", game::runAccuracy},   {"vlm-make", game::runVlmMake},
+          {"level", game::runLevel},
       };
       for (const auto& [command, run] : kRunners)
         if (name == command) return game::exitCodeAfterCommand(name, run(args));
     }
-    throwInputError("bounce", name, "unknown command", "one of the commands in 'bounce --help'");
+    std::vector<std::string> names;
+    for (const auto& spec : specs) names.push_back(spec.name);
+    throwInputError("bounce", name, "unknown command" + didYouMean(name, names), "one of the commands in 'bounce --help'");
   } catch (const InputError& e) {
     std::fprintf(stderr, "%s\n", e.what());
     return 2;

@@ -1,6 +1,7 @@
 #include "game/overlay.hpp"
 
 #include <imgui.h>
+#include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_vulkan.h>
 
 #include <algorithm>
@@ -54,70 +55,103 @@ void onOff(const char* label, bool on) {
     ImGui::TextDisabled("%s", label);
 }
 
-void layoutPanel(const OverlayInfo& info) {
-  ImGui::SetNextWindowPos(ImVec2(8.0f, 8.0f));
+// The panel's controls write into `actions`; `exposure` and `view` are the values shown (the
+// caller's, updated by this frame's first layout so the second shows the change).
+void layoutPanel(const OverlayInfo& info, const std::vector<float>& frameMs, float& exposure,
+                 render::DebugView& view, OverlayActions& actions) {
+  const ImVec2 display = ImGui::GetIO().DisplaySize;
+  ImGui::SetNextWindowPos(ImVec2(8.0f, 8.0f), ImGuiCond_FirstUseEver);
+  // Never taller than the window: the rest scrolls (640x360 shows the header and the first rows).
+  ImGui::SetNextWindowSizeConstraints(ImVec2(0.0f, 0.0f), ImVec2(std::max(display.x - 16.0f, 64.0f),
+                                                                  std::max(display.y - 16.0f, 64.0f)));
   ImGui::SetNextWindowBgAlpha(0.65f);
-  const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
-                                 ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing |
-                                 ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoInputs;
-  ImGui::Begin("bounce", nullptr, flags);
-  ImGui::TextUnformatted(info.title.c_str());
+  const ImGuiWindowFlags flags = ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoSavedSettings |
+                                 ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoNav;
+  const std::string title = info.title + "###bounce";  // the id stays when the title changes
+  if (!ImGui::Begin(title.c_str(), nullptr, flags)) {  // collapsed: only the title bar
+    ImGui::End();
+    return;
+  }
   const double fps = info.cpuFrameMs > 0.0 ? 1000.0 / info.cpuFrameMs : 0.0;
   ImGui::Text("frame %.2f ms (%.0f fps)  %ux%u", info.cpuFrameMs, fps, info.extent.width, info.extent.height);
-  ImGui::Separator();
-  ImGui::Text("GPU ms, median of %zu frames", info.gpuWindow);
-  if (ImGui::BeginTable("passes", 2, ImGuiTableFlags_SizingFixedFit)) {
-    for (const auto& [name, ms] : info.passes) {
-      ImGui::TableNextRow();
-      ImGui::TableNextColumn();
-      ImGui::TextUnformatted(name.c_str());
-      ImGui::TableNextColumn();
-      ImGui::Text("%7.2f", ms);
+  if (!frameMs.empty())
+    ImGui::PlotLines("##frame", frameMs.data(), int(frameMs.size()), 0, "CPU frame ms (0-100)", 0.0f, kGraphMaxMs,
+                     ImVec2(260.0f, 36.0f));
+  if (ImGui::CollapsingHeader("GPU ms", ImGuiTreeNodeFlags_DefaultOpen)) {
+    if (info.gpuWindow == 0) {
+      ImGui::TextDisabled("first timings arrive in a frame or two");
+    } else {
+      ImGui::TextDisabled("median of %zu frame%s", info.gpuWindow, info.gpuWindow == 1 ? "" : "s");
+      if (ImGui::BeginTable("passes", 2, ImGuiTableFlags_SizingFixedFit)) {
+        for (const auto& [name, ms] : info.passes) {
+          ImGui::TableNextRow();
+          ImGui::TableNextColumn();
+          // Per-object rows ("dnrt/<entity>", "vlm/<entity>") indented under their pass.
+          if (const auto slash = name.find('/'); slash != std::string::npos)
+            ImGui::TextDisabled("  %s", name.substr(slash + 1).c_str());
+          else
+            ImGui::TextUnformatted(name.c_str());
+          ImGui::TableNextColumn();
+          ImGui::Text("%7.2f", ms);
+        }
+        ImGui::TableNextRow();
+        ImGui::TableNextColumn();
+        ImGui::TextUnformatted("total");
+        ImGui::TableNextColumn();
+        ImGui::Text("%7.2f", info.gpuTotalMs);
+        ImGui::EndTable();
+      }
     }
-    ImGui::TableNextRow();
-    ImGui::TableNextColumn();
-    ImGui::TextUnformatted("total");
-    ImGui::TableNextColumn();
-    ImGui::Text("%7.2f", info.gpuTotalMs);
-    ImGui::EndTable();
+    if (!info.vlmOverflow.empty()) ImGui::TextUnformatted(info.vlmOverflow.c_str());
   }
-  if (!info.vlmOverflow.empty()) ImGui::TextUnformatted(info.vlmOverflow.c_str());
-  ImGui::Separator();
-  ImGui::TextUnformatted("effects (keys 1-9)");
-  for (int i = 0; i < scene::kEffectCount; ++i) {
-    const auto e = scene::Effect(i);
-    const std::string_view name = scene::effectName(e);
-    char label[32];
-    std::snprintf(label, sizeof label, "%d %.*s", i + 1, int(name.size()), name.data());
-    if (i % 3) ImGui::SameLine(float(i % 3) * 90.0f + 8.0f);
-    onOff(label, info.effects.has(e));
+  if (ImGui::CollapsingHeader("effects (keys 1-9)", ImGuiTreeNodeFlags_DefaultOpen)) {
+    for (int i = 0; i < scene::kEffectCount; ++i) {
+      const auto e = scene::Effect(i);
+      const std::string_view name = scene::effectName(e);
+      char label[32];
+      std::snprintf(label, sizeof label, "%d %.*s", i + 1, int(name.size()), name.data());
+      if (i % 3) ImGui::SameLine(float(i % 3) * 90.0f + 8.0f);
+      onOff(label, info.effects.has(e));
+    }
   }
-  ImGui::Separator();
-  ImGui::Text("view %s (F1-F6)", render::debugViewName(info.debugView));
-  ImGui::Text("exposure %.3f (%+.2f EV)", info.exposure, std::log2(info.exposure));
-  onOff(info.vsync ? "vsync on" : "vsync off", info.vsync);
-  ImGui::SameLine();
-  onOff(info.culling ? "culling on" : "culling off", info.culling);
-  if (info.paused) {
+  if (ImGui::CollapsingHeader("view", ImGuiTreeNodeFlags_DefaultOpen)) {
+    int v = int(view);
+    const char* names[int(render::DebugView::EntityId) + 1];
+    for (int i = 0; i <= int(render::DebugView::EntityId); ++i) names[i] = render::debugViewName(render::DebugView(i));
+    ImGui::SetNextItemWidth(120.0f);
+    if (ImGui::Combo("view (F1-F6)", &v, names, IM_ARRAYSIZE(names))) view = render::DebugView(v), actions.debugView = view;
+    float ev = std::log2(exposure);
+    ImGui::SetNextItemWidth(120.0f);
+    if (ImGui::SliderFloat("exposure EV (+/-)", &ev, -10.0f, 10.0f, "%+.2f"))
+      exposure = std::exp2(ev), actions.exposure = exposure;
+    onOff(info.vsync ? "vsync on" : "vsync off", info.vsync);
     ImGui::SameLine();
-    ImGui::TextColored(ImVec4(1.0f, 0.75f, 0.3f, 1.0f), "PAUSED");
+    onOff(info.culling ? "culling on" : "culling off", info.culling);
+    if (info.paused) {
+      ImGui::SameLine();
+      ImGui::TextColored(ImVec4(1.0f, 0.75f, 0.3f, 1.0f), "PAUSED");
+    }
+    if (ImGui::Button("screenshot (F12)")) actions.screenshot = true;
+    ImGui::TextDisabled(info.flying ? "flying (R resets the camera)" : "WASD/QE move, right mouse looks, left drags orbit");
+    if (!info.vlm.empty()) ImGui::TextUnformatted(info.vlm.c_str());  // per-tag VLM overrides (T, ]/[, H)
   }
-  ImGui::TextDisabled(info.flying ? "flying (R resets the camera)" : "WASD/QE move, right mouse looks");
-  if (!info.vlm.empty()) ImGui::TextUnformatted(info.vlm.c_str());  // per-tag VLM overrides (T, ]/[, H)
   ImGui::End();
 }
 
 }  // namespace
 
-Overlay::Overlay(gpu::Context& ctx, VkFormat targetFormat, std::uint32_t framesInFlight)
-    : ctx_(ctx), format_(targetFormat) {
+Overlay::Overlay(gpu::Context& ctx, VkFormat targetFormat, std::uint32_t framesInFlight, GLFWwindow* window)
+    : ctx_(ctx), format_(targetFormat), window_(window) {
   IMGUI_CHECKVERSION();
   ImGui::CreateContext();
   ImGuiIO& io = ImGui::GetIO();
   io.IniFilename = nullptr;  // nothing written next to the user's files
   io.LogFilename = nullptr;
-  io.ConfigFlags |= ImGuiConfigFlags_NoMouse | ImGuiConfigFlags_NoMouseCursorChange;
+  if (!window_) io.ConfigFlags |= ImGuiConfigFlags_NoMouse;
+  io.ConfigFlags |= ImGuiConfigFlags_NoMouseCursorChange;  // keyboard navigation stays off: keys are play's
   ImGui::StyleColorsDark();
+  // The mouse through GLFW; install_callbacks chains the callbacks play set (keys, wheel).
+  if (window_ && !ImGui_ImplGlfw_InitForVulkan(window_, true)) throw InternalError("overlay: ImGui_ImplGlfw_InitForVulkan failed");
 
   renderPass_ = makeRenderPass(ctx, format_);
   // The backend allocates one set: the font texture's combined image sampler.
@@ -152,21 +186,36 @@ Overlay::Overlay(gpu::Context& ctx, VkFormat targetFormat, std::uint32_t framesI
 Overlay::~Overlay() {
   ctx_.waitIdle();  // the last frames may still read the backend's buffers
   ImGui_ImplVulkan_Shutdown();
+  if (window_) ImGui_ImplGlfw_Shutdown();
   ImGui::DestroyContext();
   vkDestroyDescriptorPool(ctx_.device(), descriptorPool_, nullptr);
   vkDestroyRenderPass(ctx_.device(), renderPass_, nullptr);
 }
 
-void Overlay::build(const OverlayInfo& info, double dtSeconds) {
-  ImGuiIO& io = ImGui::GetIO();
-  io.DisplaySize = ImVec2(float(info.extent.width), float(info.extent.height));
-  io.DisplayFramebufferScale = ImVec2(1.0f, 1.0f);
-  io.DeltaTime = dtSeconds > 0.0 ? float(dtSeconds) : 1.0f / 60.0f;  // ImGui asserts on 0
-  ImGui_ImplVulkan_NewFrame();
-  ImGui::NewFrame();
-  layoutPanel(info);
+OverlayActions Overlay::build(const OverlayInfo& info, double dtSeconds) {
+  if (dtSeconds > 0.0) {
+    frameMs_.push_back(float(dtSeconds * 1000.0));
+    if (frameMs_.size() > kFrameGraphLength) frameMs_.erase(frameMs_.begin());
+  }
+  OverlayActions actions;
+  float exposure = info.exposure;
+  render::DebugView view = info.debugView;
+  // Twice: the first layout measures (auto-size, table columns), the second is drawn.
+  for (int pass = 0; pass < 2; ++pass) {
+    if (window_) ImGui_ImplGlfw_NewFrame();
+    ImGuiIO& io = ImGui::GetIO();
+    io.DisplaySize = ImVec2(float(info.extent.width), float(info.extent.height));
+    io.DisplayFramebufferScale = ImVec2(1.0f, 1.0f);
+    io.DeltaTime = pass == 0 && dtSeconds > 0.0 ? float(dtSeconds) : 1e-4f;  // ImGui asserts on 0
+    ImGui_ImplVulkan_NewFrame();
+    ImGui::NewFrame();
+    layoutPanel(info, frameMs_, exposure, view, actions);
+    actions.wantsMouse = actions.wantsMouse || io.WantCaptureMouse;
+    if (pass == 0) ImGui::EndFrame();
+  }
   ImGui::Render();
   built_ = true;
+  return actions;
 }
 
 void Overlay::record(gpu::FrameRing& frames, gpu::Image& target) {

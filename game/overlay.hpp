@@ -9,13 +9,19 @@
 //
 // OverlayPresenter wraps the real presenter: the renderer hands it the display image once the
 // graph has executed, it records the overlay (timestamp scope "overlay", so its GPU cost shows
-// with the passes) and forwards the image. The overlay needs no input: ImGui gets no mouse or
-// keyboard, so no GLFW backend is involved.
+// with the passes) and forwards the image. Given the window, the panel takes the mouse through
+// ImGui's GLFW backend (its callbacks chain to play's): it can be moved, collapsed, and its
+// exposure / debug-view controls and screenshot button used (build() returns what changed).
+//
+// Layout: build() lays the panel out twice per frame and draws only the second, so an
+// auto-sized window and its table columns are measured before they are drawn — the first frame,
+// and the first after the pass list changes, are right (ImGui otherwise sizes a frame late).
 //
 // ImGui 1.86's Vulkan backend draws inside a VkRenderPass (the engine otherwise uses dynamic
 // rendering), so the overlay owns one: a single colour attachment, load and store, in
 // COLOR_ATTACHMENT_OPTIMAL. Framebuffers are made per frame and deleted when the frame retires,
 // which survives resizes without tracking the display image's identity.
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -26,6 +32,8 @@
 #include "engine/gpu/presenter.hpp"
 #include "engine/render/renderer.hpp"
 #include "engine/scene/effects.hpp"
+
+struct GLFWwindow;
 
 namespace bounce::game {
 
@@ -45,17 +53,30 @@ struct OverlayInfo {
   std::string vlmOverflow;  // vlm::formatOverflow() when the VLM node runs, else empty
 };
 
+// What the user changed in the panel this frame (empty optionals: nothing).
+struct OverlayActions {
+  std::optional<float> exposure;
+  std::optional<render::DebugView> debugView;
+  bool screenshot = false;   // the panel's screenshot button (as F12)
+  bool wantsMouse = false;   // the mouse is over the panel: play must not orbit or look with it
+};
+
+// Frame-time graph length (frames) and its fixed scale: 0..kGraphMaxMs.
+inline constexpr std::size_t kFrameGraphLength = 120;
+inline constexpr float kGraphMaxMs = 100.0f;
+
 class Overlay {
  public:
   // `targetFormat`: the format of the image record() draws on (the renderer's display image).
-  Overlay(gpu::Context& ctx, VkFormat targetFormat, std::uint32_t framesInFlight);
+  // `window`: the GLFW window whose mouse the panel reads (null: a panel without input).
+  Overlay(gpu::Context& ctx, VkFormat targetFormat, std::uint32_t framesInFlight, GLFWwindow* window = nullptr);
   ~Overlay();
   Overlay(const Overlay&) = delete;
   Overlay& operator=(const Overlay&) = delete;
 
   // Lays out this frame's panel for a target of `extent` pixels. Call once per frame, before
   // the frame is rendered; record() draws what the last build() laid out, once.
-  void build(const OverlayInfo& info, double dtSeconds);
+  OverlayActions build(const OverlayInfo& info, double dtSeconds);
   // Records the panel onto `target` (mip 0; COLOR_ATTACHMENT usage) in the current frame of
   // `frames`. Leaves `target` in COLOR_ATTACHMENT_OPTIMAL (its tracked layout says so).
   void record(gpu::FrameRing& frames, gpu::Image& target);
@@ -65,7 +86,9 @@ class Overlay {
   VkFormat format_;
   VkRenderPass renderPass_ = VK_NULL_HANDLE;
   VkDescriptorPool descriptorPool_ = VK_NULL_HANDLE;
+  GLFWwindow* window_ = nullptr;
   bool built_ = false;
+  std::vector<float> frameMs_;  // CPU frame times, oldest first, at most kFrameGraphLength
 };
 
 // A presenter that draws the overlay onto the finished image, then hands it to `inner`.

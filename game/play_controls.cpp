@@ -3,6 +3,7 @@
 #include <GLFW/glfw3.h>
 
 #include "engine/core/error.hpp"
+#include "engine/core/suggest.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -53,6 +54,7 @@ std::vector<KeyBinding> makeBindings() {
   b.push_back({GLFW_KEY_RIGHT_BRACKET, "]", PlayAction::VlmIntensityUp, 0, "VLM: selected tag's intensity x1.41"});
   b.push_back({GLFW_KEY_LEFT_BRACKET, "[", PlayAction::VlmIntensityDown, 0, "VLM: selected tag's intensity /1.41"});
   b.push_back({GLFW_KEY_H, "H", PlayAction::VlmNextHue, 0, "VLM: rotate the selected tag's hue by 30 degrees"});
+  b.push_back({GLFW_KEY_F12, "F12", PlayAction::Screenshot, 0, "screenshot: PNG + PFM of the next frame (no overlay)"});
   b.push_back({GLFW_KEY_ESCAPE, "Esc", PlayAction::Quit, 0, "quit"});
   return b;
 }
@@ -69,7 +71,8 @@ std::string keyMapText() {
   out << "keys:\n"
       << "  W/A/S/D       move forward/left/back/right (0.5 m/s; Shift: x4)\n"
       << "  Q/E           move down/up\n"
-      << "  right mouse   hold and move the mouse to look around\n";
+      << "  right mouse   hold and move the mouse to look around\n"
+      << "  left mouse    drag to orbit the point ahead (a glTF file: the model's centre); wheel zooms\n";
   for (const auto& b : keyBindings()) {
     const std::string name = b.keyName;
     out << "  " << name << std::string(name.size() < 14 ? 14 - name.size() : 1, ' ') << b.help << "\n";
@@ -85,9 +88,11 @@ std::string keyMapSummary(const std::string& indent) {
   for (int i = 0; i <= int(DebugView::EntityId); ++i)
     views += std::string(i ? " " : "") + "F" + std::to_string(i + 1) + "=" + render::debugViewName(DebugView(i));
   return indent + "keys: W/A/S/D move, Q/E down/up, Shift faster, hold right mouse to look\n" +
+         indent + "  left-drag orbits, wheel zooms\n" +
          indent + "  effects: " + effects + "\n" +
          indent + "  views: " + views + ", 0 cycles\n" +
          indent + "  +/- exposure, V vsync, P pause, O overlay, C culling, R reset camera, Esc quit\n" +
+         indent + "  F12 screenshot (PNG + PFM)\n" +
          indent + "  VLM: T selects a tag, ]/[ its intensity up/down, H rotates its hue";
 }
 
@@ -113,7 +118,11 @@ std::vector<ScriptedKey> parseKeyScript(const std::string& list) {
       throwInputError("bounce play", "--keys", "'" + item + "': bad frame", "a frame index 0..999999999");
     const auto& bindings = keyBindings();
     auto it = std::find_if(bindings.begin(), bindings.end(), [&](const KeyBinding& b) { return name == b.keyName; });
-    if (it == bindings.end()) throwInputError("bounce play", "--keys", "'" + item + "': unknown key", expected);
+    if (it == bindings.end()) {
+      std::vector<std::string> names;
+      for (const auto& b : bindings) names.emplace_back(b.keyName);
+      throwInputError("bounce play", "--keys", "'" + item + "': unknown key" + didYouMean(name, names), expected);
+    }
     out.push_back({std::stoi(frame), it->key});
   }
   std::stable_sort(out.begin(), out.end(), [](const ScriptedKey& a, const ScriptedKey& b) { return a.frame < b.frame; });
@@ -150,6 +159,7 @@ KeyEffect applyKey(int key, PlayState& state, scene::EffectSet& effects) {
     case PlayAction::ToggleOverlay: state.overlay = !state.overlay; return KeyEffect::Handled;
     case PlayAction::ToggleCulling: state.settings.culling = !state.settings.culling; return KeyEffect::Handled;
     case PlayAction::ResetCamera: return KeyEffect::ResetCamera;
+    case PlayAction::Screenshot: return KeyEffect::Screenshot;
     case PlayAction::Quit: state.quit = true; return KeyEffect::Handled;
     case PlayAction::VlmNextTag: {
       VlmControl& v = state.vlm;
@@ -221,6 +231,17 @@ scene::Transform FlyCamera::step(const scene::Transform& current, const FlyInput
   return t;
 }
 
+scene::Transform FlyCamera::orbit(const scene::Transform& current, glm::vec2 drag, float zoomSteps, float& distance) {
+  const glm::vec3 pivot = current.translation + forward(rotationFromYawPitch(yaw_, pitch_)) * distance;
+  yaw_ = std::remainder(yaw_ - drag.x * kOrbitRadiansPerPixel, 2.0f * glm::pi<float>());
+  pitch_ = std::clamp(pitch_ - drag.y * kOrbitRadiansPerPixel, -kMaxPitch, kMaxPitch);
+  distance = std::max(distance * std::pow(kZoomStep, zoomSteps), kMinOrbitDistance);
+  scene::Transform t = current;
+  t.rotation = rotationFromYawPitch(yaw_, pitch_);
+  t.translation = pivot - forward(t.rotation) * distance;
+  return t;
+}
+
 // --- CameraDriver ---
 
 CameraDriver::CameraDriver(ecs::Registry& registry, ecs::Entity camera) : registry_(registry), camera_(camera) {
@@ -231,7 +252,9 @@ CameraDriver::CameraDriver(ecs::Registry& registry, ecs::Entity camera) : regist
 
 bool CameraDriver::drive(const FlyInput& input, float dt) {
   if (camera_.isNull()) return false;
-  if (input.move == glm::vec3(0.0f) && input.look == glm::vec2(0.0f)) return flying();
+  if (input.move == glm::vec3(0.0f) && input.look == glm::vec2(0.0f) && input.orbit == glm::vec2(0.0f) &&
+      input.zoom == 0.0f)
+    return flying();
   scene::Transform* transform = registry_.tryGet<scene::Transform>(camera_);
   if (!transform) transform = &registry_.emplace<scene::Transform>(camera_, startTransform_);
   if (!fly_) {
@@ -239,6 +262,8 @@ bool CameraDriver::drive(const FlyInput& input, float dt) {
     fly_.emplace(*transform);
   }
   *transform = fly_->step(*transform, input, dt);
+  if (input.orbit != glm::vec2(0.0f) || input.zoom != 0.0f)
+    *transform = fly_->orbit(*transform, input.orbit, input.zoom, orbitDistance_);
   return true;
 }
 
@@ -247,6 +272,7 @@ void CameraDriver::reset() {
   registry_.emplaceOrReplace<scene::Transform>(camera_, startTransform_);
   if (startMotion_) registry_.emplaceOrReplace<scene::Motion>(camera_, *startMotion_);
   fly_.reset();
+  orbitDistance_ = startOrbitDistance_;
 }
 
 }  // namespace bounce::game

@@ -2,7 +2,8 @@
 // `bounce play` controls, free of GLFW and Vulkan so they can be tested on the CPU:
 //   - the key map (one table: the window's key handler, the start-up print and `--help` all read it);
 //   - PlayState, what the keys change (effects, debug view, exposure, vsync, pause, overlay);
-//   - FlyCamera, the WASD + mouse-look camera that moves the active camera's scene::Transform.
+//   - FlyCamera, the WASD + mouse-look camera that moves the active camera's scene::Transform, and
+//     orbits a pivot ahead of it with the left mouse button and the wheel (as glTF viewers do).
 // Key codes are GLFW's (GLFW_KEY_*), kept as plain ints here.
 #include <map>
 #include <optional>
@@ -33,6 +34,7 @@ enum class PlayAction {
   VlmIntensityUp,    // the selected tag's override intensity × kVlmIntensityStep
   VlmIntensityDown,  // ÷ kVlmIntensityStep
   VlmNextHue,        // its hue rotated by kVlmHueStepDeg (thesis Fig. 5.5)
+  Screenshot,        // F12: the next frame as PNG (display) + PFM (linear HDR), no overlay
 };
 
 struct KeyBinding {
@@ -83,7 +85,7 @@ struct PlayState {
 };
 
 // What the caller must do after a key beyond updating PlayState.
-enum class KeyEffect { None, Handled, EffectsChanged, VsyncChanged, ResetCamera, VlmChanged };
+enum class KeyEffect { None, Handled, EffectsChanged, VsyncChanged, ResetCamera, VlmChanged, Screenshot };
 
 // Applies a key press to `state` and `effects`. Unbound keys return None and change nothing.
 KeyEffect applyKey(int key, PlayState& state, scene::EffectSet& effects);
@@ -101,6 +103,8 @@ struct FlyInput {
   glm::vec3 move{0.0f};   // x: right (D − A), y: world up (E − Q), z: forward (W − S); each −1..1
   glm::vec2 look{0.0f};   // mouse motion in pixels while looking (x right, y down)
   bool fast = false;      // Shift
+  glm::vec2 orbit{0.0f};  // mouse motion in pixels while the left button is held: orbit the pivot
+  float zoom = 0.0f;      // mouse-wheel steps (positive: towards the pivot)
 };
 
 // A yaw/pitch fly camera (no roll, as games do). Looking down the camera's local −Z (glTF):
@@ -118,6 +122,14 @@ class FlyCamera {
   explicit FlyCamera(const scene::Transform& start);
   // Advances by `dt` seconds and returns the new transform (scale kept from `current`).
   scene::Transform step(const scene::Transform& current, const FlyInput& input, float dt);
+  // Orbit, as glTF viewers do: the pivot is the point `distance` metres ahead of `current`; a drag
+  // of `drag` pixels turns yaw/pitch by kOrbitRadiansPerPixel each (drag right: the model turns
+  // right) and the camera moves so that it still looks at the pivot from `distance`; `zoomSteps`
+  // scale the distance by kZoomStep each (positive: closer), never below kMinOrbitDistance.
+  static constexpr float kOrbitRadiansPerPixel = 0.005f;
+  static constexpr float kZoomStep = 0.9f;
+  static constexpr float kMinOrbitDistance = 1e-3f;  // metres
+  scene::Transform orbit(const scene::Transform& current, glm::vec2 drag, float zoomSteps, float& distance);
 
   float yaw() const { return yaw_; }
   float pitch() const { return pitch_; }
@@ -142,6 +154,9 @@ class CameraDriver {
   bool drive(const FlyInput& input, float dt);
   void reset();
   bool flying() const { return fly_.has_value(); }
+  // The orbit pivot's distance ahead of the camera (metres); reset() restores the value set here.
+  void setOrbitDistance(float metres) { orbitDistance_ = startOrbitDistance_ = metres; }
+  float orbitDistance() const { return orbitDistance_; }
 
  private:
   ecs::Registry& registry_;
@@ -149,6 +164,7 @@ class CameraDriver {
   scene::Transform startTransform_;
   std::optional<scene::Motion> startMotion_;
   std::optional<FlyCamera> fly_;
+  float orbitDistance_ = 1.0f, startOrbitDistance_ = 1.0f;
 };
 
 }  // namespace bounce::game

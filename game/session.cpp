@@ -6,6 +6,7 @@
 #include "engine/gi/probes/bake.hpp"
 #include "engine/scene/components.hpp"
 #include "engine/scene/systems.hpp"
+#include "game/viewer_level.hpp"
 
 namespace bounce::game {
 
@@ -16,7 +17,7 @@ std::filesystem::path cookCacheDir() {
 
 scene::Level loadLevelWithEffects(const std::filesystem::path& path,
                                   const std::optional<std::vector<std::string>>& effects) {
-  scene::Level level = scene::loadLevel(path);
+  scene::Level level = scene::loadLevel(levelPathFor(path));  // a glTF file: its viewer level
   if (effects) {
     std::string list;
     for (const auto& e : *effects) list += (list.empty() ? "" : ",") + e;

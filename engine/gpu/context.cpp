@@ -275,9 +275,9 @@ void Context::pickPhysicalDevice(const ContextOptions& options) {
         chosen = &c;
         break;
       }
-    if (!chosen)
-      throw InternalError("vulkan: no Vulkan device matches " + source + " '" + wanted + "' (available: " + listing() +
-                          ")");
+    if (!chosen)  // the user named it: bad input (exit 2), not an internal error
+      throwInputError("vulkan", source, "no Vulkan device matches " + source + " '" + wanted + "'",
+                      "a substring of a device name; available: " + listing());
   } else {
     for (auto& c : cands)
       if (c.unusable.empty() && (!chosen || typeScore(c.props.deviceType) > typeScore(chosen->props.deviceType)))

@@ -30,7 +30,7 @@ Pipelines::Pipelines(gpu::Context& ctx)
   shadowLayout = gpu::PipelineLayout(ctx, {frameLayout.handle()}, {push(8)}, "shadow");
   lightingPipelineLayout =
       gpu::PipelineLayout(ctx, {frameLayout.handle(), lightingLayout.handle()}, {push(24)}, "lighting");
-  debugPipelineLayout = gpu::PipelineLayout(ctx, {frameLayout.handle(), debugLayout.handle()}, {push(12)}, "debug");
+  debugPipelineLayout = gpu::PipelineLayout(ctx, {frameLayout.handle(), debugLayout.handle()}, {push(16)}, "debug");
   tonemapPipelineLayout = gpu::PipelineLayout(ctx, {tonemapLayout.handle()}, {push(4)}, "tonemap");
 
   gpu::ShaderModule meshVert(ctx, "passes/mesh.vert.spv");

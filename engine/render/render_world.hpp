@@ -41,4 +41,10 @@ struct RenderWorld {
   bool has(const std::string& effect) const { return effects.count(effect) != 0; }
 };
 
+// The distances the depth debug view maps to white (x) and black (y): from the camera to the
+// nearest point of the scene bounds (0 inside them) to the farthest corner, capped at the far
+// plane — so the view spreads over what is drawn instead of the whole near..far range (issue 16:
+// cornell-1 with far 5 m was almost all white).
+glm::vec2 depthViewRange(const RenderWorld& world);
+
 }  // namespace bounce::render

@@ -32,6 +32,14 @@ float farthestCorner(const RenderWorld& w, glm::vec3 p) {
 
 }  // namespace
 
+glm::vec2 depthViewRange(const RenderWorld& world) {
+  const glm::vec3 eye(world.camera.position);
+  const glm::vec3 nearest = glm::clamp(eye, world.sceneMin, world.sceneMax);
+  const float lo = glm::length(nearest - eye);
+  const float hi = std::min(farthestCorner(world, eye) / 1.01f, world.cameraFar);
+  return {std::min(lo, hi), std::max(hi, lo + 1e-4f)};
+}
+
 void buildShadowLayers(RenderWorld& world, std::uint32_t resolution) {
   world.shadowLayers.clear();
   const float res = static_cast<float>(resolution);

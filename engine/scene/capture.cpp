@@ -1,5 +1,6 @@
 #include "engine/scene/capture.hpp"
 
+#include "engine/core/error.hpp"
 #include "engine/scene/json_reader.hpp"
 #include "engine/scene/motion.hpp"
 
@@ -9,6 +10,9 @@ CaptureScript loadCaptureScript(const std::filesystem::path& path) {
   const std::string file = path.string();
   const nlohmann::json doc = json::parseFile(path);
   const json::Node root(doc, "", file);
+  if (doc.is_object() && doc.contains("bounce_level") && !doc.contains("bounce_capture"))
+    throwInputError(file, "/bounce_level", "this is a level, not a capture script",
+                    "a capture script (\"bounce_capture\": 1) whose \"level\" names it; 'bounce play' and 'bounce profile' take a level");
   const auto o = root.object({"bounce_capture", "level", "resolution", "dt", "frames", "capture", "camera", "effects"});
 
   const auto version = o.required("bounce_capture", "the format version 1");

@@ -3,6 +3,7 @@
 #include <array>
 
 #include "engine/core/error.hpp"
+#include "engine/core/suggest.hpp"
 #include "engine/scene/json_reader.hpp"
 
 namespace bounce::scene {
@@ -47,7 +48,8 @@ EffectSet parseEffectList(std::string_view list, const std::string& file) {
     const std::string_view name = trim(list.substr(start, comma == std::string_view::npos ? list.npos : comma - start));
     const auto effect = effectFromName(name);
     if (!effect)
-      throwInputError(file, "--effects", "unknown effect " + json::inQuotes(name), "one of: " + knownEffectNames());
+      throwInputError(file, "--effects", "unknown effect " + json::inQuotes(name) + didYouMean(name, std::vector<std::string>(kNames.begin(), kNames.end())),
+                      "one of: " + knownEffectNames());
     if (set.has(*effect))
       throwInputError(file, "--effects", "duplicate effect " + json::inQuotes(name), "each effect at most once");
     set.add(*effect);
@@ -62,7 +64,9 @@ EffectSet parseEffects(const json::Node& node) {
   for (const auto& e : node.array(0, kEffectCount, "at most " + std::to_string(kEffectCount) + " effect names")) {
     const std::string name = e.string(64);
     const auto effect = effectFromName(name);
-    if (!effect) e.fail("unknown effect " + json::inQuotes(name), "one of: " + knownEffectNames());
+    if (!effect)
+      e.fail("unknown effect " + json::inQuotes(name) + didYouMean(name, std::vector<std::string>(kNames.begin(), kNames.end())),
+             "one of: " + knownEffectNames());
     if (set.has(*effect)) e.fail("duplicate effect " + json::inQuotes(name), "each effect at most once");
     set.add(*effect);
   }

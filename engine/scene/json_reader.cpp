@@ -1,3 +1,4 @@
+#include "engine/core/suggest.hpp"
 #include "engine/scene/json_reader.hpp"
 
 #include <charconv>
@@ -261,8 +262,9 @@ Object Node::object(const std::vector<std::string_view>& allowed) const {
     for (auto a : allowed) known = known || a == key;
     if (!known) {
       std::string list;
-      for (auto a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
-      child(key).fail("unknown key " + inQuotes(key), "one of: " + list);
+      std::vector<std::string> names;
+      for (auto a : allowed) list += (list.empty() ? "" : ", ") + std::string(a), names.emplace_back(a);
+      child(key).fail("unknown key " + inQuotes(key) + didYouMean(key, names), "one of: " + list);
     }
   }
   return Object(*this);

@@ -329,6 +329,9 @@ Level loadLevel(const std::filesystem::path& pathIn) {
   const std::string file = pathIn.string();
   const nlohmann::json doc = json::parseFile(pathIn);
   const json::Node root(doc, "", file);
+  if (doc.is_object() && doc.contains("bounce_capture") && !doc.contains("bounce_level"))
+    throwInputError(file, "/bounce_capture", "this is a capture script, not a level",
+                    "a level (\"bounce_level\": 1); run a capture script with 'bounce capture SCRIPT --out DIR'");
   const auto o = root.object({"bounce_level", "name", "effects", "background", "probes", "vlm", "entities"});
 
   const auto version = o.required("bounce_level", "the format version 1");

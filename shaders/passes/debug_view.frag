@@ -1,7 +1,8 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 // Debug views, written straight to the display target (sRGB-encoded):
-//   1 albedo, 2 normal (n·0.5+0.5), 3 depth (linear distance, 0..far → white..black),
+//   1 albedo, 2 normal (n·0.5+0.5), 3 depth (linear distance, depthMin..depthMax → white..black:
+//     the scene bounds' nearest point..farthest corner, render::depthViewRange),
 //   4 shadow (visibility of light 0), 5 entity id (a distinct colour per entity, black background).
 #include "frame.glsl"
 #include "color.glsl"
@@ -16,7 +17,7 @@ layout(std430, set = 1, binding = 5) readonly buffer ShadowMatrices { mat4 shado
 #include "shadow.glsl"
 layout(std430, set = 1, binding = 6) readonly buffer Lights { Light lights[]; };
 
-layout(push_constant) uniform Push { uint mode; uint lightCount; float far; } pc;
+layout(push_constant) uniform Push { uint mode; uint lightCount; float depthMin; float depthMax; } pc;
 layout(location = 0) in vec2 inUv;
 layout(location = 0) out vec4 outColor;
 
@@ -36,7 +37,8 @@ void main() {
     c = background ? vec3(0.0) : texelFetch(gNormal, pixel, 0).xyz * 0.5 + 0.5;
   } else if (pc.mode == 3u) {
     vec3 p = worldFromDepth(camera.invViewProj, (vec2(pixel) + 0.5) * camera.resolution.zw, depth);
-    c = background ? vec3(0.0) : vec3(1.0 - clamp(distance(p, camera.position.xyz) / pc.far, 0.0, 1.0));
+    float t = (distance(p, camera.position.xyz) - pc.depthMin) / (pc.depthMax - pc.depthMin);
+    c = background ? vec3(0.0) : vec3(1.0 - clamp(t, 0.0, 1.0));
   } else if (pc.mode == 4u) {
     if (!background && pc.lightCount > 0u) {
       vec3 p = worldFromDepth(camera.invViewProj, (vec2(pixel) + 0.5) * camera.resolution.zw, depth);

@@ -160,7 +160,7 @@ void hashScene(Hasher& h, const ref::SceneDesc& s) {
 }  // namespace
 
 LoadResult loadOrBake(const scene::Level& level, const std::filesystem::path& cookCache,
-                      const std::filesystem::path& probeCache, const ProbeSettings& settings) {
+                      const std::filesystem::path& probeCache, const ProbeSettings& settings, bool logBake) {
   validate(settings, level.source.string(), "/probes");
   const scene::Level stat = staticLevel(level);
   ecs::Registry registry;
@@ -201,9 +201,10 @@ LoadResult loadOrBake(const scene::Level& level, const std::filesystem::path& co
                     std::to_string(grid.probeCount()) + " probes over the static bounds", "a larger spacing");
   const ref::SceneBvh bvh(std::move(desc));
   r.volume = bakeProbes(bvh, grid, settings, &r.stats);
-  log::info("probes: " + std::to_string(r.stats.probes) + " probes × " + std::to_string(settings.rays) + " rays in " +
-            std::to_string(r.stats.seconds) + " s (" + std::to_string(r.stats.msPerProbe()) + " ms/probe, " +
-            std::to_string(r.stats.invalid) + " inside geometry)");
+  if (logBake)
+    log::info("probes: " + std::to_string(r.stats.probes) + " probes × " + std::to_string(settings.rays) + " rays in " +
+              std::to_string(r.stats.seconds) + " s (" + std::to_string(r.stats.msPerProbe()) + " ms/probe, " +
+              std::to_string(r.stats.invalid) + " inside geometry)");
   writeFileAtomic(r.file, serialize(r.volume));
   return r;
 }

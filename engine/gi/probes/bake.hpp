@@ -78,8 +78,9 @@ struct LoadResult {
 // Loads <probeCache>/<key>.bin when it is valid, else bakes the level's static scene and writes
 // it atomically. The key hashes the level file, the static scene (geometry, materials, textures,
 // lights, background), every asset's content key, the settings, kBakerVersion and kTracerVersion.
-// A corrupt or foreign entry is reported as a warning and re-baked.
+// A corrupt or foreign entry is reported as a warning and re-baked. A bake logs one info line with
+// its statistics unless `logBake` is false (`bounce bake` prints its own line from LoadResult::stats).
 LoadResult loadOrBake(const scene::Level& level, const std::filesystem::path& cookCache,
-                      const std::filesystem::path& probeCache, const ProbeSettings& settings);
+                      const std::filesystem::path& probeCache, const ProbeSettings& settings, bool logBake = true);
 
 }  // namespace bounce::gi::probes

@@ -180,9 +180,11 @@ std::string levelSnippet(const MakeResult& result, const std::string& assetFromL
   bool header = false;
   for (const MadeMesh& m : result.meshes) {
     if (!m.tagAssigned) continue;
-    if (!header) s << "give the real geometry these tags (it then skips its own virtual lights, thesis §3.4):\n";
+    if (!header)
+      s << "give the real geometry these tags (it then skips its own virtual lights, thesis §3.4): add the\n"
+        << "\"vlm_tag\" key to the entity with that id:\n";
     header = true;
-    s << "  " << nlohmann::json(m.source).dump() << ": \"vlm_tag\": " << m.tag << "\n";
+    s << "  {\"id\": " << nlohmann::json(m.source).dump() << ", ..., \"vlm_tag\": " << m.tag << "}\n";
   }
   return s.str();
 }

@@ -65,11 +65,11 @@ rg::Handle<rg::Texture> addDebugViewPass(rg::RenderGraph& graph, const PassConte
         p.bind(cmd);
         p.bindSet(cmd, 0, pc->frameSet);
         p.bindSet(cmd, 1, set);
+        const glm::vec2 range = depthViewRange(*pc->world);
         struct {
           std::uint32_t mode, lightCount;
-          float far;
-        } push{static_cast<std::uint32_t>(pc->debugView), pc->lightCount,
-               pc->world->cameraFar};
+          float depthMin, depthMax;
+        } push{static_cast<std::uint32_t>(pc->debugView), pc->lightCount, range.x, range.y};
         p.push(cmd, push);
         vkCmdDraw(cmd, 3, 1, 0, 0);
         pc->gpu->cmdEndRendering(cmd);

@@ -265,3 +265,52 @@ TEST(PlayHelp, ListsKeyMapAndOverlayOption) {
   for (const char* needle : {"W/A/S/D", "1=direct", "9=hbao", "F1=lit", "F6=entity-id", "Esc quit", "--overlay on|off"})
     EXPECT_NE(r.out.find(needle), std::string::npos) << needle << " missing from:\n" << r.out;
 }
+
+// Issue 16: the overlay is laid out before it is drawn, so `--frames 1` already shows the whole
+// panel (it used to show nothing on frame 1 and "median of 0 frames" on frame 2), and it fits a
+// 640x360 window; a scripted run prints no key table.
+TEST(PlayScreenshot, OverlayOnFrameOneFits640x360) {
+  if (!haveXvfb()) GTEST_SKIP() << "xvfb-run not installed (Debian package xvfb)";
+  const fs::path dir = kOut / "overlay-frame1";
+  fs::remove_all(dir);
+  auto shoot = [&](const std::string& name, const std::string& extra) {
+    const fs::path shot = dir / (name + ".png");
+    const ProcessRun r = runBounce(dir / name, "play " + quoted(kLevel.string()) + " --frames 1 --screenshot " +
+                                            quoted(shot.string()) + " --resolution 640x360" + extra, true);
+    expectCleanRun(r);
+    EXPECT_EQ(r.out.find("keys:"), std::string::npos) << "no key table on a scripted run:\n" << r.out;
+    return bounce::gpu::readPng(shot);
+  };
+  const CpuImage plain = shoot("plain", "");
+  const CpuImage with = shoot("overlay", " --overlay on");
+  ASSERT_EQ(with.height, 360u);
+  // Frame 1 has the panel: its title bar and first rows at the top left ...
+  EXPECT_GT(meanAbsDiff(plain, with, {8, 8, 200, 120}), kMinOverlayDiff);
+  // ... and it ends above the window's bottom edge and left of its right edge.
+  EXPECT_LT(meanAbsDiff(plain, with, {0, 354, 640, 360}), kMaxDiffOutsideOverlay);
+  EXPECT_LT(meanAbsDiff(plain, with, {560, 0, 640, 360}), kMaxDiffOutsideOverlay);
+}
+
+// F12 (here scripted) writes the frame as PNG + PFM without the overlay: the PNG equals
+// `bounce capture` of the same frame.
+TEST(PlayScreenshot, F12WritesPngAndPfm) {
+  if (!haveXvfb()) GTEST_SKIP() << "xvfb-run not installed (Debian package xvfb)";
+  const fs::path dir = kOut / "f12";
+  fs::remove_all(dir);
+  const ProcessRun r = runBounce(dir, "play " + quoted(kLevel.string()) + " --frames 3 --keys F12@2 --resolution 256x256", true);
+  expectCleanRun(r);
+  const auto at = r.out.find("screenshot: ");
+  ASSERT_NE(at, std::string::npos) << r.out;
+  std::istringstream line(r.out.substr(at + 12));
+  std::string png, pfm;
+  line >> png >> pfm;
+  ASSERT_TRUE(fs::exists(png)) << png;
+  ASSERT_TRUE(fs::exists(pfm)) << pfm;
+  const CpuImage shot = bounce::gpu::readPng(png);
+  const CpuImage ref = captureFrame(dir / "capture", "", 2);
+  ASSERT_EQ(shot.width, ref.width);
+  EXPECT_LT(meanAbsDiff(shot, ref, whole(shot)), kMaxMeanAbsDiffVsCapture);
+  EXPECT_EQ(bounce::gpu::readPfm(pfm).width, 256u);
+  fs::remove(png);
+  fs::remove(pfm);
+}

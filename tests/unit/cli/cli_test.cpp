@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include "engine/core/error.hpp"
+#include "engine/core/suggest.hpp"
 #include "game/cli.hpp"
 
 using namespace bounce;
@@ -60,4 +61,24 @@ TEST(Cli, HelpSkipsPositionalCheckAndListsOptions) {
   auto text = cli::helpText(profileSpec());
   EXPECT_NE(text.find("usage: bounce profile LEVEL [options]"), std::string::npos);
   EXPECT_NE(text.find("--resolution WxH"), std::string::npos);
+}
+
+// "Did you mean …" (engine/core/suggest.hpp, issue 16): one slip in a short name, two in a long
+// one, a swap of neighbours counts once; unrelated words get no suggestion.
+TEST(Suggest, NearestNameWithinATypo) {
+  const std::vector<std::string> effects{"direct", "shadows", "probes", "dnrt", "vlm", "sl", "rtf", "ssao", "hbao"};
+  EXPECT_EQ(editDistance("shdaows", "shadows"), 1u);
+  EXPECT_EQ(editDistance("Probes", "probes"), 0u);
+  EXPECT_EQ(nearestName("shadow", effects), "shadows");
+  EXPECT_EQ(nearestName("prboes", effects), "probes");
+  EXPECT_EQ(nearestName("dnr", effects), "dnrt");
+  EXPECT_EQ(nearestName("bloom", effects), std::nullopt);
+  EXPECT_EQ(nearestName("x", effects), std::nullopt);
+  EXPECT_EQ(didYouMean("captur", {"play", "capture", "profile"}), ", did you mean \"capture\"?");
+  EXPECT_EQ(didYouMean("zzz", {"play", "capture"}), "");
+}
+
+TEST(Cli, UnknownOptionSuggestsTheNearest) {
+  EXPECT_EQ(errorOf({"l.json", "--frame", "3"}),
+            "bounce profile: --frame: unknown option, did you mean \"--frames\"? (expected one of the options in 'bounce profile --help')");
 }

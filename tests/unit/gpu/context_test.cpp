@@ -42,7 +42,7 @@ TEST(Context, UnknownDeviceNameIsAClearError) {
   try {
     Context ctx(o);
     FAIL() << "expected an error";
-  } catch (const InternalError& e) {
+  } catch (const InputError& e) {  // the user's argument: exit 2 (issue 16)
     std::string msg = e.what();
     EXPECT_NE(msg.find("no Vulkan device matches --device 'no-such-gpu-9000'"), std::string::npos) << msg;
     EXPECT_NE(msg.find("available: '" + testkit::sharedContext().deviceName() + "'"), std::string::npos) << msg;
@@ -55,7 +55,7 @@ TEST(Context, UnknownDeviceFromEnvironmentNamesTheVariable) {
     Context ctx;
     ::unsetenv("BOUNCE_DEVICE");
     FAIL() << "expected an error";
-  } catch (const InternalError& e) {
+  } catch (const InputError& e) {
     ::unsetenv("BOUNCE_DEVICE");
     EXPECT_NE(std::string(e.what()).find("BOUNCE_DEVICE 'still-no-such-gpu'"), std::string::npos) << e.what();
   }

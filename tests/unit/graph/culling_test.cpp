@@ -1,5 +1,8 @@
 #include <gtest/gtest.h>
 
+#include <cctype>
+#include <sstream>
+
 #include "graph_test_util.hpp"
 
 using namespace bounce::rg;
@@ -147,4 +150,17 @@ TEST(Dot, NamesEveryPassVerbatimAndMarksCulledOnes) {
   EXPECT_NE(dot.find("r1_v1 -> p2 [label=\"SampledFragment\""), std::string::npos);
   // A level without an effect has no pass of it.
   EXPECT_EQ(dot.find("dnrt"), std::string::npos);
+  // Every resource version drawn has an edge (issue 16: the backbuffer's unread version 0 floated
+  // alone), and a legend explains the notation.
+  std::istringstream lines(dot);
+  for (std::string line; std::getline(lines, line);) {
+    if (line.size() < 4 || line.rfind("  r", 0) != 0 || !std::isdigit(static_cast<unsigned char>(line[3])) ||
+        line.find(" -> ") != std::string::npos)
+      continue;
+    const std::string node = line.substr(2, line.find(' ', 2) - 2);
+    EXPECT_TRUE(dot.find(node + " -> ") != std::string::npos || dot.find(" -> " + node + " ") != std::string::npos)
+        << "unconnected: " << line;
+  }
+  EXPECT_EQ(dot.find("r0_v0 ["), std::string::npos) << "the backbuffer's version 0 is never read";
+  EXPECT_NE(dot.find("subgraph cluster_legend"), std::string::npos);
 }

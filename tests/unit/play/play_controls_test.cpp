@@ -4,6 +4,7 @@
 #include <GLFW/glfw3.h>
 
 #include <cmath>
+#include <fstream>
 #include <set>
 #include <sstream>
 
@@ -297,4 +298,40 @@ TEST(CameraDriverTest, NoCameraDoesNothing) {
   EXPECT_FALSE(driver.drive(forward, 1.0f));
   driver.reset();
   EXPECT_FALSE(driver.flying());
+}
+
+// README "Playing" quotes the key map: the block must be keyMapSummary("") verbatim (issue 16:
+// the README's list had lost the VLM keys).
+TEST(PlayKeys, ReadmeQuotesTheKeyMap) {
+  std::ifstream in(std::string(BOUNCE_SOURCE_DIR) + "/README.md");
+  std::stringstream text;
+  text << in.rdbuf();
+  EXPECT_NE(text.str().find("```\n" + keyMapSummary("") + "\n```"), std::string::npos) << keyMapSummary("");
+}
+
+TEST(PlayKeys, F12TakesAScreenshot) {
+  PlayState state;
+  scene::EffectSet effects;
+  EXPECT_EQ(applyKey(GLFW_KEY_F12, state, effects), KeyEffect::Screenshot);
+  EXPECT_EQ(parseKeyScript("F12@3").at(0).key, GLFW_KEY_F12);
+}
+
+TEST(PlayKeys, MisspeltKeySuggestsTheNearest) {
+  try {
+    parseKeyScript("esc@3");
+    FAIL() << "expected an error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("'esc@3': unknown key, did you mean \"Esc\"?"), std::string::npos) << e.what();
+  }
+}
+
+TEST(PlayKeys, MisspeltEffectSuggestsTheNearest) {
+  scene::Level level;
+  level.source = "L.json";
+  try {
+    scene::overrideEffects(level, "direct,shadow");
+    FAIL() << "expected an error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("unknown effect \"shadow\", did you mean \"shadows\"?"), std::string::npos) << e.what();
+  }
 }

@@ -293,10 +293,11 @@ TEST_F(Cli, CookLevelCooksEveryAssetItUses) {
 }
 
 TEST_F(Cli, GraphTakesDevice) {
-  // A device name that matches nothing is an internal error listing the devices (exit 1), so
+  // A device name that matches nothing is bad input listing the devices (exit 2, one line), so
   // --device reaches the Context; an empty match is not silently ignored.
   const Outcome r = bounce({"graph", kCornell.string(), "--dot", (dir_ / "g.dot").string(), "--device", "no-such-gpu"});
-  EXPECT_EQ(r.code, 1) << r.err;
-  EXPECT_NE(r.err.find("no-such-gpu"), std::string::npos) << r.err;
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_EQ(lines(r.err).size(), 1u) << r.err;
+  EXPECT_NE(r.err.find("vulkan: --device: no Vulkan device matches --device 'no-such-gpu' (expected a substring of a device name; available: '"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(dir_ / "g.dot"));
 }

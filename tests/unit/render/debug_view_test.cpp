@@ -5,7 +5,7 @@
 // skipped), then predicts the display value of each view (debug_view.frag writes RGBA8 UNORM):
 //   albedo     sRGB(ρ) of the surface hit,
 //   normal     n·0.5 + 0.5 with n = +Y for both quads (seen from above),
-//   depth      1 − |p − eye|/far,
+//   depth      1 − (|p − eye| − dMin)/(dMax − dMin), dMin/dMax: nearest/farthest of the scene bounds,
 //   entity id  the hash colour of the entity hit (index + 1, Knuth multiplicative hash),
 //   shadow     on plane-shadow.json (the umbra scene of shadow_test.cpp): 0 in the umbra, 1 on
 //              the lit floor, margins around the shadow edge skipped.
@@ -182,15 +182,31 @@ TEST(DebugViews, NormalIsPlusYMappedToHalfOneHalf) {
   checkView(DebugView::Normal, kUnormStep, [](const Quad&, glm::vec3) { return glm::vec3(0.5f, 1.0f, 0.5f); });
 }
 
-TEST(DebugViews, DepthIsOneMinusDistanceOverFar) {
+TEST(DebugViews, DepthIsLinearOverTheSceneBounds) {
+  // 1 at the nearest point of the scene bounds, 0 at their farthest corner (or the far plane):
+  // render::depthViewRange, recomputed here from the two quads.
   const scene::Level level = scene::loadLevel(kDataDir / "plane-debug.json");
   const FloorScene s = readFloorScene(level);
   float far = 0.0f;
   for (const auto& e : level.entities)
     if (e.camera) far = e.camera->far;
   ASSERT_GT(far, 0.0f);
-  checkView(DebugView::Depth, kUnormStep,
-            [&](const Quad&, glm::vec3 p) { return glm::vec3(1.0f - glm::length(p - s.eye) / far); });
+  std::map<std::string, std::uint32_t> ids{{"floor", 0}, {"occluder", 0}};
+  glm::vec3 lo(1e9f), hi(-1e9f);
+  for (const char* id : {"floor", "occluder"}) {
+    const Quad q = readQuad(level, id, ids);
+    lo = glm::min(lo, q.centre - glm::vec3(q.halfSize, 0.0f, q.halfSize));
+    hi = glm::max(hi, q.centre + glm::vec3(q.halfSize, 0.0f, q.halfSize));
+  }
+  const float dMin = glm::length(glm::clamp(s.eye, lo, hi) - s.eye);
+  float dMax = 0.0f;
+  for (int i = 0; i < 8; ++i)
+    dMax = std::max(dMax, glm::length(glm::vec3(i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z) - s.eye));
+  dMax = std::min(dMax, far);
+  ASSERT_LT(dMin + 0.1f, dMax);
+  checkView(DebugView::Depth, kUnormStep, [&](const Quad&, glm::vec3 p) {
+    return glm::vec3(1.0f - (glm::length(p - s.eye) - dMin) / (dMax - dMin));
+  });
 }
 
 TEST(DebugViews, EntityIdIsTheHashColourOfTheEntityHit) {

@@ -322,7 +322,7 @@ TEST(LevelErrors, ProbesSettings) {
   EXPECT_EQ(loadError("probes-spacing", with(R"({"spacing": 0})")),
             "FILE: /probes/spacing: 0 is out of range (expected a number in [0.001, 1000])");
   EXPECT_EQ(loadError("probes-key", with(R"({"spacng": 0.2})")),
-            "FILE: /probes/spacng: unknown key \"spacng\" (expected one of: spacing, order, rays)");
+            "FILE: /probes/spacng: unknown key \"spacng\", did you mean \"spacing\"? (expected one of: spacing, order, rays)");
 }
 
 // The "vlm" component (virtual lights, engine/gi/vlm) and "vlm_tag" (real geometry's id, thesis
@@ -367,7 +367,7 @@ TEST(LevelErrors, VlmComponents) {
   EXPECT_EQ(loadError("vlm-both", levelJson(R"({"id": "a", )" + mesh + R"(, "vlm": {"tag": 1}, "vlm_tag": 1})")),
             "FILE: /entities/0/vlm_tag: a vlm_tag on a VLM entity (the tag is in \"vlm\") (expected no \"vlm_tag\" key)");
   EXPECT_EQ(loadError("vlm-key", levelJson(R"({"id": "a", )" + mesh + R"(, "vlm": {"tag": 1, "colour": [1, 1, 1]}})")),
-            "FILE: /entities/0/vlm/colour: unknown key \"colour\" (expected one of: tag, color, intensity, reflectance)");
+            "FILE: /entities/0/vlm/colour: unknown key \"colour\", did you mean \"color\"? (expected one of: tag, color, intensity, reflectance)");
   EXPECT_EQ(loadError("vlm-settings", R"({"bounce_level": 1, "effects": ["vlm"], "vlm": {"range": 0.5}, "entities": []})"),
             "FILE: /vlm/range: 0.5 is out of range (expected a number in [1, 100])");
 }

@@ -218,7 +218,8 @@ TEST(VlmMake, CornellLevelKeepsTagsAndPrintsTheSnippet) {
   }
   const std::string snippet = levelSnippet(r, "../src/vlm.gltf");
   EXPECT_NE(snippet.find(R"({"id": "vlm-made", "mesh": {"asset": "../src/vlm.gltf"}})"), std::string::npos) << snippet;
-  EXPECT_NE(snippet.find(R"("floor": "vlm_tag": 4)"), std::string::npos) << snippet;
+  // Each tag line is JSON once "..." stands for the entity's other keys (issue 16: it was not).
+  EXPECT_NE(snippet.find(R"({"id": "floor", ..., "vlm_tag": 4})"), std::string::npos) << snippet;
   EXPECT_EQ(snippet.find("left-wall-red"), std::string::npos) << "already tagged";
 }
 
