@@ -14,6 +14,13 @@ function(bounce_library name)
     BOUNCE_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 endfunction()
 
+# Sanitizer builds (the asan preset): LeakSanitizer reads tests/sanitizer/lsan.supp, which suppresses
+# the Vulkan driver's own never-freed allocations and nothing of ours (tests/sanitizer proves both).
+set(BOUNCE_SANITIZER_ENV "")
+if(CMAKE_CXX_FLAGS MATCHES "-fsanitize=[^ ]*address")
+  set(BOUNCE_SANITIZER_ENV "LSAN_OPTIONS=suppressions=${PROJECT_SOURCE_DIR}/tests/sanitizer/lsan.supp:print_suppressions=0")
+endif()
+
 # bounce_test(NAME SOURCES ... DEPS ... [GPU]): a GoogleTest executable registered with ctest,
 # one ctest entry per TEST(). GPU tests run with Vulkan validation on (any validation error
 # fails the test: see engine/gpu) and a build-local Mesa shader cache.
@@ -28,7 +35,7 @@ function(bounce_test name)
   if(NOT ARG_TIMEOUT)
     set(ARG_TIMEOUT 600)
   endif()
-  set(env "BOUNCE_VALIDATION=1" "MESA_SHADER_CACHE_DIR=${PROJECT_BINARY_DIR}/mesa-cache")
+  set(env "BOUNCE_VALIDATION=1" "MESA_SHADER_CACHE_DIR=${PROJECT_BINARY_DIR}/mesa-cache" ${BOUNCE_SANITIZER_ENV})
   if(ARG_GPU)
     list(APPEND env "BOUNCE_GPU_TEST=1")
   endif()
