@@ -38,6 +38,11 @@ float Pcg32::nextFloat() {
   return static_cast<float>(nextU32() >> 8) * 0x1p-24f;
 }
 
+glm::vec3 Pcg32::nextFloat3() {
+  const float z = nextFloat(), y = nextFloat(), x = nextFloat();  // sequenced: see the header
+  return {x, y, z};
+}
+
 double Pcg32::nextDouble() {
   const std::uint64_t hi = nextU32() >> 5;  // 27 bits
   const std::uint64_t lo = nextU32() >> 6;  // 26 bits

@@ -23,6 +23,11 @@ class Pcg32 {
   // Uniform in [0, 1): 32 random bits for float (largest value 1 - 2^-24), 53 for double.
   float nextFloat();
   double nextDouble();
+  // Three floats as (x, y, z), drawn in the order z, y, x. Use this, never
+  // glm::vec3(nextFloat(), nextFloat(), nextFloat()): function arguments are unsequenced, GCC drew
+  // them right to left and clang left to right, so the two compilers used different samples (a test
+  // passed under one and failed under the other). z first keeps every sample GCC builds drew before.
+  glm::vec3 nextFloat3();
   glm::dvec2 next2D() { const double a = nextDouble(); return {a, nextDouble()}; }
 
  private:

@@ -6,9 +6,10 @@
 
 namespace bounce::scene {
 
-CaptureScript loadCaptureScript(const std::filesystem::path& path) {
+namespace {
+
+CaptureScript captureFromJson(const nlohmann::json& doc, const std::filesystem::path& path) {
   const std::string file = path.string();
-  const nlohmann::json doc = json::parseFile(path);
   const json::Node root(doc, "", file);
   if (doc.is_object() && doc.contains("bounce_level") && !doc.contains("bounce_capture"))
     throwInputError(file, "/bounce_level", "this is a level, not a capture script",
@@ -24,7 +25,7 @@ CaptureScript loadCaptureScript(const std::filesystem::path& path) {
   s.level = (s.source.parent_path() / std::filesystem::path(level.string())).lexically_normal();
   std::error_code ec;
   if (!std::filesystem::is_regular_file(s.level, ec))
-    level.fail("file not found: " + s.level.string(), "an existing file, relative to the capture script");
+    level.fail("file not found: " + json::printable(s.level.string()), "an existing file, relative to the capture script");
 
   const std::string resExpected = "[width, height], each an integer in [1, " + std::to_string(kMaxResolution) + "]";
   const auto res = o.required("resolution", resExpected).array(2, 2, resExpected);
@@ -43,6 +44,14 @@ CaptureScript loadCaptureScript(const std::filesystem::path& path) {
   if (auto cam = o.optional("camera")) s.camera = parseMotion(*cam);
   if (auto eff = o.optional("effects")) s.effects = parseEffects(*eff);
   return s;
+}
+
+}  // namespace
+
+CaptureScript loadCaptureScript(const std::filesystem::path& path) { return captureFromJson(json::parseFile(path), path); }
+
+CaptureScript parseCaptureScript(std::string_view text, const std::filesystem::path& path) {
+  return captureFromJson(json::parse(text, path.string()), path);
 }
 
 }  // namespace bounce::scene

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <optional>
+#include <string_view>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -28,5 +29,8 @@ inline constexpr std::uint32_t kMaxResolution = 16384;
 inline constexpr std::uint32_t kMaxFrames = 1u << 24;  // ~3 days at 60 Hz
 
 CaptureScript loadCaptureScript(const std::filesystem::path& path);
+// loadCaptureScript on text already in memory (the level fuzz target, tests/fuzz): `path` names the
+// file in messages and anchors the level path; it need not exist.
+CaptureScript parseCaptureScript(std::string_view text, const std::filesystem::path& path);
 
 }  // namespace bounce::scene

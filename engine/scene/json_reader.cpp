@@ -128,6 +128,8 @@ std::string escapePointerToken(std::string_view token) {
       s += "~0";
     else if (c == '/')
       s += "~1";
+    else if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
+      s += '?';  // as inQuotes: a raw newline would break the one-line message (found by fuzz_level)
     else
       s += c;
   }
@@ -139,6 +141,13 @@ std::string inQuotes(std::string_view s) {
   for (char c : s.substr(0, kMaxTokenInMessage))
     out += (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) ? '?' : c;
   return out + (s.size() > kMaxTokenInMessage ? "...\"" : "\"");
+}
+
+std::string printable(std::string_view s) {
+  std::string out(s);
+  for (char& c : out)
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
+  return out;
 }
 
 bool Range::contains(double v) const {

@@ -34,11 +34,13 @@ nlohmann::json parseFile(const std::filesystem::path& path);
 // 10 MB key gives a short error line.
 inline constexpr std::size_t kMaxTokenInMessage = 64;
 
-// "~" -> "~0", "/" -> "~1" (RFC 6901); a token longer than kMaxTokenInMessage is cut and
-// marked "..." (pointers here are for people to read).
+// "~" -> "~0", "/" -> "~1" (RFC 6901), control characters shown as '?'; a token longer than
+// kMaxTokenInMessage is cut and marked "..." (pointers here are for people to read).
 std::string escapePointerToken(std::string_view token);
 // "\"text\"", cut like a pointer token, control characters shown as '?'.
 std::string inQuotes(std::string_view s);
+// The text with control characters shown as '?', not cut (paths built from user text).
+std::string printable(std::string_view s);
 
 // A closed/open/half-open interval of allowed numbers, and its wording for messages.
 struct Range {

@@ -45,7 +45,7 @@ void parseMesh(const json::Node& node, EntityDesc& d, const ParseContext& ctx) {
   mesh.asset = (ctx.dir / rel).lexically_normal();
   std::error_code ec;
   if (!std::filesystem::is_regular_file(mesh.asset, ec))
-    asset.fail("file not found: " + mesh.asset.string(), "an existing file, relative to the level file");
+    asset.fail("file not found: " + json::printable(mesh.asset.string()), "an existing file, relative to the level file");
   if (auto n = o.optional("node")) {
     if (n->raw().is_string())
       mesh.node = n->string();
@@ -323,11 +323,8 @@ void checkHierarchy(const std::vector<EntityDesc>& es, const json::Node& entitie
   }
 }
 
-}  // namespace
-
-Level loadLevel(const std::filesystem::path& pathIn) {
+Level levelFromJson(const nlohmann::json& doc, const std::filesystem::path& pathIn) {
   const std::string file = pathIn.string();
-  const nlohmann::json doc = json::parseFile(pathIn);
   const json::Node root(doc, "", file);
   if (doc.is_object() && doc.contains("bounce_capture") && !doc.contains("bounce_level"))
     throwInputError(file, "/bounce_capture", "this is a capture script, not a level",
@@ -380,6 +377,14 @@ Level loadLevel(const std::filesystem::path& pathIn) {
     level.entities.push_back(parseEntity(e, ctx));
   checkHierarchy(level.entities, entities);
   return level;
+}
+
+}  // namespace
+
+Level loadLevel(const std::filesystem::path& path) { return levelFromJson(json::parseFile(path), path); }
+
+Level parseLevel(std::string_view text, const std::filesystem::path& path) {
+  return levelFromJson(json::parse(text, path.string()), path);
 }
 
 void overrideEffects(Level& level, std::string_view list) { level.effects = parseEffectList(list, level.source.string()); }

@@ -104,6 +104,9 @@ struct Level {
 };
 
 Level loadLevel(const std::filesystem::path& path);
+// loadLevel on text already in memory (the level fuzz target, tests/fuzz): `path` names the file
+// in messages and anchors the relative asset paths; it need not exist.
+Level parseLevel(std::string_view text, const std::filesystem::path& path);
 
 // Replaces level.effects by a comma-separated list (the CLI's --effects LIST). Errors read
 // "<level file>: --effects: unknown effect "x" (expected one of: …)".

@@ -11,31 +11,45 @@ const float VLM_FLT_EPSILON = 1.1920929e-7;
 float vlmMaxAbs(vec3 v) { return max(abs(v.x), max(abs(v.y), abs(v.z))); }
 
 // Clip triangle (relative to the shading point) against n·x ≥ 0; returns the vertex count (≤ 4).
-int vlmClipToHorizon(vec3 tri[3], vec3 n, out vec3 poly[VLM_MAX_CLIPPED]) {
+// onPlane[i]: poly[i] lies on the plane by construction (a clip point, or n·v exactly 0).
+int vlmClipToHorizon(vec3 tri[3], vec3 n, out vec3 poly[VLM_MAX_CLIPPED], out bool onPlane[VLM_MAX_CLIPPED]) {
   int count = 0;
   for (int i = 0; i < 3; ++i) {
     vec3 a = tri[i];
     vec3 b = tri[(i + 1) % 3];
     float da = dot(n, a), db = dot(n, b);
-    if (da >= 0.0) poly[count++] = a;
-    if ((da >= 0.0) != (db >= 0.0)) poly[count++] = a + (b - a) * (da / (da - db));
+    if (da >= 0.0) {
+      onPlane[count] = da == 0.0;
+      poly[count++] = a;
+    }
+    if ((da >= 0.0) != (db >= 0.0)) {
+      onPlane[count] = true;
+      poly[count++] = a + (b - a) * (da / (da - db));
+    }
   }
-  for (int i = count; i < VLM_MAX_CLIPPED; ++i) poly[i] = vec3(0.0);
+  for (int i = count; i < VLM_MAX_CLIPPED; ++i) {
+    poly[i] = vec3(0.0);
+    onPlane[i] = false;
+  }
   return count;
 }
 
 // Signed Eq. 3.1 sum over a clipped polygon; drops vertices at the point and zero-length edges.
-float vlmEdgeIntegral(vec3 poly[VLM_MAX_CLIPPED], int n, vec3 normal) {
+// The horizon edge takes n·ĉ = ±‖n‖ exactly, the cross product is divided by the longer vertex
+// length (why: "Conditioning" in form_factor.hpp).
+float vlmEdgeIntegral(vec3 poly[VLM_MAX_CLIPPED], bool onPlane[VLM_MAX_CLIPPED], int n, vec3 normal) {
   float scale = 0.0;
   for (int i = 0; i < n; ++i) scale = max(scale, vlmMaxAbs(poly[i]));
   if (!(scale > 0.0)) return 0.0;
   float tiny = scale * VLM_FLT_EPSILON * 4.0;
   vec3 v[VLM_MAX_CLIPPED];
+  bool planar[VLM_MAX_CLIPPED];
   int m = 0;
   for (int i = 0; i < n; ++i) {
     vec3 p = poly[i];
     if (vlmMaxAbs(p) <= tiny) continue;
     if (m > 0 && vlmMaxAbs(p - v[m - 1]) <= tiny) continue;
+    planar[m] = onPlane[i];
     v[m++] = p;
   }
   while (m > 1 && vlmMaxAbs(v[0] - v[m - 1]) <= tiny) --m;
@@ -45,12 +59,14 @@ float vlmEdgeIntegral(vec3 poly[VLM_MAX_CLIPPED], int n, vec3 normal) {
     vec3 a = v[i];
     vec3 b = v[(i + 1) % m];
     float la = length(a), lb = length(b);
-    vec3 ua = a / la;
-    vec3 c = cross(ua, (b - a) / lb);
+    vec3 ua = a / la, ub = b / lb;
+    vec3 c = la <= lb ? cross(ua, (b - a) / lb) : cross((a - b) / la, ub);
     float s = length(c);
     if (!(s > 0.0)) continue;
-    float theta = atan(s, dot(ua, b / lb));
-    sum += theta * dot(normal, c) / s;
+    float theta = atan(s, dot(ua, ub));
+    float nc = dot(normal, c);
+    float cosine = planar[i] && planar[(i + 1) % m] ? (nc < 0.0 ? -length(normal) : length(normal)) : nc / s;
+    sum += theta * cosine;
   }
   return sum;
 }
@@ -61,8 +77,9 @@ float vlmFormFactor(vec3 x, vec3 n, vec3 v0, vec3 v1, vec3 v2) {
   vec3 ln = cross(v1 - v0, v2 - v0);
   if (!(dot(ln, -rel[0]) > 0.0)) return 0.0;
   vec3 poly[VLM_MAX_CLIPPED];
-  int count = vlmClipToHorizon(rel, n, poly);
-  float f = -vlmEdgeIntegral(poly, count, n) / (2.0 * 3.14159265358979);
+  bool onPlane[VLM_MAX_CLIPPED];
+  int count = vlmClipToHorizon(rel, n, poly, onPlane);
+  float f = -vlmEdgeIntegral(poly, onPlane, count, n) / (2.0 * 3.14159265358979);
   return max(f, 0.0);
 }
 

@@ -186,7 +186,7 @@ std::vector<GridLight> randomGridScene(std::uint32_t count, std::uint64_t seed) 
   const float size = 1.5f / std::cbrt(float(std::max(count, 1u)));
   parallelFor(0, count, [&](std::size_t i) {
     math::Pcg32 rng(seed, i);  // one stream per light: the same scene whatever the thread count
-    auto next3 = [&] { return glm::vec3(rng.nextFloat(), rng.nextFloat(), rng.nextFloat()); };
+    auto next3 = [&] { return rng.nextFloat3(); };
     const glm::vec3 c = next3();
     GridLight& l = lights[i];
     l.v0 = c + (next3() - 0.5f) * size, l.v1 = c + (next3() - 0.5f) * size, l.v2 = c + (next3() - 0.5f) * size;

@@ -17,7 +17,7 @@ std::vector<glm::vec3> randomValues(const FieldSettings& s, std::uint64_t seed) 
   std::vector<glm::vec3> v(std::size_t(s.grid) * s.grid * s.grid * s.shCount);
   for (std::size_t i = 0; i < v.size(); ++i) {
     const float scale = float(1 + i % std::size_t(s.shCount));  // different ranges per coefficient
-    v[i] = scale * (glm::vec3(rng.nextFloat(), rng.nextFloat(), rng.nextFloat()) * 2.0f - 1.0f);
+    v[i] = scale * (rng.nextFloat3() * 2.0f - 1.0f);
   }
   return v;
 }

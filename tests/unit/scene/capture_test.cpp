@@ -65,4 +65,10 @@ TEST(Capture, OtherFieldsValidated) {
   EXPECT_EQ(inputErrorOf([&] { loadCaptureScript(path); }),
             path.string() + ": /level: file not found: " + (outDir() / "nowhere/level.json").lexically_normal().string() +
                 " (expected an existing file, relative to the capture script)");
+  // A path from the script is echoed with its control characters shown as '?': the message stays one
+  // line (fuzz_level found a raw DEL echoed; parseCaptureScript is the fuzz target's entry point).
+  const auto fake = outDir() / "fuzz.json";
+  EXPECT_EQ(inputErrorOf([&] { parseCaptureScript(R"({"bounce_capture": 1, "level": "a\nb\u007f.json"})", fake); }),
+            fake.string() + ": /level: file not found: " + (outDir() / "a?b?.json").string() +
+                " (expected an existing file, relative to the capture script)");
 }

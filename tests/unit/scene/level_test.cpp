@@ -279,6 +279,11 @@ TEST(LevelErrors, HostileInput) {
             "FILE: /bounce_level: wrong type: number (expected an integer in [0, 1073741824])");
   EXPECT_EQ(loadError("huge-uint", R"({"bounce_level": 18446744073709551615, "effects": [], "entities": []})"),
             "FILE: /bounce_level: 18446744073709551615 is out of range (expected an integer in [0, 1073741824])");
+  // Control characters in a key (JSON escapes) are shown as '?' in the pointer as in the quote, so
+  // the message stays one line (fuzz_level found the pointer echoing them).
+  EXPECT_EQ(loadError("control-key", R"({"bounce_level": 1, "a\nb\u007f": 1, "effects": [], "entities": []})"),
+            "FILE: /a?b?: unknown key \"a?b?\" (expected one of: bounce_level, name, effects, background, probes, vlm, "
+            "entities)");
   // Invalid UTF-8 is reported without echoing the bytes.
   EXPECT_EQ(loadError("utf8", "{\"name\": \"\xff\"}"),
             "FILE: byte 11 (line 1, column 11): malformed JSON: syntax error while parsing value - invalid string: "

@@ -54,7 +54,7 @@ TEST(ShGpu, GlslMatchesLibraryForBasisReconstructionAndIrradiance) {
     dirs[i] = d;
     inputs[i].dir[0] = float(d.x), inputs[i].dir[1] = float(d.y), inputs[i].dir[2] = float(d.z);
     for (int k = 0; k < 16; ++k) {
-      glm::dvec3 c(rng.nextFloat() * 20.0 - 10.0, rng.nextFloat() * 20.0 - 10.0, rng.nextFloat() * 20.0 - 10.0);
+      const glm::dvec3 c = glm::dvec3(rng.nextFloat3()) * 20.0 - 10.0;
       coeffs[i][k] = glm::dvec3(glm::vec3(c));  // what the GPU sees, exactly
       for (int ch = 0; ch < 3; ++ch) inputs[i].coeff[k][ch] = float(c[ch]);
     }

@@ -54,7 +54,7 @@ TEST(VlmFormFactorGpu, GlslMatchesCppOnRandomAndAwkwardCases) {
   add(o, up, {-1e-2f, -1e-2f, 1}, {-1e-2f, 1e-2f, 1}, {1e-2f, 1e-2f, 1});  // small
   add(o, up, {-1e3f, -1e3f, 1}, {-1e3f, 1e3f, 1}, {1e3f, 1e3f, 1});        // huge
   math::Pcg32 rng(21, 4);
-  auto rnd = [&](float lo, float hi) { return glm::vec3(rng.nextFloat(), rng.nextFloat(), rng.nextFloat()) * (hi - lo) + lo; };
+  auto rnd = [&](float lo, float hi) { return rng.nextFloat3() * (hi - lo) + lo; };
   while (cases.size() < 1024) {
     glm::vec3 n = rnd(-1, 1);
     if (glm::dot(n, n) < 0.01f) continue;

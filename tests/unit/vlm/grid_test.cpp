@@ -17,8 +17,8 @@ std::vector<vlm::GridLight> randomLights(std::uint32_t count, float size, std::u
   math::Pcg32 rng(seed, 1);
   std::vector<vlm::GridLight> lights(count);
   for (auto& l : lights) {
-    const glm::vec3 c(rng.nextFloat(), rng.nextFloat(), rng.nextFloat());
-    auto jitter = [&] { return (glm::vec3(rng.nextFloat(), rng.nextFloat(), rng.nextFloat()) - 0.5f) * size; };
+    const glm::vec3 c = rng.nextFloat3();
+    auto jitter = [&] { return (rng.nextFloat3() - 0.5f) * size; };
     l.v0 = c + jitter(), l.v1 = c + jitter(), l.v2 = c + jitter();
     l.weight = 0.1f + rng.nextFloat();
   }
@@ -94,7 +94,7 @@ TEST(VlmGrid, ListsAreCompleteWithoutOverflowAndExcludeTheBackSide) {
   for (std::uint32_t l = 1; l < lights.size(); ++l) {
     const auto h = vlm::activeHemisphere(lights[l], desc.range);
     for (int s = 0; s < 20; ++s) {
-      const glm::vec3 p = h.centre + (glm::vec3(rng.nextFloat(), rng.nextFloat(), rng.nextFloat()) * 2.0f - 1.0f) * h.radius;
+      const glm::vec3 p = h.centre + (rng.nextFloat3() * 2.0f - 1.0f) * h.radius;
       const std::int64_t cell = g.cellOf(p);
       if (cell < 0) continue;
       const auto list = g.cell(std::uint64_t(cell));

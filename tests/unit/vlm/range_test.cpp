@@ -61,7 +61,8 @@ double rangeError(float range) {
   double sum = 0.0;
   constexpr int kReceivers = 200;
   for (int r = 0; r < kReceivers; ++r) {
-    const glm::dvec3 x(0.25 + 0.5 * rng.nextFloat(), 0.25 + 0.5 * rng.nextFloat(), 0.01 + 0.02 * rng.nextFloat());
+    const glm::dvec3 u(rng.nextFloat3());
+    const glm::dvec3 x(0.25 + 0.5 * u.x, 0.25 + 0.5 * u.y, 0.01 + 0.02 * u.z);
     const glm::dvec3 n(0.0, 0.0, -1.0);
     const double all = irradiance(x, n, lights, every);
     const std::int64_t cell = grid.cellOf(glm::vec3(x));
