@@ -109,142 +109,58 @@ std::vector<double> nonNegativeCap(std::span<const double> g) {
   return cap;
 }
 
-// f(t) for a ZH vector at every Gauss node and the poles: max(0, f)² summed (the penalty that keeps
-// the log non-positive).
-double positivePart(std::span<const double> f) {
-  const auto& q = zonalQuadrature();
-  const int n = static_cast<int>(f.size());
-  double pen = 0.0;
-  for (std::size_t i = 0; i < q.t.size(); ++i) {
-    double v = 0.0;
-    for (int l = 0; l < n; ++l) v += f[l] * q.y[i][l];
-    if (v > 0.0) pen += v * v;
-  }
-  for (double t : {-1.0, 1.0}) {
-    double p[kMaxOrder + 1];
-    legendre(t, n, p);
-    double v = 0.0;
-    for (int l = 0; l < n; ++l) v += f[l] * std::sqrt((2.0 * l + 1.0) / (4.0 * kPi)) * p[l];
-    if (v > 0.0) pen += 256.0 * v * v;
-  }
-  return pen;
-}
-
-// Nelder–Mead minimisation of obj over n ≤ 4 unknowns from x (standard coefficients 1, 2, ½, ½).
-template <class F>
-void nelderMead(const F& obj, std::vector<double>& x, double step, int iterations) {
-  const int n = static_cast<int>(x.size());
-  std::vector<std::vector<double>> p(std::size_t(n + 1), x);
-  std::vector<double> v(std::size_t(n + 1));
-  for (int i = 0; i < n; ++i) p[i + 1][i] += step;
-  for (int i = 0; i <= n; ++i) v[i] = obj(p[i]);
-  for (int it = 0; it < iterations; ++it) {
-    int hi = 0, lo = 0;
-    for (int i = 1; i <= n; ++i) {
-      if (v[i] > v[hi]) hi = i;
-      if (v[i] < v[lo]) lo = i;
-    }
-    int nh = lo;
-    for (int i = 0; i <= n; ++i)
-      if (i != hi && v[i] >= v[nh]) nh = i;
-    std::vector<double> c(static_cast<std::size_t>(n), 0.0);
-    for (int i = 0; i <= n; ++i)
-      if (i != hi)
-        for (int k = 0; k < n; ++k) c[k] += p[i][k] / n;
-    auto along = [&](double t) {
-      std::vector<double> r(static_cast<std::size_t>(n));
-      for (int k = 0; k < n; ++k) r[k] = c[k] + t * (p[hi][k] - c[k]);
-      return r;
-    };
-    const auto xr = along(-1.0);
-    const double vr = obj(xr);
-    if (vr < v[lo]) {
-      const auto xe = along(-2.0);
-      const double ve = obj(xe);
-      if (ve < vr) p[hi] = xe, v[hi] = ve;
-      else p[hi] = xr, v[hi] = vr;
-    } else if (vr < v[nh]) {
-      p[hi] = xr, v[hi] = vr;
-    } else {
-      const auto xc = along(0.5);
-      const double vc = obj(xc);
-      if (vc < v[hi]) {
-        p[hi] = xc, v[hi] = vc;
-      } else {
-        for (int i = 0; i <= n; ++i)
-          if (i != lo) {
-            for (int k = 0; k < n; ++k) p[i][k] = p[lo][k] + 0.5 * (p[i][k] - p[lo][k]);
-            v[i] = obj(p[i]);
-          }
-      }
-    }
-  }
-  int lo = 0;
-  for (int i = 1; i <= n; ++i)
-    if (v[i] < v[lo]) lo = i;
-  x = p[lo];
-}
-
-// The log of one blocker's visibility: the ZH f minimising ‖exp(f) − g_θ‖₂ subject to f ≤ 0
-// everywhere (a penalty of 1e4·Σ max(0, f)² over the quadrature nodes and poles), by Nelder–Mead
-// started from the previous θ's solution (or from the windowed clamped log −λ c_w, whichever is
-// better). f ≤ 0 makes it a clamped pointwise log (Ren et al.'s log of a binary function must be
-// clamped) and keeps exp of ANY sum of blockers in (0, 1].
-// Why not solve exp(f) = g_θ exactly (n equations, n unknowns), or take λ(g − 1)? Both give f
-// positive lobes away from the blocker (fitting or inheriting the truncated cap's ringing); summed
-// over 16–64 blockers those lobes dominate and exp blows up (measured: RMS error 3–6 at 64).
-constexpr double kMaxLambda = 40.0;
-constexpr double kPenalty = 1e4;
-double fitLambda(std::span<const double> g, std::vector<double>& f) {
+// The log of one blocker's visibility: f_θ = −λ c_w, with c_w the cap's indicator windowed to be
+// ≥ 0 everywhere (nonNegativeCap): the projection of a clamped pointwise log of depth λ inside a
+// softened blocker (Ren et al.'s log of a binary function must be clamped), λ minimising
+// ‖exp(f_θ) − g_θ‖₂ by golden section (the error is unimodal in λ, so λ(θ) and the table are
+// continuous in θ). f ≤ 0 everywhere keeps exp of ANY sum of blockers in (0, 1].
+// Rejected, measured with tests/unit/sl:
+//  - exp(f) = g_θ solved exactly (n equations, n unknowns), or λ(g − 1) unwindowed: f inherits the
+//    truncated cap's ringing as positive lobes away from the blocker; summed over 16–64 blockers
+//    they dominate and exp blows up (RMS error 3–6 at 64 blockers), and Eq. 23's difference of two
+//    exps exceeded the unoccluded visibility in the blocker test;
+//  - λ matching g_θ's DC (exact blocked solid angle): the blocker shadow test then over-darkens by
+//    30 % (0.083 vs 0.121 brute force), against 1 % for least squares;
+//  - a Nelder–Mead fit of all n coefficients under f ≤ 0: neighbouring θ converge to different
+//    local optima and the table jumps (a 10 % step in E per 1e-4 R of motion).
+constexpr double kMaxLambda = 200.0;
+double fitLambda(std::span<const double> g, LogKind kind, std::vector<double>& f) {
   const int n = static_cast<int>(g.size());
-  auto fitErr = [&](std::span<const double> x) {
-    const auto e = expZonalExact(x);
-    double s = 0.0;
-    for (int l = 0; l < n; ++l) s += (e[l] - g[l]) * (e[l] - g[l]);
-    return s;
-  };
-  // Start 1: the windowed clamped log, best depth λ by golden section.
-  const auto cap = nonNegativeCap(g);
+  std::vector<double> cap;
+  if (kind == LogKind::Raw) {
+    cap.assign(g.begin(), g.end());
+    cap[0] = kSqrt4Pi - g[0];
+    for (int l = 1; l < n; ++l) cap[l] = -g[l];
+  } else {
+    cap = nonNegativeCap(g);
+  }
   auto scaled = [&](double lambda) {
     std::vector<double> x(static_cast<std::size_t>(n));
     for (int l = 0; l < n; ++l) x[l] = -lambda * cap[l];
     return x;
   };
+  auto err = [&](double lambda) {
+    const auto e = expZonalExact(scaled(lambda));
+    double s = 0.0;
+    for (int l = 0; l < n; ++l) s += (e[l] - g[l]) * (e[l] - g[l]);
+    return s;
+  };
   const double phi = 0.5 * (std::sqrt(5.0) - 1.0);
   double a = 0.0, b = kMaxLambda;
   double c = b - phi * (b - a), d = a + phi * (b - a);
-  double fc = fitErr(scaled(c)), fd = fitErr(scaled(d));
-  for (int it = 0; it < 80; ++it) {
+  double fc = err(c), fd = err(d);
+  for (int it = 0; it < 120; ++it) {
     if (fc < fd) {
       b = d, d = c, fd = fc;
-      c = b - phi * (b - a), fc = fitErr(scaled(c));
+      c = b - phi * (b - a), fc = err(c);
     } else {
       a = c, c = d, fc = fd;
-      d = a + phi * (b - a), fd = fitErr(scaled(d));
+      d = a + phi * (b - a), fd = err(d);
     }
   }
-  auto obj = [&](const std::vector<double>& x) { return fitErr(x) + kPenalty * positivePart(x); };
-  std::vector<double> start = scaled(0.5 * (a + b));
-  if (f.size() == std::size_t(n) && obj(f) < obj(start)) start = f;
-  double scale = 0.0;
-  for (double x : start) scale = std::max(scale, std::abs(x));
-  nelderMead(obj, start, 0.05 * scale + 1e-3, 160);
-  // Polish with a smaller simplex.
-  nelderMead(obj, start, 0.005 * scale + 1e-4, 120);
-  // The penalty leaves positive values of ~1e-5; lower the DC so max f ≤ 0 exactly (f ≡ const
-  // shifts by f_0 Y_00 = f_0 / √(4π)).
-  // f is a polynomial of degree ≤ 3 in cos θ: a 4001-point grid plus a 1e-9 margin bounds its max.
-  double maxF = -1e300;
-  for (int i = 0; i <= 4000; ++i) {
-    double p[kMaxOrder + 1];
-    legendre(-1.0 + i / 2000.0, n, p);
-    double v = 0.0;
-    for (int l = 0; l < n; ++l) v += start[l] * std::sqrt((2.0 * l + 1.0) / (4.0 * kPi)) * p[l];
-    maxF = std::max(maxF, v);
-  }
-  if (maxF > 0.0) start[0] -= (maxF + 1e-9) * kSqrt4Pi;
-  f = start;
-  return std::sqrt(fitErr(f));
+  const double lambda = cap[0] > 0.0 ? 0.5 * (a + b) : 0.0;
+  f = scaled(lambda);
+  return std::sqrt(err(lambda));
 }
 
 int checkedExpOrder(std::size_t count) {
@@ -295,7 +211,7 @@ std::vector<double> expExact(std::span<const double> f, int degree) {
   return out;
 }
 
-ExpTables::ExpTables(int order) : order_(order) {
+ExpTables::ExpTables(int order, LogKind kind) : order_(order), kind_(kind) {
   if (order != 3 && order != 4) throw InternalError("sh::ExpTables: order " + std::to_string(order));
   // log(g_θ) per θ (fitLambda); θ = 0 gives g = 1 and f = 0.
   logTable_.assign(std::size_t(kThetaEntries) * order, 0.0);
@@ -303,7 +219,7 @@ ExpTables::ExpTables(int order) : order_(order) {
   for (int i = 0; i < kThetaEntries; ++i) {
     const double theta = 0.5 * kPi * i / (kThetaEntries - 1);
     const auto g = capVisibilityZonal(theta, order);
-    logResidual_ = std::max(logResidual_, fitLambda(g, f));
+    logResidual_ = std::max(logResidual_, fitLambda(g, kind, f));
     std::copy(f.begin(), f.end(), logTable_.begin() + std::ptrdiff_t(i) * order);
   }
 
@@ -376,14 +292,23 @@ std::array<double, 2> ExpTables::olCoefficients(double magnitude) const {
           (1.0 - w) * olTable_[2 * i0 + 1] + w * olTable_[2 * i0 + 3]};
 }
 
-const ExpTables& expTables(int order) {
+const ExpTables& expTables(int order, LogKind kind) {
+  const bool raw = kind == LogKind::Raw;
   if (order == 3) {
-    static const ExpTables t3(3);
-    return t3;
+    if (raw) {
+      static const ExpTables r3(3, LogKind::Raw);
+      return r3;
+    }
+    static const ExpTables w3(3, LogKind::Windowed);
+    return w3;
   }
   if (order == 4) {
-    static const ExpTables t4(4);
-    return t4;
+    if (raw) {
+      static const ExpTables r4(4, LogKind::Raw);
+      return r4;
+    }
+    static const ExpTables w4(4, LogKind::Windowed);
+    return w4;
   }
   throw InternalError("sh::expTables: order " + std::to_string(order) + " (expected 3 or 4)");
 }
@@ -410,17 +335,17 @@ double dcFreeNorm(std::span<const double> f) {
 
 }  // namespace
 
-std::vector<double> expOl(std::span<const double> f) {
-  const ExpTables& t = expTables(checkedExpOrder(f.size()));
+std::vector<double> expOl(std::span<const double> f, LogKind kind) {
+  const ExpTables& t = expTables(checkedExpOrder(f.size()), kind);
   auto g = olNoDc(t, f, dcFreeNorm(f));
   const double s = dcFactor(f[0]);
   for (double& x : g) x *= s;
   return g;
 }
 
-std::vector<double> expHybrid(std::span<const double> f, int* squarings) {
+std::vector<double> expHybrid(std::span<const double> f, int* squarings, LogKind kind) {
   const int order = checkedExpOrder(f.size());
-  const ExpTables& t = expTables(order);
+  const ExpTables& t = expTables(order, kind);
   double m = dcFreeNorm(f);
   int k = 0;
   while (m > ExpTables::kMaxMagnitude && k < 30) {

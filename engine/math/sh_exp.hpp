@@ -12,7 +12,7 @@
 //    (g_l = 2π ∫_{−1}^{cos θ} Y_l0(t) dt and ∫_{−1}^{c} P_l = (P_{l+1}(c) − P_{l−1}(c))/(2l+1));
 //  - log(g_θ) := −λ_θ c_θ, c_θ the cap's indicator projection windowed (Sloan's sinc⁴, least width)
 //    to be ≥ 0 everywhere: a clamped pointwise log of depth λ_θ inside the blocker, λ_θ minimising
-//    ‖exp(f_θ) − g_θ‖₂ (golden section; why this and not an exact inverse: sh_exp.cpp, fitLambda). Tabulated by θ as the SL paper does (§5.1, "precompute the log G_θ … for any angular
+//    ‖exp(f_θ) − g_θ‖₂ (why this and not an exact inverse or a DC-exact depth: sh_exp.cpp, fitLambda). Tabulated by θ as the SL paper does (§5.1, "precompute the log G_θ … for any angular
 //    radius θ"); Eq. 22 rotates it to the blocker's direction.
 //  - expOl(f): DC isolation plus the optimal linear approximation (Ren §4.2):
 //      exp(f) ≈ e^{f_0 Y_00} (a(‖f̂‖) 1 + b(‖f̂‖) f̂),  f̂ = f without its DC term,
@@ -27,6 +27,16 @@
 #include <glm/glm.hpp>
 
 namespace bounce::sh {
+
+// Which clamped log the tables hold (sh_exp.cpp, fitLambda, has the measurements):
+//  - Windowed (default): −λ c_w, c_w the cap windowed to be ≥ 0. f ≤ 0 everywhere, so exp of ANY
+//    sum of blockers stays in (0, 1] (stable for dense clusters: RMS 0.75 at 64 heavily overlapping
+//    blockers), but one small cap is blurred (its Ṽ is off by up to 37 %, corrected in sl::evaluate by
+//    the Ratio form);
+//  - Raw: λ(g_θ − 1), the unwindowed cap. Accurate for a few blockers (RMS 3e-4 for one, 0.1 for
+//    four overlapping), but its ringing lobes add up: dense clusters of 16–64 blockers blow up (RMS
+//    0.5–3.8, still finite).
+enum class LogKind { Windowed, Raw };
 
 // Closed-form ZH projection g_θ of one spherical blocker's visibility (order coefficients).
 std::vector<double> capVisibilityZonal(double theta, int order);
@@ -61,22 +71,25 @@ class ExpTables {
   std::span<const double> logTable() const { return logTable_; }
   std::span<const double> olTable() const { return olTable_; }
 
-  explicit ExpTables(int order);
+  ExpTables(int order, LogKind kind);
+  LogKind kind() const { return kind_; }
 
  private:
   int order_ = 0;
+  LogKind kind_ = LogKind::Windowed;
   std::vector<double> logTable_;
   std::vector<double> olTable_;
   double logResidual_ = 0.0;
 };
 
-// The tables for order 3 or 4 (built on first use). Throws InternalError for other orders.
-const ExpTables& expTables(int order);
+// The tables for order 3 or 4 (built on first use, ~1 s each). Throws InternalError for other orders.
+const ExpTables& expTables(int order, LogKind kind = LogKind::Windowed);
 
 // DC isolation + optimal linear approximation, valid for ‖f̂‖ ≤ kMaxMagnitude (clamped beyond).
-std::vector<double> expOl(std::span<const double> f);
+std::vector<double> expOl(std::span<const double> f, LogKind kind = LogKind::Windowed);
 // The hybrid: halving-and-squaring above kMaxMagnitude. Finite for any finite f; returns how many
 // squarings it used in `squarings` when not null.
-std::vector<double> expHybrid(std::span<const double> f, int* squarings = nullptr);
+// `kind` selects the OL table, trained on sums of that kind's logs.
+std::vector<double> expHybrid(std::span<const double> f, int* squarings = nullptr, LogKind kind = LogKind::Windowed);
 
 }  // namespace bounce::sh
