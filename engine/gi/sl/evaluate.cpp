@@ -11,6 +11,7 @@
 #include "engine/math/sampling.hpp"
 #include "engine/math/sh_convolve.hpp"
 #include "engine/math/sh_exp.hpp"
+#include "engine/math/sh_product.hpp"
 #include "engine/math/sh_rotate.hpp"
 
 namespace bounce::gi::sl {
@@ -242,6 +243,26 @@ Evaluation evaluate(std::span<const Light> lights, const glm::dvec3& p, const gl
       }
       addTo(closerObjects, objectSum);
     }
+  }
+  return out;
+}
+
+std::vector<glm::dvec3> intensityFromSamples(std::span<const glm::dvec3> sampleRadiance,
+                                             std::span<const std::vector<float>> basis, std::span<const float> albedo,
+                                             int order) {
+  const std::size_t nc = std::size_t(order) * order;
+  if (sampleRadiance.size() != basis.size() || albedo.size() != nc * 3)
+    throw InternalError("sl::intensityFromSamples: sizes do not match");
+  std::vector<glm::dvec3> out(nc, glm::dvec3(0.0));
+  for (int ch = 0; ch < 3; ++ch) {
+    std::vector<double> ls(nc, 0.0), c(nc);
+    for (std::size_t j = 0; j < basis.size(); ++j) {
+      if (basis[j].size() != nc) throw InternalError("sl::intensityFromSamples: basis size");
+      for (std::size_t k = 0; k < nc; ++k) ls[k] += sampleRadiance[j][ch] * basis[j][k];  // Eq. 10
+    }
+    for (std::size_t k = 0; k < nc; ++k) c[k] = albedo[k * 3 + std::size_t(ch)];
+    const auto lc = sh::product<double>(ls, c, order);  // Eq. 11
+    for (std::size_t k = 0; k < nc; ++k) out[k][ch] = lc[k];
   }
   return out;
 }

@@ -107,6 +107,15 @@ struct Evaluation {
 Evaluation evaluate(std::span<const Light> lights, const glm::dvec3& p, const glm::dvec3& n,
                     const EvalSettings& settings);
 
+// Pass 1's last step on the CPU (the reference for the GPU's): the SL's intensity from the diffuse
+// reflection L_pj at its surface samples, Eq. 10 L_S = Σ_j L_pj Y'_j (Y'_j = `basis[j]`, Eq. 10's
+// sums pre-multiplied by 4π/N, order² each), then Eq. 11 L^c = L_S ∗ c_S with c_S the albedo SH
+// (`albedo`, RGB, coefficient-major order² × 3), one SH product per channel (sh_product.hpp).
+// Returns order² RGB coefficients in the SL's local frame (Light::intensity).
+std::vector<glm::dvec3> intensityFromSamples(std::span<const glm::dvec3> sampleRadiance,
+                                             std::span<const std::vector<float>> basis, std::span<const float> albedo,
+                                             int order);
+
 // Eq. 6: the visibility SH vector of the environment at p with every light as a blocker (the soft
 // shadow the dynamic objects cast on distant/probe light). Dot with a cosine-convolved radiance to
 // shade.
