@@ -5,21 +5,22 @@
 //
 // Definitions (orthonormal real SH of sh_eval.hpp; "1" is the constant function, coefficients
 // (√(4π), 0, …)):
-//  - exp(f) := the order-n projection of the pointwise e^{f(ω)} (Ren §4);
+//  - exp(f) := the order-n projection of the pointwise e^{f(ω)} (Ren et al.'s definition);
 //  - a spherical blocker of angular radius θ around +Z has visibility v_θ(ω) = 0 when ω·Z > cos θ,
 //    else 1. Its zonal (ZH) projection g_θ has the closed form
 //      g_0 = √π (1 + cos θ),  g_l = √(π(2l+1)) (P_{l+1}(cos θ) − P_{l−1}(cos θ)) / (2l+1),  l ≥ 1
 //    (g_l = 2π ∫_{−1}^{cos θ} Y_l0(t) dt and ∫_{−1}^{c} P_l = (P_{l+1}(c) − P_{l−1}(c))/(2l+1));
-//  - log(g_θ) := −λ_θ c_θ, c_θ the cap's indicator projection windowed (Sloan's sinc⁴, least width)
-//    to be ≥ 0 everywhere: a clamped pointwise log of depth λ_θ inside the blocker, λ_θ minimising
-//    ‖exp(f_θ) − g_θ‖₂ (why this and not an exact inverse or a DC-exact depth: sh_exp.cpp, fitLambda). Tabulated by θ as the SL paper does (§5.1, "precompute the log G_θ … for any angular
-//    radius θ"); Eq. 22 rotates it to the blocker's direction.
-//  - expOl(f): DC isolation plus the optimal linear approximation (Ren §4.2):
+//  - log(g_θ) := −λ_θ c_θ (LogKind below): c_θ the cap's indicator projection, windowed (Sloan's
+//    sinc⁴, least width) to be ≥ 0 everywhere or raw; a clamped pointwise log of depth λ_θ inside the
+//    blocker, λ_θ minimising ‖exp(f_θ) − g_θ‖₂ (why this and not an exact inverse or a DC-exact depth:
+//    sh_exp.cpp, fitLambda). Tabulated by θ as the SL paper does (§5.1, "precompute the log G_θ …
+//    for any angular radius θ"); Eq. 22 rotates it to the blocker's direction.
+//  - expOl(f): DC isolation plus the optimal linear approximation (Ren et al.):
 //      exp(f) ≈ e^{f_0 Y_00} (a(‖f̂‖) 1 + b(‖f̂‖) f̂),  f̂ = f without its DC term,
 //    a and b tabulated by ‖f̂‖ by least squares against exp on a training set of log-visibility
 //    directions (sums of 1–8 rotated single-blocker logs, fixed seed), see ExpTables;
 //  - expHybrid(f): for ‖f̂‖ above the table's range, f̂ is halved k times until it fits, OL is
-//    applied, and the result is squared k times with sh::product (Ren §4.3 "hybrid").
+//    applied, and the result is squared k times with sh::product (Ren et al.'s "hybrid").
 #include <array>
 #include <span>
 #include <vector>
@@ -29,8 +30,8 @@
 namespace bounce::sh {
 
 // Which clamped log the tables hold (sh_exp.cpp, fitLambda, has the measurements):
-//  - Windowed (default): −λ c_w, c_w the cap windowed to be ≥ 0. f ≤ 0 everywhere, so exp of ANY
-//    sum of blockers stays in (0, 1] (stable for dense clusters: RMS 0.75 at 64 heavily overlapping
+//  - Windowed (default): −λ c_w, c_w the cap windowed to be ≥ 0. f ≤ 0 everywhere, so the exact
+//    exp of ANY sum of blockers stays in (0, 1] (stable for dense clusters: RMS 0.75 at 64 heavily overlapping
 //    blockers), but one small cap is blurred (its Ṽ is off by up to 37 %, corrected in sl::evaluate by
 //    the Ratio form);
 //  - Raw: λ(g_θ − 1), the unwindowed cap. Accurate for a few blockers (RMS 3e-4 for one, 0.1 for
