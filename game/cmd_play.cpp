@@ -173,6 +173,10 @@ int runPlay(const cli::Args& args) {
             if (session.vlm()) session.vlm()->setOverrides(state.vlm.overrides);
             log::info(vlmControlText(state.vlm));
             break;
+          case KeyEffect::AnimationChanged:
+            if (key == GLFW_KEY_K) cycleSelectedClip(session.registry(), state.character);
+            log::info(animationText(session.registry(), state.character));
+            break;
           case KeyEffect::Handled:
           case KeyEffect::None: break;
         }
@@ -205,6 +209,7 @@ int runPlay(const cli::Args& args) {
         info.flying = camera.flying();
         info.extent = presenter.extent();
         info.vlm = vlmControlText(state.vlm);
+        info.animation = animationText(session.registry(), state.character);
         if (session.vlm()) info.vlmOverflow = vlm::formatOverflow(session.vlm()->overflow());
         overlay->build(info, dt);
       }
