@@ -36,6 +36,12 @@ fs::path assets() {
 }
 fs::path out() { return fs::path(BOUNCE_TEST_OUT) / "skinning"; }
 
+std::string sci(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.3e", v);
+  return b;
+}
+
 std::string meshEntity(const std::string& id, const fs::path& asset, const std::string& extra) {
   return R"({"id": ")" + id + R"(", "mesh": {"asset": ")" + asset.string() + R"("})" + extra + "}";
 }
@@ -88,8 +94,8 @@ TEST(SkinningGpu, CpuEqualsGpuOnEveryVertexOfCesiumManAndFox) {
     }
     EXPECT_LE(worstP, kPositionRelTol);
     EXPECT_LE(worstN, kNormalTol);
-    RecordProperty("worst-position-rel-t" + std::to_string(int(t * 100)), std::to_string(worstP));
-    RecordProperty("worst-normal-t" + std::to_string(int(t * 100)), std::to_string(worstN));
+    RecordProperty("worst-position-rel-t" + std::to_string(int(t * 100)), sci(worstP));
+    RecordProperty("worst-normal-t" + std::to_string(int(t * 100)), sci(worstN));
   }
   EXPECT_GT(checked, 4u * 4000u);  // CesiumMan 3273 + Fox 1728 vertices, every time
 }
@@ -192,7 +198,8 @@ TEST(SkinningGpu, RasterSilhouetteMatchesTheTracersAt256) {
   ASSERT_GT(raster, 2000u);  // the character covers a good part of the view
   const double iou = double(both) / double(either);
   EXPECT_GE(iou, kMinIoU);
-  RecordProperty("silhouette-iou", std::to_string(iou));
+  RecordProperty("silhouette-iou", sci(iou));
+  RecordProperty("silhouette-pixels", std::to_string(raster) + " raster, " + std::to_string(either - both) + " differ");
 }
 
 }  // namespace
