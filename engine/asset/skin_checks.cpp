@@ -41,7 +41,11 @@ void validateSkinsAndAnimations(const CookedAsset& a, const std::string& file) {
       if (n == ancestor) return true;
     return false;
   };
-
+  // The default scene is the joints' common root when the skin names no `skeleton` (glTF allows
+  // joints that are scene roots themselves, e.g. conformance Animation_Skin_06): a joint must hang
+  // under one of its roots, else it is never posed with the mesh.
+  std::vector<char> inScene(a.nodes.size(), 0);
+  for (std::int32_t r : a.rootNodes) inScene[std::size_t(r)] = 1;
   for (std::size_t s = 0; s < a.skins.size(); ++s) {
     const Skin& skin = a.skins[s];
     const std::string where = at("/skins", s);
@@ -54,14 +58,13 @@ void validateSkinsAndAnimations(const CookedAsset& a, const std::string& file) {
       if (!seen.insert(skin.joints[j]).second)
         throwInputError(file, at(where + "/joints", j), "node " + std::to_string(skin.joints[j]) + " listed twice",
                         "each joint once");
-    // One tree: every joint under one root (and under `skeleton` when the file names it).
-    const int root = rootOf(skin.joints[0]);
+    // One tree: every joint under the default scene (and under `skeleton` when the file names it).
     for (std::size_t j = 0; j < skin.joints.size(); ++j) {
-      if (rootOf(skin.joints[j]) != root)
+      if (!inScene[std::size_t(rootOf(skin.joints[j]))])
         throwInputError(file, at(where + "/joints", j),
-                        "joint node " + std::to_string(skin.joints[j]) + " is not in the tree of joint node " +
-                            std::to_string(skin.joints[0]) + " (skeleton is not a tree)",
-                        "every joint a descendant of one common root");
+                        "joint node " + std::to_string(skin.joints[j]) + " is outside the default scene's tree "
+                            "(skeleton is not a tree)",
+                        "every joint a descendant of a scene root");
       if (skin.skeleton >= 0 && !descends(skin.joints[j], skin.skeleton))
         throwInputError(file, at(where + "/joints", j),
                         "joint node " + std::to_string(skin.joints[j]) + " is not a descendant of skeleton node " +

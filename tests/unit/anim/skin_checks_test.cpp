@@ -120,11 +120,10 @@ TEST(SkinChecks, InverseBindMatricesMustBeFiniteAndInvertible) {
 
 TEST(SkinChecks, SkeletonMustBeOneTree) {
   Rig r;
-  r.doc["nodes"].push_back({{"name", "stray"}});  // node 5, a second root
-  r.doc["scenes"][0]["nodes"].push_back(5);
+  r.doc["nodes"].push_back({{"name", "stray"}});  // node 5, a root outside the default scene
   r.doc["skins"][0]["joints"] = {3, 5};
-  EXPECT_EQ(r.cook(), r.file() + ": /skins/0/joints/1: joint node 5 is not in the tree of joint node 3 (skeleton is not a "
-                                 "tree) (expected every joint a descendant of one common root)");
+  EXPECT_EQ(r.cook(), r.file() + ": /skins/0/joints/1: joint node 5 is outside the default scene's tree (skeleton is not "
+                                 "a tree) (expected every joint a descendant of a scene root)");
   Rig s;
   s.doc["skins"][0]["skeleton"] = 4;  // joint 3 is Bone.001's parent, not under it
   EXPECT_EQ(s.cook(), s.file() + ": /skins/0/joints/0: joint node 3 is not a descendant of skeleton node 4 "

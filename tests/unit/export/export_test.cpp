@@ -187,7 +187,10 @@ TEST(Export, TimeMovesADynamicPropByItsScriptedMotion) {
   Box moved;
   moved.grow(truck0.min + motion);
   moved.grow(truck0.max + motion);
-  expectBoxNear(truck1, moved, kPositionTol);
+  // The truck's wheels turn with its own clip (issue 12): a polygonal wheel's lowest and foremost
+  // points move by up to r·(1 − cos(π/n)); 2e-4 m bounds that at the truck's 0.02 scale (observed 8e-6).
+  constexpr float kTurningWheels = 2e-4f;
+  expectBoxNear(truck1, moved, kTurningWheels);
   // And as the systems say (independent expansion at t = 1).
   const Expected want1 = expectedInstances(lvl, 1.0);
   expectBoxNear(truck1, want1.entityBounds.at("prop-truck"), kBoundsRel * want1.bounds.diagonal());
