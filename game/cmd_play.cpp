@@ -240,6 +240,10 @@ int runPlay(const cli::Args& args) {
             log::info(vlmControlText(state.vlm));
             break;
           case KeyEffect::Screenshot: screenshotPending = true; break;
+          case KeyEffect::AnimationChanged:
+            if (key == GLFW_KEY_K) cycleSelectedClip(session.registry(), state.character);
+            log::info(animationText(session.registry(), state.character));
+            break;
           case KeyEffect::Handled:
           case KeyEffect::None: break;
         }
@@ -277,6 +281,7 @@ int runPlay(const cli::Args& args) {
         info.flying = camera.flying();
         info.extent = presenter.extent();
         info.vlm = vlmControlText(state.vlm);
+        info.animation = animationText(session.registry(), state.character);
         if (session.vlm()) info.vlmOverflow = vlm::formatOverflow(session.vlm()->overflow());
         const OverlayActions actions = overlay->build(info, dt);
         if (actions.exposure) state.settings.exposure = *actions.exposure;

@@ -75,10 +75,10 @@ const std::vector<cli::CommandSpec>& commandSpecs() {
       {"level", "FILE.glb|FILE.gltf --out LEVEL.json",
        "write the level that play/capture/profile/accuracy make for a glTF file (asset, framing camera, sun, ground), to edit",
        {{"--out", "FILE", "output level .json (asset paths relative to it)"}}, 1, 1},
-      {"bench", "vlm-grid|vlm-lights|vlm-k|dnrt [options]",
+      {"bench", "vlm-grid|vlm-lights|vlm-k|dnrt|skinning [options]",
        "vlm-grid: time the VLM grid builds (scatter vs gather) on a random scene, one line; vlm-lights / vlm-k: GPU ms\n"
        "              of the VLM passes vs lights per pixel without a grid / vs cell list size K, one line per setting;\n"
-       "              dnrt: the DNRT paper's Tables 6-8 (GPU ms, ratios)",
+       "              dnrt: the DNRT paper's Tables 6-8 (GPU ms, ratios); skinning: vertices/ms, GPU pass vs CPU",
        {device,
         {"--lights", "N", "virtual lights (vlm-grid default 10000; vlm-k default 240)"},
         {"--grid", "G", "vlm-grid: cells per axis (default 50)"},
@@ -95,7 +95,9 @@ const std::vector<cli::CommandSpec>& commandSpecs() {
         {"--levels", "LIST", "dnrt: Table 8 levels, names in content/levels or .json (default cornell-1,cornell-5,cornell-10)"},
         {"--variant-levels", "LIST", "dnrt: levels for the SH/grid/intrusion/mode rows (default cornell-1,cornell-10; none)"},
         {"--rays", "N", "dnrt: bake rays per grid vertex for every field (a square; default each entity's)"},
-        {"--csv", "FILE", "dnrt: also write the rows as CSV"}},
+        {"--csv", "FILE", "dnrt: also write the rows as CSV"},
+        {"--instances", "N", "skinning: CesiumMan copies of the synthetic cage (default 306, ~1M vertices)"},
+        {"--assets", "DIR", "skinning: the shared assets folder (default <source>/../shared/assets)"}},
        1, 1},
   };
   return specs;

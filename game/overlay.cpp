@@ -134,6 +134,7 @@ void layoutPanel(const OverlayInfo& info, const std::vector<float>& frameMs, flo
     if (ImGui::Button("screenshot (F12)")) actions.screenshot = true;
     ImGui::TextDisabled(info.flying ? "flying (R resets the camera)" : "WASD/QE move, right mouse looks, left drags orbit");
     if (!info.vlm.empty()) ImGui::TextUnformatted(info.vlm.c_str());  // per-tag VLM overrides (T, ]/[, H)
+    if (!info.animation.empty()) ImGui::TextUnformatted(info.animation.c_str());  // clip and time (L, K)
   }
   ImGui::End();
 }

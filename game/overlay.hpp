@@ -51,6 +51,7 @@ struct OverlayInfo {
   VkExtent2D extent{0, 0};
   std::string vlm;  // vlmControlText(): the selected VLM tag and its overrides; empty: no VLM
   std::string vlmOverflow;  // vlm::formatOverflow() when the VLM node runs, else empty
+  std::string animation;    // animationText(): the selected character's clip and clip time; empty: none
 };
 
 // What the user changed in the panel this frame (empty optionals: nothing).

@@ -2,6 +2,7 @@
 
 #include <GLFW/glfw3.h>
 
+#include "engine/anim/animator.hpp"
 #include "engine/core/error.hpp"
 #include "engine/core/suggest.hpp"
 
@@ -46,7 +47,7 @@ std::vector<KeyBinding> makeBindings() {
   b.push_back({GLFW_KEY_MINUS, "-", PlayAction::ExposureDown, 0, "exposure -1/4 stop"});
   b.push_back({GLFW_KEY_KP_SUBTRACT, "keypad -", PlayAction::ExposureDown, 0, "exposure -1/4 stop"});
   b.push_back({GLFW_KEY_V, "V", PlayAction::ToggleVsync, 0, "vsync on/off (rebuilds the swapchain)"});
-  b.push_back({GLFW_KEY_P, "P", PlayAction::TogglePause, 0, "pause/resume motion scripts"});
+  b.push_back({GLFW_KEY_P, "P", PlayAction::TogglePause, 0, "pause/resume motion scripts and animation clips"});
   b.push_back({GLFW_KEY_O, "O", PlayAction::ToggleOverlay, 0, "overlay on/off"});
   b.push_back({GLFW_KEY_C, "C", PlayAction::ToggleCulling, 0, "render-graph culling on/off"});
   b.push_back({GLFW_KEY_R, "R", PlayAction::ResetCamera, 0, "reset the camera (and its motion script)"});
@@ -55,6 +56,8 @@ std::vector<KeyBinding> makeBindings() {
   b.push_back({GLFW_KEY_LEFT_BRACKET, "[", PlayAction::VlmIntensityDown, 0, "VLM: selected tag's intensity /1.41"});
   b.push_back({GLFW_KEY_H, "H", PlayAction::VlmNextHue, 0, "VLM: rotate the selected tag's hue by 30 degrees"});
   b.push_back({GLFW_KEY_F12, "F12", PlayAction::Screenshot, 0, "screenshot: PNG + PFM of the next frame (no overlay)"});
+  b.push_back({GLFW_KEY_L, "L", PlayAction::AnimNextCharacter, 0, "animation: select the next animated character"});
+  b.push_back({GLFW_KEY_K, "K", PlayAction::AnimNextClip, 0, "animation: the selected character's next clip"});
   b.push_back({GLFW_KEY_ESCAPE, "Esc", PlayAction::Quit, 0, "quit"});
   return b;
 }
@@ -93,7 +96,8 @@ std::string keyMapSummary(const std::string& indent) {
          indent + "  views: " + views + ", 0 cycles\n" +
          indent + "  +/- exposure, V vsync, P pause, O overlay, C culling, R reset camera, Esc quit\n" +
          indent + "  F12 screenshot (PNG + PFM)\n" +
-         indent + "  VLM: T selects a tag, ]/[ its intensity up/down, H rotates its hue";
+         indent + "  VLM: T selects a tag, ]/[ its intensity up/down, H rotates its hue\n" +
+         indent + "  animation: L selects a character, K plays its next clip";
 }
 
 std::vector<ScriptedKey> parseKeyScript(const std::string& list) {
@@ -161,6 +165,8 @@ KeyEffect applyKey(int key, PlayState& state, scene::EffectSet& effects) {
     case PlayAction::ResetCamera: return KeyEffect::ResetCamera;
     case PlayAction::Screenshot: return KeyEffect::Screenshot;
     case PlayAction::Quit: state.quit = true; return KeyEffect::Handled;
+    case PlayAction::AnimNextCharacter: ++state.character; return KeyEffect::AnimationChanged;
+    case PlayAction::AnimNextClip: return KeyEffect::AnimationChanged;
     case PlayAction::VlmNextTag: {
       VlmControl& v = state.vlm;
       if (v.tags.empty()) return KeyEffect::Handled;
@@ -273,6 +279,31 @@ void CameraDriver::reset() {
   if (startMotion_) registry_.emplaceOrReplace<scene::Motion>(camera_, *startMotion_);
   fly_.reset();
   orbitDistance_ = startOrbitDistance_;
+}
+
+std::vector<ecs::Entity> animatedEntities(ecs::Registry& registry) {
+  std::vector<ecs::Entity> out;
+  registry.view<anim::Animator>().each([&](ecs::Entity e, anim::Animator& a) {
+    if (a.clipCount() > 0) out.push_back(e);
+  });
+  std::sort(out.begin(), out.end(), [](ecs::Entity a, ecs::Entity b) { return a.index() < b.index(); });
+  return out;
+}
+
+void cycleSelectedClip(ecs::Registry& registry, int character) {
+  const auto es = animatedEntities(registry);
+  if (!es.empty()) anim::cycleClip(registry.get<anim::Animator>(es[std::size_t(character) % es.size()]));
+}
+
+std::string animationText(ecs::Registry& registry, int character) {
+  const auto es = animatedEntities(registry);
+  if (es.empty()) return {};
+  const ecs::Entity e = es[std::size_t(character) % es.size()];
+  const anim::Animator& a = registry.get<anim::Animator>(e);
+  const auto* name = registry.tryGet<scene::Name>(e);
+  char time[32];
+  std::snprintf(time, sizeof time, "%.2f s", double(a.clipTime));
+  return (name ? name->id : "entity") + ": " + a.clipName() + " " + time + " (L selects, K next clip)";
 }
 
 }  // namespace bounce::game

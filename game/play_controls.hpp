@@ -35,6 +35,8 @@ enum class PlayAction {
   VlmIntensityDown,  // ÷ kVlmIntensityStep
   VlmNextHue,        // its hue rotated by kVlmHueStepDeg (thesis Fig. 5.5)
   Screenshot,        // F12: the next frame as PNG (display) + PFM (linear HDR), no overlay
+  AnimNextCharacter, // select the next animated entity (engine/anim Animator)
+  AnimNextClip,      // the selected one plays its next clip (after the last: the rest pose)
 };
 
 struct KeyBinding {
@@ -79,13 +81,20 @@ struct PlayState {
   VlmControl vlm;
   render::FrameSettings settings;
   bool vsync = true;
-  bool paused = false;   // motion scripts hold their pose (simulation time stops)
+  bool paused = false;   // motion scripts and animation clips hold their pose (simulation time stops)
+  int character = 0;     // the selected animated entity (in registry order) for AnimNextClip
   bool overlay = true;
   bool quit = false;
 };
 
 // What the caller must do after a key beyond updating PlayState.
-enum class KeyEffect { None, Handled, EffectsChanged, VsyncChanged, ResetCamera, VlmChanged, Screenshot };
+enum class KeyEffect { None, Handled, EffectsChanged, VsyncChanged, ResetCamera, VlmChanged, Screenshot, AnimationChanged };
+
+// The animated entities of a registry in a stable order, the selected one's clip cycled, and the
+// overlay line "fox: Run 0.42 s (L selects, K next clip)"; empty when nothing is animated.
+std::vector<ecs::Entity> animatedEntities(ecs::Registry& registry);
+void cycleSelectedClip(ecs::Registry& registry, int character);
+std::string animationText(ecs::Registry& registry, int character);
 
 // Applies a key press to `state` and `effects`. Unbound keys return None and change nothing.
 KeyEffect applyKey(int key, PlayState& state, scene::EffectSet& effects);

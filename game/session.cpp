@@ -2,6 +2,7 @@
 
 #include <cstdlib>
 
+#include "engine/anim/animator.hpp"
 #include "engine/core/paths.hpp"
 #include "engine/gi/probes/bake.hpp"
 #include "engine/scene/components.hpp"
@@ -40,6 +41,7 @@ gi::probes::ProbeSettings probeSettings(const scene::Level& level) {
 
 Session::Session(gpu::Context& ctx, scene::Level level) : ctx_(ctx), level_(std::move(level)) {
   scene::instantiate(level_, registry_);
+  anim::attachAnimators(registry_, cookCacheDir());  // clips resolved (InputError) before anything is built
   renderer_ = std::make_unique<render::Renderer>(ctx_);
   scene_ = std::make_unique<render::GpuScene>(ctx_, renderer_->pipelines(), renderer_->samplers(), cookCacheDir());
   scene_->load(registry_);
@@ -93,6 +95,7 @@ void Session::setCameraMotion(scene::Motion motion) {
 
 void Session::update(double t) {
   scene::motionSystem(registry_, t);
+  anim::animationSystem(registry_, t);
   scene::transformSystem(registry_);
 }
 

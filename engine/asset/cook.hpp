@@ -22,7 +22,8 @@ namespace bounce::asset {
 // Bump when cook() output changes for the same input (it is part of every cache key and stored in
 // every cooked file, so old cache entries are re-cooked, never trusted).
 // 2: reads extras.bounce_vlm into Node::vlm.
-inline constexpr std::uint32_t kCookerVersion = 2;
+// 3: JOINTS_1/WEIGHTS_1, skin weights checked and renormalised, skins and animations validated.
+inline constexpr std::uint32_t kCookerVersion = 3;
 
 struct CookOptions {
   // false: images are checked (header read) but not decoded; Texture::pixels stays empty.

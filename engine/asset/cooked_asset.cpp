@@ -50,6 +50,11 @@ void validate(const CookedAsset& a, const std::string& file) {
       sized("uv0", prim.uv0.size(), true);
       sized("joints", prim.joints.size(), true);
       sized("weights", prim.weights.size(), true);
+      sized("joints1", prim.joints1.size(), true);
+      sized("weights1", prim.weights1.size(), true);
+      if (prim.joints.size() != prim.weights.size() || prim.joints1.size() != prim.weights1.size() ||
+          (!prim.joints1.empty() && prim.joints.empty()))
+        throwInputError(file, where + "/joints", "joint and weight sets do not pair up", "JOINTS_n with WEIGHTS_n, set 1 only with set 0");
       for (std::size_t t = 0; t < prim.targets.size(); ++t) {
         sized(("targets/" + std::to_string(t) + "/positions").c_str(), prim.targets[t].positions.size(), true);
         sized(("targets/" + std::to_string(t) + "/normals").c_str(), prim.targets[t].normals.size(), true);
@@ -128,6 +133,7 @@ void validate(const CookedAsset& a, const std::string& file) {
       need(at(at("animations", i) + "/channels", c) + "/node", an.channels[c].node, a.nodes.size());
     }
   }
+  validateSkinsAndAnimations(a, file);
 }
 
 }  // namespace bounce::asset

@@ -32,14 +32,16 @@ struct MorphTarget {
 };
 
 // One indexed triangle list. positions/normals always present and of equal length; uv0, joints,
-// weights either empty or of the same length; indices.size() % 3 == 0, every index < vertex count.
+// weights, joints1, weights1 either empty or of the same length (joints1 only with joints); indices.size() % 3 == 0, every index < vertex count.
 struct Primitive {
   std::vector<glm::vec3> positions;
   std::vector<glm::vec3> normals;  // unit length; generated (area-weighted) when the file has none
   std::vector<glm::vec2> uv0;      // TEXCOORD_0
   std::vector<std::uint32_t> indices;
   std::vector<glm::u16vec4> joints;  // JOINTS_0, kept for skinning
-  std::vector<glm::vec4> weights;    // WEIGHTS_0
+  std::vector<glm::vec4> weights;    // WEIGHTS_0; with weights1 non-negative and summing to 1 (renormalised at cook)
+  std::vector<glm::u16vec4> joints1;  // JOINTS_1: influences 5-8 (empty, or as many as joints)
+  std::vector<glm::vec4> weights1;    // WEIGHTS_1
   std::vector<MorphTarget> targets;
   std::int32_t material = -1;  // index into CookedAsset::materials, -1 = default material
   // Triangles the cook removed as repairs (zero-area or non-finite; engine/asset/mesh_repair.cpp).
@@ -208,7 +210,20 @@ struct CookedAsset {
 };
 
 // Checks every cross reference, vector length and index of `a`; throws InputError naming `file`
-// and the first bad place ("meshes/2/primitives/0/indices") otherwise.
+// and the first bad place ("meshes/2/primitives/0/indices") otherwise. Ends with
+// validateSkinsAndAnimations().
 void validate(const CookedAsset& a, const std::string& file);
+
+// Joints per skin the GPU skinning pass accepts: one skin's joint matrices fit the smallest
+// maxUniformBufferRange Vulkan guarantees (16 KiB = 256 × mat4), as Filament's 256 per renderable.
+inline constexpr std::size_t kMaxSkinJoints = 256;
+// |det| below this makes an inverse bind matrix "not invertible" (a joint scaled by 1e-8 per axis).
+inline constexpr float kMinInverseBindDeterminant = 1e-24f;
+
+// Skins and animations (engine/asset/skin_checks.cpp): joints in one tree and ≤ kMaxSkinJoints,
+// finite invertible inverse bind matrices, influencing joint indices inside the skin, finite
+// strictly increasing key times, finite outputs, value counts matching each channel's path
+// (3, 4, or the mesh's morph target count), `weights` channels only on meshes with targets.
+void validateSkinsAndAnimations(const CookedAsset& a, const std::string& file);
 
 }  // namespace bounce::asset

@@ -127,7 +127,7 @@ class Reader {
 template <class S> void io(S& s, Bounds& b) { s(b.min); s(b.max); }
 template <class S> void io(S& s, MorphTarget& t) { s(t.positions); s(t.normals); }
 template <class S> void io(S& s, Primitive& p) {
-  s(p.positions); s(p.normals); s(p.uv0); s(p.indices); s(p.joints); s(p.weights); s(p.targets); s(p.material); s(p.droppedTriangles);
+  s(p.positions); s(p.normals); s(p.uv0); s(p.indices); s(p.joints); s(p.weights); s(p.joints1); s(p.weights1); s(p.targets); s(p.material); s(p.droppedTriangles);
 }
 template <class S> void io(S& s, Mesh& m) { s(m.name); s(m.primitives); s(m.morphWeights); io(s, m.bounds); }
 template <class S> void io(S& s, TextureRef& r) { s(r.texture); s(r.uvSet); }

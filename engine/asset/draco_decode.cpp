@@ -15,7 +15,8 @@ namespace bounce::asset::detail {
 
 namespace {
 
-constexpr const char* kKnownSemantics[] = {"POSITION", "NORMAL", "TEXCOORD_0", "JOINTS_0", "WEIGHTS_0"};
+constexpr const char* kKnownSemantics[] = {"POSITION", "NORMAL", "TEXCOORD_0", "JOINTS_0", "WEIGHTS_0",
+                                           "JOINTS_1", "WEIGHTS_1"};
 
 int expectedComponents(const std::string& semantic) {
   if (semantic == "POSITION" || semantic == "NORMAL") return 3;
@@ -71,7 +72,7 @@ DracoMesh decodeDraco(const ImportContext& ctx, const tinygltf::Value& extension
       ctx.fail(at, "Draco attribute has " + std::to_string(int(pa->num_components())) + " components", "1 to 4");
     DracoAttribute a;
     a.components = want;
-    const bool joints = std::string(semantic) == "JOINTS_0";
+    const bool joints = std::string(semantic).rfind("JOINTS_", 0) == 0;
     if (joints) a.uints.resize(out.vertexCount * std::size_t(want), 0);
     else a.values.resize(out.vertexCount * std::size_t(want), 0.0f);
     for (draco::PointIndex p(0); p < mesh->num_points(); ++p) {

@@ -159,8 +159,8 @@ namespace {
 
 struct Attributes {
   std::size_t vertexCount = 0;
-  std::vector<float> position, normal, uv, weights;
-  std::vector<std::uint32_t> joints, indices;
+  std::vector<float> position, normal, uv, weights, weights1;
+  std::vector<std::uint32_t> joints, joints1, indices;
   bool indexed = false;
 };
 
@@ -198,6 +198,14 @@ Attributes readAccessors(const ImportContext& ctx, const tinygltf::Primitive& p,
     a.weights = readFloats(ctx, n, at + "WEIGHTS_0", {TINYGLTF_TYPE_VEC4}, &info);
     sameCount("WEIGHTS_0", info);
   }
+  if (int n = attribute(p, "JOINTS_1"); n != -2) {
+    a.joints1 = readUints(ctx, n, at + "JOINTS_1", {TINYGLTF_TYPE_VEC4}, &info);
+    sameCount("JOINTS_1", info);
+  }
+  if (int n = attribute(p, "WEIGHTS_1"); n != -2) {
+    a.weights1 = readFloats(ctx, n, at + "WEIGHTS_1", {TINYGLTF_TYPE_VEC4}, &info);
+    sameCount("WEIGHTS_1", info);
+  }
   if (p.indices >= 0 || p.indices < -1) {
     a.indices = readUints(ctx, p.indices, where + "/indices", {TINYGLTF_TYPE_SCALAR});
     a.indexed = true;
@@ -221,6 +229,8 @@ Attributes readDraco(const ImportContext& ctx, const tinygltf::Value& ext, const
   if (auto* p = take("TEXCOORD_0")) a.uv = std::move(p->values);
   if (auto* p = take("JOINTS_0")) a.joints = std::move(p->uints);
   if (auto* p = take("WEIGHTS_0")) a.weights = std::move(p->values);
+  if (auto* p = take("JOINTS_1")) a.joints1 = std::move(p->uints);
+  if (auto* p = take("WEIGHTS_1")) a.weights1 = std::move(p->values);
   return a;
 }
 
@@ -231,6 +241,41 @@ std::vector<V> pack(const std::vector<float>& f) {
   for (std::size_t i = 0; i < out.size(); ++i)
     for (int k = 0; k < n; ++k) out[i][k] = f[i * n + std::size_t(k)];
   return out;
+}
+
+// Skin influences (glTF 2.0 §3.7.3.3): JOINTS_n and WEIGHTS_n come in pairs, set 1 only with set 0;
+// weights are finite and non-negative, and not all zero on a vertex. A sum away from 1 is
+// renormalised (the spec lets a loader do so) with one warning per primitive.
+void checkSkinWeights(const ImportContext& ctx, const std::string& where, Primitive& p) {
+  const std::string at = where + "/attributes/";
+  if (p.joints.empty() != p.weights.empty())
+    ctx.fail(at + (p.joints.empty() ? "WEIGHTS_0" : "JOINTS_0"), "JOINTS_0 and WEIGHTS_0 not given together", "both or neither");
+  if (p.joints1.empty() != p.weights1.empty())
+    ctx.fail(at + (p.joints1.empty() ? "WEIGHTS_1" : "JOINTS_1"), "JOINTS_1 and WEIGHTS_1 not given together", "both or neither");
+  if (!p.joints1.empty() && p.joints.empty()) ctx.fail(at + "JOINTS_1", "set 1 without set 0", "JOINTS_0/WEIGHTS_0 as well");
+  // The spec's tolerance on the sum is 2e-7 per weight times the weight count; looser here so that
+  // 8-bit and 16-bit normalised weights (which cannot hit 1 exactly) pass without a warning.
+  constexpr float kSumTolerance = 2e-3f;
+  std::size_t renormalised = 0;
+  for (std::size_t v = 0; v < p.weights.size(); ++v) {
+    glm::vec4 w0 = p.weights[v], w1 = p.weights1.empty() ? glm::vec4(0.0f) : p.weights1[v];
+    float sum = 0.0f;
+    for (int k = 0; k < 4; ++k) {
+      for (float w : {w0[k], w1[k]}) {
+        if (!std::isfinite(w)) ctx.fail(at + "WEIGHTS_0", "vertex " + std::to_string(v) + " has a NaN/Inf weight", "finite weights");
+        if (w < 0.0f) ctx.fail(at + "WEIGHTS_0", "vertex " + std::to_string(v) + " has a negative weight " + std::to_string(w),
+                               "weights >= 0");
+        sum += w;
+      }
+    }
+    if (!(sum > 0.0f)) ctx.fail(at + "WEIGHTS_0", "vertex " + std::to_string(v) + " has all weights zero", "weights summing to 1");
+    if (std::fabs(sum - 1.0f) > kSumTolerance) ++renormalised;
+    p.weights[v] = w0 / sum;
+    if (!p.weights1.empty()) p.weights1[v] = w1 / sum;
+  }
+  if (renormalised)
+    log::warn(ctx.file + ": " + where + ": renormalised the skin weights of " + std::to_string(renormalised) +
+              " vertices (their sum was not 1)");
 }
 
 // Returns false when the primitive is skipped (points or lines).
@@ -267,11 +312,17 @@ bool importPrimitive(const ImportContext& ctx, const tinygltf::Primitive& src, c
   out.normals = pack<glm::vec3>(a.normal);
   out.uv0 = pack<glm::vec2>(a.uv);
   out.weights = pack<glm::vec4>(a.weights);
-  out.joints.resize(a.joints.size() / 4);
-  for (std::size_t i = 0; i < a.joints.size(); ++i) {
-    if (a.joints[i] > 0xFFFF) ctx.fail(where + "/attributes/JOINTS_0", "joint index " + std::to_string(a.joints[i]), "≤ 65535");
-    out.joints[i / 4][int(i % 4)] = std::uint16_t(a.joints[i]);
-  }
+  out.weights1 = pack<glm::vec4>(a.weights1);
+  auto joints = [&](const std::vector<std::uint32_t>& in, std::vector<glm::u16vec4>& dst, const char* name) {
+    dst.resize(in.size() / 4);
+    for (std::size_t i = 0; i < in.size(); ++i) {
+      if (in[i] > 0xFFFF) ctx.fail(where + "/attributes/" + name, "joint index " + std::to_string(in[i]), "≤ 65535");
+      dst[i / 4][int(i % 4)] = std::uint16_t(in[i]);
+    }
+  };
+  joints(a.joints, out.joints, "JOINTS_0");
+  joints(a.joints1, out.joints1, "JOINTS_1");
+  checkSkinWeights(ctx, where, out);
   for (std::size_t t = 0; t < src.targets.size(); ++t) {
     MorphTarget mt;
     const std::string tw = ptr(where + "/targets", t);

@@ -86,6 +86,8 @@ RepairCounts repairTriangles(Primitive& p) {
   keepVertices(p.uv0, newIndex, next);
   keepVertices(p.joints, newIndex, next);
   keepVertices(p.weights, newIndex, next);
+  keepVertices(p.joints1, newIndex, next);
+  keepVertices(p.weights1, newIndex, next);
   for (auto& t : p.targets) {
     keepVertices(t.positions, newIndex, next);
     keepVertices(t.normals, newIndex, next);

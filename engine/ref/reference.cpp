@@ -1,5 +1,7 @@
 #include "engine/ref/reference.hpp"
 
+#include "engine/anim/animator.hpp"
+
 #include <nlohmann/json.hpp>
 
 #include "engine/core/error.hpp"
@@ -72,6 +74,8 @@ ReferenceResult renderReference(const ReferenceRequest& request) {
   ReferenceResult result;
   result.timeSeconds = double(request.frame) * dt;
   scene::motionSystem(registry, result.timeSeconds);
+  anim::attachAnimators(registry, request.cookCache);
+  anim::animationSystem(registry, result.timeSeconds);  // the posed meshes (engine/anim), as the renderer draws them
   scene::transformSystem(registry);
   ReferenceAssets assets;
   assets.load(registry, request.cookCache);

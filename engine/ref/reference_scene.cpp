@@ -4,6 +4,8 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 
+#include "engine/anim/instances.hpp"
+#include "engine/anim/skinning.hpp"
 #include "engine/core/error.hpp"
 #include "engine/scene/asset_instances.hpp"
 #include "engine/scene/systems.hpp"
@@ -66,16 +68,27 @@ SceneDesc extractScene(ecs::Registry& registry, const scene::Level& level, const
         auto texture = [&](const asset::TextureRef& t) {
           return t.texture >= 0 && std::size_t(t.texture) < a.cpu.textures.size() ? int(a.firstTexture) + t.texture : -1;
         };
-        scene::forEachInstancedNode(a.cpu, ref, world.matrix, [&](int n, const glm::mat4& m) {
+        const anim::Pose* pose = registry.tryGet<anim::Pose>(e);
+        const glm::mat4 skinFrame = pose ? anim::skinFrame(a.cpu, ref, world.matrix, *pose) : world.matrix;
+        scene::forEachInstancedNode(a.cpu, ref, world.matrix, [&](int n, const glm::mat4& nodeWorld) {
           const asset::Node& node = a.cpu.nodes[n];
+          glm::mat4 m = nodeWorld;
           if (node.light >= 0) {
             const asset::Light& L = a.cpu.lights[node.light];
             out.lights.push_back(makeLight(fromAsset(L.type), L.color, L.intensity, L.range, L.innerConeAngle,
-                                           L.outerConeAngle, m));
+                                           L.outerConeAngle, nodeWorld));
           }
           if (node.mesh < 0 || node.vlm.present) return;  // extras.bounce_vlm: virtual light, not real geometry
-          const glm::mat3 normalMatrix = glm::inverseTranspose(glm::mat3(m));
-          for (const asset::Primitive& p : a.cpu.meshes[node.mesh].primitives) {
+          const bool deformed = pose && anim::isDeformed(a.cpu, n);
+          std::vector<glm::vec3> posedP, posedN;
+          for (std::size_t pi = 0; pi < a.cpu.meshes[node.mesh].primitives.size(); ++pi) {
+            const asset::Primitive& p = a.cpu.meshes[node.mesh].primitives[pi];
+            // The same CPU evaluation the renderer draws (engine/anim): morphed, then skinned into
+            // asset space and placed by the skin frame.
+            if (deformed) m = anim::posePrimitive(a.cpu, n, pi, pose, posedP, posedN) ? skinFrame : nodeWorld;
+            const std::vector<glm::vec3>& srcP = deformed ? posedP : p.positions;
+            const std::vector<glm::vec3>& srcN = deformed ? posedN : p.normals;
+            const glm::mat3 normalMatrix = glm::inverseTranspose(glm::mat3(m));
             RefMaterial mat;  // the default material (white, no emission) when the primitive has none
             if (p.material >= 0 && std::size_t(p.material) < a.cpu.materials.size()) {
               const asset::Material& src = a.cpu.materials[p.material];
@@ -92,10 +105,10 @@ SceneDesc extractScene(ecs::Registry& registry, const scene::Level& level, const
             mesh.positions.reserve(p.positions.size());
             mesh.normals.reserve(p.positions.size());
             for (std::size_t v = 0; v < p.positions.size(); ++v) {
-              mesh.positions.push_back(glm::vec3(m * glm::vec4(p.positions[v], 1.0f)));
+              mesh.positions.push_back(glm::vec3(m * glm::vec4(srcP[v], 1.0f)));
               // Not renormalised: mesh.vert passes normalMatrix·n on and the fragment normalises
               // after interpolation, so the interpolation weights match.
-              mesh.normals.push_back(normalMatrix * p.normals[v]);
+              mesh.normals.push_back(normalMatrix * srcN[v]);
             }
             if (p.uv0.size() == p.positions.size()) mesh.uvs = p.uv0;
             else if (!p.uv0.empty()) {  // GpuScene zero-fills missing UVs; do the same
@@ -105,7 +118,7 @@ SceneDesc extractScene(ecs::Registry& registry, const scene::Level& level, const
             mesh.indices = p.indices;
             out.meshes.push_back(std::move(mesh));
           }
-        });
+        }, pose ? &pose->local : nullptr);
       });
 
   registry.view<scene::Light, scene::WorldTransform>().each(

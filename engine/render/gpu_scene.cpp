@@ -4,6 +4,9 @@
 #include <glm/gtc/matrix_inverse.hpp>
 #include <glm/gtc/quaternion.hpp>
 
+#include "engine/anim/instances.hpp"
+#include "engine/anim/pose.hpp"
+#include "engine/anim/skinning.hpp"
 #include "engine/asset/cook.hpp"
 #include "engine/core/log.hpp"
 #include "engine/gpu/commands.hpp"
@@ -90,8 +93,10 @@ const GpuScene::AssetGpu& GpuScene::upload(const scene::MeshRef& ref) {
                                       gpu::MemoryUsage::GpuOnly, mesh.name + ".indices"});
       gpu::upload(ctx_, m->indices, gpu::bytesOf(indices));
     }
+    m->vertexCount = static_cast<std::uint32_t>(vertices.size());
     a->meshes.push_back(std::move(m));
   }
+  uploadSkinVertices(*a);
 
   for (const auto& t : a->cpu.textures) {
     gpu::ImageDesc d;
@@ -131,6 +136,48 @@ const GpuScene::AssetGpu& GpuScene::upload(const scene::MeshRef& ref) {
   return stored;
 }
 
+void GpuScene::uploadSkinVertices(AssetGpu& a) {
+  for (std::size_t n = 0; n < a.cpu.nodes.size(); ++n) {
+    const asset::Node& node = a.cpu.nodes[n];
+    if (node.mesh < 0 || !anim::isSkinned(a.cpu, int(n))) continue;
+    MeshGpu& m = *a.meshes[std::size_t(node.mesh)];
+    const asset::Mesh& mesh = a.cpu.meshes[std::size_t(node.mesh)];
+    if (m.skinVertices || m.vertexCount == 0) continue;
+    bool gpu = true;  // every primitive weighted and without morph targets (those are posed on the CPU)
+    for (const auto& p : mesh.primitives) gpu = gpu && !p.weights.empty() && p.targets.empty();
+    if (!gpu) continue;
+    std::vector<SkinVertex> vs;
+    vs.reserve(m.vertexCount);
+    for (const auto& p : mesh.primitives)
+      for (std::size_t v = 0; v < p.positions.size(); ++v) {
+        SkinVertex s{};
+        const glm::vec2 uv = v < p.uv0.size() ? p.uv0[v] : glm::vec2(0.0f);
+        const glm::u16vec4 j1 = p.joints1.empty() ? glm::u16vec4(0) : p.joints1[v];
+        const glm::vec4 w1 = p.weights1.empty() ? glm::vec4(0.0f) : p.weights1[v];
+        const glm::u16vec4 j0 = p.joints[v];
+        for (int k = 0; k < 3; ++k) {
+          s.positionU[k] = p.positions[v][k];
+          s.normalV[k] = p.normals[v][k];
+        }
+        s.positionU[3] = uv.x;
+        s.normalV[3] = uv.y;
+        s.joints[0] = std::uint32_t(j0.x) | std::uint32_t(j0.y) << 16;
+        s.joints[1] = std::uint32_t(j0.z) | std::uint32_t(j0.w) << 16;
+        s.joints[2] = std::uint32_t(j1.x) | std::uint32_t(j1.y) << 16;
+        s.joints[3] = std::uint32_t(j1.z) | std::uint32_t(j1.w) << 16;
+        for (int k = 0; k < 4; ++k) {
+          s.weights0[k] = p.weights[v][k];
+          s.weights1[k] = w1[k];
+        }
+        vs.push_back(s);
+      }
+    m.skinVertices = gpu::Buffer(ctx_, {vs.size() * sizeof(SkinVertex),
+                                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                        gpu::MemoryUsage::GpuOnly, mesh.name + ".skin"});
+    gpu::upload(ctx_, m.skinVertices, gpu::bytesOf(vs));
+  }
+}
+
 void GpuScene::extract(ecs::Registry& registry, const scene::Level& level, const ExtractOptions& options,
                        RenderWorld& w) const {
   w = RenderWorld{};
@@ -145,24 +192,65 @@ void GpuScene::extract(ecs::Registry& registry, const scene::Level& level, const
         const AssetGpu& a = *assets_.at(key(ref));
         const auto* over = registry.tryGet<scene::MaterialOverride>(e);
         const bool dynamic = registry.has<scene::Dynamic>(e);
-        scene::forEachInstancedNode(a.cpu, ref, world.matrix, [&](int n, const glm::mat4& m) {
+        const anim::Pose* pose = registry.tryGet<anim::Pose>(e);
+        const glm::mat4 skinFrame = pose ? anim::skinFrame(a.cpu, ref, world.matrix, *pose) : world.matrix;
+        scene::forEachInstancedNode(a.cpu, ref, world.matrix, [&](int n, const glm::mat4& nodeWorld) {
           const asset::Node& node = a.cpu.nodes[n];
           if (node.light >= 0) {
             const asset::Light& L = a.cpu.lights[node.light];
             w.lights.push_back(makeLight(static_cast<LightType>(L.type), L.color, L.intensity, L.range,
-                                         L.innerConeAngle, L.outerConeAngle, true, m));
+                                         L.innerConeAngle, L.outerConeAngle, true, nodeWorld));
           }
           if (node.mesh < 0 || node.vlm.present) return;  // extras.bounce_vlm: virtual light, not real geometry
           const auto& meshCpu = a.cpu.meshes[node.mesh];
-          for (int i = 0; i < 8; ++i) {
-            glm::vec3 c{i & 1 ? meshCpu.bounds.max.x : meshCpu.bounds.min.x,
-                        i & 2 ? meshCpu.bounds.max.y : meshCpu.bounds.min.y,
-                        i & 4 ? meshCpu.bounds.max.z : meshCpu.bounds.min.z};
-            glm::vec3 p = glm::vec3(m * glm::vec4(c, 1.0f));
-            w.sceneMin = glm::min(w.sceneMin, p);
-            w.sceneMax = glm::max(w.sceneMax, p);
-          }
+          // A deformed mesh with a pose: its vertices as posed (engine/anim), skinned ones placed by
+          // the skin frame (the spec ignores the skinned node's own transform).
+          std::uint32_t posedBase = DrawItem::kNotPosed;
+          glm::mat4 m = nodeWorld;
           const MeshGpu& gpuMesh = *a.meshes[node.mesh];
+          if (pose && options.gpuSkinning && gpuMesh.skinVertices && anim::isSkinned(a.cpu, n)) {
+            // Skinned by the GPU pass: reserve its vertices, queue the job with this instance's joints.
+            posedBase = static_cast<std::uint32_t>(w.posedVertices.size() / 8);
+            const auto& joints = pose->joints[std::size_t(node.skin)];
+            w.skinJobs.push_back({&gpuMesh, gpuMesh.vertexCount, static_cast<std::uint32_t>(w.jointMatrices.size()), posedBase});
+            w.jointMatrices.insert(w.jointMatrices.end(), joints.begin(), joints.end());
+            w.posedVertices.resize(w.posedVertices.size() + std::size_t(gpuMesh.vertexCount) * 8, 0.0f);
+            m = skinFrame;
+            // Bounds: every skinned vertex is a convex combination of J_i·v, so the union of the bind
+            // bounds under every joint matrix contains it.
+            for (const glm::mat4& j : joints)
+              for (int i = 0; i < 8; ++i) {
+                glm::vec3 c{i & 1 ? meshCpu.bounds.max.x : meshCpu.bounds.min.x,
+                            i & 2 ? meshCpu.bounds.max.y : meshCpu.bounds.min.y,
+                            i & 4 ? meshCpu.bounds.max.z : meshCpu.bounds.min.z};
+                glm::vec3 p = glm::vec3(m * (j * glm::vec4(c, 1.0f)));
+                w.sceneMin = glm::min(w.sceneMin, p);
+                w.sceneMax = glm::max(w.sceneMax, p);
+              }
+          } else if (pose && anim::isDeformed(a.cpu, n)) {
+            posedBase = static_cast<std::uint32_t>(w.posedVertices.size() / 8);
+            std::vector<glm::vec3> pos, nrm;
+            for (std::size_t pi = 0; pi < meshCpu.primitives.size(); ++pi) {
+              const asset::Primitive& prim = meshCpu.primitives[pi];
+              if (anim::posePrimitive(a.cpu, n, pi, pose, pos, nrm)) m = skinFrame;
+              for (std::size_t v = 0; v < pos.size(); ++v) {
+                const glm::vec2 uv = v < prim.uv0.size() ? prim.uv0[v] : glm::vec2(0.0f);
+                w.posedVertices.insert(w.posedVertices.end(), {pos[v].x, pos[v].y, pos[v].z, nrm[v].x, nrm[v].y, nrm[v].z, uv.x, uv.y});
+                const glm::vec3 p = glm::vec3(m * glm::vec4(pos[v], 1.0f));
+                w.sceneMin = glm::min(w.sceneMin, p);
+                w.sceneMax = glm::max(w.sceneMax, p);
+              }
+            }
+          } else {
+            for (int i = 0; i < 8; ++i) {
+              glm::vec3 c{i & 1 ? meshCpu.bounds.max.x : meshCpu.bounds.min.x,
+                          i & 2 ? meshCpu.bounds.max.y : meshCpu.bounds.min.y,
+                          i & 4 ? meshCpu.bounds.max.z : meshCpu.bounds.min.z};
+              glm::vec3 p = glm::vec3(m * glm::vec4(c, 1.0f));
+              w.sceneMin = glm::min(w.sceneMin, p);
+              w.sceneMax = glm::max(w.sceneMax, p);
+            }
+          }
           for (std::uint32_t p = 0; p < gpuMesh.primitives.size(); ++p) {
             const auto& prim = gpuMesh.primitives[p];
             InstanceGpu inst{};
@@ -183,10 +271,10 @@ void GpuScene::extract(ecs::Registry& registry, const scene::Level& level, const
             inst.emissive = glm::vec4(emissive, emissiveTex ? 1.0f : 0.0f);
             inst.ids = glm::uvec4(e.index(), 0, 0, 0);
             w.draws.push_back({&gpuMesh, p, static_cast<std::uint32_t>(w.instances.size()),
-                               a.materialSets[prim.material], e.index(), dynamic});
+                               a.materialSets[prim.material], e.index(), dynamic, posedBase});
             w.instances.push_back(inst);
           }
-        });
+        }, pose ? &pose->local : nullptr);
       });
   if (w.draws.empty()) w.sceneMin = w.sceneMax = glm::vec3(0.0f);
 

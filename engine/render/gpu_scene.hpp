@@ -22,6 +22,9 @@ namespace bounce::render {
 struct ExtractOptions {
   VkExtent2D extent{1, 1};
   std::uint32_t shadowResolution = 1024;
+  // Skinned meshes: skinned by the GPU pass (true) or posed on the CPU and uploaded (false; the CPU
+  // face of the same evaluation, for comparison and for meshes the pass does not take).
+  bool gpuSkinning = true;
 };
 
 class GpuScene {
@@ -49,6 +52,7 @@ class GpuScene {
     std::vector<VkDescriptorSet> materialSets;  // one per material, +1 default at the end
   };
   const AssetGpu& upload(const scene::MeshRef& ref);
+  void uploadSkinVertices(AssetGpu& a);  // MeshGpu::skinVertices of every GPU-skinnable mesh
   static std::string key(const scene::MeshRef& ref);
 
   gpu::Context& ctx_;

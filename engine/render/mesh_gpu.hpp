@@ -18,6 +18,11 @@ struct MeshGpu {
   gpu::Buffer vertices;
   gpu::Buffer indices;
   std::vector<Primitive> primitives;
+  // A mesh skinned on the GPU (used by a skinned node; every primitive weighted, no morph targets):
+  // its bind-pose vertices with joints and weights (SkinVertex, the skinning pass's input), in the
+  // same order as `vertices`. Empty otherwise (deformed meshes are then posed on the CPU).
+  gpu::Buffer skinVertices;
+  std::uint32_t vertexCount = 0;
 };
 
 }  // namespace bounce::render

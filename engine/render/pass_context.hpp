@@ -24,12 +24,16 @@ struct PassContext {
   gpu::Buffer* lights = nullptr;              // LightGpu[]
   std::uint32_t lightCount = 0;               // lights the shaders loop over (0 without `direct`)
   gpu::Buffer* shadowMatrices = nullptr;      // mat4 per atlas layer
+  gpu::Buffer* posedVertices = nullptr;       // RenderWorld::posedVertices (DrawItem::posedBase)
+  gpu::Buffer* jointMatrices = nullptr;       // RenderWorld::jointMatrices (SkinJob::jointBase)
   gpu::Image* dummyShadowAtlas = nullptr;     // 1×1 depth array bound when there is no shadow pass
   int debugView = 0;                          // 0 = lit; see shaders/passes/debug_view.frag
   float exposure = 1.0f;
 
   gpu::Frame& frame() const { return frames->current(); }
   VkCommandBuffer cmd(rg::CommandContext& c) const { return static_cast<VkCommandContext&>(c).cmd; }
+  // Binds a draw's vertex buffer (its posed vertices when deformed) and index buffer.
+  void bindGeometry(VkCommandBuffer cmd, const DrawItem& draw) const;
   // A view that lives until this frame's slot is reused (views of one layer, array views).
   VkImageView frameView(gpu::Image& image, VkImageViewType type, std::uint32_t baseLayer, std::uint32_t layers) const;
 };

@@ -25,7 +25,8 @@ Pipelines::Pipelines(gpu::Context& ctx)
                   {{0, kSampled}, {1, kSampled}, {2, kSampled}, {3, kSampled}, {4, kSampled}, {5, kStorage},
                    {6, kStorage}},
                   "debug-view"),
-      tonemapLayout(ctx, {{0, kSampled}}, "tonemap") {
+      tonemapLayout(ctx, {{0, kSampled}}, "tonemap"),
+      skinningLayout(ctx, {{0, kStorage}, {1, kStorage}, {2, kStorage}}, "skinning") {
   gbufferLayout = gpu::PipelineLayout(ctx, {frameLayout.handle(), materialLayout.handle()}, {push(4)}, "gbuffer");
   shadowLayout = gpu::PipelineLayout(ctx, {frameLayout.handle()}, {push(8)}, "shadow");
   lightingPipelineLayout =
@@ -88,6 +89,10 @@ Pipelines::Pipelines(gpu::Context& ctx)
   f.fragment = &tonemapFrag;
   f.name = "tonemap";
   tonemap = gpu::createGraphicsPipeline(ctx, tonemapPipelineLayout, f);
+
+  skinningPipelineLayout = gpu::PipelineLayout(ctx, {skinningLayout.handle()}, {push(12)}, "skinning");
+  gpu::ShaderModule skinningComp(ctx, "skinning/skinning.comp.spv");
+  skinning = gpu::createComputePipeline(ctx, skinningPipelineLayout, skinningComp, "skinning");
 }
 
 }  // namespace bounce::render

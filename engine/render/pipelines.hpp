@@ -1,6 +1,8 @@
 #pragma once
 // The baseline passes' pipelines and descriptor layouts, built once per renderer from the SPIR-V
 // the build compiled (shaders/passes/*). Set 0 is shared by every scene pass (frame.glsl).
+#include <cstdint>
+
 #include "engine/gpu/descriptors.hpp"
 #include "engine/gpu/pipeline.hpp"
 
@@ -14,6 +16,19 @@ struct MeshVertex {
 };
 static_assert(sizeof(MeshVertex) == 32);
 
+// A skinned mesh's vertex as the skinning compute pass reads it (shaders/skinning/skinning.comp):
+// position + u, normal + v, 8 joint indices as u16 pairs, 8 weights.
+struct SkinVertex {
+  float positionU[4];
+  float normalV[4];
+  std::uint32_t joints[4];  // x = j0 | j1 << 16, y = j2 | j3 << 16, z = j4 | j5 << 16, w = j6 | j7 << 16
+  float weights0[4];
+  float weights1[4];
+};
+static_assert(sizeof(SkinVertex) == 80);
+// The skinning pass's workgroup size (local_size_x in skinning.comp).
+inline constexpr std::uint32_t kSkinningGroupSize = 64;
+
 struct Pipelines {
   explicit Pipelines(gpu::Context& ctx);
 
@@ -22,10 +37,13 @@ struct Pipelines {
   gpu::DescriptorSetLayout lightingLayout;  // gbuffer ×4, shadow atlas, shadow matrices, lights
   gpu::DescriptorSetLayout debugLayout;     // albedo, normal, entity, depth, atlas, matrices, lights
   gpu::DescriptorSetLayout tonemapLayout;   // 0 HDR image
+  gpu::DescriptorSetLayout skinningLayout;  // 0 skin vertices, 1 joint matrices, 2 posed vertices (SSBOs)
 
   gpu::PipelineLayout gbufferLayout, shadowLayout, lightingPipelineLayout, debugPipelineLayout,
       tonemapPipelineLayout;
   gpu::Pipeline gbuffer, shadow, lighting, debug, tonemap;
+  gpu::PipelineLayout skinningPipelineLayout;
+  gpu::Pipeline skinning;  // shaders/skinning/skinning.comp
 };
 
 }  // namespace bounce::render

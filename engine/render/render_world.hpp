@@ -20,6 +20,20 @@ struct DrawItem {
   VkDescriptorSet material = VK_NULL_HANDLE;  // G-buffer set 1: base colour + emissive textures
   std::uint32_t entity = 0;        // entity index (per-object profiling, id buffer)
   bool dynamic = false;
+  // A deformed (skinned or morphed) mesh: its vertices this frame start at vertex `posedBase` of
+  // RenderWorld::posedVertices instead of mesh->vertices (indices and vertexOffset unchanged).
+  static constexpr std::uint32_t kNotPosed = ~0u;
+  std::uint32_t posedBase = kNotPosed;
+  bool posed() const { return posedBase != kNotPosed; }
+};
+
+// One skinned instance for the skinning compute pass: skin mesh->skinVertices with the joint
+// matrices from jointBase into RenderWorld::posedVertices from vertex dstBase.
+struct SkinJob {
+  const MeshGpu* mesh = nullptr;
+  std::uint32_t vertexCount = 0;
+  std::uint32_t jointBase = 0;  // into RenderWorld::jointMatrices
+  std::uint32_t dstBase = 0;    // into RenderWorld::posedVertices, in vertices
 };
 
 // One shadow-atlas layer: the light view-projection that rendered it.
@@ -38,6 +52,12 @@ struct RenderWorld {
   glm::vec3 background{0.0f};
   glm::vec3 sceneMin{0.0f}, sceneMax{0.0f};  // world bounds of everything drawn
   std::set<std::string> effects;             // the level's effects (after --effects)
+  // Vertices of every deformed mesh instance as posed this frame (engine/anim: morph targets, then
+  // skinning), MeshVertex layout (8 floats: position, normal, uv0). Uploaded once per frame; every
+  // raster pass reads the same buffer.
+  std::vector<float> posedVertices;      // GPU-skinned ranges are placeholders the skinning pass overwrites
+  std::vector<SkinJob> skinJobs;         // empty: no skinning pass
+  std::vector<glm::mat4> jointMatrices;  // every skinned instance's joint matrices, back to back
   bool has(const std::string& effect) const { return effects.count(effect) != 0; }
 };
 

@@ -9,6 +9,7 @@
 #include "engine/render/passes/gbuffer_pass.hpp"
 #include "engine/render/passes/lighting_pass.hpp"
 #include "engine/render/passes/shadow_pass.hpp"
+#include "engine/render/passes/skinning_pass.hpp"
 #include "engine/render/passes/tonemap_pass.hpp"
 
 namespace bounce::render {
@@ -105,6 +106,13 @@ void Renderer::writeFrameData(std::uint32_t slot, const RenderWorld& world, Pass
   std::vector<glm::mat4> matrices;
   for (const auto& layer : world.shadowLayers) matrices.push_back(layer.viewProj);
   fill(ctx_, b.shadowMatrices, matrices, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "frame.shadow-matrices");
+  fill(ctx_, b.posedVertices, world.posedVertices, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+       "frame.posed-vertices");
+  fill(ctx_, b.jointMatrices, world.jointMatrices, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "frame.joint-matrices");
+  pc.posedVertices = &b.posedVertices;
+  pc.jointMatrices = &b.jointMatrices;
+  lastSlot_ = slot;
+  lastPosedFloats_ = world.posedVertices.size();
 
   pc.frameSet = frames_->current().descriptors->allocate(pipelines_->frameLayout);
   gpu::DescriptorWriter()
@@ -118,7 +126,7 @@ void Renderer::writeFrameData(std::uint32_t slot, const RenderWorld& world, Pass
 }
 
 void Renderer::buildGraph(rg::RenderGraph& graph, PassContext& pc, VkExtent2D extent, const FrameSettings& s,
-                          rg::PhysicalId hdrId, rg::PhysicalId displayId) {
+                          rg::PhysicalId hdrId, rg::PhysicalId displayId, rg::PhysicalId posedId) {
   graph.setCullingEnabled(s.culling);
   const rg::TextureDesc hdrDesc{extent.width, extent.height, 1, 1, 1, rg::Format::RGBA16F, false};
   const rg::TextureDesc displayDesc{extent.width, extent.height, 1, 1, 1, rg::Format::RGBA8_UNORM, false};
@@ -126,6 +134,11 @@ void Renderer::buildGraph(rg::RenderGraph& graph, PassContext& pc, VkExtent2D ex
   auto display =
       graph.importTexture("display", displayDesc, display_ ? importedState(*display_) : rg::ResourceState{}, displayId);
 
+  // Skinned instances: one compute pass poses them all before anything draws (DESIGN.md data flow).
+  if (!pc.world->skinJobs.empty()) {
+    const rg::BufferDesc posedDesc{pc.world->posedVertices.size() * sizeof(float)};
+    addSkinningPass(graph, &pc, graph.importBuffer("posed-vertices", posedDesc, rg::ResourceState{}, posedId));
+  }
   std::optional<rg::Handle<rg::Texture>> atlas;
   // Shadows only modulate direct light: without `direct` there is nothing to shadow.
   if (pc.world->has("shadows") && pc.world->has("direct") && !pc.world->shadowLayers.empty())
@@ -171,7 +184,8 @@ void Renderer::render(const RenderWorld& world, gpu::Presenter& presenter, const
   writeFrameData(frame.slot, world, pc);
 
   rg::RenderGraph graph;
-  buildGraph(graph, pc, extent, settings, backend_->importImage(*hdr_), backend_->importImage(*display_));
+  buildGraph(graph, pc, extent, settings, backend_->importImage(*hdr_), backend_->importImage(*display_),
+             backend_->importBuffer(slots_[frame.slot].posedVertices));
   executed_ = graph.compile().executedPasses;
   VkCommandContext cc;
   cc.cmd = frame.cmd;
@@ -184,8 +198,15 @@ std::string Renderer::graphDot(const RenderWorld& world, VkExtent2D extent, cons
   PassContext pc;
   pc.world = &world;
   rg::RenderGraph graph;
-  buildGraph(graph, pc, extent, settings, 1, 2);
+  buildGraph(graph, pc, extent, settings, 1, 2, 3);
   return graph.toDot();
+}
+
+std::vector<float> Renderer::readPosedVertices() {
+  frames_->waitIdle();
+  std::vector<float> out(lastPosedFloats_);
+  if (!out.empty()) std::memcpy(out.data(), slots_[lastSlot_].posedVertices.mapped(), out.size() * sizeof(float));
+  return out;
 }
 
 std::vector<float> Renderer::readHdr() {

@@ -61,6 +61,10 @@ class Renderer {
   using GraphNode = std::function<void(rg::RenderGraph&, PassContext&)>;
   void setNode(const std::string& effect, GraphNode node);
 
+  // The posed vertices of the last frame (RenderWorld::posedVertices after the skinning pass:
+  // MeshVertex layout, 8 floats per vertex); waits for the GPU. For the CPU = GPU skinning tests.
+  std::vector<float> readPosedVertices();
+
   // Linear HDR radiance of the last frame as float RGB (waits for the GPU; needs keepHdr).
   std::vector<float> readHdr();
   gpu::Image& hdrImage() { return *hdr_; }
@@ -68,12 +72,12 @@ class Renderer {
 
  private:
   struct SlotBuffers {
-    gpu::Buffer camera, instances, lights, shadowMatrices;
+    gpu::Buffer camera, instances, lights, shadowMatrices, posedVertices, jointMatrices;
   };
   void ensureTargets(VkExtent2D extent);
   void writeFrameData(std::uint32_t slot, const RenderWorld& world, PassContext& pc);
   void buildGraph(rg::RenderGraph& graph, PassContext& pc, VkExtent2D extent, const FrameSettings& settings,
-                  rg::PhysicalId hdrId, rg::PhysicalId displayId);
+                  rg::PhysicalId hdrId, rg::PhysicalId displayId, rg::PhysicalId posedId);
 
   gpu::Context& ctx_;
   std::unique_ptr<Pipelines> pipelines_;
@@ -83,6 +87,8 @@ class Renderer {
   std::vector<SlotBuffers> slots_;
   std::unique_ptr<gpu::Image> hdr_, display_, dummyAtlas_;
   std::vector<std::string> executed_;
+  std::uint32_t lastSlot_ = 0;
+  std::size_t lastPosedFloats_ = 0;
   // In registration order: a node that reads another's output (e.g. "ao.term") is set after it.
   std::vector<std::pair<std::string, GraphNode>> nodes_;
 };

@@ -73,7 +73,8 @@ int findNode(const asset::CookedAsset& a, const MeshRef& ref) {
 }
 
 void forEachInstancedNode(const asset::CookedAsset& a, const MeshRef& ref, const glm::mat4& entityWorld,
-                          const std::function<void(int node, const glm::mat4& world)>& visit) {
+                          const std::function<void(int node, const glm::mat4& world)>& visit,
+                          const std::vector<glm::mat4>* locals) {
   // Pre-order walk; the stack holds (node, parent's world matrix), pushed in reverse so children
   // come out in file order. Cycles cannot occur: the cooker rejects them.
   std::vector<std::pair<int, glm::mat4>> stack;
@@ -86,7 +87,7 @@ void forEachInstancedNode(const asset::CookedAsset& a, const MeshRef& ref, const
     const auto [n, parent] = stack.back();
     stack.pop_back();
     const asset::Node& node = a.nodes[n];
-    const glm::mat4 world = parent * nodeLocal(node);
+    const glm::mat4 world = parent * (locals ? (*locals)[std::size_t(n)] : nodeLocal(node));
     visit(n, world);
     for (auto c = node.children.rbegin(); c != node.children.rend(); ++c) stack.push_back({*c, world});
   }

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -36,8 +37,10 @@ asset::CookedAsset cookForRef(const MeshRef& ref, const std::filesystem::path& c
 int findNode(const asset::CookedAsset& asset, const MeshRef& ref);
 
 // Visits every node of the instanced subtree in pre-order (children in file order) with its world
-// matrix. Checks the node first (findNode).
+// matrix. Checks the node first (findNode). `locals` (one matrix per node, an animation pose's:
+// engine/anim) replaces nodeLocal() when given.
 void forEachInstancedNode(const asset::CookedAsset& asset, const MeshRef& ref, const glm::mat4& entityWorld,
-                          const std::function<void(int node, const glm::mat4& world)>& visit);
+                          const std::function<void(int node, const glm::mat4& world)>& visit,
+                          const std::vector<glm::mat4>* locals = nullptr);
 
 }  // namespace bounce::scene

@@ -135,6 +135,21 @@ struct Motion {
   friend bool operator==(const Motion&, const Motion&) = default;
 };
 
+// Level key "animation" on a mesh entity (README "Level format"): which glTF clip of the asset
+// plays and how. Composes with Motion: motion moves the entity, the clip moves the nodes inside
+// the asset. Played on simulation time: clip time = phase + speed·t, then looped, reflected
+// (ping-pong) or clamped (once) over [0, clip duration]. engine/anim/animator.hpp runs it.
+struct AnimationClip {
+  bool enabled = true;  // "animation": false holds the rest pose
+  std::optional<std::variant<std::string, std::uint32_t>> clip;  // empty: the asset's first clip
+  float speed = 1.0f;
+  PlayMode mode = PlayMode::Loop;
+  float phaseS = 0.0f;   // seconds of clip time at t = 0
+  std::string file;      // the level file and
+  std::string pointer;   // "/entities/N/animation": where an unknown clip is reported
+  friend bool operator==(const AnimationClip&, const AnimationClip&) = default;
+};
+
 // The entity moves at run time; GI techniques treat it as a dynamic object.
 struct Dynamic {};
 

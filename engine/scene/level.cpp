@@ -220,6 +220,40 @@ void emplaceMesh(const EntityDesc& d, ecs::Registry& r, ecs::Entity e) {
 
 void parseMotionKey(const json::Node& node, EntityDesc& d, const ParseContext&) { d.motion = parseMotion(node); }
 
+// "animation": false, or {"clip": name | index, "speed": x, "mode": "loop" | "ping-pong" | "once",
+// "phase_s": s} — every key optional. The clip name is checked against the asset when the asset is
+// cooked (engine/anim/animator.cpp), since loading a level never opens its assets.
+void parseAnimation(const json::Node& node, EntityDesc& d, const ParseContext&) {
+  AnimationClip a;
+  a.file = node.file();
+  a.pointer = node.pointer();
+  if (node.raw().is_boolean()) {
+    if (node.boolean()) node.fail("true", "false (hold the rest pose) or an object {\"clip\": …}");
+    a.enabled = false;
+    d.animation = a;
+    return;
+  }
+  const auto o = node.object({"clip", "speed", "mode", "phase_s"});
+  if (auto c = o.optional("clip")) {
+    if (c->raw().is_string())
+      a.clip = c->string();
+    else if (c->raw().is_number_integer() || c->raw().is_number_unsigned())
+      a.clip = std::uint32_t(c->integer(0, 0x7fffffff));
+    else
+      c->wrongType("a clip name (string) or index (integer >= 0)");
+  }
+  if (auto v = o.optional("speed")) a.speed = v->real(json::Range::closed(-100, 100));
+  if (auto v = o.optional("mode")) {
+    const std::string m = v->string();
+    if (m == "loop") a.mode = PlayMode::Loop;
+    else if (m == "ping-pong") a.mode = PlayMode::PingPong;
+    else if (m == "once") a.mode = PlayMode::Once;
+    else v->fail("unknown mode " + json::inQuotes(m), "one of: loop, ping-pong, once");
+  }
+  if (auto v = o.optional("phase_s")) a.phaseS = v->real(json::Range::closed(-1e6, 1e6));
+  d.animation = a;
+}
+
 // ---- the table ------------------------------------------------------------------------------
 // A component key: how to read it into EntityDesc and how to put it on an entity. Adding a
 // technique component (dnrt, vlm, …) is: a field in EntityDesc, a parse function, one row here.
@@ -241,6 +275,7 @@ const ComponentKey kComponentKeys[] = {
     {"camera", parseCamera, emplaceIfSet<&EntityDesc::camera>},
     {"light", parseLight, emplaceIfSet<&EntityDesc::light>},
     {"motion", parseMotionKey, emplaceIfSet<&EntityDesc::motion>},
+    {"animation", parseAnimation, emplaceIfSet<&EntityDesc::animation>},
     {"dnrt", parseDnrt, emplaceIfSet<&EntityDesc::dnrt>},
     {"vlm", parseVlm, emplaceIfSet<&EntityDesc::vlm>},
     {"vlm_tag", parseVlmTag, emplaceIfSet<&EntityDesc::vlmTag>},
@@ -269,6 +304,7 @@ EntityDesc parseEntity(const json::Node& node, const ParseContext& ctx) {
     d.dynamic = true;
     d.motion->base = d.transform;
   }
+  if (d.animation && !d.mesh) o.node().child("animation").fail("an animation on an entity without a mesh", "a \"mesh\" key");
   if (d.dnrt && !d.mesh) o.node().child("dnrt").fail("a DNRT field on an entity without a mesh", "a \"mesh\" key");
   if (d.dnrt && !d.dynamic)
     o.node().child("dnrt").fail("a DNRT field on a static entity", "\"dynamic\": true or a motion");

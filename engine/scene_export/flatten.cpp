@@ -5,6 +5,9 @@
 
 #include <glm/gtc/quaternion.hpp>
 
+#include "engine/anim/animator.hpp"
+#include "engine/anim/instances.hpp"
+#include "engine/anim/skinning.hpp"
 #include "engine/asset/cook.hpp"
 #include "engine/core/error.hpp"
 #include "engine/ecs/registry.hpp"
@@ -62,6 +65,8 @@ FlatScene flattenLevel(const scene::Level& level, double timeSeconds, const std:
   ecs::Registry registry;
   const std::vector<ecs::Entity> entities = scene::instantiate(level, registry);
   scene::motionSystem(registry, timeSeconds);
+  anim::attachAnimators(registry, cookCache);
+  anim::animationSystem(registry, timeSeconds);
   scene::transformSystem(registry);
   const ecs::Entity activeCamera = scene::activeCamera(registry);
 
@@ -74,13 +79,24 @@ FlatScene flattenLevel(const scene::Level& level, double timeSeconds, const std:
     if (const auto* ref = registry.tryGet<scene::MeshRef>(e)) {
       const std::size_t ai = assetIndex.at(scene::assetKey(*ref));
       const asset::CookedAsset& a = out.assets[ai].cooked;
+      const anim::Pose* pose = registry.tryGet<anim::Pose>(e);
+      const glm::mat4 skinFrame = pose ? anim::skinFrame(a, *ref, world, *pose) : world;
       scene::forEachInstancedNode(a, *ref, world, [&](int n, const glm::mat4& m) {
         const asset::Node& node = a.nodes[std::size_t(n)];
         const std::string nodeName = node.name.empty() ? "node" + std::to_string(n) : node.name;
         if (node.light >= 0)
           out.lights.push_back({ei, desc.id + "/" + nodeName, a.lights[std::size_t(node.light)], true, rigid(m)});
-        if (node.mesh >= 0 && !node.vlm.present) out.meshes.push_back({ei, ai, n, node.mesh, m});  // VLM nodes are not real
-      });
+        if (node.mesh < 0 || node.vlm.present) return;  // VLM nodes are not real
+        MeshInstance inst{ei, ai, n, node.mesh, m, {}, {}};
+        if (pose && anim::isDeformed(a, n)) {  // the same CPU evaluation the renderer draws
+          const std::size_t prims = a.meshes[std::size_t(node.mesh)].primitives.size();
+          inst.posedPositions.resize(prims);
+          inst.posedNormals.resize(prims);
+          for (std::size_t pi = 0; pi < prims; ++pi)
+            if (anim::posePrimitive(a, n, pi, pose, inst.posedPositions[pi], inst.posedNormals[pi])) inst.world = skinFrame;
+        }
+        out.meshes.push_back(std::move(inst));
+      }, pose ? &pose->local : nullptr);
     }
 
     if (const auto* L = registry.tryGet<scene::Light>(e)) {

@@ -9,8 +9,8 @@
 // - KHR_lights_punctual lights inside the instanced subtree become lights (shadows on, as the
 //   renderer does), beside the level's own light entities.
 // - Cameras are the level's camera entities; `active` marks the one the renderer uses.
-// The motion and transform systems run at `timeSeconds` first, so dynamic props are where a
-// frame at that time draws them. Everything is listed in level file order, then node pre-order.
+// The motion, animation and transform systems run at `timeSeconds` first, so dynamic props are
+// where a frame at that time draws them, and animated characters are in that frame's pose. Everything is listed in level file order, then node pre-order.
 #include <cstddef>
 #include <filesystem>
 #include <optional>
@@ -44,6 +44,9 @@ struct MeshInstance {
   int node = -1;           // node of that asset (its name names the instance)
   int mesh = -1;           // mesh of that asset
   glm::mat4 world{1.0f};   // local-to-world, as the renderer's InstanceGpu::model
+  // A deformed mesh (skinned or morphed, engine/anim) at the level's time: per primitive, its posed
+  // positions and normals (empty = the cooked vertices), in the frame `world` places.
+  std::vector<std::vector<glm::vec3>> posedPositions, posedNormals;
 };
 
 // A punctual light in Bounce units (README "Level format": point/spot intensity is radiant

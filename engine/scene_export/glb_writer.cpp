@@ -148,13 +148,17 @@ class GlbBuilder {
   }
 
   // World-space copy of a primitive, for an instance whose matrix is not TRS-decomposable.
-  PrimGeometry bakedGeometry(const asset::Primitive& p, const glm::mat4& m) {
+  // `srcP`/`srcN`: the primitive's posed vertices (a deformed instance) instead of its cooked ones.
+  PrimGeometry bakedGeometry(const asset::Primitive& p, const glm::mat4& m, const std::vector<glm::vec3>* srcP = nullptr,
+                             const std::vector<glm::vec3>* srcN = nullptr) {
+    const std::vector<glm::vec3>& inP = srcP ? *srcP : p.positions;
+    const std::vector<glm::vec3>& inN = srcN ? *srcN : p.normals;
     const glm::mat3 normalMatrix = glm::inverseTranspose(glm::mat3(m));
-    std::vector<glm::vec3> positions(p.positions.size()), normals(p.normals.size());
-    for (std::size_t i = 0; i < positions.size(); ++i) positions[i] = glm::vec3(m * glm::vec4(p.positions[i], 1.0f));
+    std::vector<glm::vec3> positions(inP.size()), normals(inN.size());
+    for (std::size_t i = 0; i < positions.size(); ++i) positions[i] = glm::vec3(m * glm::vec4(inP[i], 1.0f));
     for (std::size_t i = 0; i < normals.size(); ++i) {
-      const glm::vec3 n = normalMatrix * p.normals[i];
-      normals[i] = glm::dot(n, n) > 0.0f ? glm::normalize(n) : p.normals[i];
+      const glm::vec3 n = normalMatrix * inN[i];
+      normals[i] = glm::dot(n, n) > 0.0f ? glm::normalize(n) : inN[i];
     }
     std::vector<std::uint32_t> indices = p.indices;
     // A mirroring matrix reverses winding; glTF would flip the front face for a node with a
@@ -247,6 +251,9 @@ class GlbBuilder {
     std::size_t triangles = 0;
     for (const auto& p : src.primitives) triangles += drawable(p) ? p.indices.size() / 3 : 0;
     stats.triangles += triangles;
+    const bool posed = !inst.posedPositions.empty();  // a deformed instance: its own geometry, never shared
+    const glm::mat4 identity(1.0f);
+    if (posed && !baked) baked = &identity;
     if (!baked)
       if (auto it = meshes_.find(key); it != meshes_.end()) return it->second;
 
@@ -256,7 +263,10 @@ class GlbBuilder {
     for (std::size_t pi = 0; pi < src.primitives.size(); ++pi) {
       const asset::Primitive& p = src.primitives[pi];
       if (!drawable(p)) continue;
-      const PrimGeometry g = baked ? bakedGeometry(p, *baked) : sharedGeometry(inst.asset, inst.mesh, pi);
+      const bool own = posed && !inst.posedPositions[pi].empty();
+      const PrimGeometry g = baked ? bakedGeometry(p, *baked, own ? &inst.posedPositions[pi] : nullptr,
+                                                   own ? &inst.posedNormals[pi] : nullptr)
+                                   : sharedGeometry(inst.asset, inst.mesh, pi);
       tinygltf::Primitive gp;
       gp.attributes["POSITION"] = g.position;
       gp.attributes["NORMAL"] = g.normal;

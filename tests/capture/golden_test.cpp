@@ -1,4 +1,5 @@
-// Golden-image capture tests: the shipped capture scripts content/captures/cornell-{1,5,10,vlm}.json
+// Golden-image capture tests: the shipped capture scripts content/captures/cornell-{1,5,10,vlm}.json and
+// characters.json
 // (256×256, 61 frames, frames 0 and 60 captured) run through runCaptureScript, and every captured
 // PFM (linear radiance) is compared with tests/capture/goldens/<script>-frame-NNNN.pfm. The
 // cornell-N levels name direct, shadows, probes and dnrt, so their goldens hold the probes' static
@@ -229,6 +230,9 @@ TEST(CaptureGolden, Cornell1) { checkCornellCapture("cornell-1"); }
 TEST(CaptureGolden, Cornell5) { checkCornellCapture("cornell-5"); }
 TEST(CaptureGolden, Cornell10) { checkCornellCapture("cornell-10"); }
 TEST(CaptureGolden, CornellVlm) { checkCornellCapture("cornell-vlm"); }
+// The character level (issue 12): the Cornell room's walls (red left, green right) around Fox and
+// CesiumMan, skinned by the GPU pass and moving by their clips and motion paths between the frames.
+TEST(CaptureGolden, Characters) { checkCornellCapture("characters"); }
 
 TEST(CaptureGolden, SameScriptTwiceIsBitIdentical) {
   const fs::path script = kSource / "tests/data/render/determinism.json";

@@ -2,6 +2,7 @@
 
 #include "engine/render/mesh_gpu.hpp"
 #include "engine/render/passes/rendering.hpp"
+#include "engine/render/passes/skinning_pass.hpp"
 
 namespace bounce::render {
 
@@ -15,6 +16,7 @@ const GBuffer& addGBufferPass(rg::RenderGraph& graph, const PassContext* pc, VkE
         d.emissive = b.write(b.create<rg::Texture>("gbuffer.emissive", desc(rg::Format::RGBA16F)), rg::Usage::ColorAttachment);
         d.entity = b.write(b.create<rg::Texture>("gbuffer.entity", desc(rg::Format::R32_UINT)), rg::Usage::ColorAttachment);
         d.depth = b.write(b.create<rg::Texture>("gbuffer.depth", desc(rg::Format::D32F)), rg::Usage::DepthAttachment);
+        readSkinnedVertices(graph, b);
       },
       [pc, extent](const GBuffer& d, const rg::PassResources& res, rg::CommandContext& c) {
         VkCommandBuffer cmd = pc->cmd(c);
@@ -29,10 +31,7 @@ const GBuffer& addGBufferPass(rg::RenderGraph& graph, const PassContext* pc, VkE
         for (const DrawItem& draw : pc->world->draws) {
           const auto& prim = draw.mesh->primitives[draw.primitive];
           p.bindSet(cmd, 1, draw.material);
-          VkDeviceSize offset = 0;
-          VkBuffer vb = draw.mesh->vertices.handle();
-          vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
-          vkCmdBindIndexBuffer(cmd, draw.mesh->indices.handle(), 0, VK_INDEX_TYPE_UINT32);
+          pc->bindGeometry(cmd, draw);
           p.push(cmd, draw.instance);
           vkCmdDrawIndexed(cmd, prim.indexCount, 1, prim.firstIndex, prim.vertexOffset, 0);
         }

@@ -2,6 +2,7 @@
 
 #include "engine/render/mesh_gpu.hpp"
 #include "engine/render/passes/rendering.hpp"
+#include "engine/render/passes/skinning_pass.hpp"
 
 namespace bounce::render {
 
@@ -12,6 +13,7 @@ const ShadowAtlas& addShadowPass(rg::RenderGraph& graph, const PassContext* pc, 
       [&](rg::Builder& b, ShadowAtlas& d) {
         rg::TextureDesc desc{resolution, resolution, 1, layers, 1, rg::Format::D32F, false};
         d.atlas = b.write(b.create<rg::Texture>("shadow.atlas", desc), rg::Usage::DepthAttachment);
+        readSkinnedVertices(graph, b);
       },
       [pc, resolution, layers](const ShadowAtlas& d, const rg::PassResources& res, rg::CommandContext& c) {
         VkCommandBuffer cmd = pc->cmd(c);
@@ -26,10 +28,7 @@ const ShadowAtlas& addShadowPass(rg::RenderGraph& graph, const PassContext* pc, 
           vkCmdSetDepthBias(cmd, kShadowDepthBiasConstant, 0.0f, kShadowDepthBiasSlope);
           for (const DrawItem& draw : pc->world->draws) {
             const auto& prim = draw.mesh->primitives[draw.primitive];
-            VkDeviceSize offset = 0;
-            VkBuffer vb = draw.mesh->vertices.handle();
-            vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
-            vkCmdBindIndexBuffer(cmd, draw.mesh->indices.handle(), 0, VK_INDEX_TYPE_UINT32);
+            pc->bindGeometry(cmd, draw);
             struct {
               std::uint32_t instance, layer;
             } push{draw.instance, layer};

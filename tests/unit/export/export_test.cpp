@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "engine/anim/skinning.hpp"
 #include "engine/core/error.hpp"
 #include "engine/scene/transform_math.hpp"
 #include "engine/scene_export/export.hpp"
@@ -187,7 +188,10 @@ TEST(Export, TimeMovesADynamicPropByItsScriptedMotion) {
   Box moved;
   moved.grow(truck0.min + motion);
   moved.grow(truck0.max + motion);
-  expectBoxNear(truck1, moved, kPositionTol);
+  // The truck's wheels turn with its own clip (issue 12): a polygonal wheel's lowest and foremost
+  // points move by up to r·(1 − cos(π/n)); 2e-4 m bounds that at the truck's 0.02 scale (observed 8e-6).
+  constexpr float kTurningWheels = 2e-4f;
+  expectBoxNear(truck1, moved, kTurningWheels);
   // And as the systems say (independent expansion at t = 1).
   const Expected want1 = expectedInstances(lvl, 1.0);
   expectBoxNear(truck1, want1.entityBounds.at("prop-truck"), kBoundsRel * want1.bounds.diagonal());
@@ -196,6 +200,44 @@ TEST(Export, TimeMovesADynamicPropByItsScriptedMotion) {
   const Box box0 = importedInstances(at0, "cornell-box").bounds;
   const Box box1 = importedInstances(at1, "cornell-box").bounds;
   expectBoxNear(box1, box0, 0.0f);
+}
+
+TEST(Export, AnimatedCharactersAreWrittenInTheirPoseAtTheGivenTime) {
+  // characters.json: the fox's exported vertices are its skinned pose at t (engine/anim, the same
+  // evaluation the renderer's CPU face and the tracer use), placed by the entity: its bounds match
+  // the pose computed here and change between t = 0 and t = 0.3 (clip and motion).
+  const fs::path file = level("characters.json");
+  const auto lvl = scene::loadLevel(file);
+  auto posedFoxBounds = [&](double t) {
+    ecs::Registry registry;
+    const auto entities = scene::instantiate(lvl, registry);
+    scene::motionSystem(registry, t);
+    anim::attachAnimators(registry, cookCache());
+    anim::animationSystem(registry, t);
+    scene::transformSystem(registry);
+    Box box;
+    for (std::size_t i = 0; i < entities.size(); ++i) {
+      if (lvl.entities[i].id != "fox") continue;
+      const auto& an = registry.get<anim::Animator>(entities[i]);
+      const auto& pose = registry.get<anim::Pose>(entities[i]);
+      const glm::mat4 world = registry.get<scene::WorldTransform>(entities[i]).matrix;  // the default scene: the skin frame
+      for (std::size_t n = 0; n < an.asset->nodes.size(); ++n) {
+        if (!anim::isSkinned(*an.asset, int(n))) continue;
+        std::vector<glm::vec3> p, nrm;
+        for (std::size_t pi = 0; pi < an.asset->meshes[std::size_t(an.asset->nodes[n].mesh)].primitives.size(); ++pi) {
+          anim::posePrimitive(*an.asset, int(n), pi, &pose, p, nrm);
+          for (const auto& v : p) box.grow(glm::vec3(world * glm::vec4(v, 1.0f)));
+        }
+      }
+    }
+    return box;
+  };
+  const Box at0 = importedInstances(asset::cook(exportTo("characters-t0.glb", file, 0.0)), "fox").bounds;
+  const Box at3 = importedInstances(asset::cook(exportTo("characters-t03.glb", file, 0.3)), "fox").bounds;
+  const Box want0 = posedFoxBounds(0.0), want3 = posedFoxBounds(0.3);
+  expectBoxNear(at0, want0, kBoundsRel * want0.diagonal());
+  expectBoxNear(at3, want3, kBoundsRel * want3.diagonal());
+  EXPECT_GT(glm::distance(at0.min, at3.min) + glm::distance(at0.max, at3.max), 0.05f);  // it ran
 }
 
 }  // namespace

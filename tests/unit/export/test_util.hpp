@@ -13,6 +13,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 
+#include "engine/anim/animator.hpp"
 #include "engine/asset/cook.hpp"
 #include "engine/core/file.hpp"
 #include "engine/ecs/registry.hpp"
@@ -65,6 +66,8 @@ inline Expected expectedInstances(const scene::Level& lvl, double t) {
   ecs::Registry registry;
   const auto entities = scene::instantiate(lvl, registry);
   scene::motionSystem(registry, t);
+  anim::attachAnimators(registry, cookCache());  // node-animated props play their clips (issue 12)
+  anim::animationSystem(registry, t);
   scene::transformSystem(registry);
   Expected out;
   for (std::size_t i = 0; i < entities.size(); ++i) {
@@ -73,9 +76,10 @@ inline Expected expectedInstances(const scene::Level& lvl, double t) {
     const asset::CookedAsset a = asset::loadOrCook(ref->asset, cookCache());
     const glm::mat4 world = registry.get<scene::WorldTransform>(entities[i]).matrix;
     Box& entityBox = out.entityBounds[lvl.entities[i].id];
+    const auto* pose = registry.tryGet<anim::Pose>(entities[i]);
     // Recursive walk of the default scene (the test levels name no node).
     auto walk = [&](auto&& self, int n, const glm::mat4& parent) -> void {
-      const glm::mat4 m = parent * localOf(a.nodes[std::size_t(n)]);
+      const glm::mat4 m = parent * (pose ? pose->local[std::size_t(n)] : localOf(a.nodes[std::size_t(n)]));
       if (a.nodes[std::size_t(n)].mesh >= 0) {
         out.triangles += addMesh(a, a.nodes[std::size_t(n)].mesh, m, entityBox);
         ++out.instances;

@@ -1,0 +1,54 @@
+#version 450
+// The GPU face of engine/anim/skinning.cpp (SkinningJob; tests/unit/skinning holds the two equal):
+// linear blend skinning with up to 8 influences, once per frame per skinned instance, into the
+// frame's posed-vertex buffer that the G-buffer, shadow, debug-view and entity-id passes all read.
+//   S = Σ w_i·J_i (JOINTS_0/WEIGHTS_0, JOINTS_1/WEIGHTS_1, summed in the CPU's order),
+//   p' = S·p,  n' = normalize(inverse(transpose(S₃ₓ₃))·n).
+layout(local_size_x = 64) in;
+
+// One cooked vertex (GpuScene packs it at load): position + u, normal + v, joints as u16 pairs
+// (x = j0 | j1 << 16, y = j2 | j3 << 16, z = j4 | j5 << 16, w = j6 | j7 << 16), weights 0-3, 4-7.
+struct SkinVertex {
+  vec4 positionU;
+  vec4 normalV;
+  uvec4 joints;
+  vec4 weights0;
+  vec4 weights1;
+};
+
+layout(std430, set = 0, binding = 0) readonly buffer Source { SkinVertex src[]; };
+layout(std430, set = 0, binding = 1) readonly buffer Joints { mat4 joints[]; };
+layout(std430, set = 0, binding = 2) writeonly buffer Posed { float dst[]; };  // MeshVertex: 8 floats
+
+layout(push_constant) uniform Push {
+  uint vertexCount;
+  uint jointBase;  // this instance's first joint matrix in `joints`
+  uint dstBase;    // this instance's first vertex in `dst`
+} pc;
+
+uint jointIndex(uvec4 packed, int k) { return (packed[k >> 1] >> (16 * (k & 1))) & 0xffffu; }
+
+void main() {
+  const uint i = gl_GlobalInvocationID.x;
+  if (i >= pc.vertexCount) return;
+  const SkinVertex v = src[i];
+  mat4 s = mat4(0.0);
+  for (int k = 0; k < 4; ++k) {
+    // Zero weights are skipped, as on the CPU: their joint index need not be valid.
+    if (v.weights0[k] != 0.0) s += v.weights0[k] * joints[pc.jointBase + jointIndex(v.joints, k)];
+    if (v.weights1[k] != 0.0) s += v.weights1[k] * joints[pc.jointBase + jointIndex(v.joints, k + 4)];
+  }
+  const vec3 p = (s * vec4(v.positionU.xyz, 1.0)).xyz;
+  vec3 n = transpose(inverse(mat3(s))) * v.normalV.xyz;
+  const float len = length(n);
+  n = len > 0.0 ? n / len : v.normalV.xyz;
+  const uint o = (pc.dstBase + i) * 8u;
+  dst[o + 0] = p.x;
+  dst[o + 1] = p.y;
+  dst[o + 2] = p.z;
+  dst[o + 3] = n.x;
+  dst[o + 4] = n.y;
+  dst[o + 5] = n.z;
+  dst[o + 6] = v.positionU.w;
+  dst[o + 7] = v.normalV.w;
+}

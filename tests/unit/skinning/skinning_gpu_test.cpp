@@ -1,0 +1,205 @@
+// GPU skinning (shaders/skinning/skinning.comp) against the CPU face (engine/anim/skinning.cpp):
+// every vertex of CesiumMan and Fox at several clip times; a skinned mesh's shadow moves when only
+// its clip plays; the skinning pass runs only when a skinned entity is drawn; and the raster
+// entity-id silhouette of a posed character matches the reference tracer's (same CPU pose).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "engine/anim/animator.hpp"
+#include "engine/core/file.hpp"
+#include "engine/gpu/commands.hpp"
+#include "engine/gpu/presenter_offscreen.hpp"
+#include "engine/gpu/testing.hpp"
+#include "engine/ref/reference_scene.hpp"
+#include "engine/ref/tracer.hpp"
+#include "engine/scene/components.hpp"
+#include "game/session.hpp"
+
+using namespace bounce;
+namespace fs = std::filesystem;
+
+namespace {
+
+// CPU = GPU tolerance, fp32: both sum the same ≤ 8 weighted joint matrices in the same order, but
+// the GPU may fuse multiply-adds and computes the normal matrix with GLSL inverse() instead of
+// glm::inverseTranspose(). Positions: relative to the larger of |p| and the joint translations
+// (Fox's asset space is in centimetres, |p| ~ 100), 32 ulps of 1 = 4e-6. Normals are unit vectors:
+// 1e-5 absolute (a cofactor 3×3 inverse loses a few ulps more when a joint scales).
+constexpr float kPositionRelTol = 4e-6f;
+constexpr float kNormalTol = 1e-5f;
+
+fs::path assets() {
+  const char* env = std::getenv("BOUNCE_SHARED_DIR");
+  return fs::path(env && *env ? env : BOUNCE_SHARED_DIR) / "assets";
+}
+fs::path out() { return fs::path(BOUNCE_TEST_OUT) / "skinning"; }
+
+std::string sci(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.3e", v);
+  return b;
+}
+
+std::string meshEntity(const std::string& id, const fs::path& asset, const std::string& extra) {
+  return R"({"id": ")" + id + R"(", "mesh": {"asset": ")" + asset.string() + R"("})" + extra + "}";
+}
+
+fs::path writeLevel(const std::string& name, const std::string& effects, const std::vector<std::string>& entities) {
+  std::string es;
+  for (const auto& e : entities) es += (es.empty() ? "" : ",\n") + e;
+  const fs::path p = out() / name;
+  writeFileAtomic(p, R"({"bounce_level": 1, "effects": )" + effects + R"(, "entities": [)" + es + "]}");
+  return p;
+}
+
+const std::string kCamera =
+    R"({"id": "camera", "transform": {"translation": [0, 1, 3.2]}, "camera": {"yfov_deg": 50, "near": 0.05, "far": 20}})";
+
+TEST(SkinningGpu, CpuEqualsGpuOnEveryVertexOfCesiumManAndFox) {
+  gpu::Context& ctx = gpu::testkit::sharedContext();
+  const fs::path level = writeLevel(
+      "cpu-gpu.json", R"(["direct"])",
+      {kCamera, meshEntity("man", assets() / "CesiumMan/glTF-Binary/CesiumMan.glb", ""),
+       meshEntity("fox", assets() / "Fox/glTF-Binary/Fox.glb",
+                  R"(, "transform": {"translation": [1, 0, 0], "scale": [0.01, 0.01, 0.01]}, "animation": {"clip": "Run"})")});
+  game::Session session(ctx, scene::loadLevel(level));
+  gpu::OffscreenPresenter presenter(ctx, {32, 32});
+  std::size_t checked = 0;
+  for (double t : {0.0, 0.37, 1.1, 2.9}) {
+    SCOPED_TRACE(t);
+    session.update(t);
+    session.render(presenter, {});
+    const std::vector<float> gpuPosed = session.renderer().readPosedVertices();
+    ASSERT_EQ(session.world().skinJobs.size(), 2u);  // both characters went through the pass
+    render::RenderWorld cpuWorld;
+    render::ExtractOptions cpuFace;
+    cpuFace.extent = {32, 32};
+    cpuFace.gpuSkinning = false;
+    session.gpuScene().extract(session.registry(), session.level(), cpuFace, cpuWorld);
+    ASSERT_TRUE(cpuWorld.skinJobs.empty());
+    ASSERT_EQ(cpuWorld.posedVertices.size(), gpuPosed.size());
+    float worstP = 0.0f, worstN = 0.0f;
+    for (std::size_t v = 0; v < gpuPosed.size() / 8; ++v) {
+      const float* g = &gpuPosed[v * 8];
+      const float* c = &cpuWorld.posedVertices[v * 8];
+      const glm::vec3 gp(g[0], g[1], g[2]), cp(c[0], c[1], c[2]);
+      const float scale = std::max(1.0f, glm::length(cp));
+      worstP = std::max(worstP, glm::distance(gp, cp) / scale);
+      worstN = std::max(worstN, glm::distance(glm::vec3(g[3], g[4], g[5]), glm::vec3(c[3], c[4], c[5])));
+      ASSERT_EQ(g[6], c[6]) << "uv of vertex " << v;
+      ASSERT_EQ(g[7], c[7]) << "uv of vertex " << v;
+      ++checked;
+    }
+    EXPECT_LE(worstP, kPositionRelTol);
+    EXPECT_LE(worstN, kNormalTol);
+    RecordProperty("worst-position-rel-t" + std::to_string(int(t * 100)), sci(worstP));
+    RecordProperty("worst-normal-t" + std::to_string(int(t * 100)), sci(worstN));
+  }
+  EXPECT_GT(checked, 4u * 4000u);  // CesiumMan 3273 + Fox 1728 vertices, every time
+}
+
+TEST(SkinningGpu, PassRunsOnlyWithASkinnedEntityAndBeforeTheDraws) {
+  gpu::Context& ctx = gpu::testkit::sharedContext();
+  const fs::path with = writeLevel("pass-with.json", R"(["direct", "shadows"])",
+                                   {kCamera, meshEntity("man", assets() / "CesiumMan/glTF-Binary/CesiumMan.glb", ""),
+                                    R"({"id": "lamp", "transform": {"translation": [0, 3, 1]}, "light": {"type": "point", "intensity": 5}})"});
+  const fs::path without = writeLevel("pass-without.json", R"(["direct", "shadows"])",
+                                      {kCamera, meshEntity("box", assets() / "Box/glTF-Binary/Box.glb", ""),
+                                       R"({"id": "lamp", "transform": {"translation": [0, 3, 1]}, "light": {"type": "point", "intensity": 5}})"});
+  auto passes = [&](const fs::path& level) {
+    game::Session session(ctx, scene::loadLevel(level));
+    session.update(0.5);
+    gpu::OffscreenPresenter presenter(ctx, {32, 32});
+    session.render(presenter, {});
+    return session.renderer().executedPasses();
+  };
+  EXPECT_EQ(passes(with), (std::vector<std::string>{"skinning", "shadow", "gbuffer", "lighting", "tonemap"}));
+  EXPECT_EQ(passes(without), (std::vector<std::string>{"shadow", "gbuffer", "lighting", "tonemap"}));
+}
+
+// Display image of one debug view of `session` at time t.
+std::vector<std::uint8_t> view(game::Session& session, double t, render::DebugView v, std::uint32_t size) {
+  gpu::Context& ctx = gpu::testkit::sharedContext();
+  session.update(t);
+  gpu::OffscreenPresenter presenter(ctx, {size, size});
+  render::FrameSettings s;
+  s.debugView = v;
+  session.render(presenter, s);
+  session.renderer().frames().waitIdle();
+  return gpu::readback(ctx, session.renderer().displayImage());
+}
+
+// Floor pixels (the same entity colour in both frames, so not the character) whose shadow view
+// changes between t = 0 and t = 0.6, on a level where only the clip moves the character.
+std::size_t movedShadowPixels(bool animated) {
+  gpu::Context& ctx = gpu::testkit::sharedContext();
+  const fs::path level = writeLevel(
+      animated ? "shadow-animated.json" : "shadow-still.json", R"(["direct", "shadows"])",
+      {R"({"id": "camera", "transform": {"translation": [0, 4, 0.3], "rotation_euler_deg": [-90, 0, 0]}, "camera": {"yfov_deg": 60, "near": 0.05, "far": 20}})",
+       R"({"id": "floor", "transform": {"scale": [6, 1, 6]}, "mesh": {"asset": ")" +
+           (fs::path(BOUNCE_SOURCE_DIR) / "tests/data/render/quad.gltf").string() + R"("}, "material": {"albedo": [0.8, 0.8, 0.8]}})",
+       meshEntity("man", assets() / "CesiumMan/glTF-Binary/CesiumMan.glb",
+                  animated ? "" : R"(, "animation": false)"),
+       R"({"id": "lamp", "transform": {"translation": [1.5, 2.5, 0.5]}, "light": {"type": "point", "intensity": 6}})"});
+  game::Session session(ctx, scene::loadLevel(level));
+  constexpr std::uint32_t kSize = 128;
+  const auto id0 = view(session, 0.0, render::DebugView::EntityId, kSize);
+  const auto sh0 = view(session, 0.0, render::DebugView::Shadow, kSize);
+  const auto id1 = view(session, 0.6, render::DebugView::EntityId, kSize);
+  const auto sh1 = view(session, 0.6, render::DebugView::Shadow, kSize);
+  std::size_t moved = 0;
+  for (std::size_t p = 0; p < std::size_t(kSize) * kSize; ++p) {
+    const bool sameSurface = std::equal(&id0[p * 4], &id0[p * 4 + 3], &id1[p * 4]);
+    if (sameSurface && std::abs(int(sh0[p * 4]) - int(sh1[p * 4])) > 64) ++moved;
+  }
+  return moved;
+}
+
+TEST(SkinningGpu, ASkinnedMeshCastsAMovingShadow) {
+  // Only the clip plays (no motion): the character's shadow on the floor must change. Seen from
+  // above, the walking legs and swinging arms shade ~100+ floor pixels differently at 128².
+  constexpr std::size_t kMinMoved = 30;
+  const std::size_t moved = movedShadowPixels(true);
+  EXPECT_GE(moved, kMinMoved);
+  RecordProperty("moved-shadow-pixels", std::to_string(moved));
+  EXPECT_EQ(movedShadowPixels(false), 0u);  // "animation": false holds the pose: nothing moves
+}
+
+TEST(SkinningGpu, RasterSilhouetteMatchesTheTracersAt256) {
+  // Only the character (black background): raster entity-id pixels vs pixels whose tracer camera
+  // ray hits the scene, both of the pose at t = 0.8 (the tracer's from the CPU evaluation).
+  constexpr std::uint32_t kSize = 256;
+  constexpr double kMinIoU = 0.99;
+  gpu::Context& ctx = gpu::testkit::sharedContext();
+  const fs::path level = writeLevel(
+      "silhouette.json", R"(["direct"])",
+      {R"({"id": "camera", "transform": {"translation": [0.1, 0.8, 2.0]}, "camera": {"yfov_deg": 50, "near": 0.05, "far": 20}})",
+       meshEntity("man", assets() / "CesiumMan/glTF-Binary/CesiumMan.glb", "")});
+  game::Session session(ctx, scene::loadLevel(level));
+  const auto ids = view(session, 0.8, render::DebugView::EntityId, kSize);
+
+  ref::ReferenceAssets refAssets;
+  refAssets.load(session.registry(), game::cookCacheDir());
+  const ref::SceneBvh bvh(ref::extractScene(session.registry(), session.level(), refAssets));
+  std::size_t both = 0, either = 0, raster = 0;
+  for (std::uint32_t y = 0; y < kSize; ++y)
+    for (std::uint32_t x = 0; x < kSize; ++x) {
+      const std::size_t p = std::size_t(y) * kSize + x;
+      const bool r = ids[p * 4] | ids[p * 4 + 1] | ids[p * 4 + 2];
+      const ref::CameraRay ray = ref::cameraRay(bvh.scene().camera, kSize, kSize, x, y);
+      ref::Hit hit;
+      const bool t = bvh.intersect(ray.origin, ray.direction, ray.tMin, ray.tMax, hit);
+      both += r && t;
+      either += r || t;
+      raster += r;
+    }
+  ASSERT_GT(raster, 2000u);  // the character covers a good part of the view
+  const double iou = double(both) / double(either);
+  EXPECT_GE(iou, kMinIoU);
+  RecordProperty("silhouette-iou", sci(iou));
+  RecordProperty("silhouette-pixels", std::to_string(raster) + " raster, " + std::to_string(either - both) + " differ");
+}
+
+}  // namespace
