@@ -162,6 +162,7 @@ int runPlay(const cli::Args& args) {
       for (int key : keys.pressed) {
         switch (applyKey(key, state, session.level().effects)) {
           case KeyEffect::EffectsChanged:
+            session.syncTechniques();  // builds what was just named; notes what cannot run
             log::info("effects: " + joined(session.level().effects.names()));
             break;
           case KeyEffect::VsyncChanged:
@@ -196,7 +197,7 @@ int runPlay(const cli::Args& args) {
         info.passes = timings.passMedians();
         info.gpuTotalMs = timings.gpuTotalMedianMs();
         info.gpuWindow = timings.gpuFrames();
-        info.effects = session.level().effects;
+        info.effects = session.runningEffects();  // a named effect that cannot run is not shown as on
         info.debugView = state.settings.debugView;
         info.exposure = state.settings.exposure;
         info.vsync = state.vsync;
@@ -205,7 +206,7 @@ int runPlay(const cli::Args& args) {
         info.flying = camera.flying();
         info.extent = presenter.extent();
         info.vlm = vlmControlText(state.vlm);
-        if (session.vlm()) info.vlmOverflow = vlm::formatOverflow(session.vlm()->overflow());
+        if (session.vlm()) info.vlmOverflow = gi::vlm::formatOverflow(session.vlm()->overflow());
         overlay->build(info, dt);
       }
       presenter.setOverlay(state.overlay ? overlay.get() : nullptr);

@@ -34,6 +34,7 @@ int main(int argc, char** argv) {
           {"reference", game::runReference}, {"export", game::runExport},
           {"bench", game::runBench},         {"bake", game::runBake},
           {"accuracy", game::runAccuracy},   {"vlm-make", game::runVlmMake},
+          {"cache", game::runCache},
       };
       for (const auto& [command, run] : kRunners)
         if (name == command) return game::exitCodeAfterCommand(name, run(args));
