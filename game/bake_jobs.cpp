@@ -1,7 +1,9 @@
 #include "game/bake_jobs.hpp"
 
+#include <algorithm>
 #include <cstdio>
 
+#include "engine/core/error.hpp"
 #include "engine/core/paths.hpp"
 #include "engine/scene/systems.hpp"
 
@@ -63,7 +65,18 @@ std::string effectList(const scene::Level& level) {
 
 }  // namespace
 
-LevelJobs levelJobs(const scene::Level& level, const std::filesystem::path& cookCache) {
+std::string onlyValue(const gi::BakeJob& job) { return job.part.empty() ? job.technique : job.technique + ":" + job.part; }
+
+LevelJobs levelJobs(const scene::Level& level, const std::filesystem::path& cookCache, std::string_view only) {
+  const std::size_t colon = only.find(':');
+  const std::string_view onlyTechnique = only.substr(0, colon);
+  const std::string_view onlyPart = colon == std::string_view::npos ? std::string_view{} : only.substr(colon + 1);
+  if (!only.empty()) {
+    const auto e = scene::effectFromName(onlyTechnique);
+    if (!e || !gi::findTechnique(*e))
+      throwInputError(level.source.string(), "--only", "no technique " + std::string(onlyTechnique),
+                      "TECHNIQUE or TECHNIQUE:PART, TECHNIQUE one of the table's (probes, dnrt, ...)");
+  }
   LevelJobs out;
   ecs::Registry registry;
   scene::instantiate(level, registry);
@@ -71,11 +84,20 @@ LevelJobs levelJobs(const scene::Level& level, const std::filesystem::path& cook
   const gi::LevelContext lc{level, registry, cookCache};
   for (const gi::Technique* t : gi::techniques()) {
     if (!level.effects.has(t->effect())) continue;
+    if (!only.empty() && t->name() != onlyTechnique) continue;
     if (const auto note = gi::effectNote(*t, lc)) {
       out.notes.push_back(*note);
       continue;
     }
-    for (auto& job : t->bakeJobs(lc)) out.jobs.push_back(std::move(job));
+    for (auto& job : t->bakeJobs(lc, onlyPart)) {
+      // Content keys name outputs: two entities with the same object and settings (cornell-10's two
+      // trucks) share one entry, so one job bakes it.
+      auto same = std::find_if(out.jobs.begin(), out.jobs.end(), [&](const gi::BakeJob& j) { return j.key == job.key; });
+      if (same == out.jobs.end())
+        out.jobs.push_back(std::move(job));
+      else
+        same->what += " (also " + job.what + ")";
+    }
   }
   return out;
 }
@@ -84,7 +106,7 @@ std::string jobCommand(const scene::Level& level, const gi::BakeJob& job, const 
   const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe");
   return "BOUNCE_CACHE=" + shellQuote(cacheRoot().string()) + " BOUNCE_COOK_CACHE=" + shellQuote(cookCache.string()) +
          " " + shellQuote(exe.string()) + " bake " + shellQuote(level.source.string()) + " --effects " +
-         shellQuote(effectList(level)) + " --job " + job.key;
+         shellQuote(effectList(level)) + " --only " + shellQuote(onlyValue(job)) + " --job " + job.key;
 }
 
 std::string ninjaPlan(const scene::Level& level, const std::vector<gi::BakeJob>& jobs,

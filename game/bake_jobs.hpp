@@ -5,6 +5,7 @@
 // command, the cache entry as the target) or as JSON lines for any job-array scheduler.
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "engine/gi/technique.hpp"
@@ -13,16 +14,21 @@
 namespace bounce::game {
 
 struct LevelJobs {
-  std::vector<gi::BakeJob> jobs;   // table order, then each technique's order
+  std::vector<gi::BakeJob> jobs;   // table order, then each technique's order; one per content key
   std::vector<std::string> notes;  // named effects that do not run (gi::effectNote)
 };
 // Every bake job of the level's named effects (instantiates the level, cooks its assets through the
-// cache, hashes the inputs: no bake runs).
-LevelJobs levelJobs(const scene::Level& level, const std::filesystem::path& cookCache);
+// cache, hashes the inputs: no bake runs). `only` narrows it to one technique ("dnrt") or one part
+// of it ("dnrt:prop-truck", BakeJob::part): what a job's own process plans (`bounce bake --only`).
+LevelJobs levelJobs(const scene::Level& level, const std::filesystem::path& cookCache, std::string_view only = {});
+
+// "TECHNIQUE" or "TECHNIQUE:PART": the --only value that plans just `job`.
+std::string onlyValue(const gi::BakeJob& job);
 
 // The shell command that runs one job: `BOUNCE_CACHE=… BOUNCE_COOK_CACHE=… <bounce> bake <level>
-// --effects <effects> --job <key>` (absolute paths, quoted for /bin/sh), so the job writes exactly
-// the entry the plan names whatever the environment of the runner.
+// --effects <effects> --only <technique[:part]> --job <key>` (absolute paths, quoted for /bin/sh),
+// so the job writes exactly the entry the plan names whatever the environment of the runner, and
+// plans only itself.
 std::string jobCommand(const scene::Level& level, const gi::BakeJob& job, const std::filesystem::path& cookCache);
 
 // The Ninja file: one rule, one edge per job (target: the job's output; inputs: its files).

@@ -7,6 +7,8 @@
 //   --list-jobs  the same jobs as JSON lines (key, technique, what, command, inputs, output) for a
 //                job-array scheduler
 //   --job KEY    run the one job with content key KEY (the plan's command)
+//   --only T[:P] plan only technique T's jobs (or only its part P, e.g. dnrt:prop-truck): the plan's
+//                commands pass it so each job's process gathers only its own inputs
 // --force re-bakes even when the cache holds a valid entry (to time a bake). A cache entry is only
 // trusted after it is read in full and validated (version, sizes, checksum); a corrupt one is
 // re-baked.
@@ -40,7 +42,7 @@ int runBake(const cli::Args& args) {
   const bool force = args.has("--force");
   const int modes = int(args.has("--plan")) + int(args.has("--list-jobs")) + int(args.has("--job"));
   if (modes > 1) throwInputError("bounce bake", "--plan/--list-jobs/--job", "more than one given", "at most one of them");
-  const LevelJobs planned = levelJobs(level, cookCacheDir());
+  const LevelJobs planned = levelJobs(level, cookCacheDir(), args.str("--only"));
 
   if (args.has("--job")) {
     const std::string key = args.str("--job");

@@ -72,6 +72,9 @@ struct BakeJob {
   std::string technique;   // effect name: "probes", "dnrt"
   std::string what;        // for people: "probes", "dnrt prop"
   std::string key;         // content key, 16 hex digits; unique among a level's jobs
+  // Which of the technique's jobs: the entity id of a per-object bake ("prop-truck"), empty for a
+  // per-level one. bakeJobs(lc, part) plans only this one (what `bounce bake --job` runs).
+  std::string part;
   std::filesystem::path output;               // the cache entry it writes
   std::vector<std::filesystem::path> inputs;  // files it reads (the level, cooked assets)
   // When `output` holds a valid entry (read in full and validated: version, checksum), the line
@@ -128,8 +131,10 @@ class Technique {
   // Whether some entity of the level takes part (the effect being named is checked by the caller).
   // When not, `why` (may be null) gets what is missing, e.g. "no entity has a dnrt component".
   virtual bool takesPart(const LevelContext& lc, std::string* why) const = 0;
-  // Everything it precomputes for the level, one job per cache entry (none: nothing to bake).
-  virtual std::vector<BakeJob> bakeJobs(const LevelContext&) const { return {}; }
+  // Everything it precomputes for the level, one job per cache entry (none: nothing to bake). With
+  // `part` non-empty, only the job(s) of that part (BakeJob::part), gathering only their inputs: a
+  // job run in its own process plans just itself, so each process of a plan stays cheap.
+  virtual std::vector<BakeJob> bakeJobs(const LevelContext&, std::string_view /*part*/) const { return {}; }
   // The cacheDir() kind its jobs write into ("probes", "dnrt"); empty when it bakes nothing.
   // `bounce cache --prune` cleans these folders.
   virtual std::string_view cacheKind() const { return {}; }

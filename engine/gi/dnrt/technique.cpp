@@ -1,5 +1,6 @@
 #include "engine/gi/dnrt/technique.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 
@@ -41,25 +42,37 @@ class DnrtTechnique final : public Technique {
     return any;
   }
 
-  std::vector<BakeJob> bakeJobs(const LevelContext& lc) const override {
-    LevelObjects objects;
-    loadLevelObjects(lc.level, lc.cookCache, objects);
+  std::vector<BakeJob> bakeJobs(const LevelContext& lc, std::string_view part) const override {
+    std::vector<ecs::Entity> entities;
+    lc.registry.view<scene::Dnrt, scene::MeshRef>().each([&](ecs::Entity e, scene::Dnrt&, scene::MeshRef&) {
+      const auto* name = lc.registry.tryGet<scene::Name>(e);
+      if (part.empty() || (name && name->id == part)) entities.push_back(e);
+    });
+    std::sort(entities.begin(), entities.end());  // deterministic order (as Runtime)
+    // Only the assets of the selected entities are cooked/decoded (one job's process loads one).
+    ref::ReferenceAssets assets;
+    for (ecs::Entity e : entities) {
+      ecs::Registry one;
+      one.emplace<scene::MeshRef>(one.create(), lc.registry.get<scene::MeshRef>(e));
+      assets.load(one, lc.cookCache);
+    }
     std::vector<std::filesystem::path> inputs;
     if (!lc.level.source.empty()) inputs.push_back(lc.level.source);
     std::vector<BakeJob> jobs;
-    for (ecs::Entity e : objects.entities) {
+    for (ecs::Entity e : entities) {
       auto ob = std::make_shared<ObjectBake>();
-      ob->name = objects.registry.get<scene::Name>(e).id;
-      ob->object = objectScene(objects.registry, e, objects.assets);
-      ob->settings = settingsFrom(objects.registry.get<scene::Dnrt>(e));
+      ob->name = lc.registry.get<scene::Name>(e).id;
+      ob->object = objectScene(lc.registry, e, assets);
+      ob->settings = settingsFrom(lc.registry.get<scene::Dnrt>(e));
       ob->output = cachePath(ob->object, ob->settings, cacheFolder());
       BakeJob job;
       job.technique = "dnrt";
       job.what = "dnrt " + ob->name;
+      job.part = ob->name;
       job.key = cacheKey(ob->object, ob->settings);
       job.output = ob->output;
       job.inputs = inputs;
-      job.inputs.push_back(objects.registry.get<scene::MeshRef>(e).asset);
+      job.inputs.push_back(lc.registry.get<scene::MeshRef>(e).asset);
       job.cached = [ob]() -> std::optional<std::string> {
         if (!std::filesystem::exists(ob->output)) return std::nullopt;
         try {

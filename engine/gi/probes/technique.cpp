@@ -28,7 +28,8 @@ class ProbesTechnique final : public Technique {
   // The volume covers the static scene and lights every drawn surface: no component needed.
   bool takesPart(const LevelContext&, std::string*) const override { return true; }
 
-  std::vector<BakeJob> bakeJobs(const LevelContext& lc) const override {
+  std::vector<BakeJob> bakeJobs(const LevelContext& lc, std::string_view part) const override {
+    if (!part.empty()) return {};  // one per-level job, no parts
     auto input = std::make_shared<BakeInput>(prepare(lc.level, lc.cookCache, settingsFrom(lc.level)));
     BakeJob job;
     job.technique = "probes";

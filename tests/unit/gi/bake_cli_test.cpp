@@ -113,6 +113,7 @@ TEST_F(BakeCli, ListJobsIsOneJsonLinePerJob) {
       EXPECT_NE(l.find(field), std::string::npos) << field << " in " << l;
     const std::string key = l.substr(l.find("\"key\": \"") + 8, 16);
     EXPECT_NE(l.find("--job " + key), std::string::npos) << l;
+    EXPECT_NE(l.find(" --only '"), std::string::npos) << "each job plans only itself: " << l;
     EXPECT_NE(l.find(key), l.rfind(key)) << "the output is named by the key: " << l;
     probes += l.find("\"technique\": \"probes\"") != std::string::npos;
     dnrt += l.find("\"technique\": \"dnrt\"") != std::string::npos;
@@ -230,6 +231,19 @@ TEST_F(BakeCli, UnknownJobKeyIsBadInput) {
   EXPECT_NE(r.err.find("bake-tiny.json: --job: no bake job has key 0123456789abcdef (expected one of: "),
             std::string::npos)
       << r.err;
+}
+
+TEST_F(BakeCli, OnlyNamesATechniqueOfTheTable) {
+  const Outcome r = bounce(dir_ / "cache", {"bake", kTiny.string(), "--only", "bloom", "--list-jobs"});
+  EXPECT_EQ(r.code, 2);
+  ASSERT_EQ(lines(r.err).size(), 1u) << r.err;
+  EXPECT_NE(r.err.find("bake-tiny.json: --only: no technique bloom (expected TECHNIQUE or TECHNIQUE:PART"),
+            std::string::npos)
+      << r.err;
+  const Outcome one = bounce(dir_ / "cache", {"bake", kTiny.string(), "--only", "dnrt:box-b", "--list-jobs"});
+  ASSERT_EQ(one.code, 0) << one.err;
+  ASSERT_EQ(lines(one.out).size(), 1u) << one.out;
+  EXPECT_NE(one.out.find("\"what\": \"dnrt box-b\""), std::string::npos) << one.out;
 }
 
 TEST_F(BakeCli, CacheStatsAndPrune) {
