@@ -67,7 +67,20 @@ int runBake(const cli::Args& args) {
     return 0;
   }
   for (const auto& job : planned.jobs) runJob(job, force);
-  if (planned.jobs.empty()) std::printf("nothing to bake: no named effect precomputes anything for this level\n");
+  if (planned.jobs.empty()) {
+    // The techniques that bake, from the table: "neither probes nor dnrt" today.
+    std::vector<std::string> baking;
+    bool named = false;
+    for (const gi::Technique* t : gi::techniques())
+      if (!t->cacheKind().empty()) baking.emplace_back(t->name()), named = named || level.effects.has(t->effect());
+    std::string list;
+    for (std::size_t i = 0; i < baking.size(); ++i)
+      list += (i == 0 ? "" : i + 1 == baking.size() ? (baking.size() == 2 ? " nor " : ", nor ") : ", ") + baking[i];
+    if (named)
+      std::printf("nothing to bake: no entity takes part in the effects that bake\n");
+    else
+      std::printf("nothing to bake: the effects name %s%s\n", baking.size() == 2 ? "neither " : "none of ", list.c_str());
+  }
   return 0;
 }
 

@@ -213,7 +213,7 @@ TEST_F(BakeCli, ReservedEffectSaysSoInOneLine) {
   const Outcome r = bounce(dir_ / "cache", {"bake", kTiny.string(), "--effects", "direct,sl"});
   EXPECT_EQ(r.code, 0);
   EXPECT_EQ(r.err, "note: effect sl is reserved (not implemented yet): no pass\n");
-  EXPECT_EQ(r.out, "nothing to bake: no named effect precomputes anything for this level\n");
+  EXPECT_EQ(r.out, "nothing to bake: the effects name neither probes nor dnrt\n");
 }
 
 TEST_F(BakeCli, EffectWithoutParticipantsSaysSoInOneLine) {
