@@ -23,102 +23,12 @@ void addDirect(std::vector<AccuracyRow>& rows) {
   }
 }
 
-// The baked irradiance volume (engine/gi/probes, issue 3 §3): two probe spacings × two SH orders,
-// on top of direct light, against the full reference. Spacing and order reach the bake through
-// the level's "probes" settings (`configure`).
-void addProbes(std::vector<AccuracyRow>& rows) {
-  for (const double spacing : {0.25, 0.125})  // metres; the Cornell box is 0.55 m wide
-    for (const int order : {2, 3}) {          // SH order as bands: 2 = L1 (4 coefficients), 3 = L2 (9)
-      AccuracyRow r;
-      r.technique = "probes";
-      char setting[96];
-      std::snprintf(setting, sizeof setting, "spacing=%gm;sh_order=%d;ref=all", spacing, order);
-      r.setting = setting;
-      r.effects = {"direct", "shadows", "probes"};
-      r.passes = {"shadow", "lighting", "probes"};
-      r.configure = [spacing, order](scene::Level& level) {
-        level.probes.spacing = float(spacing);
-        level.probes.order = order;
-      };
-      rows.push_back(std::move(r));
-    }
-}
-
-// The DNRT paper's baselines (§6.4): screen-space AO darkening the probes' indirect light around
-// every object, dynamic ones included. Same probes as the DNRT rows (level defaults).
-void addAo(std::vector<AccuracyRow>& rows) {
-  for (const char* kind : {"ssao", "hbao"}) {
-    AccuracyRow r;
-    r.technique = kind;
-    r.setting = "radius=0.1m;ref=all";
-    r.effects = {"direct", "shadows", "probes", kind};
-    r.passes = {"shadow", "lighting", kind, "probes"};
-    rows.push_back(std::move(r));
-  }
-}
-
-// DNRT (engine/gi/dnrt, issue 4) on top of probes: what the dynamic objects add and take away,
-// for every field setting the paper's tables vary: SH count (Table 7), grid resolution, intrusion
-// (Table 6) and the anti-radiance of Eq. 12 vs App. B.2. Applied to every `dnrt` entity. Its
-// effect_rel_rmse is the number that matters (the static part is the probes').
-void addDnrt(std::vector<AccuracyRow>& rows) {
-  for (const int shCount : {4, 9})
-    for (const int grid : {16, 32, 64})
-      for (const bool intrusion : {false, true})
-        for (const bool improved : {false, true}) {
-          AccuracyRow r;
-          r.technique = "dnrt";
-          r.setting = "sh=" + std::to_string(shCount) + ";grid=" + std::to_string(grid) +
-                      ";intrusion=" + (intrusion ? "on" : "off") + ";anti_radiance=" + (improved ? "improved" : "paper") +
-                      ";ref=all";
-          r.effects = {"direct", "shadows", "probes", "dnrt"};
-          r.passes = {"shadow", "lighting", "probes", "dnrt"};
-          r.optionalPasses = {"dnrt.cube"};  // the intrusion maps (one outermost pass per object)
-          r.configure = [=](scene::Level& level) {
-            for (auto& e : level.entities)
-              if (e.dnrt) {
-                e.dnrt->shCount = shCount;
-                e.dnrt->grid = grid;
-                e.dnrt->intrusion = intrusion;
-                e.dnrt->improvedAntiRadiance = improved;
-              }
-          };
-          rows.push_back(std::move(r));
-        }
-}
-
-// Virtual Light Meshes (engine/gi/vlm, issue 5 §7): the thesis's range parameter (Fig. 5.6: too
-// small a range leaves blocky cut-offs) × candidates per cell K (Table 5.3), on top of direct
-// light. A VLM simulates exactly one diffuse bounce (§3.6), so it is compared with the one-bounce
-// reference. Range and K reach the grid through the level's "vlm" settings.
-void addVlm(std::vector<AccuracyRow>& rows) {
-  for (const double range : {1.5, 2.5, 3.5, 4.5})
-    for (const int k : {10, 20, 30, 60}) {
-      AccuracyRow r;
-      r.technique = "vlm";
-      char setting[96];
-      std::snprintf(setting, sizeof setting, "range=%g;k=%d;ref=1bounce", range, k);
-      r.setting = setting;
-      r.effects = {"direct", "shadows", "vlm"};
-      r.referenceBounces = 1;
-      r.passes = {"shadow", "lighting", "vlm.lights", "vlm"};
-      r.configure = [range, k](scene::Level& level) {
-        level.vlm.range = float(range);
-        level.vlm.k = k;
-      };
-      rows.push_back(std::move(r));
-    }
-}
-
 }  // namespace
 
 std::vector<AccuracyRow> accuracyRows() {
   std::vector<AccuracyRow> rows;
   addDirect(rows);
-  addProbes(rows);
-  addAo(rows);
-  addDnrt(rows);
-  addVlm(rows);
+  for (const gi::Technique* t : gi::techniques()) t->accuracyRows(rows);
   return rows;
 }
 

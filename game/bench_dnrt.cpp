@@ -10,6 +10,7 @@
 #include "engine/core/error.hpp"
 #include "engine/core/paths.hpp"
 #include "engine/core/progress.hpp"
+#include "engine/core/paths.hpp"
 #include "engine/gi/dnrt/bake.hpp"
 #include "engine/gi/dnrt/object_scene.hpp"
 #include "engine/gpu/presenter_offscreen.hpp"
@@ -72,7 +73,7 @@ void bakeMissing(const scene::Level& level, DnrtBenchRow& row) {
     const gi::dnrt::FieldSettings settings = gi::dnrt::settingsFrom(registry.get<scene::Dnrt>(e));
     const auto start = std::chrono::steady_clock::now();
     bool cached = true;
-    gi::dnrt::bakeCached(object, settings, dnrtCacheDir(), &cached);
+    gi::dnrt::bakeCached(object, settings, cacheDir("dnrt"), &cached);
     if (cached) continue;
     ++row.fieldsBaked;
     row.bakeSeconds += secondsSince(start);

@@ -22,15 +22,15 @@ constexpr float kEverywhereRange = 100.0f;
 
 // Splits the largest triangle at the midpoint of its longest edge until there are `count`
 // (the halves keep the winding, so the emitting side, and the light's scale and tag).
-std::vector<vlm::VirtualLight> subdivide(std::vector<vlm::VirtualLight> lights, std::size_t count) {
-  auto area = [](const vlm::VirtualLight& l) { return glm::length(glm::cross(l.v1 - l.v0, l.v2 - l.v0)); };
+std::vector<gi::vlm::VirtualLight> subdivide(std::vector<gi::vlm::VirtualLight> lights, std::size_t count) {
+  auto area = [](const gi::vlm::VirtualLight& l) { return glm::length(glm::cross(l.v1 - l.v0, l.v2 - l.v0)); };
   using Item = std::pair<float, std::size_t>;
   std::priority_queue<Item> largest;
   for (std::size_t i = 0; i < lights.size(); ++i) largest.push({area(lights[i]), i});
   while (lights.size() < count && !largest.empty()) {
     const std::size_t i = largest.top().second;
     largest.pop();
-    vlm::VirtualLight a = lights[i];
+    gi::vlm::VirtualLight a = lights[i];
     // Rotate so that v0–v1 is the longest edge.
     for (int r = 0; r < 2; ++r) {
       const float e01 = glm::length(a.v1 - a.v0), e12 = glm::length(a.v2 - a.v1), e20 = glm::length(a.v0 - a.v2);
@@ -38,7 +38,7 @@ std::vector<vlm::VirtualLight> subdivide(std::vector<vlm::VirtualLight> lights, 
       a = {a.v1, a.v2, a.v0, a.scale, a.tag};
     }
     const glm::vec3 m = 0.5f * (a.v0 + a.v1);
-    vlm::VirtualLight first = a, second = a;
+    gi::vlm::VirtualLight first = a, second = a;
     first.v1 = m;   // (v0, m, v2)
     second.v0 = m;  // (m, v1, v2)
     lights[i] = first;
@@ -54,7 +54,7 @@ struct Bench {
   gpu::Context ctx;
   std::unique_ptr<Session> session;
   std::unique_ptr<gpu::OffscreenPresenter> presenter;
-  std::vector<vlm::VirtualLight> baseLights;  // the level's static VLM triangles
+  std::vector<gi::vlm::VirtualLight> baseLights;  // the level's static VLM triangles
   std::size_t dynamicLights = 0;
   int warmup = 1, frames = 3;
   double t = 0.0;
@@ -94,7 +94,7 @@ struct Bench {
 
   // Sets `total` lights (static ones split from the level's) and the grid, renders, returns the
   // median GPU ms of the passes "vlm" and "vlm.lights".
-  std::pair<double, double> run(std::size_t total, const vlm::NodeSettings& settings) {
+  std::pair<double, double> run(std::size_t total, const gi::vlm::NodeSettings& settings) {
     if (total <= dynamicLights)
       throwInputError("bounce bench", "--lights", std::to_string(total) + " lights",
                       "more than the level's " + std::to_string(dynamicLights) + " dynamic virtual lights");
@@ -146,7 +146,7 @@ int runBenchVlmLights(const cli::Args& args) {
   const auto ns = counts(args, "--counts", {20, 40, 60, 80, 100, 120, 140, 160, 180, 200, 220, 240});
   Bench bench(args);
   for (int n : ns) {
-    vlm::NodeSettings s = bench.session->vlm()->settings();
+    gi::vlm::NodeSettings s = bench.session->vlm()->settings();
     s.grid = 1;
     s.k = std::uint32_t(n);
     s.range = kEverywhereRange;
@@ -168,7 +168,7 @@ int runBenchVlmK(const cli::Args& args) {
   const int total = args.positiveInt("--lights", 240);
   Bench bench(args);
   for (int k : ks) {
-    vlm::NodeSettings s = bench.session->vlm()->settings();
+    gi::vlm::NodeSettings s = bench.session->vlm()->settings();
     s.k = std::uint32_t(k);
     s.range = kEverywhereRange;
     s.conservativeThreshold = 0.0f;

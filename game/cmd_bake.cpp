@@ -1,96 +1,86 @@
-// bounce bake LEVEL [--effects LIST] [--force]: everything the level's effects precompute, through
-// the same caches play/capture/profile use, with one line per bake (what, where, how long). Needs
-// no Vulkan device: probes and DNRT fields are baked on the CPU with Embree.
-//   probes  the irradiance volume of the static scene (engine/gi/probes/bake.hpp)
-//   dnrt    one neighbouring-transfer field per entity with a `dnrt` component (engine/gi/dnrt/bake.hpp)
-// --force re-bakes even when the cache holds a valid entry (to time a bake).
-#include <algorithm>
-#include <chrono>
+// bounce bake LEVEL [--effects LIST] [--force] [--plan FILE.ninja | --list-jobs | --job KEY]:
+// everything the level's effects precompute, as jobs of the table's techniques
+// (gi::Technique::bakeJobs), through the same caches play/capture/profile use, with one line per
+// job (what, how long, where). Needs no Vulkan device: the bakes run on the CPU with Embree.
+//   (no option)  run every job in this process, one after the other; cached entries are skipped
+//   --plan F     write a Ninja file, one edge per job: `ninja -f F -j N` bakes them in parallel
+//   --list-jobs  the same jobs as JSON lines (key, technique, what, command, inputs, output) for a
+//                job-array scheduler
+//   --job KEY    run the one job with content key KEY (the plan's command)
+//   --only T[:P] plan only technique T's jobs (or only its part P, e.g. dnrt:prop-truck): the plan's
+//                commands pass it so each job's process gathers only its own inputs
+// --force re-bakes even when the cache holds a valid entry (to time a bake). A cache entry is only
+// trusted after it is read in full and validated (version, sizes, checksum); a corrupt one is
+// re-baked.
 #include <cstdio>
 
-#include "engine/gi/dnrt/bake.hpp"
-#include "engine/gi/dnrt/object_scene.hpp"
-#include "engine/gi/probes/bake.hpp"
-#include "engine/ref/reference_scene.hpp"
-#include "engine/scene/components.hpp"
-#include "engine/scene/systems.hpp"
+#include "engine/core/error.hpp"
+#include "engine/core/file.hpp"
+#include "game/bake_jobs.hpp"
 #include "game/commands.hpp"
 #include "game/session.hpp"
 
 namespace bounce::game {
 namespace {
 
-double secondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-void bakeProbes(const scene::Level& level, bool force) {
-  const gi::probes::ProbeSettings settings = probeSettings(level);
-  // One line per bake: this command prints it, so the bake's own log line is off.
-  gi::probes::LoadResult r = gi::probes::loadOrBake(level, cookCacheDir(), probeCacheDir(), settings, false);
-  if (r.fromCache && force) {
-    std::filesystem::remove(r.file);
-    r = gi::probes::loadOrBake(level, cookCacheDir(), probeCacheDir(), settings, false);
-  }
-  const auto& g = r.volume.grid;
-  if (r.fromCache) {
-    std::printf("probes  %dx%dx%d at %g m, SH order %d: cached %s\n", g.count.x, g.count.y, g.count.z, g.spacing,
-                r.volume.order, r.file.c_str());
-    return;
-  }
-  std::printf("probes  %dx%dx%d at %g m, SH order %d, %u rays: %.3f s (%.3f ms/probe, %zu inside geometry) -> %s\n",
-              g.count.x, g.count.y, g.count.z, g.spacing, r.volume.order, settings.rays, r.stats.seconds,
-              r.stats.msPerProbe(), r.stats.invalid, r.file.c_str());
-}
-
-void bakeDnrt(const scene::Level& level, bool force) {
-  gi::dnrt::LevelObjects objects;
-  gi::dnrt::loadLevelObjects(level, cookCacheDir(), objects);
-  auto& registry = objects.registry;
-  const auto& assets = objects.assets;
-  const auto& entities = objects.entities;
-  if (entities.empty()) std::printf("dnrt    no entity has a dnrt component\n");
-  for (ecs::Entity e : entities) {
-    const std::string name = registry.get<scene::Name>(e).id;
-    const ref::SceneDesc object = gi::dnrt::objectScene(registry, e, assets);
-    const gi::dnrt::FieldSettings settings = gi::dnrt::settingsFrom(registry.get<scene::Dnrt>(e));
-    const std::filesystem::path path = gi::dnrt::cachePath(object, settings, dnrtCacheDir());
-    const int n = settings.grid, rays = settings.samplesPerAxis * settings.samplesPerAxis;
-    if (!force && std::filesystem::exists(path)) {
-      // bakeCached re-bakes a corrupt entry; report what it did.
-      bool cached = false;
-      const auto start = std::chrono::steady_clock::now();
-      gi::dnrt::bakeCached(object, settings, dnrtCacheDir(), &cached);
-      if (cached) {
-        std::printf("dnrt    %s: %d^3 x %d rays, %d SH: cached %s\n", name.c_str(), n, rays, settings.shCount, path.c_str());
-        continue;
-      }
-      std::printf("dnrt    %s: %d^3 x %d rays, %d SH: %.3f s (corrupt cache entry re-baked) -> %s\n", name.c_str(), n,
-                  rays, settings.shCount, secondsSince(start), path.c_str());
-      continue;
+void runJob(const gi::BakeJob& job, bool force) {
+  if (!force)
+    if (const auto line = job.cached()) {
+      std::printf("%s\n", line->c_str());
+      std::fflush(stdout);
+      return;
     }
-    const auto start = std::chrono::steady_clock::now();
-    const gi::dnrt::BakeResult r = gi::dnrt::bake(object, settings);
-    const double seconds = secondsSince(start);
-    std::filesystem::create_directories(path.parent_path());
-    gi::dnrt::save(r.field, path);
-    std::printf("dnrt    %s: %d^3 x %d rays, %d SH: %.3f s, %zu vertices inside filled, 8-bit error %.3g (bound %.3g), "
-                "ranges %s -> %s\n",
-                name.c_str(), n, rays, settings.shCount, seconds, r.insideVertices, r.quantization.maxAbs,
-                r.quantization.bound, r.withinAnalyticBound ? "inside the analytic bound (Table 1)" : "OUT OF BOUND",
-                path.c_str());
-  }
+  const std::string line = job.run();
+  std::printf("%s\n", line.c_str());
+  std::fflush(stdout);
 }
 
 }  // namespace
 
 int runBake(const cli::Args& args) {
-  scene::Level level = loadLevelWithEffects(args.positional[0], args.list("--effects"));
+  const scene::Level level = loadLevelWithEffects(args.positional[0], args.list("--effects"));
   const bool force = args.has("--force");
-  bool any = false;
-  if (level.effects.has(scene::Effect::Probes)) bakeProbes(level, force), any = true;
-  if (level.effects.has(scene::Effect::Dnrt)) bakeDnrt(level, force), any = true;
-  if (!any) std::printf("nothing to bake: the effects name neither probes nor dnrt\n");
+  const int modes = int(args.has("--plan")) + int(args.has("--list-jobs")) + int(args.has("--job"));
+  if (modes > 1) throwInputError("bounce bake", "--plan/--list-jobs/--job", "more than one given", "at most one of them");
+  const LevelJobs planned = levelJobs(level, cookCacheDir(), args.str("--only"));
+
+  if (args.has("--job")) {
+    const std::string key = args.str("--job");
+    for (const auto& job : planned.jobs)
+      if (job.key == key) {
+        runJob(job, force);
+        return 0;
+      }
+    std::string keys;
+    for (const auto& job : planned.jobs) keys += (keys.empty() ? "" : ", ") + job.key;
+    throwInputError(level.source.string(), "--job", "no bake job has key " + key,
+                    keys.empty() ? "no key: the level's effects bake nothing" : "one of: " + keys);
+  }
+  for (const auto& note : planned.notes) gi::printNoteOnce(note);
+  if (args.has("--plan")) {
+    writeFileAtomic(std::filesystem::path(args.str("--plan")), ninjaPlan(level, planned.jobs, cookCacheDir()));
+    std::printf("%zu bake job(s) -> %s\n", planned.jobs.size(), args.str("--plan").c_str());
+    return 0;
+  }
+  if (args.has("--list-jobs")) {
+    std::fputs(jobLines(level, planned.jobs, cookCacheDir()).c_str(), stdout);
+    return 0;
+  }
+  for (const auto& job : planned.jobs) runJob(job, force);
+  if (planned.jobs.empty()) {
+    // The techniques that bake, from the table: "neither probes nor dnrt" today.
+    std::vector<std::string> baking;
+    bool named = false;
+    for (const gi::Technique* t : gi::techniques())
+      if (!t->cacheKind().empty()) baking.emplace_back(t->name()), named = named || level.effects.has(t->effect());
+    std::string list;
+    for (std::size_t i = 0; i < baking.size(); ++i)
+      list += (i == 0 ? "" : i + 1 == baking.size() ? (baking.size() == 2 ? " nor " : ", nor ") : ", ") + baking[i];
+    if (named)
+      std::printf("nothing to bake: no entity takes part in the effects that bake\n");
+    else
+      std::printf("nothing to bake: the effects name %s%s\n", baking.size() == 2 ? "neither " : "none of ", list.c_str());
+  }
   return 0;
 }
 

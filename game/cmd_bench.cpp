@@ -49,15 +49,15 @@ int runBench(const cli::Args& args) {
   if (!(range > 0.0 && range < 100.0)) throwInputError("bounce bench", "--range", "out of range", "0 < range < 100");
   if (grid > 512) throwInputError("bounce bench", "--grid", "too many cells", "a grid of at most 512³");
 
-  const auto scene = vlm::randomGridScene(std::uint32_t(lights), 1);
-  const auto desc = vlm::fitGrid(glm::vec3(0.0f), glm::vec3(1.0f), glm::uvec3(std::uint32_t(grid)), std::uint32_t(k), float(range));
-  vlm::Grid scatter, gather;
+  const auto scene = gi::vlm::randomGridScene(std::uint32_t(lights), 1);
+  const auto desc = gi::vlm::fitGrid(glm::vec3(0.0f), glm::vec3(1.0f), glm::uvec3(std::uint32_t(grid)), std::uint32_t(k), float(range));
+  gi::vlm::Grid scatter, gather;
   // The scatter build as the per-frame dynamic grid runs it: one builder and one grid reused, so
   // the median is the steady state; the first build (fresh memory, page faults) is printed apart.
-  vlm::GridScatterBuilder builder;
+  gi::vlm::GridScatterBuilder builder;
   const double firstMs = medianMs(1, [&] { builder.build(scene, desc, scatter); });
   const double scatterMs = medianMs(runs, [&] { builder.build(scene, desc, scatter); });
-  const double gatherMs = args.has("--no-gather") ? 0.0 : medianMs(runs, [&] { gather = vlm::buildGridGather(scene, desc); });
+  const double gatherMs = args.has("--no-gather") ? 0.0 : medianMs(runs, [&] { gather = gi::vlm::buildGridGather(scene, desc); });
   if (!args.has("--no-gather") && gather.slots != scatter.slots)
     throw InternalError("bench vlm-grid: scatter and gather builds disagree");
   char gatherText[32] = "skipped";

@@ -228,6 +228,7 @@ int runPlay(const cli::Args& args) {
       for (int key : keys.pressed) {
         switch (applyKey(key, state, session.level().effects)) {
           case KeyEffect::EffectsChanged:
+            session.syncTechniques();  // builds what was just named; notes what cannot run
             log::info("effects: " + joined(session.level().effects.names()));
             break;
           case KeyEffect::VsyncChanged:
@@ -272,7 +273,7 @@ int runPlay(const cli::Args& args) {
         info.passes = timings.passMedians();
         info.gpuTotalMs = timings.gpuTotalMedianMs();
         info.gpuWindow = timings.gpuFrames();
-        info.effects = session.level().effects;
+        info.effects = session.runningEffects();  // a named effect that cannot run is not shown as on
         info.debugView = state.settings.debugView;
         info.exposure = state.settings.exposure;
         info.vsync = state.vsync;
@@ -282,7 +283,7 @@ int runPlay(const cli::Args& args) {
         info.extent = presenter.extent();
         info.vlm = vlmControlText(state.vlm);
         info.animation = animationText(session.registry(), state.character);
-        if (session.vlm()) info.vlmOverflow = vlm::formatOverflow(session.vlm()->overflow());
+        if (session.vlm()) info.vlmOverflow = gi::vlm::formatOverflow(session.vlm()->overflow());
         const OverlayActions actions = overlay->build(info, dt);
         if (actions.exposure) state.settings.exposure = *actions.exposure;
         if (actions.debugView) state.settings.debugView = *actions.debugView;

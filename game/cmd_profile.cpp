@@ -1,6 +1,7 @@
 // bounce profile LEVEL: per-pass GPU milliseconds (median, p95) over many frames of the level's
-// scripted motion, measured side by side in one run. When the VLM node runs, the table ends with
-// its overflow line (vlm::formatOverflow); the CSV keeps exactly its five timing columns.
+// scripted motion, measured side by side in one run. The table ends with the running techniques'
+// lines (gi::TechniqueRuntime::profileLines, e.g. VLM's grid overflow); the CSV keeps exactly its
+// five timing columns.
 #include <cstdio>
 
 #include "engine/core/file.hpp"
@@ -43,7 +44,7 @@ int runProfile(const cli::Args& args) {
   std::printf("level %s  effects %s  %dx%d  device %s  frames %zu\n", args.positional[0].c_str(), effects.c_str(),
               res.first, res.second, ctx.deviceName().c_str(), timings.framesCollected());
   std::printf("%s", formatTable(rows).c_str());
-  if (session.vlm()) std::printf("%s\n", vlm::formatOverflow(session.vlm()->overflow()).c_str());
+  for (const std::string& line : session.profileLines()) std::printf("%s\n", line.c_str());
   if (args.has("--csv")) writeFileAtomic(args.str("--csv"), formatCsv(rows));
   return 0;
 }

@@ -17,7 +17,7 @@ namespace {
 constexpr const char* kWhat = "bounce vlm-make";
 
 float offsetOption(const cli::Args& args) {
-  if (!args.has("--offset")) return vlm::MakeOptions{}.offset;
+  if (!args.has("--offset")) return gi::vlm::MakeOptions{}.offset;
   const std::string text = args.str("--offset");
   char* end = nullptr;
   const double m = std::strtod(text.c_str(), &end);
@@ -40,7 +40,7 @@ int runVlmMake(const cli::Args& args) {
   const std::filesystem::path out = args.str("--out");
   if (lowerExtension(out) != ".gltf")
     throwInputError(kWhat, "--out", "'" + out.string() + "' does not end in .gltf", "an output file name ending in .gltf");
-  vlm::MakeOptions options;
+  gi::vlm::MakeOptions options;
   options.triangles = std::size_t(args.positiveInt("--triangles", int(options.triangles)));
   options.offset = offsetOption(args);
   const std::string ext = lowerExtension(input);
@@ -51,22 +51,22 @@ int runVlmMake(const cli::Args& args) {
     throwInputError(kWhat, "--node", "only for a glTF asset input", "no --node with a level");
 
   const auto start = std::chrono::steady_clock::now();
-  std::vector<vlm::MakeSource> sources;
+  std::vector<gi::vlm::MakeSource> sources;
   std::size_t skipped = 0;
   std::filesystem::path levelDir;
   if (isLevel) {
     const scene::Level level = scene::loadLevel(input);
     levelDir = level.source.parent_path();
-    sources = vlm::sourcesFromLevel(level, cookCacheDir(), &skipped);
+    sources = gi::vlm::sourcesFromLevel(level, cookCacheDir(), &skipped);
   } else {
     std::optional<std::string> node;
     if (args.has("--node")) node = args.str("--node");
-    sources = vlm::sourcesFromAsset(input, node, cookCacheDir());
+    sources = gi::vlm::sourcesFromAsset(input, node, cookCacheDir());
   }
-  vlm::MakeResult r = vlm::makeVlm(sources, options, kWhat);
+  gi::vlm::MakeResult r = gi::vlm::makeVlm(sources, options, kWhat);
   r.skippedDynamic = skipped;
   if (out.has_parent_path()) std::filesystem::create_directories(out.parent_path());
-  vlm::writeVlmGltf(r, out);
+  gi::vlm::writeVlmGltf(r, out);
   const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   std::printf("vlm-make: %zu source meshes, %zu -> %zu triangles (budget %zu), offset %g m behind the surface, "
               "%.1f ms; wrote %s\n",
@@ -75,7 +75,7 @@ int runVlmMake(const cli::Args& args) {
   if (skipped) std::printf("skipped %zu dynamic entities (attach their VLMs by hand, parented to them)\n", skipped);
   const std::string asSeen = isLevel ? std::filesystem::relative(std::filesystem::absolute(out), levelDir).generic_string()
                                      : out.generic_string();
-  std::fputs(vlm::levelSnippet(r, asSeen).c_str(), stdout);
+  std::fputs(gi::vlm::levelSnippet(r, asSeen).c_str(), stdout);
   return 0;
 }
 

@@ -21,6 +21,7 @@ int runExport(const cli::Args& args);
 int runBench(const cli::Args& args);
 int runBenchDnrt(const cli::Args& args);  // `bench dnrt` (bench_dnrt.hpp)
 int runBake(const cli::Args& args);
+int runCache(const cli::Args& args);  // `cache --stats|--prune` (cmd_cache.cpp)
 int runAccuracy(const cli::Args& args);
 int runVlmMake(const cli::Args& args);
 int runLevel(const cli::Args& args);  // cmd_level.cpp

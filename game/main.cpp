@@ -36,6 +36,7 @@ int main(int argc, char** argv) {
           {"bench", game::runBench},         {"bake", game::runBake},
           {"accuracy", game::runAccuracy},   {"vlm-make", game::runVlmMake},
           {"level", game::runLevel},
+          {"cache", game::runCache},
       };
       for (const auto& [command, run] : kRunners)
         if (name == command) return game::exitCodeAfterCommand(name, run(args));

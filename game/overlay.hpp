@@ -44,13 +44,13 @@ struct OverlayInfo {
   std::vector<std::pair<std::string, double>> passes;  // GPU ms per pass (medians)
   double gpuTotalMs = 0.0;
   std::size_t gpuWindow = 0;                           // frames the medians cover
-  scene::EffectSet effects;
+  scene::EffectSet effects;                            // shown green: named AND running (Session::runningEffects)
   render::DebugView debugView = render::DebugView::None;
   float exposure = 1.0f;
   bool vsync = true, paused = false, culling = true, flying = false;
   VkExtent2D extent{0, 0};
   std::string vlm;  // vlmControlText(): the selected VLM tag and its overrides; empty: no VLM
-  std::string vlmOverflow;  // vlm::formatOverflow() when the VLM node runs, else empty
+  std::string vlmOverflow;  // gi::vlm::formatOverflow() when the VLM node runs, else empty
   std::string animation;    // animationText(): the selected character's clip and clip time; empty: none
 };
 

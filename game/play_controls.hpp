@@ -63,9 +63,9 @@ struct ScriptedKey {
 std::vector<ScriptedKey> parseKeyScript(const std::string& list);
 
 // The live per-tag VLM overrides (§3.5, Fig. 5.5): which tag the keys act on and the overrides the
-// VLM runtime applies (vlm::Runtime::setOverrides). Starts from the level's "vlm.overrides".
+// VLM runtime applies (gi::vlm::Runtime::setOverrides). Starts from the level's "vlm.overrides".
 struct VlmControl {
-  std::vector<std::uint32_t> tags;  // the level's VLM tags, sorted (vlm::Runtime::tags())
+  std::vector<std::uint32_t> tags;  // the level's VLM tags, sorted (gi::vlm::Runtime::tags())
   int selected = -1;                // index into tags, -1 = none selected
   std::map<int, scene::VlmOverride> overrides;
 };

@@ -4,7 +4,7 @@
 
 #include "engine/anim/animator.hpp"
 #include "engine/core/paths.hpp"
-#include "engine/gi/probes/bake.hpp"
+#include "engine/gi/dnrt/technique.hpp"
 #include "engine/scene/components.hpp"
 #include "engine/scene/systems.hpp"
 #include "game/viewer_level.hpp"
@@ -27,63 +27,76 @@ scene::Level loadLevelWithEffects(const std::filesystem::path& path,
   return level;
 }
 
-std::filesystem::path probeCacheDir() { return cacheDir("probes"); }
-std::filesystem::path dnrtCacheDir() { return cacheDir("dnrt"); }
-
-gi::probes::ProbeSettings probeSettings(const scene::Level& level) {
-  gi::probes::ProbeSettings s;
-  s.spacing = level.probes.spacing;
-  s.order = level.probes.order;
-  s.rays = level.probes.rays;
-  gi::probes::validate(s, level.source.string(), "/probes");
-  return s;
-}
-
 Session::Session(gpu::Context& ctx, scene::Level level) : ctx_(ctx), level_(std::move(level)) {
   scene::instantiate(level_, registry_);
   anim::attachAnimators(registry_, cookCacheDir());  // clips resolved (InputError) before anything is built
   renderer_ = std::make_unique<render::Renderer>(ctx_);
   scene_ = std::make_unique<render::GpuScene>(ctx_, renderer_->pipelines(), renderer_->samplers(), cookCacheDir());
   scene_->load(registry_);
-  // Nodes run in the order set: AO first (a later node may read "ao.term"), then the static
-  // indirect light (probes), then what the dynamic objects change (DNRT), then the virtual lights.
-  for (gi::ao::Kind kind : {gi::ao::Kind::Ssao, gi::ao::Kind::Hbao}) {
-    if (!level_.effects.has(kind == gi::ao::Kind::Ssao ? scene::Effect::Ssao : scene::Effect::Hbao)) continue;
-    auto& node = ao_[int(kind)];
-    node = std::make_unique<gi::ao::Node>(ctx_, renderer_->pipelines(), kind);
-    renderer_->setNode(gi::ao::kindName(kind), node->node());
-  }
-  // Effect `probes`: bake (or load the cached bake of) the static scene.
-  if (level_.effects.has(scene::Effect::Probes)) {
-    auto baked = gi::probes::loadOrBake(level_, cookCacheDir(), probeCacheDir(),
-                                        probeSettings(level_));
-    probes_ = std::make_unique<gi::probes::ProbeNode>(ctx_, renderer_->pipelines(), std::move(baked.volume));
-    renderer_->setNode("probes", probes_->node());
-  }
-  // Effect `dnrt`: a field per `dnrt` entity; c_j from the probes when the level has them.
-  if (level_.effects.has(scene::Effect::Dnrt)) {
-    cpuAssets_ = std::make_unique<ref::ReferenceAssets>();
-    cpuAssets_->load(registry_, cookCacheDir());
-    dnrt_ = std::make_unique<gi::dnrt::Runtime>(ctx_, renderer_->pipelines(), registry_, *cpuAssets_,
-                                                dnrtCacheDir(),
-                                                renderer_->frames().framesInFlight(), level_.background);
-    if (probes_) {
-      probeSource_ = std::make_unique<gi::dnrt::ProbeSource>(probes_->volume());
-      dnrt_->setIrradianceSource(probeSource_.get());
+  for (const gi::Technique* t : gi::techniques()) slots_.push_back({t, false, nullptr});
+  syncTechniques();
+}
+
+void Session::syncTechniques() {
+  bool built = false;
+  for (Slot& slot : slots_) {
+    if (slot.tried || !level_.effects.has(slot.technique->effect())) continue;
+    slot.tried = true;
+    const gi::LevelContext lc{level_, registry_, cookCacheDir()};
+    if (const auto note = gi::effectNote(*slot.technique, lc)) {
+      notes_.push_back(*note);
+      gi::printNoteOnce(*note);
+      continue;
     }
-    renderer_->setNode("dnrt", dnrt_->node());
+    gi::SessionContext sc{ctx_, *renderer_, registry_, level_, cookCacheDir(), services_};
+    slot.runtime = slot.technique->create(sc);
+    built = built || slot.runtime;
   }
-  // Effect `vlm`: only when some entity carries virtual lights (issue 5): a `vlm` component, or a
-  // mesh whose glTF nodes say extras.bounce_vlm.
-  if (level_.effects.has(scene::Effect::Vlm) && !vlm::collectVlms(registry_, cookCacheDir()).empty()) {
-    vlm_ = std::make_unique<vlm::Runtime>(ctx_, renderer_->pipelines(), registry_, vlm::settingsFrom(level_.vlm),
-                                          cookCacheDir(), renderer_->frames().framesInFlight());
-    renderer_->setNode("vlm", vlm_->node());
-  }
+  if (!built) return;
+  // Nodes run in table order (a later node may read what an earlier one published): re-register
+  // them all when one is added after others.
+  for (const Slot& slot : slots_)
+    if (slot.runtime) renderer_->setNode(std::string(slot.technique->name()), {});
+  for (const Slot& slot : slots_)
+    if (slot.runtime) renderer_->setNode(std::string(slot.technique->name()), slot.runtime->node());
+}
+
+bool Session::runs(scene::Effect e) const {
+  if (e == scene::Effect::Direct || e == scene::Effect::Shadows) return true;
+  for (const Slot& slot : slots_)
+    if (slot.technique->effect() == e) return slot.runtime != nullptr;
+  return false;
+}
+
+scene::EffectSet Session::runningEffects() const {
+  scene::EffectSet out;
+  for (int i = 0; i < scene::kEffectCount; ++i)
+    if (level_.effects.has(scene::Effect(i)) && runs(scene::Effect(i))) out.add(scene::Effect(i));
+  return out;
+}
+
+gi::TechniqueRuntime* Session::technique(std::string_view name) {
+  for (Slot& slot : slots_)
+    if (slot.technique->name() == name) return slot.runtime.get();
+  return nullptr;
+}
+
+gi::dnrt::Runtime* Session::dnrt() {
+  auto* s = technique<gi::dnrt::SessionRuntime>("dnrt");
+  return s ? &s->runtime() : nullptr;
+}
+
+std::vector<std::string> Session::profileLines() const {
+  std::vector<std::string> lines;
+  for (const Slot& slot : slots_)
+    if (slot.runtime && level_.effects.has(slot.technique->effect()))
+      for (auto& line : slot.runtime->profileLines()) lines.push_back(std::move(line));
+  return lines;
 }
 
 Session::~Session() {
   if (renderer_) renderer_->frames().waitIdle();
+  for (auto it = slots_.rbegin(); it != slots_.rend(); ++it) it->runtime.reset();  // later ones use earlier ones' Services
 }
 
 void Session::setCameraMotion(scene::Motion motion) {
@@ -97,6 +110,9 @@ void Session::update(double t) {
   scene::motionSystem(registry_, t);
   anim::animationSystem(registry_, t);
   scene::transformSystem(registry_);
+  const gi::FrameUpdate frame{registry_, t};
+  for (Slot& slot : slots_)
+    if (slot.runtime && level_.effects.has(slot.technique->effect())) slot.runtime->update(frame);
 }
 
 void Session::extractOnly(VkExtent2D extent, std::uint32_t shadowResolution) {
@@ -104,6 +120,7 @@ void Session::extractOnly(VkExtent2D extent, std::uint32_t shadowResolution) {
 }
 
 void Session::render(gpu::Presenter& presenter, const render::FrameSettings& settings) {
+  syncTechniques();
   extractOnly(presenter.extent(), settings.shadowResolution);
   renderer_->render(world_, presenter, settings);
 }

@@ -5,13 +5,13 @@
 #include <filesystem>
 #include <memory>
 #include <optional>
+#include <string_view>
 
 #include "engine/ecs/registry.hpp"
-#include "engine/gi/ao/ao.hpp"
-#include "engine/gi/dnrt/probe_source.hpp"
+#include "engine/gi/ao/node.hpp"
 #include "engine/gi/dnrt/runtime.hpp"
-#include "engine/gi/probes/bake.hpp"
 #include "engine/gi/probes/node.hpp"
+#include "engine/gi/technique.hpp"
 #include "engine/gi/vlm/node.hpp"
 #include "engine/gpu/context.hpp"
 #include "engine/render/gpu_scene.hpp"
@@ -27,26 +27,23 @@ std::filesystem::path cookCacheDir();
 // Loads a level and applies an optional --effects override (both validated; errors are InputError).
 scene::Level loadLevelWithEffects(const std::filesystem::path& path, const std::optional<std::vector<std::string>>& effects);
 
-// Where bakes are cached: <build dir>/probes and <build dir>/dnrt.
-std::filesystem::path probeCacheDir();
-std::filesystem::path dnrtCacheDir();
-// The probe bake settings of a level's "probes" object (InputError when the baker rejects them).
-gi::probes::ProbeSettings probeSettings(const scene::Level& level);
-
 class Session {
  public:
-  // Builds only what the level's effects name: probes (bake or cached), DNRT (fields baked or
-  // cached for every `dnrt` entity), VLM (when an entity carries `vlm`), SSAO/HBAO; each becomes a
-  // renderer node.
+  // Builds, for every technique of the table (engine/gi/technique.hpp) whose effect the level names
+  // AND in which an entity takes part, its runtime (baking through the cache what is missing) and
+  // its renderer node, in table order. A named effect that cannot run (reserved, or no entity takes
+  // part) gets one note on stderr (once per process) and in notes().
   Session(gpu::Context& ctx, scene::Level level);
   // Waits for the GPU before the nodes, the scene and the renderer go (frames may still use them).
   ~Session();
   Session(const Session&) = delete;
   Session& operator=(const Session&) = delete;
 
-  // Runs the systems for simulation time t (seconds): camera script, motion, transforms.
+  // Runs the systems for simulation time t (seconds): camera script, motion, transforms, then each
+  // running technique's per-frame CPU update.
   void update(double t);
-  // Extracts the RenderWorld for `extent` and renders it through `presenter`.
+  // Extracts the RenderWorld for `extent` and renders it through `presenter`. Builds first the
+  // techniques of effects named since the last frame (play keys).
   void render(gpu::Presenter& presenter, const render::FrameSettings& settings);
   // The world as extracted by the last render() or extractOnly().
   const render::RenderWorld& world() const { return world_; }
@@ -59,24 +56,45 @@ class Session {
   ecs::Registry& registry() { return registry_; }
   render::Renderer& renderer() { return *renderer_; }
   render::GpuScene& gpuScene() { return *scene_; }
-  // The GI runtimes the effects asked for (null otherwise).
-  gi::probes::ProbeNode* probes() { return probes_.get(); }
-  gi::dnrt::Runtime* dnrt() { return dnrt_.get(); }
-  vlm::Runtime* vlm() { return vlm_.get(); }
-  gi::ao::Node* ao(gi::ao::Kind kind) { return ao_[int(kind)].get(); }
+
+  // Builds the runtimes of techniques whose effect is named now and was not before (render() does).
+  void syncTechniques();
+  // True when effect `e` has what it needs to run: direct and shadows always (the renderer's own
+  // passes), a technique when its runtime was built. The play overlay shows an effect as on only
+  // when it is named AND runs.
+  bool runs(scene::Effect e) const;
+  // The level's named effects that run (runs()): what the play overlay shows as on.
+  scene::EffectSet runningEffects() const;
+  // The notes printed for named effects that do not run, in table order.
+  const std::vector<std::string>& notes() const { return notes_; }
+  // The running technique of an effect name, or null.
+  gi::TechniqueRuntime* technique(std::string_view name);
+  template <class T>
+  T* technique(std::string_view name) {
+    return dynamic_cast<T*>(technique(name));
+  }
+  // `bounce profile`'s lines after the timings, from every running technique in table order.
+  std::vector<std::string> profileLines() const;
+  // Typed access to today's techniques (tests, play's VLM keys); null when not running.
+  gi::probes::ProbeNode* probes() { return technique<gi::probes::ProbeNode>("probes"); }
+  gi::dnrt::Runtime* dnrt();
+  gi::vlm::Runtime* vlm() { return technique<gi::vlm::Runtime>("vlm"); }
+  gi::ao::Node* ao(gi::ao::Kind kind) { return technique<gi::ao::Node>(gi::ao::kindName(kind)); }
 
  private:
+  struct Slot {
+    const gi::Technique* technique = nullptr;
+    bool tried = false;  // its effect was named once: built, or noted as not running
+    std::unique_ptr<gi::TechniqueRuntime> runtime;
+  };
   gpu::Context& ctx_;
   scene::Level level_;
   ecs::Registry registry_;
   std::unique_ptr<render::Renderer> renderer_;
   std::unique_ptr<render::GpuScene> scene_;
-  std::unique_ptr<gi::ao::Node> ao_[2];
-  std::unique_ptr<gi::probes::ProbeNode> probes_;
-  std::unique_ptr<gi::dnrt::ProbeSource> probeSource_;
-  std::unique_ptr<ref::ReferenceAssets> cpuAssets_;  // DNRT bakes from the CPU copies
-  std::unique_ptr<gi::dnrt::Runtime> dnrt_;
-  std::unique_ptr<vlm::Runtime> vlm_;
+  gi::Services services_;
+  std::vector<Slot> slots_;  // one per row of gi::techniques(), same order
+  std::vector<std::string> notes_;
   render::RenderWorld world_;
 };
 

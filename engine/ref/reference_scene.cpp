@@ -56,9 +56,10 @@ const ReferenceAssets::Entry& ReferenceAssets::get(const scene::MeshRef& ref) co
   return it->second;
 }
 
-SceneDesc extractScene(ecs::Registry& registry, const scene::Level& level, const ReferenceAssets& assets) {
+SceneDesc extractScene(ecs::Registry& registry, const scene::Level& level, const ReferenceAssets& assets,
+                       bool withTextures) {
   SceneDesc out;
-  out.textures = assets.textures();
+  if (withTextures) out.textures = assets.textures();
   out.background = level.background;
 
   registry.view<scene::MeshRef, scene::WorldTransform>().each(

@@ -51,6 +51,9 @@ class ReferenceAssets {
 
 // The scene at the registry's current WorldTransforms (run the transform system first): meshes in
 // world space, materials with the level's overrides, lights, active camera and background.
-SceneDesc extractScene(ecs::Registry& registry, const scene::Level& level, const ReferenceAssets& assets);
+// `withTextures` false leaves SceneDesc::textures empty (texture indices still index
+// assets.textures()): for callers that keep only a few of them (DNRT's per-object scenes).
+SceneDesc extractScene(ecs::Registry& registry, const scene::Level& level, const ReferenceAssets& assets,
+                       bool withTextures = true);
 
 }  // namespace bounce::ref

@@ -163,7 +163,7 @@ BakeResult bake(const ref::SceneDesc& object, const FieldSettings& settings) {
 
 std::string cacheKey(const ref::SceneDesc& object, const FieldSettings& s) {
   Hasher h;
-  h.str("dnrt-field-v1");
+  h.str("dnrt-field-v2");  // baker and file format version: bump when either changes
   h.pod(s.shCount).pod(s.grid).pod(s.innerExtent).pod(s.outerExtent).pod(s.samplesPerAxis).pod(s.antiRadiance);
   h.u64(object.meshes.size());
   for (const auto& m : object.meshes) {

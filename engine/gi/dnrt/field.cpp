@@ -7,12 +7,13 @@
 
 #include "engine/core/error.hpp"
 #include "engine/core/file.hpp"
+#include "engine/core/hash.hpp"
 
 namespace bounce::gi::dnrt {
 
 namespace {
 constexpr char kMagic[8] = {'B', 'D', 'N', 'R', 'T', 'F', 'L', 'D'};
-constexpr std::uint32_t kVersion = 1;
+constexpr std::uint32_t kVersion = 2;  // 2: a checksum of every byte before it ends the file
 constexpr int kMaxGrid = 256;  // 256³·4·7 bytes = 470 MB: far beyond any sensible field
 }  // namespace
 
@@ -168,6 +169,7 @@ class Reader {
     return s;
   }
   bool atEnd() const { return pos_ == bytes_.size(); }
+  std::size_t position() const { return pos_; }
   [[noreturn]] void fail(const std::string& where, const std::string& what, const std::string& expected) const {
     throwInputError(file_, where, what, expected);
   }
@@ -195,6 +197,7 @@ std::vector<std::uint8_t> serialize(const Field& f) {
   w.put(f.radius);
   for (const Range& r : f.ranges) w.put(r);
   for (const auto& t : f.textures) w.bytes.insert(w.bytes.end(), t.begin(), t.end());
+  w.put(hashBytes(w.bytes));  // a flipped bit anywhere makes the entry invalid (re-baked, never trusted)
   return std::move(w.bytes);
 }
 
@@ -232,7 +235,10 @@ Field deserialize(std::span<const std::uint8_t> bytes, const std::string& file) 
     auto s = r.take(texBytes, "textures");
     f.textures.emplace_back(s.begin(), s.end());
   }
-  if (!r.atEnd()) r.fail("textures", "trailing bytes", "exactly N³·4 bytes per texture");
+  const std::size_t checked = r.position();
+  if (r.get<std::uint64_t>("checksum") != hashBytes(bytes.first(checked)))
+    r.fail("checksum", "checksum mismatch (corrupt file)", "the checksum of the bytes before it");
+  if (!r.atEnd()) r.fail("checksum", "trailing bytes", "exactly N³·4 bytes per texture, then the checksum");
   return f;
 }
 

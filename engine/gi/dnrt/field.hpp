@@ -101,8 +101,9 @@ struct QuantizationError {
 };
 QuantizationError quantizationError(const Field& field, std::span<const glm::vec3> values);
 
-// Versioned binary file ("BDNRTFLD", version, settings, centre, radius, ranges, textures). load
-// validates every count and range and throws InputError naming the file when it is malformed.
+// Versioned binary file ("BDNRTFLD", version, settings, centre, radius, ranges, textures, then a
+// 64-bit checksum of every byte before it). load validates every count and range and the checksum
+// and throws InputError naming the file when it is malformed or corrupt.
 std::vector<std::uint8_t> serialize(const Field& field);
 Field deserialize(std::span<const std::uint8_t> bytes, const std::string& fileName);
 void save(const Field& field, const std::filesystem::path& path);

@@ -25,22 +25,25 @@ ref::SceneDesc objectScene(ecs::Registry& registry, ecs::Entity entity, const re
   one.emplace<scene::MeshRef>(e, *mesh);
   one.emplace<scene::WorldTransform>(e);  // identity: the object's local frame
   if (const auto* over = registry.tryGet<scene::MaterialOverride>(entity)) one.emplace<scene::MaterialOverride>(e, *over);
-  ref::SceneDesc all = ref::extractScene(one, scene::Level{}, assets);
+  // Without textures: copying every decoded texture of every asset per object dominated planning
+  // a level's bake jobs; the ones the object uses are copied below.
+  ref::SceneDesc all = ref::extractScene(one, scene::Level{}, assets, false);
+  const std::vector<ref::RefTexture>& textures = assets.textures();
 
   ref::SceneDesc out;
   out.meshes = std::move(all.meshes);
   out.materials = std::move(all.materials);
-  std::vector<int> remap(all.textures.size(), -1);
+  std::vector<int> remap(textures.size(), -1);
   for (ref::RefMaterial& m : out.materials) {
     m.emissiveTexture = -1;  // DNRT reflects albedo only (Eq. 8)
     const int t = m.albedoTexture;
-    if (t < 0 || std::size_t(t) >= all.textures.size()) {
+    if (t < 0 || std::size_t(t) >= textures.size()) {
       m.albedoTexture = -1;
       continue;
     }
     if (remap[std::size_t(t)] < 0) {
       remap[std::size_t(t)] = int(out.textures.size());
-      out.textures.push_back(all.textures[std::size_t(t)]);
+      out.textures.push_back(textures[std::size_t(t)]);
     }
     m.albedoTexture = remap[std::size_t(t)];
   }

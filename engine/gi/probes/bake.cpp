@@ -1,5 +1,6 @@
 #include "engine/gi/probes/bake.hpp"
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -159,54 +160,91 @@ void hashScene(Hasher& h, const ref::SceneDesc& s) {
 
 }  // namespace
 
-LoadResult loadOrBake(const scene::Level& level, const std::filesystem::path& cookCache,
-                      const std::filesystem::path& probeCache, const ProbeSettings& settings, bool logBake) {
+ProbeSettings settingsFrom(const scene::Level& level) {
+  ProbeSettings s;
+  s.spacing = level.probes.spacing;
+  s.order = level.probes.order;
+  s.rays = level.probes.rays;
+  validate(s, level.source.string(), "/probes");
+  return s;
+}
+
+BakeInput prepare(const scene::Level& level, const std::filesystem::path& cookCache, const ProbeSettings& settings) {
   validate(settings, level.source.string(), "/probes");
+  BakeInput in;
+  in.settings = settings;
+  in.source = level.source;
   const scene::Level stat = staticLevel(level);
   ecs::Registry registry;
   scene::instantiate(stat, registry);
   scene::transformSystem(registry);
   ref::ReferenceAssets assets;
   assets.load(registry, cookCache);
-  ref::SceneDesc desc = ref::extractScene(registry, stat, assets);
+  in.scene = ref::extractScene(registry, stat, assets);
 
   Hasher h;
   h.str("bounce-probes").u64(kBakerVersion).u64(ref::kTracerVersion).u64(kProbeFormatVersion);
   if (!level.source.empty() && std::filesystem::exists(level.source)) {
     const auto bytes = readFileBytes(level.source);
     h.u64(bytes.size()).bytes(bytes.data(), bytes.size());
+    in.files.push_back(level.source);
   }
   for (const auto& [key, entry] : assets.entries()) h.str(key).str(entry.contentKey);
-  hashScene(h, desc);
+  for (const auto& e : stat.entities)
+    if (e.mesh && std::find(in.files.begin(), in.files.end(), e.mesh->asset) == in.files.end())
+      in.files.push_back(e.mesh->asset);
+  hashScene(h, in.scene);
   h.pod(settings.spacing).pod(settings.order).u64(settings.rays).u64(settings.bounces).u64(settings.window);
+  in.key = h.hex();
+  return in;
+}
 
-  LoadResult r;
-  r.file = probeCache / (h.hex() + ".bin");
-  if (std::filesystem::exists(r.file)) {
-    try {
-      r.volume = deserialize(readFileBytes(r.file), r.file.string());
-      r.fromCache = true;
-      return r;
-    } catch (const InputError& e) {
-      log::warn(std::string("probes: re-baking: ") + e.what());
-    }
+std::filesystem::path cachePath(const BakeInput& input, const std::filesystem::path& probeCache) {
+  return probeCache / (input.key + ".bin");
+}
+
+std::optional<ProbeVolume> loadCached(const std::filesystem::path& file) {
+  if (!std::filesystem::exists(file)) return std::nullopt;
+  try {
+    return deserialize(readFileBytes(file), file.string());
+  } catch (const InputError& e) {
+    log::warn(std::string("probes: re-baking: ") + e.what());
+    return std::nullopt;
   }
+}
+
+LoadResult bakeToCache(const BakeInput& input, const std::filesystem::path& probeCache, bool logBake) {
+  LoadResult r;
+  r.file = cachePath(input, probeCache);
   glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
-  for (const auto& m : desc.meshes)
+  for (const auto& m : input.scene.meshes)
     for (const glm::vec3& p : m.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
   if (lo.x > hi.x) lo = hi = glm::vec3(0.0f);  // no static geometry: one probe at the origin
-  const ProbeGrid grid = gridOverBounds(lo, hi, settings.spacing);
+  const ProbeGrid grid = gridOverBounds(lo, hi, input.settings.spacing);
   if (grid.probeCount() > (1u << 22))
-    throwInputError(level.source.string(), "/probes/spacing",
+    throwInputError(input.source.string(), "/probes/spacing",
                     std::to_string(grid.probeCount()) + " probes over the static bounds", "a larger spacing");
-  const ref::SceneBvh bvh(std::move(desc));
-  r.volume = bakeProbes(bvh, grid, settings, &r.stats);
+  const ref::SceneBvh bvh{ref::SceneDesc(input.scene)};  // a copy: the input stays reusable
+  r.volume = bakeProbes(bvh, grid, input.settings, &r.stats);
   if (logBake)
-    log::info("probes: " + std::to_string(r.stats.probes) + " probes × " + std::to_string(settings.rays) + " rays in " +
-              std::to_string(r.stats.seconds) + " s (" + std::to_string(r.stats.msPerProbe()) + " ms/probe, " +
-              std::to_string(r.stats.invalid) + " inside geometry)");
+    log::info("probes: " + std::to_string(r.stats.probes) + " probes × " + std::to_string(input.settings.rays) +
+              " rays in " + std::to_string(r.stats.seconds) + " s (" + std::to_string(r.stats.msPerProbe()) +
+              " ms/probe, " + std::to_string(r.stats.invalid) + " inside geometry)");
   writeFileAtomic(r.file, serialize(r.volume));
   return r;
+}
+
+LoadResult loadOrBake(const scene::Level& level, const std::filesystem::path& cookCache,
+                      const std::filesystem::path& probeCache, const ProbeSettings& settings) {
+  const BakeInput input = prepare(level, cookCache, settings);
+  LoadResult r;
+  r.file = cachePath(input, probeCache);
+  if (auto cached = loadCached(r.file)) {
+    r.volume = std::move(*cached);
+    r.fromCache = true;
+    return r;
+  }
+  return bakeToCache(input, probeCache);
 }
 
 }  // namespace bounce::gi::probes

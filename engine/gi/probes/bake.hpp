@@ -19,7 +19,9 @@
 // a progress bar; cached as <cache>/<key>.bin keyed by every input (loadOrBake).
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "engine/gi/probes/probe_volume.hpp"
 #include "engine/ref/scene_bvh.hpp"
@@ -68,6 +70,27 @@ ProbeVolume bakeProbes(const ref::SceneBvh& scene, const ProbeGrid& grid, const 
 // The level without its dynamic entities (and their descendants): what the probes see.
 scene::Level staticLevel(const scene::Level& level);
 
+// The probe bake settings of a level's "probes" object (InputError when the baker rejects them).
+ProbeSettings settingsFrom(const scene::Level& level);
+
+// One probe bake's inputs, gathered and hashed: the level instantiated without its dynamic
+// entities, its assets cooked (through the cache), the static scene extracted. Cheap next to the
+// bake itself: `bounce bake --job` and Session both start here.
+struct BakeInput {
+  ref::SceneDesc scene;   // the static scene, world space
+  ProbeSettings settings;
+  std::filesystem::path source;  // the level file (for messages)
+  // Content key, 16 hex digits: the level file, the static scene (geometry, materials, textures,
+  // lights, background), every asset's content key, the settings, kBakerVersion, kTracerVersion
+  // and the format version.
+  std::string key;
+  std::vector<std::filesystem::path> files;  // the level file and every asset it instances
+};
+BakeInput prepare(const scene::Level& level, const std::filesystem::path& cookCache, const ProbeSettings& settings);
+
+// <probeCache>/<key>.bin
+std::filesystem::path cachePath(const BakeInput& input, const std::filesystem::path& probeCache);
+
 struct LoadResult {
   ProbeVolume volume;
   bool fromCache = false;
@@ -75,12 +98,16 @@ struct LoadResult {
   BakeStats stats;             // zero when loaded from the cache
 };
 
-// Loads <probeCache>/<key>.bin when it is valid, else bakes the level's static scene and writes
-// it atomically. The key hashes the level file, the static scene (geometry, materials, textures,
-// lights, background), every asset's content key, the settings, kBakerVersion and kTracerVersion.
-// A corrupt or foreign entry is reported as a warning and re-baked. A bake logs one info line with
-// its statistics unless `logBake` is false (`bounce bake` prints its own line from LoadResult::stats).
+// The entry at `file` when it is there and valid (format version, sizes, checksum, finite values);
+// a corrupt or foreign entry is reported as a warning and counts as missing.
+std::optional<ProbeVolume> loadCached(const std::filesystem::path& file);
+
+// Bakes `input` (ignoring the cache) and writes cachePath(input, probeCache) atomically. Logs one
+// info line with its statistics unless `logBake` is false (`bounce bake` prints its own line).
+LoadResult bakeToCache(const BakeInput& input, const std::filesystem::path& probeCache, bool logBake = true);
+
+// loadCached(cachePath(prepare(…))), else bakeToCache.
 LoadResult loadOrBake(const scene::Level& level, const std::filesystem::path& cookCache,
-                      const std::filesystem::path& probeCache, const ProbeSettings& settings, bool logBake = true);
+                      const std::filesystem::path& probeCache, const ProbeSettings& settings);
 
 }  // namespace bounce::gi::probes

@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "engine/gi/probes/probe_volume.hpp"
+#include "engine/gi/technique.hpp"
 #include "engine/gpu/buffer.hpp"
 #include "engine/gpu/descriptors.hpp"
 #include "engine/gpu/pipeline.hpp"
@@ -12,7 +13,7 @@
 
 namespace bounce::gi::probes {
 
-class ProbeNode {
+class ProbeNode final : public TechniqueRuntime {
  public:
   // `pipelines` gives the shared frame layout (set 0: camera).
   ProbeNode(gpu::Context& ctx, const render::Pipelines& pipelines, ProbeVolume volume);
@@ -20,7 +21,7 @@ class ProbeNode {
   // blends into "lighting.hdr" and publishes the new version under the same key.
   void addPasses(rg::RenderGraph& graph, const render::PassContext* pc);
   // For Renderer::setNode("probes", …).
-  render::Renderer::GraphNode node() {
+  render::Renderer::GraphNode node() override {
     return [this](rg::RenderGraph& graph, render::PassContext& pc) { addPasses(graph, &pc); };
   }
   const ProbeVolume& volume() const { return volume_; }

@@ -23,7 +23,7 @@
 #include <limits>
 #include <glm/glm.hpp>
 
-namespace bounce::vlm {
+namespace bounce::gi::vlm {
 
 template <class T>
 using Vec3 = glm::vec<3, T, glm::defaultp>;
@@ -153,4 +153,4 @@ T formFactor(const Vec3<T>& x, const Vec3<T>& n, const Vec3<T>& v0, const Vec3<T
 double formFactor(const glm::dvec3& x, const glm::dvec3& n, const glm::dvec3& v0, const glm::dvec3& v1,
                   const glm::dvec3& v2);
 
-}  // namespace bounce::vlm
+}  // namespace bounce::gi::vlm

@@ -10,7 +10,7 @@
 #include "engine/core/parallel.hpp"
 #include "engine/math/sampling.hpp"
 
-namespace bounce::vlm {
+namespace bounce::gi::vlm {
 
 namespace detail {
 
@@ -177,9 +177,9 @@ std::string formatOverflow(const OverflowReport& r) {
   return out;
 }
 
-}  // namespace bounce::vlm
+}  // namespace bounce::gi::vlm
 
-namespace bounce::vlm {
+namespace bounce::gi::vlm {
 
 std::vector<GridLight> randomGridScene(std::uint32_t count, std::uint64_t seed) {
   std::vector<GridLight> lights(count);
@@ -195,4 +195,4 @@ std::vector<GridLight> randomGridScene(std::uint32_t count, std::uint64_t seed) 
   return lights;
 }
 
-}  // namespace bounce::vlm
+}  // namespace bounce::gi::vlm

@@ -35,7 +35,7 @@
 
 #include <glm/glm.hpp>
 
-namespace bounce::vlm {
+namespace bounce::gi::vlm {
 
 inline constexpr std::uint32_t kNullLight = 0xFFFFFFFFu;
 
@@ -135,13 +135,13 @@ struct OverflowReport {
 // with ", conservative: 7 candidates above the threshold dropped" in conservative mode.
 std::string formatOverflow(const OverflowReport& report);
 
-}  // namespace bounce::vlm
+}  // namespace bounce::gi::vlm
 
-namespace bounce::vlm {
+namespace bounce::gi::vlm {
 
 // A random benchmark/test scene in the unit cube: `count` triangles of random orientation, each
 // about 1.5 mean spacings wide (so neighbouring hemispheres overlap as in a simplified real mesh),
 // weights in [0.1, 1.1). Deterministic for a seed.
 std::vector<GridLight> randomGridScene(std::uint32_t count, std::uint64_t seed);
 
-}  // namespace bounce::vlm
+}  // namespace bounce::gi::vlm

@@ -12,7 +12,7 @@
 
 #include "engine/gi/vlm/grid.hpp"
 
-namespace bounce::vlm::detail {
+namespace bounce::gi::vlm::detail {
 
 inline constexpr float kPi = 3.14159265358979f;
 
@@ -165,4 +165,4 @@ void finishGrid(const GridDesc& desc, Pass&& pass, Grid& g) {
 // One pass over the lights: their active hemispheres.
 std::vector<ActiveHemisphere> hemispheres(std::span<const GridLight> lights, float range);
 
-}  // namespace bounce::vlm::detail
+}  // namespace bounce::gi::vlm::detail

@@ -18,7 +18,7 @@
 #include "engine/gi/vlm/grid.hpp"
 #include "engine/gi/vlm/grid_detail.hpp"
 
-namespace bounce::vlm {
+namespace bounce::gi::vlm {
 
 using namespace detail;
 
@@ -210,4 +210,4 @@ void GridScatterBuilder::build(std::span<const GridLight> lights, const GridDesc
   finishGrid(desc, pass, out);
 }
 
-}  // namespace bounce::vlm
+}  // namespace bounce::gi::vlm

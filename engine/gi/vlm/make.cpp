@@ -9,7 +9,7 @@
 
 #include "engine/core/error.hpp"
 
-namespace bounce::vlm {
+namespace bounce::gi::vlm {
 namespace {
 
 // A vertex on a crease sharper than acos(kMinCos) ≈ 78° off its mean normal would need an
@@ -185,4 +185,4 @@ MakeResult makeVlm(std::span<const MakeSource> sources, const MakeOptions& optio
   return r;
 }
 
-}  // namespace bounce::vlm
+}  // namespace bounce::gi::vlm

@@ -28,7 +28,7 @@
 
 #include "engine/scene/level.hpp"
 
-namespace bounce::vlm {
+namespace bounce::gi::vlm {
 
 // One piece of real geometry, world space (level) or asset space (asset), counter-clockwise front.
 struct MakeSource {
@@ -84,4 +84,4 @@ void writeVlmGltf(const MakeResult& result, const std::filesystem::path& out);
 // the level sees it) and, for every tag vlm-make assigned, the "vlm_tag" to add to the real entity.
 std::string levelSnippet(const MakeResult& result, const std::string& assetFromLevel);
 
-}  // namespace bounce::vlm
+}  // namespace bounce::gi::vlm

@@ -14,7 +14,7 @@
 #include "engine/scene/asset_instances.hpp"
 #include "engine/scene/components.hpp"
 
-namespace bounce::vlm {
+namespace bounce::gi::vlm {
 namespace {
 
 constexpr int kArrayBuffer = 34962;         // glTF bufferView.target for vertex attributes
@@ -189,4 +189,4 @@ std::string levelSnippet(const MakeResult& result, const std::string& assetFromL
   return s.str();
 }
 
-}  // namespace bounce::vlm
+}  // namespace bounce::gi::vlm

@@ -8,7 +8,7 @@
 #include "engine/render/passes/rendering.hpp"
 #include "engine/scene/components.hpp"
 
-namespace bounce::vlm {
+namespace bounce::gi::vlm {
 namespace {
 
 constexpr VkDescriptorType kSampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
@@ -346,4 +346,4 @@ void Runtime::addTo(rg::RenderGraph& graph, render::PassContext& pc) {
   bb.put("lighting.hdr", data.hdr);
 }
 
-}  // namespace bounce::vlm
+}  // namespace bounce::gi::vlm

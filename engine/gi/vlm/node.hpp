@@ -8,7 +8,7 @@
 //   pass "vlm" (phase 2): full screen, Σ over the pixel's cell candidates of π L_k F_k, skipping
 //        its own tag, ρE/π added to "lighting.hdr" (shaders/vlm/vlm.frag).
 // What a session does:
-//   vlm::Runtime vlm(ctx, renderer.pipelines(), registry, level.vlm, cookCache, framesInFlight);
+//   gi::vlm::Runtime vlm(ctx, renderer.pipelines(), registry, level.vlm, cookCache, framesInFlight);
 //   renderer.setNode("vlm", vlm.node());
 #include <filesystem>
 #include <map>
@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/gi/technique.hpp"
 #include "engine/gi/vlm/grid.hpp"
 #include "engine/gi/vlm/vlm_mesh.hpp"
 #include "engine/gpu/buffer.hpp"
@@ -24,7 +25,7 @@
 #include "engine/render/renderer.hpp"
 #include "engine/scene/level.hpp"
 
-namespace bounce::vlm {
+namespace bounce::gi::vlm {
 
 struct NodeSettings {
   int grid = 16;        // cells per axis over the scene bounds (both grids)
@@ -66,7 +67,7 @@ struct FrameData {
 };
 
 
-class Runtime {
+class Runtime final : public TechniqueRuntime {
  public:
   Runtime(gpu::Context& ctx, const render::Pipelines& pipelines, ecs::Registry& registry, NodeSettings settings,
           const std::filesystem::path& cookCache, std::uint32_t framesInFlight);
@@ -81,6 +82,8 @@ class Runtime {
   // Cells that had more than K candidates in the static grid / in the last dynamic grid.
   std::uint64_t overflowCells() const;
   OverflowReport overflow() const { return overflow_; }
+  // `bounce profile`'s line after the timings: formatOverflow(overflow()).
+  std::vector<std::string> profileLines() const override { return {formatOverflow(overflow_)}; }
 
   // For benchmarks (`bounce bench vlm-lights|vlm-k`): replaces the static lights and/or the
   // settings; the static grid is rebuilt on the next frame.
@@ -92,7 +95,7 @@ class Runtime {
   FrameData prepare(const render::RenderWorld& world);
   // Adds "vlm.lights" and "vlm" (nothing when there is no light) and puts the new "lighting.hdr".
   void addTo(rg::RenderGraph& graph, render::PassContext& pc);
-  render::Renderer::GraphNode node() {
+  render::Renderer::GraphNode node() override {
     return [this](rg::RenderGraph& g, render::PassContext& pc) { addTo(g, pc); };
   }
 
@@ -118,4 +121,4 @@ class Runtime {
   std::vector<SlotBuffers> buffers_;  // per frame slot
 };
 
-}  // namespace bounce::vlm
+}  // namespace bounce::gi::vlm

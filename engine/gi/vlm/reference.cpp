@@ -5,7 +5,7 @@
 
 #include "engine/gi/vlm/form_factor.hpp"
 
-namespace bounce::vlm {
+namespace bounce::gi::vlm {
 
 glm::dvec3 samplePoint(const VirtualLight& l, int i) {
   const glm::dvec3 c = (glm::dvec3(l.v0) + glm::dvec3(l.v1) + glm::dvec3(l.v2)) / 3.0;
@@ -64,4 +64,4 @@ glm::dvec3 irradiance(const glm::dvec3& x, const glm::dvec3& n, std::span<const 
   return e;
 }
 
-}  // namespace bounce::vlm
+}  // namespace bounce::gi::vlm

@@ -7,7 +7,7 @@
 #include "engine/gi/vlm/vlm_mesh.hpp"
 #include "engine/render/gpu_types.hpp"
 
-namespace bounce::vlm {
+namespace bounce::gi::vlm {
 
 inline constexpr int kPhase1Samples = 4;  // vlm_common.glsl VLM_PHASE1_SAMPLES
 
@@ -25,4 +25,4 @@ glm::dvec3 emittedRadiance(const VirtualLight& l, std::span<const render::LightG
 glm::dvec3 irradiance(const glm::dvec3& x, const glm::dvec3& n, std::span<const VirtualLight> lights,
                       std::span<const glm::dvec3> radiance, std::uint32_t tag);
 
-}  // namespace bounce::vlm
+}  // namespace bounce::gi::vlm

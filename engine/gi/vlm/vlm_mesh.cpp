@@ -9,7 +9,7 @@
 #include "engine/scene/asset_instances.hpp"
 #include "engine/scene/components.hpp"
 
-namespace bounce::vlm {
+namespace bounce::gi::vlm {
 namespace {
 
 // World-space area-weighted mean albedo of the real geometry per vlm_tag (the "paired real
@@ -150,4 +150,4 @@ std::vector<std::uint32_t> tagsOf(std::span<const VirtualLight> lights) {
   return tags;
 }
 
-}  // namespace bounce::vlm
+}  // namespace bounce::gi::vlm

@@ -14,7 +14,7 @@
 #include "engine/ecs/registry.hpp"
 #include "engine/scene/level.hpp"
 
-namespace bounce::vlm {
+namespace bounce::gi::vlm {
 
 // One virtual light. scale = reflectance × colour × intensity (§3.3, §3.5): the emitted radiance is
 // L = scale · E / π for the irradiance E the real lights deliver to it (phase 1).
@@ -62,4 +62,4 @@ std::vector<std::uint32_t> tagsOf(std::span<const VirtualLight> lights);
 // the emitting side stays the one the artist modelled.
 void appendPlaced(const VlmMesh& mesh, const glm::mat4& world, std::vector<VirtualLight>& out);
 
-}  // namespace bounce::vlm
+}  // namespace bounce::gi::vlm

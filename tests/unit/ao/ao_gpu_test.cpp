@@ -8,7 +8,7 @@
 #include <cstring>
 #include <filesystem>
 
-#include "engine/gi/ao/ao.hpp"
+#include "engine/gi/ao/node.hpp"
 #include "engine/gpu/commands.hpp"
 #include "engine/gpu/format.hpp"
 #include "engine/gpu/presenter_offscreen.hpp"

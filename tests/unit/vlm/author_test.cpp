@@ -15,7 +15,7 @@
 #include "engine/scene/components.hpp"
 #include "engine/scene_export/flatten.hpp"
 
-namespace bounce::vlm {
+namespace bounce::gi::vlm {
 namespace {
 
 namespace fs = std::filesystem;
@@ -166,4 +166,4 @@ TEST(VlmAuthoring, BadOverridesAreOneLineErrors) {
 }
 
 }  // namespace
-}  // namespace bounce::vlm
+}  // namespace bounce::gi::vlm

@@ -92,7 +92,7 @@ TEST(VlmFormFactorGpu, GlslMatchesCppOnRandomAndAwkwardCases) {
   int lit = 0;
   for (std::uint32_t i = 0; i < count; ++i) {
     const Case& k = cases[i];
-    const float cpu = vlm::formFactor<float>(v(k.x), v(k.n), v(k.v0), v(k.v1), v(k.v2));
+    const float cpu = gi::vlm::formFactor<float>(v(k.x), v(k.n), v(k.v0), v(k.v1), v(k.v2));
     ASSERT_TRUE(std::isfinite(gpuF[i])) << "case " << i;
     const double err = std::abs(double(gpuF[i]) - cpu) / std::max<double>(cpu, kFloor);
     worst = std::max(worst, err);

@@ -14,7 +14,7 @@
 using namespace bounce;
 using LD = long double;
 using V = glm::dvec3;
-using VL = vlm::Vec3<LD>;
+using VL = gi::vlm::Vec3<LD>;
 
 namespace {
 
@@ -32,7 +32,7 @@ double relErr(double got, double ref) { return std::abs(got - ref) / std::max(st
 
 VL toL(const V& v) { return VL(LD(v.x), LD(v.y), LD(v.z)); }
 LD refFF(const V& x, const V& n, const V& a, const V& b, const V& c) {
-  return vlm::formFactor<LD>(toL(x), toL(n), toL(a), toL(b), toL(c));
+  return gi::vlm::formFactor<LD>(toL(x), toL(n), toL(a), toL(b), toL(c));
 }
 
 // Closed form (Howell's catalogue B-3): receiver under one corner of an a × b rectangle parallel to
@@ -51,11 +51,11 @@ LD rectFF(LD x0, LD x1, LD y0, LD y1, LD h, LD px, LD py) {
 // The same rectangle as two downward-facing triangles, through the code under test.
 template <class T>
 T rectTriangles(T x0, T x1, T y0, T y1, T h, T px, T py) {
-  using W = vlm::Vec3<T>;
+  using W = gi::vlm::Vec3<T>;
   const W x(px, py, T(0)), n(0, 0, 1);
   const W a(x0, y0, h), b(x1, y0, h), c(x1, y1, h), d(x0, y1, h);
   // Clockwise seen from above = counter-clockwise seen from below: emits downwards.
-  return vlm::formFactor<T>(x, n, a, d, c) + vlm::formFactor<T>(x, n, a, c, b);
+  return gi::vlm::formFactor<T>(x, n, a, d, c) + gi::vlm::formFactor<T>(x, n, a, c, b);
 }
 
 struct Mc {
@@ -146,7 +146,7 @@ TEST(VlmFormFactor, AgreesWithMonteCarloForQuadTriangleAndHorizonCrossing) {
     V a = c.a, b = c.b, cc = c.c;
     // Orient each to face the receiver (emit towards the origin side).
     if (glm::dot(glm::cross(b - a, cc - a), x - a) < 0) std::swap(b, cc);
-    const double f = vlm::formFactor(x, n, a, b, cc);
+    const double f = gi::vlm::formFactor(x, n, a, b, cc);
     const Mc mc = monteCarlo(x, n, a, b, cc, 1u << 21);
     EXPECT_LT(std::abs(f - mc.mean), kMcSigmas * mc.stderr_ + 1e-7) << c.name << ": " << f << " vs " << mc.mean;
     EXPECT_LT(relErr(f, double(refFF(x, n, a, b, cc))), kRelTolerance) << c.name;
@@ -157,36 +157,36 @@ TEST(VlmFormFactor, AgreesWithMonteCarloForQuadTriangleAndHorizonCrossing) {
 TEST(VlmFormFactor, OneSidedLightsOnOrBehindGiveZero) {
   const V n(0, 0, 1);
   const V a(-1, -1, 1), b(-1, 1, 1), c(1, 1, 1);  // faces down (clockwise seen from above)
-  EXPECT_GT(vlm::formFactor(V(0, 0, 0), n, a, b, c), 0.0);
-  EXPECT_EQ(vlm::formFactor(V(0, 0, 0), n, a, c, b), 0.0);  // flipped: faces up, away
-  EXPECT_EQ(vlm::formFactor(V(0, 0, 2), -n, a, b, c), 0.0);  // receiver behind the light, facing it
-  EXPECT_EQ(vlm::formFactor(V(0.1, 0.2, 1), n, a, b, c), 0.0);  // receiver on the light's plane
+  EXPECT_GT(gi::vlm::formFactor(V(0, 0, 0), n, a, b, c), 0.0);
+  EXPECT_EQ(gi::vlm::formFactor(V(0, 0, 0), n, a, c, b), 0.0);  // flipped: faces up, away
+  EXPECT_EQ(gi::vlm::formFactor(V(0, 0, 2), -n, a, b, c), 0.0);  // receiver behind the light, facing it
+  EXPECT_EQ(gi::vlm::formFactor(V(0.1, 0.2, 1), n, a, b, c), 0.0);  // receiver on the light's plane
   // A light lying on the receiver plane (facing up, receiver beside it) delivers nothing.
-  EXPECT_EQ(vlm::formFactor(V(3, 0, 0), n, V(0, 0, 0), V(1, 0, 0), V(0, 1, 0)), 0.0);
+  EXPECT_EQ(gi::vlm::formFactor(V(3, 0, 0), n, V(0, 0, 0), V(1, 0, 0), V(0, 1, 0)), 0.0);
   // A light wholly below the horizon, facing the receiver.
-  EXPECT_EQ(vlm::formFactor(V(0, 0, 0), n, V(-1, -1, -1), V(1, 1, -1), V(-1, 1, -1)), 0.0);
+  EXPECT_EQ(gi::vlm::formFactor(V(0, 0, 0), n, V(-1, -1, -1), V(1, 1, -1), V(-1, 1, -1)), 0.0);
 }
 
 TEST(VlmFormFactor, DegenerateInputsAreFiniteAndZero) {
   const V x(0.25, 0.5, 0), n(0, 0, 1);
   // A vertex exactly at the shading point: the triangle's plane passes through x, F = 0.
   for (const V& up : {V(0, 0, 1), V(0.3, 0.1, 1), V(1, 0, 0.01)}) {
-    const double f = vlm::formFactor(x, n, x, x + V(1, 0, 0) + up, x + V(0, 1, 0) + up);
-    const double g = vlm::formFactor(x, n, x, x + V(0, 1, 0) + up, x + V(1, 0, 0) + up);
+    const double f = gi::vlm::formFactor(x, n, x, x + V(1, 0, 0) + up, x + V(0, 1, 0) + up);
+    const double g = gi::vlm::formFactor(x, n, x, x + V(0, 1, 0) + up, x + V(1, 0, 0) + up);
     EXPECT_TRUE(std::isfinite(f) && std::isfinite(g));
     EXPECT_EQ(f, 0.0);
     EXPECT_EQ(g, 0.0);
   }
   // Collinear and zero-area triangles.
-  EXPECT_EQ(vlm::formFactor(x, n, V(0, 0, 1), V(1, 0, 1), V(2, 0, 1)), 0.0);
-  EXPECT_EQ(vlm::formFactor(x, n, V(0, 0, 1), V(0, 0, 1), V(1, 1, 1)), 0.0);
-  EXPECT_EQ(vlm::formFactor(x, n, V(0, 0, 1), V(0, 0, 1), V(0, 0, 1)), 0.0);
+  EXPECT_EQ(gi::vlm::formFactor(x, n, V(0, 0, 1), V(1, 0, 1), V(2, 0, 1)), 0.0);
+  EXPECT_EQ(gi::vlm::formFactor(x, n, V(0, 0, 1), V(0, 0, 1), V(1, 1, 1)), 0.0);
+  EXPECT_EQ(gi::vlm::formFactor(x, n, V(0, 0, 1), V(0, 0, 1), V(0, 0, 1)), 0.0);
   // Float too (the GPU's precision).
-  using F3 = vlm::Vec3<float>;
+  using F3 = gi::vlm::Vec3<float>;
   const F3 xf(0.25f, 0.5f, 0.0f), nf(0, 0, 1);
-  const float ff = vlm::formFactor<float>(xf, nf, xf, xf + F3(1, 0, 1), xf + F3(0, 1, 1));
+  const float ff = gi::vlm::formFactor<float>(xf, nf, xf, xf + F3(1, 0, 1), xf + F3(0, 1, 1));
   EXPECT_TRUE(std::isfinite(ff));
-  EXPECT_EQ(vlm::formFactor<float>(xf, nf, F3(0, 0, 1), F3(1, 0, 1), F3(2, 0, 1)), 0.0f);
+  EXPECT_EQ(gi::vlm::formFactor<float>(xf, nf, F3(0, 0, 1), F3(1, 0, 1), F3(2, 0, 1)), 0.0f);
   // A receiver exactly on an edge of a light above: finite, between the two sides' limits.
   const double onEdge = rectTriangles<double>(0, 1, 0, 1, 1e-9, 1.0, 0.5);
   EXPECT_TRUE(std::isfinite(onEdge));
@@ -216,9 +216,9 @@ TEST(VlmFormFactor, RandomConfigurationsMatchLongDoubleInDoubleAndFloat) {
     const glm::vec3 nf = rnd(-1.0f, 1.0f), xf = rnd(0.0f, 1.0f);
     const glm::vec3 a = xf + rnd(-2.0f, 2.0f), b = xf + rnd(-2.0f, 2.0f), c = xf + rnd(-2.0f, 2.0f);
     if (glm::dot(nf, nf) < 0.01f) continue;  // the normal's length does not matter (F is linear in it)
-    const LD ref = vlm::formFactor<LD>(toL(toD(xf)), toL(toD(nf)), toL(toD(a)), toL(toD(b)), toL(toD(c)));
-    const double d = vlm::formFactor(toD(xf), toD(nf), toD(a), toD(b), toD(c));
-    const float f = vlm::formFactor<float>(xf, nf, a, b, c);
+    const LD ref = gi::vlm::formFactor<LD>(toL(toD(xf)), toL(toD(nf)), toL(toD(a)), toL(toD(b)), toL(toD(c)));
+    const double d = gi::vlm::formFactor(toD(xf), toD(nf), toD(a), toD(b), toD(c));
+    const float f = gi::vlm::formFactor<float>(xf, nf, a, b, c);
     if (ref > 1e-3L) ++lit;
     worstD = std::max(worstD, relErr(d, double(ref)));
     // Float is compared relative to max(F, 1e-3): below that the light is a sliver or a grazing

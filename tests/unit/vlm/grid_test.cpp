@@ -13,9 +13,9 @@ using namespace bounce;
 
 namespace {
 
-std::vector<vlm::GridLight> randomLights(std::uint32_t count, float size, std::uint64_t seed) {
+std::vector<gi::vlm::GridLight> randomLights(std::uint32_t count, float size, std::uint64_t seed) {
   math::Pcg32 rng(seed, 1);
-  std::vector<vlm::GridLight> lights(count);
+  std::vector<gi::vlm::GridLight> lights(count);
   for (auto& l : lights) {
     const glm::vec3 c = rng.nextFloat3();
     auto jitter = [&] { return (rng.nextFloat3() - 0.5f) * size; };
@@ -37,14 +37,14 @@ TEST(VlmGrid, ScatterEqualsGatherOnRandomScenes) {
   // candidates: lists that compact while they fill.
   const Case cases[] = {{500, 8, 4, 0.1f, 2.5f},   {2000, 12, 16, 0.05f, 1.5f}, {1000, 10, 64, 0.2f, 4.5f},
                         {300, 5, 2, 0.3f, 3.5f},   {3000, 17, 8, 0.06f, 2.5f}};
-  vlm::GridScatterBuilder builder;  // reused across cases, as the per-frame dynamic grid is
-  vlm::Grid reused;
+  gi::vlm::GridScatterBuilder builder;  // reused across cases, as the per-frame dynamic grid is
+  gi::vlm::Grid reused;
   for (std::size_t i = 0; i < std::size(cases); ++i) {
     const Case& c = cases[i];
     const auto lights = randomLights(c.lights, c.size, 17 + i);
-    const auto desc = vlm::fitGrid(glm::vec3(0.0f), glm::vec3(1.0f), glm::uvec3(c.dims), c.k, c.range);
-    const vlm::Grid gather = vlm::buildGridGather(lights, desc);
-    const vlm::Grid scatter = vlm::buildGridScatter(lights, desc);
+    const auto desc = gi::vlm::fitGrid(glm::vec3(0.0f), glm::vec3(1.0f), glm::uvec3(c.dims), c.k, c.range);
+    const gi::vlm::Grid gather = gi::vlm::buildGridGather(lights, desc);
+    const gi::vlm::Grid scatter = gi::vlm::buildGridScatter(lights, desc);
     builder.build(lights, desc, reused);
     EXPECT_EQ(scatter.slots, gather.slots) << "case " << i;
     EXPECT_EQ(reused.slots, gather.slots) << "case " << i;
@@ -74,9 +74,9 @@ TEST(VlmGrid, HostileLightsAgreeAndDegenerateOnesAreNeverListed) {
   lights[6] = {glm::vec3(50.0f), glm::vec3(50.1f, 50.0f, 50.0f), glm::vec3(50.0f, 50.1f, 50.0f), 1.0f};  // far outside
   lights[7] = {glm::vec3(-0.05f, 0.5f, 0.5f), glm::vec3(0.05f, 0.45f, 0.5f), glm::vec3(0.05f, 0.55f, 0.5f), 1.0f};  // on a face
   lights[8] = {glm::vec3(1e30f), glm::vec3(-1e30f, 1e30f, 0.0f), glm::vec3(0.0f, -1e30f, 1e30f), 1.0f};  // huge
-  const auto desc = vlm::fitGrid(glm::vec3(0.0f), glm::vec3(1.0f), glm::uvec3(9), 12, 2.5f);
-  const vlm::Grid gather = vlm::buildGridGather(lights, desc);
-  const vlm::Grid scatter = vlm::buildGridScatter(lights, desc);
+  const auto desc = gi::vlm::fitGrid(glm::vec3(0.0f), glm::vec3(1.0f), glm::uvec3(9), 12, 2.5f);
+  const gi::vlm::Grid gather = gi::vlm::buildGridGather(lights, desc);
+  const gi::vlm::Grid scatter = gi::vlm::buildGridScatter(lights, desc);
   EXPECT_EQ(scatter.slots, gather.slots);
   EXPECT_EQ(scatter.candidates, gather.candidates);
   for (std::uint32_t never : {0u, 4u, 5u, 6u, 8u})
@@ -86,13 +86,13 @@ TEST(VlmGrid, HostileLightsAgreeAndDegenerateOnesAreNeverListed) {
 
 TEST(VlmGrid, ListsAreCompleteWithoutOverflowAndExcludeTheBackSide) {
   const auto lights = randomLights(400, 0.1f, 5);
-  const auto desc = vlm::fitGrid(glm::vec3(0.0f), glm::vec3(1.0f), glm::uvec3(10), 256, 2.5f);
-  const vlm::Grid g = vlm::buildGridScatter(lights, desc);
+  const auto desc = gi::vlm::fitGrid(glm::vec3(0.0f), glm::vec3(1.0f), glm::uvec3(10), 256, 2.5f);
+  const gi::vlm::Grid g = gi::vlm::buildGridScatter(lights, desc);
   ASSERT_EQ(g.overflowCells, 0u);
   math::Pcg32 rng(8, 2);
   int inside = 0, behind = 0;
   for (std::uint32_t l = 1; l < lights.size(); ++l) {
-    const auto h = vlm::activeHemisphere(lights[l], desc.range);
+    const auto h = gi::vlm::activeHemisphere(lights[l], desc.range);
     for (int s = 0; s < 20; ++s) {
       const glm::vec3 p = h.centre + (rng.nextFloat3() * 2.0f - 1.0f) * h.radius;
       const std::int64_t cell = g.cellOf(p);
@@ -107,7 +107,7 @@ TEST(VlmGrid, ListsAreCompleteWithoutOverflowAndExcludeTheBackSide) {
       // A cell lying wholly behind the light's plane never lists it.
       glm::vec3 lo, hi;
       const std::uint64_t ci = std::uint64_t(cell);
-      vlm::cellBox(desc, {std::uint32_t(ci % 10), std::uint32_t(ci / 10 % 10), std::uint32_t(ci / 100)}, lo, hi);
+      gi::vlm::cellBox(desc, {std::uint32_t(ci % 10), std::uint32_t(ci / 10 % 10), std::uint32_t(ci / 100)}, lo, hi);
       const glm::vec3 mid = 0.5f * (lo + hi), half = 0.5f * (hi - lo);
       if (glm::dot(h.normal, mid - h.centre) + glm::dot(glm::abs(h.normal), half) < 0.0f) {
         ++behind;
@@ -121,29 +121,29 @@ TEST(VlmGrid, ListsAreCompleteWithoutOverflowAndExcludeTheBackSide) {
 
 namespace {
 
-glm::uvec3 cellCoords(const vlm::GridDesc& desc, std::uint64_t c) {
+glm::uvec3 cellCoords(const gi::vlm::GridDesc& desc, std::uint64_t c) {
   return {std::uint32_t(c % desc.dims.x), std::uint32_t(c / desc.dims.x % desc.dims.y),
           std::uint32_t(c / (std::uint64_t(desc.dims.x) * desc.dims.y))};
 }
 
 // A cell's list as a sorted set of light indices (slots are packed, nulls last).
 std::vector<std::uint32_t> listed(std::span<const std::uint32_t> cell) {
-  std::vector<std::uint32_t> out(cell.begin(), std::find(cell.begin(), cell.end(), vlm::kNullLight));
-  EXPECT_TRUE(std::all_of(cell.begin() + std::ptrdiff_t(out.size()), cell.end(), [](std::uint32_t i) { return i == vlm::kNullLight; }))
+  std::vector<std::uint32_t> out(cell.begin(), std::find(cell.begin(), cell.end(), gi::vlm::kNullLight));
+  EXPECT_TRUE(std::all_of(cell.begin() + std::ptrdiff_t(out.size()), cell.end(), [](std::uint32_t i) { return i == gi::vlm::kNullLight; }))
       << "slots are packed";
   std::sort(out.begin(), out.end());
   return out;
 }
 
 // Brute force: the k candidates of cell c with the largest bound (ties: lower index), as a sorted set.
-std::vector<std::uint32_t> bestK(std::span<const vlm::GridLight> lights, const vlm::GridDesc& desc, std::uint64_t c,
+std::vector<std::uint32_t> bestK(std::span<const gi::vlm::GridLight> lights, const gi::vlm::GridDesc& desc, std::uint64_t c,
                                  std::uint32_t k) {
   glm::vec3 lo, hi;
-  vlm::cellBox(desc, cellCoords(desc, c), lo, hi);
+  gi::vlm::cellBox(desc, cellCoords(desc, c), lo, hi);
   std::vector<std::pair<float, std::uint32_t>> found;
   for (std::uint32_t l = 0; l < lights.size(); ++l) {
-    const auto h = vlm::activeHemisphere(lights[l], desc.range);
-    if (vlm::touchesCell(h, lo, hi)) found.push_back({vlm::cellBound(h, lo, hi), l});
+    const auto h = gi::vlm::activeHemisphere(lights[l], desc.range);
+    if (gi::vlm::touchesCell(h, lo, hi)) found.push_back({gi::vlm::cellBound(h, lo, hi), l});
   }
   std::sort(found.begin(), found.end(), [](auto& a, auto& b) { return a.first != b.first ? a.first > b.first : a.second < b.second; });
   std::vector<std::uint32_t> out;
@@ -159,11 +159,11 @@ TEST(VlmGrid, OverflowKeepsTheLargestBounds) {
   // K 3 overflows at most cells; K 40 in some (and its lists go through a compaction: more
   // candidates than the list's capacity of 2K in the fullest cells).
   for (std::uint32_t k : {3u, 40u}) {
-    const auto desc = vlm::fitGrid(glm::vec3(0.0f), glm::vec3(1.0f), glm::uvec3(6), k, 3.5f);
-    const vlm::Grid small = vlm::buildGridScatter(lights, desc);
+    const auto desc = gi::vlm::fitGrid(glm::vec3(0.0f), glm::vec3(1.0f), glm::uvec3(6), k, 3.5f);
+    const gi::vlm::Grid small = gi::vlm::buildGridScatter(lights, desc);
     auto all = desc;
     all.k = 4096;
-    const vlm::Grid full = vlm::buildGridScatter(lights, all);
+    const gi::vlm::Grid full = gi::vlm::buildGridScatter(lights, all);
     ASSERT_EQ(full.overflowCells, 0u);
     ASSERT_GT(small.overflowCells, 0u);
     std::uint64_t overflowing = 0;
@@ -184,14 +184,14 @@ TEST(VlmGrid, OverflowKeepsTheLargestBounds) {
 namespace {
 
 // Brute force: how many of cell c's candidates have a bound of at least `threshold`.
-std::uint32_t aboveThreshold(std::span<const vlm::GridLight> lights, const vlm::GridDesc& desc, std::uint64_t c,
+std::uint32_t aboveThreshold(std::span<const gi::vlm::GridLight> lights, const gi::vlm::GridDesc& desc, std::uint64_t c,
                              float threshold) {
   glm::vec3 lo, hi;
-  vlm::cellBox(desc, cellCoords(desc, c), lo, hi);
+  gi::vlm::cellBox(desc, cellCoords(desc, c), lo, hi);
   std::uint32_t n = 0;
   for (const auto& l : lights) {
-    const auto h = vlm::activeHemisphere(l, desc.range);
-    if (vlm::touchesCell(h, lo, hi) && vlm::cellBound(h, lo, hi) >= threshold) ++n;
+    const auto h = gi::vlm::activeHemisphere(l, desc.range);
+    if (gi::vlm::touchesCell(h, lo, hi) && gi::vlm::cellBound(h, lo, hi) >= threshold) ++n;
   }
   return n;
 }
@@ -203,8 +203,8 @@ std::uint32_t aboveThreshold(std::span<const vlm::GridLight> lights, const vlm::
 // with a small maxK the pairs that still do not fit are counted exactly.
 TEST(VlmGrid, ConservativeModeKeepsEveryLightAboveTheThreshold) {
   const auto lights = randomLights(800, 0.15f, 9);
-  auto desc = vlm::fitGrid(glm::vec3(0.0f), glm::vec3(1.0f), glm::uvec3(6), 3, 3.5f);
-  const vlm::Grid plain = vlm::buildGridScatter(lights, desc);
+  auto desc = gi::vlm::fitGrid(glm::vec3(0.0f), glm::vec3(1.0f), glm::uvec3(6), 3, 3.5f);
+  const gi::vlm::Grid plain = gi::vlm::buildGridScatter(lights, desc);
   ASSERT_GT(plain.overflowCells, 0u);
   EXPECT_EQ(plain.droppedAboveThreshold, 0u);
 
@@ -215,8 +215,8 @@ TEST(VlmGrid, ConservativeModeKeepsEveryLightAboveTheThreshold) {
   ASSERT_GT(need, desc.k) << "the threshold should force longer lists than K";
   ASSERT_LT(need, desc.maxK);
 
-  const vlm::Grid scatter = vlm::buildGridScatter(lights, desc);
-  const vlm::Grid gather = vlm::buildGridGather(lights, desc);
+  const gi::vlm::Grid scatter = gi::vlm::buildGridScatter(lights, desc);
+  const gi::vlm::Grid gather = gi::vlm::buildGridGather(lights, desc);
   EXPECT_EQ(scatter.slots, gather.slots);
   EXPECT_EQ(scatter.desc.k, need);
   EXPECT_EQ(gather.desc.k, need);
@@ -231,33 +231,33 @@ TEST(VlmGrid, ConservativeModeKeepsEveryLightAboveTheThreshold) {
 
   // maxK below what the threshold asks for: lists stop at maxK and the rest is counted.
   desc.maxK = desc.k + 1;
-  const vlm::Grid capped = vlm::buildGridScatter(lights, desc);
+  const gi::vlm::Grid capped = gi::vlm::buildGridScatter(lights, desc);
   EXPECT_EQ(capped.desc.k, desc.maxK);
   std::uint64_t dropped = 0;
   for (std::uint32_t a : above) dropped += a > desc.maxK ? a - desc.maxK : 0;
   ASSERT_GT(dropped, 0u);
   EXPECT_EQ(capped.droppedAboveThreshold, dropped);
-  EXPECT_EQ(vlm::buildGridGather(lights, desc).droppedAboveThreshold, dropped);
+  EXPECT_EQ(gi::vlm::buildGridGather(lights, desc).droppedAboveThreshold, dropped);
 
   // A threshold no bound reaches changes nothing but the report.
   desc.maxK = 256;
   desc.conservativeThreshold = 1e6f;
-  const vlm::Grid high = vlm::buildGridScatter(lights, desc);
+  const gi::vlm::Grid high = gi::vlm::buildGridScatter(lights, desc);
   EXPECT_EQ(high.slots, plain.slots);
   EXPECT_EQ(high.desc.k, plain.desc.k);
 }
 
 TEST(VlmGrid, OverflowLineNamesBothGridsAndTheConservativeCount) {
-  vlm::OverflowReport r;
+  gi::vlm::OverflowReport r;
   r.cellsPerGrid = 4096;
   r.k = 32;
   r.staticCells = 12;
   r.dynamicCells = 3;
   r.dynamicMaxCells = 5;
-  EXPECT_EQ(vlm::formatOverflow(r), "vlm overflow: static 12/4096 cells, dynamic 3/4096 (most 5), K 32");
+  EXPECT_EQ(gi::vlm::formatOverflow(r), "vlm overflow: static 12/4096 cells, dynamic 3/4096 (most 5), K 32");
   r.conservative = true;
   r.droppedAboveThreshold = 7;
-  EXPECT_EQ(vlm::formatOverflow(r),
+  EXPECT_EQ(gi::vlm::formatOverflow(r),
             "vlm overflow: static 12/4096 cells, dynamic 3/4096 (most 5), K 32, conservative: 7 candidates above the "
             "threshold dropped");
 }

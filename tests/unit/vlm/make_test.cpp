@@ -11,7 +11,7 @@
 #include "engine/gi/vlm/make.hpp"
 #include "engine/scene/level.hpp"
 
-namespace bounce::vlm {
+namespace bounce::gi::vlm {
 namespace {
 
 namespace fs = std::filesystem;
@@ -224,4 +224,4 @@ TEST(VlmMake, CornellLevelKeepsTagsAndPrintsTheSnippet) {
 }
 
 }  // namespace
-}  // namespace bounce::vlm
+}  // namespace bounce::gi::vlm

@@ -18,7 +18,7 @@
 #include "engine/gpu/testing.hpp"
 #include "game/session.hpp"
 
-namespace bounce::vlm {
+namespace bounce::gi::vlm {
 namespace {
 
 namespace fs = std::filesystem;
@@ -268,9 +268,9 @@ TEST(VlmGpu, PassesOnlyWithTheVlmEffect) {
 }
 
 }  // namespace
-}  // namespace bounce::vlm
+}  // namespace bounce::gi::vlm
 
-namespace bounce::vlm {
+namespace bounce::gi::vlm {
 namespace {
 
 // Capture of the shipped Cornell VLM level (content/levels/cornell-vlm.json): the node only adds
@@ -294,4 +294,4 @@ TEST(VlmGpu, CornellLevelBleedsWallColours) {
 }
 
 }  // namespace
-}  // namespace bounce::vlm
+}  // namespace bounce::gi::vlm

@@ -12,7 +12,7 @@
 #include "engine/gpu/testing.hpp"
 #include "game/session.hpp"
 
-namespace bounce::vlm {
+namespace bounce::gi::vlm {
 namespace {
 
 namespace fs = std::filesystem;
@@ -126,4 +126,4 @@ TEST(VlmGpu, GltfExtrasNodeLightsTheFloor) {
 }
 
 }  // namespace
-}  // namespace bounce::vlm
+}  // namespace bounce::gi::vlm

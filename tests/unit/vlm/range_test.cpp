@@ -23,8 +23,8 @@ constexpr std::uint32_t kNoOverflow = 1024;  // K above any cell's candidate cou
 constexpr double kRange45MaxError = 0.02;
 
 // The wall z = 0, x, y ∈ [0, 1], emitting towards +z (counter-clockwise seen from +z), radiance 1.
-std::vector<vlm::GridLight> wall() {
-  std::vector<vlm::GridLight> lights;
+std::vector<gi::vlm::GridLight> wall() {
+  std::vector<gi::vlm::GridLight> lights;
   const float s = 1.0f / kTiles;
   for (int j = 0; j < kTiles; ++j)
     for (int i = 0; i < kTiles; ++i) {
@@ -36,14 +36,14 @@ std::vector<vlm::GridLight> wall() {
   return lights;
 }
 
-double irradiance(const glm::dvec3& x, const glm::dvec3& n, const std::vector<vlm::GridLight>& lights,
+double irradiance(const glm::dvec3& x, const glm::dvec3& n, const std::vector<gi::vlm::GridLight>& lights,
                   std::span<const std::uint32_t> subset) {
   constexpr double kPi = 3.14159265358979323846;
   double e = 0.0;
   for (std::uint32_t i : subset) {
-    if (i == vlm::kNullLight) break;
+    if (i == gi::vlm::kNullLight) break;
     const auto& l = lights[i];
-    e += kPi * vlm::formFactor(x, n, glm::dvec3(l.v0), glm::dvec3(l.v1), glm::dvec3(l.v2));  // L = 1
+    e += kPi * gi::vlm::formFactor(x, n, glm::dvec3(l.v0), glm::dvec3(l.v1), glm::dvec3(l.v2));  // L = 1
   }
   return e;
 }
@@ -52,8 +52,8 @@ double irradiance(const glm::dvec3& x, const glm::dvec3& n, const std::vector<vl
 // middle, facing it.
 double rangeError(float range) {
   const auto lights = wall();
-  const auto desc = vlm::fitGrid(glm::vec3(-0.1f), glm::vec3(1.1f), glm::uvec3(kGrid), kNoOverflow, range);
-  const vlm::Grid grid = vlm::buildGridScatter(lights, desc);
+  const auto desc = gi::vlm::fitGrid(glm::vec3(-0.1f), glm::vec3(1.1f), glm::uvec3(kGrid), kNoOverflow, range);
+  const gi::vlm::Grid grid = gi::vlm::buildGridScatter(lights, desc);
   EXPECT_EQ(grid.overflowCells, 0u);
   std::vector<std::uint32_t> every(lights.size());
   for (std::uint32_t i = 0; i < every.size(); ++i) every[i] = i;

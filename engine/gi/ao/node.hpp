@@ -8,6 +8,7 @@
 // indirect node reads it, and tests read it back.
 #include <memory>
 
+#include "engine/gi/technique.hpp"
 #include "engine/gpu/image.hpp"
 #include "engine/gpu/pipeline.hpp"
 #include "engine/render/graph/render_graph.hpp"
@@ -26,13 +27,13 @@ struct Settings {
   std::uint32_t directions = 8;  // HBAO only
 };
 
-class Node {
+class Node final : public TechniqueRuntime {
  public:
   Node(gpu::Context& ctx, const render::Pipelines& shared, Kind kind, Settings settings = {});
   Kind kind() const { return kind_; }
   Settings& settings() { return settings_; }
   // For Renderer::setNode(kindName(kind), …).
-  render::Renderer::GraphNode node();
+  render::Renderer::GraphNode node() override;
   // The visibility image of the last frame (R16F; read back with gpu::readback after the frame).
   gpu::Image* image() { return image_.get(); }
 

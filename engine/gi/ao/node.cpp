@@ -1,4 +1,4 @@
-#include "engine/gi/ao/ao.hpp"
+#include "engine/gi/ao/node.hpp"
 
 #include "engine/render/passes/rendering.hpp"
 

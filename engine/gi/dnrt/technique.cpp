@@ -1,0 +1,160 @@
+#include "engine/gi/dnrt/technique.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+
+#include "engine/core/error.hpp"
+#include "engine/core/log.hpp"
+#include "engine/core/paths.hpp"
+#include "engine/gi/dnrt/bake.hpp"
+#include "engine/gi/dnrt/object_scene.hpp"
+
+namespace bounce::gi::dnrt {
+namespace {
+
+constexpr std::string_view kCacheKind = "dnrt";
+std::filesystem::path cacheFolder() { return cacheDir(kCacheKind); }
+
+std::string describe(const std::string& name, const FieldSettings& s) {
+  char text[256];
+  std::snprintf(text, sizeof text, "dnrt    %s: %d^3 x %d rays, %d SH", name.c_str(), s.grid,
+                s.samplesPerAxis * s.samplesPerAxis, s.shCount);
+  return text;
+}
+
+// One entity's bake: its object scene (local frame) and settings, gathered once per job list.
+struct ObjectBake {
+  std::string name;
+  ref::SceneDesc object;
+  FieldSettings settings;
+  std::filesystem::path output;
+};
+
+class DnrtTechnique final : public Technique {
+ public:
+  scene::Effect effect() const override { return scene::Effect::Dnrt; }
+
+  bool takesPart(const LevelContext& lc, std::string* why) const override {
+    bool any = false;
+    lc.registry.view<scene::Dnrt, scene::MeshRef>().each([&](ecs::Entity, scene::Dnrt&, scene::MeshRef&) { any = true; });
+    if (!any && why) *why = "no entity has a dnrt component";
+    return any;
+  }
+
+  std::vector<BakeJob> bakeJobs(const LevelContext& lc, std::string_view part) const override {
+    std::vector<ecs::Entity> entities;
+    lc.registry.view<scene::Dnrt, scene::MeshRef>().each([&](ecs::Entity e, scene::Dnrt&, scene::MeshRef&) {
+      const auto* name = lc.registry.tryGet<scene::Name>(e);
+      if (part.empty() || (name && name->id == part)) entities.push_back(e);
+    });
+    std::sort(entities.begin(), entities.end());  // deterministic order (as Runtime)
+    // Only the assets of the selected entities are cooked/decoded (one job's process loads one).
+    ref::ReferenceAssets assets;
+    for (ecs::Entity e : entities) {
+      ecs::Registry one;
+      one.emplace<scene::MeshRef>(one.create(), lc.registry.get<scene::MeshRef>(e));
+      assets.load(one, lc.cookCache);
+    }
+    std::vector<std::filesystem::path> inputs;
+    if (!lc.level.source.empty()) inputs.push_back(lc.level.source);
+    std::vector<BakeJob> jobs;
+    for (ecs::Entity e : entities) {
+      auto ob = std::make_shared<ObjectBake>();
+      ob->name = lc.registry.get<scene::Name>(e).id;
+      ob->object = objectScene(lc.registry, e, assets);
+      ob->settings = settingsFrom(lc.registry.get<scene::Dnrt>(e));
+      ob->output = cachePath(ob->object, ob->settings, cacheFolder());
+      BakeJob job;
+      job.technique = "dnrt";
+      job.what = "dnrt " + ob->name;
+      job.part = ob->name;
+      job.key = cacheKey(ob->object, ob->settings);
+      job.output = ob->output;
+      job.inputs = inputs;
+      job.inputs.push_back(lc.registry.get<scene::MeshRef>(e).asset);
+      job.cached = [ob]() -> std::optional<std::string> {
+        if (!std::filesystem::exists(ob->output)) return std::nullopt;
+        try {
+          load(ob->output);
+        } catch (const InputError& err) {
+          log::warn(std::string("dnrt: re-baking a corrupt cache entry: ") + err.what());
+          return std::nullopt;
+        }
+        return describe(ob->name, ob->settings) + ": cached " + ob->output.string();
+      };
+      job.run = [ob] {
+        const auto start = std::chrono::steady_clock::now();
+        const BakeResult r = bake(ob->object, ob->settings);
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        save(r.field, ob->output);
+        char text[512];
+        std::snprintf(text, sizeof text,
+                      ": %.3f s, %zu vertices inside filled, 8-bit error %.3g (bound %.3g), ranges %s -> %s", seconds,
+                      r.insideVertices, r.quantization.maxAbs, r.quantization.bound,
+                      r.withinAnalyticBound ? "inside the analytic bound (Table 1)" : "OUT OF BOUND",
+                      ob->output.c_str());
+        return describe(ob->name, ob->settings) + text;
+      };
+      jobs.push_back(std::move(job));
+    }
+    return jobs;
+  }
+
+  std::string_view cacheKind() const override { return kCacheKind; }
+
+  std::unique_ptr<TechniqueRuntime> create(SessionContext& sc) const override {
+    return std::make_unique<SessionRuntime>(sc);
+  }
+
+  // DNRT (issue 4) on top of probes: what the dynamic objects add and take away, for every field
+  // setting the paper's tables vary: SH count (Table 7), grid resolution, intrusion (Table 6) and
+  // the anti-radiance of Eq. 12 vs App. B.2. Applied to every `dnrt` entity. Its effect_rel_rmse is
+  // the number that matters (the static part is the probes').
+  void accuracyRows(std::vector<AccuracyRow>& rows) const override {
+    for (const int shCount : {4, 9})
+      for (const int grid : {16, 32, 64})
+        for (const bool intrusion : {false, true})
+          for (const bool improved : {false, true}) {
+            AccuracyRow r;
+            r.technique = "dnrt";
+            r.setting = "sh=" + std::to_string(shCount) + ";grid=" + std::to_string(grid) +
+                        ";intrusion=" + (intrusion ? "on" : "off") +
+                        ";anti_radiance=" + (improved ? "improved" : "paper") + ";ref=all";
+            r.effects = {"direct", "shadows", "probes", "dnrt"};
+            r.passes = {"shadow", "lighting", "probes", "dnrt"};
+            r.optionalPasses = {"dnrt.cube"};  // the intrusion maps (one outermost pass per object)
+            r.configure = [=](scene::Level& level) {
+              for (auto& e : level.entities)
+                if (e.dnrt) {
+                  e.dnrt->shCount = shCount;
+                  e.dnrt->grid = grid;
+                  e.dnrt->intrusion = intrusion;
+                  e.dnrt->improvedAntiRadiance = improved;
+                }
+            };
+            rows.push_back(std::move(r));
+          }
+  }
+
+  std::vector<std::string> passes() const override { return {"dnrt.cube", "dnrt"}; }
+};
+
+}  // namespace
+
+const Technique& technique() {
+  static const DnrtTechnique t;
+  return t;
+}
+
+SessionRuntime::SessionRuntime(SessionContext& sc) {
+  assets_.load(sc.registry, sc.cookCache);  // the bakes start from the CPU copies
+  runtime_ = std::make_unique<Runtime>(sc.ctx, sc.renderer.pipelines(), sc.registry, assets_, cacheFolder(),
+                                       sc.renderer.frames().framesInFlight(), sc.level.background);
+  if (sc.services.probeVolume) {
+    probeSource_ = std::make_unique<ProbeSource>(*sc.services.probeVolume);
+    runtime_->setIrradianceSource(probeSource_.get());
+  }
+}
+
+}  // namespace bounce::gi::dnrt

@@ -1,0 +1,29 @@
+#pragma once
+// DNRT as a technique of the table (engine/gi/technique.hpp): entities with a `dnrt` component and
+// a mesh take part; one bake job per such entity (its field); the runtime of runtime.hpp with c_j
+// from the probes (Services::probeVolume) when they run, else from the level's background.
+#include <memory>
+
+#include "engine/gi/dnrt/probe_source.hpp"
+#include "engine/gi/dnrt/runtime.hpp"
+#include "engine/gi/technique.hpp"
+
+namespace bounce::gi::dnrt {
+
+const Technique& technique();
+
+// What a session holds for DNRT: the runtime and what it reads from (the CPU copies of the assets
+// its bakes start from, the probes as c_j source).
+class SessionRuntime final : public TechniqueRuntime {
+ public:
+  explicit SessionRuntime(SessionContext& sc);
+  render::Renderer::GraphNode node() override { return runtime_->node(); }
+  Runtime& runtime() { return *runtime_; }
+
+ private:
+  ref::ReferenceAssets assets_;
+  std::unique_ptr<ProbeSource> probeSource_;
+  std::unique_ptr<Runtime> runtime_;
+};
+
+}  // namespace bounce::gi::dnrt

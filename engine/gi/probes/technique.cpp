@@ -1,0 +1,92 @@
+#include "engine/gi/probes/technique.hpp"
+
+#include <cstdio>
+
+#include "engine/core/paths.hpp"
+#include "engine/gi/probes/bake.hpp"
+#include "engine/gi/probes/node.hpp"
+
+namespace bounce::gi::probes {
+namespace {
+
+constexpr std::string_view kCacheKind = "probes";
+std::filesystem::path cacheFolder() { return cacheDir(kCacheKind); }
+
+std::string bakeLine(const LoadResult& r, const ProbeSettings& settings) {
+  const auto& g = r.volume.grid;
+  char line[512];
+  std::snprintf(line, sizeof line,
+                "probes  %dx%dx%d at %g m, SH order %d, %u rays: %.3f s (%.3f ms/probe, %zu inside geometry) -> %s",
+                g.count.x, g.count.y, g.count.z, g.spacing, r.volume.order, settings.rays, r.stats.seconds,
+                r.stats.msPerProbe(), r.stats.invalid, r.file.c_str());
+  return line;
+}
+
+class ProbesTechnique final : public Technique {
+ public:
+  scene::Effect effect() const override { return scene::Effect::Probes; }
+  // The volume covers the static scene and lights every drawn surface: no component needed.
+  bool takesPart(const LevelContext&, std::string*) const override { return true; }
+
+  std::vector<BakeJob> bakeJobs(const LevelContext& lc, std::string_view part) const override {
+    if (!part.empty()) return {};  // one per-level job, no parts
+    auto input = std::make_shared<BakeInput>(prepare(lc.level, lc.cookCache, settingsFrom(lc.level)));
+    BakeJob job;
+    job.technique = "probes";
+    job.what = "probes";
+    job.key = input->key;
+    job.output = cachePath(*input, cacheFolder());
+    job.inputs = input->files;
+    job.cached = [file = job.output]() -> std::optional<std::string> {
+      const std::optional<ProbeVolume> v = loadCached(file);
+      if (!v) return std::nullopt;
+      char line[512];
+      std::snprintf(line, sizeof line, "probes  %dx%dx%d at %g m, SH order %d: cached %s", v->grid.count.x,
+                    v->grid.count.y, v->grid.count.z, v->grid.spacing, v->order, file.c_str());
+      return line;
+    };
+    job.run = [input] { return bakeLine(bakeToCache(*input, cacheFolder(), /*logBake=*/false), input->settings); };
+    return {job};
+  }
+
+  std::string_view cacheKind() const override { return kCacheKind; }
+
+  std::unique_ptr<TechniqueRuntime> create(SessionContext& sc) const override {
+    LoadResult baked = loadOrBake(sc.level, sc.cookCache, cacheFolder(), settingsFrom(sc.level));
+    auto node = std::make_unique<ProbeNode>(sc.ctx, sc.renderer.pipelines(), std::move(baked.volume));
+    sc.services.probeVolume = &node->volume();
+    return node;
+  }
+
+  // The baked irradiance volume (issue 3 §3): two probe spacings × two SH orders, on top of direct
+  // light, against the full reference. Spacing and order reach the bake through the level's
+  // "probes" settings (`configure`).
+  void accuracyRows(std::vector<AccuracyRow>& rows) const override {
+    for (const double spacing : {0.25, 0.125})  // metres; the Cornell box is 0.55 m wide
+      for (const int order : {2, 3}) {          // SH order as bands: 2 = L1 (4 coefficients), 3 = L2 (9)
+        AccuracyRow r;
+        r.technique = "probes";
+        char setting[96];
+        std::snprintf(setting, sizeof setting, "spacing=%gm;sh_order=%d;ref=all", spacing, order);
+        r.setting = setting;
+        r.effects = {"direct", "shadows", "probes"};
+        r.passes = {"shadow", "lighting", "probes"};
+        r.configure = [spacing, order](scene::Level& level) {
+          level.probes.spacing = float(spacing);
+          level.probes.order = order;
+        };
+        rows.push_back(std::move(r));
+      }
+  }
+
+  std::vector<std::string> passes() const override { return {"probes"}; }
+};
+
+}  // namespace
+
+const Technique& technique() {
+  static const ProbesTechnique t;
+  return t;
+}
+
+}  // namespace bounce::gi::probes

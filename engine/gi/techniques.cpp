@@ -1,0 +1,32 @@
+// THE list of GI techniques: Session, `bounce bake`, `bounce accuracy`, `bounce profile` and the
+// play keys iterate it and name none of them. Order = node order (technique.hpp). Adding a
+// technique: its folder engine/gi/<name>/ with a technique() like these, and one line here.
+#include "engine/gi/ao/technique.hpp"
+#include "engine/gi/dnrt/technique.hpp"
+#include "engine/gi/probes/technique.hpp"
+#include "engine/gi/technique.hpp"
+#include "engine/gi/vlm/technique.hpp"
+
+namespace bounce::gi {
+
+const std::vector<const Technique*>& techniques() {
+  static const ReservedTechnique sl(scene::Effect::Sl), rtf(scene::Effect::Rtf);  // issues 13 and 14
+  static const std::vector<const Technique*> table = {
+      &ao::technique(ao::Kind::Ssao),  // first: a later node may read "ao.term"
+      &ao::technique(ao::Kind::Hbao),
+      &probes::technique(),  // the static indirect light; Services::probeVolume for the ones below
+      &dnrt::technique(),    // what the dynamic objects add and take away (c_j from the probes)
+      &vlm::technique(),
+      &sl,
+      &rtf,
+  };
+  return table;
+}
+
+const Technique* findTechnique(scene::Effect effect) {
+  for (const Technique* t : techniques())
+    if (t->effect() == effect) return t;
+  return nullptr;
+}
+
+}  // namespace bounce::gi

@@ -1,0 +1,265 @@
+// `bounce bake` as a job graph (engine/gi/technique.hpp BakeJob, game/bake_jobs.hpp), run as users
+// and ninja run it: the plan under `ninja -j2` writes byte-identical entries to a plain bake, a job
+// run twice is a cache hit, a corrupt or truncated entry is re-baked, two processes baking one key at
+// once leave one valid entry; the notes for effects that cannot run; `bounce cache`. Each test bakes
+// tests/data/gi/bake-tiny.json (3 jobs, well under a second each) into its own BOUNCE_CACHE.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "game/session.hpp"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+const fs::path kSource = BOUNCE_SOURCE_DIR;
+const fs::path kTiny = kSource / "tests/data/gi/bake-tiny.json";
+
+std::string readText(const fs::path& p) {
+  std::ifstream f(p, std::ios::binary);
+  std::stringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+std::vector<std::string> lines(const std::string& text) {
+  std::vector<std::string> out;
+  std::stringstream s(text);
+  for (std::string line; std::getline(s, line);) out.push_back(line);
+  return out;
+}
+
+std::string quote(const std::string& s) {
+  std::string out = "'";
+  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+struct Outcome {
+  int code = -1;
+  std::string out, err;
+};
+
+// Every regular file under root/kind for the bake kinds, by path relative to root → bytes.
+std::map<std::string, std::string> entries(const fs::path& root) {
+  std::map<std::string, std::string> out;
+  for (const char* kind : {"probes", "dnrt"}) {
+    if (!fs::is_directory(root / kind)) continue;
+    for (const auto& f : fs::directory_iterator(root / kind))
+      if (f.is_regular_file()) out[fs::relative(f.path(), root).string()] = readText(f.path());
+  }
+  return out;
+}
+
+class BakeCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::path(BOUNCE_TEST_OUT) / "gi-bake" / ::testing::UnitTest::GetInstance()->current_test_info()->name();
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    cooked_ = bounce::game::cookCacheDir();  // shared: cooking is not what these tests are about
+  }
+  // The environment of every command: its own cache root, the build's cooked assets.
+  std::string env(const fs::path& root) const {
+    return "BOUNCE_CACHE=" + quote(root.string()) + " BOUNCE_COOK_CACHE=" + quote(cooked_.string()) + " ";
+  }
+  std::string bounceCmd(const fs::path& root, const std::vector<std::string>& args) const {
+    std::string cmd = env(root) + quote(BOUNCE_EXE);
+    for (const auto& a : args) cmd += " " + quote(a);
+    return cmd;
+  }
+  Outcome sh(const std::string& cmd, const std::string& name = "run") {
+    const fs::path out = dir_ / (name + ".out"), err = dir_ / (name + ".err");
+    const int status = std::system((cmd + " >" + quote(out.string()) + " 2>" + quote(err.string())).c_str());
+    Outcome r;
+    if (status != -1 && WIFEXITED(status)) r.code = WEXITSTATUS(status);
+    r.out = readText(out);
+    r.err = readText(err);
+    return r;
+  }
+  Outcome bounce(const fs::path& root, const std::vector<std::string>& args) { return sh(bounceCmd(root, args)); }
+  // The keys of the tiny level's jobs, from --list-jobs.
+  std::vector<std::string> keys(const fs::path& root) {
+    const Outcome r = bounce(root, {"bake", kTiny.string(), "--list-jobs"});
+    EXPECT_EQ(r.code, 0) << r.err;
+    std::vector<std::string> out;
+    for (const auto& line : lines(r.out)) {
+      const auto at = line.find("\"key\": \"");
+      if (at != std::string::npos) out.push_back(line.substr(at + 8, 16));
+    }
+    return out;
+  }
+  fs::path dir_, cooked_;
+};
+
+TEST_F(BakeCli, ListJobsIsOneJsonLinePerJob) {
+  const Outcome r = bounce(dir_ / "cache", {"bake", kTiny.string(), "--list-jobs"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto ls = lines(r.out);
+  ASSERT_EQ(ls.size(), 3u) << r.out;  // the probe volume and one field per `dnrt` box
+  int probes = 0, dnrt = 0;
+  for (const auto& l : ls) {
+    EXPECT_EQ(l.front(), '{');
+    EXPECT_EQ(l.back(), '}');
+    for (const char* field : {"\"key\": ", "\"technique\": ", "\"command\": ", "\"inputs\": [", "\"output\": "})
+      EXPECT_NE(l.find(field), std::string::npos) << field << " in " << l;
+    const std::string key = l.substr(l.find("\"key\": \"") + 8, 16);
+    EXPECT_NE(l.find("--job " + key), std::string::npos) << l;
+    EXPECT_NE(l.find(" --only '"), std::string::npos) << "each job plans only itself: " << l;
+    EXPECT_NE(l.find(key), l.rfind(key)) << "the output is named by the key: " << l;
+    probes += l.find("\"technique\": \"probes\"") != std::string::npos;
+    dnrt += l.find("\"technique\": \"dnrt\"") != std::string::npos;
+  }
+  EXPECT_EQ(probes, 1);
+  EXPECT_EQ(dnrt, 2);
+  EXPECT_TRUE(entries(dir_ / "cache").empty()) << "listing bakes nothing";
+}
+
+TEST_F(BakeCli, NinjaPlanGivesByteIdenticalEntriesToAPlainBake) {
+  const Outcome plain = bounce(dir_ / "plain", {"bake", kTiny.string()});
+  ASSERT_EQ(plain.code, 0) << plain.err;
+  EXPECT_EQ(lines(plain.out).size(), 3u) << plain.out;
+
+  const fs::path plan = dir_ / "planned" / "bake.ninja";
+  fs::create_directories(plan.parent_path());
+  const Outcome wrote = bounce(dir_ / "planned", {"bake", kTiny.string(), "--plan", plan.string()});
+  ASSERT_EQ(wrote.code, 0) << wrote.err;
+  EXPECT_EQ(wrote.out, "3 bake job(s) -> " + plan.string() + "\n");
+  EXPECT_TRUE(entries(dir_ / "planned").empty()) << "planning bakes nothing";
+  // The plan carries its own BOUNCE_CACHE: ninja's environment does not matter.
+  const Outcome ran = sh("cd " + quote(plan.parent_path().string()) + " && ninja -f bake.ninja -j2", "ninja");
+  ASSERT_EQ(ran.code, 0) << ran.out << ran.err;
+
+  const auto a = entries(dir_ / "plain"), b = entries(dir_ / "planned");
+  ASSERT_EQ(a.size(), 3u);
+  ASSERT_EQ(b.size(), a.size());
+  for (const auto& [name, bytes] : a) {
+    ASSERT_TRUE(b.count(name)) << name << " missing from the ninja run";
+    EXPECT_TRUE(b.at(name) == bytes) << name << " differs";
+  }
+  // Everything is up to date now: ninja has nothing left to do.
+  const Outcome again = sh("cd " + quote(plan.parent_path().string()) + " && ninja -f bake.ninja -j2 -n", "ninja2");
+  EXPECT_NE(again.out.find("no work to do"), std::string::npos) << again.out;
+}
+
+TEST_F(BakeCli, AJobRunTwiceIsACacheHit) {
+  const fs::path root = dir_ / "cache";
+  const auto ks = keys(root);
+  ASSERT_EQ(ks.size(), 3u);
+  for (const auto& key : ks) {
+    const Outcome first = bounce(root, {"bake", kTiny.string(), "--job", key});
+    ASSERT_EQ(first.code, 0) << first.err;
+    ASSERT_EQ(lines(first.out).size(), 1u) << first.out;
+    EXPECT_EQ(first.out.find(": cached "), std::string::npos) << first.out;
+    const auto before = entries(root);
+    const Outcome second = bounce(root, {"bake", kTiny.string(), "--job", key});
+    ASSERT_EQ(second.code, 0) << second.err;
+    EXPECT_NE(second.out.find(": cached "), std::string::npos) << second.out;
+    EXPECT_EQ(entries(root), before) << "a cache hit writes nothing";
+  }
+  EXPECT_EQ(entries(root).size(), 3u);
+}
+
+TEST_F(BakeCli, CorruptOrTruncatedEntriesAreReBaked) {
+  const fs::path root = dir_ / "cache";
+  ASSERT_EQ(bounce(root, {"bake", kTiny.string()}).code, 0);
+  const auto good = entries(root);
+  ASSERT_EQ(good.size(), 3u);
+  // Truncate one entry, flip one byte in the middle of each other one.
+  int n = 0;
+  for (const auto& [name, bytes] : good) {
+    std::string bad = bytes;
+    if (n++ == 0)
+      bad.resize(bad.size() / 2);
+    else
+      bad[bad.size() / 2] = char(bad[bad.size() / 2] ^ 0x10);
+    std::ofstream(root / name, std::ios::binary | std::ios::trunc) << bad;
+  }
+  const Outcome r = bounce(root, {"bake", kTiny.string()});
+  ASSERT_EQ(r.code, 0) << r.err;
+  for (const auto& line : lines(r.out)) EXPECT_EQ(line.find(": cached "), std::string::npos) << line;
+  const auto errLines = lines(r.err);
+  EXPECT_EQ(std::count_if(errLines.begin(), errLines.end(), [](const std::string& l) { return l.rfind("warning: ", 0) == 0; }),
+            3)
+      << "one warning per corrupt entry:\n"
+      << r.err;
+  EXPECT_EQ(entries(root), good) << "re-baked entries equal the originals (deterministic bakes)";
+}
+
+TEST_F(BakeCli, TwoProcessesBakingOneKeyLeaveOneValidEntry) {
+  const fs::path root = dir_ / "cache";
+  const auto ks = keys(root);
+  ASSERT_FALSE(ks.empty());
+  for (const auto& key : ks) {
+    const std::string one = bounceCmd(root, {"bake", kTiny.string(), "--job", key});
+    const Outcome both =
+        sh(one + " & a=$!; " + one + " & b=$!; wait $a; ea=$?; wait $b; eb=$?; exit $((ea | eb))", "both-" + key);
+    ASSERT_EQ(both.code, 0) << both.out << both.err;
+    const Outcome check = bounce(root, {"bake", kTiny.string(), "--job", key});
+    EXPECT_NE(check.out.find(": cached "), std::string::npos) << "the entry left is valid: " << check.out << check.err;
+  }
+  EXPECT_EQ(entries(root).size(), ks.size()) << "one entry per key, no temporary file left";
+}
+
+TEST_F(BakeCli, ReservedEffectSaysSoInOneLine) {
+  const Outcome r = bounce(dir_ / "cache", {"bake", kTiny.string(), "--effects", "direct,sl"});
+  EXPECT_EQ(r.code, 0);
+  EXPECT_EQ(r.err, "note: effect sl is reserved (not implemented yet): no pass\n");
+  EXPECT_EQ(r.out, "nothing to bake: the effects name neither probes nor dnrt\n");
+}
+
+TEST_F(BakeCli, EffectWithoutParticipantsSaysSoInOneLine) {
+  const Outcome r = bounce(dir_ / "cache", {"bake", kTiny.string(), "--effects", "direct,vlm"});
+  EXPECT_EQ(r.code, 0);
+  EXPECT_EQ(r.err,
+            "note: effect vlm is named but no entity takes part (no entity has a vlm component or a mesh with "
+            "extras.bounce_vlm): no pass\n");
+}
+
+TEST_F(BakeCli, UnknownJobKeyIsBadInput) {
+  const Outcome r = bounce(dir_ / "cache", {"bake", kTiny.string(), "--job", "0123456789abcdef"});
+  EXPECT_EQ(r.code, 2);
+  ASSERT_EQ(lines(r.err).size(), 1u) << r.err;
+  EXPECT_NE(r.err.find("bake-tiny.json: --job: no bake job has key 0123456789abcdef (expected one of: "),
+            std::string::npos)
+      << r.err;
+}
+
+TEST_F(BakeCli, OnlyNamesATechniqueOfTheTable) {
+  const Outcome r = bounce(dir_ / "cache", {"bake", kTiny.string(), "--only", "bloom", "--list-jobs"});
+  EXPECT_EQ(r.code, 2);
+  ASSERT_EQ(lines(r.err).size(), 1u) << r.err;
+  EXPECT_NE(r.err.find("bake-tiny.json: --only: no technique bloom (expected TECHNIQUE or TECHNIQUE:PART"),
+            std::string::npos)
+      << r.err;
+  const Outcome one = bounce(dir_ / "cache", {"bake", kTiny.string(), "--only", "dnrt:box-b", "--list-jobs"});
+  ASSERT_EQ(one.code, 0) << one.err;
+  ASSERT_EQ(lines(one.out).size(), 1u) << one.out;
+  EXPECT_NE(one.out.find("\"what\": \"dnrt box-b\""), std::string::npos) << one.out;
+}
+
+TEST_F(BakeCli, CacheStatsAndPrune) {
+  const fs::path root = dir_ / "cache";
+  ASSERT_EQ(bounce(root, {"bake", kTiny.string()}).code, 0);
+  std::ofstream(root / "probes" / "0000000000000000.bin") << "stale";  // referenced by no level
+  std::ofstream(root / "dnrt" / "dnrt-0000000000000000.field.tmp-1") << "left by a killed job";
+  const Outcome stats = bounce(root, {"cache", "--stats"});
+  ASSERT_EQ(stats.code, 0) << stats.err;
+  EXPECT_NE(stats.out.find("\nprobes              2 "), std::string::npos) << stats.out;
+  EXPECT_NE(stats.out.find("\ndnrt                3 "), std::string::npos) << stats.out;
+  const Outcome prune = bounce(root, {"cache", "--prune", kTiny.string()});
+  ASSERT_EQ(prune.code, 0) << prune.err;
+  EXPECT_EQ(prune.out.rfind("pruned 2 entries", 0), 0u) << prune.out;
+  EXPECT_EQ(entries(root).size(), 3u);
+  EXPECT_EQ(bounce(root, {"cache", "--stats", "--prune"}).code, 2);
+}
+
+}  // namespace

@@ -1,0 +1,68 @@
+// Session builds the table's techniques (engine/gi/technique.hpp): only named effects in which an
+// entity takes part run; reserved or unused ones are noted once and do not count as running (the
+// play overlay shows them off); an effect named later (a play key) is built then, nodes kept in
+// table order.
+#include <gtest/gtest.h>
+
+#include "engine/gpu/presenter_offscreen.hpp"
+#include "engine/gpu/testing.hpp"
+#include "game/session.hpp"
+
+using namespace bounce;
+
+namespace {
+
+const std::filesystem::path kCornell = std::filesystem::path(BOUNCE_SOURCE_DIR) / "content/levels/cornell-1.json";
+constexpr VkExtent2D kExtent{64, 64};
+
+scene::EffectSet effects(std::initializer_list<scene::Effect> list) {
+  scene::EffectSet s;
+  for (auto e : list) s.add(e);
+  return s;
+}
+
+TEST(SessionTechniques, ReservedAndUnusedEffectsAreNotedAndDoNotRun) {
+  game::Session session(gpu::testkit::sharedContext(),
+                        game::loadLevelWithEffects(kCornell, std::vector<std::string>{"direct", "vlm", "sl", "rtf"}));
+  EXPECT_EQ(session.notes(),
+            (std::vector<std::string>{
+                "note: effect vlm is named but no entity takes part (no entity has a vlm component or a mesh with "
+                "extras.bounce_vlm): no pass",
+                "note: effect sl is reserved (not implemented yet): no pass",
+                "note: effect rtf is reserved (not implemented yet): no pass"}));
+  EXPECT_EQ(session.vlm(), nullptr);
+  EXPECT_FALSE(session.runs(scene::Effect::Vlm));
+  EXPECT_FALSE(session.runs(scene::Effect::Sl));
+  EXPECT_FALSE(session.runs(scene::Effect::Rtf));
+  EXPECT_TRUE(session.runs(scene::Effect::Direct));
+  EXPECT_EQ(session.runningEffects(), effects({scene::Effect::Direct}));  // what the overlay shows green
+  EXPECT_TRUE(session.profileLines().empty());
+
+  gpu::OffscreenPresenter presenter(gpu::testkit::sharedContext(), kExtent);
+  session.update(0.0);
+  session.render(presenter, {});
+  EXPECT_EQ(session.renderer().executedPasses(), (std::vector<std::string>{"gbuffer", "lighting", "tonemap"}));
+  EXPECT_EQ(session.notes().size(), 3u) << "a second frame notes nothing again";
+  session.renderer().frames().waitIdle();
+}
+
+TEST(SessionTechniques, EffectNamedLaterIsBuiltInTableOrder) {
+  game::Session session(gpu::testkit::sharedContext(),
+                        game::loadLevelWithEffects(kCornell, std::vector<std::string>{"direct", "probes"}));
+  EXPECT_TRUE(session.notes().empty());
+  EXPECT_NE(session.probes(), nullptr);
+  EXPECT_EQ(session.ao(gi::ao::Kind::Ssao), nullptr);
+  // The play key for ssao: named now, built at the next render, and run BEFORE probes (table order:
+  // probes read "ao.term").
+  session.level().effects.add(scene::Effect::Ssao);
+  gpu::OffscreenPresenter presenter(gpu::testkit::sharedContext(), kExtent);
+  session.update(0.0);
+  session.render(presenter, {});
+  EXPECT_NE(session.ao(gi::ao::Kind::Ssao), nullptr);
+  EXPECT_TRUE(session.runs(scene::Effect::Ssao));
+  EXPECT_EQ(session.renderer().executedPasses(),
+            (std::vector<std::string>{"gbuffer", "lighting", "ssao", "probes", "tonemap"}));
+  session.renderer().frames().waitIdle();
+}
+
+}  // namespace

@@ -1,0 +1,143 @@
+// The table of GI techniques (engine/gi/technique.hpp) on the CPU: one entry per technique effect,
+// reserved entries that say so, participation and its notes, bake jobs with content keys, and the
+// accuracy rows gathered from the table.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <set>
+
+#include "engine/core/paths.hpp"
+#include "engine/gi/technique.hpp"
+#include "engine/scene/systems.hpp"
+#include "game/accuracy_rows.hpp"
+#include "game/bake_jobs.hpp"
+#include "game/session.hpp"
+
+namespace bounce {
+namespace {
+
+namespace fs = std::filesystem;
+const fs::path kSource = BOUNCE_SOURCE_DIR;
+const fs::path kCornell1 = kSource / "content/levels/cornell-1.json";
+const fs::path kCornell10 = kSource / "content/levels/cornell-10.json";
+const fs::path kCornellVlm = kSource / "content/levels/cornell-vlm.json";
+
+// A level instantiated as Session and `bounce bake` see it.
+struct Loaded {
+  scene::Level level;
+  ecs::Registry registry;
+  explicit Loaded(const fs::path& path, const std::string& effects = {}) : level(scene::loadLevel(path)) {
+    if (!effects.empty()) scene::overrideEffects(level, effects);
+    scene::instantiate(level, registry);
+    scene::transformSystem(registry);
+  }
+  gi::LevelContext context() { return {level, registry, game::cookCacheDir()}; }
+};
+
+TEST(Techniques, OneEntryPerTechniqueEffectInNodeOrder) {
+  std::vector<std::string> names;
+  for (const gi::Technique* t : gi::techniques()) names.emplace_back(t->name());
+  // AO first (probes read "ao.term"), probes before DNRT (its c_j), the reserved ones last.
+  EXPECT_EQ(names, (std::vector<std::string>{"ssao", "hbao", "probes", "dnrt", "vlm", "sl", "rtf"}));
+  for (int i = 0; i < scene::kEffectCount; ++i) {
+    const auto e = scene::Effect(i);
+    const bool renderers = e == scene::Effect::Direct || e == scene::Effect::Shadows;
+    EXPECT_EQ(gi::findTechnique(e) == nullptr, renderers) << scene::effectName(e);
+  }
+}
+
+TEST(Techniques, SlAndRtfAreReservedAndSaySo) {
+  Loaded l(kCornell1, "direct,sl,rtf");
+  const auto lc = l.context();
+  for (const auto e : {scene::Effect::Sl, scene::Effect::Rtf}) {
+    const gi::Technique* t = gi::findTechnique(e);
+    ASSERT_NE(t, nullptr);
+    EXPECT_TRUE(t->reserved());
+    EXPECT_FALSE(t->takesPart(lc, nullptr));
+    EXPECT_TRUE(t->bakeJobs(lc, {}).empty());
+    std::vector<gi::AccuracyRow> rows;
+    t->accuracyRows(rows);
+    EXPECT_TRUE(rows.empty());
+    EXPECT_EQ(gi::effectNote(*t, lc),
+              "note: effect " + std::string(scene::effectName(e)) + " is reserved (not implemented yet): no pass");
+  }
+  for (const gi::Technique* t : gi::techniques())
+    EXPECT_EQ(t->reserved(), t->effect() == scene::Effect::Sl || t->effect() == scene::Effect::Rtf) << t->name();
+}
+
+TEST(Techniques, NamedWithoutParticipantsGetsOneNote) {
+  Loaded noVlm(kCornell1, "direct,vlm");  // cornell-1 has no virtual lights
+  EXPECT_EQ(gi::effectNote(*gi::findTechnique(scene::Effect::Vlm), noVlm.context()),
+            "note: effect vlm is named but no entity takes part (no entity has a vlm component or a mesh with "
+            "extras.bounce_vlm): no pass");
+  Loaded noDnrt(kSource / "tests/data/probes/room.json", "direct,dnrt");  // no `dnrt` component
+  EXPECT_EQ(gi::effectNote(*gi::findTechnique(scene::Effect::Dnrt), noDnrt.context()),
+            "note: effect dnrt is named but no entity takes part (no entity has a dnrt component): no pass");
+
+  Loaded withBoth(kCornell1);
+  EXPECT_EQ(gi::effectNote(*gi::findTechnique(scene::Effect::Dnrt), withBoth.context()), std::nullopt);
+  EXPECT_EQ(gi::effectNote(*gi::findTechnique(scene::Effect::Probes), withBoth.context()), std::nullopt);
+  Loaded vlm(kCornellVlm);
+  EXPECT_EQ(gi::effectNote(*gi::findTechnique(scene::Effect::Vlm), vlm.context()), std::nullopt);
+}
+
+TEST(Techniques, BakeJobsOnePerCacheEntryWithDistinctKeys) {
+  Loaded l(kCornell10);
+  const game::LevelJobs planned = game::levelJobs(l.level, game::cookCacheDir());
+  EXPECT_TRUE(planned.notes.empty());
+  std::size_t probes = 0, dnrt = 0;
+  std::set<std::string> keys;
+  std::set<fs::path> outputs;
+  for (const gi::BakeJob& job : planned.jobs) {
+    probes += job.technique == "probes";
+    dnrt += job.technique == "dnrt";
+    EXPECT_EQ(job.key.size(), 16u) << job.what;
+    EXPECT_TRUE(keys.insert(job.key).second) << "duplicate key " << job.key;
+    EXPECT_TRUE(outputs.insert(job.output).second) << job.output;
+    EXPECT_EQ(job.output.parent_path(), cacheDir(job.technique)) << job.output;
+    EXPECT_NE(job.output.filename().string().find(job.key), std::string::npos) << job.output;
+    EXPECT_FALSE(job.inputs.empty());
+    EXPECT_TRUE(job.cached && job.run);
+  }
+  EXPECT_EQ(probes, 1u);
+  // One field per distinct object of cornell-10's ten `dnrt` entities: the second truck and the
+  // second textured box are the same object with the same settings, so they share one entry.
+  EXPECT_EQ(dnrt, 8u);
+  // The same level planned twice gives the same keys (pure jobs: the key is a function of the inputs).
+  const game::LevelJobs again = game::levelJobs(l.level, game::cookCacheDir());
+  ASSERT_EQ(again.jobs.size(), planned.jobs.size());
+  for (std::size_t i = 0; i < again.jobs.size(); ++i) EXPECT_EQ(again.jobs[i].key, planned.jobs[i].key);
+  // A job planned alone (its own process: --only TECHNIQUE:PART) gathers only its inputs and has
+  // the same key and output as in the whole plan.
+  for (const gi::BakeJob& job : planned.jobs) {
+    const game::LevelJobs alone = game::levelJobs(l.level, game::cookCacheDir(), game::onlyValue(job));
+    ASSERT_EQ(alone.jobs.size(), 1u) << game::onlyValue(job);
+    EXPECT_EQ(alone.jobs[0].key, job.key) << game::onlyValue(job);
+    EXPECT_EQ(alone.jobs[0].output, job.output);
+  }
+  EXPECT_EQ(game::levelJobs(l.level, game::cookCacheDir(), "dnrt").jobs.size(), 8u);
+  EXPECT_TRUE(game::levelJobs(l.level, game::cookCacheDir(), "dnrt:no-such-entity").jobs.empty());
+}
+
+TEST(Techniques, AccuracyRowsComeFromTheTable) {
+  std::set<std::string> fromRows;
+  for (const auto& r : game::accuracyRows()) fromRows.insert(r.technique);
+  std::set<std::string> expected = {"direct"};
+  for (const gi::Technique* t : gi::techniques())
+    if (!t->reserved()) expected.insert(std::string(t->name()));
+  EXPECT_EQ(fromRows, expected);
+  // Every row's technique passes are the ones the technique says it adds.
+  for (const auto& r : game::accuracyRows()) {
+    if (r.technique == "direct") continue;
+    const auto e = scene::effectFromName(r.technique);
+    ASSERT_TRUE(e);
+    const auto passes = gi::findTechnique(*e)->passes();
+    for (const auto& p : passes)
+      if (p != "dnrt.cube")  // optional: only objects with intrusion on have it
+        EXPECT_NE(std::find(r.passes.begin(), r.passes.end(), p), r.passes.end()) << r.technique << " " << p;
+  }
+}
+
+}  // namespace
+}  // namespace bounce
