@@ -96,8 +96,12 @@ void run(gpu::Context& ctx, const Model& m, int frames) {
 int runBenchSkinning(const cli::Args& args) {
   const int frames = args.positiveInt("--frames", 10);
   const int instances = args.positiveInt("--instances", 306);
+  // Default: the ../shared/assets beside the checkout that content/ belongs to (a build tree's
+  // content/ links to the source tree's); an installed bounce needs --assets.
+  std::error_code ec;
+  const std::filesystem::path checkout = std::filesystem::weakly_canonical(contentDir(), ec).parent_path();
   const std::filesystem::path shared =
-      args.has("--assets") ? std::filesystem::path(args.str("--assets")) : std::filesystem::path(BOUNCE_SOURCE_DIR) / "../shared/assets";
+      args.has("--assets") ? std::filesystem::path(args.str("--assets")) : checkout.parent_path() / "shared" / "assets";
   const std::vector<Model> models = {
       {"CesiumMan", shared / "CesiumMan/glTF-Binary/CesiumMan.glb", 1},
       {"Fox", shared / "Fox/glTF-Binary/Fox.glb", 1},

@@ -246,8 +246,8 @@ TEST(VlmFormFactor, FloatErrorIsAFewUlpsOfTheNormalEverywhere) {
     const glm::vec3 n = rnd(-1.0f, 1.0f), x = rnd(0.0f, 1.0f);
     const glm::vec3 a = x + rnd(-2.0f, 2.0f), b = x + rnd(-2.0f, 2.0f), c = x + rnd(-2.0f, 2.0f);
     if (glm::dot(n, n) < 0.01f) continue;
-    const LD ref = vlm::formFactor<LD>(VL(x), VL(n), VL(a), VL(b), VL(c));
-    const float f = vlm::formFactor<float>(x, n, a, b, c);
+    const LD ref = gi::vlm::formFactor<LD>(VL(x), VL(n), VL(a), VL(b), VL(c));
+    const float f = gi::vlm::formFactor<float>(x, n, a, b, c);
     worst = std::max(worst, std::abs(double(f) - double(ref)) / (kEpsF * double(glm::length(n))));
   }
   EXPECT_LT(worst, kUlpsOfNormal);
@@ -277,8 +277,8 @@ TEST(VlmFormFactor, FloatKeepsAccuracyWhereTheTextbookEdgeTermLosesIt) {
        F3(-0x1.b2f4cp-1f, 0x1.32c232p+0f, 0x1.0227e4p+1f), F3(0x1.1497bp+0f, 0x1.3b90b4p-1f, -0x1.05e228p+0f)},
   };
   for (const Config& k : configs) {
-    const LD ref = vlm::formFactor<LD>(VL(k.x), VL(k.n), VL(k.a), VL(k.b), VL(k.c));
-    const float f = vlm::formFactor<float>(k.x, k.n, k.a, k.b, k.c);
+    const LD ref = gi::vlm::formFactor<LD>(VL(k.x), VL(k.n), VL(k.a), VL(k.b), VL(k.c));
+    const float f = gi::vlm::formFactor<float>(k.x, k.n, k.a, k.b, k.c);
     EXPECT_GT(ref, 1e-4L) << k.name;  // lit: the comparison means something
     EXPECT_LT(std::abs(double(f) - double(ref)), kUlpsOfNormal * kEpsF * double(glm::length(k.n))) << k.name;
   }
