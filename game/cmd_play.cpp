@@ -8,6 +8,7 @@
 #include <GLFW/glfw3.h>
 
 #include <algorithm>
+#include <array>
 #include <filesystem>
 #include <utility>
 #include <chrono>
@@ -213,6 +214,10 @@ int runPlay(const cli::Args& args) {
     auto last = std::chrono::steady_clock::now();
     double simTime = 0.0;
     std::uint64_t simSteps = 0;
+    // Which effects this level can never run (reserved, or no entity takes part), with the reason:
+    // the overlay disables their checkboxes. Fixed for the session (entities do not change).
+    std::array<std::string, scene::kEffectCount> effectWhyOff;
+    for (int i = 0; i < scene::kEffectCount; ++i) effectWhyOff[std::size_t(i)] = session.whyCannotRun(scene::Effect(i));
     for (int frame = 0; !frameLimit || frame < frameLimit; ++frame) {
       glfwPollEvents();
       if (glfwWindowShouldClose(window.handle) || state.quit) break;
@@ -274,6 +279,7 @@ int runPlay(const cli::Args& args) {
         info.gpuTotalMs = timings.gpuTotalMedianMs();
         info.gpuWindow = timings.gpuFrames();
         info.effects = session.runningEffects();  // a named effect that cannot run is not shown as on
+        info.effectWhyOff = effectWhyOff;
         info.debugView = state.settings.debugView;
         info.exposure = state.settings.exposure;
         info.vsync = state.vsync;
@@ -288,6 +294,11 @@ int runPlay(const cli::Args& args) {
         if (actions.exposure) state.settings.exposure = *actions.exposure;
         if (actions.debugView) state.settings.debugView = *actions.debugView;
         screenshotPending = screenshotPending || actions.screenshot;
+        if (actions.toggleEffect &&  // a checkbox does what its key 1-9 does
+            applyKey(GLFW_KEY_1 + int(*actions.toggleEffect), state, session.level().effects) == KeyEffect::EffectsChanged) {
+          session.syncTechniques();
+          log::info("effects: " + joined(session.level().effects.names()));
+        }
         overlayWantsMouse = actions.wantsMouse;
       } else {
         overlayWantsMouse = false;

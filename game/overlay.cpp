@@ -111,7 +111,16 @@ void layoutPanel(const OverlayInfo& info, const std::vector<float>& frameMs, flo
       char label[32];
       std::snprintf(label, sizeof label, "%d %.*s", i + 1, int(name.size()), name.data());
       if (i % 3) ImGui::SameLine(float(i % 3) * 90.0f + 8.0f);
-      onOff(label, info.effects.has(e));
+      // A checkbox per effect, as its key; disabled (with the table's note as tooltip) when the
+      // level cannot build that effect, so nothing turns on that will not run.
+      bool on = info.effects.has(e);
+      const std::string& why = info.effectWhyOff[std::size_t(i)];
+      if (!why.empty()) ImGui::BeginDisabled();
+      if (ImGui::Checkbox(label, &on)) actions.toggleEffect = e;
+      if (!why.empty()) {
+        ImGui::EndDisabled();
+        if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) ImGui::SetTooltip("%s", why.c_str());
+      }
     }
   }
   if (ImGui::CollapsingHeader("view", ImGuiTreeNodeFlags_DefaultOpen)) {

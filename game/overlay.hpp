@@ -21,6 +21,7 @@
 // rendering), so the overlay owns one: a single colour attachment, load and store, in
 // COLOR_ATTACHMENT_OPTIMAL. Framebuffers are made per frame and deleted when the frame retires,
 // which survives resizes without tracking the display image's identity.
+#include <array>
 #include <optional>
 #include <string>
 #include <utility>
@@ -45,6 +46,7 @@ struct OverlayInfo {
   double gpuTotalMs = 0.0;
   std::size_t gpuWindow = 0;                           // frames the medians cover
   scene::EffectSet effects;                            // shown green: named AND running (Session::runningEffects)
+  std::array<std::string, scene::kEffectCount> effectWhyOff;  // non-empty: the checkbox is disabled, this is its tooltip
   render::DebugView debugView = render::DebugView::None;
   float exposure = 1.0f;
   bool vsync = true, paused = false, culling = true, flying = false;
@@ -59,6 +61,7 @@ struct OverlayActions {
   std::optional<float> exposure;
   std::optional<render::DebugView> debugView;
   bool screenshot = false;   // the panel's screenshot button (as F12)
+  std::optional<scene::Effect> toggleEffect;  // an effect checkbox was clicked (as its key 1-9)
   bool wantsMouse = false;   // the mouse is over the panel: play must not orbit or look with it
 };
 

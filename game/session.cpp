@@ -61,6 +61,13 @@ void Session::syncTechniques() {
     if (slot.runtime) renderer_->setNode(std::string(slot.technique->name()), slot.runtime->node());
 }
 
+std::string Session::whyCannotRun(scene::Effect e) {
+  const gi::Technique* technique = gi::findTechnique(e);
+  if (technique == nullptr) return {};
+  const gi::LevelContext lc{level_, registry_, cookCacheDir()};
+  return gi::effectNote(*technique, lc).value_or(std::string());
+}
+
 bool Session::runs(scene::Effect e) const {
   if (e == scene::Effect::Direct || e == scene::Effect::Shadows) return true;
   for (const Slot& slot : slots_)

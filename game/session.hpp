@@ -65,6 +65,10 @@ class Session {
   bool runs(scene::Effect e) const;
   // The level's named effects that run (runs()): what the play overlay shows as on.
   scene::EffectSet runningEffects() const;
+  // Why effect `e` cannot run in this session, named or not — the technique table's note (reserved,
+  // or no entity takes part) — or empty when it can (direct and shadows always can). What the play
+  // overlay's disabled effect checkboxes show as their tooltip.
+  std::string whyCannotRun(scene::Effect e);
   // The notes printed for named effects that do not run, in table order.
   const std::vector<std::string>& notes() const { return notes_; }
   // The running technique of an effect name, or null.

@@ -46,6 +46,24 @@ TEST(SessionTechniques, ReservedAndUnusedEffectsAreNotedAndDoNotRun) {
   session.renderer().frames().waitIdle();
 }
 
+// The play overlay's disabled checkboxes: whyCannotRun gives the table's note for an effect this level
+// can never run, named or not, and nothing for one it can (the renderer's own passes, a technique
+// with a participant even when not named).
+TEST(SessionTechniques, WhyCannotRunNamesReservedAndUnusedEffectsOnly) {
+  game::Session session(gpu::testkit::sharedContext(),
+                        game::loadLevelWithEffects(kCornell, std::vector<std::string>{"direct"}));
+  EXPECT_EQ(session.whyCannotRun(scene::Effect::Direct), "");
+  EXPECT_EQ(session.whyCannotRun(scene::Effect::Shadows), "");
+  EXPECT_EQ(session.whyCannotRun(scene::Effect::Probes), "");
+  EXPECT_EQ(session.whyCannotRun(scene::Effect::Ssao), "");
+  EXPECT_EQ(session.whyCannotRun(scene::Effect::Sl), "note: effect sl is reserved (not implemented yet): no pass");
+  EXPECT_EQ(session.whyCannotRun(scene::Effect::Rtf), "note: effect rtf is reserved (not implemented yet): no pass");
+  EXPECT_EQ(session.whyCannotRun(scene::Effect::Vlm),
+            "note: effect vlm is named but no entity takes part (no entity has a vlm component or a mesh with "
+            "extras.bounce_vlm): no pass");
+  EXPECT_TRUE(session.notes().empty()) << "asking prints and records nothing";
+}
+
 TEST(SessionTechniques, EffectNamedLaterIsBuiltInTableOrder) {
   game::Session session(gpu::testkit::sharedContext(),
                         game::loadLevelWithEffects(kCornell, std::vector<std::string>{"direct", "probes"}));
