@@ -22,6 +22,7 @@ python3-matplotlib), so the caller can tell "cannot plot here" from "plotting fa
 """
 import csv
 import math
+import os
 import sys
 
 HEADER = ["technique", "setting", "gpu_ms", "rel_rmse", "effect_rel_rmse"]
@@ -31,6 +32,14 @@ REF_ORDER = ["direct", "1bounce", "all"]
 REF_TITLE = {"direct": "vs the direct-only reference", "1bounce": "vs the one-bounce reference",
              "all": "vs the full (all-bounce) reference"}
 
+
+
+def save_atomic(fig, path, **kwargs):
+    """Writes the figure to a temporary file beside `path`, then renames it over `path`, so a reader
+    (another process of the same test, or a person's viewer) never sees a half-written PNG."""
+    tmp = f"{path}.tmp-{os.getpid()}.png"
+    fig.savefig(tmp, **kwargs)
+    os.replace(tmp, path)
 
 def read_rows(path):
     with open(path, newline="") as f:
@@ -138,7 +147,7 @@ def plot_chart(rows, png, plt):
     lines.append("(intr = intrusion, anti = anti_radiance)")
     tab.text(0.0, 1.0, "\n".join(lines), family="monospace", fontsize=8.5 if len(rows) < 30 else 7, va="top",
              transform=tab.transAxes)
-    fig.savefig(png, dpi=110)
+    save_atomic(fig, png, dpi=110)
     plt.close(fig)
 
 
@@ -180,7 +189,7 @@ def title_heatmap(file, technique, setting, scale, plt):
     cb = fig.colorbar(mappable, cax=cax, orientation="horizontal")
     cb.set_label("per-pixel mean abs. error (linear radiance)", fontsize=8)
     cb.ax.tick_params(labelsize=7)
-    fig.savefig(file)
+    save_atomic(fig, file)
     plt.close(fig)
 
 
