@@ -15,38 +15,19 @@
 #include <vector>
 
 #include "game/session.hpp"
+#include "tests/support/cli_run.hpp"
 
 namespace fs = std::filesystem;
 
 namespace {
 
+using bounce::testcli::Outcome;
+using bounce::testcli::quote;
+using bounce::testcli::readText;
+using bounce::testcli::lines;
+
 const fs::path kSource = BOUNCE_SOURCE_DIR;
 const fs::path kTiny = kSource / "tests/data/gi/bake-tiny.json";
-
-std::string readText(const fs::path& p) {
-  std::ifstream f(p, std::ios::binary);
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
-
-std::vector<std::string> lines(const std::string& text) {
-  std::vector<std::string> out;
-  std::stringstream s(text);
-  for (std::string line; std::getline(s, line);) out.push_back(line);
-  return out;
-}
-
-std::string quote(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
-
-struct Outcome {
-  int code = -1;
-  std::string out, err;
-};
 
 // Every regular file under root/kind for the bake kinds, by path relative to root → bytes.
 std::map<std::string, std::string> entries(const fs::path& root) {
@@ -72,18 +53,10 @@ class BakeCli : public ::testing::Test {
     return "BOUNCE_CACHE=" + quote(root.string()) + " BOUNCE_COOK_CACHE=" + quote(cooked_.string()) + " ";
   }
   std::string bounceCmd(const fs::path& root, const std::vector<std::string>& args) const {
-    std::string cmd = env(root) + quote(BOUNCE_EXE);
-    for (const auto& a : args) cmd += " " + quote(a);
-    return cmd;
+    return bounce::testcli::bounceCommand(args, env(root));
   }
   Outcome sh(const std::string& cmd, const std::string& name = "run") {
-    const fs::path out = dir_ / (name + ".out"), err = dir_ / (name + ".err");
-    const int status = std::system((cmd + " >" + quote(out.string()) + " 2>" + quote(err.string())).c_str());
-    Outcome r;
-    if (status != -1 && WIFEXITED(status)) r.code = WEXITSTATUS(status);
-    r.out = readText(out);
-    r.err = readText(err);
-    return r;
+    return bounce::testcli::runShell(cmd, dir_ / (name + ".out"), dir_ / (name + ".err"));
   }
   Outcome bounce(const fs::path& root, const std::vector<std::string>& args) { return sh(bounceCmd(root, args)); }
   // The keys of the tiny level's jobs, from --list-jobs.

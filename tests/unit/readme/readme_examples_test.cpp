@@ -15,11 +15,17 @@
 #include <vector>
 
 #include "engine/gpu/image_io.hpp"
+#include "tests/support/cli_run.hpp"
 
 namespace fs = std::filesystem;
 using bounce::gpu::CpuImage;
 
 namespace {
+
+using bounce::testcli::Outcome;
+using bounce::testcli::quote;
+using bounce::testcli::readText;
+using bounce::testcli::runBounce;
 
 const fs::path kSource = BOUNCE_SOURCE_DIR;
 const fs::path kOut = fs::path(BOUNCE_TEST_OUT) / "readme";
@@ -28,35 +34,6 @@ const fs::path kOut = fs::path(BOUNCE_TEST_OUT) / "readme";
 // camera: 0.18 and 0.25 at 256x256); from outside the front wall (white) both are 0.
 constexpr double kMinWallFraction = 0.05;
 
-std::string readText(const fs::path& p) {
-  std::ifstream f(p, std::ios::binary);
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
-
-std::string quote(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
-
-struct Outcome {
-  int code = -1;
-  std::string err;
-};
-
-Outcome runBounce(const std::vector<std::string>& args, const fs::path& logDir) {
-  fs::create_directories(logDir);
-  std::string cmd = quote(BOUNCE_EXE);
-  for (const auto& a : args) cmd += " " + quote(a);
-  cmd += " >" + quote((logDir / "stdout.txt").string()) + " 2>" + quote((logDir / "stderr.txt").string());
-  const int status = std::system(cmd.c_str());
-  Outcome r;
-  if (status != -1 && WIFEXITED(status)) r.code = WEXITSTATUS(status);
-  r.err = readText(logDir / "stderr.txt");
-  return r;
-}
 
 std::vector<std::string> jsonBlocks(const std::string& readme) {
   std::vector<std::string> blocks;

@@ -12,39 +12,20 @@
 #include <string>
 #include <vector>
 
+#include "tests/support/cli_run.hpp"
+
 namespace fs = std::filesystem;
 
 namespace {
 
+using bounce::testcli::Outcome;
+using bounce::testcli::quote;
+using bounce::testcli::readText;
+using bounce::testcli::lines;
+
 const fs::path kSource = BOUNCE_SOURCE_DIR;
 const fs::path kBadLevel = kSource / "tests/data/render/bad-unknown-key.json";
 const fs::path kCornell = kSource / "content/levels/cornell-1.json";
-
-std::string readText(const fs::path& p) {
-  std::ifstream f(p, std::ios::binary);
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
-
-std::vector<std::string> lines(const std::string& text) {
-  std::vector<std::string> out;
-  std::stringstream s(text);
-  for (std::string line; std::getline(s, line);) out.push_back(line);
-  return out;
-}
-
-std::string quote(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
-
-// What one `bounce ARGS` run left: its exit code (-1 if it did not exit) and its output.
-struct Outcome {
-  int code = -1;
-  std::string out, err;
-};
 
 class Cli : public ::testing::Test {
  protected:
@@ -53,17 +34,7 @@ class Cli : public ::testing::Test {
     fs::remove_all(dir_);
     fs::create_directories(dir_);
   }
-  Outcome bounce(const std::vector<std::string>& args) {
-    std::string cmd = quote(BOUNCE_EXE);
-    for (const auto& a : args) cmd += " " + quote(a);
-    cmd += " >" + quote((dir_ / "stdout.txt").string()) + " 2>" + quote((dir_ / "stderr.txt").string());
-    const int status = std::system(cmd.c_str());
-    Outcome r;
-    if (status != -1 && WIFEXITED(status)) r.code = WEXITSTATUS(status);
-    r.out = readText(dir_ / "stdout.txt");
-    r.err = readText(dir_ / "stderr.txt");
-    return r;
-  }
+  Outcome bounce(const std::vector<std::string>& args) { return bounce::testcli::runBounce(args, dir_); }
   fs::path dir_;
 };
 

@@ -14,11 +14,16 @@
 #include "engine/gpu/image_io.hpp"
 #include "engine/scene/level.hpp"
 #include "game/display_tonemap.hpp"
+#include "tests/support/cli_run.hpp"
 
 namespace fs = std::filesystem;
 using bounce::gpu::CpuImage;
 
 namespace {
+
+using bounce::testcli::Outcome;
+using bounce::testcli::quote;
+using bounce::testcli::readText;
 
 const fs::path kDuck = fs::path(BOUNCE_SHARED_DIR) / "assets/Duck/glTF-Binary/Duck.glb";
 
@@ -39,24 +44,6 @@ constexpr double kMinShadowFraction = 0.01;
 // CPU tonemap of the PFM vs the GPU's PNG: both round to nearest, from the same RGBA16F values.
 constexpr int kMaxTonemapLevels = 1;
 
-std::string readText(const fs::path& p) {
-  std::ifstream f(p, std::ios::binary);
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
-
-std::string quote(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
-
-struct Outcome {
-  int code = -1;
-  std::string out, err;
-};
-
 class ViewerCli : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -64,17 +51,7 @@ class ViewerCli : public ::testing::Test {
     fs::remove_all(dir_);
     fs::create_directories(dir_);
   }
-  Outcome bounce(const std::vector<std::string>& args) {
-    std::string cmd = quote(BOUNCE_EXE);
-    for (const auto& a : args) cmd += " " + quote(a);
-    cmd += " >" + quote((dir_ / "stdout.txt").string()) + " 2>" + quote((dir_ / "stderr.txt").string());
-    const int status = std::system(cmd.c_str());
-    Outcome r;
-    if (status != -1 && WIFEXITED(status)) r.code = WEXITSTATUS(status);
-    r.out = readText(dir_ / "stdout.txt");
-    r.err = readText(dir_ / "stderr.txt");
-    return r;
-  }
+  Outcome bounce(const std::vector<std::string>& args) { return bounce::testcli::runBounce(args, dir_); }
   CpuImage capture(const std::string& name, const std::string& effects) {
     std::vector<std::string> args{"capture", kDuck.string(), "--out", (dir_ / name).string(), "--resolution", "160x120"};
     if (!effects.empty()) args.insert(args.end(), {"--effects", effects});
