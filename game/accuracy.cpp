@@ -235,6 +235,49 @@ bool plotAccuracy(const std::filesystem::path& csv, const std::filesystem::path&
   }
 }
 
+std::filesystem::path staticLevelFile(const scene::Level& level) {
+  // The static level is the tracer's input, not a result: it lives in the cache, not in `out`.
+  const std::filesystem::path path =
+      cacheDir("levels") / (level.source.stem().string() + "-" + Hasher().str(level.source.string()).hex().substr(0, 8) +
+                            "-static.json");
+  std::filesystem::create_directories(path.parent_path());
+  writeFileAtomic(path, withoutDynamicEntitiesJson(level));  // the same bytes whoever writes it
+  return path;
+}
+
+ref::ReferenceRequest referenceRequest(const AccuracyOptions& options, const std::filesystem::path& input,
+                                       std::optional<std::uint32_t> bounces, std::uint32_t spp) {
+  ref::ReferenceRequest r;
+  r.input = input;
+  r.frame = options.frame;
+  r.spp = spp;
+  r.bounces = bounces;
+  r.resolution = std::pair{options.width, options.height};
+  r.cacheDir = options.referenceCache;
+  r.cookCache = options.cookCache;
+  r.progress = options.progress;
+  return r;
+}
+
+std::vector<AccuracyReference> accuracyReferences(const AccuracyOptions& options) {
+  const scene::Level level = scene::loadLevel(options.level);
+  const std::vector<AccuracyRow> rows = options.rows ? *options.rows : accuracyRows();
+  const std::filesystem::path staticPath = staticLevelFile(level);
+  std::set<std::uint32_t> kinds;  // bounces, in the order of the set (0, 1, ..., unlimited)
+  for (const auto& row : rows) kinds.insert(row.referenceBounces.value_or(ref::kUnlimitedBounces));
+  std::vector<AccuracyReference> out;
+  for (const std::uint32_t b : kinds) {
+    const std::optional<std::uint32_t> bounces = b == ref::kUnlimitedBounces ? std::nullopt : std::optional(b);
+    const std::string kind = b == 0 ? "direct" : b == ref::kUnlimitedBounces ? "all" : std::to_string(b) + "bounce";
+    const std::uint32_t spp = b == 0 ? 1u : options.spp;  // bounces 0 is exact with one sample (header comment)
+    out.push_back({kind, referenceRequest(options, options.level, bounces, spp)});
+    out.push_back({kind + "-static", referenceRequest(options, staticPath, bounces, spp)});
+    if (b != 0 && options.spp >= 2)  // the noise estimate's half-sample reference (step 4)
+      out.push_back({kind + "-half", referenceRequest(options, options.level, bounces, options.spp / 2)});
+  }
+  return out;
+}
+
 AccuracyReport runAccuracy(const AccuracyOptions& options) {
   // 1. Inputs, validated before any work: the level, its rows, the level without dynamic objects.
   const scene::Level level = scene::loadLevel(options.level);
@@ -245,12 +288,7 @@ AccuracyReport runAccuracy(const AccuracyOptions& options) {
   }
   const scene::Level staticLevel = withoutDynamicEntities(level);
   std::filesystem::create_directories(options.out);
-  // The static level is the tracer's input, not a result: it lives in the cache, not in `out`.
-  const std::filesystem::path staticPath =
-      cacheDir("levels") / (options.level.stem().string() + "-" + Hasher().str(level.source.string()).hex().substr(0, 8) +
-                            "-static.json");
-  std::filesystem::create_directories(staticPath.parent_path());
-  writeFileAtomic(staticPath, withoutDynamicEntitiesJson(level));
+  const std::filesystem::path staticPath = staticLevelFile(level);
   const double time = double(options.frame) * ref::kLevelFrameDt;
 
   // 2. References, with and without the dynamic objects, for every reference kind a row uses.
@@ -258,18 +296,10 @@ AccuracyReport runAccuracy(const AccuracyOptions& options) {
   auto reference = [&](bool withDynamic, std::optional<std::uint32_t> bounces) -> const ImageRGB& {
     const std::uint32_t b = bounces.value_or(ref::kUnlimitedBounces);
     auto& slot = references[{withDynamic, b}];
-    if (slot.empty()) {
-      ref::ReferenceRequest r;
-      r.input = withDynamic ? options.level : staticPath;
-      r.frame = options.frame;
-      r.spp = b == 0 ? 1u : options.spp;  // bounces 0 is exact with one sample (header comment)
-      r.bounces = bounces;
-      r.resolution = std::pair{options.width, options.height};
-      r.cacheDir = options.referenceCache;
-      r.cookCache = options.cookCache;
-      r.progress = options.progress;
-      slot = toImageRgb(ref::renderReference(r).image);
-    }
+    if (slot.empty())
+      slot = toImageRgb(ref::renderReference(referenceRequest(options, withDynamic ? options.level : staticPath, bounces,
+                                                              b == 0 ? 1u : options.spp))
+                            .image);
     return slot;
   };
 
@@ -364,15 +394,7 @@ AccuracyReport runAccuracy(const AccuracyOptions& options) {
     if (b == 0 || options.spp < 2 || !noiseDone.insert(b).second) continue;  // bounces 0 is exact with 1 spp
     // The first half of the samples is the spp/2 reference (sample s is drawn from index s, so it
     // is a prefix); the second half is 2·full − first.
-    ref::ReferenceRequest half;
-    half.input = options.level;
-    half.frame = options.frame;
-    half.spp = options.spp / 2;
-    half.bounces = r.row.referenceBounces;
-    half.resolution = std::pair{options.width, options.height};
-    half.cacheDir = options.referenceCache;
-    half.cookCache = options.cookCache;
-    half.progress = options.progress;
+    const ref::ReferenceRequest half = referenceRequest(options, options.level, r.row.referenceBounces, options.spp / 2);
     const ImageRGB first = toImageRgb(ref::renderReference(half).image);
     const ImageRGB& full = reference(true, r.row.referenceBounces);
     ImageRGB second = full;

@@ -28,6 +28,7 @@
 #include "engine/core/image.hpp"
 #include "engine/gpu/image_io.hpp"
 #include "engine/ref/metrics.hpp"
+#include "engine/ref/reference.hpp"
 #include "game/accuracy_rows.hpp"
 
 namespace bounce::game {
@@ -85,6 +86,25 @@ struct AccuracyReport {
 
 inline constexpr std::uint32_t kMinTrustedFrames = 10;
 inline constexpr double kMaxReferenceNoiseShare = 1.0 / 3.0;
+
+// The level without its dynamic entities as a file the reference tracer reads (withoutDynamicEntitiesJson),
+// written atomically under cacheDir("levels") (the same bytes whichever process writes it); its path.
+std::filesystem::path staticLevelFile(const scene::Level& level);
+
+// The reference request runAccuracy makes for `input` (the level, or its static file).
+ref::ReferenceRequest referenceRequest(const AccuracyOptions& options, const std::filesystem::path& input,
+                                       std::optional<std::uint32_t> bounces, std::uint32_t spp);
+
+// One path-traced reference runAccuracy(options) compares with, named for `bounce bake --only
+// reference:PART`: PART is the reference kind ("direct", "1bounce", "all"), "-static" for the level
+// without its dynamic objects, "-half" for the half-sample one the noise estimate uses.
+struct AccuracyReference {
+  std::string part;
+  ref::ReferenceRequest request;
+};
+// Every reference runAccuracy(options) traces, for the rows it scores (options.rows, else every
+// technique's). Writes the static level file; traces nothing.
+std::vector<AccuracyReference> accuracyReferences(const AccuracyOptions& options);
 
 // Sets AccuracyResult::pareto: per reference kind (the setting's "ref=…"), rows sorted by gpu_ms
 // (ties: lower error first) are on the front when their rel_rmse is below every cheaper row's.

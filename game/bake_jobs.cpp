@@ -2,10 +2,13 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <memory>
 
 #include "engine/core/error.hpp"
 #include "engine/core/paths.hpp"
+#include "engine/ref/reference.hpp"
 #include "engine/scene/systems.hpp"
+#include "game/accuracy.hpp"
 
 namespace bounce::game {
 namespace {
@@ -65,19 +68,63 @@ std::string effectList(const scene::Level& level) {
 
 }  // namespace
 
+std::vector<gi::BakeJob> referenceJobs(const scene::Level& level, const std::filesystem::path& cookCache,
+                                       std::string_view part) {
+  AccuracyOptions options;  // `bounce accuracy`'s defaults: frame 0, 256x256, 64 spp
+  options.level = level.source;
+  options.referenceCache = cacheDir(kReferenceKind);
+  options.cookCache = cookCache;
+  options.progress = false;  // a job's own progress would interleave under ninja; its line says enough
+  std::vector<gi::BakeJob> jobs;
+  for (AccuracyReference& r : accuracyReferences(options)) {
+    if (!part.empty() && r.part != part) continue;
+    r.request.progress = false;
+    const ref::ReferencePlan plan = ref::planReference(r.request);
+    gi::BakeJob job;
+    job.technique = std::string(kReferenceKind);
+    job.what = "reference " + r.part;
+    job.key = plan.key;
+    job.part = r.part;
+    job.output = plan.cachePath;
+    job.inputs = {level.source};
+    for (const auto& e : level.entities)
+      if (e.mesh && std::find(job.inputs.begin(), job.inputs.end(), e.mesh->asset) == job.inputs.end())
+        job.inputs.push_back(e.mesh->asset);
+    const auto request = std::make_shared<const ref::ReferenceRequest>(r.request);
+    const std::string what = job.what;
+    job.cached = [plan, what]() -> std::optional<std::string> {
+      if (!ref::loadCachedReference(plan.cachePath, plan.width, plan.height)) return std::nullopt;
+      return what + ": cached " + plan.cachePath.string();
+    };
+    job.run = [request, what] {
+      const ref::ReferenceResult res = ref::renderReference(*request);
+      char text[256];
+      std::snprintf(text, sizeof text, ": %ux%u, %u spp, %.2f s, %.2f M rays/s -> ", res.image.width, res.image.height,
+                    request->spp.value_or(ref::kDefaultSpp), res.stats.seconds, res.stats.raysPerSecond() * 1e-6);
+      return what + text + res.cachePath.string();
+    };
+    jobs.push_back(std::move(job));
+  }
+  return jobs;
+}
+
 std::string onlyValue(const gi::BakeJob& job) { return job.part.empty() ? job.technique : job.technique + ":" + job.part; }
 
 LevelJobs levelJobs(const scene::Level& level, const std::filesystem::path& cookCache, std::string_view only) {
   const std::size_t colon = only.find(':');
   const std::string_view onlyTechnique = only.substr(0, colon);
   const std::string_view onlyPart = colon == std::string_view::npos ? std::string_view{} : only.substr(colon + 1);
+  LevelJobs out;
+  if (onlyTechnique == kReferenceKind) {  // the references `bounce accuracy` compares with
+    out.jobs = referenceJobs(level, cookCache, onlyPart);
+    return out;
+  }
   if (!only.empty()) {
     const auto e = scene::effectFromName(onlyTechnique);
     if (!e || !gi::findTechnique(*e))
       throwInputError(level.source.string(), "--only", "no technique " + std::string(onlyTechnique),
-                      "TECHNIQUE or TECHNIQUE:PART, TECHNIQUE one of the table's (probes, dnrt, ...)");
+                      "TECHNIQUE or TECHNIQUE:PART, TECHNIQUE one of the table's (probes, dnrt, ...) or reference");
   }
-  LevelJobs out;
   ecs::Registry registry;
   scene::instantiate(level, registry);
   scene::transformSystem(registry);

@@ -13,13 +13,26 @@
 
 namespace bounce::game {
 
+// The cache kind, --only value and BakeJob::technique of the reference images: the path-traced
+// references `bounce accuracy` compares with are bake jobs too (ref::planReference names their
+// entries without tracing). A level names no accuracy run, so they are planned only when asked:
+// `--only reference` (all of them) or `--only reference:PART` (accuracyReferences()' parts, e.g.
+// "all", "all-static", "direct", "1bounce-half"), at `bounce accuracy`'s defaults (frame 0, 256x256,
+// 64 spp).
+inline constexpr std::string_view kReferenceKind = "reference";
+
+// The reference jobs of `level` (`part` empty: all of them).
+std::vector<gi::BakeJob> referenceJobs(const scene::Level& level, const std::filesystem::path& cookCache,
+                                       std::string_view part = {});
+
 struct LevelJobs {
   std::vector<gi::BakeJob> jobs;   // table order, then each technique's order; one per content key
   std::vector<std::string> notes;  // named effects that do not run (gi::effectNote)
 };
 // Every bake job of the level's named effects (instantiates the level, cooks its assets through the
 // cache, hashes the inputs: no bake runs). `only` narrows it to one technique ("dnrt") or one part
-// of it ("dnrt:prop-truck", BakeJob::part): what a job's own process plans (`bounce bake --only`).
+// of it ("dnrt:prop-truck", BakeJob::part): what a job's own process plans (`bounce bake --only`);
+// "reference[:PART]" plans the reference images instead (referenceJobs).
 LevelJobs levelJobs(const scene::Level& level, const std::filesystem::path& cookCache, std::string_view only = {});
 
 // "TECHNIQUE" or "TECHNIQUE:PART": the --only value that plans just `job`.

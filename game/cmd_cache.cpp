@@ -1,17 +1,25 @@
 // bounce cache --stats | --prune [LEVEL...]: the cache root (engine/core/paths.hpp cacheRoot():
 // BOUNCE_CACHE, default <build>/cache), one folder per kind.
 //   --stats  entries and bytes per kind
-//   --prune  removes the bake entries (kinds of the table's bake jobs: probes, dnrt) that no bake job
-//            of the given levels (default: every content/levels/*.json, with its own effects) names,
-//            and leftover temporary files of killed jobs. Cooked assets and references are kept
-//            (other commands read them by content key without a level).
+//   --prune  removes, from the given levels' point of view (default: every content/levels/*.json,
+//            with its own effects), every entry nobody names, and leftover temporary files of
+//            killed jobs:
+//              bake kinds (the table's: probes, dnrt)  not named by a bake job of the levels
+//              reference                               not named by a level's reference job (the
+//                                                      references `bounce accuracy` traces at its
+//                                                      defaults: `bounce bake LEVEL --only reference`)
+//              cooked (<root>/cooked only)             not the cook of an asset the levels use
+//            Other folders (levels/, screenshots, a BOUNCE_COOK_CACHE elsewhere) are left alone.
+//            What a pruned entry was for is re-made on next use (cooked, traced, baked).
 #include <cstdio>
 #include <map>
 #include <set>
 
+#include "engine/asset/cook.hpp"
 #include "engine/core/error.hpp"
 #include "engine/core/log.hpp"
 #include "engine/core/paths.hpp"
+#include "engine/scene/asset_instances.hpp"
 #include "game/bake_jobs.hpp"
 #include "game/commands.hpp"
 #include "game/session.hpp"
@@ -35,6 +43,18 @@ std::map<std::string, KindStats> stats(const fs::path& root) {
     KindStats& s = out[kind.path().filename().string()];
     for (const auto& f : fs::recursive_directory_iterator(kind.path(), ec))
       if (f.is_regular_file()) ++s.entries, s.bytes += f.file_size();
+  }
+  return out;
+}
+
+// The cooked-asset keys a level uses: each mesh's cook as every consumer makes it
+// (scene::cookOptionsForRef) and the plain cook (options {}: subdivision's node list, VLM authoring).
+std::set<std::string> cookedKeys(const scene::Level& level) {
+  std::set<std::string> out;
+  for (const auto& e : level.entities) {
+    if (!e.mesh) continue;
+    out.insert(asset::cacheKey(e.mesh->asset, scene::cookOptionsForRef(*e.mesh, cookCacheDir())));
+    out.insert(asset::cacheKey(e.mesh->asset, {}));
   }
   return out;
 }
@@ -64,10 +84,12 @@ int runCache(const cli::Args& args) {
       if (f.path().extension() == ".json") levels.push_back(f.path());
   }
   std::set<fs::path> keep;
-  std::set<std::string> kinds;
+  std::set<std::string> kinds = {std::string(kReferenceKind), "cooked"};
   for (const fs::path& path : levels) {
     const scene::Level level = scene::loadLevel(path);  // a broken level is bad input: nothing is removed
     for (const auto& job : levelJobs(level, cookCacheDir()).jobs) keep.insert(fs::weakly_canonical(job.output));
+    for (const auto& job : referenceJobs(level, cookCacheDir())) keep.insert(fs::weakly_canonical(job.output));
+    for (const std::string& key : cookedKeys(level)) keep.insert(fs::weakly_canonical(root / "cooked" / (key + ".bcook")));
   }
   for (const gi::Technique* t : gi::techniques())
     if (!t->cacheKind().empty()) kinds.insert(std::string(t->cacheKind()));
@@ -88,7 +110,7 @@ int runCache(const cli::Args& args) {
       ++removed;
     }
   }
-  std::printf("pruned %zu entr%s (%.2f MiB) not named by the bake jobs of %zu level(s); kept %zu\n", removed,
+  std::printf("pruned %zu entr%s (%.2f MiB) not named by the bake, reference or cook jobs of %zu level(s); kept %zu\n", removed,
               removed == 1 ? "y" : "ies", double(freed) / (1024.0 * 1024.0), levels.size(), kept);
   return 0;
 }

@@ -139,6 +139,11 @@ std::string onOffArg(const cli::Args& args, const std::string& option, const std
   return v;
 }
 
+std::string dnrtModeText(const PlayState& state) {
+  return state.dnrtFullScreen ? "dnrt mode: full-screen pass per object (the paper's, for comparison)"
+                              : "dnrt mode: each object's own (outer cube, or its level \"mode\")";
+}
+
 // F12: the frame just rendered as <output root>/screenshots/<level>-<frame>.png (display, as
 // shown without the overlay) and .pfm (linear HDR radiance, as `bounce capture` writes).
 void writeScreenshot(gpu::Context& ctx, Session& session, const std::string& levelName, int frame) {
@@ -174,8 +179,19 @@ int runPlay(const cli::Args& args) {
   std::size_t nextScripted = 0;
   scene::Level level = loadLevelWithEffects(args.positional[0], args.list("--effects"));
 
+  // GLFW first (the Vulkan instance needs its surface extensions), then the device, then the
+  // render size checked against the device's limits and memory, and only then the window: a size
+  // the device cannot hold is refused (exit 2, one line) before anything shows on the screen.
   if (!glfwInit()) throw InternalError("no display: GLFW could not initialise (use 'bounce capture' headless)");
-  Window window;
+  Window window;  // declared before the context: the context goes first, glfwTerminate() last
+
+  int code = 0;
+  gpu::ContextOptions options;
+  options.deviceName = args.str("--device");
+  options.windowed = true;
+  gpu::Context ctx(options);
+  checkRenderSize(ctx, {std::uint32_t(res.first), std::uint32_t(res.second)}, "bounce play", "--resolution");
+
   glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
   window.handle = glfwCreateWindow(res.first, res.second, ("bounce — " + level.name).c_str(), nullptr, nullptr);
   if (!window.handle) throw InternalError("could not open a window");
@@ -187,13 +203,6 @@ int runPlay(const cli::Args& args) {
     std::fputs(keyMapText().c_str(), stdout);
     std::fflush(stdout);
   }
-
-  int code = 0;
-  gpu::ContextOptions options;
-  options.deviceName = args.str("--device");
-  options.windowed = true;
-  gpu::Context ctx(options);
-  checkRenderSize(ctx, {std::uint32_t(res.first), std::uint32_t(res.second)}, "bounce play", "--resolution");
   {
     Session session(ctx, level);
     gpu::SwapchainPresenter swapchain(ctx, window.handle, state.vsync);
@@ -250,6 +259,7 @@ int runPlay(const cli::Args& args) {
             if (key == GLFW_KEY_K) cycleSelectedClip(session.registry(), state.character);
             log::info(animationText(session.registry(), state.character));
             break;
+          case KeyEffect::DnrtModeChanged: log::info(dnrtModeText(state)); break;
           case KeyEffect::Handled:
           case KeyEffect::None: break;
         }
@@ -289,6 +299,9 @@ int runPlay(const cli::Args& args) {
         info.extent = presenter.extent();
         info.vlm = vlmControlText(state.vlm);
         info.animation = animationText(session.registry(), state.character);
+        info.dnrtRuns = session.runs(scene::Effect::Dnrt) && session.level().effects.has(scene::Effect::Dnrt);
+        info.dnrtFullScreen = state.dnrtFullScreen;
+        if (session.vlm() && session.level().effects.has(scene::Effect::Vlm)) info.vlmControl = state.vlm;
         if (session.vlm()) info.vlmOverflow = gi::vlm::formatOverflow(session.vlm()->overflow());
         const OverlayActions actions = overlay->build(info, dt);
         if (actions.exposure) state.settings.exposure = *actions.exposure;
@@ -299,11 +312,20 @@ int runPlay(const cli::Args& args) {
           session.syncTechniques();
           log::info("effects: " + joined(session.level().effects.names()));
         }
+        if (actions.dnrtFullScreen && *actions.dnrtFullScreen != state.dnrtFullScreen) {  // as key M
+          state.dnrtFullScreen = *actions.dnrtFullScreen;
+          log::info(dnrtModeText(state));
+        }
+        if (actions.vlmOverride && setVlmOverride(state.vlm, actions.vlmOverride->first, actions.vlmOverride->second)) {
+          if (session.vlm()) session.vlm()->setOverrides(state.vlm.overrides);  // as keys ]/[ and H
+        }
         overlayWantsMouse = actions.wantsMouse;
       } else {
         overlayWantsMouse = false;
       }
       const bool shoot = std::exchange(screenshotPending, false);
+      // DNRT's mode, whenever its runtime exists (it may be built by a key after start-up).
+      if (gi::dnrt::Runtime* dnrt = session.dnrt()) dnrt->settings().fullScreen = state.dnrtFullScreen;
       render::FrameSettings settings = state.settings;
       settings.keepHdr = shoot;
       presenter.setOverlay(state.overlay && !shoot ? overlay.get() : nullptr);

@@ -55,10 +55,50 @@ void onOff(const char* label, bool on) {
     ImGui::TextDisabled("%s", label);
 }
 
+// Run-time technique settings (OverlayInfo's hook): DNRT's mode and VLM's per-tag overrides
+// (§3.5, thesis Fig. 5.5: intensity in stops, hue rotation, colour). SL and RTF add their block
+// here when they land (see OverlayInfo). `vlm` is the caller's copy, edited in place so the
+// second layout of the frame shows the change.
+void layoutTechniques(const OverlayInfo& info, bool& dnrtFullScreen, VlmControl& vlm, OverlayActions& actions) {
+  if (!info.dnrtRuns && vlm.tags.empty()) return;
+  if (!ImGui::CollapsingHeader("techniques", ImGuiTreeNodeFlags_DefaultOpen)) return;
+  if (info.dnrtRuns) {
+    int mode = dnrtFullScreen ? 1 : 0;
+    const char* modes[] = {"each object's own", "full-screen (paper)"};
+    ImGui::SetNextItemWidth(150.0f);
+    if (ImGui::Combo("dnrt mode (M)", &mode, modes, IM_ARRAYSIZE(modes)) && (mode == 1) != dnrtFullScreen) {
+      dnrtFullScreen = mode == 1;
+      actions.dnrtFullScreen = dnrtFullScreen;
+    }
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("own: each object's outer cube is drawn (or its level \"mode\");\n"
+                        "full-screen: the paper's pass per object, for comparison (same image, more cost)");
+  }
+  for (const std::uint32_t tag : vlm.tags) {
+    scene::VlmOverride o;
+    if (auto it = vlm.overrides.find(int(tag)); it != vlm.overrides.end()) o = it->second;
+    ImGui::PushID(int(tag));
+    ImGui::Text("vlm tag %u", tag);
+    ImGui::SameLine();
+    float ev = std::log2(o.intensity);
+    bool changed = false;
+    ImGui::SetNextItemWidth(90.0f);
+    if (ImGui::SliderFloat("EV", &ev, std::log2(kVlmIntensityMin), std::log2(kVlmIntensityMax), "%+.1f"))
+      o.intensity = std::exp2(ev), changed = true;
+    ImGui::SameLine();
+    ImGui::SetNextItemWidth(70.0f);
+    changed |= ImGui::SliderFloat("hue", &o.hueDeg, 0.0f, 360.0f, "%.0f");
+    ImGui::SameLine();
+    changed |= ImGui::ColorEdit3("colour", &o.color.x, ImGuiColorEditFlags_NoInputs | ImGuiColorEditFlags_NoLabel);
+    if (changed && setVlmOverride(vlm, int(tag), o)) actions.vlmOverride = std::pair{int(tag), vlm.overrides[int(tag)]};
+    ImGui::PopID();
+  }
+}
+
 // The panel's controls write into `actions`; `exposure` and `view` are the values shown (the
 // caller's, updated by this frame's first layout so the second shows the change).
 void layoutPanel(const OverlayInfo& info, const std::vector<float>& frameMs, float& exposure,
-                 render::DebugView& view, OverlayActions& actions) {
+                 render::DebugView& view, bool& dnrtFullScreen, VlmControl& vlm, OverlayActions& actions) {
   const ImVec2 display = ImGui::GetIO().DisplaySize;
   ImGui::SetNextWindowPos(ImVec2(8.0f, 8.0f), ImGuiCond_FirstUseEver);
   // Never taller than the window: the rest scrolls (640x360 shows the header and the first rows).
@@ -145,6 +185,7 @@ void layoutPanel(const OverlayInfo& info, const std::vector<float>& frameMs, flo
     if (!info.vlm.empty()) ImGui::TextUnformatted(info.vlm.c_str());  // per-tag VLM overrides (T, ]/[, H)
     if (!info.animation.empty()) ImGui::TextUnformatted(info.animation.c_str());  // clip and time (L, K)
   }
+  layoutTechniques(info, dnrtFullScreen, vlm, actions);
   ImGui::End();
 }
 
@@ -210,6 +251,8 @@ OverlayActions Overlay::build(const OverlayInfo& info, double dtSeconds) {
   OverlayActions actions;
   float exposure = info.exposure;
   render::DebugView view = info.debugView;
+  bool dnrtFullScreen = info.dnrtFullScreen;
+  VlmControl vlm = info.vlmControl;
   // Twice: the first layout measures (auto-size, table columns), the second is drawn.
   for (int pass = 0; pass < 2; ++pass) {
     if (window_) ImGui_ImplGlfw_NewFrame();
@@ -219,7 +262,7 @@ OverlayActions Overlay::build(const OverlayInfo& info, double dtSeconds) {
     io.DeltaTime = pass == 0 && dtSeconds > 0.0 ? float(dtSeconds) : 1e-4f;  // ImGui asserts on 0
     ImGui_ImplVulkan_NewFrame();
     ImGui::NewFrame();
-    layoutPanel(info, frameMs_, exposure, view, actions);
+    layoutPanel(info, frameMs_, exposure, view, dnrtFullScreen, vlm, actions);
     actions.wantsMouse = actions.wantsMouse || io.WantCaptureMouse;
     if (pass == 0) ImGui::EndFrame();
   }

@@ -33,6 +33,7 @@
 #include "engine/gpu/presenter.hpp"
 #include "engine/render/renderer.hpp"
 #include "engine/scene/effects.hpp"
+#include "game/play_controls.hpp"
 
 struct GLFWwindow;
 
@@ -54,6 +55,14 @@ struct OverlayInfo {
   std::string vlm;  // vlmControlText(): the selected VLM tag and its overrides; empty: no VLM
   std::string vlmOverflow;  // gi::vlm::formatOverflow() when the VLM node runs, else empty
   std::string animation;    // animationText(): the selected character's clip and clip time; empty: none
+  // Technique settings that change at run time (the panel's "techniques" section), each shown
+  // only while its technique runs. THE HOOK for the next ones: SL and RTF (issues 13, 14) add
+  // their fields here, their edits to OverlayActions and their block to layoutTechniques() in
+  // overlay.cpp once their runtimes have settings; until then they show nothing (a reserved
+  // effect has no runtime, so there is nothing a control could change).
+  bool dnrtRuns = false;        // the DNRT node runs (Session::runs(dnrt))
+  bool dnrtFullScreen = false;  // PlayState::dnrtFullScreen
+  VlmControl vlmControl;        // tags (empty: no VLM runs) and live overrides, as the T ]/[ H keys
 };
 
 // What the user changed in the panel this frame (empty optionals: nothing).
@@ -62,6 +71,8 @@ struct OverlayActions {
   std::optional<render::DebugView> debugView;
   bool screenshot = false;   // the panel's screenshot button (as F12)
   std::optional<scene::Effect> toggleEffect;  // an effect checkbox was clicked (as its key 1-9)
+  std::optional<bool> dnrtFullScreen;  // the DNRT mode chosen (as key M): PlayState::dnrtFullScreen
+  std::optional<std::pair<int, scene::VlmOverride>> vlmOverride;  // a tag's override edited (setVlmOverride)
   bool wantsMouse = false;   // the mouse is over the panel: play must not orbit or look with it
 };
 

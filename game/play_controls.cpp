@@ -55,6 +55,8 @@ std::vector<KeyBinding> makeBindings() {
   b.push_back({GLFW_KEY_RIGHT_BRACKET, "]", PlayAction::VlmIntensityUp, 0, "VLM: selected tag's intensity x1.41"});
   b.push_back({GLFW_KEY_LEFT_BRACKET, "[", PlayAction::VlmIntensityDown, 0, "VLM: selected tag's intensity /1.41"});
   b.push_back({GLFW_KEY_H, "H", PlayAction::VlmNextHue, 0, "VLM: rotate the selected tag's hue by 30 degrees"});
+  b.push_back({GLFW_KEY_M, "M", PlayAction::DnrtToggleMode, 0,
+               "DNRT: every object in the paper's full-screen pass / each object's own mode"});
   b.push_back({GLFW_KEY_F12, "F12", PlayAction::Screenshot, 0, "screenshot: PNG + PFM of the next frame (no overlay)"});
   b.push_back({GLFW_KEY_L, "L", PlayAction::AnimNextCharacter, 0, "animation: select the next animated character"});
   b.push_back({GLFW_KEY_K, "K", PlayAction::AnimNextClip, 0, "animation: the selected character's next clip"});
@@ -97,6 +99,7 @@ std::string keyMapSummary(const std::string& indent) {
          indent + "  +/- exposure, V vsync, P pause, O overlay, C culling, R reset camera, Esc quit\n" +
          indent + "  F12 screenshot (PNG + PFM)\n" +
          indent + "  VLM: T selects a tag, ]/[ its intensity up/down, H rotates its hue\n" +
+         indent + "  DNRT: M switches every object to the paper's full-screen pass and back\n" +
          indent + "  animation: L selects a character, K plays its next clip";
 }
 
@@ -167,6 +170,7 @@ KeyEffect applyKey(int key, PlayState& state, scene::EffectSet& effects) {
     case PlayAction::Quit: state.quit = true; return KeyEffect::Handled;
     case PlayAction::AnimNextCharacter: ++state.character; return KeyEffect::AnimationChanged;
     case PlayAction::AnimNextClip: return KeyEffect::AnimationChanged;
+    case PlayAction::DnrtToggleMode: state.dnrtFullScreen = !state.dnrtFullScreen; return KeyEffect::DnrtModeChanged;
     case PlayAction::VlmNextTag: {
       VlmControl& v = state.vlm;
       if (v.tags.empty()) return KeyEffect::Handled;
@@ -189,6 +193,18 @@ KeyEffect applyKey(int key, PlayState& state, scene::EffectSet& effects) {
     }
   }
   return KeyEffect::None;
+}
+
+bool setVlmOverride(VlmControl& vlm, int tag, const scene::VlmOverride& value) {
+  const auto at = std::find(vlm.tags.begin(), vlm.tags.end(), std::uint32_t(tag));
+  if (tag < 0 || at == vlm.tags.end()) return false;
+  vlm.selected = int(at - vlm.tags.begin());
+  scene::VlmOverride& o = vlm.overrides[tag];
+  if (std::isfinite(value.intensity)) o.intensity = std::clamp(value.intensity, kVlmIntensityMin, kVlmIntensityMax);
+  if (std::isfinite(value.hueDeg)) o.hueDeg = std::fmod(std::fmod(value.hueDeg, 360.0f) + 360.0f, 360.0f);
+  for (int c = 0; c < 3; ++c)
+    if (std::isfinite(value.color[c])) o.color[c] = std::clamp(value.color[c], 0.0f, 1.0f);
+  return true;
 }
 
 std::string vlmControlText(const VlmControl& vlm) {

@@ -37,6 +37,7 @@ enum class PlayAction {
   Screenshot,        // F12: the next frame as PNG (display) + PFM (linear HDR), no overlay
   AnimNextCharacter, // select the next animated entity (engine/anim Animator)
   AnimNextClip,      // the selected one plays its next clip (after the last: the rest pose)
+  DnrtToggleMode,    // DNRT: each object's own mode <-> the paper's full-screen pass for every object
 };
 
 struct KeyBinding {
@@ -72,6 +73,11 @@ struct VlmControl {
 inline constexpr float kVlmIntensityStep = 1.4142135f;  // half a stop per key press
 inline constexpr float kVlmIntensityMin = 1.0f / 256.0f, kVlmIntensityMax = 256.0f;
 inline constexpr float kVlmHueStepDeg = 30.0f;
+// Sets tag `tag`'s override as the overlay's controls edit it (the same state the T, ]/[ and H
+// keys change): intensity clamped to [kVlmIntensityMin, kVlmIntensityMax], hue wrapped into
+// [0, 360) degrees, colour clamped to [0, 1] per channel (non-finite values keep the old one);
+// `tag` becomes the selected one. False (nothing changes) when the level has no such tag.
+bool setVlmOverride(VlmControl& vlm, int tag, const scene::VlmOverride& value);
 // One overlay line: "VLM tag 1 of [1 2 3]: intensity 2.00, hue 30 deg", or the key hint when
 // nothing is selected; empty when the level has no VLM.
 std::string vlmControlText(const VlmControl& vlm);
@@ -83,12 +89,18 @@ struct PlayState {
   bool vsync = true;
   bool paused = false;   // motion scripts and animation clips hold their pose (simulation time stops)
   int character = 0;     // the selected animated entity (in registry order) for AnimNextClip
+  // DNRT's mode for every object (gi::dnrt::NodeSettings::fullScreen): false = each object's own
+  // (the outer cube's draw, or the level's "mode": "fullscreen"), true = the paper's full-screen
+  // pass for all (§5.2, for comparison). Key M and the overlay's "dnrt" control.
+  bool dnrtFullScreen = false;
   bool overlay = true;
   bool quit = false;
 };
 
 // What the caller must do after a key beyond updating PlayState.
-enum class KeyEffect { None, Handled, EffectsChanged, VsyncChanged, ResetCamera, VlmChanged, Screenshot, AnimationChanged };
+enum class KeyEffect {
+  None, Handled, EffectsChanged, VsyncChanged, ResetCamera, VlmChanged, Screenshot, AnimationChanged, DnrtModeChanged
+};
 
 // The animated entities of a registry in a stable order, the selected one's clip cycled, and the
 // overlay line "fox: Run 0.42 s (L selects, K next clip)"; empty when nothing is animated.

@@ -1,5 +1,7 @@
 #include "engine/ref/reference.hpp"
 
+#include <algorithm>
+
 #include "engine/anim/animator.hpp"
 
 #include <nlohmann/json.hpp>
@@ -31,7 +33,17 @@ std::string joinList(const std::vector<std::string>& items) {
 
 }  // namespace
 
-ReferenceResult renderReference(const ReferenceRequest& request) {
+namespace {
+
+// Steps 1-3 of a reference: the request validated, the scene posed, the key computed.
+struct Prepared {
+  TraceSettings settings;
+  SceneDesc desc;
+  ReferenceResult result;  // timeSeconds, key, cachePath
+};
+
+Prepared prepare(const ReferenceRequest& request) {
+  Prepared p;
   // 1. What to render: the level, the time, the camera motion and the resolution.
   std::optional<scene::CaptureScript> script;
   scene::Level level;
@@ -53,7 +65,7 @@ ReferenceResult renderReference(const ReferenceRequest& request) {
   if (request.effects) scene::overrideEffects(level, joinList(*request.effects));
   if (request.resolution) resolution = *request.resolution;
 
-  TraceSettings settings;
+  TraceSettings& settings = p.settings;
   settings.width = resolution.first;
   settings.height = resolution.second;
   settings.spp = request.spp.value_or(kDefaultSpp);
@@ -71,7 +83,7 @@ ReferenceResult renderReference(const ReferenceRequest& request) {
       registry.emplaceOrReplace<scene::Motion>(cam, std::move(motion));
     }
   }
-  ReferenceResult result;
+  ReferenceResult& result = p.result;
   result.timeSeconds = double(request.frame) * dt;
   scene::motionSystem(registry, result.timeSeconds);
   anim::attachAnimators(registry, request.cookCache);
@@ -79,39 +91,63 @@ ReferenceResult renderReference(const ReferenceRequest& request) {
   scene::transformSystem(registry);
   ReferenceAssets assets;
   assets.load(registry, request.cookCache);
-  SceneDesc desc = extractScene(registry, level, assets);
+  p.desc = extractScene(registry, level, assets);
+  const SceneDesc& desc = p.desc;
 
-  // 3. The cache key (reference.hpp lists what it covers).
+  // 3. The cache key (reference.hpp lists what it covers). The assets by content key, sorted, not
+  // by their absolute paths: a moved checkout names the same entries.
   Hasher h;
   h.str("bounce-reference").u64(kTracerVersion);
   const auto levelBytes = readFileBytes(level.source);
   h.u64(levelBytes.size()).bytes(levelBytes.data(), levelBytes.size());
-  for (const auto& [k, entry] : assets.entries()) h.str(k).str(entry.contentKey);
+  std::vector<std::string> contentKeys;
+  for (const auto& [path, entry] : assets.entries()) contentKeys.push_back(entry.contentKey);
+  std::sort(contentKeys.begin(), contentKeys.end());
+  h.u64(contentKeys.size());
+  for (const auto& k : contentKeys) h.str(k);
   h.pod(result.timeSeconds).pod(desc.camera.world).pod(desc.camera.yfovRad).pod(desc.camera.near).pod(desc.camera.far);
   h.u64(settings.width).u64(settings.height).u64(settings.spp).u64(settings.bounces);
   result.key = h.hex();
   result.cachePath = request.cacheDir / (result.key + ".pfm");
+  return p;
+}
 
-  if (std::filesystem::exists(result.cachePath)) {
-    try {
-      gpu::FloatImage cached = gpu::readPfm(result.cachePath);
-      if (cached.width == settings.width && cached.height == settings.height) {
-        result.image = std::move(cached);
-        result.fromCache = true;
-        return result;
-      }
-      log::warn(result.cachePath.string() + ": cached reference has the wrong size; tracing again");
-    } catch (const InputError& e) {
-      log::warn(std::string(e.what()) + "; tracing again");
-    }
+}  // namespace
+
+std::optional<gpu::FloatImage> loadCachedReference(const std::filesystem::path& file, std::uint32_t width,
+                                                   std::uint32_t height) {
+  std::error_code ec;
+  if (!std::filesystem::exists(file, ec)) return std::nullopt;
+  try {
+    gpu::FloatImage cached = gpu::readPfm(file);
+    if (cached.width == width && cached.height == height) return cached;
+    log::warn(file.string() + ": cached reference has the wrong size; tracing again");
+  } catch (const InputError& e) {
+    log::warn(std::string(e.what()) + "; tracing again");
+  }
+  return std::nullopt;
+}
+
+ReferencePlan planReference(const ReferenceRequest& request) {
+  const Prepared p = prepare(request);
+  return {p.result.key, p.result.cachePath, p.settings.width, p.settings.height};
+}
+
+ReferenceResult renderReference(const ReferenceRequest& request) {
+  Prepared p = prepare(request);
+  ReferenceResult& result = p.result;
+  if (auto cached = loadCachedReference(result.cachePath, p.settings.width, p.settings.height)) {
+    result.image = std::move(*cached);
+    result.fromCache = true;
+    return result;
   }
 
-  // 4. Trace and cache.
-  SceneBvh bvh(std::move(desc));
+  // 4. Trace and cache (writePfm writes atomically: temp file + rename).
+  SceneBvh bvh(std::move(p.desc));
   result.triangles = bvh.triangleCount();
-  result.image = trace(bvh, settings, &result.stats);
+  result.image = trace(bvh, p.settings, &result.stats);
   gpu::writePfm(result.cachePath, result.image);
-  return result;
+  return std::move(result);
 }
 
 }  // namespace bounce::ref

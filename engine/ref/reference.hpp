@@ -9,7 +9,7 @@
 // The cache key hashes everything the image depends on: the level file's bytes, every asset's
 // content key (asset::cacheKey: source bytes, referenced files, cook options), the simulation
 // time, the camera as posed at that time (world matrix, yfov, near, far), the resolution, spp,
-// bounces and kTracerVersion. The level's `effects` are not part of it: the reference always
+// bounces and kTracerVersion (assets by content key, never by path). The level's `effects` are not part of it: the reference always
 // computes full light transport with exact visibility, whatever the renderer would simulate.
 #include <cstdint>
 #include <filesystem>
@@ -49,6 +49,21 @@ struct ReferenceResult {
   std::size_t triangles = 0;
   double timeSeconds = 0.0;         // simulation time of the frame
 };
+
+// The key and cache entry a request names, without tracing: steps 1-3 of renderReference (the
+// input validated, the scene posed, assets cooked through the cache). What a bake job plans
+// (`bounce bake LEVEL --only reference`, game/bake_jobs.hpp).
+struct ReferencePlan {
+  std::string key;
+  std::filesystem::path cachePath;
+  std::uint32_t width = 0, height = 0;
+};
+ReferencePlan planReference(const ReferenceRequest& request);
+
+// The cached image in `file` when it is a readable PFM of width × height; nullopt (with a warning
+// when the file exists but is corrupt or of another size: it must be traced again) otherwise.
+std::optional<gpu::FloatImage> loadCachedReference(const std::filesystem::path& file, std::uint32_t width,
+                                                   std::uint32_t height);
 
 // Loads and validates the input (InputError on bad input: an unknown file kind, a frame at or
 // beyond a capture script's `frames`, a bad level), poses the scene at frame·dt, and returns the

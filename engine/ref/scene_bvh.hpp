@@ -77,6 +77,10 @@ struct SceneDesc {
   std::vector<RefLight> lights;
   RefCamera camera;
   glm::vec3 background{0.0f};  // radiance of every ray that leaves the scene (camera or bounce)
+  // What the scene was made from, as a content key, when its maker knows one (empty: unknown).
+  // gi::dnrt::objectScene sets it (the cooked asset's content key, node and material override),
+  // so the field's cache key need not hash every vertex and texel (gi::dnrt::cacheKey).
+  std::string sourceKey;
 };
 
 // Irradiance at p from one light on a surface facing it, before the cosine and visibility.

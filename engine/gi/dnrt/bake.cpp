@@ -161,10 +161,25 @@ BakeResult bake(const ref::SceneDesc& object, const FieldSettings& settings) {
   return result;
 }
 
-std::string cacheKey(const ref::SceneDesc& object, const FieldSettings& s) {
-  Hasher h;
-  h.str("dnrt-field-v2");  // baker and file format version: bump when either changes
+namespace {
+// Baker and file format version: bump when either changes. v3: objects keyed by their source.
+void hashVersionAndSettings(Hasher& h, const FieldSettings& s) {
+  h.str("dnrt-field-v3");
   h.pod(s.shCount).pod(s.grid).pod(s.innerExtent).pod(s.outerExtent).pod(s.samplesPerAxis).pod(s.antiRadiance);
+}
+}  // namespace
+
+std::string cacheKey(const std::string& objectSourceKey, const FieldSettings& s) {
+  Hasher h;
+  hashVersionAndSettings(h, s);
+  h.str("source").str(objectSourceKey);
+  return h.hex();
+}
+
+std::string cacheKey(const ref::SceneDesc& object, const FieldSettings& s) {
+  if (!object.sourceKey.empty()) return cacheKey(object.sourceKey, s);
+  Hasher h;
+  hashVersionAndSettings(h, s);
   h.u64(object.meshes.size());
   for (const auto& m : object.meshes) {
     h.u64(m.positions.size()).bytes(m.positions.data(), m.positions.size() * sizeof(glm::vec3));
@@ -183,7 +198,11 @@ std::string cacheKey(const ref::SceneDesc& object, const FieldSettings& s) {
 
 std::filesystem::path cachePath(const ref::SceneDesc& object, const FieldSettings& settings,
                                 const std::filesystem::path& cacheDir) {
-  return cacheDir / ("dnrt-" + cacheKey(object, settings) + ".field");
+  return cachePath(cacheKey(object, settings), cacheDir);
+}
+
+std::filesystem::path cachePath(const std::string& key, const std::filesystem::path& cacheDir) {
+  return cacheDir / ("dnrt-" + key + ".field");
 }
 
 Field bakeCached(const ref::SceneDesc& object, const FieldSettings& settings, const std::filesystem::path& cacheDir,

@@ -48,12 +48,17 @@ struct BakeResult {
 // `object`: ONE object's meshes in its local frame (metres), materials and textures.
 BakeResult bake(const ref::SceneDesc& object, const FieldSettings& settings);
 
-// Cache key: every mesh, material and texture byte of `object` plus the settings and format version.
+// Cache key: the settings and the baker/format version, plus what the object is: its
+// SceneDesc::sourceKey when set (objectScene sets it from the cooked asset's content key, so a
+// bake job's key needs no decoding: objectSourceKey()), else every mesh, material and texture byte.
 std::string cacheKey(const ref::SceneDesc& object, const FieldSettings& settings);
+// The same key from the object's source key alone (what cacheKey computes when sourceKey is set).
+std::string cacheKey(const std::string& objectSourceKey, const FieldSettings& settings);
 
 // Where bakeCached keeps the field: `cacheDir`/dnrt-<cacheKey>.field.
 std::filesystem::path cachePath(const ref::SceneDesc& object, const FieldSettings& settings,
                                 const std::filesystem::path& cacheDir);
+std::filesystem::path cachePath(const std::string& key, const std::filesystem::path& cacheDir);
 
 // The quantised field from `cacheDir`/dnrt-<key>.field, baking and storing it on a miss (a corrupt
 // cache file is rebaked with a warning). `fromCache` (optional) tells which happened.

@@ -1,6 +1,9 @@
 #include "engine/gi/dnrt/object_scene.hpp"
 
+#include "engine/asset/cook.hpp"
 #include "engine/core/error.hpp"
+#include "engine/core/hash.hpp"
+#include "engine/scene/asset_instances.hpp"
 #include "engine/scene/systems.hpp"
 
 #include <algorithm>
@@ -15,6 +18,27 @@ void loadLevelObjects(const scene::Level& level, const std::filesystem::path& co
   out.registry.view<scene::Dnrt, scene::MeshRef>().each(
       [&](ecs::Entity e, scene::Dnrt&, scene::MeshRef&) { out.entities.push_back(e); });
   std::sort(out.entities.begin(), out.entities.end());
+}
+
+std::string objectSourceKey(const std::string& assetContentKey, const scene::MeshRef& mesh,
+                            const scene::MaterialOverride* material) {
+  Hasher h;
+  h.str("dnrt-object-v1").str(assetContentKey);  // v1: objectScene() as below (identity frame, albedo only)
+  if (!mesh.node) h.u64(0);
+  else if (const auto* name = std::get_if<std::string>(&*mesh.node)) h.u64(1).str(*name);
+  else h.u64(2).u64(std::get<std::uint32_t>(*mesh.node));
+  h.u64(material && material->albedo ? 1 : 0);
+  if (material && material->albedo) h.pod(*material->albedo);
+  h.u64(material && material->emissive ? 1 : 0);  // emissive is dropped, but keep keys honest
+  if (material && material->emissive) h.pod(*material->emissive);
+  return h.hex();
+}
+
+std::string objectSourceKey(ecs::Registry& registry, ecs::Entity entity, const std::filesystem::path& cookCache) {
+  const auto* mesh = registry.tryGet<scene::MeshRef>(entity);
+  if (!mesh) throw InternalError("dnrt::objectSourceKey: entity has no mesh");
+  return objectSourceKey(asset::cacheKey(mesh->asset, scene::cookOptionsForRef(*mesh, cookCache)), *mesh,
+                         registry.tryGet<scene::MaterialOverride>(entity));
 }
 
 ref::SceneDesc objectScene(ecs::Registry& registry, ecs::Entity entity, const ref::ReferenceAssets& assets) {
@@ -47,6 +71,7 @@ ref::SceneDesc objectScene(ecs::Registry& registry, ecs::Entity entity, const re
     }
     m.albedoTexture = remap[std::size_t(t)];
   }
+  out.sourceKey = objectSourceKey(assets.get(*mesh).contentKey, *mesh, registry.tryGet<scene::MaterialOverride>(entity));
   return out;
 }
 

@@ -10,12 +10,23 @@
 #include "engine/scene/level.hpp"
 
 #include <filesystem>
+#include <string>
 #include <vector>
 
 namespace bounce::gi::dnrt {
 
-// `entity` must have a MeshRef whose asset `assets` has loaded (ReferenceAssets::load).
+// `entity` must have a MeshRef whose asset `assets` has loaded (ReferenceAssets::load). The result's
+// sourceKey is objectSourceKey() of the entity (so cacheKey() of it needs no hashing of its texels).
 ref::SceneDesc objectScene(ecs::Registry& registry, ecs::Entity entity, const ref::ReferenceAssets& assets);
+
+// What objectScene() makes the entity's scene from, as a content key: the cooked asset's content key
+// (asset::cacheKey: its source bytes, the files it references, the cook options — subdivision
+// included), the node it instances and its material override. Computed without cooking or decoding
+// anything (the asset's files are read and hashed), so planning a level's DNRT jobs stays cheap
+// and a moved checkout keeps its keys. The first form is what objectScene() uses.
+std::string objectSourceKey(const std::string& assetContentKey, const scene::MeshRef& mesh,
+                            const scene::MaterialOverride* material);
+std::string objectSourceKey(ecs::Registry& registry, ecs::Entity entity, const std::filesystem::path& cookCache);
 
 // A level's entities that carry a DNRT field, with what objectScene() needs to describe them: the
 // level instantiated at t = 0 (transforms resolved) and its reference assets. What bake-only tools

@@ -23,12 +23,30 @@ std::string describe(const std::string& name, const FieldSettings& s) {
   return text;
 }
 
-// One entity's bake: its object scene (local frame) and settings, gathered once per job list.
+// One entity's bake, as its job needs it after planning (the level's registry is gone by then):
+// what objectScene() reads of the entity, its settings, its key and output. The object scene is
+// made (its asset cooked and decoded) only when the job runs, so planning hashes files, not texels.
 struct ObjectBake {
   std::string name;
-  ref::SceneDesc object;
+  scene::MeshRef mesh;
+  std::optional<scene::MaterialOverride> material;
+  std::filesystem::path cookCache;
   FieldSettings settings;
+  std::string key;
   std::filesystem::path output;
+
+  ref::SceneDesc object() const {
+    ecs::Registry one;
+    const ecs::Entity e = one.create();
+    one.emplace<scene::MeshRef>(e, mesh);
+    if (material) one.emplace<scene::MaterialOverride>(e, *material);
+    ref::ReferenceAssets assets;
+    assets.load(one, cookCache);
+    ref::SceneDesc out = objectScene(one, e, assets);
+    if (cacheKey(out, settings) != key)  // planning and baking must name the same entry
+      throw InternalError("dnrt: " + name + ": the baked object's key differs from the planned " + key);
+    return out;
+  }
 };
 
 class DnrtTechnique final : public Technique {
@@ -49,30 +67,27 @@ class DnrtTechnique final : public Technique {
       if (part.empty() || (name && name->id == part)) entities.push_back(e);
     });
     std::sort(entities.begin(), entities.end());  // deterministic order (as Runtime)
-    // Only the assets of the selected entities are cooked/decoded (one job's process loads one).
-    ref::ReferenceAssets assets;
-    for (ecs::Entity e : entities) {
-      ecs::Registry one;
-      one.emplace<scene::MeshRef>(one.create(), lc.registry.get<scene::MeshRef>(e));
-      assets.load(one, lc.cookCache);
-    }
     std::vector<std::filesystem::path> inputs;
     if (!lc.level.source.empty()) inputs.push_back(lc.level.source);
     std::vector<BakeJob> jobs;
     for (ecs::Entity e : entities) {
       auto ob = std::make_shared<ObjectBake>();
       ob->name = lc.registry.get<scene::Name>(e).id;
-      ob->object = objectScene(lc.registry, e, assets);
+      ob->mesh = lc.registry.get<scene::MeshRef>(e);
+      if (const auto* m = lc.registry.tryGet<scene::MaterialOverride>(e)) ob->material = *m;
+      ob->cookCache = lc.cookCache;
       ob->settings = settingsFrom(lc.registry.get<scene::Dnrt>(e));
-      ob->output = cachePath(ob->object, ob->settings, cacheFolder());
+      // Keyed by the cooked asset's content key (objectSourceKey): no cooking or decoding here.
+      ob->key = cacheKey(objectSourceKey(lc.registry, e, lc.cookCache), ob->settings);
+      ob->output = cachePath(ob->key, cacheFolder());
       BakeJob job;
       job.technique = "dnrt";
       job.what = "dnrt " + ob->name;
       job.part = ob->name;
-      job.key = cacheKey(ob->object, ob->settings);
+      job.key = ob->key;
       job.output = ob->output;
       job.inputs = inputs;
-      job.inputs.push_back(lc.registry.get<scene::MeshRef>(e).asset);
+      job.inputs.push_back(ob->mesh.asset);
       job.cached = [ob]() -> std::optional<std::string> {
         if (!std::filesystem::exists(ob->output)) return std::nullopt;
         try {
@@ -85,7 +100,7 @@ class DnrtTechnique final : public Technique {
       };
       job.run = [ob] {
         const auto start = std::chrono::steady_clock::now();
-        const BakeResult r = bake(ob->object, ob->settings);
+        const BakeResult r = bake(ob->object(), ob->settings);
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         save(r.field, ob->output);
         char text[512];

@@ -189,7 +189,13 @@ BakeInput prepare(const scene::Level& level, const std::filesystem::path& cookCa
     h.u64(bytes.size()).bytes(bytes.data(), bytes.size());
     in.files.push_back(level.source);
   }
-  for (const auto& [key, entry] : assets.entries()) h.str(key).str(entry.contentKey);
+  // The assets by content (source bytes, referenced files, cook options), sorted — never by their
+  // absolute paths, so a moved or second checkout finds the same entries.
+  std::vector<std::string> contentKeys;
+  for (const auto& [path, entry] : assets.entries()) contentKeys.push_back(entry.contentKey);
+  std::sort(contentKeys.begin(), contentKeys.end());
+  h.u64(contentKeys.size());
+  for (const auto& k : contentKeys) h.str(k);
   for (const auto& e : stat.entities)
     if (e.mesh && std::find(in.files.begin(), in.files.end(), e.mesh->asset) == in.files.end())
       in.files.push_back(e.mesh->asset);

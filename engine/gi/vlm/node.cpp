@@ -15,9 +15,6 @@ constexpr VkDescriptorType kSampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
 constexpr VkDescriptorType kStorage = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
 // Phase-1 target: one RGBA32F texel per virtual light, rows of at most this many texels.
 constexpr std::uint32_t kRadianceRow = 1024;
-// The grids cover the scene bounds padded by this fraction of their diagonal on every side, so
-// receivers on the bounding walls fall inside a cell.
-constexpr float kBoundsPad = 0.02f;
 
 struct LightsPush {
   std::uint32_t count, width, lightCount, shadowsOn;
@@ -49,12 +46,6 @@ void fill(gpu::Context& ctx, gpu::Buffer& buffer, const void* data, std::size_t 
   if (bytes) std::memcpy(buffer.mapped(), data, bytes);
 }
 
-std::vector<GridLight> gridLights(std::span<const VirtualLight> lights) {
-  std::vector<GridLight> out;
-  out.reserve(lights.size());
-  for (const auto& l : lights) out.push_back({l.v0, l.v1, l.v2, std::max({l.scale.r, l.scale.g, l.scale.b, 1e-6f})});
-  return out;
-}
 
 }  // namespace
 
@@ -77,22 +68,10 @@ VkRect2D screenRect(const glm::mat4& viewProj, glm::vec3 lo, glm::vec3 hi, VkExt
   return {{std::int32_t(a.x), std::int32_t(a.y)}, {std::uint32_t(b.x - a.x), std::uint32_t(b.y - a.y)}};
 }
 
-NodeSettings settingsFrom(const scene::VlmConfig& config) {
-  NodeSettings s;
-  s.grid = config.grid;
-  s.k = std::uint32_t(config.k);
-  s.range = config.range;
-  s.overrides = config.overrides;
-  s.conservativeThreshold = config.conservativeThreshold;
-  return s;
-}
-
 Runtime::Runtime(gpu::Context& ctx, const render::Pipelines& pipelines, ecs::Registry& registry, NodeSettings settings,
                  const std::filesystem::path& cookCache, std::uint32_t framesInFlight)
     : ctx_(ctx),
-      registry_(registry),
-      settings_(settings),
-      meshes_(collectVlms(registry, cookCache)),
+      update_(registry, std::move(settings), cookCache),
       lightsLayout_(ctx, {{0, kStorage}, {1, kSampled}, {2, kStorage}, {3, kStorage}}, "vlm.lights"),
       shadeLayout_(ctx,
                    {{0, kSampled}, {1, kSampled}, {2, kSampled}, {3, kSampled}, {4, kStorage}, {5, kSampled},
@@ -102,16 +81,6 @@ Runtime::Runtime(gpu::Context& ctx, const render::Pipelines& pipelines, ecs::Reg
       shadePipelineLayout_(ctx, {pipelines.frameLayout.handle(), shadeLayout_.handle()},
                            {{VK_SHADER_STAGE_ALL, 0, sizeof(ShadePush)}}, "vlm"),
       buffers_(std::max(1u, framesInFlight)) {
-  for (const VlmMesh& m : meshes_)
-    if (!m.dynamic) {
-      const auto* placed = registry.tryGet<scene::WorldTransform>(m.entity);
-      appendPlaced(m, placed ? placed->matrix : glm::mat4(1.0f), staticLights_);
-    }
-  {
-    std::vector<VirtualLight> all;
-    for (const VlmMesh& m : meshes_) all.insert(all.end(), m.local.begin(), m.local.end());
-    tags_ = tagsOf(all);
-  }
   gpu::ShaderModule vert(ctx, "passes/fullscreen.vert.spv");
   gpu::ShaderModule lightsFrag(ctx, "vlm/vlm_lights.frag.spv"), shadeFrag(ctx, "vlm/vlm.frag.spv");
   gpu::GraphicsPipelineDesc d;
@@ -127,85 +96,6 @@ Runtime::Runtime(gpu::Context& ctx, const render::Pipelines& pipelines, ecs::Reg
   shadePipeline_ = gpu::createGraphicsPipeline(ctx, shadePipelineLayout_, d);
 }
 
-std::size_t Runtime::lightCount() const {
-  std::size_t n = 0;
-  for (const auto& m : meshes_) n += m.local.size();
-  return n;
-}
-
-std::uint64_t Runtime::overflowCells() const { return overflow_.staticCells + overflow_.dynamicCells; }
-
-void Runtime::replaceStaticLights(std::vector<VirtualLight> lights) {
-  staticLights_ = std::move(lights);
-  staticBuilt_ = false;
-}
-
-void Runtime::setSettings(const NodeSettings& settings) {
-  settings_ = settings;
-  staticBuilt_ = false;
-  overflow_ = {};
-}
-
-GridDesc Runtime::gridFor(const render::RenderWorld& world) const {
-  glm::vec3 lo = world.sceneMin, hi = world.sceneMax;
-  const float pad = kBoundsPad * glm::length(hi - lo) + 1e-3f;
-  const auto dims = glm::uvec3(std::uint32_t(std::max(1, settings_.grid)));
-  GridDesc d = fitGrid(lo - pad, hi + pad, dims, settings_.k, settings_.range);
-  d.conservativeThreshold = settings_.conservativeThreshold;
-  return d;
-}
-
-FrameData Runtime::prepare(const render::RenderWorld& world) {
-  FrameData f;
-  const GridDesc desc = gridFor(world);
-  // The static grid is built once (§4.3), over the bounds of the first frame's scene.
-  if (!staticBuilt_) {
-    staticGrid_ = buildGridScatter(gridLights(staticLights_), desc);
-    staticBuilt_ = true;
-  }
-  f.lights = staticLights_;
-  f.staticCount = std::uint32_t(staticLights_.size());
-  f.staticGrid = &staticGrid_;
-  std::vector<VirtualLight> moving;
-  for (const VlmMesh& m : meshes_) {
-    const auto* placed = registry_.tryGet<scene::WorldTransform>(m.entity);
-    if (!m.dynamic || !registry_.valid(m.entity) || !placed) continue;
-    const auto first = std::uint32_t(moving.size());
-    appendPlaced(m, placed->matrix, moving);
-    FrameData::Range r{m.name, f.staticCount + first, std::uint32_t(moving.size()) - first};
-    r.lo = glm::vec3(std::numeric_limits<float>::max()), r.hi = -r.lo;
-    for (std::size_t i = first; i < moving.size(); ++i) {
-      const ActiveHemisphere h = activeHemisphere({moving[i].v0, moving[i].v1, moving[i].v2, 1.0f}, desc.range);
-      if (h.radius > 0.0f) r.lo = glm::min(r.lo, h.lo), r.hi = glm::max(r.hi, h.hi);
-    }
-    r.lo -= desc.cellSize, r.hi += desc.cellSize;
-    f.dynamicRanges.push_back(std::move(r));
-  }
-  if (!moving.empty()) {
-    dynamicBuilder_.build(gridLights(moving), desc, f.dynamicGrid);
-    for (auto& s : f.dynamicGrid.slots)
-      if (s != kNullLight) s += f.staticCount;
-  }
-  overflow_.cellsPerGrid = desc.cellCount();
-  overflow_.k = staticGrid_.desc.k;
-  overflow_.staticCells = staticGrid_.overflowCells;
-  overflow_.dynamicCells = f.dynamicGrid.overflowCells;
-  overflow_.dynamicMaxCells = std::max(overflow_.dynamicMaxCells, f.dynamicGrid.overflowCells);
-  overflow_.droppedAboveThreshold = staticGrid_.droppedAboveThreshold + f.dynamicGrid.droppedAboveThreshold;
-  overflow_.conservative = settings_.conservativeThreshold > 0.0f;
-  f.lights.insert(f.lights.end(), moving.begin(), moving.end());
-  // Artistic per-tag overrides (§3.5) on this frame's copy; the grids keep the unmodified bounds.
-  if (!settings_.overrides.empty())
-    for (VirtualLight& l : f.lights)
-      if (auto it = settings_.overrides.find(int(l.tag)); it != settings_.overrides.end())
-        l.scale = applyOverride(l.scale, it->second);
-  registry_.view<scene::VlmTag>().each([&](ecs::Entity e, scene::VlmTag& t) {
-    if (f.entityTags.size() <= e.index()) f.entityTags.resize(e.index() + 1, 0u);
-    f.entityTags[e.index()] = std::uint32_t(t.tag);
-  });
-  return f;
-}
-
 void Runtime::addTo(rg::RenderGraph& graph, render::PassContext& pc) {
   FrameData f = prepare(*pc.world);
   if (f.lights.empty()) return;
@@ -214,7 +104,7 @@ void Runtime::addTo(rg::RenderGraph& graph, render::PassContext& pc) {
   std::vector<VlmLightGpu> packed;
   packed.reserve(f.lights.size());
   for (const auto& l : f.lights) packed.push_back(pack(l));
-  std::vector<std::uint32_t> slots = staticGrid_.slots;
+  std::vector<std::uint32_t> slots = update_.staticGrid().slots;
   const auto dynamicFirst = std::uint32_t(slots.size());
   slots.insert(slots.end(), f.dynamicGrid.slots.begin(), f.dynamicGrid.slots.end());
 
@@ -223,7 +113,7 @@ void Runtime::addTo(rg::RenderGraph& graph, render::PassContext& pc) {
   // Phase 2 draws the static grid over the whole image, then each dynamic VLM over the pixels its
   // lights can reach, in its own timestamp scope, from the dynamic grid with only its lights.
   const glm::uvec4 counts(count, std::uint32_t(f.entityTags.size()), width, 0);
-  const ShadePush staticShade{{gridGpu(&staticGrid_, 0), gridGpu(nullptr, 0)}, counts, glm::uvec4(0, f.staticCount, 0, 0)};
+  const ShadePush staticShade{{gridGpu(&update_.staticGrid(), 0), gridGpu(nullptr, 0)}, counts, glm::uvec4(0, f.staticCount, 0, 0)};
   const ShadePush dynamicShade{{gridGpu(nullptr, 0), gridGpu(&f.dynamicGrid, dynamicFirst)}, counts, glm::uvec4(0)};
   const std::vector<FrameData::Range> objects = f.dynamicRanges;
   const glm::mat4 viewProj = pc.world->camera.viewProj;
@@ -272,7 +162,7 @@ void Runtime::addTo(rg::RenderGraph& graph, render::PassContext& pc) {
           const std::uint32_t row0 = first / width, row1 = (first + n - 1) / width;
           const VkRect2D scissor{{0, std::int32_t(row0)}, {width, row1 - row0 + 1}};
           vkCmdSetScissor(cmd, 0, 1, &scissor);
-          lightsPipeline_.push(cmd, LightsPush{n, width, ctx->lightCount, d.atlas ? 1u : 0u, settings_.shadowLift, first});
+          lightsPipeline_.push(cmd, LightsPush{n, width, ctx->lightCount, d.atlas ? 1u : 0u, update_.settings().shadowLift, first});
           vkCmdDraw(cmd, 3, 1, 0, 0);
         };
         if (staticCount) draw(0, staticCount);

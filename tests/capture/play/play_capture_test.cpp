@@ -69,10 +69,11 @@ std::string quoted(const std::string& s) { return "'" + s + "'"; }
 // Runs `args` with the bounce executable (under xvfb-run when `display`); stdout and stderr go to
 // files in `dir`. xvfb-run -a can lose a race for a server number against a parallel test: that
 // attempt is retried.
-ProcessRun runBounce(const fs::path& dir, const std::string& args, bool display) {
+// `wrapper` goes between xvfb-run and the executable (e.g. "timeout 120 ").
+ProcessRun runBounce(const fs::path& dir, const std::string& args, bool display, const std::string& wrapper = "") {
   fs::create_directories(dir);
   const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
-  const std::string prefix = display ? "xvfb-run -a " : "";
+  const std::string prefix = (display ? "xvfb-run -a " : "") + wrapper;
   const std::string cmd =
       prefix + quoted(BOUNCE_EXE) + " " + args + " >" + quoted(out.string()) + " 2>" + quoted(err.string());
   ProcessRun r;
@@ -313,4 +314,19 @@ TEST(PlayScreenshot, F12WritesPngAndPfm) {
   EXPECT_EQ(bounce::gpu::readPfm(pfm).width, 256u);
   fs::remove(png);
   fs::remove(pfm);
+}
+
+// Issue 16: `bounce play` checks the render size against the device (image side limit, memory)
+// before it opens the window. An interactive run (no --frames, no --keys) prints its key table as
+// soon as the window is open, so an empty stdout shows the refusal came first; exit 2, one line.
+TEST(PlayErrors, OversizedResolutionIsRefusedBeforeTheWindow) {
+  if (!haveXvfb()) GTEST_SKIP() << "xvfb-run not installed (Debian package xvfb)";
+  // The guard: a device that holds such frames would run the interactive window until killed.
+  const ProcessRun r = runBounce(kOut / "oversized", "play " + quoted(kLevel.string()) + " --resolution 16384x16384", true,
+                                 "timeout 300 ");
+  if (r.code == 124) GTEST_SKIP() << "this device holds 16384x16384 frames (play ran until the guard's timeout)";
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_EQ(r.err.rfind("bounce play: --resolution: 16384x16384 ", 0), 0u) << r.err;
+  EXPECT_EQ(r.out, "") << "nothing (no key table: no window) before the refusal";
 }

@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -233,6 +234,75 @@ TEST_F(BakeCli, CacheStatsAndPrune) {
   EXPECT_EQ(prune.out.rfind("pruned 2 entries", 0), 0u) << prune.out;
   EXPECT_EQ(entries(root).size(), 3u);
   EXPECT_EQ(bounce(root, {"cache", "--stats", "--prune"}).code, 2);
+}
+
+// Issue 11: the references `bounce accuracy` traces are bake jobs too, planned with --only
+// reference (a level names no accuracy run): one per reference kind the rows use (direct, 1bounce,
+// all), with and without the dynamic objects, and the half-sample ones of the noise estimate; a job
+// run twice is a cache hit, a corrupt entry is traced again.
+TEST_F(BakeCli, ReferencesAreJobsWithOnlyReference) {
+  const fs::path root = dir_ / "cache";
+  const Outcome techniques = bounce(root, {"bake", kTiny.string(), "--list-jobs"});
+  EXPECT_EQ(techniques.out.find("\"technique\": \"reference\""), std::string::npos) << techniques.out;
+  const Outcome r = bounce(root, {"bake", kTiny.string(), "--only", "reference", "--list-jobs"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::set<std::string> whats, keysSeen;
+  std::string directKey;
+  for (const auto& l : lines(r.out)) {
+    EXPECT_NE(l.find("\"technique\": \"reference\""), std::string::npos) << l;
+    const std::string key = l.substr(l.find("\"key\": \"") + 8, 16);
+    EXPECT_TRUE(keysSeen.insert(key).second) << "duplicate key in " << l;
+    EXPECT_NE(l.find("\"output\": \"" + (root / "reference" / (key + ".pfm")).string() + "\""), std::string::npos) << l;
+    const auto at = l.find("\"what\": \"reference ") + 19;
+    whats.insert(l.substr(at, l.find('"', at) - at));
+    if (l.find("\"what\": \"reference direct\"") != std::string::npos) directKey = key;
+  }
+  EXPECT_EQ(whats, (std::set<std::string>{"direct", "direct-static", "1bounce", "1bounce-static", "1bounce-half", "all",
+                                          "all-static", "all-half"}));
+  ASSERT_EQ(directKey.size(), 16u);
+  EXPECT_TRUE(!fs::exists(root / "reference") || fs::is_empty(root / "reference")) << "planning traces nothing";
+
+  // The direct-only reference (1 spp: exact, and quick): traced once, then a cache hit.
+  const std::vector<std::string> job = {"bake", kTiny.string(), "--only", "reference:direct", "--job", directKey};
+  const Outcome first = bounce(root, job);
+  ASSERT_EQ(first.code, 0) << first.err;
+  EXPECT_EQ(first.out.find(": cached "), std::string::npos) << first.out;
+  const fs::path entry = root / "reference" / (directKey + ".pfm");
+  ASSERT_TRUE(fs::exists(entry));
+  const std::string bytes = readText(entry);
+  const Outcome second = bounce(root, job);
+  EXPECT_EQ(second.out, "reference direct: cached " + entry.string() + "\n") << second.err;
+  std::ofstream(entry, std::ios::binary | std::ios::trunc) << bytes.substr(0, bytes.size() / 2);
+  const Outcome again = bounce(root, job);
+  ASSERT_EQ(again.code, 0) << again.err;
+  EXPECT_EQ(again.out.find(": cached "), std::string::npos) << "a truncated entry is traced again: " << again.out;
+  EXPECT_TRUE(readText(entry) == bytes) << "the same image again (deterministic tracer)";
+}
+
+// Issue 11: `cache --prune` also drops cooked assets no level uses (in <root>/cooked) and
+// references no level's reference job names, and keeps the ones they name.
+TEST_F(BakeCli, PruneConsidersCookedAssetsAndReferences) {
+  const fs::path root = dir_ / "cache";
+  const std::string ownCook = "BOUNCE_CACHE=" + quote(root.string()) + " BOUNCE_COOK_CACHE=" + quote((root / "cooked").string()) + " ";
+  auto run = [&](const std::vector<std::string>& args) { return sh(bounce::testcli::bounceCommand(args, ownCook)); };
+  const Outcome listed = run({"bake", kTiny.string(), "--only", "reference:direct", "--list-jobs"});
+  ASSERT_EQ(listed.code, 0) << listed.err;
+  const std::string key = listed.out.substr(listed.out.find("\"key\": \"") + 8, 16);
+  ASSERT_EQ(run({"bake", kTiny.string(), "--only", "reference:direct", "--job", key}).code, 0);
+  std::set<std::string> cooked;
+  for (const auto& f : fs::directory_iterator(root / "cooked")) cooked.insert(f.path().filename().string());
+  ASSERT_FALSE(cooked.empty()) << "the job cooked the level's assets into <root>/cooked";
+  std::ofstream(root / "cooked" / "0000000000000000.bcook") << "no level uses it";
+  std::ofstream(root / "reference" / "0000000000000000.pfm") << "no job names it";
+  const Outcome prune = run({"cache", "--prune", kTiny.string()});
+  ASSERT_EQ(prune.code, 0) << prune.err;
+  EXPECT_EQ(prune.out.rfind("pruned 2 entries", 0), 0u) << prune.out;
+  EXPECT_FALSE(fs::exists(root / "cooked" / "0000000000000000.bcook"));
+  EXPECT_FALSE(fs::exists(root / "reference" / "0000000000000000.pfm"));
+  EXPECT_TRUE(fs::exists(root / "reference" / (key + ".pfm")));
+  std::set<std::string> after;
+  for (const auto& f : fs::directory_iterator(root / "cooked")) after.insert(f.path().filename().string());
+  EXPECT_EQ(after, cooked) << "the cooks the level uses are kept";
 }
 
 }  // namespace

@@ -8,6 +8,8 @@
 #include <set>
 
 #include "engine/core/paths.hpp"
+#include "engine/gi/dnrt/bake.hpp"
+#include "engine/gi/dnrt/object_scene.hpp"
 #include "engine/gi/technique.hpp"
 #include "engine/scene/systems.hpp"
 #include "game/accuracy_rows.hpp"
@@ -118,6 +120,31 @@ TEST(Techniques, BakeJobsOnePerCacheEntryWithDistinctKeys) {
   }
   EXPECT_EQ(game::levelJobs(l.level, game::cookCacheDir(), "dnrt").jobs.size(), 8u);
   EXPECT_TRUE(game::levelJobs(l.level, game::cookCacheDir(), "dnrt:no-such-entity").jobs.empty());
+}
+
+// Issue 11: DNRT jobs are keyed by the cooked asset's content key (objectSourceKey), without
+// decoding; the runtime, which keys the object scene it decoded (objectScene sets sourceKey), must
+// name the same entries, or a session would re-bake what `bounce bake` wrote.
+TEST(Techniques, DnrtJobKeysAreTheRuntimesKeys) {
+  Loaded l(kCornell10);
+  std::set<std::string> planned;
+  for (const gi::BakeJob& job : game::levelJobs(l.level, game::cookCacheDir(), "dnrt").jobs) planned.insert(job.key);
+  gi::dnrt::LevelObjects objects;
+  gi::dnrt::loadLevelObjects(l.level, game::cookCacheDir(), objects);
+  std::set<std::string> runtime;
+  for (ecs::Entity e : objects.entities) {
+    const ref::SceneDesc object = gi::dnrt::objectScene(objects.registry, e, objects.assets);
+    EXPECT_EQ(object.sourceKey, gi::dnrt::objectSourceKey(objects.registry, e, game::cookCacheDir()));
+    runtime.insert(gi::dnrt::cacheKey(object, gi::dnrt::settingsFrom(objects.registry.get<scene::Dnrt>(e))));
+  }
+  EXPECT_EQ(planned, runtime);
+  // The source key follows what the object is made of: another albedo is another field.
+  const ecs::Entity first = objects.entities.front();
+  const auto& mesh = objects.registry.get<scene::MeshRef>(first);
+  scene::MaterialOverride red;
+  red.albedo = glm::vec3(0.9f, 0.1f, 0.1f);
+  EXPECT_NE(gi::dnrt::objectSourceKey("k", mesh, nullptr), gi::dnrt::objectSourceKey("k", mesh, &red));
+  EXPECT_NE(gi::dnrt::objectSourceKey("k", mesh, nullptr), gi::dnrt::objectSourceKey("k2", mesh, nullptr));
 }
 
 TEST(Techniques, AccuracyRowsComeFromTheTable) {

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <set>
 #include <sstream>
 
@@ -334,4 +335,44 @@ TEST(PlayKeys, MisspeltEffectSuggestsTheNearest) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("unknown effect \"shadow\", did you mean \"shadows\"?"), std::string::npos) << e.what();
   }
+}
+
+// Issue 16: DNRT's mode as a run-time setting. M switches every object to the paper's full-screen
+// pass (gi::dnrt::NodeSettings::fullScreen) and back; the overlay's combo does the same.
+TEST(PlayKeys, MSwitchesTheDnrtMode) {
+  PlayState state;
+  scene::EffectSet effects;
+  EXPECT_FALSE(state.dnrtFullScreen) << "starts in each object's own mode";
+  EXPECT_EQ(applyKey(GLFW_KEY_M, state, effects), KeyEffect::DnrtModeChanged);
+  EXPECT_TRUE(state.dnrtFullScreen);
+  EXPECT_EQ(applyKey(GLFW_KEY_M, state, effects), KeyEffect::DnrtModeChanged);
+  EXPECT_FALSE(state.dnrtFullScreen);
+  EXPECT_EQ(parseKeyScript("M@2").at(0).key, GLFW_KEY_M);
+}
+
+// Issue 16: the overlay's VLM controls edit the same per-tag overrides as the keys, within the
+// keys' bounds: intensity clamped to [1/256, 256], hue wrapped into [0, 360), colour into [0, 1],
+// non-finite values ignored; the edited tag becomes the selected one; an unknown tag is refused.
+TEST(PlayKeys, OverlayVlmEditsAreBoundedLikeTheKeys) {
+  VlmControl vlm;
+  vlm.tags = {2, 5};
+  EXPECT_FALSE(setVlmOverride(vlm, 4, {}));
+  EXPECT_TRUE(vlm.overrides.empty());
+  EXPECT_EQ(vlm.selected, -1);
+
+  ASSERT_TRUE(setVlmOverride(vlm, 5, {1000.0f, glm::vec3(1.5f, -0.25f, 0.5f), -30.0f}));
+  EXPECT_EQ(vlm.selected, 1);
+  const scene::VlmOverride& o = vlm.overrides.at(5);
+  EXPECT_FLOAT_EQ(o.intensity, kVlmIntensityMax);
+  EXPECT_FLOAT_EQ(o.hueDeg, 330.0f);
+  EXPECT_EQ(o.color, glm::vec3(1.0f, 0.0f, 0.5f));
+
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  ASSERT_TRUE(setVlmOverride(vlm, 5, {nan, glm::vec3(nan, 0.25f, nan), 725.0f}));
+  EXPECT_FLOAT_EQ(vlm.overrides.at(5).intensity, kVlmIntensityMax) << "NaN keeps the old value";
+  EXPECT_EQ(vlm.overrides.at(5).color, glm::vec3(1.0f, 0.25f, 0.5f));
+  EXPECT_FLOAT_EQ(vlm.overrides.at(5).hueDeg, 5.0f);
+  ASSERT_TRUE(setVlmOverride(vlm, 2, {1e-9f, glm::vec3(1.0f), 0.0f}));
+  EXPECT_FLOAT_EQ(vlm.overrides.at(2).intensity, kVlmIntensityMin);
+  EXPECT_EQ(vlmControlText(vlm), "VLM tag 2 of [2 5]: intensity 0.00, hue 0 deg");
 }

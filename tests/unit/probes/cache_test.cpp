@@ -83,3 +83,24 @@ TEST(ProbeCache, TheDynamicLightDoesNotReachTheBake) {
   const LoadResult without = loadOrBake(level, cook, freshDir("probe-cache-b"), small());
   EXPECT_EQ(with.volume.sh, without.volume.sh);
 }
+
+// Issue 11: the key hashes the assets' content keys, not their absolute paths: the same level and
+// asset in two folders (a moved or second checkout) name the same cache entry.
+TEST(ProbeCache, KeyDoesNotDependOnWhereTheCheckoutIs) {
+  const fs::path root = freshDir("probe-cache-moved");
+  const std::string levelJson =
+      R"({"bounce_level": 1, "effects": ["direct", "probes"], "probes": {"spacing": 1.0, "rays": 64},
+          "entities": [{"id": "floor", "mesh": {"asset": "quad.gltf"}},
+                       {"id": "lamp", "transform": {"translation": [0, 1, 0]},
+                        "light": {"type": "point", "color": [1, 1, 1], "intensity": 1}}]})";
+  std::vector<std::string> keys;
+  for (const char* where : {"a/checkout", "b/moved/elsewhere"}) {
+    const fs::path dir = root / where;
+    fs::create_directories(dir);
+    fs::copy_file(fs::path(BOUNCE_SOURCE_DIR) / "tests/data/render/quad.gltf", dir / "quad.gltf");
+    writeFileAtomic(dir / "level.json", levelJson);
+    const scene::Level level = scene::loadLevel(dir / "level.json");
+    keys.push_back(prepare(level, root / "cooked", settingsFrom(level)).key);
+  }
+  EXPECT_EQ(keys[0], keys[1]);
+}
