@@ -112,7 +112,7 @@ TEST(Export, Cornell5CameraMatches) {
   ASSERT_EQ(back.cameras.size(), 1u);
   const asset::Camera& c = back.cameras[0];
   EXPECT_EQ(c.type, asset::CameraType::Perspective);
-  EXPECT_FLOAT_EQ(c.yfov, float(80.0 * M_PI / 180.0));  // "yfov_deg": 80
+  EXPECT_FLOAT_EQ(c.yfov, float(90.0 * M_PI / 180.0));  // "yfov_deg": 90
   EXPECT_FLOAT_EQ(c.znear, 0.005f);
   EXPECT_FLOAT_EQ(c.zfar, 5.0f);
   EXPECT_EQ(c.aspectRatio, 0.0f);  // omitted: the viewer's aspect
@@ -120,9 +120,9 @@ TEST(Export, Cornell5CameraMatches) {
   const Placed* cam = findNode(nodes, "camera/camera");
   ASSERT_NE(cam, nullptr);
   EXPECT_EQ(back.nodes[std::size_t(cam->node)].camera, 0);
-  expectVecNear(glm::vec3(cam->world[3]), {0.24f, 0.44f, 0.25f}, kPositionTol);
-  // Looks down −Z of "rotation_euler_deg": [-30, 43, 0] (the corner view, issue 16).
-  const glm::quat rotation = scene::quatFromEulerDeg({-30.0f, 43.0f, 0.0f});
+  expectVecNear(glm::vec3(cam->world[3]), {0.0f, 0.42f, 0.27f}, kPositionTol);
+  // Looks down −Z of "rotation_euler_deg": [-30, 0, 0] (issue 16: wider, the whole floor in view).
+  const glm::quat rotation = scene::quatFromEulerDeg({-30.0f, 0.0f, 0.0f});
   const glm::vec3 forward = glm::mat3_cast(rotation) * glm::vec3(0, 0, -1);
   expectVecNear(-glm::normalize(glm::vec3(cam->world[2])), forward, kDirectionTol);
   expectVecNear(glm::normalize(glm::vec3(cam->world[1])), glm::mat3_cast(rotation) * glm::vec3(0, 1, 0), kDirectionTol);
