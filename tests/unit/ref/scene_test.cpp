@@ -2,6 +2,8 @@
 // level expands to; and `bounce reference` caches by content.
 #include <gtest/gtest.h>
 
+#include <fstream>
+
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "engine/core/error.hpp"
@@ -128,6 +130,47 @@ TEST(ReferenceCache, SecondRunIsServedFromTheCacheAndKeysFollowInputs) {
     change(other);
     EXPECT_NE(renderReference(other).key, first.key);
   }
+}
+
+// Issue 11: the key hashes the assets' content keys, not their absolute paths: the same level and
+// asset in two folders (a moved or second checkout) name the same entry; planReference names the
+// entry renderReference writes, without tracing.
+TEST(ReferenceCache, KeyDoesNotDependOnWhereTheCheckoutIsAndPlanningTracesNothing) {
+  const auto root = outDir() / "reference-moved";
+  std::filesystem::remove_all(root);
+  const std::string levelJson =
+      R"({"bounce_level": 1, "effects": ["direct"], "entities": [{"id": "floor", "mesh": {"asset": "quad.gltf"}},
+          {"id": "camera", "transform": {"translation": [0, 1, 0], "rotation_euler_deg": [-90, 0, 0]},
+           "camera": {"yfov_deg": 60, "near": 0.05, "far": 5}},
+          {"id": "lamp", "transform": {"translation": [0, 2, 0]},
+           "light": {"type": "point", "color": [1, 1, 1], "intensity": 1}}]})";
+  std::vector<ReferencePlan> plans;
+  for (const char* where : {"a/checkout", "b/moved/elsewhere"}) {
+    const auto dir = root / where;
+    std::filesystem::create_directories(dir);
+    std::filesystem::copy_file(std::filesystem::path(BOUNCE_SOURCE_DIR) / "tests/data/render/quad.gltf", dir / "quad.gltf");
+    std::ofstream(dir / "level.json") << levelJson;
+    ReferenceRequest r;
+    r.input = dir / "level.json";
+    r.spp = 1;
+    r.resolution = std::pair{8u, 8u};
+    r.cacheDir = root / "cache";
+    r.cookCache = root / "cooked";
+    r.progress = false;
+    plans.push_back(planReference(r));
+  }
+  EXPECT_EQ(plans[0].key, plans[1].key);
+  EXPECT_FALSE(std::filesystem::exists(plans[0].cachePath)) << "planning traces nothing";
+  ReferenceRequest r;
+  r.input = root / "a/checkout/level.json";
+  r.spp = 1;
+  r.resolution = std::pair{8u, 8u};
+  r.cacheDir = root / "cache";
+  r.cookCache = root / "cooked";
+  r.progress = false;
+  const ReferenceResult traced = renderReference(r);
+  EXPECT_EQ(traced.cachePath, plans[0].cachePath);
+  EXPECT_TRUE(loadCachedReference(plans[0].cachePath, 8, 8).has_value());
 }
 
 TEST(ReferenceCache, FrameBeyondTheCaptureScriptIsAnInputError) {
