@@ -12,14 +12,16 @@
 #include "sh.glsl"
 
 layout(constant_id = 0) const int kCoeffs = 9;  // order²: 4 or 9
+const int kTexels = (3 * kCoeffs + 4) / 4;      // SH texels per probe: 3 floats a coefficient + valid
 
 layout(set = 0, binding = 0) uniform FrameUbo { Camera camera; };
 layout(set = 1, binding = 0) uniform sampler2D gAlbedo;
 layout(set = 1, binding = 1) uniform sampler2D gNormal;
 layout(set = 1, binding = 2) uniform sampler2D gDepth;
-// engine/gi/probes/node.cpp: probe p = x + count.x·row sits in texel row `row`, its data in the
-// texels [slot·p.x .. ) of that row: SH texel (i + kCoeffs·x, row) = L_i (rgb), its alpha of
-// i = 0 the valid flag; moments texel (bin + PROBE_VIS_BINS·x, row) = (mean, mean square) (m, m²).
+// engine/gi/probes/node.cpp: probe p = x + count.x·row sits in texel row `row`, its data in
+// `slots` texels from slots·x on: SH, kTexels texels packing L_0.rgb, L_1.rgb, … then the valid
+// flag, 4 floats a texel (order 3: 7 texels, not 9: the gathers are most of the pass); moments,
+// texel (bin + PROBE_VIS_BINS·x, row) = (mean, mean square) (m, m²).
 layout(set = 1, binding = 3) uniform sampler2D probeSh;       // RGBA32F
 layout(set = 1, binding = 4) uniform sampler2D probeMoments;  // RG32F
 layout(set = 1, binding = 6) uniform sampler2D aoTerm;  // "ao.term" (1 = unoccluded) when bias.w = 1
@@ -35,7 +37,7 @@ ivec2 probeTexel(int probe, int slot, int slotsPerProbe) {
 }
 
 #define PROBE_DATA_PARAM
-#define PROBE_VALID(i) (texelFetch(probeSh, probeTexel(i, 0, kCoeffs), 0).a != 0.0)
+#define PROBE_VALID(i) (texelFetch(probeSh, probeTexel(i, kTexels - 1, kTexels), 0)[(3 * kCoeffs) % 4] != 0.0)
 #define PROBE_MOMENTS(i, b) texelFetch(probeMoments, probeTexel(i, b, PROBE_VIS_BINS), 0).rg
 #include "probes/probe_weights.glsl"
 
@@ -62,8 +64,14 @@ void main() {
   vec3 L[9];
   for (int i = 0; i < 9; ++i) L[i] = vec3(0.0);
   // No test of weight[k] == 0: a branch is not skipped on llvmpipe, and 0·L adds nothing.
-  for (int k = 0; k < 8; ++k)
-    for (int i = 0; i < kCoeffs; ++i) L[i] += weight[k] * texelFetch(probeSh, probeTexel(probe[k], i, kCoeffs), 0).rgb;
+  for (int k = 0; k < 8; ++k) {
+    float f[28];  // kTexels · 4 ≤ 28
+    for (int t = 0; t < kTexels; ++t) {
+      vec4 v = texelFetch(probeSh, probeTexel(probe[k], t, kTexels), 0);
+      f[4 * t] = v.x, f[4 * t + 1] = v.y, f[4 * t + 2] = v.z, f[4 * t + 3] = v.w;
+    }
+    for (int i = 0; i < kCoeffs; ++i) L[i] += weight[k] * vec3(f[3 * i], f[3 * i + 1], f[3 * i + 2]);
+  }
   float ao = pc.bias.w > 0.5 ? texelFetch(aoTerm, pixel, 0).r : 1.0;
   outRadiance = vec4(albedo * kInvPi * ao * max(shIrradiance9(L, n), vec3(0.0)), 0.0);
 }

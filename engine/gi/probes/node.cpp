@@ -25,16 +25,22 @@ gpu::ImageDesc probeImageDesc(gpu::Context& ctx, const ProbeGrid& g, std::uint32
   return d;
 }
 
-// SH texels (i + coeffs·x, row) = (L_i.rgb, i == 0 ? valid : 0), as probes.frag reads them.
+// SH texels per probe: 3 floats a coefficient, then the valid flag, 4 floats a texel (probes.frag kTexels).
+std::uint32_t shTexels(const ProbeVolume& v) { return std::uint32_t(3 * v.coeffs() + 4) / 4; }
+
+// SH texels (t + shTexels·x, row), packing L_0.rgb, L_1.rgb, …, valid, as probes.frag reads them.
 std::unique_ptr<gpu::Image> uploadSh(gpu::Context& ctx, const ProbeVolume& v) {
-  auto image = std::make_unique<gpu::Image>(
-      ctx, probeImageDesc(ctx, v.grid, std::uint32_t(v.coeffs()), VK_FORMAT_R32G32B32A32_SFLOAT, "probes.sh"));
-  const std::size_t probes = v.grid.probeCount(), coeffs = std::size_t(v.coeffs());
-  std::vector<glm::vec4> texels(probes * coeffs);  // probe-major = the row-major image layout
-  for (std::size_t p = 0; p < probes; ++p)
+  const std::uint32_t texels = shTexels(v);
+  auto image = std::make_unique<gpu::Image>(ctx, probeImageDesc(ctx, v.grid, texels, VK_FORMAT_R32G32B32A32_SFLOAT, "probes.sh"));
+  const std::size_t probes = v.grid.probeCount(), coeffs = std::size_t(v.coeffs()), stride = 4 * texels;
+  std::vector<float> floats(probes * stride, 0.0f);  // probe-major = the row-major image layout
+  for (std::size_t p = 0; p < probes; ++p) {
+    float* out = floats.data() + p * stride;
     for (std::size_t i = 0; i < coeffs; ++i)
-      texels[p * coeffs + i] = glm::vec4(v.sh[p * coeffs + i], i == 0 && v.valid[p] != 0 ? 1.0f : 0.0f);
-  gpu::upload(ctx, *image, {reinterpret_cast<const std::uint8_t*>(texels.data()), texels.size() * sizeof(glm::vec4)});
+      for (int ch = 0; ch < 3; ++ch) out[3 * i + std::size_t(ch)] = v.sh[p * coeffs + i][ch];
+    out[3 * coeffs] = v.valid[p] != 0 ? 1.0f : 0.0f;
+  }
+  gpu::upload(ctx, *image, {reinterpret_cast<const std::uint8_t*>(floats.data()), floats.size() * sizeof(float)});
   return image;
 }
 
