@@ -126,13 +126,34 @@ void Pipeline::reset() {
   pipeline_ = VK_NULL_HANDLE;
 }
 
+namespace {
+
+// Map entries for constant_id 0..n-1 over `values` (kept alive by the caller for the create call).
+struct Specialization {
+  std::vector<VkSpecializationMapEntry> entries;
+  VkSpecializationInfo info{};
+  explicit Specialization(const SpecConstants& values) {
+    for (std::uint32_t i = 0; i < values.size(); ++i)
+      entries.push_back({i, i * std::uint32_t(sizeof(std::uint32_t)), sizeof(std::uint32_t)});
+    info.mapEntryCount = std::uint32_t(entries.size());
+    info.pMapEntries = entries.data();
+    info.dataSize = values.size() * sizeof(std::uint32_t);
+    info.pData = values.data();
+  }
+  const VkSpecializationInfo* get() const { return entries.empty() ? nullptr : &info; }
+};
+
+}  // namespace
+
 Pipeline createComputePipeline(Context& ctx, const PipelineLayout& layout, const ShaderModule& shader,
-                               const std::string& name, const PipelineCache* cache) {
+                               const std::string& name, const PipelineCache* cache, const SpecConstants& specialization) {
+  const Specialization spec(specialization);
   VkComputePipelineCreateInfo ci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
   ci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
   ci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
   ci.stage.module = shader.handle();
   ci.stage.pName = "main";
+  ci.stage.pSpecializationInfo = spec.get();
   ci.layout = layout.handle();
   VkPipeline p = VK_NULL_HANDLE;
   check(vkCreateComputePipelines(ctx.device(), cache ? cache->handle() : VK_NULL_HANDLE, 1, &ci, nullptr, &p),
@@ -144,8 +165,10 @@ Pipeline createComputePipeline(Context& ctx, const PipelineLayout& layout, const
 Pipeline createGraphicsPipeline(Context& ctx, const PipelineLayout& layout, const GraphicsPipelineDesc& desc,
                                 const PipelineCache* cache) {
   if (!desc.vertex) throw InternalError("vulkan: graphics pipeline '" + desc.name + "' has no vertex shader");
+  const Specialization spec(desc.specialization);
   std::vector<VkPipelineShaderStageCreateInfo> stages;
   VkPipelineShaderStageCreateInfo st{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
+  st.pSpecializationInfo = spec.get();  // ids a stage does not declare are ignored
   st.stage = VK_SHADER_STAGE_VERTEX_BIT;
   st.module = desc.vertex->handle();
   st.pName = "main";

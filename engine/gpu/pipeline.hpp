@@ -107,8 +107,15 @@ class Pipeline {
   VkPipelineLayout layout_ = VK_NULL_HANDLE;  // not owned
 };
 
+// Specialization constants: value i is `layout(constant_id = i)` in every stage of the pipeline
+// (32-bit: uint, int, float bits or bool as 0/1). A technique variant is one pipeline per
+// combination of constants instead of a runtime branch: llvmpipe runs both sides of a branch under
+// a mask, so an untaken variant block costs in full (README "What costs what on lavapipe").
+using SpecConstants = std::vector<std::uint32_t>;
+
 Pipeline createComputePipeline(Context& ctx, const PipelineLayout& layout, const ShaderModule& shader,
-                               const std::string& name, const PipelineCache* cache = nullptr);
+                               const std::string& name, const PipelineCache* cache = nullptr,
+                               const SpecConstants& specialization = {});
 
 struct VertexBinding {
   std::uint32_t binding = 0;
@@ -144,6 +151,7 @@ struct GraphicsPipelineDesc {
   bool depthWrite = false;
   VkCompareOp depthCompare = VK_COMPARE_OP_LESS_OR_EQUAL;
   bool depthBias = false;  // dynamic state: set with vkCmdSetDepthBias
+  SpecConstants specialization;  // constant_id i = specialization[i], vertex and fragment stage
   std::string name;
 };
 

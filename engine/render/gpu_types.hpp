@@ -36,4 +36,10 @@ struct LightGpu {  // lights.glsl: Light
 };
 static_assert(sizeof(LightGpu) == 5 * 16);
 
+// Capacity of the lighting and debug-view passes' uniform blocks (lights.glsl: kMaxLights,
+// kMaxShadowLayers); the frame's light and shadow-matrix buffers are padded to it. A frame with
+// more is an error (Renderer::writeFrameData), not a silent cut.
+inline constexpr std::uint32_t kMaxLights = 128;
+inline constexpr std::uint32_t kMaxShadowLayers = 192;
+
 }  // namespace bounce::render

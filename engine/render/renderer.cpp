@@ -102,10 +102,18 @@ void Renderer::writeFrameData(std::uint32_t slot, const RenderWorld& world, Pass
   fill(ctx_, b.instances, world.instances, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "frame.instances");
   std::vector<LightGpu> lights = world.lights;
   if (!world.has("direct")) lights.clear();  // no direct lighting asked for: emission only
-  fill(ctx_, b.lights, lights, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "frame.lights");
-  std::vector<glm::mat4> matrices;
-  for (const auto& layer : world.shadowLayers) matrices.push_back(layer.viewProj);
-  fill(ctx_, b.shadowMatrices, matrices, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "frame.shadow-matrices");
+  if (lights.size() > kMaxLights || world.shadowLayers.size() > kMaxShadowLayers)
+    throw InternalError("renderer: " + std::to_string(lights.size()) + " lights and " +
+                        std::to_string(world.shadowLayers.size()) + " shadow layers (the lighting pass holds at most " +
+                        std::to_string(kMaxLights) + " and " + std::to_string(kMaxShadowLayers) + ")");
+  const std::uint32_t lightCount = static_cast<std::uint32_t>(lights.size());
+  // Padded to the uniform blocks' size (gpu_types.hpp); storage-buffer readers index below the count.
+  lights.resize(kMaxLights);
+  constexpr VkBufferUsageFlags kBoth = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT;
+  fill(ctx_, b.lights, lights, kBoth, "frame.lights");
+  std::vector<glm::mat4> matrices(kMaxShadowLayers, glm::mat4(0.0f));
+  for (std::size_t i = 0; i < world.shadowLayers.size(); ++i) matrices[i] = world.shadowLayers[i].viewProj;
+  fill(ctx_, b.shadowMatrices, matrices, kBoth, "frame.shadow-matrices");
   fill(ctx_, b.posedVertices, world.posedVertices, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
        "frame.posed-vertices");
   fill(ctx_, b.jointMatrices, world.jointMatrices, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "frame.joint-matrices");
@@ -121,7 +129,7 @@ void Renderer::writeFrameData(std::uint32_t slot, const RenderWorld& world, Pass
       .buffer(2, b.shadowMatrices)
       .update(ctx_, pc.frameSet);
   pc.lights = &b.lights;
-  pc.lightCount = static_cast<std::uint32_t>(lights.size());
+  pc.lightCount = lightCount;
   pc.shadowMatrices = &b.shadowMatrices;
 }
 

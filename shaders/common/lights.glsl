@@ -4,6 +4,12 @@
 #ifndef BOUNCE_LIGHTS_GLSL
 #define BOUNCE_LIGHTS_GLSL
 
+// Capacity of the lighting pass's uniform blocks (engine/render/gpu_types.hpp kMaxLights,
+// kMaxShadowLayers): lights and shadow matrices are read from UBOs there, which llvmpipe reads
+// without the per-lane bounds-checked loads of storage buffers.
+const uint kMaxLights = 128u;
+const uint kMaxShadowLayers = 192u;
+
 const uint kLightDirectional = 0u;
 const uint kLightPoint = 1u;
 const uint kLightSpot = 2u;

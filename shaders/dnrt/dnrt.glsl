@@ -3,23 +3,24 @@
 //   L_DNRT(r) = ρ_r (n_o·n_r)₊ · s(r) · Σ_j c_j M_j(r)      per RGB channel
 // (Eq. 16's "+" after (n_o·n_r) is the clamp subscript of a product, as Eq. 9 and Listing 2 show).
 // M_j: trilinear 3D-texture fetch at r's offset from o in units of R, clamped to the inner cube
-// (CLAMP_TO_EDGE does it, as Listing 2 notes), decoded lo + (hi − lo)·unorm per slot (Table 2).
+// (CLAMP_TO_EDGE does it, as Listing 2 notes), decoded lo + (hi − lo)·unorm per slot (Table 2);
+// the decode and the c_j product are folded into Σ_j c_j M_j = a + Σ_slot dot(k_slot, unorm_slot).
 // s(r): §5.2.2 fall-off over the outer shell, 1 at the inner cube and 0 at the outer one.
 #ifndef BOUNCE_DNRT_GLSL
 #define BOUNCE_DNRT_GLSL
 
-// engine/gi/dnrt/node.hpp: DnrtObjectGpu (std430).
+// engine/gi/dnrt/gpu_object.hpp: DnrtShaderObject (std430), folded from the per-object record on
+// the CPU (fold()) so a pixel does the least arithmetic. Read once per vertex in dnrt.vert and handed
+// to the fragment shader as flat varyings: llvmpipe reads every SSBO scalar per lane with a bounds
+// check, so a per-pixel copy of the record cost ~60 % of the pass (README "What costs what").
 struct DnrtObject {
-  mat4 worldToLocal;  // world → object local frame (the baked mesh's metres)
   mat4 boxToWorld;    // unit cube [-1, 1]³ → the world-space outer cube (box raster mode)
+  vec4 worldToQ[3];   // rows of the affine map r ↦ q = (worldToLocal·r − o_local) / R_local
   vec4 centreWorld;   // xyz o in world space, w R in world space
-  vec4 centreLocal;   // xyz o in the local frame, w R in the local frame
   vec4 extents;       // x inner, y outer (units of R), z SH count (4 or 9), w grid N
-  vec4 c[9];          // rgb: irradiance SH c_j at o, rotated into the local frame
-  vec4 lo[7];         // per texture, per component: decoded value of byte 0
-  vec4 hi[7];         // … of byte 255
-  uvec4 ids;          // x: entity index + 1 of the object (gbuffer.entity's encoding), 0 = none;
-                      // y: 1 when the intrusion map applies (§5.2.3)
+  vec4 k[7];          // per texture slot and component: (hi − lo)·c_j of that slot's channel (Table 2)
+  vec4 a;             // rgb: Σ lo·c_j per channel, so Σ_j c_j M_j = a + Σ_slots dot(k, texel)
+  uvec4 ids;          // x: entity index + 1 of the object (gbuffer.entity's encoding), 0 = none
 };
 
 float dnrtFalloff(vec3 q, float inner, float outer) {

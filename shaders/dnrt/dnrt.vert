@@ -3,25 +3,43 @@
 // DNRT box mode: one object's outer cube, so the fragment shader runs only on covered pixels.
 // 36 vertices from gl_VertexIndex (12 triangles, outward CCW); the pipeline culls FRONT faces and
 // has no depth test, so every covered pixel runs once, camera inside the cube or not.
+// kFullScreen (the paper's mode): one full-screen triangle per object instead.
+// Either way the object's record is read here, once per vertex, and reaches dnrt.frag as flat
+// varyings (dnrt.glsl explains why).
 #include "frame.glsl"
 #include "dnrt/dnrt.glsl"
 
+layout(constant_id = 2) const bool kFullScreen = false;
+
 layout(set = 0, binding = 0) uniform FrameUbo { Camera camera; };
 layout(std430, set = 1, binding = 3) readonly buffer Objects { DnrtObject objects[]; };
-layout(push_constant) uniform Push { uint object; uint fullScreen; } pc;
+layout(push_constant) uniform Push { uint object; } pc;
+
+layout(location = 0) flat out vec4 outWorldToQ[3];
+layout(location = 3) flat out vec4 outCentreWorld;
+layout(location = 4) flat out vec4 outExtents;
+layout(location = 5) flat out vec4 outK[7];
+layout(location = 12) flat out vec4 outA;
+layout(location = 13) flat out uint outSelf;
 
 const int kFaces[6][4] = int[6][4](int[4](1, 3, 7, 5), int[4](0, 4, 6, 2), int[4](2, 6, 7, 3),
                                    int[4](0, 1, 5, 4), int[4](4, 5, 7, 6), int[4](0, 2, 3, 1));
 const int kQuad[6] = int[6](0, 1, 2, 0, 2, 3);
 
 void main() {
-  if (pc.fullScreen != 0u) {
-    // The paper's mode: one full-screen triangle per object.
+  DnrtObject ob = objects[pc.object];
+  outWorldToQ = ob.worldToQ;
+  outCentreWorld = ob.centreWorld;
+  outExtents = ob.extents;
+  outK = ob.k;
+  outA = ob.a;
+  outSelf = ob.ids.x;
+  if (kFullScreen) {
     vec2 uv = vec2((gl_VertexIndex << 1) & 2, gl_VertexIndex & 2);
-    gl_Position = gl_VertexIndex < 3 ? vec4(uv * 2.0 - 1.0, 0.0, 1.0) : vec4(0.0);
+    gl_Position = vec4(uv * 2.0 - 1.0, 0.0, 1.0);
     return;
   }
   int corner = kFaces[gl_VertexIndex / 6][kQuad[gl_VertexIndex % 6]];
   vec3 p = vec3(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1) * 2.0 - 1.0;
-  gl_Position = camera.viewProj * (objects[pc.object].boxToWorld * vec4(p, 1.0));
+  gl_Position = camera.viewProj * (ob.boxToWorld * vec4(p, 1.0));
 }

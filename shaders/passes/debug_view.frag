@@ -13,9 +13,11 @@ layout(set = 1, binding = 1) uniform sampler2D gNormal;
 layout(set = 1, binding = 2) uniform usampler2D gEntity;
 layout(set = 1, binding = 3) uniform sampler2D gDepth;
 layout(set = 1, binding = 4) uniform sampler2DArrayShadow shadowAtlas;
-layout(std430, set = 1, binding = 5) readonly buffer ShadowMatrices { mat4 shadowMatrices[]; };
+#include "lights.glsl"
+// Uniform blocks, not storage buffers (lights.glsl kMaxLights says why).
+layout(std140, set = 1, binding = 5) uniform ShadowMatrices { mat4 shadowMatrices[kMaxShadowLayers]; };
 #include "shadow.glsl"
-layout(std430, set = 1, binding = 6) readonly buffer Lights { Light lights[]; };
+layout(std140, set = 1, binding = 6) uniform Lights { Light lights[kMaxLights]; };
 
 layout(push_constant) uniform Push { uint mode; uint lightCount; float depthMin; float depthMax; } pc;
 layout(location = 0) in vec2 inUv;

@@ -12,9 +12,11 @@ layout(set = 1, binding = 1) uniform sampler2D gNormal;
 layout(set = 1, binding = 2) uniform sampler2D gEmissive;
 layout(set = 1, binding = 3) uniform sampler2D gDepth;
 layout(set = 1, binding = 4) uniform sampler2DArrayShadow shadowAtlas;
-layout(std430, set = 1, binding = 5) readonly buffer ShadowMatrices { mat4 shadowMatrices[]; };
+#include "lights.glsl"
+// Uniform blocks, not storage buffers (lights.glsl kMaxLights says why).
+layout(std140, set = 1, binding = 5) uniform ShadowMatrices { mat4 shadowMatrices[kMaxShadowLayers]; };
 #include "shadow.glsl"
-layout(std430, set = 1, binding = 6) readonly buffer Lights { Light lights[]; };
+layout(std140, set = 1, binding = 6) uniform Lights { Light lights[kMaxLights]; };
 
 layout(push_constant) uniform Push {
   vec4 background;  // rgb radiance where nothing was drawn

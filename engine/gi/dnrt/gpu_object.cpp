@@ -29,4 +29,33 @@ DnrtObjectGpu packObject(const Field& field, const glm::mat4& world, const std::
   return g;
 }
 
+DnrtShaderObject fold(const DnrtObjectGpu& g) {
+  DnrtShaderObject f;
+  f.boxToWorld = g.boxToWorld;
+  // q = (worldToLocal·r − o_local) / R_local as one affine map; its rows are what the shader dots.
+  glm::mat4 toQ = g.worldToLocal;
+  toQ[3] -= glm::vec4(glm::vec3(g.centreLocal), 0.0f);
+  toQ = glm::mat4(1.0f / g.centreLocal.w) * toQ;
+  toQ[3][3] = 1.0f;  // the scale above applies to xyz rows only
+  for (int row = 0; row < 3; ++row) f.worldToQ[row] = glm::vec4(toQ[0][row], toQ[1][row], toQ[2][row], toQ[3][row]);
+  f.centreWorld = g.centreWorld;
+  f.extents = g.extents;
+  f.ids = g.ids;
+  // Slot t, component i holds SH j of channel ch (Table 2).
+  for (int t = 0; t < 7; ++t)
+    for (int i = 0; i < 4; ++i) {
+      int j = 0, ch = 0;
+      if (t < 6) {
+        j = (t < 3 ? 0 : 4) + i, ch = t % 3;
+      } else {
+        if (i == 3) continue;  // slot 6's alpha is unused
+        j = 8, ch = i;
+      }
+      const float c = g.c[j][ch];
+      f.k[t][i] = (g.hi[t][i] - g.lo[t][i]) * c;
+      f.a[ch] += g.lo[t][i] * c;
+    }
+  return f;
+}
+
 }  // namespace bounce::gi::dnrt

@@ -1,6 +1,8 @@
 #pragma once
-// Per-object data of the DNRT shader (shaders/dnrt/dnrt.glsl: DnrtObject, std430), filled on the
-// CPU each frame (§5.2.1): placement, c_j rotated into the object's frame, the field's ranges.
+// Per-object data of the DNRT shader, filled on the CPU each frame (§5.2.1): the record
+// (DnrtObjectGpu: placement, c_j rotated into the object's frame, the field's ranges, in the paper's
+// terms) and what the shader reads (DnrtShaderObject = fold(record): the same data with the decode
+// and c_j product folded into per-channel k and a, shaders/dnrt/dnrt.glsl: DnrtObject, std430).
 #include <array>
 #include <cstdint>
 
@@ -11,7 +13,7 @@
 
 namespace bounce::gi::dnrt {
 
-struct DnrtObjectGpu {
+struct DnrtObjectGpu {  // the record; the node folds it (fold()) before upload
   glm::mat4 worldToLocal{1.0f};
   glm::mat4 boxToWorld{1.0f};  // unit cube [-1, 1]³ → world outer cube
   glm::vec4 centreWorld{0.0f};  // w: R in world units
@@ -22,7 +24,23 @@ struct DnrtObjectGpu {
   glm::vec4 hi[7]{};
   glm::uvec4 ids{0u};  // x: the object's entity index + 1 (its own pixels are skipped; 0 = none)
 };
-static_assert(sizeof(DnrtObjectGpu) == 560, "must match DnrtObject in shaders/dnrt/dnrt.glsl (std430)");
+
+// shaders/dnrt/dnrt.glsl: DnrtObject (std430). The shader computes Σ_j c_j M_j per channel as
+// a + Σ_slot dot(k_slot, unorm texel_slot), exactly Σ_j c_j (lo + (hi − lo)·unorm) regrouped.
+struct DnrtShaderObject {
+  glm::mat4 boxToWorld{1.0f};
+  glm::vec4 worldToQ[3]{};  // rows of r ↦ q = (worldToLocal·r − o_local) / R_local (units of R)
+  glm::vec4 centreWorld{0.0f};  // w: R in world units
+  glm::vec4 extents{0.0f};      // inner, outer, SH count, grid N
+  glm::vec4 k[7]{};             // slot t, component i: (hi − lo)[t][i] · c of that slot's channel
+  glm::vec4 a{0.0f};            // rgb: Σ lo·c per channel
+  glm::uvec4 ids{0u};           // x: the object's entity index + 1 (0 = none)
+};
+static_assert(sizeof(DnrtShaderObject) == 288, "must match DnrtObject in shaders/dnrt/dnrt.glsl (std430)");
+
+// The record folded for the shader (Table 2's slot layout: slots 0..2 hold m_0..3 of R, G, B,
+// slots 3..5 m_4..7 of R, G, B, slot 6 m_8 of R, G, B in its rgb).
+DnrtShaderObject fold(const DnrtObjectGpu& record);
 
 // `world`: the object's local → world matrix; `worldRadianceSH`: radiance SH at o (world axes), e.g.
 // IrradianceSource::radianceSH(placement centre). Convolves to irradiance and rotates into the

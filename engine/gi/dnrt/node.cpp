@@ -18,7 +18,6 @@ constexpr VkFormat kHdrFormat = VK_FORMAT_R16G16B16A16_SFLOAT;  // "lighting.hdr
 
 struct Push {
   std::uint32_t object = 0;
-  std::uint32_t fullScreen = 0;
 };
 
 struct CubePush {
@@ -68,18 +67,8 @@ Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t fra
       cubeLayout_(ctx, {shared.frameLayout.handle()}, {VkPushConstantRange{VK_SHADER_STAGE_ALL, 0, sizeof(CubePush)}},
                   "dnrt.cube"),
       objectBuffers_(framesInFlight) {
-  gpu::ShaderModule vert(ctx, "dnrt/dnrt.vert.spv"), frag(ctx, "dnrt/dnrt.frag.spv");
-  gpu::GraphicsPipelineDesc d;
-  d.vertex = &vert;
-  d.fragment = &frag;
-  d.colorFormats = {kHdrFormat};
-  d.blend = gpu::Blend::Additive;
-  d.cull = VK_CULL_MODE_FRONT_BIT;  // back faces of the cube: each covered pixel once, inside or out
-  d.name = "dnrt.box";
-  box_ = gpu::createGraphicsPipeline(ctx, layout_, d);
-  d.cull = VK_CULL_MODE_NONE;
-  d.name = "dnrt.fullscreen";
-  fullScreen_ = gpu::createGraphicsPipeline(ctx, layout_, d);
+  vert_ = gpu::ShaderModule(ctx, "dnrt/dnrt.vert.spv");
+  frag_ = gpu::ShaderModule(ctx, "dnrt/dnrt.frag.spv");
 
   gpu::ShaderModule cubeVert(ctx, "dnrt/cube_depth.vert.spv"), cubeFrag(ctx, "dnrt/cube_depth.frag.spv");
   gpu::GraphicsPipelineDesc c;
@@ -102,6 +91,24 @@ Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t fra
   noIntrusion_ = std::make_unique<gpu::Image>(ctx, none);
   const float far[6] = {1e30f, 1e30f, 1e30f, 1e30f, 1e30f, 1e30f};
   gpu::upload(ctx, *noIntrusion_, {reinterpret_cast<const std::uint8_t*>(far), sizeof far});
+}
+
+const gpu::Pipeline& Node::pipeline(const Variant& v) {
+  const int key = (v.sh9 ? 1 : 0) | (v.intrusion ? 2 : 0) | (v.fullScreen ? 4 : 0);
+  gpu::Pipeline& p = variants_[std::size_t(key)];
+  if (p.handle()) return p;
+  gpu::GraphicsPipelineDesc d;
+  d.vertex = &vert_;
+  d.fragment = &frag_;
+  d.colorFormats = {kHdrFormat};
+  d.blend = gpu::Blend::Additive;
+  // Box: back faces of the cube, each covered pixel once, inside or out. Full screen: one triangle.
+  d.cull = v.fullScreen ? VK_CULL_MODE_NONE : VK_CULL_MODE_FRONT_BIT;
+  d.specialization = {v.sh9 ? 1u : 0u, v.intrusion ? 1u : 0u, v.fullScreen ? 1u : 0u};  // dnrt.frag/.vert ids 0..2
+  d.name = std::string("dnrt.") + (v.fullScreen ? "fullscreen" : "box") + (v.sh9 ? ".sh9" : ".sh4") +
+           (v.intrusion ? ".intrusion" : "");
+  p = gpu::createGraphicsPipeline(ctx_, layout_, d);
+  return p;
 }
 
 void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::vector<NodeObject> objects,
@@ -184,11 +191,13 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
         VkCommandBuffer cmd = pc->cmd(c);
         // This slot's object records (the ring waited for the slot's fence before the frame began).
         gpu::Buffer& buffer = objectBuffers_[pc->frame().slot % objectBuffers_.size()];
-        const VkDeviceSize bytes = objects.size() * sizeof(DnrtObjectGpu);
+        const VkDeviceSize bytes = objects.size() * sizeof(DnrtShaderObject);
         if (!buffer || buffer.size() < bytes)
           buffer = gpu::Buffer(ctx_, {bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::Upload, "dnrt.objects"});
-        for (std::size_t i = 0; i < objects.size(); ++i)
-          std::memcpy(buffer.mapped() + i * sizeof(DnrtObjectGpu), &objects[i].data, sizeof(DnrtObjectGpu));
+        for (std::size_t i = 0; i < objects.size(); ++i) {
+          const DnrtShaderObject folded = fold(objects[i].data);
+          std::memcpy(buffer.mapped() + i * sizeof(DnrtShaderObject), &folded, sizeof(DnrtShaderObject));
+        }
 
         VkSampler point = pc->samplers->get({VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST});
         VkSampler linear = pc->samplers->get({VK_FILTER_LINEAR, VK_SAMPLER_MIPMAP_MODE_NEAREST});
@@ -210,8 +219,8 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
         const gpu::Pipeline* bound = nullptr;
         for (std::size_t i = 0; i < objects.size(); ++i) {
           const bool full = settings.fullScreen || objects[i].fullScreen;
-          const gpu::Pipeline& p = full ? fullScreen_ : box_;
-          if (bound != &p) {  // bind on a change of mode (per object: the level's "mode")
+          const gpu::Pipeline& p = pipeline({objects[i].data.extents.z > 4.5f, objects[i].intrusion, full});
+          if (bound != &p) {  // bind on a change of variant (per object: SH count, intrusion, "mode")
             p.bind(cmd);
             p.bindSet(cmd, 0, pc->frameSet);
             p.bindSet(cmd, 1, inputs);
@@ -224,7 +233,7 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
           w.sampledImage(7, pc->frameView(map, VK_IMAGE_VIEW_TYPE_2D_ARRAY, 0, 6), point);
           w.update(ctx_, fieldSet);
           p.bindSet(cmd, 2, fieldSet);
-          p.push(cmd, Push{std::uint32_t(i), full ? 1u : 0u});
+          p.push(cmd, Push{std::uint32_t(i)});
           if (ts) ts->begin(cmd, "dnrt/" + objects[i].name);
           vkCmdDraw(cmd, full ? 3 : 36, 1, 0, 0);
           if (ts) ts->end(cmd);

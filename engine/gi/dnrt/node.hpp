@@ -68,10 +68,18 @@ class Node {
              NodeSettings settings = {});
 
  private:
+  // A shader variant: specialization constants of dnrt.vert/.frag (one pipeline each, made on first use).
+  struct Variant {
+    bool sh9 = false, intrusion = false, fullScreen = false;
+  };
+  const gpu::Pipeline& pipeline(const Variant& v);
+
   gpu::Context& ctx_;
   gpu::DescriptorSetLayout inputLayout_, fieldLayout_;
   gpu::PipelineLayout layout_, cubeLayout_;
-  gpu::Pipeline box_, fullScreen_, cube_;
+  gpu::ShaderModule vert_, frag_;
+  std::array<gpu::Pipeline, 8> variants_;  // index: sh9 | intrusion << 1 | fullScreen << 2
+  gpu::Pipeline cube_;
   std::unique_ptr<gpu::Image> noIntrusion_;  // 1×1×6 R32F "nothing nearer than 1e30 m"
   std::vector<gpu::Buffer> objectBuffers_;  // per frame slot, DnrtObjectGpu[]
 };

@@ -1,20 +1,56 @@
 #include "engine/gi/probes/node.hpp"
 
+#include "engine/core/error.hpp"
 #include "engine/gpu/commands.hpp"
 #include "engine/render/passes/rendering.hpp"
 
 namespace bounce::gi::probes {
 namespace {
 
-template <class T>
-gpu::Buffer uploadBuffer(gpu::Context& ctx, const std::vector<T>& data, const char* name) {
-  // At least one element: a zero-sized binding is invalid.
-  const VkDeviceSize bytes = std::max<VkDeviceSize>(sizeof(T), data.size() * sizeof(T));
-  gpu::Buffer b(ctx, {bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                      gpu::MemoryUsage::GpuOnly, name});
-  if (!data.empty())
-    gpu::upload(ctx, b, {reinterpret_cast<const std::uint8_t*>(data.data()), data.size() * sizeof(T)});
-  return b;
+// Probe p = x + count.x·row of the volume in texel row `row`, `slots` texels per probe in that row
+// (probes.frag probeTexel). Throws when the layout exceeds the device's 2D image size.
+gpu::ImageDesc probeImageDesc(gpu::Context& ctx, const ProbeGrid& g, std::uint32_t slots, VkFormat format,
+                              const char* name) {
+  gpu::ImageDesc d;
+  d.format = format;
+  d.width = slots * std::uint32_t(g.count.x);
+  d.height = std::uint32_t(g.count.y) * std::uint32_t(g.count.z);
+  d.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+  d.name = name;
+  const std::uint32_t limit = ctx.limits().maxImageDimension2D;
+  if (d.width > limit || d.height > limit)
+    throw InternalError(std::string("probes: ") + name + " image " + std::to_string(d.width) + "x" +
+                        std::to_string(d.height) + " exceeds the device's " + std::to_string(limit) +
+                        " (fewer probes per axis: a larger spacing)");
+  return d;
+}
+
+// SH texels per probe: 3 floats a coefficient, then the valid flag, 4 floats a texel (probes.frag kTexels).
+std::uint32_t shTexels(const ProbeVolume& v) { return std::uint32_t(3 * v.coeffs() + 4) / 4; }
+
+// SH texels (t + shTexels·x, row), packing L_0.rgb, L_1.rgb, …, valid, as probes.frag reads them.
+std::unique_ptr<gpu::Image> uploadSh(gpu::Context& ctx, const ProbeVolume& v) {
+  const std::uint32_t texels = shTexels(v);
+  auto image = std::make_unique<gpu::Image>(ctx, probeImageDesc(ctx, v.grid, texels, VK_FORMAT_R32G32B32A32_SFLOAT, "probes.sh"));
+  const std::size_t probes = v.grid.probeCount(), coeffs = std::size_t(v.coeffs()), stride = 4 * texels;
+  std::vector<float> floats(probes * stride, 0.0f);  // probe-major = the row-major image layout
+  for (std::size_t p = 0; p < probes; ++p) {
+    float* out = floats.data() + p * stride;
+    for (std::size_t i = 0; i < coeffs; ++i)
+      for (int ch = 0; ch < 3; ++ch) out[3 * i + std::size_t(ch)] = v.sh[p * coeffs + i][ch];
+    out[3 * coeffs] = v.valid[p] != 0 ? 1.0f : 0.0f;
+  }
+  gpu::upload(ctx, *image, {reinterpret_cast<const std::uint8_t*>(floats.data()), floats.size() * sizeof(float)});
+  return image;
+}
+
+// Moments texels (bin + kVisBins·x, row) = (mean, mean square).
+std::unique_ptr<gpu::Image> uploadMoments(gpu::Context& ctx, const ProbeVolume& v) {
+  auto image = std::make_unique<gpu::Image>(
+      ctx, probeImageDesc(ctx, v.grid, std::uint32_t(kVisBins), VK_FORMAT_R32G32_SFLOAT, "probes.moments"));
+  static_assert(sizeof(glm::vec2) == 8, "RG32F texels");
+  gpu::upload(ctx, *image, {reinterpret_cast<const std::uint8_t*>(v.moments.data()), v.moments.size() * sizeof(glm::vec2)});
+  return image;
 }
 
 struct Push {
@@ -27,19 +63,16 @@ struct Push {
 
 ProbeNode::ProbeNode(gpu::Context& ctx, const render::Pipelines& pipelines, ProbeVolume volume)
     : volume_(std::move(volume)),
-      sh_(uploadBuffer(ctx, volume_.sh, "probes.sh")),
-      moments_(uploadBuffer(ctx, volume_.moments, "probes.moments")),
-      valid_(uploadBuffer(ctx, volume_.valid, "probes.valid")),
+      sh_(uploadSh(ctx, volume_)),
+      moments_(uploadMoments(ctx, volume_)),
       setLayout_(ctx,
                  {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                   {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                   {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-                  {3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                  {4, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                  {5, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                  {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+                  {4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                   {6, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}},
                  "probes") {
-  static_assert(sizeof(glm::vec3) == 12 && sizeof(glm::vec2) == 8, "std430 float[] / vec2[] layouts");
   layout_ = gpu::PipelineLayout(ctx, {pipelines.frameLayout.handle(), setLayout_.handle()},
                                 {{VK_SHADER_STAGE_ALL, 0, sizeof(Push)}}, "probes");
   gpu::ShaderModule vert(ctx, "passes/fullscreen.vert.spv");
@@ -49,6 +82,7 @@ ProbeNode::ProbeNode(gpu::Context& ctx, const render::Pipelines& pipelines, Prob
   d.fragment = &frag;
   d.colorFormats = {VK_FORMAT_R16G16B16A16_SFLOAT};
   d.blend = gpu::Blend::Additive;
+  d.specialization = {std::uint32_t(volume_.coeffs())};  // probes.frag kCoeffs
   d.name = "probes";
   pipeline_ = gpu::createGraphicsPipeline(ctx, layout_, d);
 }
@@ -80,9 +114,8 @@ void ProbeNode::addPasses(rg::RenderGraph& graph, const render::PassContext* pc)
             .sampledImage(0, view(d.albedo), point)
             .sampledImage(1, view(d.normal), point)
             .sampledImage(2, view(d.depth), point)
-            .buffer(3, sh_)
-            .buffer(4, moments_)
-            .buffer(5, valid_)
+            .sampledImage(3, sh_->view(), point)
+            .sampledImage(4, moments_->view(), point)
             .sampledImage(6, view(withAo ? d.ao : d.albedo), point)
             .update(*pc->gpu, set);
         gpu::Image& target = pc->backend->image(res.texture(d.hdr));

@@ -1,13 +1,15 @@
 #pragma once
 // The probes node (pass `probes`): per-pixel static indirect diffuse from the baked volume for
 // every drawn surface, static or dynamic, added to "lighting.hdr" (shaders/probes/probes.frag).
-// The volume is uploaded once, as three storage buffers (SH, visibility moments, valid flags).
+// The volume is uploaded once, as two images read with texelFetch (SH with the valid flag,
+// visibility moments): storage-buffer reads are what made this pass slow on lavapipe.
 #include <memory>
 
 #include "engine/gi/probes/probe_volume.hpp"
 #include "engine/gi/technique.hpp"
 #include "engine/gpu/buffer.hpp"
 #include "engine/gpu/descriptors.hpp"
+#include "engine/gpu/image.hpp"
 #include "engine/gpu/pipeline.hpp"
 #include "engine/render/renderer.hpp"
 
@@ -28,7 +30,7 @@ class ProbeNode final : public TechniqueRuntime {
 
  private:
   ProbeVolume volume_;
-  gpu::Buffer sh_, moments_, valid_;
+  std::unique_ptr<gpu::Image> sh_, moments_;
   gpu::DescriptorSetLayout setLayout_;
   gpu::PipelineLayout layout_;
   gpu::Pipeline pipeline_;

@@ -21,8 +21,8 @@ VkDescriptorSet writeGBufferSet(const PassContext* pc, const rg::PassResources& 
       .sampledImage(2, view(entityInsteadOfEmissive ? g.entity : g.emissive), point)
       .sampledImage(3, view(g.depth), point)
       .sampledImage(4, atlasView, compare)
-      .buffer(5, *pc->shadowMatrices)
-      .buffer(6, *pc->lights);
+      .buffer(5, *pc->shadowMatrices, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 0, kMaxShadowLayers * sizeof(glm::mat4))
+      .buffer(6, *pc->lights, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 0, kMaxLights * sizeof(LightGpu));
   w.update(*pc->gpu, set);
   return set;
 }

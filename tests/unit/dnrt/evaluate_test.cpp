@@ -175,3 +175,59 @@ TEST(DnrtEvaluate, GpuRecordMatchesPlacement) {
 
 }  // namespace
 }  // namespace bounce::gi::dnrt
+
+namespace bounce::gi::dnrt {
+namespace {
+
+// What the shader reads (fold) is the record regrouped: q from the folded rows equals
+// (worldToLocal·r − o_local)/R_local, and a + Σ_slot dot(k, t) equals Σ_j c_j (lo + (hi − lo)·t)
+// per channel for any unorm texels t (Table 2's slot layout), 9 SH and 4 SH.
+TEST(DnrtEvaluate, FoldedShaderRecordRegroupsTheRecord) {
+  const BakeResult& r = twoTone();
+  const glm::quat rot = glm::angleAxis(-1.3f, glm::normalize(glm::vec3(0.2f, 1, -0.7f)));
+  const glm::mat4 world = glm::translate(glm::mat4(1.0f), glm::vec3(-1, 2, 0.5f)) * glm::mat4_cast(rot) *
+                          glm::scale(glm::mat4(1.0f), glm::vec3(2.0f));
+  for (const int shCount : {9, 4}) {
+    DnrtObjectGpu g = packObject(r.field, world, skyRadiance(), 41);
+    if (shCount == 4)
+      for (int j = 4; j < 9; ++j) g.c[j] = glm::vec4(0.0f);  // packObject's 4-SH record
+    const DnrtShaderObject f = fold(g);
+    EXPECT_EQ(f.ids.x, 42u);
+    EXPECT_EQ(f.extents, g.extents);
+    EXPECT_EQ(f.boxToWorld, g.boxToWorld);
+    for (const glm::vec3 p : {glm::vec3(0.0f), glm::vec3(1.5f, -2.0f, 0.25f), glm::vec3(-3, 1, 4)}) {
+      const glm::vec4 p4(p, 1.0f);
+      const glm::vec3 expected = (glm::vec3(g.worldToLocal * p4) - glm::vec3(g.centreLocal)) / g.centreLocal.w;
+      const glm::vec3 got(glm::dot(f.worldToQ[0], p4), glm::dot(f.worldToQ[1], p4), glm::dot(f.worldToQ[2], p4));
+      EXPECT_LT(glm::length(got - expected), kRelTol * (1.0f + glm::length(expected))) << shCount;
+    }
+    std::uint32_t seed = 12345u;
+    const auto unorm = [&] { return float((seed = seed * 1664525u + 1013904223u) >> 24) / 255.0f; };
+    for (int trial = 0; trial < 20; ++trial) {
+      glm::vec4 t[7];
+      for (auto& v : t) v = glm::vec4(unorm(), unorm(), unorm(), unorm());
+      // The record's decode, slot by slot (Table 2), then Σ_j c_j M_j per channel.
+      glm::vec4 m[7];
+      for (int s = 0; s < 7; ++s) m[s] = g.lo[s] + (g.hi[s] - g.lo[s]) * t[s];
+      glm::vec3 expected(0.0f), got(f.a);
+      for (int ch = 0; ch < 3; ++ch) {
+        for (int i = 0; i < 4; ++i) expected[ch] += g.c[i][ch] * m[ch][i] + g.c[4 + i][ch] * m[3 + ch][i];
+        expected[ch] += g.c[8][ch] * m[6][ch];
+      }
+      got += glm::vec3(glm::dot(f.k[0], t[0]), glm::dot(f.k[1], t[1]), glm::dot(f.k[2], t[2]));
+      got += glm::vec3(glm::dot(f.k[3], t[3]), glm::dot(f.k[4], t[4]), glm::dot(f.k[5], t[5]));
+      got += glm::vec3(f.k[6]) * glm::vec3(t[6]);
+      float scale = 0.0f;  // Σ |c·lo| + |c·hi|: the size of the terms that cancel
+      for (int s = 0; s < 7; ++s) scale += glm::length(g.lo[s]) + glm::length(g.hi[s]);
+      float cmax = 0.0f;
+      for (int j = 0; j < 9; ++j) cmax = std::max(cmax, glm::length(glm::vec3(g.c[j])));
+      EXPECT_LT(glm::length(got - expected), kRelTol * scale * cmax) << "SH " << shCount << " trial " << trial;
+      if (shCount == 4) {
+        for (int s = 3; s < 7; ++s) EXPECT_EQ(f.k[s], glm::vec4(0.0f)) << "4 SH: slots 3..6 never count";
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace bounce::gi::dnrt

@@ -55,6 +55,38 @@ TEST(Compute, FillsAStorageBufferWithAFormula) {
   }
 }
 
+// constant_id i takes SpecConstants[i]; no constants keeps the shader's defaults; one module, two
+// pipelines, two results (the mechanism technique variants use instead of runtime branches).
+TEST(Compute, SpecializationConstantsSelectTheVariant) {
+  Context& ctx = testkit::sharedContext();
+  DescriptorSetLayout setLayout(ctx, {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT}}, "spec");
+  PipelineLayout layout(ctx, {setLayout.handle()}, {}, "spec");
+  ShaderModule shader(ctx, "test/spec.comp.spv");
+  DescriptorAllocator descriptors(ctx);
+  const auto run = [&](const SpecConstants& constants) {
+    Buffer out(ctx, {64 * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                     MemoryUsage::GpuOnly, "spec out"});
+    Pipeline pipeline = createComputePipeline(ctx, layout, shader, "spec", nullptr, constants);
+    VkDescriptorSet set = descriptors.allocate(setLayout);
+    DescriptorWriter().buffer(0, out).update(ctx, set);
+    submitAndWait(ctx, [&](VkCommandBuffer cmd) {
+      pipeline.bind(cmd);
+      pipeline.bindSet(cmd, 0, set);
+      vkCmdDispatch(cmd, 1, 1, 1);
+    });
+    auto bytes = readback(ctx, out);
+    std::vector<float> v(64);
+    std::memcpy(v.data(), bytes.data(), bytes.size());
+    return v;
+  };
+  const std::vector<float> plain = run({}), varied = run({5u, 1u}), addOnly = run({7u});
+  for (std::uint32_t i = 0; i < 64; ++i) {
+    ASSERT_EQ(plain[i], float(i)) << "element " << i;
+    ASSERT_EQ(varied[i], -float(i + 5)) << "element " << i;
+    ASSERT_EQ(addOnly[i], float(i + 7)) << "element " << i;
+  }
+}
+
 TEST(Compute, MissingShaderFileIsNamed) {
   Context& ctx = testkit::sharedContext();
   try {
