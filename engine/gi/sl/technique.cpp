@@ -236,13 +236,28 @@ SessionRuntime::SessionRuntime(ecs::Registry& registry, const std::filesystem::p
     participants_.push_back(std::move(p));
   }
   update(FrameUpdate{registry, 0.0});
+  updateMs_.clear();
 }
 
 void SessionRuntime::update(const FrameUpdate& frame) {
+  const auto start = std::chrono::steady_clock::now();
   for (Participant& p : participants_) {
     const auto* world = frame.registry.tryGet<scene::WorldTransform>(p.entity);
     p.poser->pose(world ? world->matrix : glm::mat4(1.0f), frame.registry.tryGet<anim::Pose>(p.entity), p.spheres);
   }
+  updateMs_.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+}
+
+std::vector<std::string> SessionRuntime::profileLines() const {
+  if (updateMs_.empty()) return {};
+  std::vector<double> sorted = updateMs_;
+  std::sort(sorted.begin(), sorted.end());
+  std::size_t spheres = 0;
+  for (const auto& p : participants_) spheres += p.spheres.size();
+  char text[256];
+  std::snprintf(text, sizeof text, "sl update: %zu spheres on %zu entities, CPU median %.3f ms over %zu frames (§7.1 poses)",
+                spheres, participants_.size(), sorted[sorted.size() / 2], sorted.size());
+  return {text};
 }
 
 render::Renderer::GraphNode SessionRuntime::node() {

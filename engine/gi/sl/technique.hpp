@@ -58,10 +58,14 @@ class SessionRuntime final : public TechniqueRuntime {
   // No pass yet (see the header comment): the node adds nothing to the graph.
   render::Renderer::GraphNode node() override;
   const std::vector<Participant>& participants() const { return participants_; }
+  // "sl update: S spheres on E entities, CPU median X ms over F frames (§7.1 poses)": what
+  // `bounce profile` prints after its table (the sl_update_ms).
+  std::vector<std::string> profileLines() const override;
 
  private:
   ref::ReferenceAssets assets_;  // the cooked assets the posers read (skins, node hierarchy)
   std::vector<Participant> participants_;
+  std::vector<double> updateMs_;  // CPU time of each update() (the first, at construction, excluded)
 };
 
 }  // namespace bounce::gi::sl

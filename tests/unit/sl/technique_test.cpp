@@ -163,7 +163,11 @@ TEST(SlUpdate, RigidObjectMovesByItsTransform) {
   const glm::mat4 world = glm::translate(glm::mat4(1.0f), glm::vec3(1.5f, -2.0f, 0.25f)) * rotate *
                           glm::scale(glm::mat4(1.0f), glm::vec3(2.5f));
   l.registry.get<scene::WorldTransform>(p.entity).matrix = world;
+  EXPECT_TRUE(runtime.profileLines().empty());  // no frame yet
   runtime.update(FrameUpdate{l.registry, 0.0});
+  ASSERT_EQ(runtime.profileLines().size(), 1u);
+  EXPECT_EQ(runtime.profileLines()[0].rfind("sl update: 2 spheres on 1 entities, CPU median ", 0), 0u) << runtime.profileLines()[0];
+  EXPECT_NE(runtime.profileLines()[0].find(" ms over 1 frames (§7.1 poses)"), std::string::npos);
   for (std::size_t s = 0; s < 2; ++s) {
     const PosedSphere& q = runtime.participants()[0].spheres[s];
     const glm::vec3 expected = glm::vec3(world * glm::vec4(p.set.spheres[s].centre, 1.0f));
