@@ -4,20 +4,21 @@
 #include "engine/gi/ao/technique.hpp"
 #include "engine/gi/dnrt/technique.hpp"
 #include "engine/gi/probes/technique.hpp"
+#include "engine/gi/sl/technique.hpp"
 #include "engine/gi/technique.hpp"
 #include "engine/gi/vlm/technique.hpp"
 
 namespace bounce::gi {
 
 const std::vector<const Technique*>& techniques() {
-  static const ReservedTechnique sl(scene::Effect::Sl), rtf(scene::Effect::Rtf);  // issues 13 and 14
+  static const ReservedTechnique rtf(scene::Effect::Rtf);  // issue 14
   static const std::vector<const Technique*> table = {
       &ao::technique(ao::Kind::Ssao),  // first: a later node may read "ao.term"
       &ao::technique(ao::Kind::Hbao),
       &probes::technique(),  // the static indirect light; Services::probeVolume for the ones below
       &dnrt::technique(),    // what the dynamic objects add and take away (c_j from the probes)
       &vlm::technique(),
-      &sl,
+      &sl::technique(),  // spherical lights (issue 13): bake + poses; passes not yet (it says so)
       &rtf,
   };
   return table;

@@ -169,4 +169,14 @@ struct Dnrt {
   friend bool operator==(const Dnrt&, const Dnrt&) = default;
 };
 
+// A spherical-lights request (engine/gi/sl, issue 13; level key "sl", README "Level format"): the
+// entity's mesh is approximated by `spheres` SLs baked with `order` SH bands, and pass 2 accumulates
+// blockers per sphere or per object (paper §7.2).
+struct Sl {
+  int spheres = 16;        // 1..64 (gi::sl::kMaxSpheres; levels use 8..64)
+  int order = 4;           // SH order of the basis sums, albedo and intensity: 3 or 4
+  bool perObject = false;  // "blocking": "per-object" (true) or "per-sphere" (false, the default)
+  friend bool operator==(const Sl&, const Sl&) = default;
+};
+
 }  // namespace bounce::scene

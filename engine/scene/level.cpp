@@ -175,6 +175,24 @@ void parseDnrt(const json::Node& node, EntityDesc& d, const ParseContext&) {
   d.dnrt = c;
 }
 
+// "sl": {"spheres": 1..64, "order": 3|4, "blocking": "per-sphere"|"per-object"} — every key optional
+//        (defaults 16, 4, per-sphere). The sphere limit is gi::sl::kMaxSpheres (one uint64 mask).
+void parseSl(const json::Node& node, EntityDesc& d, const ParseContext&) {
+  const auto o = node.object({"spheres", "order", "blocking"});
+  Sl c;
+  if (auto v = o.optional("spheres")) c.spheres = int(v->integer(1, 64));
+  if (auto v = o.optional("order")) {
+    c.order = int(v->integer(0, 16));
+    if (c.order != 3 && c.order != 4) v->fail("SH order " + std::to_string(c.order), "3 or 4");
+  }
+  if (auto v = o.optional("blocking")) {
+    const std::string m = v->string();
+    if (m != "per-sphere" && m != "per-object") v->fail("unknown blocking " + json::inQuotes(m), "per-sphere or per-object");
+    c.perObject = m == "per-object";
+  }
+  d.sl = c;
+}
+
 // "vlm": {"tag": int ≥ 1, "color": [r,g,b], "intensity": float, "reflectance": [r,g,b]} — tag
 // required; the mesh is attached in parseEntity (the "mesh" key is read first).
 void parseVlm(const json::Node& node, EntityDesc& d, const ParseContext&) {
@@ -277,6 +295,7 @@ const ComponentKey kComponentKeys[] = {
     {"motion", parseMotionKey, emplaceIfSet<&EntityDesc::motion>},
     {"animation", parseAnimation, emplaceIfSet<&EntityDesc::animation>},
     {"dnrt", parseDnrt, emplaceIfSet<&EntityDesc::dnrt>},
+    {"sl", parseSl, emplaceIfSet<&EntityDesc::sl>},
     {"vlm", parseVlm, emplaceIfSet<&EntityDesc::vlm>},
     {"vlm_tag", parseVlmTag, emplaceIfSet<&EntityDesc::vlmTag>},
 };
@@ -308,9 +327,13 @@ EntityDesc parseEntity(const json::Node& node, const ParseContext& ctx) {
   if (d.dnrt && !d.mesh) o.node().child("dnrt").fail("a DNRT field on an entity without a mesh", "a \"mesh\" key");
   if (d.dnrt && !d.dynamic)
     o.node().child("dnrt").fail("a DNRT field on a static entity", "\"dynamic\": true or a motion");
+  if (d.sl && !d.mesh) o.node().child("sl").fail("spherical lights on an entity without a mesh", "a \"mesh\" key");
+  if (d.sl && !d.dynamic)
+    o.node().child("sl").fail("spherical lights on a static entity", "\"dynamic\": true or a motion");
   if (d.vlm) {
     if (!d.mesh) o.node().child("vlm").fail("a VLM on an entity without a mesh", "a \"mesh\" key");
     if (d.dnrt) o.node().child("dnrt").fail("a DNRT field on a VLM entity (not drawn)", "no \"dnrt\" key");
+    if (d.sl) o.node().child("sl").fail("spherical lights on a VLM entity (not drawn)", "no \"sl\" key");
     if (d.vlmTag) o.node().child("vlm_tag").fail("a vlm_tag on a VLM entity (the tag is in \"vlm\")", "no \"vlm_tag\" key");
     d.vlm->mesh = *d.mesh;
     if (d.material) d.vlm->albedoOverride = d.material->albedo;

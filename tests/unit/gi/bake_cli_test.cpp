@@ -184,10 +184,10 @@ TEST_F(BakeCli, TwoProcessesBakingOneKeyLeaveOneValidEntry) {
 }
 
 TEST_F(BakeCli, ReservedEffectSaysSoInOneLine) {
-  const Outcome r = bounce(dir_ / "cache", {"bake", kTiny.string(), "--effects", "direct,sl"});
+  const Outcome r = bounce(dir_ / "cache", {"bake", kTiny.string(), "--effects", "direct,rtf"});
   EXPECT_EQ(r.code, 0);
-  EXPECT_EQ(r.err, "note: effect sl is reserved (not implemented yet): no pass\n");
-  EXPECT_EQ(r.out, "nothing to bake: the effects name neither probes nor dnrt\n");
+  EXPECT_EQ(r.err, "note: effect rtf is reserved (not implemented yet): no pass\n");
+  EXPECT_EQ(r.out, "nothing to bake: the effects name none of probes, dnrt, nor sl\n");
 }
 
 TEST_F(BakeCli, EffectWithoutParticipantsSaysSoInOneLine) {

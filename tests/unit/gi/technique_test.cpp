@@ -49,10 +49,10 @@ TEST(Techniques, OneEntryPerTechniqueEffectInNodeOrder) {
   }
 }
 
-TEST(Techniques, SlAndRtfAreReservedAndSaySo) {
-  Loaded l(kCornell1, "direct,sl,rtf");
+TEST(Techniques, RtfIsReservedAndSaysSo) {
+  Loaded l(kCornell1, "direct,rtf");
   const auto lc = l.context();
-  for (const auto e : {scene::Effect::Sl, scene::Effect::Rtf}) {
+  for (const auto e : {scene::Effect::Rtf}) {
     const gi::Technique* t = gi::findTechnique(e);
     ASSERT_NE(t, nullptr);
     EXPECT_TRUE(t->reserved());
@@ -65,7 +65,7 @@ TEST(Techniques, SlAndRtfAreReservedAndSaySo) {
               "note: effect " + std::string(scene::effectName(e)) + " is reserved (not implemented yet): no pass");
   }
   for (const gi::Technique* t : gi::techniques())
-    EXPECT_EQ(t->reserved(), t->effect() == scene::Effect::Sl || t->effect() == scene::Effect::Rtf) << t->name();
+    EXPECT_EQ(t->reserved(), t->effect() == scene::Effect::Rtf) << t->name();
 }
 
 TEST(Techniques, NamedWithoutParticipantsGetsOneNote) {
@@ -151,8 +151,9 @@ TEST(Techniques, AccuracyRowsComeFromTheTable) {
   std::set<std::string> fromRows;
   for (const auto& r : game::accuracyRows()) fromRows.insert(r.technique);
   std::set<std::string> expected = {"direct"};
+  // Every technique that adds passes (SL bakes and poses its spheres but has no pass yet, issue 13).
   for (const gi::Technique* t : gi::techniques())
-    if (!t->reserved()) expected.insert(std::string(t->name()));
+    if (!t->reserved() && !t->passes().empty()) expected.insert(std::string(t->name()));
   EXPECT_EQ(fromRows, expected);
   // Every row's technique passes are the ones the technique says it adds.
   for (const auto& r : game::accuracyRows()) {

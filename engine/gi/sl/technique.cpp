@@ -1,0 +1,267 @@
+#include "engine/gi/sl/technique.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+
+#include "engine/anim/pose.hpp"
+#include "engine/core/error.hpp"
+#include "engine/core/hash.hpp"
+#include "engine/core/log.hpp"
+#include "engine/core/paths.hpp"
+#include "engine/gi/dnrt/object_scene.hpp"
+#include "engine/scene/components.hpp"
+
+namespace bounce::gi::sl {
+namespace {
+
+constexpr std::string_view kCacheKind = "sl";
+
+std::string describe(const std::string& name, const BakeSettings& s) {
+  char text[256];
+  std::snprintf(text, sizeof text, "sl      %s: %d spheres, order %d, %d directions", name.c_str(), s.spheres, s.order,
+                s.directions);
+  return text;
+}
+
+std::vector<ecs::Entity> participantsOf(ecs::Registry& registry, std::string_view part = {}) {
+  std::vector<ecs::Entity> out;
+  registry.view<scene::Sl, scene::MeshRef>().each([&](ecs::Entity e, scene::Sl&, scene::MeshRef&) {
+    const auto* name = registry.tryGet<scene::Name>(e);
+    if (part.empty() || (name && name->id == part)) out.push_back(e);
+  });
+  std::sort(out.begin(), out.end());  // deterministic order
+  return out;
+}
+
+// Only the assets of `entities` (a job's process loads its own mesh only).
+void loadAssets(ecs::Registry& registry, const std::vector<ecs::Entity>& entities, const std::filesystem::path& cookCache,
+                ref::ReferenceAssets& assets) {
+  for (ecs::Entity e : entities) {
+    ecs::Registry one;
+    one.emplace<scene::MeshRef>(one.create(), registry.get<scene::MeshRef>(e));
+    assets.load(one, cookCache);
+  }
+}
+
+// One entity's bake, gathered once per job list.
+struct ObjectBake {
+  std::string name;
+  ObjectInput input;
+  BakeSettings settings;
+  std::filesystem::path output;
+};
+
+std::string bakeLine(const ObjectBake& ob, const SphereSet& set, double seconds) {
+  std::size_t samples = 0;
+  for (const auto& s : set.spheres) samples += s.samples.size();
+  char text[512];
+  std::snprintf(text, sizeof text, ": %.3f s, %zu surface samples, coverage error %.4f, volume overshoot %.3f -> %s",
+                seconds, samples, double(set.coverageError), double(set.volumeOvershoot), ob.output.c_str());
+  return describe(ob.name, ob.settings) + text;
+}
+
+SphereSet bakeAndSave(const ObjectBake& ob, std::string* line) {
+  const auto start = std::chrono::steady_clock::now();
+  SphereSet set = bake(ob.input.object, ob.settings, ob.input.skin);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  save(set, ob.output);
+  if (line) *line = bakeLine(ob, set, seconds);
+  return set;
+}
+
+class SlTechnique final : public Technique {
+ public:
+  scene::Effect effect() const override { return scene::Effect::Sl; }
+
+  bool takesPart(const LevelContext& lc, std::string* why) const override {
+    const bool any = !participantsOf(lc.registry).empty();
+    if (!any && why) *why = "no entity has an sl component";
+    return any;
+  }
+
+  std::vector<BakeJob> bakeJobs(const LevelContext& lc, std::string_view part) const override {
+    const std::vector<ecs::Entity> entities = participantsOf(lc.registry, part);
+    ref::ReferenceAssets assets;
+    loadAssets(lc.registry, entities, lc.cookCache, assets);
+    std::vector<std::filesystem::path> inputs;
+    if (!lc.level.source.empty()) inputs.push_back(lc.level.source);
+    std::vector<BakeJob> jobs;
+    for (ecs::Entity e : entities) {
+      auto ob = std::make_shared<ObjectBake>();
+      ob->name = lc.registry.get<scene::Name>(e).id;
+      ob->input = objectInput(lc.registry, e, assets);
+      ob->settings = settingsFrom(lc.registry.get<scene::Sl>(e));
+      BakeJob job;
+      job.technique = "sl";
+      job.what = "sl " + ob->name;
+      job.part = ob->name;
+      job.key = cacheKey(ob->input, ob->settings);
+      ob->output = cachePath(job.key, cacheFolder());
+      job.output = ob->output;
+      job.inputs = inputs;
+      job.inputs.push_back(lc.registry.get<scene::MeshRef>(e).asset);
+      job.cached = [ob]() -> std::optional<std::string> {
+        if (!std::filesystem::exists(ob->output)) return std::nullopt;
+        try {
+          load(ob->output);
+        } catch (const InputError& err) {
+          log::warn(std::string("sl: re-baking a corrupt cache entry: ") + err.what());
+          return std::nullopt;
+        }
+        return describe(ob->name, ob->settings) + ": cached " + ob->output.string();
+      };
+      job.run = [ob] {
+        std::string line;
+        bakeAndSave(*ob, &line);
+        return line;
+      };
+      jobs.push_back(std::move(job));
+    }
+    return jobs;
+  }
+
+  std::string_view cacheKind() const override { return kCacheKind; }
+
+  std::unique_ptr<TechniqueRuntime> create(SessionContext& sc) const override {
+    auto runtime = std::make_unique<SessionRuntime>(sc.registry, sc.cookCache, cacheFolder());
+    printNoteOnce(noPassNote(runtime->participants().size()));
+    return runtime;
+  }
+
+  // None until pass 2 exists (a row needs its pass to time and render).
+  void accuracyRows(std::vector<AccuracyRow>&) const override {}
+  std::vector<std::string> passes() const override { return {}; }
+};
+
+}  // namespace
+
+const Technique& technique() {
+  static const SlTechnique t;
+  return t;
+}
+
+BakeSettings settingsFrom(const scene::Sl& c) {
+  BakeSettings s;
+  s.spheres = c.spheres;
+  s.order = c.order;
+  checkSettings(s);
+  return s;
+}
+
+ObjectInput objectInput(ecs::Registry& registry, ecs::Entity entity, const ref::ReferenceAssets& assets) {
+  ObjectInput in;
+  in.object = dnrt::objectScene(registry, entity, assets);
+  const scene::MeshRef& ref = registry.get<scene::MeshRef>(entity);
+  std::size_t indices = 0;
+  for (const auto& m : in.object.meshes) indices += m.indices.size();
+  if (indices < 3) {
+    const auto* name = registry.tryGet<scene::Name>(entity);
+    throwInputError(ref.asset.string(), "mesh",
+                    "no triangles for the sl spheres of entity " + (name ? name->id : std::string("?")),
+                    "a mesh with triangles");
+  }
+  in.skin = skinOf(assets.get(ref).cpu, instancedPrimitives(assets.get(ref).cpu, ref));
+  return in;
+}
+
+std::string cacheKey(const ObjectInput& in, const BakeSettings& s) {
+  Hasher h;
+  h.str("sl-sphere-set-v1");  // baker and BSLSPSET format version: bump when either changes
+  h.pod(s.spheres).pod(s.order).pod(s.directions).pod(s.samplesPerAxis).pod(s.surfaceSamples).pod(s.iterations);
+  const ref::SceneDesc& object = in.object;
+  h.u64(object.meshes.size());
+  for (const auto& m : object.meshes) {
+    h.u64(m.positions.size()).bytes(m.positions.data(), m.positions.size() * sizeof(glm::vec3));
+    h.u64(m.normals.size()).bytes(m.normals.data(), m.normals.size() * sizeof(glm::vec3));
+    h.u64(m.uvs.size()).bytes(m.uvs.data(), m.uvs.size() * sizeof(glm::vec2));
+    h.u64(m.indices.size()).bytes(m.indices.data(), m.indices.size() * sizeof(std::uint32_t));
+    h.pod(m.material);
+  }
+  h.u64(object.materials.size());
+  for (const auto& m : object.materials) h.pod(m.albedo).pod(m.albedoTexture);
+  h.u64(object.textures.size());
+  for (const auto& t : object.textures)
+    h.pod(t.width).pod(t.height).bytes(t.texels.data(), t.texels.size() * sizeof(glm::vec3));
+  h.u64(in.skin.joints.size());
+  for (std::size_t m = 0; m < in.skin.joints.size(); ++m) {
+    h.u64(in.skin.joints[m].size()).bytes(in.skin.joints[m].data(), in.skin.joints[m].size() * sizeof(glm::u16vec4));
+    h.u64(in.skin.weights[m].size()).bytes(in.skin.weights[m].data(), in.skin.weights[m].size() * sizeof(glm::vec4));
+  }
+  return h.hex();
+}
+
+std::filesystem::path cachePath(const std::string& key, const std::filesystem::path& cacheDir) {
+  return cacheDir / ("sl-" + key + ".slset");
+}
+
+std::filesystem::path cacheFolder() { return cacheDir(kCacheKind); }
+
+std::string noPassNote(std::size_t entities) {
+  return "note: effect sl: " + std::to_string(entities) +
+         (entities == 1 ? " entity's sphere set baked and posed" : " entities' sphere sets baked and posed") +
+         " each frame, but its GPU passes are not implemented yet: no pass";
+}
+
+SessionRuntime::SessionRuntime(ecs::Registry& registry, const std::filesystem::path& cookCache,
+                               const std::filesystem::path& cacheDir) {
+  const std::vector<ecs::Entity> entities = participantsOf(registry);
+  loadAssets(registry, entities, cookCache, assets_);
+  for (ecs::Entity e : entities) {
+    Participant p;
+    p.entity = e;
+    p.name = registry.get<scene::Name>(e).id;
+    p.component = registry.get<scene::Sl>(e);
+    ObjectBake ob;
+    ob.name = p.name;
+    ob.input = objectInput(registry, e, assets_);
+    ob.settings = settingsFrom(p.component);
+    ob.output = cachePath(cacheKey(ob.input, ob.settings), cacheDir);
+    bool cached = false;
+    if (std::filesystem::exists(ob.output)) {
+      try {
+        p.set = load(ob.output);
+        cached = true;
+      } catch (const InputError& err) {
+        log::warn(std::string("sl: re-baking a corrupt cache entry: ") + err.what());
+      }
+    }
+    if (!cached) {
+      std::string line;
+      p.set = bakeAndSave(ob, &line);
+      log::info(line);
+    }
+    const scene::MeshRef& ref = registry.get<scene::MeshRef>(e);
+    p.poser = std::make_unique<SpherePoser>(assets_.get(ref).cpu, ref, p.set);
+    participants_.push_back(std::move(p));
+  }
+  update(FrameUpdate{registry, 0.0});
+  updateMs_.clear();
+}
+
+void SessionRuntime::update(const FrameUpdate& frame) {
+  const auto start = std::chrono::steady_clock::now();
+  for (Participant& p : participants_) {
+    const auto* world = frame.registry.tryGet<scene::WorldTransform>(p.entity);
+    p.poser->pose(world ? world->matrix : glm::mat4(1.0f), frame.registry.tryGet<anim::Pose>(p.entity), p.spheres);
+  }
+  updateMs_.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+}
+
+std::vector<std::string> SessionRuntime::profileLines() const {
+  if (updateMs_.empty()) return {};
+  std::vector<double> sorted = updateMs_;
+  std::sort(sorted.begin(), sorted.end());
+  std::size_t spheres = 0;
+  for (const auto& p : participants_) spheres += p.spheres.size();
+  char text[256];
+  std::snprintf(text, sizeof text, "sl update: %zu spheres on %zu entities, CPU median %.3f ms over %zu frames (§7.1 poses)",
+                spheres, participants_.size(), sorted[sorted.size() / 2], sorted.size());
+  return {text};
+}
+
+render::Renderer::GraphNode SessionRuntime::node() {
+  return [](rg::RenderGraph&, render::PassContext&) {};  // no pass yet (header comment)
+}
+
+}  // namespace bounce::gi::sl

@@ -1,0 +1,71 @@
+#pragma once
+// SL as a technique of the table (engine/gi/technique.hpp): dynamic entities with an `sl` component
+// and a mesh take part; one bake job per such entity (its sphere set, cache kind "sl"); the session
+// runtime loads the sets through the cache and poses the SLs every frame (update.hpp, §7.1).
+//
+// State (issue 13): passes 1 and 2 (GPU) are not written yet, so the runtime adds NO pass and says
+// so once per process ("note: effect sl: …: no pass"); passes() and the accuracy rows are empty
+// until they are.
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "engine/gi/sl/bake.hpp"
+#include "engine/gi/sl/update.hpp"
+#include "engine/gi/technique.hpp"
+#include "engine/ref/reference_scene.hpp"
+
+namespace bounce::gi::sl {
+
+const Technique& technique();
+
+// The bake settings a level component asks for (sphere count and order; the rest the defaults).
+BakeSettings settingsFrom(const scene::Sl& component);
+
+// What one entity's bake reads: its mesh in its local frame (dnrt::objectScene: the same expansion,
+// materials and textures the reference tracer sees) and its skin in the same vertex order.
+struct ObjectInput {
+  ref::SceneDesc object;
+  Skin skin;
+};
+ObjectInput objectInput(ecs::Registry& registry, ecs::Entity entity, const ref::ReferenceAssets& assets);
+
+// Content key: every mesh, material, texture and skin byte, the settings and the baker/format version.
+std::string cacheKey(const ObjectInput& input, const BakeSettings& settings);
+// `cacheDir`/sl-<key>.slset
+std::filesystem::path cachePath(const std::string& key, const std::filesystem::path& cacheDir);
+std::filesystem::path cacheFolder();  // cacheDir("sl")
+
+// The note the runtime prints while the passes are missing.
+std::string noPassNote(std::size_t entities);
+
+// One entity taking part, as the session holds it.
+struct Participant {
+  ecs::Entity entity{};
+  std::string name;
+  scene::Sl component;
+  SphereSet set;
+  std::unique_ptr<SpherePoser> poser;
+  std::vector<PosedSphere> spheres;  // this frame's (update)
+};
+
+class SessionRuntime final : public TechniqueRuntime {
+ public:
+  // Loads (baking on a miss) every participant's sphere set and poses it at the registry's state.
+  SessionRuntime(ecs::Registry& registry, const std::filesystem::path& cookCache, const std::filesystem::path& cacheDir);
+  void update(const FrameUpdate& frame) override;
+  // No pass yet (see the header comment): the node adds nothing to the graph.
+  render::Renderer::GraphNode node() override;
+  const std::vector<Participant>& participants() const { return participants_; }
+  // "sl update: S spheres on E entities, CPU median X ms over F frames (§7.1 poses)": what
+  // `bounce profile` prints after its table (the issue's sl_update_ms).
+  std::vector<std::string> profileLines() const override;
+
+ private:
+  ref::ReferenceAssets assets_;  // the cooked assets the posers read (skins, node hierarchy)
+  std::vector<Participant> participants_;
+  std::vector<double> updateMs_;  // CPU time of each update() (the first, at construction, excluded)
+};
+
+}  // namespace bounce::gi::sl

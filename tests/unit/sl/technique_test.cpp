@@ -1,0 +1,284 @@
+// SL in the technique table (issue 13, steps 1–2) on the CPU: the level component (strict parsing,
+// one-line errors), participation, the bake job (content key, cache entry, what it prints), the
+// session runtime's cache round trip and the per-frame sphere poses of §7.1 on a rigid object
+// (exact: the entity's transform) and on a skinned character (the covered vertices' motion).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "engine/anim/animator.hpp"
+#include "engine/core/error.hpp"
+#include "engine/core/file.hpp"
+#include "engine/core/paths.hpp"
+#include "engine/gi/sl/technique.hpp"
+#include "engine/ref/reference_scene.hpp"
+#include "engine/scene/level.hpp"
+#include "engine/scene/systems.hpp"
+
+namespace bounce::gi::sl {
+namespace {
+
+namespace fs = std::filesystem;
+const fs::path kSource = BOUNCE_SOURCE_DIR;
+fs::path outDir() { return fs::path(BOUNCE_TEST_OUT) / "sl"; }
+fs::path cookCache() {
+  if (const char* env = std::getenv("BOUNCE_COOK_CACHE"); env && *env) return env;
+  return cacheDir("cooked");
+}
+std::string boxAsset() { return (kSource / "content/src/BoxTextured/glTF-Draco-gltfpipeline/BoxTextured.gltf").string(); }
+
+// A level with one entity `entity` (JSON object body), written to <name>.json.
+fs::path writeLevel(const std::string& name, const std::string& entity, const std::string& effects = R"(["direct", "sl"])") {
+  const fs::path path = outDir() / (name + ".json");
+  writeFileAtomic(path, R"({"bounce_level": 1, "effects": )" + effects + R"(, "entities": [)" + entity + "]}");
+  return path;
+}
+
+std::string loadError(const std::string& name, const std::string& entity) {
+  const fs::path path = writeLevel(name, entity);
+  try {
+    ecs::Registry r;
+    scene::instantiate(scene::loadLevel(path), r);
+  } catch (const InputError& e) {
+    std::string msg = e.what();
+    const std::string prefix = path.string() + ": ";
+    if (msg.rfind(prefix, 0) == 0) msg = "FILE: " + msg.substr(prefix.size());
+    return msg;
+  }
+  return "(no error)";
+}
+
+std::string mesh() { return R"("mesh": {"asset": ")" + boxAsset() + R"("})"; }
+
+TEST(SlComponent, ParsesWithDefaults) {
+  const fs::path path = writeLevel("sl-ok", R"({"id": "a", "dynamic": true, )" + mesh() +
+                                                R"(, "sl": {"spheres": 32, "order": 3, "blocking": "per-object"}},
+                                               {"id": "b", "dynamic": true, )" + mesh() + R"(, "sl": {}})");
+  const scene::Level level = scene::loadLevel(path);
+  ASSERT_EQ(level.entities.size(), 2u);
+  EXPECT_EQ(level.entities[0].sl, (scene::Sl{32, 3, true}));
+  EXPECT_EQ(level.entities[1].sl, (scene::Sl{16, 4, false}));
+  EXPECT_EQ(settingsFrom(*level.entities[0].sl).spheres, 32);
+  EXPECT_EQ(settingsFrom(*level.entities[0].sl).order, 3);
+}
+
+TEST(SlComponent, BadInputIsOneLine) {
+  const std::string dyn = R"({"id": "a", "dynamic": true, )" + mesh();
+  EXPECT_EQ(loadError("sl-order", dyn + R"(, "sl": {"order": 5}})"),
+            "FILE: /entities/0/sl/order: SH order 5 (expected 3 or 4)");
+  EXPECT_EQ(loadError("sl-spheres", dyn + R"(, "sl": {"spheres": 65}})"),
+            "FILE: /entities/0/sl/spheres: 65 is out of range (expected an integer in [1, 64])");
+  EXPECT_EQ(loadError("sl-blocking", dyn + R"(, "sl": {"blocking": "per-pixel"}})"),
+            "FILE: /entities/0/sl/blocking: unknown blocking \"per-pixel\" (expected per-sphere or per-object)");
+  EXPECT_EQ(loadError("sl-key", dyn + R"(, "sl": {"sphere": 8}})").rfind("FILE: /entities/0/sl/sphere: unknown key", 0), 0u);
+  EXPECT_EQ(loadError("sl-static", R"({"id": "a", )" + mesh() + R"(, "sl": {}})"),
+            "FILE: /entities/0/sl: spherical lights on a static entity (expected \"dynamic\": true or a motion)");
+  EXPECT_EQ(loadError("sl-no-mesh", R"({"id": "a", "dynamic": true, "sl": {}})"),
+            "FILE: /entities/0/sl: spherical lights on an entity without a mesh (expected a \"mesh\" key)");
+}
+
+// An sl entity whose mesh has no triangles (tests/data's box.gltf is a mesh-less stub): one line.
+TEST(SlComponent, MeshWithoutTrianglesIsBadInput) {
+  const std::string stub = (kSource / "tests/data/levels/assets/box.gltf").string();
+  const fs::path path = writeLevel("sl-no-triangles", R"({"id": "a", "dynamic": true, "mesh": {"asset": ")" + stub +
+                                                           R"("}, "sl": {}})");
+  scene::Level level = scene::loadLevel(path);
+  ecs::Registry r;
+  scene::instantiate(level, r);
+  scene::transformSystem(r);
+  try {
+    technique().bakeJobs(LevelContext{level, r, cookCache()}, {});
+    ADD_FAILURE() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), stub + ": mesh: no triangles for the sl spheres of entity a (expected a mesh with triangles)");
+  }
+}
+
+struct Loaded {
+  scene::Level level;
+  ecs::Registry registry;
+  explicit Loaded(const fs::path& path) : level(scene::loadLevel(path)) {
+    scene::instantiate(level, registry);
+    scene::transformSystem(registry);
+  }
+  LevelContext context() { return {level, registry, cookCache()}; }
+};
+
+TEST(SlTechnique, TakesPartAndBakesOneEntryPerEntity) {
+  const Technique& t = technique();
+  EXPECT_FALSE(t.reserved());
+  EXPECT_EQ(t.cacheKind(), "sl");
+  Loaded none(writeLevel("sl-none", R"({"id": "a", "dynamic": true, )" + mesh() + "}"));
+  EXPECT_EQ(effectNote(t, none.context()), "note: effect sl is named but no entity takes part (no entity has an sl "
+                                           "component): no pass");
+  Loaded l(writeLevel("sl-box", R"({"id": "box", "dynamic": true, )" + mesh() + R"(, "sl": {"spheres": 3, "order": 3}})"));
+  const auto lc = l.context();
+  EXPECT_EQ(effectNote(t, lc), std::nullopt);
+  const auto jobs = t.bakeJobs(lc, {});
+  ASSERT_EQ(jobs.size(), 1u);
+  const BakeJob& job = jobs[0];
+  EXPECT_EQ(job.technique, "sl");
+  EXPECT_EQ(job.part, "box");
+  EXPECT_EQ(job.key.size(), 16u);
+  EXPECT_EQ(job.output, cacheFolder() / ("sl-" + job.key + ".slset"));
+  EXPECT_TRUE(t.bakeJobs(lc, "no-such-entity").empty());
+  ASSERT_EQ(t.bakeJobs(lc, "box").size(), 1u);
+  EXPECT_EQ(t.bakeJobs(lc, "box")[0].key, job.key);  // planned alone: same key
+  // Another setting is another entry.
+  Loaded other(writeLevel("sl-box4", R"({"id": "box", "dynamic": true, )" + mesh() + R"(, "sl": {"spheres": 4, "order": 3}})"));
+  EXPECT_NE(t.bakeJobs(other.context(), {})[0].key, job.key);
+
+  fs::remove(job.output);
+  EXPECT_EQ(job.cached(), std::nullopt);
+  const std::string line = job.run();
+  EXPECT_EQ(line.rfind("sl      box: 3 spheres, order 3, 92 directions: ", 0), 0u) << line;
+  EXPECT_NE(line.find(job.output.string()), std::string::npos) << line;
+  const SphereSet set = load(job.output);
+  EXPECT_EQ(set.spheres.size(), 3u);
+  EXPECT_EQ(set.settings.order, 3);
+  EXPECT_EQ(job.cached(), "sl      box: 3 spheres, order 3, 92 directions: cached " + job.output.string());
+  // A corrupt entry is not "cached" (it is re-baked).
+  writeFileAtomic(job.output, std::string("BSLSPSET garbage"));
+  EXPECT_EQ(job.cached(), std::nullopt);
+  fs::remove(job.output);
+}
+
+// A rigid object: every SL moves exactly by the entity's transform (uniform scale scales radii).
+TEST(SlUpdate, RigidObjectMovesByItsTransform) {
+  Loaded l(writeLevel("sl-rigid", R"({"id": "box", "dynamic": true, )" + mesh() + R"(, "sl": {"spheres": 2, "order": 3}})"));
+  SessionRuntime runtime(l.registry, cookCache(), outDir() / "cache");
+  ASSERT_EQ(runtime.participants().size(), 1u);
+  const Participant& p = runtime.participants()[0];
+  ASSERT_EQ(p.set.spheres.size(), 2u);
+  ASSERT_EQ(p.spheres.size(), 2u);
+  // A second runtime reads the entry the first wrote (same set, byte for byte).
+  SessionRuntime again(l.registry, cookCache(), outDir() / "cache");
+  EXPECT_EQ(serialize(again.participants()[0].set), serialize(p.set));
+
+  const glm::mat4 rotate = glm::rotate(glm::mat4(1.0f), 0.7f, glm::normalize(glm::vec3(1, 2, 3)));
+  const glm::mat4 world = glm::translate(glm::mat4(1.0f), glm::vec3(1.5f, -2.0f, 0.25f)) * rotate *
+                          glm::scale(glm::mat4(1.0f), glm::vec3(2.5f));
+  l.registry.get<scene::WorldTransform>(p.entity).matrix = world;
+  EXPECT_TRUE(runtime.profileLines().empty());  // no frame yet
+  runtime.update(FrameUpdate{l.registry, 0.0});
+  ASSERT_EQ(runtime.profileLines().size(), 1u);
+  EXPECT_EQ(runtime.profileLines()[0].rfind("sl update: 2 spheres on 1 entities, CPU median ", 0), 0u) << runtime.profileLines()[0];
+  EXPECT_NE(runtime.profileLines()[0].find(" ms over 1 frames (§7.1 poses)"), std::string::npos);
+  for (std::size_t s = 0; s < 2; ++s) {
+    const PosedSphere& q = runtime.participants()[0].spheres[s];
+    const glm::vec3 expected = glm::vec3(world * glm::vec4(p.set.spheres[s].centre, 1.0f));
+    EXPECT_LT(glm::length(q.centre - expected), 1e-5f);
+    EXPECT_NEAR(q.radius, 2.5f * p.set.spheres[s].radius, 1e-5f);
+    for (int c = 0; c < 3; ++c) EXPECT_LT(glm::length(q.rotation[c] - glm::vec3(rotate[c])), 1e-5f) << c;
+  }
+}
+
+TEST(SlUpdate, ClosestRotation) {
+  const glm::dmat3 r = glm::dmat3(glm::rotate(glm::dmat4(1.0), 1.1, glm::normalize(glm::dvec3(-1, 2, 0.5))));
+  const glm::dmat3 stretched = r * glm::dmat3(glm::dvec3(3, 0, 0), glm::dvec3(0, 0.5, 0), glm::dvec3(0, 0, 1.5));
+  const glm::dmat3 q = closestRotation(stretched);
+  for (int c = 0; c < 3; ++c) EXPECT_LT(glm::length(q[c] - r[c]), 1e-12) << c;
+  EXPECT_EQ(closestRotation(glm::dmat3(0.0)), glm::dmat3(1.0));  // singular: identity, no NaN
+}
+
+// The fox of characters.json, running: every SL follows its covered vertices. Each covered vertex's
+// posed position comes from ref::extractScene (the renderer's and tracer's own posing, a path
+// independent of SpherePoser's averages); it is compared with where the SL carries the vertex's
+// bake-frame offset, x̂_v = c' + s·R·(p_v − c). Rotation and translation are the AVERAGE of the
+// vertices' (§7.1), so a vertex moves off that by the deformation within the SL; the bounds below are
+// on that soft-deformation error, in units of the SL's radius. Each vertex's own T_v is exact.
+TEST(SlUpdate, SkinnedCharacterSpheresFollowTheirVertices) {
+  scene::Level level = scene::loadLevel(kSource / "content/levels/characters.json");
+  ecs::Registry registry;
+  scene::instantiate(level, registry);
+  anim::attachAnimators(registry, cookCache());
+  ecs::Entity fox{};
+  registry.view<scene::Name>().each([&](ecs::Entity e, scene::Name& n) {
+    if (n.id == "fox") fox = e;
+  });
+  ASSERT_TRUE(registry.tryGet<scene::MeshRef>(fox));
+  ref::ReferenceAssets assets;
+  {
+    ecs::Registry one;
+    one.emplace<scene::MeshRef>(one.create(), registry.get<scene::MeshRef>(fox));
+    assets.load(one, cookCache());
+  }
+  const ObjectInput in = objectInput(registry, fox, assets);
+  ASSERT_FALSE(in.skin.joints.empty());
+  BakeSettings s;
+  s.spheres = 16;
+  s.samplesPerAxis = 16;  // the test checks poses, not the sums
+  s.surfaceSamples = 2048;
+  const SphereSet set = bake(in.object, s, in.skin);
+  const scene::MeshRef& ref = registry.get<scene::MeshRef>(fox);
+  const SpherePoser poser(assets.get(ref).cpu, ref, set);
+
+  std::vector<glm::vec3> bakePositions;
+  for (const auto& m : in.object.meshes) bakePositions.insert(bakePositions.end(), m.positions.begin(), m.positions.end());
+  for (const double t : {0.0, 0.37, 1.3}) {
+    scene::motionSystem(registry, t);
+    anim::animationSystem(registry, t);
+    scene::transformSystem(registry);
+    const auto* pose = registry.tryGet<anim::Pose>(fox);
+    ASSERT_NE(pose, nullptr);
+    std::vector<PosedSphere> posed;
+    poser.pose(registry.get<scene::WorldTransform>(fox).matrix, pose, posed);
+    ASSERT_EQ(posed.size(), set.spheres.size());
+    // The same posed entity alone, through the tracer's scene extraction.
+    ecs::Registry one;
+    const ecs::Entity e = one.create();
+    one.emplace<scene::MeshRef>(e, ref);
+    one.emplace<scene::WorldTransform>(e, registry.get<scene::WorldTransform>(fox));
+    one.emplace<anim::Pose>(e, *pose);
+    const ref::SceneDesc world = ref::extractScene(one, scene::Level{}, assets, false);
+    std::vector<glm::vec3> worldPositions;
+    for (const auto& m : world.meshes) worldPositions.insert(worldPositions.end(), m.positions.begin(), m.positions.end());
+    ASSERT_EQ(worldPositions.size(), bakePositions.size());
+    // Each vertex's T_v takes its bake-frame position to where the renderer draws it (float maths
+    // on positions of ~1 m: 1e-4 m).
+    const std::vector<glm::dmat4> tv = poser.vertexTransforms(registry.get<scene::WorldTransform>(fox).matrix, pose);
+    ASSERT_EQ(tv.size(), bakePositions.size());
+    double tvWorst = 0.0;
+    for (std::size_t v = 0; v < tv.size(); ++v)
+      tvWorst = std::max(tvWorst, glm::length(glm::dvec3(tv[v] * glm::dvec4(glm::dvec3(bakePositions[v]), 1.0)) -
+                                              glm::dvec3(worldPositions[v])));
+    EXPECT_LT(tvWorst, 1e-4) << "t = " << t;
+    double worst = 0.0, sum = 0.0, sumEntity = 0.0, worstEntity = 0.0;
+    std::size_t count = 0;
+    const glm::dmat4 entityWorld(registry.get<scene::WorldTransform>(fox).matrix);
+    for (std::size_t i = 0; i < posed.size(); ++i) {
+      const PosedSphere& q = posed[i];
+      const glm::dmat3 rot(q.rotation);
+      const glm::dmat3 gram = glm::transpose(rot) * rot - glm::dmat3(1.0);
+      for (int c = 0; c < 3; ++c) EXPECT_LT(glm::length(gram[c]), 1e-5) << "orthonormal rotation, SL " << i;
+      EXPECT_NEAR(glm::determinant(rot), 1.0, 1e-5);
+      ASSERT_TRUE(std::isfinite(q.radius) && q.radius > 0.0f);
+      const double scale = double(q.radius) / double(set.spheres[i].radius);
+      for (std::uint32_t v : set.spheres[i].vertices) {
+        const glm::dvec3 carried = glm::dvec3(q.centre) + scale * (rot * glm::dvec3(bakePositions[v] - set.spheres[i].centre));
+        const double e = glm::length(carried - glm::dvec3(worldPositions[v])) / double(q.radius);
+        // Baseline: the SL moved by the entity's transform only (the pose ignored).
+        const glm::dvec3 rigid = glm::dvec3(entityWorld * glm::dvec4(glm::dvec3(bakePositions[v]), 1.0));
+        const double eEntity = glm::length(rigid - glm::dvec3(worldPositions[v])) / double(q.radius);
+        worst = std::max(worst, e), worstEntity = std::max(worstEntity, eEntity);
+        sum += e, sumEntity += eEntity, ++count;
+      }
+    }
+    std::printf("t = %.2f: covered-vertex offset mean %.3f R worst %.3f R; entity transform only: mean %.3f R worst %.3f R\n", t,
+                sum / double(count), worst, sumEntity / double(count), worstEntity);
+    // Measured (16 SLs on the running fox, t = 0, 0.37, 1.3): mean 0.36, 0.21, 0.32 R following the
+    // vertices vs 0.73, 1.15, 0.79 R with the entity's transform alone; worst 2.1, 0.9, 1.8 R (legs
+    // and tail bend inside one SL: beyond the paper's "soft" class). Asserted: following the
+    // vertices at least 1.6× better on average than ignoring the pose, mean ≤ 0.45 R, worst ≤ 3 R.
+    EXPECT_LT(sum, sumEntity / 1.6) << "t = " << t;
+    EXPECT_LT(sum / double(count), 0.45) << "t = " << t;
+    EXPECT_LT(worst, 3.0) << "t = " << t;
+  }
+}
+
+}  // namespace
+}  // namespace bounce::gi::sl
