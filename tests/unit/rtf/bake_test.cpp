@@ -69,6 +69,63 @@ TEST(RtfBake, ConvexVertexTransferIsAlbedoTimesY00) {
   }
 }
 
+// An open "L": a floor (z = 0, normal +z) and a wall (x = 0, normal +x), n×n quads each, albedo ρ.
+ref::SceneDesc corner(float rho, int n) {
+  ref::SceneDesc s;
+  s.materials.push_back(ref::RefMaterial{glm::vec3(rho)});
+  ref::RefMesh m;
+  const auto quad = [&](glm::vec3 o, glm::vec3 u, glm::vec3 v, glm::vec3 nrm) {
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j) {
+        const glm::vec3 a = o + (float(i) * u + float(j) * v) / float(n), b = a + u / float(n), c = a + (u + v) / float(n),
+                        d = a + v / float(n);
+        for (const glm::vec3& p : {a, b, c, a, c, d}) {
+          m.indices.push_back(std::uint32_t(m.positions.size()));
+          m.positions.push_back(p);
+          m.normals.push_back(nrm);
+        }
+      }
+  };
+  quad(glm::vec3(0, 0, 0), glm::vec3(1, 0, 0), glm::vec3(0, 1, 0), glm::vec3(0, 0, 1));  // floor, CCW seen from +z
+  quad(glm::vec3(0, 0, 0), glm::vec3(0, 1, 0), glm::vec3(0, 0, 1), glm::vec3(1, 0, 0));  // wall, CCW seen from +x
+  s.meshes.push_back(std::move(m));
+  return s;
+}
+
+TEST(RtfBake, SelfInterreflectionBouncesConvergeByTheAlbedo) {
+  // Eq. 8's self term on a concave object. Bounce b at p is ρ/S Σ_hits t^{b−1}(x): an average of
+  // the previous bounce over at most all of p's rays, times ρ, so max_p t^b ≤ ρ max_x t^{b−1}
+  // (l = 0 coefficient summed over proxies; exact, no tolerance but float rounding).
+  const float rho = 0.7f;
+  const ref::SceneDesc s = corner(rho, 6);
+  FieldSettings fs = testing::smallSettings();
+  const auto proxies = kmeans(s.meshes[0].positions, fs.proxies);
+  std::vector<std::vector<float>> dc;  // dc[b][p]: Σ_k t_{p,k,0} with selfBounces = b
+  for (int b = 0; b <= 3; ++b) {
+    fs.selfBounces = b;
+    const auto t = vertexTransfer(s, proxies, 1.0f, fs);
+    const std::size_t stride = std::size_t(fs.proxies) * kShCount;
+    std::vector<float> v(t.size() / stride, 0.0f);
+    for (std::size_t p = 0; p < v.size(); ++p)
+      for (int k = 0; k < fs.proxies; ++k) v[p] += t[p * stride + std::size_t(k) * kShCount].r;
+    dc.push_back(v);
+  }
+  std::vector<float> maxBounce;
+  for (int b = 0; b <= 3; ++b) {
+    float m = 0.0f;
+    for (std::size_t p = 0; p < dc[0].size(); ++p) {
+      const float bounce = b == 0 ? dc[0][p] : dc[std::size_t(b)][p] - dc[std::size_t(b - 1)][p];
+      EXPECT_GE(bounce, -1e-7f) << b;
+      m = std::max(m, bounce);
+    }
+    maxBounce.push_back(m);
+  }
+  EXPECT_GT(maxBounce[1], 0.0f);  // the corner does reflect light onto itself
+  for (int b = 1; b <= 3; ++b) EXPECT_LE(maxBounce[std::size_t(b)], rho * maxBounce[std::size_t(b - 1)] * (1.0f + 1e-5f)) << b;
+  // Bounce 0 is the escaping fraction times ρ Y_00: never more than ρ Y_00.
+  EXPECT_LE(maxBounce[0], rho * float(kY00) * (1.0f + 1e-6f));
+}
+
 TEST(RtfBake, ItfAndOofMatchTheSphereClosedForms) {
   // Uniform radiance L on a sphere of radius R, albedo ρ: at distance d the sphere fills a cap of
   // Ω = 2π(1 − √(1 − (R/d)²)) with radiance ρL, so the l = 0 coefficient of the light reaching q
