@@ -85,10 +85,11 @@ const std::vector<cli::CommandSpec>& commandSpecs() {
       {"level", "FILE.glb|FILE.gltf --out LEVEL.json",
        "write the level that play/capture/profile/accuracy make for a glTF file (asset, framing camera, sun, ground), to edit",
        {{"--out", "FILE", "output level .json (asset paths relative to it)"}}, 1, 1},
-      {"bench", "vlm-grid|vlm-lights|vlm-k|dnrt|skinning [options]",
+      {"bench", "vlm-grid|vlm-lights|vlm-k|dnrt|skinning|rtf [options]",
        "vlm-grid: time the VLM grid builds (scatter vs gather) on a random scene, one line; vlm-lights / vlm-k: GPU ms\n"
        "              of the VLM passes vs lights per pixel without a grid / vs cell list size K, one line per setting;\n"
-       "              dnrt: the DNRT paper's Tables 6-8 (GPU ms, ratios); skinning: vertices/ms, GPU pass vs CPU",
+       "              dnrt: the DNRT paper's Tables 6-8 (GPU ms, ratios); skinning: vertices/ms, GPU pass vs CPU;\n"
+       "              rtf: RTF bake + CPCA per object, CPU bouncing/shading step vs objects (game/bench_rtf.hpp)",
        {device,
         {"--lights", "N", "virtual lights (vlm-grid default 10000; vlm-k default 240)"},
         {"--grid", "G", "vlm-grid: cells per axis (default 50)"},
@@ -107,7 +108,15 @@ const std::vector<cli::CommandSpec>& commandSpecs() {
         {"--rays", "N", "dnrt: bake rays per grid vertex for every field (a square; default each entity's)"},
         {"--csv", "FILE", "dnrt: also write the rows as CSV"},
         {"--instances", "N", "skinning: CesiumMan copies of the synthetic cage (default 306, ~1M vertices)"},
-        {"--assets", "DIR", "skinning: the shared assets folder (default <source>/../shared/assets)"}},
+        {"--assets", "DIR", "skinning: the shared assets folder (default <source>/../shared/assets)"},
+        // bench rtf (game/bench_rtf.hpp); --rays and --runs above also apply (ITF rays per axis; timing runs)
+        {"--proxies", "N", "rtf: proxies per object (default 16)"},
+        {"--spheres", "N", "rtf: concentric spheres (default 16)"},
+        {"--face", "N", "rtf: cube-map face size per sphere, 6*N^2 samples (default 16)"},
+        {"--vertex-rays", "N", "rtf: vertex transfer rays per axis (default 16)"},
+        {"--clusters", "N", "rtf: CPCA clusters (default 32)"},
+        {"--components", "N", "rtf: CPCA components per cluster (default 16)"},
+        {"--bounces", "N", "rtf: inter-object bounces 1..4 (default 2)"}},
        1, 1},
   };
   return specs;

@@ -209,9 +209,13 @@ CpcaError measure(const Cpca& c, std::span<const float> data) {
   }
   CpcaError e;
   e.frobenius = norm > 0.0 ? std::sqrt(err / norm) : std::sqrt(err);
-  const double after = double(c.basis.size()) + double(N) * double(c.components + 1);
-  e.ratio = double(N * D) / after;
+  e.ratio = compressionRatio(c);
   return e;
+}
+
+double compressionRatio(const Cpca& c) {
+  const double N = double(c.samples());
+  return N * double(c.dimension) / (double(c.basis.size()) + N * double(c.components + 1));
 }
 
 }  // namespace bounce::gi::rtf

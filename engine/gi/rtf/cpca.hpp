@@ -51,5 +51,7 @@ struct CpcaError {
   double ratio = 0.0;      // N·D floats before / floats after (basis + per-sample α and cluster id)
 };
 CpcaError measure(const Cpca& cpca, std::span<const float> data);
+// The ratio of CpcaError alone (it needs no data).
+double compressionRatio(const Cpca& cpca);
 
 }  // namespace bounce::gi::rtf
