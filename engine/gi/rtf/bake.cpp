@@ -212,8 +212,23 @@ BakeResult bake(const ref::SceneDesc& object, const FieldSettings& s) {
   const ref::SceneBvh bvh = makeBvh(object);
   const VertexGrid grid(v, bs.centre, bs.radius);
   const std::size_t N = sampleCount(s), D = itfDimension(s), m = std::size_t(s.proxies), stride = m * kShCount;
-  const int spa = s.raysPerAxis, perSphere = samplesPerSphere(s), n2 = s.faceSize * s.faceSize;
-  const double weight = 4.0 * math::kPi / (double(spa) * spa);
+  const int perSphere = samplesPerSphere(s), n2 = s.faceSize * s.faceSize;
+  // The projection directions: one cube map's texel centres with their exact solid angles (§4:
+  // "6 × 64 × 64 directions on a unit cubemap"), the SAME for every sample, so the integration
+  // error varies smoothly from sample to sample (CPCA compresses it) instead of as noise.
+  struct Direction {
+    glm::dvec3 w;
+    double solidAngle;
+    std::array<double, kShCount> y;
+  };
+  std::vector<Direction> directions;
+  for (int face = 0; face < 6; ++face)
+    for (int y = 0; y < s.raysPerAxis; ++y)
+      for (int x = 0; x < s.raysPerAxis; ++x) {
+        Direction d{sh::cubeTexelDirection(face, x, y, s.raysPerAxis), sh::cubeTexelSolidAngle(x, y, s.raysPerAxis), {}};
+        sh::evalBasis<double>(kShOrder, d.w, d.y);
+        directions.push_back(d);
+      }
   result.itf.assign(N * D, 0.0f);
   f.oof.assign(N * kShCount, 0.0f);
   std::vector<char> inside(N, 0);
@@ -223,13 +238,13 @@ BakeResult bake(const ref::SceneDesc& object, const FieldSettings& s) {
     const int face = rest / n2, x = rest % n2 % s.faceSize, y = rest % n2 / s.faceSize;
     const glm::dvec3 q = glm::dvec3(bs.centre) +
                          double(bs.radius) * double(sphereRadius(s, sphere)) * sh::cubeTexelDirection(face, x, y, s.faceSize);
-    math::Pcg32 rng = math::Pcg32::fromIndex(sample);
     std::vector<double> M(D, 0.0);
-    std::array<double, kShCount> y16{}, V{};
+    std::array<double, kShCount> V{};
     int front = 0, back = 0;
-    for (const glm::dvec2& u : math::stratified2D(spa, rng)) {
-      const glm::dvec3 w = math::uniformSphere(u);
-      sh::evalBasis<double>(kShOrder, w, y16);
+    for (const Direction& dir : directions) {
+      const glm::dvec3& w = dir.w;
+      std::array<double, kShCount> y16;
+      for (int i = 0; i < kShCount; ++i) y16[std::size_t(i)] = dir.y[std::size_t(i)] * dir.solidAngle;
       ref::Hit hit;
       if (!bvh.intersect(glm::vec3(q), glm::vec3(w), 0.0f, std::numeric_limits<float>::infinity(), hit)) {
         for (int i = 0; i < kShCount; ++i) V[std::size_t(i)] += y16[std::size_t(i)];
@@ -254,8 +269,8 @@ BakeResult bake(const ref::SceneDesc& object, const FieldSettings& s) {
     if (back > front) {
       inside[sample] = 1;  // M = 0, V = 0: no light reaches a point inside the object
     } else {
-      for (std::size_t d = 0; d < D; ++d) result.itf[sample * D + d] = float(M[d] * weight);
-      for (int i = 0; i < kShCount; ++i) f.oof[sample * kShCount + std::size_t(i)] = float(V[std::size_t(i)] * weight);
+      for (std::size_t d = 0; d < D; ++d) result.itf[sample * D + d] = float(M[d]);
+      for (int i = 0; i < kShCount; ++i) f.oof[sample * kShCount + std::size_t(i)] = float(V[std::size_t(i)]);
     }
     progress.advance();
   }, 4);
@@ -278,7 +293,7 @@ BakeResult bake(const ref::SceneDesc& object, const FieldSettings& s) {
 
 std::string cacheKey(const ref::SceneDesc& object, const FieldSettings& s) {
   Hasher h;
-  h.str("rtf-field-v1");  // baker and file format version: bump when either changes
+  h.str("rtf-field-v2");  // v2: cube-map projection directions  // baker and file format version: bump when either changes
   h.pod(s.proxies).pod(s.spheres).pod(s.faceSize).pod(s.innerRadius).pod(s.outerRadius).pod(s.raysPerAxis);
   h.pod(s.vertexRaysPerAxis).pod(s.selfBounces).pod(s.clusters).pod(s.components);
   h.u64(object.meshes.size());

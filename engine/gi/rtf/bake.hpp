@@ -11,12 +11,13 @@
 //       bounce b: t^b_{p,k}   = ρ_p (1/S) Σ_{rays that hit O's front faces} t^{b−1}_{x,k}
 //     t = Σ_{b ≤ selfBounces} t^b, x the mesh vertex nearest the hit (same facing) — the hit
 //     point's transfer is approximated by its nearest vertex (the ray tracer reports no triangle);
-//  3. at every sample q on the concentric spheres (field.hpp) the ITF (Eq. 6–7), by stratified
-//     uniform directions ω (pdf 1/4π): M^{ij}_{q,k} = (4π/S) Σ_{rays hitting p} y_i(ω) t_{p,k}^j,
-//     and the OOF V_q^i = (4π/S) Σ_{rays that miss} y_i(ω). A sample inside the object (most
-//     hits are back faces) gets M = 0 and V = 0 (all light is blocked there);
+//  3. at every sample q on the concentric spheres (field.hpp) the ITF (Eq. 6–7), over the texel
+//     directions ω of one cube map (face size raysPerAxis; the paper's 6×64×64, §4) weighted by
+//     their exact solid angles Δω: M^{ij}_{q,k} = Σ_{rays hitting p} Δω y_i(ω) t_{p,k}^j, and the
+//     OOF V_q^i = Σ_{rays that miss} Δω y_i(ω). A sample inside the object (most hits are back
+//     faces) gets M = 0 and V = 0 (all light is blocked there);
 //  4. CPCA of the ITF vectors (Eq. 9, cpca.hpp), its Frobenius error and compression ratio.
-// Deterministic: vertex v and sample s draw from Pcg32::fromIndex(v) / fromIndex(s).
+// Deterministic: vertex v draws from Pcg32::fromIndex(v); the field's directions are fixed.
 #include <filesystem>
 #include <span>
 #include <string>

@@ -43,7 +43,7 @@ struct FieldSettings {
   int faceSize = 16;           // n_r: 6·n_r² samples per sphere (paper 16)
   float innerRadius = 0.1f;    // innermost sphere, units of η (paper 0.1)
   float outerRadius = 8.0f;    // outermost sphere, units of η (paper 8)
-  int raysPerAxis = 16;        // ITF/OOF projection at a sample: raysPerAxis² stratified directions
+  int raysPerAxis = 16;        // ITF/OOF projection at a sample: a cube map of this face size, 6·n² rays (paper 64)
   int vertexRaysPerAxis = 16;  // vertex transfer (Eq. 8): vertexRaysPerAxis² cosine-weighted rays
   int selfBounces = 2;         // self-interreflection bounces in the vertex transfer (Eq. 8)
   int clusters = 32;           // CPCA n_c (paper 32)

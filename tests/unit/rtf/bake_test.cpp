@@ -130,13 +130,13 @@ TEST(RtfBake, ItfAndOofMatchTheSphereClosedForms) {
   // Uniform radiance L on a sphere of radius R, albedo ρ: at distance d the sphere fills a cap of
   // Ω = 2π(1 − √(1 − (R/d)²)) with radiance ρL, so the l = 0 coefficient of the light reaching q
   // is Y_00 ρ L Ω and the visibility's is Y_00 (4π − Ω). Error sources: the faceted mesh (48
-  // rings: edges sit ≤ 0.1 % inside R, Ω ≈ 0.3 % smaller) and the stratified MC of an indicator
-  // over S = 48² directions: up to ≈ 100 strata straddle the cap's edge, each hit or missed, so
-  // σ ≈ 4 rays: per sample 12 rays (3σ, Ω ± 12·4π/S); the mean over a sphere's 24 samples 1.5 %
-  // of the value (3σ/√24 over ≈ 230 hits at the nearest sphere, plus the facets).
+  // rings: edges sit ≤ 0.1 % inside R, Ω ≈ 0.3 % smaller) and the cube-map quadrature (face 24,
+  // 3456 directions): texels on the cap's edge count whole or not, an error that does not average
+  // out over the (symmetric) samples (measured +2.6 % and +3.2 % of Ω on spheres 1 and 2):
+  // bound 5 % of Ω plus 4 mean texels (Δω = 4π/3456) for the small far caps.
   const glm::vec3 rho(0.8f, 0.6f, 0.4f);
   FieldSettings fs = testing::smallSettings();
-  fs.raysPerAxis = 48;
+  fs.raysPerAxis = 24;
   fs.selfBounces = 0;
   const BakeResult b = bake(testing::unitSphere(rho, 48), fs);
   const Field& f = b.field;
@@ -144,25 +144,21 @@ TEST(RtfBake, ItfAndOofMatchTheSphereClosedForms) {
   const std::size_t D = itfDimension(fs), per = std::size_t(samplesPerSphere(fs));
   EXPECT_EQ(b.stats.insideSamples, per);  // sphere 0 (0.5 R) is inside the object
   const double L = 1.0, l0 = 2.0 * std::sqrt(kPi) * L;
-  const double omegaTol = 12.0 * 4.0 * kPi / (48.0 * 48.0);
+  const double texel = 4.0 * kPi / (6.0 * 24.0 * 24.0);
   for (int sphere = 1; sphere < fs.spheres; ++sphere) {
     const double d = sphereRadius(fs, sphere);
     const double omega = 2.0 * kPi * (1.0 - std::sqrt(1.0 - 1.0 / (d * d)));
-    double meanI = 0.0, meanV = 0.0;
+    const double omegaTol = 0.05 * omega + 4.0 * texel;
     for (std::size_t s = std::size_t(sphere) * per; s < std::size_t(sphere + 1) * per; ++s) {
       for (int c = 0; c < 3; ++c) {
         double i0 = 0.0;
         for (int k = 0; k < fs.proxies; ++k) i0 += b.itf[s * D + itfIndex(k, 0, 0, c)] * l0;
         const double want = kY00 * rho[c] * L * omega;
         EXPECT_NEAR(i0, want, want * omegaTol / omega) << "sphere " << sphere << " sample " << s;
-        if (c == 0) meanI += i0 / want / double(per);
       }
       const double v0 = f.oof[s * kShCount], want = kY00 * (4.0 * kPi - omega);
       EXPECT_NEAR(v0, want, kY00 * omegaTol) << s;
-      meanV += (kY00 * 4.0 * kPi - v0) / (kY00 * omega) / double(per);
     }
-    EXPECT_NEAR(meanI, 1.0, 0.015) << sphere;
-    EXPECT_NEAR(meanV, 1.0, 0.015) << sphere;
   }
   // Inside: no light arrives, nothing is visible.
   for (std::size_t s = 0; s < per; ++s) {

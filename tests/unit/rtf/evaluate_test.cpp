@@ -105,7 +105,7 @@ const BakeResult& closedFormBake() {
     s.innerRadius = 1.25f;
     s.outerRadius = 2.5f;
     s.faceSize = 6;
-    s.raysPerAxis = 32;
+    s.raysPerAxis = 16;
     s.selfBounces = 0;
     s.clusters = 64;
     s.components = 8;

@@ -12,7 +12,7 @@ inline FieldSettings smallSettings() {
   s.faceSize = 2;
   s.innerRadius = 0.5f;
   s.outerRadius = 4.0f;
-  s.raysPerAxis = 24;
+  s.raysPerAxis = 12;
   s.vertexRaysPerAxis = 6;
   s.selfBounces = 1;
   s.clusters = 4;
