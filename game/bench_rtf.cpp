@@ -43,6 +43,7 @@ int runBenchRtf(const cli::Args& args) {
   s.components = intIn(args, "--components", s.components, 1, 256);
   const int bounces = intIn(args, "--bounces", 2, 1, 4);
   const int runs = intIn(args, "--runs", 3, 1, 1000);
+  const int maxObjects = intIn(args, "--objects", 1000, 1, 1000);
   const scene::Level level = scene::loadLevel(benchLevelPath(args.str("--level", "cornell-5")));
 
   gi::dnrt::LevelObjects objects;
@@ -52,6 +53,7 @@ int runBenchRtf(const cli::Args& args) {
   std::vector<gi::rtf::Field> fields;
   std::vector<glm::mat4> worlds;
   for (ecs::Entity e : objects.entities) {
+    if (int(fields.size()) >= maxObjects) break;
     const ref::SceneDesc object = gi::dnrt::objectScene(objects.registry, e, objects.assets);
     const auto t0 = std::chrono::steady_clock::now();
     bool cached = false;

@@ -116,7 +116,8 @@ const std::vector<cli::CommandSpec>& commandSpecs() {
         {"--vertex-rays", "N", "rtf: vertex transfer rays per axis (default 16)"},
         {"--clusters", "N", "rtf: CPCA clusters (default 32)"},
         {"--components", "N", "rtf: CPCA components per cluster (default 16)"},
-        {"--bounces", "N", "rtf: inter-object bounces 1..4 (default 2)"}},
+        {"--bounces", "N", "rtf: inter-object bounces 1..4 (default 2)"},
+        {"--objects", "N", "rtf: only the level's first N dynamic objects (default all)"}},
        1, 1},
   };
   return specs;

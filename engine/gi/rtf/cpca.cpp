@@ -6,6 +6,7 @@
 
 #include "engine/core/error.hpp"
 #include "engine/core/parallel.hpp"
+#include "engine/core/progress.hpp"
 #include "engine/math/sampling.hpp"
 
 namespace bounce::gi::rtf {
@@ -122,6 +123,8 @@ Cpca compress(std::span<const float> data, std::size_t D, const CpcaSettings& s)
     return s2;
   };
 
+  constexpr int kLloydRounds = 8;
+  Progress progress("rtf cpca", std::size_t(nc + kLloydRounds + s.iterations + 1));
   // Farthest-point seeds: sample 0, then repeatedly the sample farthest from every seed so far.
   std::vector<Vec> centres;
   std::vector<double> nearest(N, std::numeric_limits<double>::infinity());
@@ -130,10 +133,11 @@ Cpca compress(std::span<const float> data, std::size_t D, const CpcaSettings& s)
     centres.emplace_back(x(next), x(next) + D);
     parallelFor(0, N, [&](std::size_t r) { nearest[r] = std::min(nearest[r], dist2(x(r), centres.back().data())); }, 64);
     next = std::size_t(std::max_element(nearest.begin(), nearest.end()) - nearest.begin());
+    progress.advance();
   }
   // Lloyd k-means.
   std::vector<std::uint32_t> assign(N, 0);
-  for (int it = 0; it < 8; ++it) {
+  for (int it = 0; it < kLloydRounds; ++it, progress.advance()) {
     parallelFor(0, N, [&](std::size_t r) {
       double best = std::numeric_limits<double>::infinity();
       for (int h = 0; h < nc; ++h)
@@ -172,8 +176,11 @@ Cpca compress(std::span<const float> data, std::size_t D, const CpcaSettings& s)
       }
       assign[r] = arg;
     }, 16);
+    progress.advance();
   }
   fitAll();
+  progress.advance();
+  progress.finish();
 
   Cpca out;
   out.dimension = int(D), out.clusters = nc, out.components = ne;
