@@ -184,6 +184,26 @@ TEST(RtfBake, ReportedCpcaErrorIsTheFieldsErrorAndShrinksWithComponents) {
   EXPECT_NEAR(many.stats.rawMB / many.stats.compressedMB, many.stats.ratio, 1e-9 * many.stats.ratio);
 }
 
+TEST(RtfBake, ObjectsOfScale1eMinus3And1e3BakeTheSameField) {
+  // The field is in units of η: the same object at 1e-3 m and 1e3 m must give the same M and OOF.
+  // Float rounding of the scaled vertices can flip a ray grazing the silhouette: 1e-3 of the field's
+  // L1 norm allows a few such texels among the ≈ 96·864 rays.
+  const FieldSettings fs = testing::smallSettings();
+  const BakeResult unit = bake(dnrt::testing::sphere(glm::vec3(0.0f), 1.0f, glm::vec3(0.7f), 8), fs);
+  for (float scale : {1e-3f, 1e3f}) {
+    const BakeResult b = bake(dnrt::testing::sphere(glm::vec3(scale * 2.0f), scale, glm::vec3(0.7f), 8), fs);
+    EXPECT_NEAR(b.field.radius / scale, 1.0f, 1e-5f);
+    double diff = 0.0, norm = 0.0;
+    for (std::size_t i = 0; i < unit.itf.size(); ++i) diff += std::abs(double(b.itf[i]) - unit.itf[i]), norm += std::abs(double(unit.itf[i]));
+    EXPECT_LT(diff, 1e-3 * norm) << scale;
+    double vdiff = 0.0, vnorm = 0.0;
+    for (std::size_t i = 0; i < unit.field.oof.size(); ++i)
+      vdiff += std::abs(double(b.field.oof[i]) - unit.field.oof[i]), vnorm += std::abs(double(unit.field.oof[i]));
+    EXPECT_LT(vdiff, 1e-3 * vnorm) << scale;
+    for (float x : b.field.itf.basis) ASSERT_TRUE(std::isfinite(x));
+  }
+}
+
 TEST(RtfBake, CachedBakeIsReusedAndACorruptCacheIsRebaked) {
   const auto dir = std::filesystem::path(BOUNCE_TEST_OUT) / "rtf-cache-test";
   std::filesystem::remove_all(dir);
