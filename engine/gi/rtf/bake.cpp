@@ -293,7 +293,7 @@ BakeResult bake(const ref::SceneDesc& object, const FieldSettings& s) {
 
 std::string cacheKey(const ref::SceneDesc& object, const FieldSettings& s) {
   Hasher h;
-  h.str("rtf-field-v2");  // v2: cube-map projection directions  // baker and file format version: bump when either changes
+  h.str("rtf-field-v3");  // v2: cube-map projection directions; v3: warm-started CPCA  // baker and file format version: bump when either changes
   h.pod(s.proxies).pod(s.spheres).pod(s.faceSize).pod(s.innerRadius).pod(s.outerRadius).pod(s.raysPerAxis);
   h.pod(s.vertexRaysPerAxis).pod(s.selfBounces).pod(s.clusters).pod(s.components);
   h.u64(object.meshes.size());

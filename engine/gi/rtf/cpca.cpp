@@ -34,8 +34,10 @@ double residual2(const float* x, const Vec& basis, std::size_t D, int ne, std::v
 }
 
 // Mean and an orthonormal basis of the principal ne-subspace of the samples `members`.
+// `start` (optional): the cluster's previous basis (mean row first): its rows start the iteration
+// (a warm start: a few products then suffice); rows that are zero there start random.
 Vec fitCluster(std::span<const float> data, std::size_t D, const std::vector<std::size_t>& members, int ne,
-               int powerIterations, std::uint64_t seed) {
+               int powerIterations, std::uint64_t seed, const Vec* start) {
   Vec basis(std::size_t(ne + 1) * D, 0.0);
   if (members.empty()) return basis;
   for (std::size_t r : members)
@@ -51,6 +53,11 @@ Vec fitCluster(std::span<const float> data, std::size_t D, const std::vector<std
   math::Pcg32 rng(seed);
   std::vector<double> V(std::size_t(ne) * D);
   for (double& v : V) v = rng.nextDouble() * 2.0 - 1.0;
+  if (start != nullptr && start->size() == basis.size())
+    for (int j = 0; j < ne; ++j) {
+      const double* row = start->data() + std::size_t(j + 1) * D;
+      if (dot(row, row, D) > 0.5) std::copy(row, row + D, V.begin() + std::ptrdiff_t(std::size_t(j) * D));  // unit rows
+    }
   double scale = 0.0;
   for (double y : Y) scale = std::max(scale, std::abs(y));
   const auto orthonormalize = [&](std::vector<double>& W) {
@@ -156,12 +163,16 @@ Cpca compress(std::span<const float> data, std::size_t D, const CpcaSettings& s)
 
   // CPCA rounds: fit, then reassign by reconstruction error.
   std::vector<Vec> bases(static_cast<std::size_t>(nc));
+  bool warm = false;  // after the first fit, each cluster starts from its previous basis
   const auto fitAll = [&]() {
     std::vector<std::vector<std::size_t>> members(static_cast<std::size_t>(nc));
     for (std::size_t r = 0; r < N; ++r) members[assign[r]].push_back(r);
+    const int iterations = warm ? std::max(3, s.powerIterations / 4) : s.powerIterations;
     parallelFor(0, std::size_t(nc), [&](std::size_t h) {
-      bases[h] = fitCluster(data, D, members[h], ne, s.powerIterations, 0x5eed0000u + h);
+      const Vec previous = bases[h];
+      bases[h] = fitCluster(data, D, members[h], ne, iterations, 0x5eed0000u + h, warm ? &previous : nullptr);
     });
+    warm = true;
     return members;
   };
   for (int it = 0; it < s.iterations; ++it) {

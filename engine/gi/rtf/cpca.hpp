@@ -14,7 +14,8 @@
 // moves to the cluster that reconstructs it best}. The principal subspace comes from block power
 // (subspace) iteration on the centred cluster, X_cᵀ(X_c V), re-orthonormalised by modified
 // Gram–Schmidt: only the span matters for Eq. 9 (α = Eᵀ(x − E_0) is the orthogonal projection),
-// so no eigen-decomposition is needed. A cluster whose centred data has rank ≤ ne is reproduced
+// so no eigen-decomposition is needed. Rounds after the first start each cluster from its previous
+// basis (powerIterations/4, at least 3, products). A cluster whose centred data has rank ≤ ne is reproduced
 // exactly (to float rounding): its span is found by the first product.
 // Deterministic: seeds and start vectors come from Pcg32 with a fixed seed.
 #include <cstddef>
@@ -28,7 +29,7 @@ struct CpcaSettings {
   int clusters = 32;    // n_c (paper: 32)
   int components = 16;  // n_e (paper: 16)
   int iterations = 4;   // reassignment rounds after k-means
-  int powerIterations = 12;
+  int powerIterations = 12;  // products of the first fit
 };
 
 struct Cpca {
