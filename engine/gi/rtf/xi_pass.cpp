@@ -51,6 +51,24 @@ XiPass::XiPass(gpu::Context& ctx, const Field& f)
   d.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
   d.name = "rtf.xi";
   xi_ = gpu::Image(ctx, d);
+  gpu::ImageDesc o = d;
+  o.layers = std::uint32_t(s.spheres * 4);
+  o.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+  o.name = "rtf.oof";
+  oof_ = gpu::Image(ctx, o);
+  {
+    const std::size_t w = d.width, h = d.height;
+    std::vector<float> texels(std::size_t(o.layers) * w * h * 4, 0.0f);
+    const int n2 = s.faceSize * s.faceSize, per = samplesPerSphere(s);
+    for (std::size_t r = 0; r < sampleCount(s); ++r) {
+      const int sphere = int(r) / per, rest = int(r) % per, face = rest / n2, y = rest % n2 / s.faceSize, x = rest % s.faceSize;
+      for (int i = 0; i < kShCount; ++i) {
+        const std::size_t layer = std::size_t(sphere * 4 + i / 4);
+        texels[((layer * h + std::size_t(y)) * w + std::size_t(face * s.faceSize + x)) * 4 + std::size_t(i % 4)] = f.oof[r * kShCount + std::size_t(i)];
+      }
+    }
+    gpu::upload(ctx, oof_, std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(texels.data()), texels.size() * sizeof(float)));
+  }
   pipeline_ = gpu::createComputePipeline(ctx, layout_, gpu::ShaderModule(ctx, "rtf/xi.comp.spv"), "rtf.xi");
   set_ = descriptors_.allocate(setLayout_);
   gpu::DescriptorWriter()

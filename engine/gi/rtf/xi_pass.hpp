@@ -1,5 +1,5 @@
 #pragma once
-// The bouncing step's caches on the GPU (Eq. 11–12, shaders/rtf/xi.comp): one object's CPCA field
+// One object's RTF on the GPU: the bouncing step's caches (Eq. 11–12, shaders/rtf/xi.comp): one object's CPCA field
 // uploaded once, the proxies' light each frame, ξ written into an rgba32f 2D-array image (layer
 // sphere·16 + i, texel (face·n_r + x, y)) for the shading step to read with texelFetch. The CPU
 // reference is xiCache() (evaluate.hpp); tests/unit/rtf/xi_gpu_test.cpp compares the two.
@@ -25,6 +25,9 @@ class XiPass {
   // visible to later compute and fragment reads.
   void record(VkCommandBuffer cmd);
   gpu::Image& xi() { return xi_; }
+  // The object occlusion field, uploaded once: rgba32f 2D array, layer sphere·4 + i/4, texel
+  // (face·n_r + x, y), component i%4 (shaders/rtf/rtf.glsl), SHADER_READ_ONLY_OPTIMAL.
+  gpu::Image& oof() { return oof_; }
 
  private:
   struct Push {
@@ -34,7 +37,7 @@ class XiPass {
   FieldSettings settings_;
   Push push_{};
   gpu::Buffer basis_, alpha_, cluster_, light_, eigen_;
-  gpu::Image xi_;
+  gpu::Image xi_, oof_;
   gpu::DescriptorSetLayout setLayout_;
   gpu::PipelineLayout layout_;
   gpu::Pipeline pipeline_;
