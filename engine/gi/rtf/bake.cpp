@@ -1,0 +1,337 @@
+#include "engine/gi/rtf/bake.hpp"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <unordered_map>
+
+#include "engine/core/error.hpp"
+#include "engine/core/hash.hpp"
+#include "engine/core/log.hpp"
+#include "engine/core/parallel.hpp"
+#include "engine/core/progress.hpp"
+#include "engine/gi/dnrt/bake.hpp"
+#include "engine/math/sampling.hpp"
+#include "engine/math/sh.hpp"
+
+namespace bounce::gi::rtf {
+
+namespace {
+
+// The object's vertices flattened over its meshes, with outward normals and albedo.
+struct Vertices {
+  std::vector<glm::vec3> position, normal, albedo;
+};
+
+Vertices flatten(const ref::SceneDesc& o) {
+  Vertices v;
+  for (const auto& m : o.meshes) {
+    const ref::RefMaterial* mat = m.material < o.materials.size() ? &o.materials[m.material] : nullptr;
+    for (std::size_t i = 0; i < m.positions.size(); ++i) {
+      v.position.push_back(m.positions[i]);
+      const glm::vec3 n = i < m.normals.size() ? m.normals[i] : glm::vec3(0.0f);
+      v.normal.push_back(glm::length(n) > 0.0f ? glm::normalize(n) : glm::vec3(0.0f, 0.0f, 1.0f));
+      glm::vec3 a = mat ? mat->albedo : glm::vec3(1.0f);
+      if (mat && mat->albedoTexture >= 0 && std::size_t(mat->albedoTexture) < o.textures.size() && i < m.uvs.size())
+        a *= o.textures[std::size_t(mat->albedoTexture)].sample(m.uvs[i]);
+      v.albedo.push_back(glm::clamp(a, glm::vec3(0.0f), glm::vec3(1.0f)));  // as gbuffer.frag clamps
+    }
+  }
+  return v;
+}
+
+// Nearest vertex to a hit, preferring vertices facing the same way (split vertices on edges).
+class VertexGrid {
+ public:
+  VertexGrid(const Vertices& v, glm::vec3 centre, float radius) : v_(v) {
+    lo_ = centre - glm::vec3(radius * 1.001f + 1e-30f);
+    const double cells = std::cbrt(std::max<double>(1.0, double(v.position.size()) / 4.0));
+    n_ = std::clamp(int(cells), 1, 96);
+    h_ = (2.0f * radius * 1.001f + 2e-30f) / float(n_);
+    for (std::size_t i = 0; i < v.position.size(); ++i) cells_[key(cell(v.position[i]))].push_back(std::uint32_t(i));
+  }
+  std::uint32_t nearest(glm::vec3 p, glm::vec3 n) const {
+    const glm::ivec3 c = cell(p);
+    std::uint32_t best = 0, bestAny = 0;
+    float bd = std::numeric_limits<float>::infinity(), bdAny = bd;
+    for (int ring = 0; ring <= n_; ++ring) {
+      for (int z = c.z - ring; z <= c.z + ring; ++z)
+        for (int y = c.y - ring; y <= c.y + ring; ++y)
+          for (int x = c.x - ring; x <= c.x + ring; ++x) {
+            if (std::max({std::abs(x - c.x), std::abs(y - c.y), std::abs(z - c.z)}) != ring) continue;
+            const auto it = cells_.find(key({x, y, z}));
+            if (it == cells_.end()) continue;
+            for (std::uint32_t i : it->second) {
+              const glm::vec3 d = v_.position[i] - p;
+              const float d2 = glm::dot(d, d);
+              if (d2 < bdAny) bdAny = d2, bestAny = i;
+              if (glm::dot(v_.normal[i], n) > 0.0f && d2 < bd) bd = d2, best = i;
+            }
+          }
+      // Every vertex within `ring` cells has been seen: done when the best lies inside that.
+      const float reach = float(ring) * h_;
+      if (std::isfinite(bd) && bd <= reach * reach) return best;
+    }
+    return std::isfinite(bd) ? best : bestAny;
+  }
+
+ private:
+  glm::ivec3 cell(glm::vec3 p) const { return glm::clamp(glm::ivec3(glm::floor((p - lo_) / h_)), glm::ivec3(0), glm::ivec3(n_ - 1)); }
+  std::int64_t key(glm::ivec3 c) const { return (std::int64_t(c.z) * 4096 + c.y) * 4096 + c.x; }
+  const Vertices& v_;
+  glm::vec3 lo_{0.0f};
+  float h_ = 1.0f;
+  int n_ = 1;
+  std::unordered_map<std::int64_t, std::vector<std::uint32_t>> cells_;
+};
+
+ref::SceneBvh makeBvh(const ref::SceneDesc& object) {
+  ref::SceneDesc desc;
+  desc.meshes = object.meshes;
+  desc.materials = object.materials;
+  desc.textures = object.textures;
+  return ref::SceneBvh(std::move(desc));
+}
+
+}  // namespace
+
+std::vector<glm::vec3> kmeans(std::span<const glm::vec3> points, int m, int iterations) {
+  if (points.empty() || m < 1) throw InternalError("rtf::kmeans: no points or m < 1");
+  std::vector<glm::vec3> centres{points[0]};
+  std::vector<float> nearest(points.size(), std::numeric_limits<float>::infinity());
+  while (int(centres.size()) < m) {
+    std::size_t far = 0;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const glm::vec3 d = points[i] - centres.back();
+      nearest[i] = std::min(nearest[i], glm::dot(d, d));
+      if (nearest[i] > nearest[far]) far = i;
+    }
+    if (!(nearest[far] > 0.0f)) break;  // fewer distinct points than m
+    centres.push_back(points[far]);
+  }
+  std::vector<std::size_t> owner(points.size(), 0);
+  for (int it = 0; it < iterations; ++it) {
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      float bd = std::numeric_limits<float>::infinity();
+      for (std::size_t k = 0; k < centres.size(); ++k) {
+        const glm::vec3 d = points[i] - centres[k];
+        if (const float d2 = glm::dot(d, d); d2 < bd) bd = d2, owner[i] = k;
+      }
+    }
+    std::vector<glm::dvec3> sum(centres.size(), glm::dvec3(0.0));
+    std::vector<std::size_t> count(centres.size(), 0);
+    for (std::size_t i = 0; i < points.size(); ++i) sum[owner[i]] += glm::dvec3(points[i]), ++count[owner[i]];
+    for (std::size_t k = 0; k < centres.size(); ++k)
+      if (count[k] > 0) centres[k] = glm::vec3(sum[k] / double(count[k]));
+  }
+  return centres;
+}
+
+std::vector<float> proxyWeights(glm::vec3 p, std::span<const glm::vec3> proxies, float scale) {
+  std::vector<float> w(proxies.size(), 0.0f);
+  const float eps = 1e-6f * scale;
+  std::size_t onProxy = 0;
+  for (std::size_t k = 0; k < proxies.size(); ++k)
+    if (glm::length(p - proxies[k]) <= eps) w[k] = 1.0f, ++onProxy;
+  if (onProxy > 0) {
+    for (float& x : w) x /= float(onProxy);
+    return w;
+  }
+  double sum = 0.0;
+  std::vector<double> inv(proxies.size());
+  for (std::size_t k = 0; k < proxies.size(); ++k) sum += inv[k] = 1.0 / double(glm::length(p - proxies[k]));
+  for (std::size_t k = 0; k < proxies.size(); ++k) w[k] = float(inv[k] / sum);
+  return w;
+}
+
+std::vector<glm::vec3> vertexTransfer(const ref::SceneDesc& object, std::span<const glm::vec3> proxies, float radius,
+                                      const FieldSettings& s) {
+  const Vertices v = flatten(object);
+  const ref::SceneBvh bvh = makeBvh(object);
+  const dnrt::BoundingSphere bs = dnrt::boundingSphere(object);
+  const VertexGrid grid(v, bs.centre, bs.radius);
+  const std::size_t nv = v.position.size(), m = proxies.size(), stride = m * kShCount;
+  const int spa = s.vertexRaysPerAxis;
+  const double S = double(spa) * spa;
+  const float tMin = 1e-4f * radius;
+  std::vector<glm::vec3> direct(nv * stride, glm::vec3(0.0f));
+  std::vector<std::vector<std::uint32_t>> hits(nv);  // front-face hits' nearest vertices
+  Progress progress("rtf vertex transfer", nv);
+  parallelFor(0, nv, [&](std::size_t p) {
+    math::Pcg32 rng = math::Pcg32::fromIndex(p);
+    const glm::dvec3 n(v.normal[p]);
+    std::array<double, kShCount> y{}, sum{};
+    for (const glm::dvec2& u : math::stratified2D(spa, rng)) {
+      const glm::dvec3 w = math::cosineHemisphere(u, n);
+      ref::Hit hit;
+      if (!bvh.intersect(v.position[p], glm::vec3(w), tMin, std::numeric_limits<float>::infinity(), hit)) {
+        sh::evalBasis<double>(kShOrder, w, y);
+        for (int j = 0; j < kShCount; ++j) sum[std::size_t(j)] += y[std::size_t(j)];
+      } else if (glm::dot(glm::dvec3(hit.geometricNormal), w) < 0.0) {
+        hits[p].push_back(grid.nearest(hit.position, hit.geometricNormal));
+      }  // a back face: light from inside the object, none
+    }
+    const std::vector<float> wk = proxyWeights(v.position[p], proxies, radius);
+    for (std::size_t k = 0; k < m; ++k)
+      for (int j = 0; j < kShCount; ++j)
+        direct[p * stride + k * kShCount + std::size_t(j)] = v.albedo[p] * float(wk[k] * sum[std::size_t(j)] / S);
+    progress.advance();
+  }, 16);
+  progress.finish();
+  std::vector<glm::vec3> total = direct, previous = direct;
+  for (int b = 0; b < s.selfBounces; ++b) {
+    std::vector<glm::vec3> next(nv * stride, glm::vec3(0.0f));
+    parallelFor(0, nv, [&](std::size_t p) {
+      for (std::uint32_t x : hits[p])
+        for (std::size_t e = 0; e < stride; ++e) next[p * stride + e] += previous[std::size_t(x) * stride + e];
+      for (std::size_t e = 0; e < stride; ++e) next[p * stride + e] *= v.albedo[p] / float(S);
+    }, 64);
+    for (std::size_t e = 0; e < total.size(); ++e) total[e] += next[e];
+    previous = std::move(next);
+  }
+  return total;
+}
+
+BakeResult bake(const ref::SceneDesc& object, const FieldSettings& s) {
+  checkSettings(s);
+  const auto start = std::chrono::steady_clock::now();
+  const dnrt::BoundingSphere bs = dnrt::boundingSphere(object);
+  if (!(bs.radius > 0.0f) || !std::isfinite(bs.radius)) throw InternalError("rtf: object has a degenerate bounding sphere");
+  const Vertices v = flatten(object);
+  BakeResult result;
+  Field& f = result.field;
+  f.settings = s;
+  f.centre = bs.centre;
+  f.radius = bs.radius;
+  f.proxies = kmeans(v.position, s.proxies);
+  while (f.proxies.size() < std::size_t(s.proxies)) f.proxies.push_back(f.proxies.back());  // < m distinct vertices
+  const std::vector<glm::vec3> t = vertexTransfer(object, f.proxies, bs.radius, s);
+
+  const ref::SceneBvh bvh = makeBvh(object);
+  const VertexGrid grid(v, bs.centre, bs.radius);
+  const std::size_t N = sampleCount(s), D = itfDimension(s), m = std::size_t(s.proxies), stride = m * kShCount;
+  const int perSphere = samplesPerSphere(s), n2 = s.faceSize * s.faceSize;
+  // The projection directions: one cube map's texel centres with their exact solid angles (§4:
+  // "6 × 64 × 64 directions on a unit cubemap"), the SAME for every sample, so the integration
+  // error varies smoothly from sample to sample (CPCA compresses it) instead of as noise.
+  struct Direction {
+    glm::dvec3 w;
+    double solidAngle;
+    std::array<double, kShCount> y;
+  };
+  std::vector<Direction> directions;
+  for (int face = 0; face < 6; ++face)
+    for (int y = 0; y < s.raysPerAxis; ++y)
+      for (int x = 0; x < s.raysPerAxis; ++x) {
+        Direction d{sh::cubeTexelDirection(face, x, y, s.raysPerAxis), sh::cubeTexelSolidAngle(x, y, s.raysPerAxis), {}};
+        sh::evalBasis<double>(kShOrder, d.w, d.y);
+        directions.push_back(d);
+      }
+  result.itf.assign(N * D, 0.0f);
+  f.oof.assign(N * kShCount, 0.0f);
+  std::vector<char> inside(N, 0);
+  Progress progress("rtf field", N);
+  parallelFor(0, N, [&](std::size_t sample) {
+    const int sphere = int(sample / std::size_t(perSphere)), rest = int(sample % std::size_t(perSphere));
+    const int face = rest / n2, x = rest % n2 % s.faceSize, y = rest % n2 / s.faceSize;
+    const glm::dvec3 q = glm::dvec3(bs.centre) +
+                         double(bs.radius) * double(sphereRadius(s, sphere)) * sh::cubeTexelDirection(face, x, y, s.faceSize);
+    std::vector<double> M(D, 0.0);
+    std::array<double, kShCount> V{};
+    int front = 0, back = 0;
+    for (const Direction& dir : directions) {
+      const glm::dvec3& w = dir.w;
+      std::array<double, kShCount> y16;
+      for (int i = 0; i < kShCount; ++i) y16[std::size_t(i)] = dir.y[std::size_t(i)] * dir.solidAngle;
+      ref::Hit hit;
+      if (!bvh.intersect(glm::vec3(q), glm::vec3(w), 0.0f, std::numeric_limits<float>::infinity(), hit)) {
+        for (int i = 0; i < kShCount; ++i) V[std::size_t(i)] += y16[std::size_t(i)];
+        continue;
+      }
+      if (glm::dot(glm::dvec3(hit.geometricNormal), w) > 0.0) {
+        ++back;
+        continue;
+      }
+      ++front;
+      const glm::vec3* tp = t.data() + std::size_t(grid.nearest(hit.position, hit.geometricNormal)) * stride;
+      for (std::size_t k = 0; k < m; ++k)
+        for (int i = 0; i < kShCount; ++i) {
+          double* row = M.data() + itfIndex(int(k), i, 0, 0);
+          const double yi = y16[std::size_t(i)];
+          for (int j = 0; j < kShCount; ++j) {
+            const glm::vec3& tj = tp[k * kShCount + std::size_t(j)];
+            row[j * 3 + 0] += yi * tj.r, row[j * 3 + 1] += yi * tj.g, row[j * 3 + 2] += yi * tj.b;
+          }
+        }
+    }
+    if (back > front) {
+      inside[sample] = 1;  // M = 0, V = 0: no light reaches a point inside the object
+    } else {
+      for (std::size_t d = 0; d < D; ++d) result.itf[sample * D + d] = float(M[d]);
+      for (int i = 0; i < kShCount; ++i) f.oof[sample * kShCount + std::size_t(i)] = float(V[std::size_t(i)]);
+    }
+    progress.advance();
+  }, 4);
+  progress.finish();
+  result.stats.insideSamples = std::size_t(std::count(inside.begin(), inside.end(), 1));
+
+  CpcaSettings cs;
+  cs.clusters = s.clusters;
+  cs.components = s.components;
+  f.itf = compress(result.itf, D, cs);
+  const CpcaError e = measure(f.itf, result.itf);
+  f.frobenius = e.frobenius;
+  result.stats.frobenius = e.frobenius;
+  result.stats.ratio = e.ratio;
+  result.stats.rawMB = double(N * D) * 4.0 / 1e6;
+  result.stats.compressedMB = result.stats.rawMB / e.ratio;
+  result.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+std::string cacheKey(const ref::SceneDesc& object, const FieldSettings& s) {
+  Hasher h;
+  h.str("rtf-field-v3");  // v2: cube-map projection directions; v3: warm-started CPCA  // baker and file format version: bump when either changes
+  h.pod(s.proxies).pod(s.spheres).pod(s.faceSize).pod(s.innerRadius).pod(s.outerRadius).pod(s.raysPerAxis);
+  h.pod(s.vertexRaysPerAxis).pod(s.selfBounces).pod(s.clusters).pod(s.components);
+  h.u64(object.meshes.size());
+  for (const auto& m : object.meshes) {
+    h.u64(m.positions.size()).bytes(m.positions.data(), m.positions.size() * sizeof(glm::vec3));
+    h.u64(m.normals.size()).bytes(m.normals.data(), m.normals.size() * sizeof(glm::vec3));
+    h.u64(m.uvs.size()).bytes(m.uvs.data(), m.uvs.size() * sizeof(glm::vec2));
+    h.u64(m.indices.size()).bytes(m.indices.data(), m.indices.size() * sizeof(std::uint32_t));
+    h.pod(m.material);
+  }
+  h.u64(object.materials.size());
+  for (const auto& m : object.materials) h.pod(m.albedo).pod(m.albedoTexture);
+  h.u64(object.textures.size());
+  for (const auto& t : object.textures)
+    h.pod(t.width).pod(t.height).bytes(t.texels.data(), t.texels.size() * sizeof(glm::vec3));
+  return h.hex();
+}
+
+std::filesystem::path cachePath(const ref::SceneDesc& object, const FieldSettings& s, const std::filesystem::path& dir) {
+  return dir / ("rtf-" + cacheKey(object, s) + ".field");
+}
+
+Field bakeCached(const ref::SceneDesc& object, const FieldSettings& s, const std::filesystem::path& dir, bool* fromCache) {
+  const std::filesystem::path path = cachePath(object, s, dir);
+  if (std::filesystem::exists(path)) {
+    try {
+      Field f = load(path);
+      if (fromCache) *fromCache = true;
+      return f;
+    } catch (const InputError& e) {
+      log::warn(std::string("rtf: rebaking a corrupt cached field: ") + e.what());
+    }
+  }
+  BakeResult r = bake(object, s);
+  std::filesystem::create_directories(dir);
+  save(r.field, path);
+  if (fromCache) *fromCache = false;
+  return std::move(r.field);
+}
+
+}  // namespace bounce::gi::rtf

@@ -1,0 +1,113 @@
+#pragma once
+// RTF at run time on the CPU (Pan et al. 2007, §5): the bouncing step (Algorithm 1 run at every
+// proxy, bounce after bounce) and the shading step (Eq. 10 with the caches of Eq. 11–12). This is
+// the reference the GPU passes are to be checked against, and the math the tests check.
+//
+// Frames: a field's M, OOF and proxies are in its object's LOCAL frame; lights (SH of incident
+// radiance, 16 RGB coefficients, ω pointing towards the source, convention of sh_eval.hpp) are
+// rotated between world and local frames with sh::Rotation. Positions in the field are offsets
+// from the bounding-sphere centre o in units of η, so a uniform scale needs nothing else (radiance
+// transfer between similar geometries is scale-free).
+//
+// Field lookup (Eq. 10): the 8 samples around q — 4 on each of the two spheres bracketing |q| —
+// with trilinear weights: bilinear between the texel centres of the cube-map face that q's
+// direction falls on (clamped to that face's outer texel centres, no filtering across faces:
+// what a 2D-array texture with clamp-to-edge does), linear in the radius between the spheres.
+// Inside the innermost sphere the innermost sphere's value is used. Beyond the outermost sphere
+// r_N the field fades linearly to zero at r_N + Δr (Δr the sphere spacing), as if a sphere of
+// zeros lay there: continuous at r_N, zero from r_N + Δr on. The OOF fades to "unoccluded"
+// (V = 1) the same way, so the occluded part (1 − V) fades to zero.
+#include <array>
+#include <span>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "engine/gi/dnrt/irradiance_source.hpp"
+#include "engine/gi/rtf/field.hpp"
+
+namespace bounce::gi::rtf {
+
+using ShRgb = std::array<glm::vec3, kShCount>;  // 16 RGB SH coefficients
+using ShScalar = std::array<float, kShCount>;
+
+struct Placement {
+  glm::mat4 worldToLocal{1.0f};
+  glm::mat3 localToWorldRotation{1.0f};  // orthonormal
+  glm::vec3 centreWorld{0.0f};
+  float radiusWorld = 1.0f;
+};
+// Throws InternalError when `world` is singular or not finite.
+Placement place(const Field& field, const glm::mat4& world);
+
+// SH of a function rotated by `rotation`: g(rotation·ω) = f(ω) (sh_rotate.hpp).
+ShRgb rotate(const ShRgb& c, const glm::mat3& rotation);
+ShScalar rotate(const ShScalar& c, const glm::mat3& rotation);
+
+// The 8 samples and weights of Eq. 10 for a local offset q in units of η. Weights sum to 1 up to
+// the outermost sphere and fade to 0 beyond it (header comment).
+struct Lookup {
+  std::array<std::uint32_t, 8> sample{};
+  std::array<float, 8> weight{};
+};
+Lookup lookup(const FieldSettings& settings, glm::vec3 q);
+
+// Eq. 12 eigen cache: u_{h,e} = Σ_k E_{he,k} L_k for every cluster h and e = 0 (mean) … n_e,
+// [(h·(n_e+1) + e)·16 + i]. proxyLight: m·16 RGB, the proxies' incident radiance in the LOCAL frame.
+std::vector<glm::vec3> eigenCache(const Field& field, std::span<const glm::vec3> proxyLight);
+// Eq. 11 ξ cache: ξ_r = u_{h(r),0} + Σ_e α_e(r) u_{h(r),e}, [sample·16 + i], local frame.
+std::vector<glm::vec3> xiCache(const Field& field, std::span<const glm::vec3> proxyLight);
+// ξ at q (local, units of η) by Eq. 10: the object's interreflected radiance arriving at q.
+ShRgb interreflection(const Field& field, std::span<const glm::vec3> xi, glm::vec3 q);
+// The OOF at q (local, units of η), faded to V = 1 beyond the field.
+ShScalar occlusion(const Field& field, glm::vec3 q);
+
+// One object of the scene: its field placed by `world` (rotation, uniform scale, translation).
+struct Object {
+  const Field* field = nullptr;
+  glm::mat4 world{1.0f};
+};
+
+struct BounceResult {
+  // proxyLight[object][k·16 + i]: Σ over bounces 0..B−1 of the proxies' incident radiance, LOCAL frame.
+  std::vector<std::vector<glm::vec3>> proxyLight;
+  // ξ caches from proxyLight (what the shading step looks up), one per object.
+  std::vector<std::vector<glm::vec3>> xi;
+  // Per bounce b: Σ over objects and proxies of the mean over RGB of the l = 0 coefficient of
+  // bounce b's light (proportional to the incident power at the proxies).
+  std::vector<double> bounceEnergy;
+};
+
+// §5 bouncing step. Bounce 0: source light at each proxy (world position), occluded by the OTHER
+// objects' OOFs (Algorithm 1: the distant light is the farthest entity). Bounce b ≥ 1: the other
+// objects' RTFs lit by their bounce b−1 light, each occluded by the OOFs of the objects nearer to
+// the proxy (Algorithm 1's order). `bounces` in 1..4 = B: light reaching the proxies after 0..B−1
+// inter-object reflections; the shading step adds one more.
+BounceResult bounce(std::span<const Object> objects, const dnrt::IrradianceSource& source, int bounces);
+
+// Algorithm 1 (ComputeIncidentRadiance) at world point q for every object but `skip` (−1: none):
+// Σ_i V_{<i} ⊙ RTF_i(q) (xi[i] null: object i adds no light, only occlusion), then, when
+// `source` is set, V_all ⊙ source(q). World frame. Also returns the total visibility V_all.
+struct Incident {
+  ShRgb radiance{};
+  ShScalar visibility{};
+};
+Incident incidentRadiance(std::span<const Object> objects, std::span<const std::vector<glm::vec3>* const> xi,
+                          const dnrt::IrradianceSource* source, glm::vec3 q, int skip);
+
+// Shading step for a diffuse receiver at world point r, unit normal n, albedo ρ (objects' own
+// surfaces pass their index as `skip`): the outgoing radiance the RTF objects add
+// (ρ/π · E_n of their interreflected light) and take away (ρ/π · E_n of the source light their
+// OOFs block: (1 − V_all) ⊙ source(r)). E_n(L) = Σ Â_l L_lm Y_lm(n) (sh_convolve.hpp).
+struct Shading {
+  glm::vec3 interreflected{0.0f};
+  glm::vec3 blocked{0.0f};
+  glm::vec3 net() const { return interreflected - blocked; }
+};
+Shading shade(std::span<const Object> objects, const BounceResult& bounced, const dnrt::IrradianceSource& source,
+              glm::vec3 r, glm::vec3 n, glm::vec3 rho, int skip);
+
+// The source's 9 radiance coefficients padded with zeros to 16 (band 3 unknown to the source).
+ShRgb sourceRadiance(const dnrt::IrradianceSource& source, glm::vec3 p);
+
+}  // namespace bounce::gi::rtf

@@ -1,0 +1,175 @@
+#include "engine/gi/rtf/field.hpp"
+
+#include <cmath>
+#include <cstring>
+
+#include "engine/core/error.hpp"
+#include "engine/core/file.hpp"
+#include "engine/core/hash.hpp"
+
+namespace bounce::gi::rtf {
+
+namespace {
+constexpr char kMagic[8] = {'B', 'R', 'T', 'F', 'F', 'L', 'D', '\0'};
+constexpr std::uint32_t kVersion = 1;
+}  // namespace
+
+void checkSettings(const FieldSettings& s) {
+  if (s.proxies < 1 || s.proxies > 64) throw InternalError("rtf: proxies must be in [1, 64]");
+  if (s.spheres < 2 || s.spheres > 64) throw InternalError("rtf: spheres must be in [2, 64]");
+  if (s.faceSize < 1 || s.faceSize > 64) throw InternalError("rtf: faceSize must be in [1, 64]");
+  if (!(s.innerRadius > 0.0f) || !(s.outerRadius > s.innerRadius) || !std::isfinite(s.outerRadius))
+    throw InternalError("rtf: radii must satisfy 0 < inner < outer");
+  if (s.raysPerAxis < 1 || s.raysPerAxis > 256 || s.vertexRaysPerAxis < 1 || s.vertexRaysPerAxis > 256)
+    throw InternalError("rtf: rays per axis must be in [1, 256]");
+  if (s.selfBounces < 0 || s.selfBounces > 8) throw InternalError("rtf: selfBounces must be in [0, 8]");
+  if (s.clusters < 1 || s.clusters > 4096 || s.components < 0 || s.components > 256)
+    throw InternalError("rtf: clusters in [1, 4096], components in [0, 256]");
+}
+
+float sphereRadius(const FieldSettings& s, int index) {
+  return s.innerRadius + (s.outerRadius - s.innerRadius) * float(index) / float(s.spheres - 1);
+}
+int samplesPerSphere(const FieldSettings& s) { return 6 * s.faceSize * s.faceSize; }
+std::size_t sampleCount(const FieldSettings& s) { return std::size_t(s.spheres) * std::size_t(samplesPerSphere(s)); }
+std::size_t itfDimension(const FieldSettings& s) { return std::size_t(s.proxies) * kShCount * kShCount * 3; }
+
+namespace {
+
+class Writer {
+ public:
+  template <class T>
+  void put(const T& v) {
+    const auto* p = reinterpret_cast<const std::uint8_t*>(&v);
+    bytes.insert(bytes.end(), p, p + sizeof v);
+  }
+  template <class T>
+  void putAll(const std::vector<T>& v) {
+    const auto* p = reinterpret_cast<const std::uint8_t*>(v.data());
+    bytes.insert(bytes.end(), p, p + v.size() * sizeof(T));
+  }
+  std::vector<std::uint8_t> bytes;
+};
+
+class Reader {
+ public:
+  Reader(std::span<const std::uint8_t> b, const std::string& file) : bytes_(b), file_(file) {}
+  template <class T>
+  T get(const char* what) {
+    T v;
+    if (bytes_.size() - pos_ < sizeof v) fail(what, "truncated", "a complete RTF field file");
+    std::memcpy(&v, bytes_.data() + pos_, sizeof v);
+    pos_ += sizeof v;
+    return v;
+  }
+  template <class T>
+  std::vector<T> getAll(std::size_t n, const char* what) {
+    if (n > (bytes_.size() - pos_) / sizeof(T)) fail(what, "truncated", "a complete RTF field file");
+    std::vector<T> v(n);
+    std::memcpy(v.data(), bytes_.data() + pos_, n * sizeof(T));
+    pos_ += n * sizeof(T);
+    return v;
+  }
+  bool atEnd() const { return pos_ == bytes_.size(); }
+  std::size_t position() const { return pos_; }
+  [[noreturn]] void fail(const std::string& where, const std::string& what, const std::string& expected) const {
+    throwInputError(file_, where, what, expected);
+  }
+
+ private:
+  std::span<const std::uint8_t> bytes_;
+  std::string file_;
+  std::size_t pos_ = 0;
+};
+
+bool allFinite(const std::vector<float>& v) {
+  for (float x : v)
+    if (!std::isfinite(x)) return false;
+  return true;
+}
+
+}  // namespace
+
+std::vector<std::uint8_t> serialize(const Field& f) {
+  checkSettings(f.settings);
+  const FieldSettings& s = f.settings;
+  if (f.proxies.size() != std::size_t(s.proxies) || f.itf.samples() != sampleCount(s) ||
+      std::size_t(f.itf.dimension) != itfDimension(s) || f.oof.size() != sampleCount(s) * kShCount)
+    throw InternalError("rtf::serialize: field does not match its settings");
+  Writer w;
+  for (char c : kMagic) w.put(c);
+  w.put(kVersion);
+  w.put(std::int32_t(s.proxies)), w.put(std::int32_t(s.spheres)), w.put(std::int32_t(s.faceSize));
+  w.put(s.innerRadius), w.put(s.outerRadius);
+  w.put(std::int32_t(s.raysPerAxis)), w.put(std::int32_t(s.vertexRaysPerAxis)), w.put(std::int32_t(s.selfBounces));
+  w.put(std::int32_t(s.clusters)), w.put(std::int32_t(s.components));
+  w.put(f.centre), w.put(f.radius);
+  w.putAll(f.proxies);
+  w.put(std::int32_t(f.itf.clusters));  // ≤ settings.clusters (fewer when there are fewer samples)
+  w.putAll(f.itf.basis);
+  w.putAll(f.itf.cluster);
+  w.putAll(f.itf.alpha);
+  w.putAll(f.oof);
+  w.put(f.frobenius);
+  w.put(hashBytes(w.bytes));  // a flipped bit anywhere makes the file invalid (re-baked, never trusted)
+  return std::move(w.bytes);
+}
+
+Field deserialize(std::span<const std::uint8_t> bytes, const std::string& file) {
+  Reader r(bytes, file);
+  for (char c : kMagic)
+    if (r.get<char>("header") != c) r.fail("header", "not an RTF field", "magic BRTFFLD");
+  if (const auto v = r.get<std::uint32_t>("version"); v != kVersion)
+    r.fail("version", "version " + std::to_string(v), "version " + std::to_string(kVersion));
+  Field f;
+  FieldSettings& s = f.settings;
+  s.proxies = r.get<std::int32_t>("proxies"), s.spheres = r.get<std::int32_t>("spheres");
+  s.faceSize = r.get<std::int32_t>("faceSize");
+  s.innerRadius = r.get<float>("innerRadius"), s.outerRadius = r.get<float>("outerRadius");
+  s.raysPerAxis = r.get<std::int32_t>("raysPerAxis"), s.vertexRaysPerAxis = r.get<std::int32_t>("vertexRaysPerAxis");
+  s.selfBounces = r.get<std::int32_t>("selfBounces");
+  s.clusters = r.get<std::int32_t>("clusters"), s.components = r.get<std::int32_t>("components");
+  try {
+    checkSettings(s);
+  } catch (const InternalError& e) {
+    r.fail("settings", e.what(), "settings within field.cpp checkSettings ranges");
+  }
+  f.centre = r.get<glm::vec3>("centre");
+  f.radius = r.get<float>("radius");
+  if (!std::isfinite(f.radius) || !(f.radius > 0.0f) || !std::isfinite(f.centre.x + f.centre.y + f.centre.z))
+    r.fail("radius", "non-finite or non-positive bounding sphere", "a finite centre and radius > 0");
+  f.proxies = r.getAll<glm::vec3>(std::size_t(s.proxies), "proxies");
+  for (const glm::vec3& p : f.proxies)
+    if (!std::isfinite(p.x + p.y + p.z)) r.fail("proxies", "non-finite proxy", "finite proxy positions");
+  const std::size_t N = sampleCount(s), D = itfDimension(s);
+  const int nc = r.get<std::int32_t>("cpca");
+  if (nc < 1 || nc > s.clusters || std::size_t(nc) > N)
+    r.fail("cpca", "cluster count " + std::to_string(nc), "1.." + std::to_string(s.clusters));
+  f.itf.dimension = int(D), f.itf.clusters = nc, f.itf.components = s.components;
+  f.itf.basis = r.getAll<float>(std::size_t(nc) * std::size_t(s.components + 1) * D, "cpca basis");
+  f.itf.cluster = r.getAll<std::uint32_t>(N, "cpca clusters");
+  f.itf.alpha = r.getAll<float>(N * std::size_t(s.components), "cpca coefficients");
+  f.oof = r.getAll<float>(N * kShCount, "oof");
+  f.frobenius = r.get<double>("frobenius");
+  const std::size_t checked = r.position();
+  if (r.get<std::uint64_t>("checksum") != hashBytes(bytes.first(checked)))
+    r.fail("checksum", "checksum mismatch (corrupt file)", "the checksum of the bytes before it");
+  if (!r.atEnd()) r.fail("checksum", "trailing bytes", "the checksum as the last 8 bytes");
+  for (std::uint32_t c : f.itf.cluster)
+    if (c >= std::uint32_t(nc)) r.fail("cpca clusters", "cluster index out of range", "< " + std::to_string(nc));
+  if (!allFinite(f.itf.basis) || !allFinite(f.itf.alpha) || !allFinite(f.oof) || !std::isfinite(f.frobenius))
+    r.fail("data", "non-finite value", "finite floats");
+  return f;
+}
+
+void save(const Field& field, const std::filesystem::path& path) {
+  const auto bytes = serialize(field);
+  writeFileAtomic(path, std::span<const std::uint8_t>(bytes));
+}
+
+Field load(const std::filesystem::path& path) {
+  const auto bytes = readFileBytes(path);
+  return deserialize(bytes, path.string());
+}
+
+}  // namespace bounce::gi::rtf

@@ -1,0 +1,115 @@
+#include "engine/gi/rtf/xi_pass.hpp"
+
+#include <cstring>
+#include <vector>
+
+#include "engine/core/error.hpp"
+#include "engine/gpu/commands.hpp"
+
+namespace bounce::gi::rtf {
+
+namespace {
+
+template <class T>
+gpu::Buffer storage(gpu::Context& ctx, const std::vector<T>& data, const std::string& name) {
+  const std::size_t bytes = std::max<std::size_t>(data.size() * sizeof(T), 16);  // never a 0-byte buffer
+  gpu::Buffer b(ctx, {bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, gpu::MemoryUsage::GpuOnly, name});
+  if (!data.empty())
+    gpu::upload(ctx, b, std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(data.data()), data.size() * sizeof(T)));
+  return b;
+}
+
+}  // namespace
+
+XiPass::XiPass(gpu::Context& ctx, const Field& f)
+    : ctx_(ctx),
+      settings_(f.settings),
+      setLayout_(ctx,
+                 {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                  {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                  {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                  {3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                  {4, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                  {5, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}},
+                 "rtf.xi"),
+      layout_(ctx, {setLayout_.handle()}, {{VK_SHADER_STAGE_ALL, 0, sizeof(Push)}}, "rtf.xi"),
+      descriptors_(ctx) {
+  const FieldSettings& s = f.settings;
+  push_ = {0, std::uint32_t(s.proxies), std::uint32_t(f.itf.clusters), std::uint32_t(f.itf.components),
+           std::uint32_t(sampleCount(s)), std::uint32_t(s.faceSize)};
+  basis_ = storage(ctx, f.itf.basis, "rtf.basis");
+  alpha_ = storage(ctx, f.itf.alpha, "rtf.alpha");
+  cluster_ = storage(ctx, f.itf.cluster, "rtf.cluster");
+  light_ = gpu::Buffer(ctx, {std::size_t(s.proxies) * kShCount * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::Upload, "rtf.light"});
+  eigen_ = gpu::Buffer(ctx, {std::size_t(f.itf.clusters) * std::size_t(f.itf.components + 1) * kShCount * 16,
+                             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::GpuOnly, "rtf.eigen"});
+  gpu::ImageDesc d;
+  d.format = VK_FORMAT_R32G32B32A32_SFLOAT;
+  d.width = std::uint32_t(6 * s.faceSize);
+  d.height = std::uint32_t(s.faceSize);
+  d.layers = std::uint32_t(s.spheres * kShCount);
+  d.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+  d.name = "rtf.xi";
+  xi_ = gpu::Image(ctx, d);
+  gpu::ImageDesc o = d;
+  o.layers = std::uint32_t(s.spheres * 4);
+  o.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+  o.name = "rtf.oof";
+  oof_ = gpu::Image(ctx, o);
+  {
+    const std::size_t w = d.width, h = d.height;
+    std::vector<float> texels(std::size_t(o.layers) * w * h * 4, 0.0f);
+    const int n2 = s.faceSize * s.faceSize, per = samplesPerSphere(s);
+    for (std::size_t r = 0; r < sampleCount(s); ++r) {
+      const int sphere = int(r) / per, rest = int(r) % per, face = rest / n2, y = rest % n2 / s.faceSize, x = rest % s.faceSize;
+      for (int i = 0; i < kShCount; ++i) {
+        const std::size_t layer = std::size_t(sphere * 4 + i / 4);
+        texels[((layer * h + std::size_t(y)) * w + std::size_t(face * s.faceSize + x)) * 4 + std::size_t(i % 4)] = f.oof[r * kShCount + std::size_t(i)];
+      }
+    }
+    gpu::upload(ctx, oof_, std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(texels.data()), texels.size() * sizeof(float)));
+  }
+  pipeline_ = gpu::createComputePipeline(ctx, layout_, gpu::ShaderModule(ctx, "rtf/xi.comp.spv"), "rtf.xi");
+  set_ = descriptors_.allocate(setLayout_);
+  gpu::DescriptorWriter()
+      .buffer(0, basis_)
+      .buffer(1, alpha_)
+      .buffer(2, cluster_)
+      .buffer(3, light_)
+      .buffer(4, eigen_)
+      .storageImage(5, xi_.view())
+      .update(ctx, set_);
+  std::vector<glm::vec3> zero(std::size_t(s.proxies) * kShCount, glm::vec3(0.0f));
+  setProxyLight(zero);
+}
+
+void XiPass::setProxyLight(std::span<const glm::vec3> light) {
+  if (light.size() != std::size_t(settings_.proxies) * kShCount) throw InternalError("rtf::XiPass: proxy light is not m·16 coefficients");
+  std::vector<glm::vec4> packed;
+  for (const glm::vec3& l : light) packed.emplace_back(l, 0.0f);
+  gpu::upload(ctx_, light_, std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(packed.data()), packed.size() * sizeof(glm::vec4)));
+}
+
+void XiPass::record(VkCommandBuffer cmd) {
+  if (xi_.layout() != VK_IMAGE_LAYOUT_GENERAL) gpu::transition(cmd, xi_, VK_IMAGE_LAYOUT_GENERAL);
+  pipeline_.bind(cmd);
+  pipeline_.bindSet(cmd, 0, set_);
+  Push p = push_;
+  p.stage = 0;
+  pipeline_.push(cmd, p);
+  const std::uint32_t eigenCount = p.clusters * (p.components + 1) * kShCount;
+  vkCmdDispatch(cmd, (eigenCount + 63) / 64, 1, 1);
+  // Stage 1 reads what stage 0 wrote.
+  VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_SHADER_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT};
+  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &barrier, 0,
+                       nullptr, 0, nullptr);
+  p.stage = 1;
+  pipeline_.push(cmd, p);
+  vkCmdDispatch(cmd, (p.samples * kShCount + 63) / 64, 1, 1);
+  VkMemoryBarrier done{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_SHADER_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT};
+  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                       VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, 0, 1, &done, 0,
+                       nullptr, 0, nullptr);
+}
+
+}  // namespace bounce::gi::rtf

@@ -1,0 +1,48 @@
+#pragma once
+// One object's RTF on the GPU: the bouncing step's caches (Eq. 11–12, shaders/rtf/xi.comp): one object's CPCA field
+// uploaded once, the proxies' light each frame, ξ written into an rgba32f 2D-array image (layer
+// sphere·16 + i, texel (face·n_r + x, y)) for the shading step to read with texelFetch. The CPU
+// reference is xiCache() (evaluate.hpp); tests/unit/rtf/xi_gpu_test.cpp compares the two.
+#include <span>
+
+#include <glm/glm.hpp>
+
+#include "engine/gi/rtf/field.hpp"
+#include "engine/gpu/buffer.hpp"
+#include "engine/gpu/descriptors.hpp"
+#include "engine/gpu/image.hpp"
+#include "engine/gpu/pipeline.hpp"
+
+namespace bounce::gi::rtf {
+
+class XiPass {
+ public:
+  XiPass(gpu::Context& ctx, const Field& field);
+  // The proxies' incident light, m·16 RGB in the object's frame (host-visible: takes effect at
+  // the next record()).
+  void setProxyLight(std::span<const glm::vec3> light);
+  // Both dispatches with the barriers they need; ξ ends in GENERAL layout, its writes made
+  // visible to later compute and fragment reads.
+  void record(VkCommandBuffer cmd);
+  gpu::Image& xi() { return xi_; }
+  // The object occlusion field, uploaded once: rgba32f 2D array, layer sphere·4 + i/4, texel
+  // (face·n_r + x, y), component i%4 (shaders/rtf/rtf.glsl), SHADER_READ_ONLY_OPTIMAL.
+  gpu::Image& oof() { return oof_; }
+
+ private:
+  struct Push {
+    std::uint32_t stage, proxies, clusters, components, samples, faceSize;
+  };
+  gpu::Context& ctx_;
+  FieldSettings settings_;
+  Push push_{};
+  gpu::Buffer basis_, alpha_, cluster_, light_, eigen_;
+  gpu::Image xi_, oof_;
+  gpu::DescriptorSetLayout setLayout_;
+  gpu::PipelineLayout layout_;
+  gpu::Pipeline pipeline_;
+  gpu::DescriptorAllocator descriptors_;
+  VkDescriptorSet set_ = VK_NULL_HANDLE;
+};
+
+}  // namespace bounce::gi::rtf

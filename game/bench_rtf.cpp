@@ -1,0 +1,104 @@
+#include "game/bench_rtf.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+
+#include "engine/core/error.hpp"
+#include "engine/core/paths.hpp"
+#include "engine/gi/dnrt/object_scene.hpp"
+#include "engine/gi/rtf/bake.hpp"
+#include "engine/gi/rtf/evaluate.hpp"
+#include "engine/math/sampling.hpp"
+#include "engine/scene/systems.hpp"
+#include "game/bench_dnrt.hpp"
+#include "game/session.hpp"
+
+namespace bounce::game {
+
+namespace {
+
+double secondsSince(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+int intIn(const cli::Args& args, const char* option, int fallback, int lo, int hi) {
+  const int v = args.positiveInt(option, fallback);
+  if (v < lo || v > hi)
+    throwInputError("bounce bench rtf", option, std::to_string(v) + " out of range",
+                    std::to_string(lo) + ".." + std::to_string(hi));
+  return v;
+}
+
+}  // namespace
+
+int runBenchRtf(const cli::Args& args) {
+  gi::rtf::FieldSettings s;  // the paper's resolution unless told otherwise
+  s.proxies = intIn(args, "--proxies", s.proxies, 1, 64);
+  s.spheres = intIn(args, "--spheres", s.spheres, 2, 64);
+  s.faceSize = intIn(args, "--face", s.faceSize, 1, 64);
+  s.raysPerAxis = intIn(args, "--rays", s.raysPerAxis, 1, 256);
+  s.vertexRaysPerAxis = intIn(args, "--vertex-rays", s.vertexRaysPerAxis, 1, 256);
+  s.clusters = intIn(args, "--clusters", s.clusters, 1, 4096);
+  s.components = intIn(args, "--components", s.components, 1, 256);
+  const int bounces = intIn(args, "--bounces", 2, 1, 4);
+  const int runs = intIn(args, "--runs", 3, 1, 1000);
+  const int maxObjects = intIn(args, "--objects", 1000, 1, 1000);
+  const scene::Level level = scene::loadLevel(benchLevelPath(args.str("--level", "cornell-5")));
+
+  gi::dnrt::LevelObjects objects;
+  gi::dnrt::loadLevelObjects(level, cookCacheDir(), objects);
+  if (objects.entities.empty())
+    throwInputError(args.str("--level", "cornell-5"), "/entities", "no dynamic object", "entities with a dnrt component");
+  std::vector<gi::rtf::Field> fields;
+  std::vector<glm::mat4> worlds;
+  for (ecs::Entity e : objects.entities) {
+    if (int(fields.size()) >= maxObjects) break;
+    const ref::SceneDesc object = gi::dnrt::objectScene(objects.registry, e, objects.assets);
+    const auto t0 = std::chrono::steady_clock::now();
+    bool cached = false;
+    fields.push_back(gi::rtf::bakeCached(object, s, cacheDir("rtf"), &cached));
+    const double seconds = cached ? 0.0 : secondsSince(t0);
+    const gi::rtf::Field& f = fields.back();
+    const double ratio = gi::rtf::compressionRatio(f.itf);
+    const double rawMb = double(gi::rtf::sampleCount(s)) * double(gi::rtf::itfDimension(s)) * 4.0 / 1e6;
+    const scene::Name* name = objects.registry.tryGet<scene::Name>(e);
+    const std::string id = name ? name->id : std::to_string(e.index());
+    std::printf("object=%s proxies=%d clusters=%d components=%d ratio=%.1f frobenius=%.4f bake_s=%.1f raw_mb=%.1f "
+                "compressed_mb=%.2f%s\n",
+                id.c_str(), s.proxies, f.itf.clusters, f.itf.components, ratio, f.frobenius, seconds, rawMb,
+                rawMb / ratio, cached ? " cached=1" : "");
+    std::fflush(stdout);
+    worlds.push_back(objects.registry.get<scene::WorldTransform>(e).matrix);
+  }
+
+  const gi::dnrt::ConstantEnvironment env(glm::vec3(1.0f));
+  constexpr int kReceivers = 64;  // shading: points on a ring around the scene's objects
+  for (std::size_t n = 1; n <= fields.size(); ++n) {
+    std::vector<gi::rtf::Object> scene;
+    for (std::size_t i = 0; i < n; ++i) scene.push_back({&fields[i], worlds[i]});
+    std::vector<double> bounceMs, shadeUs;
+    gi::rtf::BounceResult bounced;
+    for (int r = 0; r < runs; ++r) {
+      const auto t0 = std::chrono::steady_clock::now();
+      bounced = gi::rtf::bounce(scene, env, bounces);
+      bounceMs.push_back(secondsSince(t0) * 1e3);
+      const auto t1 = std::chrono::steady_clock::now();
+      const gi::rtf::Placement p = gi::rtf::place(fields[0], worlds[0]);
+      for (int k = 0; k < kReceivers; ++k) {
+        const double a = 2.0 * math::kPi * k / kReceivers;
+        const glm::vec3 dir(float(std::cos(a)), 0.0f, float(std::sin(a)));
+        gi::rtf::shade(scene, bounced, env, p.centreWorld + 1.5f * p.radiusWorld * dir, -dir, glm::vec3(0.5f), -1);
+      }
+      shadeUs.push_back(secondsSince(t1) * 1e6 / kReceivers);
+    }
+    std::sort(bounceMs.begin(), bounceMs.end());
+    std::sort(shadeUs.begin(), shadeUs.end());
+    std::printf("objects=%zu bounces=%d rtf_bounce_cpu_ms=%.3f rtf_shade_cpu_us_per_receiver=%.2f runs=%d\n", n, bounces,
+                bounceMs[bounceMs.size() / 2], shadeUs[shadeUs.size() / 2], runs);
+    std::fflush(stdout);
+  }
+  return 0;
+}
+
+}  // namespace bounce::game

@@ -1,0 +1,58 @@
+#version 450
+// RTF caches (Pan et al. 2007, §5 "Caching RTF eigens" and "Caching RTF samples") as one
+// per-frame compute pass in two dispatches (push constant `stage`), engine/gi/rtf/xi_pass.hpp:
+//  stage 0, Eq. 12: u_{h,e,i} = Σ_k Σ_j E_{he,k}[i][j] L_{k,j}  (per RGB channel), one invocation
+//           per (cluster h, component e = 0 (mean) … n_e, output coefficient i);
+//  stage 1, Eq. 11: ξ_{r,i} = u_{h(r),0,i} + Σ_e α_e(r) u_{h(r),e,i}, one invocation per
+//           (sample r, coefficient i), stored in the ξ image the shading step reads.
+// Data (std430, bytes): basis = float[n_c·(n_e+1)·D], D = m·16·16·3, element
+// ((k·16 + i)·16 + j)·3 + c of a component (field.hpp itfIndex); alpha = float[N·n_e];
+// cluster = uint[N]; light = vec4[m·16] (rgb: L_{k,j}, proxies' light in the object's frame);
+// eigen = vec4[n_c·(n_e+1)·16] (rgb: u).
+// ξ image: rgba32f 2D array, layer = sphere·16 + i, texel (face·n_r + x, y) for sample
+// r = (sphere·6 + face)·n_r² + y·n_r + x (field.hpp's sample order). SSBOs are fine here: this is a
+// compute pass (DESIGN machine facts forbid them in fragment shaders, which read the image).
+layout(local_size_x = 64) in;
+
+layout(std430, binding = 0) readonly buffer Basis { float basis[]; };
+layout(std430, binding = 1) readonly buffer Alpha { float alpha[]; };
+layout(std430, binding = 2) readonly buffer Cluster { uint cluster[]; };
+layout(std430, binding = 3) readonly buffer Light { vec4 light[]; };
+layout(std430, binding = 4) buffer Eigen { vec4 eigen[]; };
+layout(rgba32f, binding = 5) uniform writeonly image2DArray xi;
+
+layout(push_constant) uniform Push {
+  uint stage;
+  uint proxies;     // m
+  uint clusters;    // n_c
+  uint components;  // n_e
+  uint samples;     // N
+  uint faceSize;    // n_r
+} pc;
+
+void main() {
+  uint t = gl_GlobalInvocationID.x;
+  if (pc.stage == 0u) {
+    uint count = pc.clusters * (pc.components + 1u) * 16u;
+    if (t >= count) return;
+    uint he = t / 16u, i = t % 16u;
+    uint D = pc.proxies * 768u;
+    vec3 u = vec3(0.0);
+    for (uint k = 0u; k < pc.proxies; ++k)
+      for (uint j = 0u; j < 16u; ++j) {
+        uint e = he * D + ((k * 16u + i) * 16u + j) * 3u;
+        u += vec3(basis[e], basis[e + 1u], basis[e + 2u]) * light[k * 16u + j].rgb;
+      }
+    eigen[t] = vec4(u, 0.0);
+  } else {
+    if (t >= pc.samples * 16u) return;
+    uint r = t / 16u, i = t % 16u;
+    uint base = cluster[r] * (pc.components + 1u) * 16u;
+    vec3 x = eigen[base + i].rgb;
+    for (uint e = 1u; e <= pc.components; ++e) x += alpha[r * pc.components + e - 1u] * eigen[base + e * 16u + i].rgb;
+    uint n2 = pc.faceSize * pc.faceSize, per = 6u * n2;
+    uint sphere = r / per, rest = r % per, face = rest / n2;
+    uint px = rest % pc.faceSize, py = (rest % n2) / pc.faceSize;
+    imageStore(xi, ivec3(int(face * pc.faceSize + px), int(py), int(sphere * 16u + i)), vec4(x, 0.0));
+  }
+}

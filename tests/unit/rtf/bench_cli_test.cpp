@@ -1,0 +1,36 @@
+// `bounce bench rtf`'s bad input: one `file: where: what (expected …)` line on stderr, exit 2,
+// before any bake starts. (Its timings are not tested.)
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "tests/support/cli_run.hpp"
+
+namespace {
+
+using bounce::testcli::lines;
+using bounce::testcli::runBounce;
+
+const std::filesystem::path kOut = std::filesystem::path(BOUNCE_TEST_OUT) / "rtf-cli";
+
+TEST(RtfBenchCli, OutOfRangeSettingsAreOneLineAndExit2) {
+  for (const auto& [option, value] : {std::pair<std::string, std::string>{"--bounces", "5"}, {"--proxies", "65"},
+                                      {"--spheres", "1"}, {"--components", "0"}}) {
+    const auto r = runBounce({"bench", "rtf", option, value}, kOut / option.substr(2));
+    EXPECT_EQ(r.code, 2) << option;
+    const auto err = lines(r.err);
+    ASSERT_EQ(err.size(), 1u) << r.err;
+    EXPECT_NE(err[0].find(option), std::string::npos) << err[0];
+    EXPECT_NE(err[0].find("expected"), std::string::npos) << err[0];
+    EXPECT_TRUE(r.out.empty()) << "nothing baked or printed before the check";
+  }
+}
+
+TEST(RtfBenchCli, MissingLevelIsOneLineAndExit2) {
+  const auto r = runBounce({"bench", "rtf", "--level", "no-such-level"}, kOut / "level");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_EQ(lines(r.err).size(), 1u) << r.err;
+  EXPECT_NE(r.err.find("no-such-level"), std::string::npos) << r.err;
+}
+
+}  // namespace
