@@ -65,13 +65,18 @@ std::string Session::whyCannotRun(scene::Effect e) {
   const gi::Technique* technique = gi::findTechnique(e);
   if (technique == nullptr) return {};
   const gi::LevelContext lc{level_, registry_, cookCacheDir()};
-  return gi::effectNote(*technique, lc).value_or(std::string());
+  std::string why = gi::effectNote(*technique, lc).value_or(std::string());
+  if (why.empty())
+    for (const Slot& slot : slots_)
+      if (slot.technique == technique && slot.runtime != nullptr && !slot.runtime->drawsPasses())
+        why = std::string(technique->name()) + ": its GPU passes are not implemented yet (no pass)";
+  return why;
 }
 
 bool Session::runs(scene::Effect e) const {
   if (e == scene::Effect::Direct || e == scene::Effect::Shadows) return true;
   for (const Slot& slot : slots_)
-    if (slot.technique->effect() == e) return slot.runtime != nullptr;
+    if (slot.technique->effect() == e) return slot.runtime != nullptr && slot.runtime->drawsPasses();
   return false;
 }
 

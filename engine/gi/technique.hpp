@@ -119,6 +119,9 @@ class TechniqueRuntime {
   virtual render::Renderer::GraphNode node() = 0;
   // Lines `bounce profile` prints after the timing table (e.g. VLM's grid overflow).
   virtual std::vector<std::string> profileLines() const { return {}; }
+  // Whether node() adds any pass. False only while a technique's GPU passes are not written yet
+  // (SL today: baked and posed, nothing drawn), so the play overlay and keys never show it as on.
+  virtual bool drawsPasses() const { return true; }
 };
 
 class Technique {

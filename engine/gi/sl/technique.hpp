@@ -57,6 +57,7 @@ class SessionRuntime final : public TechniqueRuntime {
   void update(const FrameUpdate& frame) override;
   // No pass yet (see the header comment): the node adds nothing to the graph.
   render::Renderer::GraphNode node() override;
+  bool drawsPasses() const override { return false; }  // passes 1 and 2 not written yet
   const std::vector<Participant>& participants() const { return participants_; }
   // "sl update: S spheres on E entities, CPU median X ms over F frames (§7.1 poses)": what
   // `bounce profile` prints after its table (the sl_update_ms).

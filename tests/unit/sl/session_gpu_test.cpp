@@ -24,7 +24,7 @@ std::vector<std::string> passesOfOneFrame(game::Session& session) {
   return passes;
 }
 
-TEST(SlSession, RunsWithItsNoteAndAddsNoPass) {
+TEST(SlSession, BuiltWithItsNoteButNotShownAsRunningAndAddsNoPass) {
   // The runtime prints its note itself (gi::printNoteOnce, once per process: this is the first
   // session here); Session::notes() holds only the table's notes (effects that do not run).
   testing::internal::CaptureStderr();
@@ -36,7 +36,12 @@ TEST(SlSession, RunsWithItsNoteAndAddsNoPass) {
             std::string::npos)
       << err;
   EXPECT_TRUE(with.notes().empty());
-  EXPECT_TRUE(with.runs(scene::Effect::Sl));
+  // Built (bakes, poses) but drawing nothing: not "running" for the overlay and keys, and the
+  // checkbox tooltip says why.
+  EXPECT_FALSE(with.runs(scene::Effect::Sl));
+  EXPECT_FALSE(with.runningEffects().has(scene::Effect::Sl));
+  EXPECT_EQ(with.whyCannotRun(scene::Effect::Sl), "sl: its GPU passes are not implemented yet (no pass)");
+  ASSERT_NE(with.technique("sl"), nullptr);
   const auto withPasses = passesOfOneFrame(with);
 
   game::Session without(gpu::testkit::sharedContext(),
