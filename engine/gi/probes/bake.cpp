@@ -169,18 +169,28 @@ ProbeSettings settingsFrom(const scene::Level& level) {
   return s;
 }
 
-BakeInput prepare(const scene::Level& level, const std::filesystem::path& cookCache, const ProbeSettings& settings) {
-  validate(settings, level.source.string(), "/probes");
-  BakeInput in;
-  in.settings = settings;
-  in.source = level.source;
+ref::SceneDesc staticScene(const scene::Level& level, const std::filesystem::path& cookCache,
+                           std::vector<std::string>* assetKeys, bool withTextures) {
   const scene::Level stat = staticLevel(level);
   ecs::Registry registry;
   scene::instantiate(stat, registry);
   scene::transformSystem(registry);
   ref::ReferenceAssets assets;
   assets.load(registry, cookCache);
-  in.scene = ref::extractScene(registry, stat, assets);
+  // Asset key then content key, in entries() order: what the probe bake's cache key hashes.
+  if (assetKeys)
+    for (const auto& [key, entry] : assets.entries()) assetKeys->push_back(key), assetKeys->push_back(entry.contentKey);
+  return ref::extractScene(registry, stat, assets, withTextures);
+}
+
+BakeInput prepare(const scene::Level& level, const std::filesystem::path& cookCache, const ProbeSettings& settings) {
+  validate(settings, level.source.string(), "/probes");
+  BakeInput in;
+  in.settings = settings;
+  in.source = level.source;
+  const scene::Level stat = staticLevel(level);
+  std::vector<std::string> assetKeys;
+  in.scene = staticScene(level, cookCache, &assetKeys);
 
   Hasher h;
   h.str("bounce-probes").u64(kBakerVersion).u64(ref::kTracerVersion).u64(kProbeFormatVersion);
@@ -189,7 +199,7 @@ BakeInput prepare(const scene::Level& level, const std::filesystem::path& cookCa
     h.u64(bytes.size()).bytes(bytes.data(), bytes.size());
     in.files.push_back(level.source);
   }
-  for (const auto& [key, entry] : assets.entries()) h.str(key).str(entry.contentKey);
+  for (const std::string& k : assetKeys) h.str(k);
   for (const auto& e : stat.entities)
     if (e.mesh && std::find(in.files.begin(), in.files.end(), e.mesh->asset) == in.files.end())
       in.files.push_back(e.mesh->asset);

@@ -69,6 +69,10 @@ ProbeVolume bakeProbes(const ref::SceneBvh& scene, const ProbeGrid& grid, const 
 
 // The level without its dynamic entities (and their descendants): what the probes see.
 scene::Level staticLevel(const scene::Level& level);
+// staticLevel() instantiated at t = 0, its assets cooked (through the cache) and extracted, world
+// space: the probes' scene, and the geometry DNRT's c_j test light visibility against.
+ref::SceneDesc staticScene(const scene::Level& level, const std::filesystem::path& cookCache,
+                           std::vector<std::string>* assetKeys = nullptr, bool withTextures = true);
 
 // The probe bake settings of a level's "probes" object (InputError when the baker rejects them).
 ProbeSettings settingsFrom(const scene::Level& level);
