@@ -37,7 +37,7 @@ void Runtime::setIrradianceSource(const IrradianceSource* source) {
 }
 
 incident::RadianceSH Runtime::incidentSH(glm::vec3 centre, float radius, std::span<const render::LightGpu> lights) const {
-  return lightsInCj_ ? incident_.radianceSH(centre, radius, lights) : incident_.indirect()->radianceSH(centre);
+  return incident_.radianceSH(centre, radius, lights);
 }
 
 std::vector<NodeObject> Runtime::objectsFor(const render::RenderWorld& world) const {

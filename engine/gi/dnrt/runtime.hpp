@@ -38,9 +38,6 @@ class Runtime {
   void setIrradianceSource(const IrradianceSource* source);
   // How much of an object sees each light (not owned; null: every light fully visible).
   void setLightVisibility(const incident::Visibility* visibility) { incident_.setVisibility(visibility); }
-  // Whether the frame's lights join c_j (default on; off: the indirect source alone, as before
-  // issue 15 — for comparisons).
-  void setLightsInCj(bool on) { lightsInCj_ = on; }
   // c_j's source for one object: the radiance SH arriving at its bounding sphere (centre, radius
   // in world units), world axes, before convolution and rotation.
   incident::RadianceSH incidentSH(glm::vec3 centre, float radius, std::span<const render::LightGpu> lights) const;
@@ -65,7 +62,6 @@ class Runtime {
   ecs::Registry& registry_;
   ConstantEnvironment background_;
   incident::Service incident_;
-  bool lightsInCj_ = true;
   NodeSettings settings_;
   std::vector<Object> objects_;
   std::unique_ptr<Node> node_;
