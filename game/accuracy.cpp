@@ -154,8 +154,14 @@ std::string formatAccuracyCsv(const std::vector<AccuracyResult>& results) {
   char numbers[128];
   for (const auto& r : results) {
     // %.6g keeps small errors readable; NaN prints as "nan", which the plot script skips.
-    std::snprintf(numbers, sizeof numbers, "%.6g,%.6g,%.6g", r.gpuMs, r.relRmse, r.effectRelRmse);
-    out += csvField(r.row.technique) + "," + csvField(r.row.setting) + "," + numbers + "\n";
+    std::snprintf(numbers, sizeof numbers, "%.6g,%.6g,%.6g,", r.gpuMs, r.relRmse, r.effectRelRmse);
+    std::string indirect;
+    if (std::isfinite(r.indirectEffectRelRmse)) {
+      char v[32];
+      std::snprintf(v, sizeof v, "%.6g", r.indirectEffectRelRmse);
+      indirect = v;
+    }
+    out += csvField(r.row.technique) + "," + csvField(r.row.setting) + "," + numbers + indirect + "\n";
   }
   return out;
 }

@@ -60,7 +60,7 @@ struct AccuracyResult {
   // effect_rel_rmse over the pixels where the dynamic objects' effect is indirect only: neither
   // seen nor shadowing anything (indirectOnlyMask). That is the part DNRT, VLM, SL and RTF
   // model; a technique that leaves it out scores 1 there. NaN when the reference effect there is
-  // zero. Terminal table only (the CSV's columns are fixed).
+  // zero. CSV column indirect_effect_rel_rmse (empty when NaN).
   double indirectEffectRelRmse = 0.0;
   std::filesystem::path heatMap;
   double heatMapScale = 0.0;  // the error the heat map's top colour stands for
@@ -116,7 +116,11 @@ std::string referenceKind(const std::string& setting);
 AccuracyReport runAccuracy(const AccuracyOptions& options);
 
 // The CSV text: the exact header, then one line per result.
-inline constexpr const char* kAccuracyCsvHeader = "technique,setting,gpu_ms,rel_rmse,effect_rel_rmse";
+// indirect_effect_rel_rmse (issue 15): AccuracyResult::indirectEffectRelRmse, empty where a row has
+// none (the reference's effect on the indirect-only pixels is zero, e.g. against the direct-only
+// reference).
+inline constexpr const char* kAccuracyCsvHeader =
+    "technique,setting,gpu_ms,rel_rmse,effect_rel_rmse,indirect_effect_rel_rmse";
 std::string formatAccuracyCsv(const std::vector<AccuracyResult>& results);
 // A fixed-width table of the same numbers for the terminal.
 std::string formatAccuracyTable(const std::vector<AccuracyResult>& results);

@@ -6,7 +6,9 @@
 One column of panels per reference kind a row is scored against (its setting's "ref=direct",
 "ref=1bounce" or "ref=all"; errors against different references are not comparable): top,
 rel_rmse (whole image vs that reference); bottom, effect_rel_rmse (the dynamic objects' effect vs
-the reference's; 1 = as wrong as leaving it out). Each technique has one colour; each point is
+the reference's; 1 = as wrong as leaving it out). The table also lists indirect_effect_rel_rmse (the
+effect error on the pixels the objects neither cover nor shadow; empty in the CSV where a row has
+none). Each technique has one colour; each point is
 numbered, and the table beside the panels gives each number's technique, setting, GPU ms and
 errors. The Pareto front of each panel (no other row of that reference is both cheaper and more
 accurate) is drawn as a step line through its rows, which are ringed and starred in the table.
@@ -25,7 +27,7 @@ import math
 import os
 import sys
 
-HEADER = ["technique", "setting", "gpu_ms", "rel_rmse", "effect_rel_rmse"]
+HEADER = ["technique", "setting", "gpu_ms", "rel_rmse", "effect_rel_rmse", "indirect_effect_rel_rmse"]
 HEATMAP_HEADER = ["file", "technique", "setting", "scale"]
 LOG_X_SPAN = 10.0  # max/min GPU ms above which a log axis keeps the cheap rows apart
 REF_ORDER = ["direct", "1bounce", "all"]
@@ -52,9 +54,11 @@ def read_rows(path):
             if len(fields) != len(HEADER):
                 raise ValueError(f"{path}: line {line}: {len(fields)} fields (expected {len(HEADER)})")
             try:
-                numbers = [float(v) for v in fields[2:]]
+                # indirect_effect_rel_rmse is empty where a row has none: NaN, left out like "nan".
+                numbers = [float(v) for v in fields[2:5]] + [float(fields[5]) if fields[5] != "" else math.nan]
             except ValueError:
-                raise ValueError(f"{path}: line {line}: a value is not a number (expected gpu_ms,rel_rmse,effect_rel_rmse)")
+                raise ValueError(f"{path}: line {line}: a value is not a number "
+                                 "(expected gpu_ms,rel_rmse,effect_rel_rmse[,indirect_effect_rel_rmse])")
             rows.append((fields[0], fields[1], *numbers))
         return rows
 
@@ -134,17 +138,19 @@ def plot_chart(rows, png, plt):
     # The settings table.
     tab = fig.add_subplot(grid[:, ncols])
     tab.axis("off")
-    lines = [f"{'#':>3} {'technique':<9} {'setting':<48} {'ms':>7} {'rel rmse':>8} {'effect':>6}"]
+    lines = [f"{'#':>3} {'technique':<9} {'setting':<48} {'ms':>7} {'rel rmse':>8} {'effect':>6} {'ind.':>6}"]
     for i, r in enumerate(rows):
         star = "*" if i in on_front else " "
         setting = setting_without_ref(r[1])
         setting = setting.replace("anti_radiance=", "anti=").replace("intrusion=", "intr=")
         if len(setting) > 48:
             setting = setting[:47] + "~"
-        lines.append(f"{i + 1:>3}{star}{r[0]:<9} {setting:<48} {r[2]:>7.2f} {r[3]:>8.4f} {r[4]:>6.3f}")
+        indirect = f"{r[5]:>6.3f}" if math.isfinite(r[5]) else f"{'-':>6}"
+        lines.append(f"{i + 1:>3}{star}{r[0]:<9} {setting:<48} {r[2]:>7.2f} {r[3]:>8.4f} {r[4]:>6.3f} {indirect}")
     lines.append("")
     lines.append("* on the Pareto front of its reference's image error")
-    lines.append("(intr = intrusion, anti = anti_radiance)")
+    lines.append("(intr = intrusion, anti = anti_radiance; ind. = effect error on the")
+    lines.append(" pixels the objects neither cover nor shadow, - = none)")
     tab.text(0.0, 1.0, "\n".join(lines), family="monospace", fontsize=8.5 if len(rows) < 30 else 7, va="top",
              transform=tab.transAxes)
     save_atomic(fig, png, dpi=110)

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "engine/gi/dnrt/bake.hpp"
+#include "engine/gi/dnrt/evaluate.hpp"
 #include "engine/gi/dnrt/object_scene.hpp"
 
 namespace bounce::gi::dnrt {
@@ -11,6 +12,7 @@ Runtime::Runtime(gpu::Context& ctx, const render::Pipelines& pipelines, ecs::Reg
                  const ref::ReferenceAssets& assets, const std::filesystem::path& cacheDir,
                  std::uint32_t framesInFlight, glm::vec3 background)
     : registry_(registry), background_(background) {
+  incident_.setIndirect(&background_);
   std::vector<ecs::Entity> entities;
   registry.view<scene::Dnrt, scene::MeshRef>().each([&](ecs::Entity e, scene::Dnrt&, scene::MeshRef&) {
     entities.push_back(e);
@@ -30,20 +32,26 @@ Runtime::Runtime(gpu::Context& ctx, const render::Pipelines& pipelines, ecs::Reg
   node_ = std::make_unique<Node>(ctx, pipelines, framesInFlight);
 }
 
-void Runtime::setIrradianceSource(const IrradianceSource* source) { source_ = source; }
+void Runtime::setIrradianceSource(const IrradianceSource* source) {
+  incident_.setIndirect(source ? source : &background_);
+}
+
+incident::RadianceSH Runtime::incidentSH(glm::vec3 centre, float radius, std::span<const render::LightGpu> lights) const {
+  return incident_.radianceSH(centre, radius, lights);
+}
 
 std::vector<NodeObject> Runtime::objectsFor(const render::RenderWorld& world) const {
   std::vector<NodeObject> out;
-  const IrradianceSource& src = source_ ? *source_ : static_cast<const IrradianceSource&>(background_);
   for (const Object& o : objects_) {
     if (!registry_.valid(o.entity)) continue;
     const bool drawn = std::any_of(world.draws.begin(), world.draws.end(),
                                    [&](const render::DrawItem& d) { return d.entity == o.entity.index(); });
     const auto* placed = registry_.tryGet<scene::WorldTransform>(o.entity);
     if (!drawn || !placed) continue;
-    const glm::vec3 centre = glm::vec3(placed->matrix * glm::vec4(o.field.centre, 1.0f));
+    const Placement pl = place(o.field, placed->matrix);
     const auto* component = registry_.tryGet<scene::Dnrt>(o.entity);
-    out.push_back({o.textures.get(), packObject(o.field, placed->matrix, src.radianceSH(centre), o.entity.index()), o.name,
+    const incident::RadianceSH L = incidentSH(pl.centreWorld, pl.radiusWorld, world.lights);
+    out.push_back({o.textures.get(), packObject(o.field, placed->matrix, L, o.entity.index()), o.name,
                    component && component->intrusion, component && component->fullScreen});
   }
   return out;

@@ -1,15 +1,20 @@
 #pragma once
 // DNRT for one level, end to end: bakes (through the cache) a field for every entity with a `dnrt`
 // component and a mesh, uploads it, and each frame packs the visible ones (§5.2.1: placement,
-// c_j at o rotated into the object's frame) for the node. What a session does to enable DNRT:
+// c_j at o rotated into the object's frame) for the node. c_j come from the incident-light service
+// (engine/gi/incident): the indirect source's radiance SH at o plus the frame's lights projected at
+// o (a cap over the object's bounding sphere, visibility from setLightVisibility). What a session
+// does to enable DNRT:
 //
 //   gi::dnrt::Runtime dnrt(ctx, renderer.pipelines(), registry, assets, cacheDir, framesInFlight);
 //   dnrt.setIrradianceSource(&probeVolume);                  // optional; default: the background
+//   dnrt.setLightVisibility(&staticSceneRays);               // optional; default: lights unoccluded
 //   renderer.setNode("dnrt", dnrt.node());                   // runs only when effects name dnrt
 //
 // Objects count as visible when the frame draws them (RenderWorld::draws names their entity).
 #include <filesystem>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -31,6 +36,11 @@ class Runtime {
 
   // Where c_j come from (not owned; must outlive the runtime); null restores the background.
   void setIrradianceSource(const IrradianceSource* source);
+  // How much of an object sees each light (not owned; null: every light fully visible).
+  void setLightVisibility(const incident::Visibility* visibility) { incident_.setVisibility(visibility); }
+  // c_j's source for one object: the radiance SH arriving at its bounding sphere (centre, radius
+  // in world units), world axes, before convolution and rotation.
+  incident::RadianceSH incidentSH(glm::vec3 centre, float radius, std::span<const render::LightGpu> lights) const;
   NodeSettings& settings() { return settings_; }
   std::size_t objectCount() const { return objects_.size(); }
   const Field& field(std::size_t i) const { return objects_[i].field; }
@@ -51,7 +61,7 @@ class Runtime {
   };
   ecs::Registry& registry_;
   ConstantEnvironment background_;
-  const IrradianceSource* source_ = nullptr;
+  incident::Service incident_;
   NodeSettings settings_;
   std::vector<Object> objects_;
   std::unique_ptr<Node> node_;

@@ -9,6 +9,7 @@
 #include "engine/core/paths.hpp"
 #include "engine/gi/dnrt/bake.hpp"
 #include "engine/gi/dnrt/object_scene.hpp"
+#include "engine/gi/probes/bake.hpp"
 
 namespace bounce::gi::dnrt {
 namespace {
@@ -171,6 +172,13 @@ SessionRuntime::SessionRuntime(SessionContext& sc) {
     probeSource_ = std::make_unique<ProbeSource>(*sc.services.probeVolume);
     runtime_->setIrradianceSource(probeSource_.get());
   }
+  // Light visibility for c_j: rays from the object's centre (and a disc around it) to each light
+  // through the level's STATIC geometry. Not the shadow map: the object occludes its own centre
+  // there (incident.hpp, SceneVisibility).
+  ref::SceneDesc occluders = probes::staticScene(sc.level, sc.cookCache, nullptr, /*withTextures=*/false);
+  for (ref::RefMaterial& m : occluders.materials) m.albedoTexture = m.emissiveTexture = -1;  // shadow rays only
+  lightVisibility_ = std::make_unique<incident::SceneVisibility>(std::move(occluders));
+  runtime_->setLightVisibility(lightVisibility_.get());
 }
 
 }  // namespace bounce::gi::dnrt

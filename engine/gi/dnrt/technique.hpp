@@ -1,7 +1,9 @@
 #pragma once
 // DNRT as a technique of the table (engine/gi/technique.hpp): entities with a `dnrt` component and
 // a mesh take part; one bake job per such entity (its field); the runtime of runtime.hpp with c_j
-// from the probes (Services::probeVolume) when they run, else from the level's background.
+// from the incident-light service: the probes (Services::probeVolume) when they run, else the
+// level's background, plus the frame's lights with their visibility traced against the level's
+// static geometry (incident::SceneVisibility; the object itself is not in it).
 #include <memory>
 
 #include "engine/gi/dnrt/probe_source.hpp"
@@ -23,6 +25,7 @@ class SessionRuntime final : public TechniqueRuntime {
  private:
   ref::ReferenceAssets assets_;
   std::unique_ptr<ProbeSource> probeSource_;
+  std::unique_ptr<incident::SceneVisibility> lightVisibility_;
   std::unique_ptr<Runtime> runtime_;
 };
 

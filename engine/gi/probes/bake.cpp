@@ -44,6 +44,47 @@ ProbeGrid gridOverBounds(const glm::vec3& lo, const glm::vec3& hi, float spacing
   return g;
 }
 
+glm::vec3 virtualOffset(const ref::SceneBvh& bvh, const glm::vec3& p, float spacing) {
+  static const std::vector<glm::dvec3> dirs = math::fibonacciSphere(kOffsetDirections);
+  const float minDist = kMinSurfaceDistance * spacing, maxOffset = kMaxOffset * spacing;
+  const float reach = maxOffset + minDist;  // nothing farther can matter
+  glm::vec3 q = p;
+  for (int it = 0; it < kOffsetIterations; ++it) {
+    int backfaces = 0;
+    std::optional<ref::Hit> nearBack, nearFront;
+    for (const glm::dvec3& dd : dirs) {
+      const glm::vec3 d(dd);
+      ref::Hit hit;
+      if (!bvh.intersect(q, d, 0.0f, reach, hit)) continue;
+      if (glm::dot(hit.geometricNormal, d) > 0.0f) {
+        ++backfaces;
+        if (!nearBack || hit.t < nearBack->t) nearBack = hit;
+      } else if (!nearFront || hit.t < nearFront->t) {
+        nearFront = hit;
+      }
+    }
+    // Moves follow the surface's geometric normal (not the sampled ray), so a probe ends exactly
+    // minDist off a plane whatever direction found it.
+    glm::vec3 next = q;
+    if (double(backfaces) > kBackfaceFraction * kOffsetDirections && nearBack) {
+      // Out through the nearest back face's plane (n points out of the solid) to minDist beyond it.
+      const float in = glm::dot(nearBack->position - q, nearBack->geometricNormal);
+      next = q + nearBack->geometricNormal * (in + minDist);
+    } else if (nearFront) {
+      const float off = glm::dot(q - nearFront->position, nearFront->geometricNormal);  // distance to its plane
+      if (off >= minDist) break;
+      next = q + nearFront->geometricNormal * (minDist - off);  // straight away from the nearest front face
+    } else {
+      break;
+    }
+    const glm::vec3 offset = next - p;
+    const float len = glm::length(offset);
+    q = len > maxOffset ? p + offset * (maxOffset / len) : next;
+    if (len > maxOffset) break;
+  }
+  return q;
+}
+
 ProbeVolume bakeProbes(const ref::SceneBvh& bvh, const ProbeGrid& grid, const ProbeSettings& settings, BakeStats* stats,
                        const std::string& label) {
   validate(settings, "probes", "settings");
@@ -61,12 +102,13 @@ ProbeVolume bakeProbes(const ref::SceneBvh& bvh, const ProbeGrid& grid, const Pr
   v.moments.assign(probes * kVisBins, glm::vec2(0.0f));
   v.valid.assign(probes, 0u);
   std::atomic<std::uint64_t> rays{0}, nonFinite{0};
-  std::atomic<std::size_t> invalid{0};
+  std::atomic<std::size_t> invalid{0}, moved{0};
   std::optional<Progress> progress;
   if (!label.empty()) progress.emplace(label, probes);
 
   parallelFor(0, probes, [&](std::size_t i) {
-    const glm::vec3 p = grid.position(i);
+    const glm::vec3 p = virtualOffset(bvh, grid.position(i), grid.spacing);
+    if (p != grid.position(i)) ++moved;
     math::Pcg32 rng = math::Pcg32::fromIndex(i);
     std::uint64_t probeRays = 0, bad = 0;
     std::uint32_t backfaces = 0;
@@ -116,6 +158,7 @@ ProbeVolume bakeProbes(const ref::SceneBvh& bvh, const ProbeGrid& grid, const Pr
     stats->probes = probes;
     stats->rays = rays.load();
     stats->invalid = invalid.load();
+    stats->moved = moved.load();
     stats->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
   return v;
@@ -169,18 +212,28 @@ ProbeSettings settingsFrom(const scene::Level& level) {
   return s;
 }
 
-BakeInput prepare(const scene::Level& level, const std::filesystem::path& cookCache, const ProbeSettings& settings) {
-  validate(settings, level.source.string(), "/probes");
-  BakeInput in;
-  in.settings = settings;
-  in.source = level.source;
+ref::SceneDesc staticScene(const scene::Level& level, const std::filesystem::path& cookCache,
+                           std::vector<std::string>* assetKeys, bool withTextures) {
   const scene::Level stat = staticLevel(level);
   ecs::Registry registry;
   scene::instantiate(stat, registry);
   scene::transformSystem(registry);
   ref::ReferenceAssets assets;
   assets.load(registry, cookCache);
-  in.scene = ref::extractScene(registry, stat, assets);
+  // Each asset's content key (never its path): what the probe bake's cache key hashes, sorted.
+  if (assetKeys)
+    for (const auto& [key, entry] : assets.entries()) assetKeys->push_back(entry.contentKey);
+  return ref::extractScene(registry, stat, assets, withTextures);
+}
+
+BakeInput prepare(const scene::Level& level, const std::filesystem::path& cookCache, const ProbeSettings& settings) {
+  validate(settings, level.source.string(), "/probes");
+  BakeInput in;
+  in.settings = settings;
+  in.source = level.source;
+  const scene::Level stat = staticLevel(level);
+  std::vector<std::string> assetKeys;
+  in.scene = staticScene(level, cookCache, &assetKeys);
 
   Hasher h;
   h.str("bounce-probes").u64(kBakerVersion).u64(ref::kTracerVersion).u64(kProbeFormatVersion);
@@ -191,11 +244,9 @@ BakeInput prepare(const scene::Level& level, const std::filesystem::path& cookCa
   }
   // The assets by content (source bytes, referenced files, cook options), sorted — never by their
   // absolute paths, so a moved or second checkout finds the same entries.
-  std::vector<std::string> contentKeys;
-  for (const auto& [path, entry] : assets.entries()) contentKeys.push_back(entry.contentKey);
-  std::sort(contentKeys.begin(), contentKeys.end());
-  h.u64(contentKeys.size());
-  for (const auto& k : contentKeys) h.str(k);
+  std::sort(assetKeys.begin(), assetKeys.end());
+  h.u64(assetKeys.size());
+  for (const std::string& k : assetKeys) h.str(k);
   for (const auto& e : stat.entities)
     if (e.mesh && std::find(in.files.begin(), in.files.end(), e.mesh->asset) == in.files.end())
       in.files.push_back(e.mesh->asset);
@@ -235,7 +286,8 @@ LoadResult bakeToCache(const BakeInput& input, const std::filesystem::path& prob
   if (logBake)
     log::info("probes: " + std::to_string(r.stats.probes) + " probes × " + std::to_string(input.settings.rays) +
               " rays in " + std::to_string(r.stats.seconds) + " s (" + std::to_string(r.stats.msPerProbe()) +
-              " ms/probe, " + std::to_string(r.stats.invalid) + " inside geometry)");
+              " ms/probe, " + std::to_string(r.stats.moved) + " moved out of or off geometry, " +
+              std::to_string(r.stats.invalid) + " inside it)");
   writeFileAtomic(r.file, serialize(r.volume));
   return r;
 }

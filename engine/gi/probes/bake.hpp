@@ -31,7 +31,8 @@
 namespace bounce::gi::probes {
 
 // Bump whenever the bake's output changes for the same inputs (part of the cache key).
-inline constexpr std::uint32_t kBakerVersion = 1;
+// 2: virtual offset (probes inside or too close to geometry baked from a point moved out of it).
+inline constexpr std::uint32_t kBakerVersion = 2;
 // Back-face hit fraction above which a probe counts as inside geometry (DDGI probe classification
 // uses the same 25%: a probe in open space sees no back faces of closed, consistently wound meshes).
 inline constexpr double kBackfaceFraction = 0.25;
@@ -40,6 +41,26 @@ inline constexpr double kBackfaceFraction = 0.25;
 inline constexpr float kMaxDistance = 3.0f;
 // Directions checked for negative irradiance when choosing the window (spherical Fibonacci).
 inline constexpr int kWindowDirections = 256;
+
+// Virtual offset (Unity's light-probe "virtual offset"; DDGI's probe relocation, Majercik et al.
+// 2021, "Scaling Probe-Based Real-Time Dynamic Global Illumination for Production", §5.2): before a
+// probe is baked, kOffsetDirections first-hit rays from its grid point look for geometry. A probe
+// inside a closed solid (more than kBackfaceFraction back faces) moves through its nearest back face
+// to kMinSurfaceDistance beyond it; a probe closer than kMinSurfaceDistance to a front face moves
+// straight away from the nearest one; up to kOffsetIterations times (corners), never farther than
+// kMaxOffset from its grid point. Its SH and visibility moments are then traced from the moved
+// point. Why: a probe 3 cm from a lamp-lit wall (the 0.25 m grid in a 0.56 m box) sees that wall as
+// half its sphere and hands the near-field glare to receivers 10+ cm away; a probe inside a block
+// is invalid, and its neighbours' weights are renormalised onto far probes. Lookups keep using the
+// grid positions (probe_weights.glsl, same data as before): the moments' distances are off by at
+// most kMaxOffset for a moved probe, so Chebyshev still cuts what lies behind walls.
+inline constexpr float kMinSurfaceDistance = 0.25f;  // × spacing
+inline constexpr float kMaxOffset = 0.45f;           // × spacing (stays nearer its grid point than any other's)
+inline constexpr int kOffsetDirections = 128;
+inline constexpr int kOffsetIterations = 3;
+
+// The point a probe at `p` is baked from (virtual offset above); `p` itself when nothing is near.
+glm::vec3 virtualOffset(const ref::SceneBvh& bvh, const glm::vec3& p, float spacing);
 
 struct ProbeSettings {
   float spacing = 0.1f;        // metres between probes (0.1 m: 6×6×6 probes in the Cornell box)
@@ -61,6 +82,7 @@ struct BakeStats {
   std::uint64_t rays = 0;     // every ray cast (path segments and shadow rays)
   double seconds = 0.0;
   std::size_t invalid = 0;    // probes flagged inside geometry
+  std::size_t moved = 0;      // probes baked from a virtual offset
   double msPerProbe() const { return probes ? 1e3 * seconds / double(probes) : 0.0; }
 };
 
@@ -69,6 +91,10 @@ ProbeVolume bakeProbes(const ref::SceneBvh& scene, const ProbeGrid& grid, const 
 
 // The level without its dynamic entities (and their descendants): what the probes see.
 scene::Level staticLevel(const scene::Level& level);
+// staticLevel() instantiated at t = 0, its assets cooked (through the cache) and extracted, world
+// space: the probes' scene, and the geometry DNRT's c_j test light visibility against.
+ref::SceneDesc staticScene(const scene::Level& level, const std::filesystem::path& cookCache,
+                           std::vector<std::string>* assetKeys = nullptr, bool withTextures = true);
 
 // The probe bake settings of a level's "probes" object (InputError when the baker rejects them).
 ProbeSettings settingsFrom(const scene::Level& level);

@@ -16,9 +16,9 @@ std::string bakeLine(const LoadResult& r, const ProbeSettings& settings) {
   const auto& g = r.volume.grid;
   char line[512];
   std::snprintf(line, sizeof line,
-                "probes  %dx%dx%d at %g m, SH order %d, %u rays: %.3f s (%.3f ms/probe, %zu inside geometry) -> %s",
+                "probes  %dx%dx%d at %g m, SH order %d, %u rays: %.3f s (%.3f ms/probe, %zu moved out of or off geometry, %zu inside it) -> %s",
                 g.count.x, g.count.y, g.count.z, g.spacing, r.volume.order, settings.rays, r.stats.seconds,
-                r.stats.msPerProbe(), r.stats.invalid, r.file.c_str());
+                r.stats.msPerProbe(), r.stats.moved, r.stats.invalid, r.file.c_str());
   return line;
 }
 

@@ -26,12 +26,14 @@ TEST(AccuracyCsv, ExactHeaderThenOneLinePerResult) {
   results[0].effectRelRmse = 0.5;
   results[1].row.technique = "probes";
   results[1].row.setting = "a,b";  // a comma must be quoted, not split into a sixth column
+  results[0].indirectEffectRelRmse = 0.75;
   results[1].effectRelRmse = std::numeric_limits<double>::quiet_NaN();
+  results[1].indirectEffectRelRmse = std::numeric_limits<double>::quiet_NaN();  // none: an empty field
   const auto l = lines(formatAccuracyCsv(results));
   ASSERT_EQ(l.size(), 3u);
-  EXPECT_EQ(l[0], "technique,setting,gpu_ms,rel_rmse,effect_rel_rmse");
-  EXPECT_EQ(l[1], "direct,ref=direct,0.25,0.03125,0.5");
-  EXPECT_EQ(l[2], "probes,\"a,b\",0,0,nan");
+  EXPECT_EQ(l[0], "technique,setting,gpu_ms,rel_rmse,effect_rel_rmse,indirect_effect_rel_rmse");
+  EXPECT_EQ(l[1], "direct,ref=direct,0.25,0.03125,0.5,0.75");
+  EXPECT_EQ(l[2], "probes,\"a,b\",0,0,nan,");
   EXPECT_EQ(lines(formatAccuracyCsv({})), std::vector<std::string>{kAccuracyCsvHeader});
 }
 

@@ -74,12 +74,14 @@ TEST(AccuracyDnrt, ObjectEffectWithinToleranceAndBetterThanLeavingItOut) {
   // Where the prop's effect is indirect only (not seen, no shadow), the probes alone leave it out
   // entirely: their technique effect is exactly zero there, so the error is exactly 1.
   EXPECT_NEAR(probes.indirectEffectRelRmse, 1.0, 1e-9);
-  // DNRT models that part. Measured here: 0.916 (paper), 0.902 (improved). Not near 0: the
-  // reference's effect there is small and carries the noise of two 256-spp traces (at 32 spp the
-  // same rows score 0.98), and part of it is outside DNRT's model — the prop's top, 8 cm under
-  // the point lamp, reflects the lamp's light onto the ceiling, but c_j come from the probes,
-  // whose rays cannot hit a point light. 0.96 asks for a clear gain over leaving the effect out.
-  constexpr double kMaxIndirectEffectError = 0.96;
+  // DNRT models that part. Measured here: 0.849 (paper), 0.848 (improved); 0.916 and 0.902 before
+  // c_j carried the level's lamp (issue 15: c_j from the incident-light service, the probes plus
+  // the lamp as a cap over the prop's bounding sphere). Not near 0: the reference's effect there is
+  // small and carries the noise of two 256-spp traces, and most of it is outside DNRT's local
+  // model — the prop, 8 cm under the point lamp, hides ~20 % of its light from the floor, and the
+  // darker floor then lights the whole room less. 0.90 asks for the lamp's gain over the probes-only
+  // c_j (0.916), with margin for rasterisers that place the prop's edge pixels differently.
+  constexpr double kMaxIndirectEffectError = 0.90;
   EXPECT_LT(paper.indirectEffectRelRmse, kMaxIndirectEffectError);
   EXPECT_LT(improved.indirectEffectRelRmse, kMaxIndirectEffectError);
   // App. B.2 / §7.2.6: the improved anti-radiance removes the paper's "lack of intensity" of

@@ -177,3 +177,41 @@ TEST(ProbeBake, SettingsAreValidated) {
   s.spacing = 0.0f;
   EXPECT_THROW(validate(s, "l.json", "/probes"), InputError);
 }
+
+// Virtual offset (bake.hpp): a grid point inside a solid slab thinner than the offset limit moves
+// out through its nearest face to kMinSurfaceDistance beyond it; one closer than that to a wall
+// moves straight away from it to exactly that distance; one in open space stays. Distances are
+// exact up to Embree's float hit distances (1e-5 of metres here).
+TEST(ProbeBake, VirtualOffsetMovesProbesOutOfAndOffGeometry) {
+  constexpr float kSpacing = 0.25f, kTol = 1e-4f;
+  ref::SceneDesc s;
+  s.meshes = insideOfCube(1.0f, 0);  // walls at ±1
+  // A slab y ∈ [-0.05, 0.03]: a point at y = 0 is 0.03 below its top face, 0.05 above its bottom.
+  for (auto& m : solidBox(glm::vec3(-0.5f, -0.05f, -0.5f), glm::vec3(0.5f, 0.03f, 0.5f), 0)) s.meshes.push_back(m);
+  s.materials = {{glm::vec3(0.5f), -1, glm::vec3(0.0f), -1}};
+  const ref::SceneBvh bvh(std::move(s));
+  const float minDist = kMinSurfaceDistance * kSpacing;
+
+  const glm::vec3 inside = virtualOffset(bvh, glm::vec3(0.0f), kSpacing);
+  EXPECT_NEAR(inside.x, 0.0f, kTol);
+  EXPECT_NEAR(inside.y, 0.03f + minDist, kTol);  // through the nearer (top) face
+  EXPECT_NEAR(inside.z, 0.0f, kTol);
+  EXPECT_LE(glm::length(inside), kMaxOffset * kSpacing + kTol);
+
+  const glm::vec3 nearWall = virtualOffset(bvh, glm::vec3(0.0f, 0.5f, 0.98f), kSpacing);
+  EXPECT_NEAR(nearWall.z, 1.0f - minDist, kTol);
+  EXPECT_NEAR(nearWall.y, 0.5f, kTol);
+
+  const glm::vec3 open(0.2f, 0.5f, 0.1f);
+  EXPECT_EQ(virtualOffset(bvh, open, kSpacing), open);
+
+  // The bake uses it: the grid point at the origin (inside the slab) is valid, not flagged.
+  ProbeGrid grid;
+  grid.spacing = kSpacing;
+  grid.count = glm::ivec3(1);
+  BakeStats stats;
+  const ProbeVolume v = bakeProbes(bvh, grid, tiny(64, 1), &stats, "");
+  EXPECT_EQ(stats.moved, 1u);
+  EXPECT_EQ(stats.invalid, 0u);
+  EXPECT_EQ(v.valid[0], 1u);
+}

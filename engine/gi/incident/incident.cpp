@@ -1,0 +1,145 @@
+#include "engine/gi/incident/incident.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "engine/math/sh.hpp"
+
+namespace bounce::gi::incident {
+
+namespace glsl {
+using namespace glm;
+// lights.glsl's contract for incident.glsl (its header): the Light struct is render::LightGpu
+// (same members, same std430 layout), its type constants render::LightType, and the irradiance of
+// a light at p is engine/ref's incidentIrradiance — lights.glsl's, term for term (1/d² with
+// d² ≥ 1e-12, glTF range window, spot cone t²) — on the same light converted field by field.
+using Light = render::LightGpu;
+const uint kLightDirectional = uint(render::LightType::Directional);
+const uint kLightPoint = uint(render::LightType::Point);
+const uint kLightSpot = uint(render::LightType::Spot);
+
+ref::RefLight refLight(const Light& l) {
+  ref::RefLight r;
+  const auto type = render::LightType(std::uint32_t(l.positionType.w + 0.5f));
+  r.type = type == render::LightType::Directional ? ref::RefLightType::Directional
+           : type == render::LightType::Spot      ? ref::RefLightType::Spot
+                                                  : ref::RefLightType::Point;
+  r.position = glm::vec3(l.positionType);
+  r.direction = glm::vec3(l.directionRange);
+  r.radiance = glm::vec3(l.radiance);
+  r.range = l.directionRange.w;
+  r.cosOuter = l.cone.x;
+  r.cosInner = l.cone.y;
+  return r;
+}
+
+vec3 incidentIrradiance(const Light& light, vec3 p, vec3& toLight, float& dist) {
+  return ref::incidentIrradiance(refLight(light), p, toLight, dist);
+}
+
+// GLSL parameter qualifiers: `inout vec3 sh[9]` / `out float y[9]` decay to pointers, so writes
+// reach the caller as they do in GLSL.
+#define in
+#define out
+#define inout
+#define BOUNCE_INCIDENT_HOST
+#include "shaders/common/incident.glsl"
+#undef BOUNCE_INCIDENT_HOST
+#undef inout
+#undef out
+#undef in
+}  // namespace glsl
+
+void addLight(const render::LightGpu& light, glm::vec3 p, float radius, float visibility, RadianceSH& sh) {
+  glsl::incidentAddLight(light, p, radius, visibility, sh.data());
+}
+
+void addCap(glm::vec3 toLight, float cosAlpha, glm::vec3 e, RadianceSH& sh) {
+  glsl::incidentAddCap(toLight, cosAlpha, e, sh.data());
+}
+
+float capCosine(float radius, float dist) { return glsl::incidentCapCosine(radius, dist); }
+
+namespace {
+
+// Ray origins' disc: p plus 8 points at 0.7·radius around it, in the plane facing the light, at
+// angles k·45° (the centre ray and two rings' worth of spread for a soft 0..1 fraction).
+constexpr float kDiscFraction = 0.7f;
+// Shadow rays stop this fraction short of a point light (ref tracer's kShadowShorten), so a light
+// sitting on a surface is not occluded by it.
+constexpr float kShorten = 1e-4f;
+
+}  // namespace
+
+SceneVisibility::SceneVisibility(ref::SceneDesc scene) : bvh_(std::move(scene)) {}
+
+float SceneVisibility::visible(const render::LightGpu& light, glm::vec3 p, float radius) const {
+  const ref::RefLight l = glsl::refLight(light);
+  const bool directional = l.type == ref::RefLightType::Directional;
+  glm::vec3 toLight = directional ? -l.direction : l.position - p;
+  const float len = glm::length(toLight);
+  if (!(len > 0.0f)) return 1.0f;  // the light at the receiver's centre: nothing in between
+  toLight /= len;
+  // An orthonormal frame (t, b) of the disc facing the light (Frisvad-style, branch on the sign).
+  const glm::vec3 t = std::abs(toLight.x) < 0.9f ? glm::normalize(glm::cross(toLight, glm::vec3(1, 0, 0)))
+                                                 : glm::normalize(glm::cross(toLight, glm::vec3(0, 1, 0)));
+  const glm::vec3 b = glm::cross(toLight, t);
+  const int rays = radius > 0.0f ? kVisibilityRays : 1;
+  int reach = 0;
+  for (int k = 0; k < rays; ++k) {
+    glm::vec3 o = p;
+    if (k > 0) {
+      const float a = float(k - 1) * 0.78539816339744831f;  // 45°
+      o += kDiscFraction * radius * (std::cos(a) * t + std::sin(a) * b);
+    }
+    glm::vec3 d = toLight;
+    float tMax = std::numeric_limits<float>::infinity();
+    if (!directional) {
+      d = l.position - o;
+      const float dl = glm::length(d);
+      if (!(dl > 0.0f)) {
+        ++reach;
+        continue;
+      }
+      d /= dl;
+      tMax = dl * (1.0f - kShorten);
+    }
+    if (!bvh_.occluded(o, d, 0.0f, tMax)) ++reach;
+  }
+  return float(reach) / float(rays);
+}
+
+RadianceSH ConstantEnvironment::radianceSH(glm::vec3) const {
+  RadianceSH c{};
+  // A constant function L has the single coefficient ∫ L Y_00 dω = 4π L Y_00 = 2√π L.
+  c[0] = radiance_ * static_cast<float>(4.0 * math::kPi * sh::constants::kY00);
+  return c;
+}
+
+RadianceSH irradianceSH(const RadianceSH& radiance) {
+  const auto e = sh::convolveCosine<glm::vec3>(std::span<const glm::vec3>(radiance));
+  RadianceSH out{};
+  for (std::size_t i = 0; i < out.size(); ++i) out[i] = e[i];
+  return out;
+}
+
+RadianceSH Service::lightsSH(glm::vec3 p, float radius, std::span<const render::LightGpu> lights) const {
+  RadianceSH sh{};
+  for (const render::LightGpu& light : lights) {
+    const float v = visibility_ ? std::clamp(visibility_->visible(light, p, radius), 0.0f, 1.0f) : 1.0f;
+    if (v > 0.0f) addLight(light, p, radius, v, sh);
+  }
+  return sh;
+}
+
+RadianceSH Service::radianceSH(glm::vec3 p, float radius, std::span<const render::LightGpu> lights) const {
+  RadianceSH sh = lightsSH(p, radius, lights);
+  if (indirect_) {
+    const RadianceSH ind = indirect_->radianceSH(p);
+    for (std::size_t i = 0; i < sh.size(); ++i) sh[i] += ind[i];
+  }
+  return sh;
+}
+
+}  // namespace bounce::gi::incident

@@ -1,0 +1,119 @@
+#pragma once
+// The incident-light service (issue 15 part 1): the SH of the light ARRIVING at a point — the probes'
+// indirect light plus the level's real lights (point, spot, directional) projected analytically into
+// SH at that point, times their visibility. One service for every technique that needs "the light
+// at o" (DESIGN.md: the light arriving at a point is ONE shared service): DNRT's c_j (§5.3: in the
+// paper, Unity light probes, which carry baked lights' direct light too), SL's pass 1, RTF's proxies.
+//
+// Order-3 RADIANCE SH (9 RGB coefficients, W/(m²·sr) per channel, world axes), the convention of
+// engine/math/sh_eval.hpp: L(ω) = Σ L_i Y_i(ω), ω pointing towards the source. Cosine-convolve
+// (irradianceSH) for irradiance E(n) = Σ c_j Y_j(n).
+//
+// Two faces, one code: the light projection is shaders/common/incident.glsl (GPU face, one
+// function per light kind taking a visibility factor), compiled into incident.cpp as C++ (CPU face,
+// addLight below); tests/unit/incident checks the two against each other on a device.
+//
+//   incident::Service light;                     // per session
+//   light.setIndirect(&probes);                  // optional: the probes (or ConstantEnvironment)
+//   light.setVisibility(&sceneVisibility);       // optional: default every light unoccluded
+//   RadianceSH L = light.radianceSH(o, R, world.lights);   // per frame, per receiver
+#include <array>
+#include <span>
+
+#include <glm/glm.hpp>
+
+#include "engine/ref/scene_bvh.hpp"
+#include "engine/render/gpu_types.hpp"
+
+namespace bounce::gi::incident {
+
+// Order-3 radiance SH, RGB: coefficient i = l(l+1)+m (sh_eval.hpp).
+using RadianceSH = std::array<glm::vec3, 9>;
+
+// ---- CPU face of incident.glsl (the same code, compiled as C++) -----------------------------------
+
+// Adds `light`'s radiance SH at the receiver — a sphere of `radius` metres around `p` (0: the point
+// p) — times `visibility` ∈ [0, 1], to `sh`. Point/spot: a uniform spherical cap of the directions
+// from which the sphere sees the light, carrying the flux the sphere intercepts (incident.glsl's
+// header derives it; a delta when radius = 0). Directional: a delta. incidentAddLight in GLSL.
+void addLight(const render::LightGpu& light, glm::vec3 p, float radius, float visibility, RadianceSH& sh);
+// A uniform cap of half-angle α (cosAlpha = cos α) about unit direction toLight carrying
+// irradiance-weight e = ∫_cap L dω (W/m² per channel): s_l-scaled delta (incidentAddCap).
+void addCap(glm::vec3 toLight, float cosAlpha, glm::vec3 e, RadianceSH& sh);
+// cos α of the cap from which a sphere of `radius` sees a point at `dist` (incidentCapCosine).
+float capCosine(float radius, float dist);
+
+// ---- visibility -----------------------------------------------------------------------------------
+
+// How much of a receiver sees a light: a fraction in [0, 1].
+struct Visibility {
+  virtual ~Visibility() = default;
+  // The receiver is the sphere of `radius` around p (0: the point p).
+  virtual float visible(const render::LightGpu& light, glm::vec3 p, float radius) const = 0;
+};
+
+// Every light fully visible (tests; levels without geometry).
+struct Unoccluded final : Visibility {
+  float visible(const render::LightGpu&, glm::vec3, float) const override { return 1.0f; }
+};
+
+// Ray tests against a scene (Embree, engine/ref): the fraction of kVisibilityRays shadow rays that
+// reach the light from points of the receiver — p itself and, for radius > 0, points on a disc of
+// 0.7·radius through p facing the light (the part of the receiver a lamp sees). A DEPARTURE from
+// "shadow-map visibility": DNRT asks about its object's centre, which the object itself occludes in
+// the light's shadow map, so the CPU face traces the level's geometry WITHOUT the object instead
+// (DNRT passes the static scene: the dynamic objects — this one and the others — are left out).
+// GPU users (SL pass 1's surface samples) pass their shadow-map visibility to incident.glsl.
+inline constexpr int kVisibilityRays = 9;
+class SceneVisibility final : public Visibility {
+ public:
+  explicit SceneVisibility(ref::SceneDesc scene);
+  float visible(const render::LightGpu& light, glm::vec3 p, float radius) const override;
+  const ref::SceneBvh& bvh() const { return bvh_; }
+
+ private:
+  ref::SceneBvh bvh_;
+};
+
+// ---- indirect light -------------------------------------------------------------------------------
+
+// Radiance SH of the indirect (baked) light at a point: the probe volume (gi::dnrt::ProbeSource) or
+// a constant environment. Was gi::dnrt::IrradianceSource (still an alias there).
+struct IndirectSource {
+  virtual ~IndirectSource() = default;
+  virtual RadianceSH radianceSH(glm::vec3 p) const = 0;
+};
+
+// Uniform radiance L (W/(m²·sr) per channel) from every direction at every point: L_00 = 2√π L.
+class ConstantEnvironment final : public IndirectSource {
+ public:
+  explicit ConstantEnvironment(glm::vec3 radiance) : radiance_(radiance) {}
+  RadianceSH radianceSH(glm::vec3 p) const override;
+
+ private:
+  glm::vec3 radiance_;
+};
+
+// c_j = Â_l L_lm (sh_convolve.hpp): the irradiance SH E(n) = Σ c_j Y_j(n) of radiance SH L.
+RadianceSH irradianceSH(const RadianceSH& radiance);
+
+// ---- the service ----------------------------------------------------------------------------------
+
+class Service {
+ public:
+  // Not owned; must outlive the service. Null: no indirect light / every light unoccluded.
+  void setIndirect(const IndirectSource* indirect) { indirect_ = indirect; }
+  void setVisibility(const Visibility* visibility) { visibility_ = visibility; }
+  const IndirectSource* indirect() const { return indirect_; }
+
+  // The level's lights alone at the receiver (sphere of `radius` around p), with visibility.
+  RadianceSH lightsSH(glm::vec3 p, float radius, std::span<const render::LightGpu> lights) const;
+  // Indirect + lights: the light arriving at the receiver.
+  RadianceSH radianceSH(glm::vec3 p, float radius, std::span<const render::LightGpu> lights) const;
+
+ private:
+  const IndirectSource* indirect_ = nullptr;
+  const Visibility* visibility_ = nullptr;
+};
+
+}  // namespace bounce::gi::incident
