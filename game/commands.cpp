@@ -107,7 +107,8 @@ const std::vector<cli::CommandSpec>& commandSpecs() {
         {"--rays", "N", "dnrt: bake rays per grid vertex for every field (a square; default each entity's)"},
         {"--csv", "FILE", "dnrt: also write the rows as CSV"},
         {"--instances", "N", "skinning: CesiumMan copies of the synthetic cage (default 306, ~1M vertices)"},
-        {"--assets", "DIR", "skinning: the shared assets folder (default <source>/../shared/assets)"}},
+        {"--assets", "DIR", "skinning: the shared assets folder (default <source>/../shared/assets)"},
+        {"--only", "TEXT", "skinning: only the models whose name contains TEXT (e.g. +subdiv)"}},
        1, 1},
   };
   return specs;

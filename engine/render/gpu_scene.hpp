@@ -52,7 +52,8 @@ class GpuScene {
     std::vector<VkDescriptorSet> materialSets;  // one per material, +1 default at the end
   };
   const AssetGpu& upload(const scene::MeshRef& ref);
-  void uploadSkinVertices(AssetGpu& a);  // MeshGpu::skinVertices of every GPU-skinnable mesh
+  void uploadSkinVertices(AssetGpu& a);  // MeshGpu::skinVertices of every GPU-skinnable mesh (or cage)
+  void uploadStencils(AssetGpu& a, std::size_t mesh);  // MeshGpu::stencilRows/Weights of a refined mesh
   static std::string key(const scene::MeshRef& ref);
 
   gpu::Context& ctx_;

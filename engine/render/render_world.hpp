@@ -36,6 +36,16 @@ struct SkinJob {
   std::uint32_t dstBase = 0;    // into RenderWorld::posedVertices, in vertices
 };
 
+// One subdivided skinned instance for the subdivision compute pass: evaluate mesh->stencilRows on
+// the cage vertices the skinning pass wrote from srcBase, into RenderWorld::posedVertices from
+// vertex dstBase.
+struct SubdivisionJob {
+  const MeshGpu* mesh = nullptr;
+  std::uint32_t vertexCount = 0;  // refined vertices
+  std::uint32_t srcBase = 0;      // the cage's posed vertices (a SkinJob's dstBase)
+  std::uint32_t dstBase = 0;
+};
+
 // One shadow-atlas layer: the light view-projection that rendered it.
 struct ShadowLayer {
   glm::mat4 viewProj;
@@ -57,6 +67,7 @@ struct RenderWorld {
   // raster pass reads the same buffer.
   std::vector<float> posedVertices;      // GPU-skinned ranges are placeholders the skinning pass overwrites
   std::vector<SkinJob> skinJobs;         // empty: no skinning pass
+  std::vector<SubdivisionJob> subdivisionJobs;  // empty: no subdivision pass (needs skinJobs)
   std::vector<glm::mat4> jointMatrices;  // every skinned instance's joint matrices, back to back
   bool has(const std::string& effect) const { return effects.count(effect) != 0; }
 };

@@ -100,6 +100,74 @@ TEST(SkinningGpu, CpuEqualsGpuOnEveryVertexOfCesiumManAndFox) {
   EXPECT_GT(checked, 4u * 4000u);  // CesiumMan 3273 + Fox 1728 vertices, every time
 }
 
+// Subdivided cages, CPU face (engine/anim LimitStencilJob after CPU skinning) vs GPU face (the
+// subdivision pass after the skinning pass). Both sum the same stencil weights in the same order
+// on cages that already differ by kPositionRelTol; a limit point sums 20–60 weighted cage points,
+// so a few dozen ulps: 1e-5 relative. Normals come from the cross product of two tangents that
+// are themselves sums with cancelling weights: 1e-4 absolute on unit vectors.
+constexpr float kRefinedPositionRelTol = 1e-5f;
+constexpr float kRefinedNormalTol = 1e-4f;
+
+// Each posed mesh instance's vertex range in a world: (posedBase, vertex count), in draw order.
+std::vector<std::pair<std::uint32_t, std::uint32_t>> posedRanges(const render::RenderWorld& w) {
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> out;
+  for (const auto& d : w.draws)
+    if (d.posed() && (out.empty() || out.back().first != d.posedBase)) out.emplace_back(d.posedBase, d.mesh->vertexCount);
+  return out;
+}
+
+TEST(SkinningGpu, SubdividedCagesCpuEqualsGpuOnEveryRefinedVertex) {
+  gpu::Context& ctx = gpu::testkit::sharedContext();
+  const std::string subdiv = R"(, "subdivision": {"scheme": "catmull-clark", "levels": 1})";
+  const fs::path level = writeLevel(
+      "subdiv-cpu-gpu.json", R"(["direct"])",
+      {kCamera,
+       R"({"id": "man", "mesh": {"asset": ")" + (assets() / "CesiumMan/glTF-Binary/CesiumMan.glb").string() + """ + subdiv + "}}",
+       R"({"id": "fox", "mesh": {"asset": ")" + (assets() / "Fox/glTF-Binary/Fox.glb").string() + """ + subdiv +
+           R"(}, "transform": {"translation": [1, 0, 0], "scale": [0.01, 0.01, 0.01]}, "animation": {"clip": "Run"}})"});
+  game::Session session(ctx, scene::loadLevel(level));
+  gpu::OffscreenPresenter presenter(ctx, {32, 32});
+  std::size_t checked = 0;
+  for (double t : {0.0, 0.37, 1.1}) {
+    SCOPED_TRACE(t);
+    session.update(t);
+    session.render(presenter, {});
+    EXPECT_EQ(session.renderer().executedPasses(),
+              (std::vector<std::string>{"skinning", "subdivision", "gbuffer", "lighting", "tonemap"}));
+    const std::vector<float> gpuPosed = session.renderer().readPosedVertices();
+    ASSERT_EQ(session.world().skinJobs.size(), 2u);
+    ASSERT_EQ(session.world().subdivisionJobs.size(), 2u);
+    render::RenderWorld cpuWorld;
+    render::ExtractOptions cpuFace;
+    cpuFace.extent = {32, 32};
+    cpuFace.gpuSkinning = false;
+    session.gpuScene().extract(session.registry(), session.level(), cpuFace, cpuWorld);
+    ASSERT_TRUE(cpuWorld.subdivisionJobs.empty());
+    const auto gpuRanges = posedRanges(session.world()), cpuRanges = posedRanges(cpuWorld);
+    ASSERT_EQ(gpuRanges.size(), 2u);
+    ASSERT_EQ(cpuRanges.size(), 2u);
+    float worstP = 0.0f, worstN = 0.0f;
+    for (std::size_t r = 0; r < 2; ++r) {
+      ASSERT_EQ(gpuRanges[r].second, cpuRanges[r].second);
+      for (std::uint32_t v = 0; v < gpuRanges[r].second; ++v) {
+        const float* g = &gpuPosed[(gpuRanges[r].first + v) * 8];
+        const float* c = &cpuWorld.posedVertices[(cpuRanges[r].first + v) * 8];
+        const glm::vec3 gp(g[0], g[1], g[2]), cp(c[0], c[1], c[2]);
+        worstP = std::max(worstP, glm::distance(gp, cp) / std::max(1.0f, glm::length(cp)));
+        worstN = std::max(worstN, glm::distance(glm::vec3(g[3], g[4], g[5]), glm::vec3(c[3], c[4], c[5])));
+        ASSERT_EQ(g[6], c[6]) << "uv of refined vertex " << v;
+        ASSERT_EQ(g[7], c[7]) << "uv of refined vertex " << v;
+        ++checked;
+      }
+    }
+    EXPECT_LE(worstP, kRefinedPositionRelTol);
+    EXPECT_LE(worstN, kRefinedNormalTol);
+    RecordProperty("refined-worst-position-rel-t" + std::to_string(int(t * 100)), sci(worstP));
+    RecordProperty("refined-worst-normal-t" + std::to_string(int(t * 100)), sci(worstN));
+  }
+  EXPECT_GT(checked, 3u * 20000u);  // CesiumMan and Fox refined once: ~4× their cage vertices
+}
+
 TEST(SkinningGpu, PassRunsOnlyWithASkinnedEntityAndBeforeTheDraws) {
   gpu::Context& ctx = gpu::testkit::sharedContext();
   const fs::path with = writeLevel("pass-with.json", R"(["direct", "shadows"])",
