@@ -220,6 +220,7 @@ void GpuScene::extract(ecs::Registry& registry, const scene::Level& level, const
   w.background = level.background;
   w.sceneMin = glm::vec3(std::numeric_limits<float>::max());
   w.sceneMax = glm::vec3(-std::numeric_limits<float>::max());
+  std::vector<std::pair<std::size_t, std::pair<glm::vec3, glm::vec3>>> posedBounds;  // posed draw → world box
 
   // Meshes: every node of the instanced subtree, composed with the entity's world transform.
   registry.view<scene::MeshRef, scene::WorldTransform>().each(
@@ -230,6 +231,7 @@ void GpuScene::extract(ecs::Registry& registry, const scene::Level& level, const
         const anim::Pose* pose = registry.tryGet<anim::Pose>(e);
         const glm::mat4 skinFrame = pose ? anim::skinFrame(a.cpu, ref, world.matrix, *pose) : world.matrix;
         scene::forEachInstancedNode(a.cpu, ref, world.matrix, [&](int n, const glm::mat4& nodeWorld) {
+          glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());  // this node's
           const asset::Node& node = a.cpu.nodes[n];
           if (node.light >= 0) {
             const asset::Light& L = a.cpu.lights[node.light];
@@ -275,6 +277,8 @@ void GpuScene::extract(ecs::Registry& registry, const scene::Level& level, const
                 glm::vec3 p = glm::vec3(m * (j * glm::vec4(c, 1.0f)));
                 w.sceneMin = glm::min(w.sceneMin, p);
                 w.sceneMax = glm::max(w.sceneMax, p);
+                lo = glm::min(lo, p);
+                hi = glm::max(hi, p);
               }
           } else if (pose && anim::isDeformed(a.cpu, n)) {
             posedBase = static_cast<std::uint32_t>(w.posedVertices.size() / 8);
@@ -288,6 +292,8 @@ void GpuScene::extract(ecs::Registry& registry, const scene::Level& level, const
                 const glm::vec3 p = glm::vec3(m * glm::vec4(pos[v], 1.0f));
                 w.sceneMin = glm::min(w.sceneMin, p);
                 w.sceneMax = glm::max(w.sceneMax, p);
+                lo = glm::min(lo, p);
+                hi = glm::max(hi, p);
               }
             }
           } else {
@@ -321,6 +327,7 @@ void GpuScene::extract(ecs::Registry& registry, const scene::Level& level, const
             inst.ids = glm::uvec4(e.index(), 0, 0, 0);
             w.draws.push_back({&gpuMesh, p, static_cast<std::uint32_t>(w.instances.size()),
                                a.materialSets[prim.material], e.index(), dynamic, posedBase});
+            if (posedBase != DrawItem::kNotPosed) posedBounds.emplace_back(w.draws.size() - 1, std::make_pair(lo, hi));
             w.instances.push_back(inst);
           }
         }, pose ? &pose->local : nullptr);
@@ -356,6 +363,43 @@ void GpuScene::extract(ecs::Registry& registry, const scene::Level& level, const
   w.camera.resolution = glm::vec4(options.extent.width, options.extent.height, 1.0f / options.extent.width,
                                   1.0f / options.extent.height);
   w.cameraFar = cam.far;
+
+  // Culling of posed draws against the camera and every shadow layer (DrawItem::inView/inShadow).
+  // Shadow layers without their near plane: a caster between the light and the near plane still
+  // shades what lies beyond it.
+  for (const auto& [draw, box] : posedBounds) {
+    DrawItem& d = w.draws[draw];
+    d.inView = boxMeetsFrustum(w.camera.viewProj, box.first, box.second, true);
+    d.inShadow = false;
+    for (const ShadowLayer& layer : w.shadowLayers)
+      d.inShadow = d.inShadow || boxMeetsFrustum(layer.viewProj, box.first, box.second, false);
+  }
+}
+
+bool boxMeetsFrustum(const glm::mat4& viewProj, glm::vec3 lo, glm::vec3 hi, bool nearPlane) {
+  glm::vec4 c[8];
+  for (int i = 0; i < 8; ++i)
+    c[i] = viewProj * glm::vec4(i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z, 1.0f);
+  // Vulkan clip space: −w ≤ x, y ≤ w and 0 ≤ z ≤ w. Outside when all 8 corners fail one plane
+  // (each plane is a linear half-space of the homogeneous corner, so this holds behind the eye too).
+  auto outside = [&](auto&& inside) {
+    for (const glm::vec4& v : c)
+      if (inside(v)) return false;
+    return true;
+  };
+  if (outside([](const glm::vec4& v) { return v.x >= -v.w; }) || outside([](const glm::vec4& v) { return v.x <= v.w; }) ||
+      outside([](const glm::vec4& v) { return v.y >= -v.w; }) || outside([](const glm::vec4& v) { return v.y <= v.w; }) ||
+      outside([](const glm::vec4& v) { return v.z <= v.w; }))
+    return false;
+  return !(nearPlane && outside([](const glm::vec4& v) { return v.z >= 0.0f; }));
+}
+
+bool RenderWorld::posedInView() const {
+  return std::any_of(draws.begin(), draws.end(), [](const DrawItem& d) { return d.posed() && d.inView; });
+}
+
+bool RenderWorld::posedInShadow() const {
+  return std::any_of(draws.begin(), draws.end(), [](const DrawItem& d) { return d.posed() && d.inShadow; });
 }
 
 }  // namespace bounce::render

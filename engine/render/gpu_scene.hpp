@@ -71,6 +71,10 @@ class GpuScene {
 // scene bounds), and the matching LightGpu::shadow fields. Exposed for tests.
 void buildShadowLayers(RenderWorld& world, std::uint32_t resolution);
 
+// Whether the world-space box [lo, hi] can reach the frustum of `viewProj` (Vulkan clip space);
+// conservative (a box near a frustum corner may pass). nearPlane false: ignore z ≥ 0.
+bool boxMeetsFrustum(const glm::mat4& viewProj, glm::vec3 lo, glm::vec3 hi, bool nearPlane);
+
 // Vulkan projection (depth 0..1, +Y down in clip space) from glTF-style parameters.
 glm::mat4 perspectiveVk(float yfovRad, float aspect, float near, float far);
 

@@ -25,6 +25,13 @@ struct DrawItem {
   static constexpr std::uint32_t kNotPosed = ~0u;
   std::uint32_t posedBase = kNotPosed;
   bool posed() const { return posedBase != kNotPosed; }
+  // A posed draw's culling (GpuScene::extract, from the instance's conservative world bounds):
+  // whether it can reach the camera's frustum / any shadow layer's. The G-buffer and shadow passes
+  // skip a posed draw outside theirs and read the posed vertices only when one is inside, so with
+  // no skinned entity visible or casting a shadow the graph culls the skinning and subdivision
+  // passes (nothing reads their output). Always true for static draws.
+  bool inView = true;
+  bool inShadow = true;
 };
 
 // One skinned instance for the skinning compute pass: skin mesh->skinVertices with the joint
@@ -70,6 +77,9 @@ struct RenderWorld {
   std::vector<SubdivisionJob> subdivisionJobs;  // empty: no subdivision pass (needs skinJobs)
   std::vector<glm::mat4> jointMatrices;  // every skinned instance's joint matrices, back to back
   bool has(const std::string& effect) const { return effects.count(effect) != 0; }
+  // Whether a posed draw is inside the camera's frustum / a shadow layer's (DrawItem::inView/inShadow).
+  bool posedInView() const;
+  bool posedInShadow() const;
 };
 
 // The distances the depth debug view maps to white (x) and black (y): from the camera to the

@@ -1,5 +1,7 @@
 #include "engine/gi/dnrt/technique.hpp"
 
+#include "engine/anim/skinning.hpp"
+
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -83,7 +85,15 @@ class DnrtTechnique final : public Technique {
         }
         return describe(ob->name, ob->settings) + ": cached " + ob->output.string();
       };
-      job.run = [ob] {
+      // A skinned or morphed object: the field is its bind pose's (the cube maps of its neighbours
+      // follow their poses, its own transfer does not): say so when it is baked.
+      const asset::CookedAsset& cooked = assets.get(lc.registry.get<scene::MeshRef>(e)).cpu;
+      bool deformed = false;
+      for (std::size_t n = 0; n < cooked.nodes.size(); ++n) deformed = deformed || anim::isDeformed(cooked, int(n));
+      job.run = [ob, deformed] {
+        if (deformed)
+          log::warn("dnrt " + ob->name + ": the mesh is skinned or morphed; its DNRT field is baked in the bind pose "
+                    "and does not follow the animation");
         const auto start = std::chrono::steady_clock::now();
         const BakeResult r = bake(ob->object, ob->settings);
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -14,6 +14,7 @@
 #include "engine/gpu/testing.hpp"
 #include "engine/ref/reference_scene.hpp"
 #include "engine/ref/tracer.hpp"
+#include "engine/render/gpu_scene.hpp"
 #include "engine/scene/components.hpp"
 #include "game/session.hpp"
 
@@ -185,6 +186,52 @@ TEST(SkinningGpu, PassRunsOnlyWithASkinnedEntityAndBeforeTheDraws) {
   };
   EXPECT_EQ(passes(with), (std::vector<std::string>{"skinning", "shadow", "gbuffer", "lighting", "tonemap"}));
   EXPECT_EQ(passes(without), (std::vector<std::string>{"shadow", "gbuffer", "lighting", "tonemap"}));
+}
+
+TEST(SkinningGpu, SkinningAndSubdivisionCulledWhenNoSkinnedEntityIsVisibleOrCastsAShadow) {
+  // The passes are added whenever a skinned entity exists (its skin job is queued); the graph culls
+  // them when neither the G-buffer (no posed draw in the camera frustum) nor the shadow pass (none
+  // in a shadow layer's) reads the posed vertices. The camera at z = 3.2 looks down −z: the
+  // character at z = 6 is behind it; a point light's six faces see all around it.
+  gpu::Context& ctx = gpu::testkit::sharedContext();
+  const std::string man = (assets() / "CesiumMan/glTF-Binary/CesiumMan.glb").string();
+  const std::string subdiv = R"(, "subdivision": {"scheme": "catmull-clark", "levels": 1})";
+  const std::string lamp = R"({"id": "lamp", "transform": {"translation": [0, 3, 4]}, "light": {"type": "point", "intensity": 5}})";
+  auto passes = [&](const std::string& name, const std::string& effects, const std::string& z, bool subdivided, bool light) {
+    std::vector<std::string> entities = {
+        kCamera, R"({"id": "man", "transform": {"translation": [0, 0, )" + z + R"(]}, "mesh": {"asset": ")" + man + "\"" +
+                     (subdivided ? subdiv : "") + "}}"};
+    if (light) entities.push_back(lamp);
+    game::Session session(ctx, scene::loadLevel(writeLevel(name, effects, entities)));
+    session.update(0.5);
+    gpu::OffscreenPresenter presenter(ctx, {32, 32});
+    session.render(presenter, {});
+    EXPECT_EQ(session.world().skinJobs.size(), 1u) << name;  // queued: any culling is the graph's
+    EXPECT_EQ(session.world().subdivisionJobs.size(), subdivided ? 1u : 0u) << name;
+    return session.renderer().executedPasses();
+  };
+  using P = std::vector<std::string>;
+  EXPECT_EQ(passes("cull-visible.json", R"(["direct"])", "0", false, false), (P{"skinning", "gbuffer", "lighting", "tonemap"}));
+  EXPECT_EQ(passes("cull-behind.json", R"(["direct"])", "6", false, false), (P{"gbuffer", "lighting", "tonemap"}));
+  EXPECT_EQ(passes("cull-behind-shadow.json", R"(["direct", "shadows"])", "6", false, true),
+            (P{"skinning", "shadow", "gbuffer", "lighting", "tonemap"}));
+  EXPECT_EQ(passes("cull-sub-visible.json", R"(["direct"])", "0", true, false),
+            (P{"skinning", "subdivision", "gbuffer", "lighting", "tonemap"}));
+  EXPECT_EQ(passes("cull-sub-behind.json", R"(["direct"])", "6", true, false), (P{"gbuffer", "lighting", "tonemap"}));
+}
+
+TEST(SkinningGpu, BoxFrustumTestIsConservativeAndExact) {
+  // A camera at the origin looking down −z, 90° field of view, near 0.1, far 10.
+  const glm::mat4 viewProj = render::perspectiveVk(glm::radians(90.0f), 1.0f, 0.1f, 10.0f);
+  EXPECT_TRUE(render::boxMeetsFrustum(viewProj, {-0.5f, -0.5f, -3.0f}, {0.5f, 0.5f, -2.0f}, true));   // ahead
+  EXPECT_FALSE(render::boxMeetsFrustum(viewProj, {-0.5f, -0.5f, 2.0f}, {0.5f, 0.5f, 3.0f}, true));    // behind
+  EXPECT_FALSE(render::boxMeetsFrustum(viewProj, {5.0f, -0.5f, -3.0f}, {6.0f, 0.5f, -2.0f}, true));   // right of x = −z
+  EXPECT_TRUE(render::boxMeetsFrustum(viewProj, {2.5f, -0.5f, -3.0f}, {6.0f, 0.5f, -2.0f}, true));    // straddles it
+  EXPECT_FALSE(render::boxMeetsFrustum(viewProj, {-0.5f, -0.5f, -13.0f}, {0.5f, 0.5f, -11.0f}, true));  // past far
+  EXPECT_TRUE(render::boxMeetsFrustum(viewProj, {-1.0f, -1.0f, -1.0f}, {1.0f, 1.0f, 1.0f}, true));    // around the eye
+  // Between the eye and the near plane: outside with the near plane, inside without it.
+  EXPECT_FALSE(render::boxMeetsFrustum(viewProj, {-0.01f, -0.01f, -0.05f}, {0.01f, 0.01f, -0.02f}, true));
+  EXPECT_TRUE(render::boxMeetsFrustum(viewProj, {-0.01f, -0.01f, -0.05f}, {0.01f, 0.01f, -0.02f}, false));
 }
 
 // Display image of one debug view of `session` at time t.
