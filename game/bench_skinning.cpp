@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <ctime>
 
 #include "engine/anim/animator.hpp"
 #include "engine/anim/skinning.hpp"
@@ -53,8 +54,15 @@ double median(std::vector<double> v) {
 // (one thread, positions and both tangents, no normals) on the same tables.
 struct StencilTimes {
   double parallelMs = 0, serialMs = 0, osdMs = 0;
+  double serialCpuMs = 0;  // the serial loop's thread CPU time: its rate without the host's other load
   std::size_t refined = 0, weights = 0;
 };
+
+double threadCpuMs() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return double(ts.tv_sec) * 1e3 + double(ts.tv_nsec) * 1e-6;
+}
 
 struct PosedCage {
   const asset::LimitStencils* stencils;
@@ -77,7 +85,9 @@ StencilTimes timeStencils(std::vector<PosedCage>& cages) {
     outP.resize(rows);
     outN.resize(rows);
     t.parallelMs += clock([&] { anim::LimitStencilJob{c.stencils, c.positions, c.normals, outP, outN, true}.run(); });
+    const double cpu0 = threadCpuMs();
     t.serialMs += clock([&] { anim::LimitStencilJob{c.stencils, c.positions, c.normals, outP, outN, false}.run(); });
+    t.serialCpuMs += threadCpuMs() - cpu0;
     if (c.sizes.empty()) {
       for (std::size_t v = 0; v < rows; ++v) {
         c.offsets.push_back(int(c.stencils->offsets[v]));
@@ -110,7 +120,7 @@ void run(gpu::Context& ctx, const Model& m, int frames) {
   ring.waitIdle();
   TimingCollector discard, timings;
   discard.collect(ring, 0);
-  std::vector<double> cpuMs, parallelMs, serialMs, osdMs;
+  std::vector<double> cpuMs, parallelMs, serialMs, osdMs, serialCpuMs;
   std::size_t vertices = 0, joints = 0, refined = 0, weights = 0;
   for (int i = 0; i < frames; ++i, t += kDt) {
     session.update(t);
@@ -143,6 +153,7 @@ void run(gpu::Context& ctx, const Model& m, int frames) {
       parallelMs.push_back(st.parallelMs);
       serialMs.push_back(st.serialMs);
       osdMs.push_back(st.osdMs);
+      serialCpuMs.push_back(st.serialCpuMs);
       refined = st.refined;
       weights = st.weights;
     }
@@ -164,13 +175,13 @@ void run(gpu::Context& ctx, const Model& m, int frames) {
   if (m.subdivided) {
     // Subdivision step: refined vertices per ms, GPU pass vs CPU face (TBB pool), and the CPU
     // stencil rate in millions of vertex·weights per second (one weight applied to one vertex).
-    const double par = median(parallelMs), ser = median(serialMs), osd = median(osdMs);
+    const double par = median(parallelMs), ser = median(serialMs), osd = median(osdMs), serCpu = median(serialCpuMs);
     std::printf(" refined_vertices=%zu stencil_weights=%zu subdiv_gpu_ms=%.3f subdiv_gpu_vertices_per_ms=%.0f "
                 "subdiv_cpu_ms=%.3f subdiv_cpu_vertices_per_ms=%.0f cpu_mweights_per_s=%.1f "
-                "subdiv_cpu1_ms=%.3f cpu1_mweights_per_s=%.1f osd_cpu1_ms=%.3f",
+                "subdiv_cpu1_ms=%.3f cpu1_mweights_per_s=%.1f cpu1_mweights_per_cpu_s=%.1f osd_cpu1_ms=%.3f",
                 refined, weights, subdivMs, double(refined) / std::max(subdivMs, 1e-6), par,
                 double(refined) / std::max(par, 1e-6), double(weights) / std::max(par, 1e-6) / 1e3, ser,
-                double(weights) / std::max(ser, 1e-6) / 1e3, osd);
+                double(weights) / std::max(ser, 1e-6) / 1e3, double(weights) / std::max(serCpu, 1e-6) / 1e3, osd);
   }
   std::printf(" frames=%d\n", frames);
   std::fflush(stdout);
