@@ -117,7 +117,8 @@ const std::vector<cli::CommandSpec>& commandSpecs() {
         {"--clusters", "N", "rtf: CPCA clusters (default 32)"},
         {"--components", "N", "rtf: CPCA components per cluster (default 16)"},
         {"--bounces", "N", "rtf: inter-object bounces 1..4 (default 2)"},
-        {"--objects", "N", "rtf: only the level's first N dynamic objects (default all)"}},
+        {"--objects", "N", "rtf: only the level's first N dynamic objects (default all)"},
+        {"--only", "TEXT", "skinning: only the models whose name contains TEXT (e.g. +subdiv)"}},
        1, 1},
   };
   return specs;

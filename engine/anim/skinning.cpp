@@ -2,6 +2,7 @@
 
 #include <glm/gtc/matrix_inverse.hpp>
 
+#include "engine/anim/subdivision.hpp"
 #include "engine/core/error.hpp"
 
 namespace bounce::anim {
@@ -61,27 +62,18 @@ bool SkinningJob::run() const {
   return true;
 }
 
-bool isSkinned(const asset::CookedAsset& a, int node) {
-  const asset::Node& n = a.nodes[std::size_t(node)];
-  if (n.skin < 0 || n.mesh < 0) return false;
-  for (const auto& p : a.meshes[std::size_t(n.mesh)].primitives)
-    if (!p.weights.empty()) return true;
-  return false;
+namespace {
+
+// The mesh whose primitives a node's pose deforms: its cage when it has one (Mesh::cage).
+const asset::Mesh& deformedMesh(const asset::CookedAsset& a, const asset::Mesh& m) {
+  return m.cage >= 0 ? a.meshes[std::size_t(m.cage)] : m;
 }
 
-bool isDeformed(const asset::CookedAsset& a, int node) {
-  const asset::Node& n = a.nodes[std::size_t(node)];
-  if (n.mesh < 0) return false;
-  if (isSkinned(a, node)) return true;
-  for (const auto& p : a.meshes[std::size_t(n.mesh)].primitives)
-    if (!p.targets.empty()) return true;
-  return false;
-}
+}  // namespace
 
-bool posePrimitive(const asset::CookedAsset& a, int node, std::size_t prim, const Pose* pose,
-                   std::vector<glm::vec3>& positions, std::vector<glm::vec3>& normals) {
+bool poseVertices(const asset::CookedAsset& a, int node, const asset::Primitive& p, const Pose* pose,
+                  std::vector<glm::vec3>& positions, std::vector<glm::vec3>& normals) {
   const asset::Node& n = a.nodes[std::size_t(node)];
-  const asset::Primitive& p = a.meshes[std::size_t(n.mesh)].primitives[prim];
   positions.resize(p.positions.size());
   normals.resize(p.positions.size());
   if (!MorphJob{&p, morphWeights(a, pose, node), positions, normals}.run())
@@ -97,6 +89,39 @@ bool posePrimitive(const asset::CookedAsset& a, int node, std::size_t prim, cons
   if (!SkinningJob{&p, pose->joints[std::size_t(n.skin)], morphedP, morphedN, positions, normals}.run())
     throw InternalError("anim: SkinningJob failed on " + a.sourceName);
   return true;
+}
+
+bool isSkinned(const asset::CookedAsset& a, int node) {
+  const asset::Node& n = a.nodes[std::size_t(node)];
+  if (n.skin < 0 || n.mesh < 0) return false;
+  for (const auto& p : deformedMesh(a, a.meshes[std::size_t(n.mesh)]).primitives)
+    if (!p.weights.empty()) return true;
+  return false;
+}
+
+bool isDeformed(const asset::CookedAsset& a, int node) {
+  const asset::Node& n = a.nodes[std::size_t(node)];
+  if (n.mesh < 0) return false;
+  if (isSkinned(a, node)) return true;
+  for (const auto& p : deformedMesh(a, a.meshes[std::size_t(n.mesh)]).primitives)
+    if (!p.targets.empty()) return true;
+  return false;
+}
+
+bool posePrimitive(const asset::CookedAsset& a, int node, std::size_t prim, const Pose* pose,
+                   std::vector<glm::vec3>& positions, std::vector<glm::vec3>& normals) {
+  const asset::Mesh& mesh = a.meshes[std::size_t(a.nodes[std::size_t(node)].mesh)];
+  const asset::Primitive& p = mesh.primitives[prim];
+  if (mesh.cage < 0) return poseVertices(a, node, p, pose, positions, normals);
+  // A subdivided deformed mesh: pose its cage primitive, then evaluate the limit stencils on it.
+  const asset::Primitive& cage = a.meshes[std::size_t(mesh.cage)].primitives[std::size_t(p.stencils.cagePrimitive)];
+  std::vector<glm::vec3> cageP, cageN;
+  const bool skinned = poseVertices(a, node, cage, pose, cageP, cageN);
+  positions.resize(p.positions.size());
+  normals.resize(p.positions.size());
+  if (!LimitStencilJob{&p.stencils, cageP, cageN, positions, normals}.run())
+    throw InternalError("anim: LimitStencilJob failed on " + a.sourceName);
+  return skinned;
 }
 
 }  // namespace bounce::anim

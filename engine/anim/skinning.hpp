@@ -44,13 +44,20 @@ struct SkinningJob {
 // The blended skin matrix of vertex v (the sum SkinningJob applies): exposed for the tests.
 glm::mat4 skinMatrix(const asset::Primitive& p, std::span<const glm::mat4> joints, std::size_t v);
 
-// Whether a mesh node is drawn skinned: it has a skin and its primitives carry weights.
+// Whether a mesh node is drawn skinned: it has a skin and its primitives (or its cage's, for a
+// subdivided mesh: asset::Mesh::cage) carry weights.
 bool isSkinned(const asset::CookedAsset& asset, int node);
 // Whether a node's geometry changes with a pose: skinned, or a mesh with morph targets.
 bool isDeformed(const asset::CookedAsset& asset, int node);
 
+// Morph targets, then skinning (when isSkinned()), of primitive `p` of node `node`'s mesh or of its
+// cage: what posePrimitive() does before any refinement. Returns true when skinned.
+bool poseVertices(const asset::CookedAsset& asset, int node, const asset::Primitive& p, const Pose* pose,
+                  std::vector<glm::vec3>& positions, std::vector<glm::vec3>& normals);
+
 // Primitive `prim` of mesh node `node` as posed: morphed with the pose's (or the mesh's default)
-// weights, then skinned with the pose's joint matrices when isSkinned(). Returns true when skinned
+// weights, then skinned with the pose's joint matrices when isSkinned(). A primitive of a
+// subdivided deformed mesh: its cage primitive posed so, then refined (LimitStencilJob). Returns true when skinned
 // (positions in asset space: place them with skinFrame, never with the node's matrix), false when
 // the result is in the node's own frame. pose may be null: the rest pose, morph defaults applied.
 bool posePrimitive(const asset::CookedAsset& asset, int node, std::size_t prim, const Pose* pose,

@@ -23,7 +23,8 @@ namespace bounce::asset {
 // every cooked file, so old cache entries are re-cooked, never trusted).
 // 2: reads extras.bounce_vlm into Node::vlm.
 // 3: JOINTS_1/WEIGHTS_1, skin weights checked and renormalised, skins and animations validated.
-inline constexpr std::uint32_t kCookerVersion = 3;
+// 4: a subdivided skinned or morphed mesh keeps its cage and gets limit stencils (Mesh::cage).
+inline constexpr std::uint32_t kCookerVersion = 4;
 
 struct CookOptions {
   // false: images are checked (header read) but not decoded; Texture::pixels stays empty.

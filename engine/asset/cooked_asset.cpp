@@ -26,6 +26,40 @@ namespace {
 
 std::string at(const std::string& base, std::size_t i) { return base + "/" + std::to_string(i); }
 
+// Mesh::cage and Primitive::stencils: a cage without a cage of its own, every stencil row inside
+// its index range and every index inside the cage primitive, finite weights.
+void validateStencils(const CookedAsset& a, std::size_t m, std::size_t p, const std::string& file) {
+  const Mesh& mesh = a.meshes[m];
+  const Primitive& prim = mesh.primitives[p];
+  const LimitStencils& st = prim.stencils;
+  const std::string where = at(at("meshes", m) + "/primitives", p) + "/stencils";
+  if (mesh.cage < 0) {
+    if (st.present() || !st.offsets.empty() || !st.indices.empty())
+      throwInputError(file, where, "stencils on a mesh without a cage", "none");
+    return;
+  }
+  if (std::size_t(mesh.cage) >= a.meshes.size() || std::size_t(mesh.cage) == m || a.meshes[std::size_t(mesh.cage)].cage != -1)
+    throwInputError(file, at("meshes", m) + "/cage", "cage " + std::to_string(mesh.cage),
+                    "another mesh of the asset without a cage of its own");
+  const Mesh& cage = a.meshes[std::size_t(mesh.cage)];
+  if (st.cagePrimitive < 0 || std::size_t(st.cagePrimitive) >= cage.primitives.size())
+    throwInputError(file, where + "/cagePrimitive", std::to_string(st.cagePrimitive),
+                    "< " + std::to_string(cage.primitives.size()));
+  const std::size_t n = prim.positions.size(), e = st.indices.size();
+  const std::size_t cageVertices = cage.primitives[std::size_t(st.cagePrimitive)].positions.size();
+  if (st.offsets.size() != n + 1 || st.offsets.front() != 0 || st.offsets.back() != e || st.weights.size() != e ||
+      st.duWeights.size() != e || st.dvWeights.size() != e)
+    throwInputError(file, where, "stencil table sizes do not match", std::to_string(n + 1) + " offsets from 0 to the weight count");
+  for (std::size_t v = 0; v < n; ++v)
+    if (st.offsets[v] > st.offsets[v + 1]) throwInputError(file, at(where + "/offsets", v + 1), "decreasing offset", "non-decreasing");
+  for (std::size_t k = 0; k < e; ++k) {
+    if (st.indices[k] >= cageVertices)
+      throwInputError(file, at(where + "/indices", k), "index " + std::to_string(st.indices[k]), "< " + std::to_string(cageVertices));
+    if (!std::isfinite(st.weights[k]) || !std::isfinite(st.duWeights[k]) || !std::isfinite(st.dvWeights[k]))
+      throwInputError(file, at(where + "/weights", k), "non-finite weight", "finite numbers");
+  }
+}
+
 }  // namespace
 
 void validate(const CookedAsset& a, const std::string& file) {
@@ -67,6 +101,7 @@ void validate(const CookedAsset& a, const std::string& file) {
         if (!std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.z))
           throwInputError(file, where + "/positions", "non-finite position", "finite numbers");
       ref(where + "/material", prim.material, a.materials.size());
+      validateStencils(a, m, p, file);
     }
   for (std::size_t m = 0; m < a.materials.size(); ++m) {
     ref(at("materials", m) + "/baseColorTexture", a.materials[m].baseColorTexture.texture, a.textures.size());

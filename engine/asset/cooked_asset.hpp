@@ -31,6 +31,27 @@ struct MorphTarget {
   bool operator==(const MorphTarget&) const = default;
 };
 
+// A refined primitive that follows a deformed cage (a skinned or morphed mesh with subdivision):
+// its vertices are evaluated every frame from the posed vertices of cage primitive
+// `cagePrimitive` of Mesh::cage, as OpenSubdiv limit stencils (Far::LimitStencilTable's layout,
+// composed at cook time with the uniform refinement, engine/asset/subdivision.cpp). For vertex v
+// and k in [offsets[v], offsets[v+1]), with P the posed cage positions:
+//   position  S(v)     = Σ_k weights[k]   · P[indices[k]]
+//   tangents  ∂S/∂u(v) = Σ_k duWeights[k] · P[indices[k]],   ∂S/∂v likewise with dvWeights
+//   normal    normalize(∂S/∂u × ∂S/∂v), or normalize(Σ_k weights[k] · N[indices[k]]) (posed cage
+//             normals) where the limit tangents are parallel (some boundary corners)
+// Units: the weights are dimensionless (position weights sum to 1); P in the cage's frame.
+struct LimitStencils {
+  std::int32_t cagePrimitive = -1;      // -1: not a stencil primitive (every vector empty)
+  std::vector<std::uint32_t> offsets;   // vertex count + 1, non-decreasing, offsets[0] = 0
+  std::vector<std::uint32_t> indices;   // cage vertex of each weight
+  std::vector<float> weights;           // position weights, one per index
+  std::vector<float> duWeights;         // limit tangent ∂/∂u weights
+  std::vector<float> dvWeights;         // limit tangent ∂/∂v weights
+  bool present() const { return cagePrimitive >= 0; }
+  bool operator==(const LimitStencils&) const = default;
+};
+
 // One indexed triangle list. positions/normals always present and of equal length; uv0, joints,
 // weights, joints1, weights1 either empty or of the same length (joints1 only with joints); indices.size() % 3 == 0, every index < vertex count.
 struct Primitive {
@@ -47,6 +68,9 @@ struct Primitive {
   // Triangles the cook removed as repairs (zero-area or non-finite; engine/asset/mesh_repair.cpp).
   // triangles kept + dropped = triangles in the source file.
   std::uint32_t droppedTriangles = 0;
+  // Present on the primitives of a mesh with a cage (Mesh::cage): positions/normals above are then
+  // the bind (rest) pose of the same evaluation, what a draw without a pose uses.
+  LimitStencils stencils;
   bool operator==(const Primitive&) const = default;
 };
 
@@ -55,6 +79,11 @@ struct Mesh {
   std::vector<Primitive> primitives;
   std::vector<float> morphWeights;  // default morph target weights
   Bounds bounds;                    // over every position of every primitive
+  // A subdivided mesh of a deformed (skinned or morphed) mesh: the index of that control mesh
+  // ("cage"), whose posed vertices every primitive's LimitStencils read each frame; -1 otherwise.
+  // The cage has no cage of its own, and its bounds contain the rest-pose limit surface (limit
+  // stencil weights are convex).
+  std::int32_t cage = -1;
   bool operator==(const Mesh&) const = default;
 };
 

@@ -25,6 +25,7 @@ constexpr bool kRaw = std::is_trivially_copyable_v<T> && !std::is_enum_v<T> && !
 // Field lists, defined below the Writer and Reader that walk them.
 template <class S> void io(S& s, Bounds& b);
 template <class S> void io(S& s, MorphTarget& t);
+template <class S> void io(S& s, LimitStencils& l);
 template <class S> void io(S& s, Primitive& p);
 template <class S> void io(S& s, Mesh& m);
 template <class S> void io(S& s, TextureRef& r);
@@ -128,8 +129,12 @@ template <class S> void io(S& s, Bounds& b) { s(b.min); s(b.max); }
 template <class S> void io(S& s, MorphTarget& t) { s(t.positions); s(t.normals); }
 template <class S> void io(S& s, Primitive& p) {
   s(p.positions); s(p.normals); s(p.uv0); s(p.indices); s(p.joints); s(p.weights); s(p.joints1); s(p.weights1); s(p.targets); s(p.material); s(p.droppedTriangles);
+  io(s, p.stencils);
 }
-template <class S> void io(S& s, Mesh& m) { s(m.name); s(m.primitives); s(m.morphWeights); io(s, m.bounds); }
+template <class S> void io(S& s, LimitStencils& l) {
+  s(l.cagePrimitive); s(l.offsets); s(l.indices); s(l.weights); s(l.duWeights); s(l.dvWeights);
+}
+template <class S> void io(S& s, Mesh& m) { s(m.name); s(m.primitives); s(m.morphWeights); io(s, m.bounds); s(m.cage); }
 template <class S> void io(S& s, TextureRef& r) { s(r.texture); s(r.uvSet); }
 template <class S> void io(S& s, Material& m) {
   s(m.name); s(m.baseColorFactor); io(s, m.baseColorTexture); s(m.emissiveFactor); io(s, m.emissiveTexture);

@@ -23,7 +23,8 @@
 namespace bounce::asset {
 
 // 2: nodes carry extras.bounce_vlm (NodeVlm).
-inline constexpr std::uint32_t kCookedFormatVersion = 3;  // 3: Primitive::joints1/weights1
+// 3: Primitive::joints1/weights1. 4: Mesh::cage and Primitive::stencils (subdivided deformed meshes).
+inline constexpr std::uint32_t kCookedFormatVersion = 4;
 
 enum class SectionType : std::uint32_t {
   Info = 1,  // source name, root nodes

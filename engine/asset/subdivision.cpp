@@ -6,6 +6,11 @@
 // normals are the normalised cross product of the two limit tangents. UVs ride along as a
 // face-varying channel (so UV seams stay seams), also evaluated at the limit. Boundaries use
 // "edge and corner" interpolation, the usual choice for modelled meshes with open borders.
+//
+// A skinned or morphed mesh keeps its control mesh ("cage") and gets the same limit surface as
+// stencils (CookedAsset LimitStencils): built once here, evaluated every frame on the posed cage
+// by engine/anim (CPU) and shaders/subdivision/subdivision.comp (GPU), so the smooth surface
+// bends with the skeleton.
 #include "engine/asset/subdivision.hpp"
 
 #include "engine/asset/gltf_import.hpp"
@@ -14,9 +19,12 @@
 #include "engine/core/log.hpp"
 
 #include <opensubdiv/far/primvarRefiner.h>
+#include <opensubdiv/far/stencilTable.h>
+#include <opensubdiv/far/stencilTableFactory.h>
 #include <opensubdiv/far/topologyDescriptor.h>
 #include <opensubdiv/far/topologyRefinerFactory.h>
 
+#include <algorithm>
 #include <array>
 #include <map>
 #include <memory>
@@ -49,6 +57,75 @@ osd::Sdc::SchemeType schemeType(SubdivisionScheme s) {
   }
 }
 
+// Limit masks over the finest level's vertices, as Far::PrimvarRefiner::Limit produces them: its
+// source values are "vertex j" (Unit) and its outputs collect (j, weight) pairs (Mask).
+struct Unit {
+  int j;
+};
+struct Mask {
+  std::vector<std::pair<int, float>> e;
+  void Clear(void* = nullptr) { e.clear(); }
+  void AddWithWeight(const Unit& src, float w) {
+    if (w != 0.0f) e.emplace_back(src.j, w);
+  }
+};
+
+// Limit stencils on the control vertices: limit mask (over finest vertices j) ∘ refinement
+// stencil of j (over control vertices), summed in a dense scratch row, one row per finest vertex.
+LimitStencils composeLimitStencils(const osd::Far::TopologyRefiner& refiner, const osd::Far::PrimvarRefiner& primvar) {
+  osd::Far::StencilTableFactory::Options options;
+  options.generateIntermediateLevels = false;  // the finest level's vertices only, row j = finest vertex j
+  options.generateControlVerts = false;
+  options.generateOffsets = true;
+  options.maxLevel = unsigned(refiner.GetMaxLevel());
+  std::unique_ptr<const osd::Far::StencilTable> refine(osd::Far::StencilTableFactory::Create(refiner, options));
+  const int finest = refiner.GetLevel(refiner.GetMaxLevel()).GetNumVertices();
+  std::vector<Unit> units(static_cast<std::size_t>(finest));
+  for (int j = 0; j < finest; ++j) units[std::size_t(j)] = Unit{j};
+  std::vector<Mask> pos(units.size()), du(units.size()), dv(units.size());
+  primvar.Limit(units, pos, du, dv);
+
+  LimitStencils out;
+  out.offsets.reserve(units.size() + 1);
+  out.offsets.push_back(0);
+  const std::size_t control = std::size_t(refiner.GetLevel(0).GetNumVertices());
+  std::vector<glm::vec3> acc(control, glm::vec3(0.0f));  // (position, du, dv) weight of each control vertex
+  std::vector<char> touched(control, 0);
+  std::vector<std::uint32_t> row;
+  const auto& sizes = refine->GetSizes();
+  const auto& offsets = refine->GetOffsets();
+  const auto& indices = refine->GetControlIndices();
+  const auto& weights = refine->GetWeights();
+  for (std::size_t v = 0; v < units.size(); ++v) {
+    row.clear();
+    auto add = [&](const Mask& m, int component) {
+      for (const auto& [j, w] : m.e)
+        for (int k = offsets[std::size_t(j)]; k < offsets[std::size_t(j)] + sizes[std::size_t(j)]; ++k) {
+          const std::size_t i = std::size_t(indices[std::size_t(k)]);
+          if (!touched[i]) {
+            touched[i] = 1;
+            row.push_back(std::uint32_t(i));
+          }
+          acc[i][component] += w * weights[std::size_t(k)];
+        }
+    };
+    add(pos[v], 0);
+    add(du[v], 1);
+    add(dv[v], 2);
+    std::sort(row.begin(), row.end());  // ascending cage vertices: reads in memory order
+    for (std::uint32_t i : row) {
+      out.indices.push_back(i);
+      out.weights.push_back(acc[i].x);
+      out.duWeights.push_back(acc[i].y);
+      out.dvWeights.push_back(acc[i].z);
+      acc[i] = glm::vec3(0.0f);
+      touched[i] = 0;
+    }
+    out.offsets.push_back(std::uint32_t(out.indices.size()));
+  }
+  return out;
+}
+
 }  // namespace
 
 WeldedMesh weld(const std::vector<glm::vec3>& positions, const std::vector<std::uint32_t>& indices) {
@@ -58,7 +135,10 @@ WeldedMesh weld(const std::vector<glm::vec3>& positions, const std::vector<std::
   for (std::size_t i = 0; i < positions.size(); ++i) {
     auto [it, inserted] = index.emplace(std::array<float, 3>{positions[i].x, positions[i].y, positions[i].z},
                                         std::uint32_t(w.positions.size()));
-    if (inserted) w.positions.push_back(positions[i]);
+    if (inserted) {
+      w.positions.push_back(positions[i]);
+      w.representative.push_back(std::uint32_t(i));
+    }
     remap[i] = it->second;
   }
   for (std::size_t t = 0; t + 2 < indices.size(); t += 3) {
@@ -71,7 +151,7 @@ WeldedMesh weld(const std::vector<glm::vec3>& positions, const std::vector<std::
 }
 
 LimitMesh refineToLimit(const WeldedMesh& mesh, const std::vector<glm::vec2>& uv, Subdivision s, const std::string& file,
-                        const std::string& where) {
+                        const std::string& where, LimitStencils* stencils) {
   using Descriptor = osd::Far::TopologyDescriptor;
   using Factory = osd::Far::TopologyRefinerFactory<Descriptor>;
   const int faces = int(mesh.triangles.size() / 3);
@@ -124,6 +204,7 @@ LimitMesh refineToLimit(const WeldedMesh& mesh, const std::vector<glm::vec2>& uv
   const std::size_t n = std::size_t(finest.GetNumVertices());
   std::vector<V3> pos(n), du(n), dv(n);
   primvar.Limit(src, pos, du, dv);
+  if (stencils) *stencils = composeLimitStencils(*refiner, primvar);
 
   LimitMesh out;
   out.verticesPerFace = s.scheme == SubdivisionScheme::Loop ? 3 : (s.levels == 0 ? 3 : 4);
@@ -153,10 +234,13 @@ LimitMesh refineToLimit(const WeldedMesh& mesh, const std::vector<glm::vec2>& uv
   return out;
 }
 
-Primitive subdividePrimitive(const Primitive& p, Subdivision s, const std::string& file, const std::string& where) {
+Primitive subdividePrimitive(const Primitive& p, Subdivision s, const std::string& file, const std::string& where,
+                             bool deformable, std::vector<std::uint32_t>* limitVertex) {
   const WeldedMesh w = weld(p.positions, p.indices);
-  const LimitMesh lm = refineToLimit(w, p.uv0, s, file, where);
+  LimitStencils limit;
+  const LimitMesh lm = refineToLimit(w, p.uv0, s, file, where, deformable ? &limit : nullptr);
   Primitive out;
+  std::vector<std::uint32_t> limitOf;  // per output vertex, its limit vertex
   out.material = p.material;
   // One output vertex per distinct (limit vertex, uv value) pair.
   std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> vertexOf;
@@ -166,6 +250,7 @@ Primitive subdividePrimitive(const Primitive& p, Subdivision s, const std::strin
     const std::uint32_t v = lm.faceVertices[c], u = hasUv ? lm.faceUvs[c] : 0;
     auto [it, inserted] = vertexOf.emplace(std::make_pair(v, u), std::uint32_t(out.positions.size()));
     if (inserted) {
+      limitOf.push_back(v);
       out.positions.push_back(lm.positions[v]);
       out.normals.push_back(lm.normals[v]);
       if (hasUv) out.uv0.push_back(lm.uv[u]);
@@ -179,6 +264,25 @@ Primitive subdividePrimitive(const Primitive& p, Subdivision s, const std::strin
   }
   const RepairCounts r = repairTriangles(out);  // limit projection can collapse tiny faces at creases
   out.droppedTriangles = std::uint32_t(r.nonFinite + r.degenerate);
+  if (r.removedVertices != 0) limitOf.clear();  // vertices renumbered (non-finite limit points): no row map
+  if (limitVertex) *limitVertex = limitOf;
+  if (deformable && !limitOf.empty()) {
+    // One stencil row per output vertex (a UV seam repeats its limit vertex's row), indices on p's
+    // own vertices through the weld's representatives.
+    LimitStencils& st = out.stencils;
+    st.offsets.push_back(0);
+    for (std::uint32_t v : limitOf) {
+      for (std::uint32_t k = limit.offsets[v]; k < limit.offsets[v + 1]; ++k) {
+        st.indices.push_back(w.representative[limit.indices[k]]);
+        st.weights.push_back(limit.weights[k]);
+        st.duWeights.push_back(limit.duWeights[k]);
+        st.dvWeights.push_back(limit.dvWeights[k]);
+      }
+      st.offsets.push_back(std::uint32_t(st.indices.size()));
+    }
+  } else if (deformable) {
+    log::warn(file + ": " + where + ": subdivided surface has non-finite limit points; it stays in the rest pose");
+  }
   // Degenerate tangents (e.g. at some boundary corners): use the area-weighted normal there.
   const auto fallback = areaWeightedNormals(out.positions, out.indices);
   for (std::size_t i = 0; i < out.normals.size(); ++i)
@@ -222,16 +326,30 @@ void applySubdivision(const ImportContext& ctx, const CookOptions& options, Cook
     const Mesh& src = out.meshes[std::size_t(n.mesh)];
     Mesh refined;
     refined.name = src.name + " (subdivided)";
-    bool dropped = false;
+    // A skinned or morphed mesh: keep it as the cage the refined surface follows every frame.
+    bool deformable = false;
+    for (const Primitive& prim : src.primitives) deformable = deformable || !prim.joints.empty() || !prim.targets.empty();
     for (std::size_t p = 0; p < src.primitives.size(); ++p) {
       const Primitive& prim = src.primitives[p];
-      dropped = dropped || !prim.joints.empty() || !prim.targets.empty();
       if (prim.indices.empty()) continue;
-      refined.primitives.push_back(subdividePrimitive(
-          prim, s, ctx.file, ptr(ptr("/meshes", std::size_t(n.mesh)) + "/primitives", p)));
+      Primitive r = subdividePrimitive(prim, s, ctx.file, ptr(ptr("/meshes", std::size_t(n.mesh)) + "/primitives", p),
+                                       deformable);
+      if (deformable) r.stencils.cagePrimitive = std::int32_t(p);
+      refined.primitives.push_back(std::move(r));
     }
-    if (dropped)
-      log::warn(ctx.file + ": " + ptr("/nodes", node) + ": subdivided mesh drops its skin weights and morph targets");
+    if (deformable) {
+      // A primitive without stencils (non-finite limit points, warned) cannot follow: then the
+      // whole mesh stays static, as before cages existed.
+      bool all = true;
+      for (const Primitive& r : refined.primitives) all = all && !r.stencils.offsets.empty();
+      for (Primitive& r : refined.primitives) {
+        if (!all) r.stencils = LimitStencils{};
+      }
+      if (all) {
+        refined.cage = n.mesh;
+        refined.morphWeights = src.morphWeights;
+      }
+    }
     refined.bounds = meshBounds(refined.primitives);
     out.meshes.push_back(std::move(refined));
     n.mesh = std::int32_t(out.meshes.size() - 1);

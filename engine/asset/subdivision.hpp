@@ -12,6 +12,7 @@ namespace bounce::asset::detail {
 // normal seams, but the subdivision surface must see one connected control mesh.
 struct WeldedMesh {
   std::vector<glm::vec3> positions;
+  std::vector<std::uint32_t> representative;  // per welded vertex: its first original vertex
   std::vector<std::uint32_t> triangles;  // 3 welded indices per triangle
   std::vector<std::uint32_t> corners;    // per triangle corner: the original vertex index
 };
@@ -29,11 +30,20 @@ struct LimitMesh {
   int verticesPerFace = 4;
 };
 // `uv` (may be empty) is indexed by mesh.corners (the original vertex of each corner).
+// With `stencils`, also the same limit points and tangents as linear functions of the control
+// vertices (one row per finest vertex, indices into mesh.positions; cagePrimitive left -1): the
+// refinement stencils of Far::StencilTableFactory composed with the limit masks of
+// Far::PrimvarRefiner::Limit, so evaluating them on mesh.positions gives what this function
+// returns, up to float rounding.
 LimitMesh refineToLimit(const WeldedMesh& mesh, const std::vector<glm::vec2>& uv, Subdivision s,
-                        const std::string& file, const std::string& where);
+                        const std::string& file, const std::string& where, LimitStencils* stencils = nullptr);
 
-// Subdivides one primitive into an indexed triangle list (joints, weights and morph targets are
-// dropped: they have no meaning on the refined surface).
-Primitive subdividePrimitive(const Primitive& p, Subdivision s, const std::string& file, const std::string& where);
+// Subdivides one primitive into an indexed triangle list. Joints, weights and morph targets have
+// no meaning on the refined surface and are dropped; with `deformable`, the result instead gets
+// LimitStencils on p's vertices (indices: each welded vertex's representative, cagePrimitive
+// still -1 for the caller to set), so it follows p's posed vertices every frame. `limitVertex`
+// (optional, for tests): per output vertex, its vertex of refineToLimit(weld(p), …).
+Primitive subdividePrimitive(const Primitive& p, Subdivision s, const std::string& file, const std::string& where,
+                             bool deformable = false, std::vector<std::uint32_t>* limitVertex = nullptr);
 
 }  // namespace bounce::asset::detail

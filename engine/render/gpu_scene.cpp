@@ -140,42 +140,77 @@ void GpuScene::uploadSkinVertices(AssetGpu& a) {
   for (std::size_t n = 0; n < a.cpu.nodes.size(); ++n) {
     const asset::Node& node = a.cpu.nodes[n];
     if (node.mesh < 0 || !anim::isSkinned(a.cpu, int(n))) continue;
-    MeshGpu& m = *a.meshes[std::size_t(node.mesh)];
-    const asset::Mesh& mesh = a.cpu.meshes[std::size_t(node.mesh)];
-    if (m.skinVertices || m.vertexCount == 0) continue;
-    bool gpu = true;  // every primitive weighted and without morph targets (those are posed on the CPU)
-    for (const auto& p : mesh.primitives) gpu = gpu && !p.weights.empty() && p.targets.empty();
-    if (!gpu) continue;
-    std::vector<SkinVertex> vs;
-    vs.reserve(m.vertexCount);
-    for (const auto& p : mesh.primitives)
-      for (std::size_t v = 0; v < p.positions.size(); ++v) {
-        SkinVertex s{};
-        const glm::vec2 uv = v < p.uv0.size() ? p.uv0[v] : glm::vec2(0.0f);
-        const glm::u16vec4 j1 = p.joints1.empty() ? glm::u16vec4(0) : p.joints1[v];
-        const glm::vec4 w1 = p.weights1.empty() ? glm::vec4(0.0f) : p.weights1[v];
-        const glm::u16vec4 j0 = p.joints[v];
-        for (int k = 0; k < 3; ++k) {
-          s.positionU[k] = p.positions[v][k];
-          s.normalV[k] = p.normals[v][k];
+    // A subdivided skinned mesh is skinned as its cage, then refined (uploadStencils).
+    const std::int32_t cage = a.cpu.meshes[std::size_t(node.mesh)].cage;
+    const std::size_t skinned = std::size_t(cage >= 0 ? cage : node.mesh);
+    MeshGpu& m = *a.meshes[skinned];
+    const asset::Mesh& mesh = a.cpu.meshes[skinned];
+    if (!m.skinVertices && m.vertexCount != 0) {
+      bool gpu = true;  // every primitive weighted and without morph targets (those are posed on the CPU)
+      for (const auto& p : mesh.primitives) gpu = gpu && !p.weights.empty() && p.targets.empty();
+      if (!gpu) continue;
+      std::vector<SkinVertex> vs;
+      vs.reserve(m.vertexCount);
+      for (const auto& p : mesh.primitives)
+        for (std::size_t v = 0; v < p.positions.size(); ++v) {
+          SkinVertex s{};
+          const glm::vec2 uv = v < p.uv0.size() ? p.uv0[v] : glm::vec2(0.0f);
+          const glm::u16vec4 j1 = p.joints1.empty() ? glm::u16vec4(0) : p.joints1[v];
+          const glm::vec4 w1 = p.weights1.empty() ? glm::vec4(0.0f) : p.weights1[v];
+          const glm::u16vec4 j0 = p.joints[v];
+          for (int k = 0; k < 3; ++k) {
+            s.positionU[k] = p.positions[v][k];
+            s.normalV[k] = p.normals[v][k];
+          }
+          s.positionU[3] = uv.x;
+          s.normalV[3] = uv.y;
+          s.joints[0] = std::uint32_t(j0.x) | std::uint32_t(j0.y) << 16;
+          s.joints[1] = std::uint32_t(j0.z) | std::uint32_t(j0.w) << 16;
+          s.joints[2] = std::uint32_t(j1.x) | std::uint32_t(j1.y) << 16;
+          s.joints[3] = std::uint32_t(j1.z) | std::uint32_t(j1.w) << 16;
+          for (int k = 0; k < 4; ++k) {
+            s.weights0[k] = p.weights[v][k];
+            s.weights1[k] = w1[k];
+          }
+          vs.push_back(s);
         }
-        s.positionU[3] = uv.x;
-        s.normalV[3] = uv.y;
-        s.joints[0] = std::uint32_t(j0.x) | std::uint32_t(j0.y) << 16;
-        s.joints[1] = std::uint32_t(j0.z) | std::uint32_t(j0.w) << 16;
-        s.joints[2] = std::uint32_t(j1.x) | std::uint32_t(j1.y) << 16;
-        s.joints[3] = std::uint32_t(j1.z) | std::uint32_t(j1.w) << 16;
-        for (int k = 0; k < 4; ++k) {
-          s.weights0[k] = p.weights[v][k];
-          s.weights1[k] = w1[k];
-        }
-        vs.push_back(s);
-      }
-    m.skinVertices = gpu::Buffer(ctx_, {vs.size() * sizeof(SkinVertex),
-                                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                                        gpu::MemoryUsage::GpuOnly, mesh.name + ".skin"});
-    gpu::upload(ctx_, m.skinVertices, gpu::bytesOf(vs));
+      m.skinVertices = gpu::Buffer(ctx_, {vs.size() * sizeof(SkinVertex),
+                                          VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                          gpu::MemoryUsage::GpuOnly, mesh.name + ".skin"});
+      gpu::upload(ctx_, m.skinVertices, gpu::bytesOf(vs));
+    }
+    if (cage >= 0 && m.skinVertices) uploadStencils(a, std::size_t(node.mesh));
   }
+}
+
+void GpuScene::uploadStencils(AssetGpu& a, std::size_t meshIndex) {
+  MeshGpu& m = *a.meshes[meshIndex];
+  if (m.stencilRows) return;
+  const asset::Mesh& mesh = a.cpu.meshes[meshIndex];
+  const MeshGpu& cage = *a.meshes[std::size_t(mesh.cage)];
+  std::vector<StencilRow> rows;
+  std::vector<StencilWeight> weights;
+  rows.reserve(m.vertexCount);
+  for (const auto& p : mesh.primitives) {
+    const asset::LimitStencils& st = p.stencils;
+    // Stencil indices are per cage primitive; the pass reads the whole cage mesh's posed range.
+    const std::uint32_t base = std::uint32_t(cage.primitives[std::size_t(st.cagePrimitive)].vertexOffset);
+    for (std::size_t v = 0; v < p.positions.size(); ++v) {
+      const glm::vec2 uv = v < p.uv0.size() ? p.uv0[v] : glm::vec2(0.0f);
+      rows.push_back({std::uint32_t(weights.size()), st.offsets[v + 1] - st.offsets[v], uv.x, uv.y});
+      for (std::uint32_t k = st.offsets[v]; k < st.offsets[v + 1]; ++k)
+        weights.push_back({base + st.indices[k], st.weights[k], st.duWeights[k], st.dvWeights[k]});
+    }
+  }
+  if (rows.empty() || weights.empty()) return;
+  auto storage = [&](gpu::Buffer& b, std::span<const std::uint8_t> bytes, const std::string& name) {
+    b = gpu::Buffer(ctx_, {bytes.size(), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                           gpu::MemoryUsage::GpuOnly, name});
+    gpu::upload(ctx_, b, bytes);
+  };
+  storage(m.stencilRows, gpu::bytesOf(rows), mesh.name + ".stencil-rows");
+  storage(m.stencilWeights, gpu::bytesOf(weights), mesh.name + ".stencil-weights");
+  m.cage = &cage;
 }
 
 void GpuScene::extract(ecs::Registry& registry, const scene::Level& level, const ExtractOptions& options,
@@ -185,6 +220,7 @@ void GpuScene::extract(ecs::Registry& registry, const scene::Level& level, const
   w.background = level.background;
   w.sceneMin = glm::vec3(std::numeric_limits<float>::max());
   w.sceneMax = glm::vec3(-std::numeric_limits<float>::max());
+  std::vector<std::pair<std::size_t, std::pair<glm::vec3, glm::vec3>>> posedBounds;  // posed draw → world box
 
   // Meshes: every node of the instanced subtree, composed with the entity's world transform.
   registry.view<scene::MeshRef, scene::WorldTransform>().each(
@@ -195,6 +231,7 @@ void GpuScene::extract(ecs::Registry& registry, const scene::Level& level, const
         const anim::Pose* pose = registry.tryGet<anim::Pose>(e);
         const glm::mat4 skinFrame = pose ? anim::skinFrame(a.cpu, ref, world.matrix, *pose) : world.matrix;
         scene::forEachInstancedNode(a.cpu, ref, world.matrix, [&](int n, const glm::mat4& nodeWorld) {
+          glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());  // this node's
           const asset::Node& node = a.cpu.nodes[n];
           if (node.light >= 0) {
             const asset::Light& L = a.cpu.lights[node.light];
@@ -208,24 +245,40 @@ void GpuScene::extract(ecs::Registry& registry, const scene::Level& level, const
           std::uint32_t posedBase = DrawItem::kNotPosed;
           glm::mat4 m = nodeWorld;
           const MeshGpu& gpuMesh = *a.meshes[node.mesh];
-          if (pose && options.gpuSkinning && gpuMesh.skinVertices && anim::isSkinned(a.cpu, n)) {
+          // A subdivided skinned mesh is skinned as its cage (then refined by the subdivision pass).
+          const MeshGpu& skinMesh = gpuMesh.cage ? *gpuMesh.cage : gpuMesh;
+          const asset::Mesh& skinCpu = meshCpu.cage >= 0 ? a.cpu.meshes[std::size_t(meshCpu.cage)] : meshCpu;
+          if (pose && options.gpuSkinning && skinMesh.skinVertices && (meshCpu.cage < 0 || gpuMesh.cage) &&
+              anim::isSkinned(a.cpu, n)) {
             // Skinned by the GPU pass: reserve its vertices, queue the job with this instance's joints.
-            posedBase = static_cast<std::uint32_t>(w.posedVertices.size() / 8);
+            const auto reserve = [&](std::uint32_t vertices) {
+              const auto base = static_cast<std::uint32_t>(w.posedVertices.size() / 8);
+              w.posedVertices.resize(w.posedVertices.size() + std::size_t(vertices) * 8, 0.0f);
+              return base;
+            };
+            const std::uint32_t skinBase = reserve(skinMesh.vertexCount);
             const auto& joints = pose->joints[std::size_t(node.skin)];
-            w.skinJobs.push_back({&gpuMesh, gpuMesh.vertexCount, static_cast<std::uint32_t>(w.jointMatrices.size()), posedBase});
+            w.skinJobs.push_back({&skinMesh, skinMesh.vertexCount, static_cast<std::uint32_t>(w.jointMatrices.size()), skinBase});
             w.jointMatrices.insert(w.jointMatrices.end(), joints.begin(), joints.end());
-            w.posedVertices.resize(w.posedVertices.size() + std::size_t(gpuMesh.vertexCount) * 8, 0.0f);
+            posedBase = skinBase;
+            if (gpuMesh.cage) {  // the refined vertices follow the cage's in the same buffer
+              posedBase = reserve(gpuMesh.vertexCount);
+              w.subdivisionJobs.push_back({&gpuMesh, gpuMesh.vertexCount, skinBase, posedBase});
+            }
             m = skinFrame;
             // Bounds: every skinned vertex is a convex combination of J_i·v, so the union of the bind
-            // bounds under every joint matrix contains it.
+            // bounds under every joint matrix contains it; a limit point is a convex combination of
+            // skinned cage vertices, so the cage's bind bounds serve a refined mesh too.
             for (const glm::mat4& j : joints)
               for (int i = 0; i < 8; ++i) {
-                glm::vec3 c{i & 1 ? meshCpu.bounds.max.x : meshCpu.bounds.min.x,
-                            i & 2 ? meshCpu.bounds.max.y : meshCpu.bounds.min.y,
-                            i & 4 ? meshCpu.bounds.max.z : meshCpu.bounds.min.z};
+                glm::vec3 c{i & 1 ? skinCpu.bounds.max.x : skinCpu.bounds.min.x,
+                            i & 2 ? skinCpu.bounds.max.y : skinCpu.bounds.min.y,
+                            i & 4 ? skinCpu.bounds.max.z : skinCpu.bounds.min.z};
                 glm::vec3 p = glm::vec3(m * (j * glm::vec4(c, 1.0f)));
                 w.sceneMin = glm::min(w.sceneMin, p);
                 w.sceneMax = glm::max(w.sceneMax, p);
+                lo = glm::min(lo, p);
+                hi = glm::max(hi, p);
               }
           } else if (pose && anim::isDeformed(a.cpu, n)) {
             posedBase = static_cast<std::uint32_t>(w.posedVertices.size() / 8);
@@ -239,6 +292,8 @@ void GpuScene::extract(ecs::Registry& registry, const scene::Level& level, const
                 const glm::vec3 p = glm::vec3(m * glm::vec4(pos[v], 1.0f));
                 w.sceneMin = glm::min(w.sceneMin, p);
                 w.sceneMax = glm::max(w.sceneMax, p);
+                lo = glm::min(lo, p);
+                hi = glm::max(hi, p);
               }
             }
           } else {
@@ -272,6 +327,7 @@ void GpuScene::extract(ecs::Registry& registry, const scene::Level& level, const
             inst.ids = glm::uvec4(e.index(), 0, 0, 0);
             w.draws.push_back({&gpuMesh, p, static_cast<std::uint32_t>(w.instances.size()),
                                a.materialSets[prim.material], e.index(), dynamic, posedBase});
+            if (posedBase != DrawItem::kNotPosed) posedBounds.emplace_back(w.draws.size() - 1, std::make_pair(lo, hi));
             w.instances.push_back(inst);
           }
         }, pose ? &pose->local : nullptr);
@@ -307,6 +363,43 @@ void GpuScene::extract(ecs::Registry& registry, const scene::Level& level, const
   w.camera.resolution = glm::vec4(options.extent.width, options.extent.height, 1.0f / options.extent.width,
                                   1.0f / options.extent.height);
   w.cameraFar = cam.far;
+
+  // Culling of posed draws against the camera and every shadow layer (DrawItem::inView/inShadow).
+  // Shadow layers without their near plane: a caster between the light and the near plane still
+  // shades what lies beyond it.
+  for (const auto& [draw, box] : posedBounds) {
+    DrawItem& d = w.draws[draw];
+    d.inView = boxMeetsFrustum(w.camera.viewProj, box.first, box.second, true);
+    d.inShadow = false;
+    for (const ShadowLayer& layer : w.shadowLayers)
+      d.inShadow = d.inShadow || boxMeetsFrustum(layer.viewProj, box.first, box.second, false);
+  }
+}
+
+bool boxMeetsFrustum(const glm::mat4& viewProj, glm::vec3 lo, glm::vec3 hi, bool nearPlane) {
+  glm::vec4 c[8];
+  for (int i = 0; i < 8; ++i)
+    c[i] = viewProj * glm::vec4(i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z, 1.0f);
+  // Vulkan clip space: −w ≤ x, y ≤ w and 0 ≤ z ≤ w. Outside when all 8 corners fail one plane
+  // (each plane is a linear half-space of the homogeneous corner, so this holds behind the eye too).
+  auto outside = [&](auto&& inside) {
+    for (const glm::vec4& v : c)
+      if (inside(v)) return false;
+    return true;
+  };
+  if (outside([](const glm::vec4& v) { return v.x >= -v.w; }) || outside([](const glm::vec4& v) { return v.x <= v.w; }) ||
+      outside([](const glm::vec4& v) { return v.y >= -v.w; }) || outside([](const glm::vec4& v) { return v.y <= v.w; }) ||
+      outside([](const glm::vec4& v) { return v.z <= v.w; }))
+    return false;
+  return !(nearPlane && outside([](const glm::vec4& v) { return v.z >= 0.0f; }));
+}
+
+bool RenderWorld::posedInView() const {
+  return std::any_of(draws.begin(), draws.end(), [](const DrawItem& d) { return d.posed() && d.inView; });
+}
+
+bool RenderWorld::posedInShadow() const {
+  return std::any_of(draws.begin(), draws.end(), [](const DrawItem& d) { return d.posed() && d.inShadow; });
 }
 
 }  // namespace bounce::render

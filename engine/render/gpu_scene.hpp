@@ -52,7 +52,8 @@ class GpuScene {
     std::vector<VkDescriptorSet> materialSets;  // one per material, +1 default at the end
   };
   const AssetGpu& upload(const scene::MeshRef& ref);
-  void uploadSkinVertices(AssetGpu& a);  // MeshGpu::skinVertices of every GPU-skinnable mesh
+  void uploadSkinVertices(AssetGpu& a);  // MeshGpu::skinVertices of every GPU-skinnable mesh (or cage)
+  void uploadStencils(AssetGpu& a, std::size_t mesh);  // MeshGpu::stencilRows/Weights of a refined mesh
   static std::string key(const scene::MeshRef& ref);
 
   gpu::Context& ctx_;
@@ -69,6 +70,10 @@ class GpuScene {
 // lights.glsl's cubeFace(); spot: one perspective; directional: one orthographic fitted to the
 // scene bounds), and the matching LightGpu::shadow fields. Exposed for tests.
 void buildShadowLayers(RenderWorld& world, std::uint32_t resolution);
+
+// Whether the world-space box [lo, hi] can reach the frustum of `viewProj` (Vulkan clip space);
+// conservative (a box near a frustum corner may pass). nearPlane false: ignore z ≥ 0.
+bool boxMeetsFrustum(const glm::mat4& viewProj, glm::vec3 lo, glm::vec3 hi, bool nearPlane);
 
 // Vulkan projection (depth 0..1, +Y down in clip space) from glTF-style parameters.
 glm::mat4 perspectiveVk(float yfovRad, float aspect, float near, float far);

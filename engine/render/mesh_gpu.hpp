@@ -23,6 +23,11 @@ struct MeshGpu {
   // same order as `vertices`. Empty otherwise (deformed meshes are then posed on the CPU).
   gpu::Buffer skinVertices;
   std::uint32_t vertexCount = 0;
+  // A subdivided mesh of a deformed cage (asset::Mesh::cage): its limit stencils on the cage's
+  // vertices (StencilRow per vertex of `vertices`, StencilWeight per weight), read by the
+  // subdivision pass when the cage is skinned on the GPU. Empty otherwise.
+  const MeshGpu* cage = nullptr;
+  gpu::Buffer stencilRows, stencilWeights;
 };
 
 }  // namespace bounce::render

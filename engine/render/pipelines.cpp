@@ -26,7 +26,8 @@ Pipelines::Pipelines(gpu::Context& ctx)
                    {6, kUniform}},
                   "debug-view"),
       tonemapLayout(ctx, {{0, kSampled}}, "tonemap"),
-      skinningLayout(ctx, {{0, kStorage}, {1, kStorage}, {2, kStorage}}, "skinning") {
+      skinningLayout(ctx, {{0, kStorage}, {1, kStorage}, {2, kStorage}}, "skinning"),
+      subdivisionLayout(ctx, {{0, kStorage}, {1, kStorage}, {2, kStorage}}, "subdivision") {
   gbufferLayout = gpu::PipelineLayout(ctx, {frameLayout.handle(), materialLayout.handle()}, {push(4)}, "gbuffer");
   shadowLayout = gpu::PipelineLayout(ctx, {frameLayout.handle()}, {push(8)}, "shadow");
   lightingPipelineLayout =
@@ -93,6 +94,10 @@ Pipelines::Pipelines(gpu::Context& ctx)
   skinningPipelineLayout = gpu::PipelineLayout(ctx, {skinningLayout.handle()}, {push(12)}, "skinning");
   gpu::ShaderModule skinningComp(ctx, "skinning/skinning.comp.spv");
   skinning = gpu::createComputePipeline(ctx, skinningPipelineLayout, skinningComp, "skinning");
+
+  subdivisionPipelineLayout = gpu::PipelineLayout(ctx, {subdivisionLayout.handle()}, {push(12)}, "subdivision");
+  gpu::ShaderModule subdivisionComp(ctx, "subdivision/subdivision.comp.spv");
+  subdivision = gpu::createComputePipeline(ctx, subdivisionPipelineLayout, subdivisionComp, "subdivision");
 }
 
 }  // namespace bounce::render

@@ -29,6 +29,20 @@ static_assert(sizeof(SkinVertex) == 80);
 // The skinning pass's workgroup size (local_size_x in skinning.comp).
 inline constexpr std::uint32_t kSkinningGroupSize = 64;
 
+// A subdivided deformed mesh's limit stencils as the subdivision pass reads them
+// (shaders/subdivision/subdivision.comp): one row per refined vertex, one weight per entry.
+struct StencilRow {
+  std::uint32_t first, count;  // into the mesh's StencilWeight array
+  float u, v;                  // the refined vertex's uv0
+};
+struct StencilWeight {
+  std::uint32_t cageVertex;  // mesh-wide index into the cage mesh's vertices
+  float w, wu, wv;           // position, ∂/∂u, ∂/∂v weights
+};
+static_assert(sizeof(StencilRow) == 16 && sizeof(StencilWeight) == 16);
+// The subdivision pass's workgroup size (local_size_x in subdivision.comp).
+inline constexpr std::uint32_t kSubdivisionGroupSize = 64;
+
 struct Pipelines {
   explicit Pipelines(gpu::Context& ctx);
 
@@ -38,12 +52,15 @@ struct Pipelines {
   gpu::DescriptorSetLayout debugLayout;     // albedo, normal, entity, depth, atlas, matrices, lights
   gpu::DescriptorSetLayout tonemapLayout;   // 0 HDR image
   gpu::DescriptorSetLayout skinningLayout;  // 0 skin vertices, 1 joint matrices, 2 posed vertices (SSBOs)
+  gpu::DescriptorSetLayout subdivisionLayout;  // 0 posed vertices, 1 stencil rows, 2 stencil weights (SSBOs)
 
   gpu::PipelineLayout gbufferLayout, shadowLayout, lightingPipelineLayout, debugPipelineLayout,
       tonemapPipelineLayout;
   gpu::Pipeline gbuffer, shadow, lighting, debug, tonemap;
   gpu::PipelineLayout skinningPipelineLayout;
   gpu::Pipeline skinning;  // shaders/skinning/skinning.comp
+  gpu::PipelineLayout subdivisionPipelineLayout;
+  gpu::Pipeline subdivision;  // shaders/subdivision/subdivision.comp
 };
 
 }  // namespace bounce::render

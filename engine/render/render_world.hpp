@@ -25,6 +25,13 @@ struct DrawItem {
   static constexpr std::uint32_t kNotPosed = ~0u;
   std::uint32_t posedBase = kNotPosed;
   bool posed() const { return posedBase != kNotPosed; }
+  // A posed draw's culling (GpuScene::extract, from the instance's conservative world bounds):
+  // whether it can reach the camera's frustum / any shadow layer's. The G-buffer and shadow passes
+  // skip a posed draw outside theirs and read the posed vertices only when one is inside, so with
+  // no skinned entity visible or casting a shadow the graph culls the skinning and subdivision
+  // passes (nothing reads their output). Always true for static draws.
+  bool inView = true;
+  bool inShadow = true;
 };
 
 // One skinned instance for the skinning compute pass: skin mesh->skinVertices with the joint
@@ -34,6 +41,16 @@ struct SkinJob {
   std::uint32_t vertexCount = 0;
   std::uint32_t jointBase = 0;  // into RenderWorld::jointMatrices
   std::uint32_t dstBase = 0;    // into RenderWorld::posedVertices, in vertices
+};
+
+// One subdivided skinned instance for the subdivision compute pass: evaluate mesh->stencilRows on
+// the cage vertices the skinning pass wrote from srcBase, into RenderWorld::posedVertices from
+// vertex dstBase.
+struct SubdivisionJob {
+  const MeshGpu* mesh = nullptr;
+  std::uint32_t vertexCount = 0;  // refined vertices
+  std::uint32_t srcBase = 0;      // the cage's posed vertices (a SkinJob's dstBase)
+  std::uint32_t dstBase = 0;
 };
 
 // One shadow-atlas layer: the light view-projection that rendered it.
@@ -57,8 +74,12 @@ struct RenderWorld {
   // raster pass reads the same buffer.
   std::vector<float> posedVertices;      // GPU-skinned ranges are placeholders the skinning pass overwrites
   std::vector<SkinJob> skinJobs;         // empty: no skinning pass
+  std::vector<SubdivisionJob> subdivisionJobs;  // empty: no subdivision pass (needs skinJobs)
   std::vector<glm::mat4> jointMatrices;  // every skinned instance's joint matrices, back to back
   bool has(const std::string& effect) const { return effects.count(effect) != 0; }
+  // Whether a posed draw is inside the camera's frustum / a shadow layer's (DrawItem::inView/inShadow).
+  bool posedInView() const;
+  bool posedInShadow() const;
 };
 
 // The distances the depth debug view maps to white (x) and black (y): from the camera to the

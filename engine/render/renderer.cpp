@@ -10,6 +10,7 @@
 #include "engine/render/passes/lighting_pass.hpp"
 #include "engine/render/passes/shadow_pass.hpp"
 #include "engine/render/passes/skinning_pass.hpp"
+#include "engine/render/passes/subdivision_pass.hpp"
 #include "engine/render/passes/tonemap_pass.hpp"
 
 namespace bounce::render {
@@ -145,7 +146,10 @@ void Renderer::buildGraph(rg::RenderGraph& graph, PassContext& pc, VkExtent2D ex
   // Skinned instances: one compute pass poses them all before anything draws (DESIGN.md data flow).
   if (!pc.world->skinJobs.empty()) {
     const rg::BufferDesc posedDesc{pc.world->posedVertices.size() * sizeof(float)};
-    addSkinningPass(graph, &pc, graph.importBuffer("posed-vertices", posedDesc, rg::ResourceState{}, posedId));
+    const auto skinned =
+        addSkinningPass(graph, &pc, graph.importBuffer("posed-vertices", posedDesc, rg::ResourceState{}, posedId));
+    // Subdivided skinned instances: their limit surfaces from the cages just skinned.
+    if (!pc.world->subdivisionJobs.empty()) addSubdivisionPass(graph, &pc, skinned);
   }
   std::optional<rg::Handle<rg::Texture>> atlas;
   // Shadows only modulate direct light: without `direct` there is nothing to shadow.

@@ -8,6 +8,7 @@
 #include "engine/gpu/commands.hpp"
 #include "engine/render/mesh_gpu.hpp"
 #include "engine/render/passes/rendering.hpp"
+#include "engine/render/passes/skinning_pass.hpp"
 
 namespace bounce::gi::dnrt {
 
@@ -140,6 +141,7 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
           d.depth = b.write(b.create<rg::Texture>("dnrt.intrusion-depth." + o.name,
                                                   rg::TextureDesc{res, res, 1, 1, 1, rg::Format::D32F, false}),
                             rg::Usage::DepthAttachment);
+          render::readSkinnedVertices(graph, b);  // posed neighbours intrude with their pose
         },
         [this, pc, origin, radius, reach, self, res](const CubeData& d, const rg::PassResources& r,
                                                      rg::CommandContext& c) {
@@ -158,10 +160,7 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
             for (const render::DrawItem& draw : pc->world->draws) {
               if (draw.entity + 1u == self) continue;
               const auto& prim = draw.mesh->primitives[draw.primitive];
-              VkDeviceSize offset = 0;
-              VkBuffer vb = draw.mesh->vertices.handle();
-              vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
-              vkCmdBindIndexBuffer(cmd, draw.mesh->indices.handle(), 0, VK_INDEX_TYPE_UINT32);
+              pc->bindGeometry(cmd, draw);  // a skinned neighbour as posed this frame
               push.instance = draw.instance;
               cube_.push(cmd, push);
               vkCmdDrawIndexed(cmd, prim.indexCount, 1, prim.firstIndex, prim.vertexOffset, 0);

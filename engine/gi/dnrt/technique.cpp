@@ -1,5 +1,7 @@
 #include "engine/gi/dnrt/technique.hpp"
 
+#include "engine/anim/skinning.hpp"
+
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -36,13 +38,18 @@ struct ObjectBake {
   std::string key;
   std::filesystem::path output;
 
-  ref::SceneDesc object() const {
+  // The object as the bake sees it; `deformed` (if given): whether its mesh is skinned or morphed.
+  ref::SceneDesc object(bool* deformed = nullptr) const {
     ecs::Registry one;
     const ecs::Entity e = one.create();
     one.emplace<scene::MeshRef>(e, mesh);
     if (material) one.emplace<scene::MaterialOverride>(e, *material);
     ref::ReferenceAssets assets;
     assets.load(one, cookCache);
+    if (deformed) {
+      const asset::CookedAsset& cooked = assets.get(mesh).cpu;
+      for (std::size_t n = 0; n < cooked.nodes.size(); ++n) *deformed = *deformed || anim::isDeformed(cooked, int(n));
+    }
     ref::SceneDesc out = objectScene(one, e, assets);
     if (cacheKey(out, settings) != key)  // planning and baking must name the same entry
       throw InternalError("dnrt: " + name + ": the baked object's key differs from the planned " + key);
@@ -100,7 +107,13 @@ class DnrtTechnique final : public Technique {
         return describe(ob->name, ob->settings) + ": cached " + ob->output.string();
       };
       job.run = [ob] {
-        const ref::SceneDesc object = ob->object();  // cooked and decoded now, not timed as the bake
+        bool deformed = false;
+        const ref::SceneDesc object = ob->object(&deformed);  // cooked and decoded now, not timed as the bake
+        // A skinned or morphed object: the field is its bind pose's (the cube maps of its neighbours
+        // follow their poses, its own transfer does not): say so when it is baked.
+        if (deformed)
+          log::warn("dnrt " + ob->name + ": the mesh is skinned or morphed; its DNRT field is baked in the bind pose "
+                    "and does not follow the animation");
         const auto start = std::chrono::steady_clock::now();
         const BakeResult r = bake(object, ob->settings);
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

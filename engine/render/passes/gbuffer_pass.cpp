@@ -16,7 +16,7 @@ const GBuffer& addGBufferPass(rg::RenderGraph& graph, const PassContext* pc, VkE
         d.emissive = b.write(b.create<rg::Texture>("gbuffer.emissive", desc(rg::Format::RGBA16F)), rg::Usage::ColorAttachment);
         d.entity = b.write(b.create<rg::Texture>("gbuffer.entity", desc(rg::Format::R32_UINT)), rg::Usage::ColorAttachment);
         d.depth = b.write(b.create<rg::Texture>("gbuffer.depth", desc(rg::Format::D32F)), rg::Usage::DepthAttachment);
-        readSkinnedVertices(graph, b);
+        readSkinnedVertices(graph, b, pc->world->posedInView());
       },
       [pc, extent](const GBuffer& d, const rg::PassResources& res, rg::CommandContext& c) {
         VkCommandBuffer cmd = pc->cmd(c);
@@ -29,6 +29,7 @@ const GBuffer& addGBufferPass(rg::RenderGraph& graph, const PassContext* pc, VkE
         p.bind(cmd);
         p.bindSet(cmd, 0, pc->frameSet);
         for (const DrawItem& draw : pc->world->draws) {
+          if (draw.posed() && !draw.inView) continue;  // outside the frustum: its vertices were not posed
           const auto& prim = draw.mesh->primitives[draw.primitive];
           p.bindSet(cmd, 1, draw.material);
           pc->bindGeometry(cmd, draw);

@@ -13,7 +13,7 @@ const ShadowAtlas& addShadowPass(rg::RenderGraph& graph, const PassContext* pc, 
       [&](rg::Builder& b, ShadowAtlas& d) {
         rg::TextureDesc desc{resolution, resolution, 1, layers, 1, rg::Format::D32F, false};
         d.atlas = b.write(b.create<rg::Texture>("shadow.atlas", desc), rg::Usage::DepthAttachment);
-        readSkinnedVertices(graph, b);
+        readSkinnedVertices(graph, b, pc->world->posedInShadow());
       },
       [pc, resolution, layers](const ShadowAtlas& d, const rg::PassResources& res, rg::CommandContext& c) {
         VkCommandBuffer cmd = pc->cmd(c);
@@ -27,6 +27,7 @@ const ShadowAtlas& addShadowPass(rg::RenderGraph& graph, const PassContext* pc, 
           p.bindSet(cmd, 0, pc->frameSet);
           vkCmdSetDepthBias(cmd, kShadowDepthBiasConstant, 0.0f, kShadowDepthBiasSlope);
           for (const DrawItem& draw : pc->world->draws) {
+            if (draw.posed() && !draw.inShadow) continue;  // in no shadow layer: its vertices were not posed
             const auto& prim = draw.mesh->primitives[draw.primitive];
             pc->bindGeometry(cmd, draw);
             struct {

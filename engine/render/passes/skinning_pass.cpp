@@ -36,7 +36,8 @@ rg::Handle<rg::Buffer> addSkinningPass(rg::RenderGraph& graph, const PassContext
   return out.posed;
 }
 
-void readSkinnedVertices(rg::RenderGraph& graph, rg::Builder& b) {
+void readSkinnedVertices(rg::RenderGraph& graph, rg::Builder& b, bool needed) {
+  if (!needed) return;
   if (auto h = graph.blackboard().find<rg::Buffer>("skinning.vertices")) b.read(*h, rg::Usage::VertexBuffer);
 }
 

@@ -15,6 +15,8 @@ rg::Handle<rg::Buffer> addSkinningPass(rg::RenderGraph& graph, const PassContext
 
 // What a raster pass's setup calls: declares the vertex-buffer read of "skinning.vertices" when
 // the skinning pass ran this frame (so the graph orders it and places the barrier).
-void readSkinnedVertices(rg::RenderGraph& graph, rg::Builder& b);
+// `needed` false (the pass draws no posed geometry this frame): nothing is declared, so without
+// another reader the graph culls the skinning (and subdivision) pass.
+void readSkinnedVertices(rg::RenderGraph& graph, rg::Builder& b, bool needed = true);
 
 }  // namespace bounce::render

@@ -14,6 +14,7 @@
 #include "engine/gpu/testing.hpp"
 #include "engine/ref/reference_scene.hpp"
 #include "engine/ref/tracer.hpp"
+#include "engine/render/gpu_scene.hpp"
 #include "engine/scene/components.hpp"
 #include "game/session.hpp"
 
@@ -100,6 +101,74 @@ TEST(SkinningGpu, CpuEqualsGpuOnEveryVertexOfCesiumManAndFox) {
   EXPECT_GT(checked, 4u * 4000u);  // CesiumMan 3273 + Fox 1728 vertices, every time
 }
 
+// Subdivided cages, CPU face (engine/anim LimitStencilJob after CPU skinning) vs GPU face (the
+// subdivision pass after the skinning pass). Both sum the same stencil weights in the same order
+// on cages that already differ by kPositionRelTol; a limit point sums 20–60 weighted cage points,
+// so a few dozen ulps: 1e-5 relative. Normals come from the cross product of two tangents that
+// are themselves sums with cancelling weights: 1e-4 absolute on unit vectors.
+constexpr float kRefinedPositionRelTol = 1e-5f;
+constexpr float kRefinedNormalTol = 1e-4f;
+
+// Each posed mesh instance's vertex range in a world: (posedBase, vertex count), in draw order.
+std::vector<std::pair<std::uint32_t, std::uint32_t>> posedRanges(const render::RenderWorld& w) {
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> out;
+  for (const auto& d : w.draws)
+    if (d.posed() && (out.empty() || out.back().first != d.posedBase)) out.emplace_back(d.posedBase, d.mesh->vertexCount);
+  return out;
+}
+
+TEST(SkinningGpu, SubdividedCagesCpuEqualsGpuOnEveryRefinedVertex) {
+  gpu::Context& ctx = gpu::testkit::sharedContext();
+  const std::string subdiv = R"(, "subdivision": {"scheme": "catmull-clark", "levels": 1})";
+  const fs::path level = writeLevel(
+      "subdiv-cpu-gpu.json", R"(["direct"])",
+      {kCamera,
+       R"({"id": "man", "mesh": {"asset": ")" + (assets() / "CesiumMan/glTF-Binary/CesiumMan.glb").string() + "\"" + subdiv + "}}",
+       R"({"id": "fox", "mesh": {"asset": ")" + (assets() / "Fox/glTF-Binary/Fox.glb").string() + "\"" + subdiv +
+           R"(}, "transform": {"translation": [1, 0, 0], "scale": [0.01, 0.01, 0.01]}, "animation": {"clip": "Run"}})"});
+  game::Session session(ctx, scene::loadLevel(level));
+  gpu::OffscreenPresenter presenter(ctx, {32, 32});
+  std::size_t checked = 0;
+  for (double t : {0.0, 0.37, 1.1}) {
+    SCOPED_TRACE(t);
+    session.update(t);
+    session.render(presenter, {});
+    EXPECT_EQ(session.renderer().executedPasses(),
+              (std::vector<std::string>{"skinning", "subdivision", "gbuffer", "lighting", "tonemap"}));
+    const std::vector<float> gpuPosed = session.renderer().readPosedVertices();
+    ASSERT_EQ(session.world().skinJobs.size(), 2u);
+    ASSERT_EQ(session.world().subdivisionJobs.size(), 2u);
+    render::RenderWorld cpuWorld;
+    render::ExtractOptions cpuFace;
+    cpuFace.extent = {32, 32};
+    cpuFace.gpuSkinning = false;
+    session.gpuScene().extract(session.registry(), session.level(), cpuFace, cpuWorld);
+    ASSERT_TRUE(cpuWorld.subdivisionJobs.empty());
+    const auto gpuRanges = posedRanges(session.world()), cpuRanges = posedRanges(cpuWorld);
+    ASSERT_EQ(gpuRanges.size(), 2u);
+    ASSERT_EQ(cpuRanges.size(), 2u);
+    float worstP = 0.0f, worstN = 0.0f;
+    for (std::size_t r = 0; r < 2; ++r) {
+      ASSERT_EQ(gpuRanges[r].second, cpuRanges[r].second);
+      for (std::uint32_t v = 0; v < gpuRanges[r].second; ++v) {
+        const float* g = &gpuPosed[(gpuRanges[r].first + v) * 8];
+        const float* c = &cpuWorld.posedVertices[(cpuRanges[r].first + v) * 8];
+        const glm::vec3 gp(g[0], g[1], g[2]), cp(c[0], c[1], c[2]);
+        worstP = std::max(worstP, glm::distance(gp, cp) / std::max(1.0f, glm::length(cp)));
+        worstN = std::max(worstN, glm::distance(glm::vec3(g[3], g[4], g[5]), glm::vec3(c[3], c[4], c[5])));
+        ASSERT_EQ(g[6], c[6]) << "uv of refined vertex " << v;
+        ASSERT_EQ(g[7], c[7]) << "uv of refined vertex " << v;
+        ++checked;
+      }
+    }
+    EXPECT_LE(worstP, kRefinedPositionRelTol);
+    EXPECT_LE(worstN, kRefinedNormalTol);
+    RecordProperty("refined-worst-position-rel-t" + std::to_string(int(t * 100)), sci(worstP));
+    RecordProperty("refined-worst-normal-t" + std::to_string(int(t * 100)), sci(worstN));
+  }
+  EXPECT_GE(checked, 3u * 19965u);  // CesiumMan and Fox refined once (catmull-clark, 1 level): 19,965 vertices
+}
+
 TEST(SkinningGpu, PassRunsOnlyWithASkinnedEntityAndBeforeTheDraws) {
   gpu::Context& ctx = gpu::testkit::sharedContext();
   const fs::path with = writeLevel("pass-with.json", R"(["direct", "shadows"])",
@@ -117,6 +186,52 @@ TEST(SkinningGpu, PassRunsOnlyWithASkinnedEntityAndBeforeTheDraws) {
   };
   EXPECT_EQ(passes(with), (std::vector<std::string>{"skinning", "shadow", "gbuffer", "lighting", "tonemap"}));
   EXPECT_EQ(passes(without), (std::vector<std::string>{"shadow", "gbuffer", "lighting", "tonemap"}));
+}
+
+TEST(SkinningGpu, SkinningAndSubdivisionCulledWhenNoSkinnedEntityIsVisibleOrCastsAShadow) {
+  // The passes are added whenever a skinned entity exists (its skin job is queued); the graph culls
+  // them when neither the G-buffer (no posed draw in the camera frustum) nor the shadow pass (none
+  // in a shadow layer's) reads the posed vertices. The camera at z = 3.2 looks down −z: the
+  // character at z = 6 is behind it; a point light's six faces see all around it.
+  gpu::Context& ctx = gpu::testkit::sharedContext();
+  const std::string man = (assets() / "CesiumMan/glTF-Binary/CesiumMan.glb").string();
+  const std::string subdiv = R"(, "subdivision": {"scheme": "catmull-clark", "levels": 1})";
+  const std::string lamp = R"({"id": "lamp", "transform": {"translation": [0, 3, 4]}, "light": {"type": "point", "intensity": 5}})";
+  auto passes = [&](const std::string& name, const std::string& effects, const std::string& z, bool subdivided, bool light) {
+    std::vector<std::string> entities = {
+        kCamera, R"({"id": "man", "transform": {"translation": [0, 0, )" + z + R"(]}, "mesh": {"asset": ")" + man + "\"" +
+                     (subdivided ? subdiv : "") + "}}"};
+    if (light) entities.push_back(lamp);
+    game::Session session(ctx, scene::loadLevel(writeLevel(name, effects, entities)));
+    session.update(0.5);
+    gpu::OffscreenPresenter presenter(ctx, {32, 32});
+    session.render(presenter, {});
+    EXPECT_EQ(session.world().skinJobs.size(), 1u) << name;  // queued: any culling is the graph's
+    EXPECT_EQ(session.world().subdivisionJobs.size(), subdivided ? 1u : 0u) << name;
+    return session.renderer().executedPasses();
+  };
+  using P = std::vector<std::string>;
+  EXPECT_EQ(passes("cull-visible.json", R"(["direct"])", "0", false, false), (P{"skinning", "gbuffer", "lighting", "tonemap"}));
+  EXPECT_EQ(passes("cull-behind.json", R"(["direct"])", "6", false, false), (P{"gbuffer", "lighting", "tonemap"}));
+  EXPECT_EQ(passes("cull-behind-shadow.json", R"(["direct", "shadows"])", "6", false, true),
+            (P{"skinning", "shadow", "gbuffer", "lighting", "tonemap"}));
+  EXPECT_EQ(passes("cull-sub-visible.json", R"(["direct"])", "0", true, false),
+            (P{"skinning", "subdivision", "gbuffer", "lighting", "tonemap"}));
+  EXPECT_EQ(passes("cull-sub-behind.json", R"(["direct"])", "6", true, false), (P{"gbuffer", "lighting", "tonemap"}));
+}
+
+TEST(SkinningGpu, BoxFrustumTestIsConservativeAndExact) {
+  // A camera at the origin looking down −z, 90° field of view, near 0.1, far 10.
+  const glm::mat4 viewProj = render::perspectiveVk(glm::radians(90.0f), 1.0f, 0.1f, 10.0f);
+  EXPECT_TRUE(render::boxMeetsFrustum(viewProj, {-0.5f, -0.5f, -3.0f}, {0.5f, 0.5f, -2.0f}, true));   // ahead
+  EXPECT_FALSE(render::boxMeetsFrustum(viewProj, {-0.5f, -0.5f, 2.0f}, {0.5f, 0.5f, 3.0f}, true));    // behind
+  EXPECT_FALSE(render::boxMeetsFrustum(viewProj, {5.0f, -0.5f, -3.0f}, {6.0f, 0.5f, -2.0f}, true));   // right of x = −z
+  EXPECT_TRUE(render::boxMeetsFrustum(viewProj, {2.5f, -0.5f, -3.0f}, {6.0f, 0.5f, -2.0f}, true));    // straddles it
+  EXPECT_FALSE(render::boxMeetsFrustum(viewProj, {-0.5f, -0.5f, -13.0f}, {0.5f, 0.5f, -11.0f}, true));  // past far
+  EXPECT_TRUE(render::boxMeetsFrustum(viewProj, {-1.0f, -1.0f, -1.0f}, {1.0f, 1.0f, 1.0f}, true));    // around the eye
+  // Between the eye and the near plane: outside with the near plane, inside without it.
+  EXPECT_FALSE(render::boxMeetsFrustum(viewProj, {-0.01f, -0.01f, -0.05f}, {0.01f, 0.01f, -0.02f}, true));
+  EXPECT_TRUE(render::boxMeetsFrustum(viewProj, {-0.01f, -0.01f, -0.05f}, {0.01f, 0.01f, -0.02f}, false));
 }
 
 // Display image of one debug view of `session` at time t.
