@@ -3,7 +3,6 @@
 #include <algorithm>
 
 #include "engine/gi/dnrt/bake.hpp"
-#include "engine/gi/dnrt/evaluate.hpp"
 #include "engine/gi/dnrt/object_scene.hpp"
 
 namespace bounce::gi::dnrt {
@@ -34,27 +33,6 @@ Runtime::Runtime(gpu::Context& ctx, const render::Pipelines& pipelines, ecs::Reg
 
 void Runtime::setIrradianceSource(const IrradianceSource* source) {
   incident_.setIndirect(source ? source : &background_);
-}
-
-incident::RadianceSH Runtime::incidentSH(glm::vec3 centre, float radius, std::span<const render::LightGpu> lights) const {
-  return incident_.radianceSH(centre, radius, lights);
-}
-
-std::vector<NodeObject> Runtime::objectsFor(const render::RenderWorld& world) const {
-  std::vector<NodeObject> out;
-  for (const Object& o : objects_) {
-    if (!registry_.valid(o.entity)) continue;
-    const bool drawn = std::any_of(world.draws.begin(), world.draws.end(),
-                                   [&](const render::DrawItem& d) { return d.entity == o.entity.index(); });
-    const auto* placed = registry_.tryGet<scene::WorldTransform>(o.entity);
-    if (!drawn || !placed) continue;
-    const Placement pl = place(o.field, placed->matrix);
-    const auto* component = registry_.tryGet<scene::Dnrt>(o.entity);
-    const incident::RadianceSH L = incidentSH(pl.centreWorld, pl.radiusWorld, world.lights);
-    out.push_back({o.textures.get(), packObject(o.field, placed->matrix, L, o.entity.index()), o.name,
-                   component && component->intrusion, component && component->fullScreen});
-  }
-  return out;
 }
 
 render::Renderer::GraphNode Runtime::node() {

@@ -1,0 +1,34 @@
+#include "engine/gi/dnrt/runtime.hpp"
+// DNRT's per-frame CPU work (the "update" of the one technique shape): which objects the frame
+// draws, their placement (§5.2.1: centre o, radius, rotation into the object's frame) and their c_j
+// from the incident-light service, packed for the node. The bake and upload are in runtime.cpp, the
+// GPU passes in node.cpp.
+
+#include <algorithm>
+
+#include "engine/gi/dnrt/evaluate.hpp"
+
+namespace bounce::gi::dnrt {
+
+incident::RadianceSH Runtime::incidentSH(glm::vec3 centre, float radius, std::span<const render::LightGpu> lights) const {
+  return incident_.radianceSH(centre, radius, lights);
+}
+
+std::vector<NodeObject> Runtime::objectsFor(const render::RenderWorld& world) const {
+  std::vector<NodeObject> out;
+  for (const Object& o : objects_) {
+    if (!registry_.valid(o.entity)) continue;
+    const bool drawn = std::any_of(world.draws.begin(), world.draws.end(),
+                                   [&](const render::DrawItem& d) { return d.entity == o.entity.index(); });
+    const auto* placed = registry_.tryGet<scene::WorldTransform>(o.entity);
+    if (!drawn || !placed) continue;
+    const Placement pl = place(o.field, placed->matrix);
+    const auto* component = registry_.tryGet<scene::Dnrt>(o.entity);
+    const incident::RadianceSH L = incidentSH(pl.centreWorld, pl.radiusWorld, world.lights);
+    out.push_back({o.textures.get(), packObject(o.field, placed->matrix, L, o.entity.index()), o.name,
+                   component && component->intrusion, component && component->fullScreen});
+  }
+  return out;
+}
+
+}  // namespace bounce::gi::dnrt
