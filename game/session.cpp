@@ -3,6 +3,7 @@
 #include <cstdlib>
 
 #include "engine/anim/animator.hpp"
+#include "engine/core/error.hpp"
 #include "engine/core/paths.hpp"
 #include "engine/gi/dnrt/technique.hpp"
 #include "engine/scene/components.hpp"
@@ -33,8 +34,24 @@ Session::Session(gpu::Context& ctx, scene::Level level) : ctx_(ctx), level_(std:
   renderer_ = std::make_unique<render::Renderer>(ctx_);
   scene_ = std::make_unique<render::GpuScene>(ctx_, renderer_->pipelines(), renderer_->samplers(), cookCacheDir());
   scene_->load(registry_);
+  checkLightCapacity();
   for (const gi::Technique* t : gi::techniques()) slots_.push_back({t, false, nullptr});
   syncTechniques();
+}
+
+// The lighting pass holds the frame's lights and shadow matrices in uniform blocks of fixed size
+// (engine/render/gpu_types.hpp: kMaxLights, kMaxShadowLayers; a point light with shadows takes 6
+// layers). A level over that is bad input, said here, before anything renders (extract() is const:
+// this frame-0 world is thrown away).
+void Session::checkLightCapacity() {
+  scene::transformSystem(registry_);
+  render::RenderWorld first;
+  scene_->extract(registry_, level_, {}, first);
+  if (first.lights.size() <= render::kMaxLights && first.shadowLayers.size() <= render::kMaxShadowLayers) return;
+  throw InputError(level_.source.string() + ": /entities: " + std::to_string(first.lights.size()) + " lights with " +
+                   std::to_string(first.shadowLayers.size()) + " shadow layers (expected at most " +
+                   std::to_string(render::kMaxLights) + " lights and " + std::to_string(render::kMaxShadowLayers) +
+                   " shadow layers; a point light with shadows takes 6, a spot 1)");
 }
 
 void Session::syncTechniques() {

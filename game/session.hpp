@@ -86,6 +86,8 @@ class Session {
   gi::ao::Node* ao(gi::ao::Kind kind) { return technique<gi::ao::Node>(gi::ao::kindName(kind)); }
 
  private:
+  // InputError when the level has more lights or shadow layers than the lighting pass holds.
+  void checkLightCapacity();
   struct Slot {
     const gi::Technique* technique = nullptr;
     bool tried = false;  // its effect was named once: built, or noted as not running

@@ -4,7 +4,11 @@
 // table order.
 #include <gtest/gtest.h>
 
+#include <fstream>
+
+#include "engine/core/error.hpp"
 #include "engine/gpu/presenter_offscreen.hpp"
+#include "engine/scene/level.hpp"
 #include "engine/gpu/testing.hpp"
 #include "game/session.hpp"
 
@@ -85,3 +89,29 @@ TEST(SessionTechniques, EffectNamedLaterIsBuiltInTableOrder) {
 }
 
 }  // namespace
+
+// The lighting pass's uniform blocks hold at most kMaxLights lights and kMaxShadowLayers shadow
+// layers: a level over that is refused as bad input when the session is made (one line naming the
+// file, exit 2 in the CLI), not an internal error at the first frame.
+TEST(SessionLights, MoreShadowLayersThanTheLightingPassHoldsIsBadInput) {
+  auto levelWith = [](int pointLights) {
+    std::string entities;
+    for (int i = 0; i < pointLights; ++i)
+      entities += std::string(i ? "," : "") + R"({"id": "lamp)" + std::to_string(i) +
+                  R"(", "transform": {"translation": [0, 1, 0]}, "light": {"type": "point", "shadows": true}})";
+    const auto path = std::filesystem::path(BOUNCE_TEST_OUT) / ("lights-" + std::to_string(pointLights) + ".json");
+    std::filesystem::create_directories(path.parent_path());
+    std::ofstream(path) << R"({"bounce_level": 1, "effects": ["direct", "shadows"], "entities": [)" + entities + "]}";
+    return path;
+  };
+  // 32 shadowed point lights = 192 layers: the most that fits.
+  EXPECT_NO_THROW(game::Session(gpu::testkit::sharedContext(), scene::loadLevel(levelWith(32))));
+  const auto over = levelWith(33);
+  try {
+    game::Session session(gpu::testkit::sharedContext(), scene::loadLevel(over));
+    FAIL() << "33 shadowed point lights were accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), over.string() + ": /entities: 33 lights with 198 shadow layers (expected at most 128 "
+                                     "lights and 192 shadow layers; a point light with shadows takes 6, a spot 1)");
+  }
+}
