@@ -182,4 +182,20 @@ bool SceneBvh::occluded(const glm::vec3& o, const glm::vec3& d, float tMin, floa
   return ray.tfar < 0.0f;  // Embree sets tfar to −∞ on an occluded ray
 }
 
+void hashGeometry(Hasher& h, const SceneDesc& object) {
+  h.u64(object.meshes.size());
+  for (const auto& m : object.meshes) {
+    h.u64(m.positions.size()).bytes(m.positions.data(), m.positions.size() * sizeof(glm::vec3));
+    h.u64(m.normals.size()).bytes(m.normals.data(), m.normals.size() * sizeof(glm::vec3));
+    h.u64(m.uvs.size()).bytes(m.uvs.data(), m.uvs.size() * sizeof(glm::vec2));
+    h.u64(m.indices.size()).bytes(m.indices.data(), m.indices.size() * sizeof(std::uint32_t));
+    h.pod(m.material);
+  }
+  h.u64(object.materials.size());
+  for (const auto& m : object.materials) h.pod(m.albedo).pod(m.albedoTexture);
+  h.u64(object.textures.size());
+  for (const auto& t : object.textures)
+    h.pod(t.width).pod(t.height).bytes(t.texels.data(), t.texels.size() * sizeof(glm::vec3));
+}
+
 }  // namespace bounce::ref

@@ -15,6 +15,8 @@
 
 #include <glm/glm.hpp>
 
+#include "engine/core/hash.hpp"
+
 namespace bounce::ref {
 
 // Linear RGB texels, rows top to bottom (glTF: uv (0,0) is the top-left corner of the image).
@@ -82,6 +84,10 @@ struct SceneDesc {
   // so the field's cache key need not hash every vertex and texel (gi::dnrt::cacheKey).
   std::string sourceKey;
 };
+
+// Adds the scene's meshes, materials and textures (not lights, camera or sourceKey) to a bake's
+// cache key, byte for byte: the one object hash of the DNRT, SL and RTF bakes.
+void hashGeometry(Hasher& h, const SceneDesc& scene);
 
 // Irradiance at p from one light on a surface facing it, before the cosine and visibility.
 // lights.glsl incidentIrradiance(), term for term: 1/d² with d² ≥ 1e-12, the glTF range window,

@@ -180,19 +180,7 @@ std::string cacheKey(const ref::SceneDesc& object, const FieldSettings& s) {
   if (!object.sourceKey.empty()) return cacheKey(object.sourceKey, s);
   Hasher h;
   hashVersionAndSettings(h, s);
-  h.u64(object.meshes.size());
-  for (const auto& m : object.meshes) {
-    h.u64(m.positions.size()).bytes(m.positions.data(), m.positions.size() * sizeof(glm::vec3));
-    h.u64(m.normals.size()).bytes(m.normals.data(), m.normals.size() * sizeof(glm::vec3));
-    h.u64(m.uvs.size()).bytes(m.uvs.data(), m.uvs.size() * sizeof(glm::vec2));
-    h.u64(m.indices.size()).bytes(m.indices.data(), m.indices.size() * sizeof(std::uint32_t));
-    h.pod(m.material);
-  }
-  h.u64(object.materials.size());
-  for (const auto& m : object.materials) h.pod(m.albedo).pod(m.albedoTexture);
-  h.u64(object.textures.size());
-  for (const auto& t : object.textures)
-    h.pod(t.width).pod(t.height).bytes(t.texels.data(), t.texels.size() * sizeof(glm::vec3));
+  ref::hashGeometry(h, object);
   return h.hex();
 }
 

@@ -296,19 +296,7 @@ std::string cacheKey(const ref::SceneDesc& object, const FieldSettings& s) {
   h.str("rtf-field-v3");  // v2: cube-map projection directions; v3: warm-started CPCA  // baker and file format version: bump when either changes
   h.pod(s.proxies).pod(s.spheres).pod(s.faceSize).pod(s.innerRadius).pod(s.outerRadius).pod(s.raysPerAxis);
   h.pod(s.vertexRaysPerAxis).pod(s.selfBounces).pod(s.clusters).pod(s.components);
-  h.u64(object.meshes.size());
-  for (const auto& m : object.meshes) {
-    h.u64(m.positions.size()).bytes(m.positions.data(), m.positions.size() * sizeof(glm::vec3));
-    h.u64(m.normals.size()).bytes(m.normals.data(), m.normals.size() * sizeof(glm::vec3));
-    h.u64(m.uvs.size()).bytes(m.uvs.data(), m.uvs.size() * sizeof(glm::vec2));
-    h.u64(m.indices.size()).bytes(m.indices.data(), m.indices.size() * sizeof(std::uint32_t));
-    h.pod(m.material);
-  }
-  h.u64(object.materials.size());
-  for (const auto& m : object.materials) h.pod(m.albedo).pod(m.albedoTexture);
-  h.u64(object.textures.size());
-  for (const auto& t : object.textures)
-    h.pod(t.width).pod(t.height).bytes(t.texels.data(), t.texels.size() * sizeof(glm::vec3));
+  ref::hashGeometry(h, object);
   return h.hex();
 }
 

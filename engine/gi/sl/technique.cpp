@@ -170,19 +170,7 @@ std::string cacheKey(const ObjectInput& in, const BakeSettings& s) {
   h.str("sl-sphere-set-v1");  // baker and BSLSPSET format version: bump when either changes
   h.pod(s.spheres).pod(s.order).pod(s.directions).pod(s.samplesPerAxis).pod(s.surfaceSamples).pod(s.iterations);
   const ref::SceneDesc& object = in.object;
-  h.u64(object.meshes.size());
-  for (const auto& m : object.meshes) {
-    h.u64(m.positions.size()).bytes(m.positions.data(), m.positions.size() * sizeof(glm::vec3));
-    h.u64(m.normals.size()).bytes(m.normals.data(), m.normals.size() * sizeof(glm::vec3));
-    h.u64(m.uvs.size()).bytes(m.uvs.data(), m.uvs.size() * sizeof(glm::vec2));
-    h.u64(m.indices.size()).bytes(m.indices.data(), m.indices.size() * sizeof(std::uint32_t));
-    h.pod(m.material);
-  }
-  h.u64(object.materials.size());
-  for (const auto& m : object.materials) h.pod(m.albedo).pod(m.albedoTexture);
-  h.u64(object.textures.size());
-  for (const auto& t : object.textures)
-    h.pod(t.width).pod(t.height).bytes(t.texels.data(), t.texels.size() * sizeof(glm::vec3));
+  ref::hashGeometry(h, object);
   h.u64(in.skin.joints.size());
   for (std::size_t m = 0; m < in.skin.joints.size(); ++m) {
     h.u64(in.skin.joints[m].size()).bytes(in.skin.joints[m].data(), in.skin.joints[m].size() * sizeof(glm::u16vec4));
