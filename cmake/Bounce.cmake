@@ -47,7 +47,12 @@ function(bounce_test name)
   if(ARG_GPU)
     list(APPEND env "BOUNCE_GPU_TEST=1")
   endif()
+  # The environment goes in as a launcher (`cmake -E env VAR=… test_NAME …`), not as the ENVIRONMENT
+  # property: CMake 3.25's gtest_discover_tests splits list-valued PROPERTIES, so only the first
+  # entry reached the tests (no driver preload or LSan suppressions under asan). GoogleTest.cmake
+  # prefixes discovery and every discovered test with the target's CROSSCOMPILING_EMULATOR.
+  set_property(TARGET test_${name} PROPERTY CROSSCOMPILING_EMULATOR ${CMAKE_COMMAND} -E env ${env})
   gtest_discover_tests(test_${name}
     DISCOVERY_MODE PRE_TEST
-    PROPERTIES ENVIRONMENT "${env}" TIMEOUT ${ARG_TIMEOUT})
+    PROPERTIES TIMEOUT ${ARG_TIMEOUT})
 endfunction()
