@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "engine/core/cache_entry.hpp"
 #include "engine/core/error.hpp"
 #include "engine/core/hash.hpp"
 #include "engine/core/log.hpp"
@@ -195,21 +196,10 @@ std::filesystem::path cachePath(const std::string& key, const std::filesystem::p
 
 Field bakeCached(const ref::SceneDesc& object, const FieldSettings& settings, const std::filesystem::path& cacheDir,
                  bool* fromCache) {
-  const std::filesystem::path path = cachePath(object, settings, cacheDir);
-  if (std::filesystem::exists(path)) {
-    try {
-      Field f = load(path);
-      if (fromCache) *fromCache = true;
-      return f;
-    } catch (const InputError& e) {
-      log::warn(std::string("dnrt: rebaking a corrupt cached field: ") + e.what());
-    }
-  }
-  BakeResult r = bake(object, settings);
-  std::filesystem::create_directories(cacheDir);
-  save(r.field, path);
-  if (fromCache) *fromCache = false;
-  return std::move(r.field);
+  return loadOrBake(
+      cachePath(object, settings, cacheDir), "dnrt: rebaking a corrupt cached field: ",
+      [](const std::filesystem::path& p) { return load(p); }, [&] { return bake(object, settings).field; },
+      [](const Field& f, const std::filesystem::path& p) { save(f, p); }, fromCache);
 }
 
 }  // namespace bounce::gi::dnrt

@@ -7,6 +7,7 @@
 #include <limits>
 #include <unordered_map>
 
+#include "engine/core/cache_entry.hpp"
 #include "engine/core/error.hpp"
 #include "engine/core/hash.hpp"
 #include "engine/core/log.hpp"
@@ -305,21 +306,10 @@ std::filesystem::path cachePath(const ref::SceneDesc& object, const FieldSetting
 }
 
 Field bakeCached(const ref::SceneDesc& object, const FieldSettings& s, const std::filesystem::path& dir, bool* fromCache) {
-  const std::filesystem::path path = cachePath(object, s, dir);
-  if (std::filesystem::exists(path)) {
-    try {
-      Field f = load(path);
-      if (fromCache) *fromCache = true;
-      return f;
-    } catch (const InputError& e) {
-      log::warn(std::string("rtf: rebaking a corrupt cached field: ") + e.what());
-    }
-  }
-  BakeResult r = bake(object, s);
-  std::filesystem::create_directories(dir);
-  save(r.field, path);
-  if (fromCache) *fromCache = false;
-  return std::move(r.field);
+  return loadOrBake(
+      cachePath(object, s, dir), "rtf: rebaking a corrupt cached field: ",
+      [](const std::filesystem::path& p) { return load(p); }, [&] { return bake(object, s).field; },
+      [](const Field& f, const std::filesystem::path& p) { save(f, p); }, fromCache);
 }
 
 }  // namespace bounce::gi::rtf
