@@ -3,6 +3,7 @@
 #include "engine/asset/cooked_format.hpp"
 
 #include "engine/asset/cook.hpp"
+#include "engine/core/binary_io.hpp"
 #include "engine/core/error.hpp"
 #include "engine/core/hash.hpp"
 
@@ -39,44 +40,37 @@ template <class S> void io(S& s, AnimationSampler& a);
 template <class S> void io(S& s, AnimationChannel& c);
 template <class S> void io(S& s, Animation& a);
 
-class Writer {
+class Writer : public BinaryWriter {
  public:
-  std::vector<std::uint8_t> out;
-  void bytes(const void* p, std::size_t n) {
-    const auto* b = static_cast<const std::uint8_t*>(p);
-    out.insert(out.end(), b, b + n);
-  }
   template <class T>
     requires kRaw<T>
-  void operator()(const T& v) { bytes(&v, sizeof v); }
-  void operator()(const bool& v) { out.push_back(v ? 1 : 0); }
+  void operator()(const T& v) { put(v); }
+  void operator()(const bool& v) { bytes.push_back(v ? 1 : 0); }
   template <class E>
     requires std::is_enum_v<E>
   void enumeration(const E& e, std::uint32_t) { (*this)(std::uint32_t(e)); }
   void operator()(const std::string& s) {
     (*this)(std::uint64_t(s.size()));
-    bytes(s.data(), s.size());
+    raw(s.data(), s.size());
   }
   template <class T>
   void operator()(const std::vector<T>& v) {
     (*this)(std::uint64_t(v.size()));
-    if constexpr (kRaw<T>) bytes(v.data(), v.size() * sizeof(T));
+    if constexpr (kRaw<T>) putAll(v);
     else for (const T& x : v) io(*this, const_cast<T&>(x));
   }
 };
 
 class Reader {
  public:
-  Reader(std::span<const std::uint8_t> d, const std::string& file, std::string where) : data_(d), file_(file), where_(std::move(where)) {}
-  std::size_t remaining() const { return data_.size() - at_; }
-  [[noreturn]] void fail(const std::string& what, const std::string& expected) const {
-    throwInputError(file_, where_ + " byte " + std::to_string(at_), what, expected);
-  }
+  // A section's errors read "file: section T byte N: what (expected …)", N counted from the section's start.
+  Reader(std::span<const std::uint8_t> d, const std::string& file, std::string where)
+      : in_(d, file, "", ByteOffset::Suffix), where_(std::move(where)) {}
+  std::size_t remaining() const { return in_.remaining(); }
+  [[noreturn]] void fail(const std::string& what, const std::string& expected) const { in_.fail(where_, what, expected); }
   void bytes(void* p, std::size_t n) {
     if (n > remaining()) fail("section ends early", std::to_string(n) + " more bytes");
-    if (n == 0) return;  // an empty array's data() may be null, and memcpy(null, …, 0) is UB (UBSan, fuzzing)
-    std::memcpy(p, data_.data() + at_, n);
-    at_ += n;
+    in_.raw(p, n, where_);
   }
   template <class T>
     requires kRaw<T>
@@ -119,9 +113,7 @@ class Reader {
   }
 
  private:
-  std::span<const std::uint8_t> data_;
-  std::size_t at_ = 0;
-  const std::string& file_;
+  BinaryReader in_;
   std::string where_;
 };
 
@@ -184,10 +176,10 @@ std::vector<std::uint8_t> serializeCooked(const CookedAsset& asset) {
   for (std::uint32_t t = 1; t <= kSectionCount; ++t) {
     Writer w;
     section(w, SectionType(t), const_cast<CookedAsset&>(asset));
-    payloads.push_back(std::move(w.out));
+    payloads.push_back(std::move(w.bytes));
   }
   Writer out;
-  out.bytes(kMagic, sizeof kMagic);
+  out.raw(kMagic, sizeof kMagic);
   out(kCookedFormatVersion);
   out(kCookerVersion);
   out(kSectionCount);
@@ -200,9 +192,9 @@ std::vector<std::uint8_t> serializeCooked(const CookedAsset& asset) {
     out(std::uint64_t(payloads[t - 1].size()));
     offset += payloads[t - 1].size();
   }
-  for (const auto& p : payloads) out.bytes(p.data(), p.size());
-  out(hashBytes(out.out));
-  return std::move(out.out);
+  for (const auto& p : payloads) out.putAll(p);
+  out(hashBytes(out.bytes));
+  return std::move(out.bytes);
 }
 
 CookedAsset parseCooked(std::span<const std::uint8_t> bytes, const std::string& name) {

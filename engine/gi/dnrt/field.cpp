@@ -5,6 +5,7 @@
 #include <cstring>
 #include <string>
 
+#include "engine/core/binary_io.hpp"
 #include "engine/core/error.hpp"
 #include "engine/core/file.hpp"
 #include "engine/core/hash.hpp"
@@ -139,54 +140,10 @@ QuantizationError quantizationError(const Field& field, std::span<const glm::vec
   return e;
 }
 
-namespace {
-
-class Writer {
- public:
-  template <class T>
-  void put(const T& v) {
-    const auto* p = reinterpret_cast<const std::uint8_t*>(&v);
-    bytes.insert(bytes.end(), p, p + sizeof v);
-  }
-  std::vector<std::uint8_t> bytes;
-};
-
-class Reader {
- public:
-  Reader(std::span<const std::uint8_t> b, const std::string& file) : bytes_(b), file_(file) {}
-  template <class T>
-  T get(const char* what) {
-    T v;
-    if (bytes_.size() - pos_ < sizeof v) fail(what, "truncated", "a complete DNRT field file");
-    std::memcpy(&v, bytes_.data() + pos_, sizeof v);
-    pos_ += sizeof v;
-    return v;
-  }
-  std::span<const std::uint8_t> take(std::size_t n, const char* what) {
-    if (bytes_.size() - pos_ < n) fail(what, "truncated", "a complete DNRT field file");
-    auto s = bytes_.subspan(pos_, n);
-    pos_ += n;
-    return s;
-  }
-  bool atEnd() const { return pos_ == bytes_.size(); }
-  std::size_t position() const { return pos_; }
-  [[noreturn]] void fail(const std::string& where, const std::string& what, const std::string& expected) const {
-    throwInputError(file_, where, what, expected);
-  }
-
- private:
-  std::span<const std::uint8_t> bytes_;
-  std::string file_;
-  std::size_t pos_ = 0;
-};
-
-}  // namespace
-
 std::vector<std::uint8_t> serialize(const Field& f) {
   checkSettings(f.settings);
-  Writer w;
-  for (char c : kMagic) w.put(c);
-  w.put(kVersion);
+  BinaryWriter w;
+  writeHeader(w, kMagic, kVersion);
   w.put(std::int32_t(f.settings.shCount));
   w.put(std::int32_t(f.settings.grid));
   w.put(f.settings.innerExtent);
@@ -196,17 +153,14 @@ std::vector<std::uint8_t> serialize(const Field& f) {
   w.put(f.centre);
   w.put(f.radius);
   for (const Range& r : f.ranges) w.put(r);
-  for (const auto& t : f.textures) w.bytes.insert(w.bytes.end(), t.begin(), t.end());
+  for (const auto& t : f.textures) w.putAll(t);
   w.put(hashBytes(w.bytes));  // a flipped bit anywhere makes the entry invalid (re-baked, never trusted)
   return std::move(w.bytes);
 }
 
 Field deserialize(std::span<const std::uint8_t> bytes, const std::string& file) {
-  Reader r(bytes, file);
-  for (char c : kMagic)
-    if (r.get<char>("header") != c) r.fail("header", "not a DNRT field", "magic BDNRTFLD");
-  if (const auto v = r.get<std::uint32_t>("version"); v != kVersion)
-    r.fail("version", "version " + std::to_string(v), "version " + std::to_string(kVersion));
+  BinaryReader r(bytes, file, "a complete DNRT field file");
+  readHeader(r, kMagic, kVersion, "not a DNRT field");
   Field f;
   f.settings.shCount = r.get<std::int32_t>("shCount");
   f.settings.grid = r.get<std::int32_t>("grid");
