@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "engine/core/binary_io.hpp"
 #include "engine/core/error.hpp"
 #include "engine/core/file.hpp"
 #include "engine/core/hash.hpp"
@@ -36,52 +37,6 @@ std::size_t itfDimension(const FieldSettings& s) { return std::size_t(s.proxies)
 
 namespace {
 
-class Writer {
- public:
-  template <class T>
-  void put(const T& v) {
-    const auto* p = reinterpret_cast<const std::uint8_t*>(&v);
-    bytes.insert(bytes.end(), p, p + sizeof v);
-  }
-  template <class T>
-  void putAll(const std::vector<T>& v) {
-    const auto* p = reinterpret_cast<const std::uint8_t*>(v.data());
-    bytes.insert(bytes.end(), p, p + v.size() * sizeof(T));
-  }
-  std::vector<std::uint8_t> bytes;
-};
-
-class Reader {
- public:
-  Reader(std::span<const std::uint8_t> b, const std::string& file) : bytes_(b), file_(file) {}
-  template <class T>
-  T get(const char* what) {
-    T v;
-    if (bytes_.size() - pos_ < sizeof v) fail(what, "truncated", "a complete RTF field file");
-    std::memcpy(&v, bytes_.data() + pos_, sizeof v);
-    pos_ += sizeof v;
-    return v;
-  }
-  template <class T>
-  std::vector<T> getAll(std::size_t n, const char* what) {
-    if (n > (bytes_.size() - pos_) / sizeof(T)) fail(what, "truncated", "a complete RTF field file");
-    std::vector<T> v(n);
-    std::memcpy(v.data(), bytes_.data() + pos_, n * sizeof(T));
-    pos_ += n * sizeof(T);
-    return v;
-  }
-  bool atEnd() const { return pos_ == bytes_.size(); }
-  std::size_t position() const { return pos_; }
-  [[noreturn]] void fail(const std::string& where, const std::string& what, const std::string& expected) const {
-    throwInputError(file_, where, what, expected);
-  }
-
- private:
-  std::span<const std::uint8_t> bytes_;
-  std::string file_;
-  std::size_t pos_ = 0;
-};
-
 bool allFinite(const std::vector<float>& v) {
   for (float x : v)
     if (!std::isfinite(x)) return false;
@@ -96,9 +51,8 @@ std::vector<std::uint8_t> serialize(const Field& f) {
   if (f.proxies.size() != std::size_t(s.proxies) || f.itf.samples() != sampleCount(s) ||
       std::size_t(f.itf.dimension) != itfDimension(s) || f.oof.size() != sampleCount(s) * kShCount)
     throw InternalError("rtf::serialize: field does not match its settings");
-  Writer w;
-  for (char c : kMagic) w.put(c);
-  w.put(kVersion);
+  BinaryWriter w;
+  writeHeader(w, kMagic, kVersion);
   w.put(std::int32_t(s.proxies)), w.put(std::int32_t(s.spheres)), w.put(std::int32_t(s.faceSize));
   w.put(s.innerRadius), w.put(s.outerRadius);
   w.put(std::int32_t(s.raysPerAxis)), w.put(std::int32_t(s.vertexRaysPerAxis)), w.put(std::int32_t(s.selfBounces));
@@ -116,11 +70,8 @@ std::vector<std::uint8_t> serialize(const Field& f) {
 }
 
 Field deserialize(std::span<const std::uint8_t> bytes, const std::string& file) {
-  Reader r(bytes, file);
-  for (char c : kMagic)
-    if (r.get<char>("header") != c) r.fail("header", "not an RTF field", "magic BRTFFLD");
-  if (const auto v = r.get<std::uint32_t>("version"); v != kVersion)
-    r.fail("version", "version " + std::to_string(v), "version " + std::to_string(kVersion));
+  BinaryReader r(bytes, file, "a complete RTF field file");
+  readHeader(r, kMagic, kVersion, "not an RTF field");
   Field f;
   FieldSettings& s = f.settings;
   s.proxies = r.get<std::int32_t>("proxies"), s.spheres = r.get<std::int32_t>("spheres");

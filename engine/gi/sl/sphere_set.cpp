@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "engine/core/binary_io.hpp"
 #include "engine/core/error.hpp"
 #include "engine/core/file.hpp"
 
@@ -14,32 +15,20 @@ constexpr std::uint32_t kVersion = 1;
 constexpr std::uint32_t kMaxVertices = 1u << 26;
 constexpr std::uint32_t kMaxJoints = 1u << 16;
 
-class Writer {
+class Writer : public BinaryWriter {
  public:
-  template <class T>
-  void put(const T& v) {
-    const auto* p = reinterpret_cast<const std::uint8_t*>(&v);
-    bytes.insert(bytes.end(), p, p + sizeof v);
-  }
   template <class T>
   void putVector(const std::vector<T>& v) {
     put(std::uint32_t(v.size()));
     for (const T& x : v) put(x);
   }
-  std::vector<std::uint8_t> bytes;
 };
 
-class Reader {
+// Errors name the byte: "file: where (byte N): what (expected …)".
+class Reader : public BinaryReader {
  public:
-  Reader(std::span<const std::uint8_t> b, const std::string& file) : bytes_(b), file_(file) {}
-  template <class T>
-  T get(const std::string& what) {
-    T v;
-    if (bytes_.size() - pos_ < sizeof v) fail(what, "truncated", "a complete SL sphere-set file");
-    std::memcpy(&v, bytes_.data() + pos_, sizeof v);
-    pos_ += sizeof v;
-    return v;
-  }
+  Reader(std::span<const std::uint8_t> b, const std::string& file)
+      : BinaryReader(b, file, "a complete SL sphere-set file", ByteOffset::Parenthesised) {}
   float getFinite(const std::string& what) {
     const float v = get<float>(what);
     if (!std::isfinite(v)) fail(what, "non-finite value", "finite floats");
@@ -51,16 +40,6 @@ class Reader {
     if (n > limit) fail(what, "count " + std::to_string(n), "at most " + std::to_string(limit));
     return n;
   }
-  bool atEnd() const { return pos_ == bytes_.size(); }
-  std::size_t offset() const { return pos_; }
-  [[noreturn]] void fail(const std::string& where, const std::string& what, const std::string& expected) const {
-    throwInputError(file_, where + " (byte " + std::to_string(pos_) + ")", what, expected);
-  }
-
- private:
-  std::span<const std::uint8_t> bytes_;
-  std::string file_;
-  std::size_t pos_ = 0;
 };
 
 }  // namespace
@@ -76,8 +55,7 @@ std::vector<std::uint8_t> serialize(const SphereSet& set) {
   checkSettings(set.settings);
   const std::size_t nc = std::size_t(set.settings.order) * set.settings.order;
   Writer w;
-  for (char c : kMagic) w.put(c);
-  w.put(kVersion);
+  writeHeader(w, kMagic, kVersion);
   const BakeSettings& s = set.settings;
   for (int v : {s.spheres, s.order, s.directions, s.samplesPerAxis, s.surfaceSamples, s.iterations})
     w.put(std::int32_t(v));
@@ -108,10 +86,7 @@ std::vector<std::uint8_t> serialize(const SphereSet& set) {
 
 SphereSet deserialize(std::span<const std::uint8_t> bytes, const std::string& file) {
   Reader r(bytes, file);
-  for (char c : kMagic)
-    if (r.get<char>("header") != c) r.fail("header", "not an SL sphere set", "magic BSLSPSET");
-  if (const auto v = r.get<std::uint32_t>("version"); v != kVersion)
-    r.fail("version", "version " + std::to_string(v), "version " + std::to_string(kVersion));
+  readHeader(r, kMagic, kVersion, "not an SL sphere set");
   SphereSet set;
   BakeSettings& s = set.settings;
   s.spheres = r.get<std::int32_t>("settings");
