@@ -126,8 +126,8 @@ void run(gpu::Context& ctx, const Model& m, int frames) {
     session.update(t);
     session.render(presenter, {});
     timings.collect(ring, 0);
-    // The CPU face on the same poses: every skinned primitive (a subdivided mesh's cage primitive)
-    // of every instance, once.
+    // The CPU face on the same poses: every deformed (skinned or morphed) primitive (a subdivided
+    // mesh's cage primitive) of every instance, once.
     vertices = joints = 0;
     std::vector<PosedCage> cages;
     const auto t0 = std::chrono::steady_clock::now();
@@ -135,8 +135,8 @@ void run(gpu::Context& ctx, const Model& m, int frames) {
       const asset::CookedAsset& a = *an.asset;
       std::vector<glm::vec3> p, n;
       for (std::size_t node = 0; node < a.nodes.size(); ++node) {
-        if (!anim::isSkinned(a, int(node))) continue;
-        joints = std::max(joints, a.skins[std::size_t(a.nodes[node].skin)].joints.size());
+        if (!anim::isDeformed(a, int(node))) continue;
+        if (anim::isSkinned(a, int(node))) joints = std::max(joints, a.skins[std::size_t(a.nodes[node].skin)].joints.size());
         const asset::Mesh& mesh = a.meshes[std::size_t(a.nodes[node].mesh)];
         for (const asset::Primitive& prim : mesh.primitives) {
           const asset::Primitive& skinned =
@@ -209,6 +209,9 @@ int runBenchSkinning(const cli::Args& args) {
       {"Fox+subdiv", shared / "Fox/glTF-Binary/Fox.glb", 1, true},
       {"BrainStem+subdiv", shared / "BrainStem/glTF-Binary/BrainStem.glb", 1, true},
       {"CesiumMan-x" + std::to_string(instances) + "+subdiv", shared / "CesiumMan/glTF-Binary/CesiumMan.glb", instances, true},
+      // Morph targets (3 per mesh) on the GPU: one sheet morphed alone, one strip morphed then skinned.
+      {"Morph", contentDir() / "src/morph/morph.gltf", 1},
+      {"Morph-x" + std::to_string(instances), contentDir() / "src/morph/morph.gltf", instances},
   };
   for (const auto& m : models)
     if (!std::filesystem::is_regular_file(m.asset))

@@ -139,25 +139,44 @@ const GpuScene::AssetGpu& GpuScene::upload(const scene::MeshRef& ref) {
 void GpuScene::uploadSkinVertices(AssetGpu& a) {
   for (std::size_t n = 0; n < a.cpu.nodes.size(); ++n) {
     const asset::Node& node = a.cpu.nodes[n];
-    if (node.mesh < 0 || !anim::isSkinned(a.cpu, int(n))) continue;
-    // A subdivided skinned mesh is skinned as its cage, then refined (uploadStencils).
+    if (node.mesh < 0 || !anim::isDeformed(a.cpu, int(n))) continue;
+    // A subdivided deformed mesh is posed as its cage, then refined (uploadStencils).
     const std::int32_t cage = a.cpu.meshes[std::size_t(node.mesh)].cage;
-    const std::size_t skinned = std::size_t(cage >= 0 ? cage : node.mesh);
-    MeshGpu& m = *a.meshes[skinned];
-    const asset::Mesh& mesh = a.cpu.meshes[skinned];
+    const std::size_t posed = std::size_t(cage >= 0 ? cage : node.mesh);
+    MeshGpu& m = *a.meshes[posed];
+    const asset::Mesh& mesh = a.cpu.meshes[posed];
     if (!m.skinVertices && m.vertexCount != 0) {
-      bool gpu = true;  // every primitive weighted and without morph targets (those are posed on the CPU)
-      for (const auto& p : mesh.primitives) gpu = gpu && !p.weights.empty() && p.targets.empty();
+      // A skinned node's mesh: every primitive weighted (else it is posed on the CPU).
+      bool gpu = true;
+      if (anim::isSkinned(a.cpu, int(n)))
+        for (const auto& p : mesh.primitives) gpu = gpu && !p.weights.empty();
       if (!gpu) continue;
+      std::size_t targets = 0;
+      for (const auto& p : mesh.primitives) targets = std::max(targets, p.targets.size());
       std::vector<SkinVertex> vs;
       vs.reserve(m.vertexCount);
-      for (const auto& p : mesh.primitives)
+      std::vector<glm::vec4> deltas(targets * 2 * m.vertexCount, glm::vec4(0.0f));
+      m.morphMin.assign(targets, glm::vec3(0.0f));
+      m.morphMax.assign(targets, glm::vec3(0.0f));
+      for (const auto& p : mesh.primitives) {
+        for (std::size_t t = 0; t < p.targets.size(); ++t) {
+          const asset::MorphTarget& mt = p.targets[t];
+          for (std::size_t v = 0; v < mt.positions.size(); ++v) {
+            deltas[2 * (t * m.vertexCount + vs.size() + v)] = glm::vec4(mt.positions[v], 0.0f);
+            m.morphMin[t] = glm::min(m.morphMin[t], mt.positions[v]);
+            m.morphMax[t] = glm::max(m.morphMax[t], mt.positions[v]);
+          }
+          for (std::size_t v = 0; v < mt.normals.size(); ++v)
+            deltas[2 * (t * m.vertexCount + vs.size() + v) + 1] = glm::vec4(mt.normals[v], 0.0f);
+        }
+        const bool weighted = !p.weights.empty();
         for (std::size_t v = 0; v < p.positions.size(); ++v) {
           SkinVertex s{};
           const glm::vec2 uv = v < p.uv0.size() ? p.uv0[v] : glm::vec2(0.0f);
           const glm::u16vec4 j1 = p.joints1.empty() ? glm::u16vec4(0) : p.joints1[v];
           const glm::vec4 w1 = p.weights1.empty() ? glm::vec4(0.0f) : p.weights1[v];
-          const glm::u16vec4 j0 = p.joints[v];
+          const glm::u16vec4 j0 = weighted ? p.joints[v] : glm::u16vec4(0);
+          const glm::vec4 w0 = weighted ? p.weights[v] : glm::vec4(0.0f);
           for (int k = 0; k < 3; ++k) {
             s.positionU[k] = p.positions[v][k];
             s.normalV[k] = p.normals[v][k];
@@ -169,15 +188,20 @@ void GpuScene::uploadSkinVertices(AssetGpu& a) {
           s.joints[2] = std::uint32_t(j1.x) | std::uint32_t(j1.y) << 16;
           s.joints[3] = std::uint32_t(j1.z) | std::uint32_t(j1.w) << 16;
           for (int k = 0; k < 4; ++k) {
-            s.weights0[k] = p.weights[v][k];
+            s.weights0[k] = w0[k];
             s.weights1[k] = w1[k];
           }
           vs.push_back(s);
         }
-      m.skinVertices = gpu::Buffer(ctx_, {vs.size() * sizeof(SkinVertex),
-                                          VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                                          gpu::MemoryUsage::GpuOnly, mesh.name + ".skin"});
-      gpu::upload(ctx_, m.skinVertices, gpu::bytesOf(vs));
+      }
+      const auto storage = [&](gpu::Buffer& b, std::span<const std::uint8_t> bytes, const std::string& name) {
+        b = gpu::Buffer(ctx_, {bytes.size(), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                               gpu::MemoryUsage::GpuOnly, name});
+        gpu::upload(ctx_, b, bytes);
+      };
+      storage(m.skinVertices, gpu::bytesOf(vs), mesh.name + ".skin");
+      if (targets != 0) storage(m.morphDeltas, gpu::bytesOf(deltas), mesh.name + ".morph");
+      m.morphTargets = static_cast<std::uint32_t>(targets);
     }
     if (cage >= 0 && m.skinVertices) uploadStencils(a, std::size_t(node.mesh));
   }
@@ -249,31 +273,46 @@ void GpuScene::extract(ecs::Registry& registry, const scene::Level& level, const
           const MeshGpu& skinMesh = gpuMesh.cage ? *gpuMesh.cage : gpuMesh;
           const asset::Mesh& skinCpu = meshCpu.cage >= 0 ? a.cpu.meshes[std::size_t(meshCpu.cage)] : meshCpu;
           if (pose && options.gpuSkinning && skinMesh.skinVertices && (meshCpu.cage < 0 || gpuMesh.cage) &&
-              anim::isSkinned(a.cpu, n)) {
-            // Skinned by the GPU pass: reserve its vertices, queue the job with this instance's joints.
+              anim::isDeformed(a.cpu, n)) {
+            // Posed by the GPU pass: reserve its vertices, queue the job with this instance's joints
+            // and morph weights.
             const auto reserve = [&](std::uint32_t vertices) {
               const auto base = static_cast<std::uint32_t>(w.posedVertices.size() / 8);
               w.posedVertices.resize(w.posedVertices.size() + std::size_t(vertices) * 8, 0.0f);
               return base;
             };
+            const bool skinned = anim::isSkinned(a.cpu, n);
             const std::uint32_t skinBase = reserve(skinMesh.vertexCount);
-            const auto& joints = pose->joints[std::size_t(node.skin)];
-            w.skinJobs.push_back({&skinMesh, skinMesh.vertexCount, static_cast<std::uint32_t>(w.jointMatrices.size()), skinBase});
-            w.jointMatrices.insert(w.jointMatrices.end(), joints.begin(), joints.end());
+            static const std::vector<glm::mat4> kIdentity{glm::mat4(1.0f)};
+            const auto& joints = skinned ? pose->joints[std::size_t(node.skin)] : kIdentity;
+            // One weight per target: the pose's (or the mesh's defaults), missing ones 0 (MorphJob).
+            const std::vector<float>& given = anim::morphWeights(a.cpu, pose, n);
+            std::vector<float> weights(skinMesh.morphTargets, 0.0f);
+            std::copy_n(given.begin(), std::min(given.size(), weights.size()), weights.begin());
+            w.skinJobs.push_back({&skinMesh, skinMesh.vertexCount,
+                                  static_cast<std::uint32_t>(skinned ? w.jointMatrices.size() : 0), skinBase,
+                                  static_cast<std::uint32_t>(w.morphWeights.size()), skinned});
+            if (skinned) w.jointMatrices.insert(w.jointMatrices.end(), joints.begin(), joints.end());
+            w.morphWeights.insert(w.morphWeights.end(), weights.begin(), weights.end());
             posedBase = skinBase;
             if (gpuMesh.cage) {  // the refined vertices follow the cage's in the same buffer
               posedBase = reserve(gpuMesh.vertexCount);
               w.subdivisionJobs.push_back({&gpuMesh, gpuMesh.vertexCount, skinBase, posedBase});
             }
-            m = skinFrame;
-            // Bounds: every skinned vertex is a convex combination of J_i·v, so the union of the bind
-            // bounds under every joint matrix contains it; a limit point is a convex combination of
-            // skinned cage vertices, so the cage's bind bounds serve a refined mesh too.
+            if (skinned) m = skinFrame;
+            // Bounds: a morphed vertex is p₀ + Σ_t w_t·Δp_t, inside the bind box grown by each
+            // w_t·[morphMin_t, morphMax_t]; every skinned vertex is a convex combination of J_i·v, so
+            // the union of that box under every joint matrix contains it; a limit point is a convex
+            // combination of posed cage vertices, so the cage's box serves a refined mesh too.
+            glm::vec3 boxMin = skinCpu.bounds.min, boxMax = skinCpu.bounds.max;
+            for (std::size_t t = 0; t < weights.size(); ++t) {
+              const glm::vec3 a0 = weights[t] * skinMesh.morphMin[t], a1 = weights[t] * skinMesh.morphMax[t];
+              boxMin += glm::min(a0, a1);
+              boxMax += glm::max(a0, a1);
+            }
             for (const glm::mat4& j : joints)
               for (int i = 0; i < 8; ++i) {
-                glm::vec3 c{i & 1 ? skinCpu.bounds.max.x : skinCpu.bounds.min.x,
-                            i & 2 ? skinCpu.bounds.max.y : skinCpu.bounds.min.y,
-                            i & 4 ? skinCpu.bounds.max.z : skinCpu.bounds.min.z};
+                glm::vec3 c{i & 1 ? boxMax.x : boxMin.x, i & 2 ? boxMax.y : boxMin.y, i & 4 ? boxMax.z : boxMin.z};
                 glm::vec3 p = glm::vec3(m * (j * glm::vec4(c, 1.0f)));
                 w.sceneMin = glm::min(w.sceneMin, p);
                 w.sceneMax = glm::max(w.sceneMax, p);

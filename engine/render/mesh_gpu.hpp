@@ -4,6 +4,8 @@
 #include <cstdint>
 #include <vector>
 
+#include <glm/glm.hpp>
+
 #include "engine/gpu/buffer.hpp"
 
 namespace bounce::render {
@@ -18,11 +20,17 @@ struct MeshGpu {
   gpu::Buffer vertices;
   gpu::Buffer indices;
   std::vector<Primitive> primitives;
-  // A mesh skinned on the GPU (used by a skinned node; every primitive weighted, no morph targets):
-  // its bind-pose vertices with joints and weights (SkinVertex, the skinning pass's input), in the
-  // same order as `vertices`. Empty otherwise (deformed meshes are then posed on the CPU).
+  // A mesh posed on the GPU (used by a deformed node: skinned, every primitive weighted, or with
+  // morph targets): its bind-pose vertices with joints and weights (SkinVertex, the skinning
+  // pass's input), in the same order as `vertices`. Empty otherwise (then posed on the CPU).
   gpu::Buffer skinVertices;
   std::uint32_t vertexCount = 0;
+  // Its morph targets (the most any primitive has; a primitive with fewer, or a target without
+  // normals, has zero displacements there): Δp, Δn as vec4 pairs, target-major (skinning.comp),
+  // and each target's displacement box (morphMin/Max[t]) for the posed instance's bounds.
+  gpu::Buffer morphDeltas;
+  std::uint32_t morphTargets = 0;
+  std::vector<glm::vec3> morphMin, morphMax;
   // A subdivided mesh of a deformed cage (asset::Mesh::cage): its limit stencils on the cage's
   // vertices (StencilRow per vertex of `vertices`, StencilWeight per weight), read by the
   // subdivision pass when the cage is skinned on the GPU. Empty otherwise.

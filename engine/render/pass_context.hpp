@@ -26,6 +26,7 @@ struct PassContext {
   gpu::Buffer* shadowMatrices = nullptr;      // mat4 per atlas layer
   gpu::Buffer* posedVertices = nullptr;       // RenderWorld::posedVertices (DrawItem::posedBase)
   gpu::Buffer* jointMatrices = nullptr;       // RenderWorld::jointMatrices (SkinJob::jointBase)
+  gpu::Buffer* morphWeights = nullptr;        // RenderWorld::morphWeights (SkinJob::weightBase)
   gpu::Image* dummyShadowAtlas = nullptr;     // 1×1 depth array bound when there is no shadow pass
   int debugView = 0;                          // 0 = lit; see shaders/passes/debug_view.frag
   float exposure = 1.0f;

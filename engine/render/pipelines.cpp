@@ -26,7 +26,7 @@ Pipelines::Pipelines(gpu::Context& ctx)
                    {6, kUniform}},
                   "debug-view"),
       tonemapLayout(ctx, {{0, kSampled}}, "tonemap"),
-      skinningLayout(ctx, {{0, kStorage}, {1, kStorage}, {2, kStorage}}, "skinning"),
+      skinningLayout(ctx, {{0, kStorage}, {1, kStorage}, {2, kStorage}, {3, kStorage}, {4, kStorage}}, "skinning"),
       subdivisionLayout(ctx, {{0, kStorage}, {1, kStorage}, {2, kStorage}}, "subdivision") {
   gbufferLayout = gpu::PipelineLayout(ctx, {frameLayout.handle(), materialLayout.handle()}, {push(4)}, "gbuffer");
   shadowLayout = gpu::PipelineLayout(ctx, {frameLayout.handle()}, {push(8)}, "shadow");
@@ -91,7 +91,7 @@ Pipelines::Pipelines(gpu::Context& ctx)
   f.name = "tonemap";
   tonemap = gpu::createGraphicsPipeline(ctx, tonemapPipelineLayout, f);
 
-  skinningPipelineLayout = gpu::PipelineLayout(ctx, {skinningLayout.handle()}, {push(12)}, "skinning");
+  skinningPipelineLayout = gpu::PipelineLayout(ctx, {skinningLayout.handle()}, {push(24)}, "skinning");
   gpu::ShaderModule skinningComp(ctx, "skinning/skinning.comp.spv");
   skinning = gpu::createComputePipeline(ctx, skinningPipelineLayout, skinningComp, "skinning");
 

@@ -51,7 +51,7 @@ struct Pipelines {
   gpu::DescriptorSetLayout lightingLayout;  // gbuffer ×4, shadow atlas, shadow matrices, lights
   gpu::DescriptorSetLayout debugLayout;     // albedo, normal, entity, depth, atlas, matrices, lights
   gpu::DescriptorSetLayout tonemapLayout;   // 0 HDR image
-  gpu::DescriptorSetLayout skinningLayout;  // 0 skin vertices, 1 joint matrices, 2 posed vertices (SSBOs)
+  gpu::DescriptorSetLayout skinningLayout;  // 0 skin vertices, 1 joint matrices, 2 posed vertices, 3 morph deltas, 4 morph weights (SSBOs)
   gpu::DescriptorSetLayout subdivisionLayout;  // 0 posed vertices, 1 stencil rows, 2 stencil weights (SSBOs)
 
   gpu::PipelineLayout gbufferLayout, shadowLayout, lightingPipelineLayout, debugPipelineLayout,

@@ -34,13 +34,16 @@ struct DrawItem {
   bool inShadow = true;
 };
 
-// One skinned instance for the skinning compute pass: skin mesh->skinVertices with the joint
-// matrices from jointBase into RenderWorld::posedVertices from vertex dstBase.
+// One deformed instance for the skinning compute pass: morph mesh->skinVertices by its
+// mesh->morphTargets targets with the weights from weightBase, then (when skinned) skin them with
+// the joint matrices from jointBase, into RenderWorld::posedVertices from vertex dstBase.
 struct SkinJob {
   const MeshGpu* mesh = nullptr;
   std::uint32_t vertexCount = 0;
-  std::uint32_t jointBase = 0;  // into RenderWorld::jointMatrices
-  std::uint32_t dstBase = 0;    // into RenderWorld::posedVertices, in vertices
+  std::uint32_t jointBase = 0;   // into RenderWorld::jointMatrices
+  std::uint32_t dstBase = 0;     // into RenderWorld::posedVertices, in vertices
+  std::uint32_t weightBase = 0;  // into RenderWorld::morphWeights (mesh->morphTargets of them)
+  bool skinned = true;           // false: morph targets only (the node's own frame)
 };
 
 // One subdivided skinned instance for the subdivision compute pass: evaluate mesh->stencilRows on
@@ -76,6 +79,7 @@ struct RenderWorld {
   std::vector<SkinJob> skinJobs;         // empty: no skinning pass
   std::vector<SubdivisionJob> subdivisionJobs;  // empty: no subdivision pass (needs skinJobs)
   std::vector<glm::mat4> jointMatrices;  // every skinned instance's joint matrices, back to back
+  std::vector<float> morphWeights;       // every GPU-morphed instance's weights, one per target, back to back
   bool has(const std::string& effect) const { return effects.count(effect) != 0; }
   // Whether a posed draw is inside the camera's frustum / a shadow layer's (DrawItem::inView/inShadow).
   bool posedInView() const;

@@ -120,6 +120,8 @@ void Renderer::writeFrameData(std::uint32_t slot, const RenderWorld& world, Pass
   fill(ctx_, b.jointMatrices, world.jointMatrices, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "frame.joint-matrices");
   pc.posedVertices = &b.posedVertices;
   pc.jointMatrices = &b.jointMatrices;
+  fill(ctx_, b.morphWeights, world.morphWeights, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "frame.morph-weights");
+  pc.morphWeights = &b.morphWeights;
   lastSlot_ = slot;
   lastPosedFloats_ = world.posedVertices.size();
 

@@ -72,7 +72,7 @@ class Renderer {
 
  private:
   struct SlotBuffers {
-    gpu::Buffer camera, instances, lights, shadowMatrices, posedVertices, jointMatrices;
+    gpu::Buffer camera, instances, lights, shadowMatrices, posedVertices, jointMatrices, morphWeights;
   };
   void ensureTargets(VkExtent2D extent);
   void writeFrameData(std::uint32_t slot, const RenderWorld& world, PassContext& pc);

@@ -23,11 +23,19 @@ rg::Handle<rg::Buffer> addSkinningPass(rg::RenderGraph& graph, const PassContext
         p.bind(cmd);
         for (const SkinJob& job : pc->world->skinJobs) {
           VkDescriptorSet set = pc->frame().descriptors->allocate(pc->pipelines->skinningLayout);
-          gpu::DescriptorWriter().buffer(0, job.mesh->skinVertices).buffer(1, *pc->jointMatrices).buffer(2, dst).update(*pc->gpu, set);
+          // Without targets binding 3 is never read; the skin vertices stand in for a valid binding.
+          const gpu::Buffer& morph = job.mesh->morphTargets ? job.mesh->morphDeltas : job.mesh->skinVertices;
+          gpu::DescriptorWriter()
+              .buffer(0, job.mesh->skinVertices)
+              .buffer(1, *pc->jointMatrices)
+              .buffer(2, dst)
+              .buffer(3, morph)
+              .buffer(4, *pc->morphWeights)
+              .update(*pc->gpu, set);
           p.bindSet(cmd, 0, set);
           const struct {
-            std::uint32_t vertexCount, jointBase, dstBase;
-          } push{job.vertexCount, job.jointBase, job.dstBase};
+            std::uint32_t vertexCount, jointBase, dstBase, weightBase, targetCount, skinned;
+          } push{job.vertexCount, job.jointBase, job.dstBase, job.weightBase, job.mesh->morphTargets, job.skinned ? 1u : 0u};
           p.push(cmd, push);
           vkCmdDispatch(cmd, (job.vertexCount + kSkinningGroupSize - 1) / kSkinningGroupSize, 1, 1);
         }

@@ -15,6 +15,7 @@
 #include "engine/ref/reference_scene.hpp"
 #include "engine/ref/tracer.hpp"
 #include "engine/render/gpu_scene.hpp"
+#include "engine/render/mesh_gpu.hpp"
 #include "engine/scene/components.hpp"
 #include "game/session.hpp"
 
@@ -99,6 +100,64 @@ TEST(SkinningGpu, CpuEqualsGpuOnEveryVertexOfCesiumManAndFox) {
     RecordProperty("worst-normal-t" + std::to_string(int(t * 100)), sci(worstN));
   }
   EXPECT_GT(checked, 4u * 4000u);  // CesiumMan 3273 + Fox 1728 vertices, every time
+}
+
+// Morph targets on the GPU (the skinning pass's morph step) against MorphJob on the CPU, on the
+// generated content/src/morph asset (the shared assets hold no morphing model): "sheet" morphs
+// alone, "arm" morphs then skins (two joints), both driven by the clip "Wave". Same tolerances as
+// skinning: three weighted displacements add a few ulps to positions of size ~1 m, and a
+// morph-only normal is the unnormalised n₀ + Σ w·Δn (|n| ≤ ~2) on both faces.
+TEST(SkinningGpu, MorphTargetsCpuEqualsGpuOnEveryVertex) {
+  gpu::Context& ctx = gpu::testkit::sharedContext();
+  const fs::path morph = fs::path(BOUNCE_SOURCE_DIR) / "content/src/morph/morph.gltf";
+  const fs::path level = writeLevel("morph-cpu-gpu.json", R"(["direct"])",
+                                    {kCamera, meshEntity("morph", morph, R"(, "animation": {"clip": "Wave"})")});
+  game::Session session(ctx, scene::loadLevel(level));
+  gpu::OffscreenPresenter presenter(ctx, {32, 32});
+  std::size_t checked = 0;
+  float largestMorph = 0.0f;
+  for (double t : {0.0, 0.3, 0.8, 1.3, 1.75}) {
+    SCOPED_TRACE(t);
+    session.update(t);
+    session.render(presenter, {});
+    EXPECT_EQ(session.renderer().executedPasses(), (std::vector<std::string>{"skinning", "gbuffer", "lighting", "tonemap"}));
+    const std::vector<float> gpuPosed = session.renderer().readPosedVertices();
+    const auto& jobs = session.world().skinJobs;
+    ASSERT_EQ(jobs.size(), 2u);  // both meshes went through the pass
+    EXPECT_FALSE(jobs[0].skinned);  // sheet: morph only
+    EXPECT_TRUE(jobs[1].skinned);   // arm: morph, then skin
+    EXPECT_EQ(jobs[0].mesh->morphTargets, 3u);
+    EXPECT_EQ(jobs[1].mesh->morphTargets, 3u);
+    ASSERT_EQ(session.world().morphWeights.size(), 6u);
+    render::RenderWorld cpuWorld;
+    render::ExtractOptions cpuFace;
+    cpuFace.extent = {32, 32};
+    cpuFace.gpuSkinning = false;
+    session.gpuScene().extract(session.registry(), session.level(), cpuFace, cpuWorld);
+    ASSERT_TRUE(cpuWorld.skinJobs.empty());
+    ASSERT_EQ(cpuWorld.posedVertices.size(), gpuPosed.size());
+    // The GPU world's draws sit where the CPU world's do: same bounds test, same culling.
+    ASSERT_EQ(cpuWorld.draws.size(), session.world().draws.size());
+    float worstP = 0.0f, worstN = 0.0f;
+    for (std::size_t v = 0; v < gpuPosed.size() / 8; ++v) {
+      const float* g = &gpuPosed[v * 8];
+      const float* c = &cpuWorld.posedVertices[v * 8];
+      const glm::vec3 gp(g[0], g[1], g[2]), cp(c[0], c[1], c[2]);
+      worstP = std::max(worstP, glm::distance(gp, cp) / std::max(1.0f, glm::length(cp)));
+      worstN = std::max(worstN, glm::distance(glm::vec3(g[3], g[4], g[5]), glm::vec3(c[3], c[4], c[5])));
+      ASSERT_EQ(g[6], c[6]) << "uv of vertex " << v;
+      ASSERT_EQ(g[7], c[7]) << "uv of vertex " << v;
+      ++checked;
+    }
+    // The sheet's bind pose is z = 0 everywhere: its posed |z| is how far the morph moved it.
+    for (std::size_t v = 0; v < 32 * 32; ++v) largestMorph = std::max(largestMorph, std::abs(cpuWorld.posedVertices[v * 8 + 2]));
+    EXPECT_LE(worstP, kPositionRelTol);
+    EXPECT_LE(worstN, kNormalTol);
+    RecordProperty("morph-worst-position-rel-t" + std::to_string(int(t * 100)), sci(worstP));
+    RecordProperty("morph-worst-normal-t" + std::to_string(int(t * 100)), sci(worstN));
+  }
+  EXPECT_EQ(checked, 5u * 2u * 32u * 32u);
+  EXPECT_GT(largestMorph, 0.15f);  // the bulge's weight reaches 1 (0.25 m) at t = 0.5 ± 0.2
 }
 
 // Subdivided cages, CPU face (engine/anim LimitStencilJob after CPU skinning) vs GPU face (the
