@@ -13,8 +13,10 @@
 namespace bounce::game {
 
 namespace {
-const char* kDefaultLevel = "levels/cornell-5.json";
-const char* kDefaultCapture = "captures/cornell-5.json";
+// The combined level: Fox and CesiumMan (skinned, animated, CesiumMan subdivided) with cornell-5's
+// five DNRT props, in the Cornell room scaled ×6 to character size.
+const char* kDefaultLevel = "levels/demo.json";
+const char* kDefaultCapture = "captures/demo.json";
 
 bool displayAvailable() {
   const char* display = std::getenv("DISPLAY");

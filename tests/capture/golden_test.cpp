@@ -1,5 +1,5 @@
-// Golden-image capture tests: the shipped capture scripts content/captures/cornell-{1,5,10,vlm}.json and
-// characters.json
+// Golden-image capture tests: the shipped capture scripts content/captures/cornell-{1,5,10,vlm}.json,
+// characters.json and demo.json
 // (256×256, 61 frames, frames 0 and 60 captured) run through runCaptureScript, and every captured
 // PFM (linear radiance) is compared with tests/capture/goldens/<script>-frame-NNNN.pfm. The
 // cornell-N levels name direct, shadows, probes and dnrt, so their goldens hold the probes' static
@@ -233,6 +233,8 @@ TEST(CaptureGolden, CornellVlm) { checkCornellCapture("cornell-vlm"); }
 // The character level (issue 12): the Cornell room's walls (red left, green right) around Fox and
 // CesiumMan, skinned by the GPU pass and moving by their clips and motion paths between the frames.
 TEST(CaptureGolden, Characters) { checkCornellCapture("characters"); }
+// `bounce demo`'s level: the characters and cornell-5's five DNRT props in the same room.
+TEST(CaptureGolden, Demo) { checkCornellCapture("demo"); }
 
 TEST(CaptureGolden, SameScriptTwiceIsBitIdentical) {
   const fs::path script = kSource / "tests/data/render/determinism.json";
