@@ -23,8 +23,12 @@ bool finiteMatrix(const glm::mat4& m) {
   return true;
 }
 
-// Morph target count of a mesh (every primitive must have the same, glTF 2.0 §3.7.2.2).
-std::size_t targetCount(const Mesh& m) { return m.primitives.empty() ? 0 : m.primitives[0].targets.size(); }
+// Morph target count of a mesh (every primitive must have the same, glTF 2.0 §3.7.2.2). A subdivided
+// deformed mesh keeps its targets on its cage (Mesh::cage), which is what the weights morph.
+std::size_t targetCount(const CookedAsset& a, const Mesh& m) {
+  const Mesh& t = m.cage >= 0 && std::size_t(m.cage) < a.meshes.size() ? a.meshes[std::size_t(m.cage)] : m;
+  return t.primitives.empty() ? 0 : t.primitives[0].targets.size();
+}
 
 }  // namespace
 
@@ -127,7 +131,7 @@ void validateSkinsAndAnimations(const CookedAsset& a, const std::string& file) {
       const Node& node = a.nodes[std::size_t(ch.node)];
       std::size_t want = ch.path == AnimationPath::Rotation ? 4 : 3;
       if (ch.path == AnimationPath::Weights) {
-        want = node.mesh >= 0 ? targetCount(a.meshes[std::size_t(node.mesh)]) : 0;
+        want = node.mesh >= 0 ? targetCount(a, a.meshes[std::size_t(node.mesh)]) : 0;
         if (want == 0)
           throwInputError(file, cw + "/target", "a weights channel on node " + std::to_string(ch.node) + ", which has no morph targets",
                           "a node whose mesh has morph targets");

@@ -136,8 +136,13 @@ TEST(SkinningGpu, MorphTargetsCpuEqualsGpuOnEveryVertex) {
     session.gpuScene().extract(session.registry(), session.level(), cpuFace, cpuWorld);
     ASSERT_TRUE(cpuWorld.skinJobs.empty());
     ASSERT_EQ(cpuWorld.posedVertices.size(), gpuPosed.size());
-    // The GPU world's draws sit where the CPU world's do: same bounds test, same culling.
     ASSERT_EQ(cpuWorld.draws.size(), session.world().draws.size());
+    // The GPU world's conservative bounds (bind box grown by w_t·each target's box, then under every
+    // joint) contain the CPU world's, which come from the exact posed vertices.
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_LE(session.world().sceneMin[k], cpuWorld.sceneMin[k]) << "axis " << k;
+      EXPECT_GE(session.world().sceneMax[k], cpuWorld.sceneMax[k]) << "axis " << k;
+    }
     float worstP = 0.0f, worstN = 0.0f;
     for (std::size_t v = 0; v < gpuPosed.size() / 8; ++v) {
       const float* g = &gpuPosed[v * 8];
@@ -226,6 +231,56 @@ TEST(SkinningGpu, SubdividedCagesCpuEqualsGpuOnEveryRefinedVertex) {
     RecordProperty("refined-worst-normal-t" + std::to_string(int(t * 100)), sci(worstN));
   }
   EXPECT_GE(checked, 3u * 19965u);  // CesiumMan and Fox refined once (catmull-clark, 1 level): 19,965 vertices
+}
+
+// A subdivided morphed mesh: its cage morphed (and skinned) by the skinning pass, then refined by
+// the subdivision pass, against the CPU's MorphJob → SkinningJob → LimitStencilJob. Tolerances as
+// for the subdivided characters below.
+TEST(SkinningGpu, SubdividedMorphCagesCpuEqualsGpu) {
+  gpu::Context& ctx = gpu::testkit::sharedContext();
+  const fs::path morph = fs::path(BOUNCE_SOURCE_DIR) / "content/src/morph/morph.gltf";
+  const fs::path level = writeLevel(
+      "morph-subdiv-cpu-gpu.json", R"(["direct"])",
+      {kCamera, R"({"id": "morph", "mesh": {"asset": ")" + morph.string() +
+                    R"(", "subdivision": {"scheme": "catmull-clark", "levels": 1}}, "animation": {"clip": "Wave"}})"});
+  game::Session session(ctx, scene::loadLevel(level));
+  gpu::OffscreenPresenter presenter(ctx, {32, 32});
+  std::size_t checked = 0;
+  for (double t : {0.3, 1.3}) {
+    SCOPED_TRACE(t);
+    session.update(t);
+    session.render(presenter, {});
+    EXPECT_EQ(session.renderer().executedPasses(),
+              (std::vector<std::string>{"skinning", "subdivision", "gbuffer", "lighting", "tonemap"}));
+    const std::vector<float> gpuPosed = session.renderer().readPosedVertices();
+    ASSERT_EQ(session.world().skinJobs.size(), 2u);
+    ASSERT_EQ(session.world().subdivisionJobs.size(), 2u);
+    render::RenderWorld cpuWorld;
+    render::ExtractOptions cpuFace;
+    cpuFace.extent = {32, 32};
+    cpuFace.gpuSkinning = false;
+    session.gpuScene().extract(session.registry(), session.level(), cpuFace, cpuWorld);
+    const auto gpuRanges = posedRanges(session.world()), cpuRanges = posedRanges(cpuWorld);
+    ASSERT_EQ(gpuRanges.size(), 2u);
+    ASSERT_EQ(cpuRanges.size(), 2u);
+    float worstP = 0.0f, worstN = 0.0f;
+    for (std::size_t r = 0; r < 2; ++r) {
+      ASSERT_EQ(gpuRanges[r].second, cpuRanges[r].second);
+      for (std::uint32_t v = 0; v < gpuRanges[r].second; ++v) {
+        const float* g = &gpuPosed[(gpuRanges[r].first + v) * 8];
+        const float* c = &cpuWorld.posedVertices[(cpuRanges[r].first + v) * 8];
+        const glm::vec3 gp(g[0], g[1], g[2]), cp(c[0], c[1], c[2]);
+        worstP = std::max(worstP, glm::distance(gp, cp) / std::max(1.0f, glm::length(cp)));
+        worstN = std::max(worstN, glm::distance(glm::vec3(g[3], g[4], g[5]), glm::vec3(c[3], c[4], c[5])));
+        ++checked;
+      }
+    }
+    EXPECT_LE(worstP, kRefinedPositionRelTol);
+    EXPECT_LE(worstN, kRefinedNormalTol);
+    RecordProperty("morph-refined-worst-position-rel-t" + std::to_string(int(t * 100)), sci(worstP));
+    RecordProperty("morph-refined-worst-normal-t" + std::to_string(int(t * 100)), sci(worstN));
+  }
+  EXPECT_GE(checked, 2u * 2u * 32u * 32u);  // refined: more vertices than the two 32×32 cages
 }
 
 TEST(SkinningGpu, PassRunsOnlyWithASkinnedEntityAndBeforeTheDraws) {
