@@ -168,6 +168,24 @@ TEST_F(BakeCli, CorruptOrTruncatedEntriesAreReBaked) {
   EXPECT_EQ(entries(root), good) << "re-baked entries equal the originals (deterministic bakes)";
 }
 
+// A DNRT field is rigid: on a skinned or morphed mesh it is baked in the bind pose (issue 12, item 4). The
+// bake says so once, for that object only, and still writes the entry; a rigid box gets no warning.
+TEST_F(BakeCli, DnrtOnASkinnedMeshWarnsThatItsFieldIsTheBindPose) {
+  const fs::path root = dir_ / "cache";
+  const fs::path level = kSource / "tests/data/gi/bake-skinned.json";
+  const Outcome r = bounce(root, {"bake", level.string()});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto errLines = lines(r.err);
+  ASSERT_EQ(errLines.size(), 1u) << r.err;
+  EXPECT_EQ(errLines[0],
+            "warning: dnrt arm: the mesh is skinned or morphed; its DNRT field is baked in the bind pose and does "
+            "not follow the animation");
+  EXPECT_EQ(entries(root).size(), 2u) << "both fields are written";
+  const Outcome again = bounce(root, {"bake", level.string()});
+  ASSERT_EQ(again.code, 0) << again.err;
+  EXPECT_EQ(again.err, "") << "a cache hit decodes nothing, so it does not warn again";
+}
+
 TEST_F(BakeCli, TwoProcessesBakingOneKeyLeaveOneValidEntry) {
   const fs::path root = dir_ / "cache";
   const auto ks = keys(root);
