@@ -73,12 +73,16 @@ struct Mask {
 // Limit stencils on the control vertices: limit mask (over finest vertices j) ∘ refinement
 // stencil of j (over control vertices), summed in a dense scratch row, one row per finest vertex.
 LimitStencils composeLimitStencils(const osd::Far::TopologyRefiner& refiner, const osd::Far::PrimvarRefiner& primvar) {
-  osd::Far::StencilTableFactory::Options options;
+  // StencilTableFactoryReal<float>, not its StencilTableFactory wrapper: the wrapper static_casts the
+  // StencilTableReal<float> it made to StencilTable, a derived type the object is not (UBSan's vptr check
+  // reports it, issue 17). The base type has every accessor used here.
+  using Factory = osd::Far::StencilTableFactoryReal<float>;
+  Factory::Options options;
   options.generateIntermediateLevels = false;  // the finest level's vertices only, row j = finest vertex j
   options.generateControlVerts = false;
   options.generateOffsets = true;
   options.maxLevel = unsigned(refiner.GetMaxLevel());
-  std::unique_ptr<const osd::Far::StencilTable> refine(osd::Far::StencilTableFactory::Create(refiner, options));
+  std::unique_ptr<const osd::Far::StencilTableReal<float>> refine(Factory::Create(refiner, options));
   const int finest = refiner.GetLevel(refiner.GetMaxLevel()).GetNumVertices();
   std::vector<Unit> units(static_cast<std::size_t>(finest));
   for (int j = 0; j < finest; ++j) units[std::size_t(j)] = Unit{j};
