@@ -32,6 +32,13 @@ for f in bin/bounce share/bounce/shaders/test/fill.comp.spv share/bounce/content
 done
 
 mkdir "$tmp/empty" "$tmp/run"
+# Sanitizer builds: LeakSanitizer reads its suppressions at exit, when the source tree is hidden, so it
+# reads a copy (CMakeLists.txt says why).
+if [ -n "${BOUNCE_LSAN_SUPP:-}" ]; then
+  cp "$BOUNCE_LSAN_SUPP" "$tmp/lsan.supp"
+  LSAN_OPTIONS="suppressions=$tmp/lsan.supp:print_suppressions=0"
+  export LSAN_OPTIONS
+fi
 cd "$tmp/run"
 # The build tree first: when it lies inside the source tree, hiding the source tree hides it too,
 # and its path would no longer exist to mount over.
