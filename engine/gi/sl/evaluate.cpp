@@ -18,7 +18,7 @@ namespace bounce::gi::sl {
 namespace {
 
 constexpr double kPi = math::kPi;
-constexpr int kThetaEntries = 256;  // w_θ table, θ in [0, π/2]
+constexpr int kThetaEntries = kAverageRadianceEntries;  // w_θ table, θ in [0, π/2]
 constexpr int kGaussNodes = 96;     // over the lit cap; the integrand is smooth there
 // Below this unoccluded Eq. 23 Ṽ (sr) the ratio is not formed: the cap is at the horizon or a few
 // 1e-9 of a steradian, and the exact Ṽ alone is used (continuous: both tend to 0 together).
@@ -50,6 +50,7 @@ class RadianceTable {
       for (int l = 0; l < order; ++l) row[l] = acc[l] / norm;
     }
   }
+  std::span<const double> rows() const { return table_; }
   std::vector<double> lookup(double theta) const {
     const double x = std::clamp(theta, 0.0, 0.5 * kPi) / (0.5 * kPi) * (kThetaEntries - 1);
     const int i0 = std::min(static_cast<int>(x), kThetaEntries - 2);
@@ -142,6 +143,8 @@ double cosGamma(double alpha, double theta) {
 }
 
 std::vector<double> averageRadianceZonal(double theta, int order) { return radianceTable(order).lookup(theta); }
+
+std::span<const double> averageRadianceTable(int order) { return radianceTable(order).rows(); }
 
 Evaluation evaluate(std::span<const Light> lights, const glm::dvec3& p, const glm::dvec3& n,
                     const EvalSettings& settings) {

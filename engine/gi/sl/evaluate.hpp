@@ -60,6 +60,10 @@ double cosGamma(double alpha, double theta);
 // (3 or 4) by 1D Gauss–Legendre quadrature over the lit cap cos α ∈ [sin θ, 1]; at θ = π/2 (p on the
 // sphere) the weight is a delta towards p.
 std::vector<double> averageRadianceZonal(double theta, int order);
+// The table itself for upload (pass 2 reads it as a texture): row i (θ_i = i/255 · π/2) at
+// [i·order, i·order + order).
+std::span<const double> averageRadianceTable(int order);
+inline constexpr int kAverageRadianceEntries = 256;
 
 // One spherical light as pass 2 sees it.
 struct Light {

@@ -1,0 +1,91 @@
+#include "engine/gi/sl/shade.hpp"
+
+#include <cstring>
+
+#include "engine/core/error.hpp"
+#include "engine/gpu/commands.hpp"
+#include "engine/math/sh_exp.hpp"
+#include "engine/math/sh_product.hpp"
+
+namespace bounce::gi::sl {
+
+namespace {
+constexpr std::uint32_t kTableWidth = 256;  // θ entries (log and weight rows); the OL row uses 128
+static_assert(sh::ExpTables::kThetaEntries == int(kTableWidth) && kAverageRadianceEntries == int(kTableWidth) &&
+              sh::ExpTables::kMagEntries <= int(kTableWidth));
+}  // namespace
+
+ShadeData::ShadeData(gpu::Context& ctx, int order) : ctx_(ctx), order_(order) {
+  if (order != 3 && order != 4) throw InternalError("sl::ShadeData: order must be 3 or 4");
+  // Tables: sl.glsl's rows 0 (log ZH), 1 (weight ZH), 2 (OL a, b).
+  const sh::ExpTables& t = sh::expTables(order, sh::LogKind::Windowed);
+  const std::span<const double> w = averageRadianceTable(order);
+  std::vector<float> texels(std::size_t(kTableWidth) * 3 * 4, 0.0f);
+  for (std::uint32_t i = 0; i < kTableWidth; ++i)
+    for (int l = 0; l < order; ++l) {
+      texels[(0 * kTableWidth + i) * 4 + std::size_t(l)] = float(t.logTable()[std::size_t(i) * order + std::size_t(l)]);
+      texels[(1 * kTableWidth + i) * 4 + std::size_t(l)] = float(w[std::size_t(i) * order + std::size_t(l)]);
+    }
+  for (int i = 0; i < sh::ExpTables::kMagEntries; ++i) {
+    texels[(2 * kTableWidth + std::size_t(i)) * 4 + 0] = float(t.olTable()[2 * std::size_t(i)]);
+    texels[(2 * kTableWidth + std::size_t(i)) * 4 + 1] = float(t.olTable()[2 * std::size_t(i) + 1]);
+  }
+  gpu::ImageDesc d;
+  d.format = VK_FORMAT_R32G32B32A32_SFLOAT;
+  d.width = kTableWidth;
+  d.height = 3;
+  d.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+  d.name = "sl.tables";
+  tables_ = gpu::Image(ctx, d);
+  gpu::upload(ctx, tables_, std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(texels.data()), texels.size() * sizeof(float)));
+
+  const auto& tensor = sh::gauntTensor();
+  if (tensor.size() > kMaxGauntEntries) throw InternalError("sl::ShadeData: Gaunt tensor larger than its uniform block");
+  std::vector<glm::vec4> g(1 + kMaxGauntEntries, glm::vec4(0.0f));
+  const std::uint32_t n = std::uint32_t(tensor.size());
+  std::memcpy(&g[0], &n, sizeof n);
+  for (std::size_t e = 0; e < tensor.size(); ++e)
+    g[1 + e] = glm::vec4(float(tensor[e].i), float(tensor[e].j), float(tensor[e].k), float(tensor[e].value));
+  gaunt_ = gpu::Buffer(ctx, {g.size() * sizeof(glm::vec4), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                             gpu::MemoryUsage::GpuOnly, "sl.gaunt"});
+  gpu::upload(ctx, gaunt_, std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(g.data()), g.size() * sizeof(glm::vec4)));
+  spheres_ = gpu::Buffer(ctx, {(1 + 4 * std::size_t(kMaxShadedSpheres)) * sizeof(glm::vec4), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+                               gpu::MemoryUsage::Upload, "sl.spheres"});
+  std::memset(spheres_.mapped(), 0, spheres_.size());
+}
+
+void ShadeData::setSpheres(std::span<const ShadedSphere> spheres) {
+  if (spheres.size() > kMaxShadedSpheres) throw InternalError("sl::ShadeData: more SLs than the uniform block holds");
+  std::vector<glm::vec4> v(1 + 4 * spheres.size(), glm::vec4(0.0f));
+  count_ = std::uint32_t(spheres.size());
+  std::memcpy(&v[0], &count_, sizeof count_);
+  for (std::size_t i = 0; i < spheres.size(); ++i) {
+    const ShadedSphere& s = spheres[i];
+    v[1 + 4 * i] = glm::vec4(s.centre, s.radius);
+    for (int c = 0; c < 3; ++c) v[2 + 4 * i + std::size_t(c)] = glm::vec4(s.rotation[c], 0.0f);
+    v[2 + 4 * i].w = float(s.object);
+  }
+  std::memcpy(spheres_.mapped(), v.data(), v.size() * sizeof(glm::vec4));
+}
+
+void ShadeData::write(gpu::DescriptorWriter& w, std::uint32_t first, const gpu::Buffer& intensity, VkSampler nearest) const {
+  if (intensity.size() < kIntensityBlockBytes) throw InternalError("sl::ShadeData: intensity buffer smaller than its block");
+  w.sampledImage(first, tables_.view(), nearest)
+      .buffer(first + 1, spheres_, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER)
+      .buffer(first + 2, intensity, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 0, kIntensityBlockBytes)
+      .buffer(first + 3, gaunt_, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER);
+}
+
+std::vector<gpu::Binding> ShadeData::bindings(std::uint32_t first) {
+  return {{first, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+          {first + 1, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
+          {first + 2, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
+          {first + 3, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER}};
+}
+
+gpu::SpecConstants ShadeData::specialization(int order, Blocking blocking, std::uint32_t spheres) {
+  const std::uint32_t size = std::max<std::uint32_t>(8, (spheres + 7) / 8 * 8);
+  return {std::uint32_t(order), blocking == Blocking::PerObject ? 1u : 0u, size};
+}
+
+}  // namespace bounce::gi::sl
