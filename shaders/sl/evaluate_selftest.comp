@@ -13,8 +13,8 @@ layout(constant_id = 2) const uint kSpheres = 64u;
 
 #define SL_SET 0
 #define SL_BINDING 0
-#include "sl_data.glsl"
-#include "sl.glsl"
+#include "sl/sl_data.glsl"
+#include "sl/sl.glsl"
 
 struct Receiver {
   vec4 p;

@@ -92,7 +92,7 @@ IntensityPass::IntensityPass(gpu::Context& ctx, std::span<const SphereSet* const
   std::vector<SampleGpu> samples;
   std::vector<glm::vec4> albedo;
   for (const SphereSet* set : sets) {
-    if (set->settings.order != order) throw InternalError("sl::IntensityPass: a sphere set of another SH order");
+    if (set->settings.order > order) throw InternalError("sl::IntensityPass: a sphere set of a higher SH order");
     for (const SlSphere& s : set->spheres) {
       rest_.emplace_back(s.centre, s.radius);
       range_.emplace_back(std::uint32_t(samples.size()), std::uint32_t(s.samples.size()));
@@ -102,7 +102,9 @@ IntensityPass::IntensityPass(gpu::Context& ctx, std::span<const SphereSet* const
         samples.push_back(g);
       }
       for (std::size_t k = 0; k < 16; ++k)
-        albedo.push_back(k < nc ? glm::vec4(s.albedo[k * 3], s.albedo[k * 3 + 1], s.albedo[k * 3 + 2], 0.0f) : glm::vec4(0.0f));
+        albedo.push_back(k < nc && k * 3 + 2 < s.albedo.size()
+                             ? glm::vec4(s.albedo[k * 3], s.albedo[k * 3 + 1], s.albedo[k * 3 + 2], 0.0f)
+                             : glm::vec4(0.0f));
     }
   }
   spheres_ = std::uint32_t(rest_.size());
@@ -143,12 +145,9 @@ IntensityPass::IntensityPass(gpu::Context& ctx, std::span<const SphereSet* const
       .update(ctx, set_);
 }
 
-void IntensityPass::setFrame(std::span<const PosedSphere> posed, std::span<const incident::RadianceSH> indirect,
-                             std::span<const render::LightGpu> lights, std::span<const glm::mat4> shadowMatrices) {
+void IntensityPass::setSpheres(std::span<const PosedSphere> posed, std::span<const incident::RadianceSH> indirect) {
   if (posed.size() != spheres_ || indirect.size() != spheres_)
-    throw InternalError("sl::IntensityPass::setFrame: one pose and one indirect SH per SL");
-  if (lights.size() > render::kMaxLights || shadowMatrices.size() > render::kMaxShadowLayers)
-    throw InternalError("sl::IntensityPass::setFrame: more lights or shadow layers than the uniform blocks hold");
+    throw InternalError("sl::IntensityPass::setSpheres: one pose and one indirect SH per SL");
   auto* out = reinterpret_cast<SphereGpu*>(spheresBuf_.mapped());
   for (std::uint32_t i = 0; i < spheres_; ++i) {
     SphereGpu g{};
@@ -160,9 +159,23 @@ void IntensityPass::setFrame(std::span<const PosedSphere> posed, std::span<const
     for (int k = 0; k < 9; ++k) g.indirect[k] = glm::vec4(indirect[i][std::size_t(k)], 0.0f);
     std::memcpy(out + i, &g, sizeof g);
   }
+}
+
+void IntensityPass::setLights(std::span<const render::LightGpu> lights, std::span<const glm::mat4> shadowMatrices) {
+  if (lights.size() > render::kMaxLights || shadowMatrices.size() > render::kMaxShadowLayers)
+    throw InternalError("sl::IntensityPass::setLights: more lights or shadow layers than the uniform blocks hold");
   if (!lights.empty()) std::memcpy(lights_.mapped(), lights.data(), lights.size_bytes());
   if (!shadowMatrices.empty()) std::memcpy(shadowMatrices_.mapped(), shadowMatrices.data(), shadowMatrices.size_bytes());
-  push_.lightCount = std::uint32_t(lights.size());
+  bindLights(lights_, std::uint32_t(lights.size()), shadowMatrices_);
+}
+
+void IntensityPass::bindLights(const gpu::Buffer& lights, std::uint32_t count, const gpu::Buffer& shadowMatrices) {
+  if (count > render::kMaxLights) throw InternalError("sl::IntensityPass::bindLights: more lights than the block holds");
+  gpu::DescriptorWriter()
+      .buffer(4, lights, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 0, render::kMaxLights * sizeof(render::LightGpu))
+      .buffer(5, shadowMatrices, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 0, render::kMaxShadowLayers * sizeof(glm::mat4))
+      .update(ctx_, set_);
+  push_.lightCount = count;
 }
 
 void IntensityPass::setShadowAtlas(VkImageView atlas, VkSampler compareSampler, VkImageLayout layout, bool shadowsOn) {

@@ -51,22 +51,29 @@ std::vector<glm::dvec3> intensityReference(const SlSphere& rest, int order, cons
 
 // Pass 1 on the device for every SL of every participating set (concatenated in the order given;
 // SL index = running index over the sets' spheres). The samples, albedo SH and Gaunt tensor are
-// uploaded once; setFrame() writes the poses, indirect light and lights (host-visible, read at the
+// uploaded once; setSpheres() writes the poses and indirect light, setLights()/bindLights() the lights (read at the
 // next record()). The result stays in intensity(): vec4 per (SL·16 + k), rgb = L^c_k in the SL's
 // local frame, usable as a storage or uniform buffer by pass 2.
 class IntensityPass {
  public:
-  // Every set must have been baked with `order` (3 or 4). Throws InternalError otherwise.
+  // `order` (3 or 4) is the result's; sets baked at order 3 take part in an order-4 pass with their
+  // band-3 basis sums and albedo zero. Throws InternalError for a set of a higher order or more SLs
+  // than pass 2's blocks hold (kMaxShadedSpheres).
   IntensityPass(gpu::Context& ctx, std::span<const SphereSet* const> sets, int order);
   std::uint32_t sphereCount() const { return spheres_; }
   int order() const { return order_; }
-  // posed[i], indirect[i]: SL i's pose and the probes' radiance SH at its posed centre; lights as the
-  // lighting pass has them (≤ render::kMaxLights) with their shadow matrices (≤ kMaxShadowLayers).
-  void setFrame(std::span<const PosedSphere> posed, std::span<const incident::RadianceSH> indirect,
-                std::span<const render::LightGpu> lights, std::span<const glm::mat4> shadowMatrices);
-  // The shadow atlas (a 2D-array depth image, read with a compare sampler) in `layout`; without a
-  // call, or with shadowsOn = false, every light is unoccluded. Must not be called while a recorded
-  // pass is in flight.
+  // posed[i], indirect[i]: SL i's pose and the probes' radiance SH at its posed centre (host-visible:
+  // read at the next record()).
+  void setSpheres(std::span<const PosedSphere> posed, std::span<const incident::RadianceSH> indirect);
+  // The lights and their shadow matrices from the CPU, into the pass's own uniform buffers (tests;
+  // ≤ render::kMaxLights, ≤ kMaxShadowLayers).
+  void setLights(std::span<const render::LightGpu> lights, std::span<const glm::mat4> shadowMatrices);
+  // Or the renderer's: its light and shadow-matrix uniform buffers (render::PassContext), `count`
+  // lights. Rewrites the set: not while a recorded pass that reads it is in flight.
+  void bindLights(const gpu::Buffer& lights, std::uint32_t count, const gpu::Buffer& shadowMatrices);
+  // The shadow atlas (a 2D-array depth image, read with a compare sampler) in `layout`; with
+  // shadowsOn = false every light is unoccluded (the atlas is still bound: a dummy will do). Same
+  // rule as bindLights.
   void setShadowAtlas(VkImageView atlas, VkSampler compareSampler, VkImageLayout layout, bool shadowsOn);
   // One dispatch (a workgroup per SL) and a barrier making intensity() visible to later compute
   // and fragment shader reads.

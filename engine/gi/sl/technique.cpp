@@ -10,6 +10,7 @@
 #include "engine/core/log.hpp"
 #include "engine/core/paths.hpp"
 #include "engine/gi/dnrt/object_scene.hpp"
+#include "engine/gi/dnrt/probe_source.hpp"
 #include "engine/scene/components.hpp"
 
 namespace bounce::gi::sl {
@@ -125,13 +126,13 @@ class SlTechnique final : public Technique {
 
   std::unique_ptr<TechniqueRuntime> create(SessionContext& sc) const override {
     auto runtime = std::make_unique<SessionRuntime>(sc.registry, sc.cookCache, cacheFolder());
-    printNoteOnce(noPassNote(runtime->participants().size()));
+    runtime->enableGpu(sc);
     return runtime;
   }
 
-  // None until pass 2 exists (a row needs its pass to time and render).
+  // None yet (left for the next session: spheres × order × blocking rows).
   void accuracyRows(std::vector<AccuracyRow>&) const override {}
-  std::vector<std::string> passes() const override { return {}; }
+  std::vector<std::string> passes() const override { return {"sl.intensity", "sl"}; }
 };
 
 }  // namespace
@@ -184,12 +185,6 @@ std::filesystem::path cachePath(const std::string& key, const std::filesystem::p
 }
 
 std::filesystem::path cacheFolder() { return cacheDir(kCacheKind); }
-
-std::string noPassNote(std::size_t entities) {
-  return "note: effect sl: " + std::to_string(entities) +
-         (entities == 1 ? " entity's sphere set baked and posed" : " entities' sphere sets baked and posed") +
-         " each frame, but its GPU passes are not implemented yet: no pass";
-}
 
 SessionRuntime::SessionRuntime(ecs::Registry& registry, const std::filesystem::path& cookCache,
                                const std::filesystem::path& cacheDir) {
@@ -248,8 +243,37 @@ std::vector<std::string> SessionRuntime::profileLines() const {
   return {text};
 }
 
+void SessionRuntime::enableGpu(SessionContext& sc) {
+  if (participants_.empty()) return;
+  std::vector<const SphereSet*> sets;
+  int order = 3;
+  for (const Participant& p : participants_) {
+    sets.push_back(&p.set);
+    order = std::max(order, p.set.settings.order);
+  }
+  const Blocking blocking =
+      participants_.front().component.perObject ? Blocking::PerObject : Blocking::PerSphere;
+  if (sc.services.probeVolume)
+    indirect_ = std::make_unique<dnrt::ProbeSource>(*sc.services.probeVolume);
+  else
+    indirect_ = std::make_unique<incident::ConstantEnvironment>(sc.level.background);
+  node_ = std::make_unique<Node>(sc.ctx, sc.renderer.pipelines(), sc.renderer.frames().framesInFlight(), sets, order, blocking);
+}
+
 render::Renderer::GraphNode SessionRuntime::node() {
-  return [](rg::RenderGraph&, render::PassContext&) {};  // no pass yet (header comment)
+  if (!node_) return [](rg::RenderGraph&, render::PassContext&) {};
+  return [this](rg::RenderGraph& graph, render::PassContext& pc) {
+    posed_.clear();
+    objects_.clear();
+    indirectSh_.clear();
+    for (std::size_t o = 0; o < participants_.size(); ++o)
+      for (const PosedSphere& s : participants_[o].spheres) {
+        posed_.push_back(s);
+        objects_.push_back(std::uint32_t(o));
+        indirectSh_.push_back(indirect_->radianceSH(s.centre));
+      }
+    node_->addTo(graph, pc, posed_, objects_, indirectSh_);
+  };
 }
 
 }  // namespace bounce::gi::sl

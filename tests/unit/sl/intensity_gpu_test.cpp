@@ -151,7 +151,8 @@ TEST(SlIntensityGpu, ComputePassEqualsTheCppReferenceAtOrders3And4) {
     pass.setShadowAtlas(atlas.image.view(), atlas.sampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, false);
     for (std::uint64_t seed : {1u, 2u}) {
       const Frame f = randomFrame(set, seed + std::uint64_t(order) * 10);
-      pass.setFrame(f.posed, f.indirect, lights, {});
+      pass.setSpheres(f.posed, f.indirect);
+      pass.setLights(lights, {});
       expectMatches(runPass(ctx, pass), set, f, lights, order);
     }
   }
@@ -175,7 +176,8 @@ TEST(SlIntensityGpu, SeveralSetsConcatenate) {
   Frame all = fa;
   all.posed.insert(all.posed.end(), fb.posed.begin(), fb.posed.end());
   all.indirect.insert(all.indirect.end(), fb.indirect.begin(), fb.indirect.end());
-  pass.setFrame(all.posed, all.indirect, lights, {});
+  pass.setSpheres(all.posed, all.indirect);
+  pass.setLights(lights, {});
   const std::vector<glm::vec4> got = runPass(ctx, pass);
   expectMatches(std::vector<glm::vec4>(got.begin(), got.begin() + 5 * 16), a, fa, lights, 4);
   expectMatches(std::vector<glm::vec4>(got.begin() + 5 * 16, got.end()), b, fb, lights, 4);
@@ -196,7 +198,8 @@ TEST(SlIntensityGpu, ShadowAtlasVisibilityMultipliesTheLights) {
   const SphereSet* sets[] = {&set};
   IntensityPass pass(ctx, sets, 4);
   const Frame f = randomFrame(set, 3);
-  pass.setFrame(f.posed, f.indirect, lights, matrices);
+  pass.setSpheres(f.posed, f.indirect);
+  pass.setLights(lights, matrices);
   // The two expectations differ by much more than the tolerance: the lights carry a good share.
   const auto lit = intensityReference(set.spheres[0], 4, f.posed[0], lights, f.indirect[0]);
   const auto dark = intensityReference(set.spheres[0], 4, f.posed[0], {}, f.indirect[0]);
