@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <limits>
 
 #include "engine/anim/pose.hpp"
 #include "engine/core/error.hpp"
@@ -229,6 +230,13 @@ void SessionRuntime::update(const FrameUpdate& frame) {
     p.poser->pose(world ? world->matrix : glm::mat4(1.0f), frame.registry.tryGet<anim::Pose>(p.entity), p.spheres);
   }
   updateMs_.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+}
+
+double SessionRuntime::medianUpdateMs() const {
+  if (updateMs_.empty()) return std::numeric_limits<double>::quiet_NaN();
+  std::vector<double> sorted = updateMs_;
+  std::sort(sorted.begin(), sorted.end());
+  return sorted[sorted.size() / 2];
 }
 
 std::vector<std::string> SessionRuntime::profileLines() const {

@@ -65,6 +65,8 @@ class SessionRuntime final : public TechniqueRuntime {
   // "sl update: S spheres on E entities, CPU median X ms over F frames (§7.1 poses)": what
   // `bounce profile` prints after its table (the sl_update_ms).
   std::vector<std::string> profileLines() const override;
+  // The median CPU ms of update() so far (NaN before the first after construction): sl_update_ms.
+  double medianUpdateMs() const;
 
  private:
   ref::ReferenceAssets assets_;  // the cooked assets the posers read (skins, node hierarchy)
