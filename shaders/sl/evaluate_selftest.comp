@@ -1,8 +1,8 @@
 #version 450
 // Self-test of sl.glsl (pass 2's per-receiver evaluation): one invocation per receiver (p, n) writes
 // E(p) (Eq. 14); tests/unit/sl/shade_gpu_test.cpp compares it with sl::evaluate (the C++ reference).
-// Receivers (std430, bytes): binding 4 = {uint count; uint pad[3];} then Receiver[count], Receiver =
-// 32 (p.xyz, n.xyz in two vec4); binding 5 = vec4 irradiance[count]. Bindings 0–3: sl_data.glsl.
+// Receivers (std430, bytes): binding 3 = {uint count; uint pad[3];} then Receiver[count], Receiver =
+// 32 (p.xyz, n.xyz in two vec4); binding 4 = vec4 irradiance[count]. Bindings 0–2: sl_data.glsl.
 // Dispatch ceil(count / 64) groups.
 #extension GL_GOOGLE_include_directive : require
 
@@ -20,8 +20,8 @@ struct Receiver {
   vec4 p;
   vec4 n;
 };
-layout(std430, binding = 4) readonly buffer Receivers { uint count; uint pad0; uint pad1; uint pad2; Receiver items[]; } receivers;
-layout(std430, binding = 5) writeonly buffer Outputs { vec4 irradiance[]; } outputs;
+layout(std430, binding = 3) readonly buffer Receivers { uint count; uint pad0; uint pad1; uint pad2; Receiver items[]; } receivers;
+layout(std430, binding = 4) writeonly buffer Outputs { vec4 irradiance[]; } outputs;
 
 void main() {
   uint i = gl_GlobalInvocationID.x;

@@ -15,8 +15,7 @@
 //     at ‖f̂‖ = i/127 · 4 (ExpTables::olTable);
 //   uint slCount(); vec4 slSphere(uint i) (world centre, radius, metres); mat3 slRotation(uint i)
 //     (SL local → world); uint slObject(uint i); vec3 slIntensity(uint i, uint k) (L^c_k, pass 1);
-//   uint slGauntCount(); vec4 slGaunt(uint e) ((i, j, k, C_ijk), sorted by (k, i, j): sh_product.hpp).
-// Includes sh.glsl.
+// Includes sh.glsl and sl/gaunt.glsl (the SH square, generated from sh_product.hpp's tensor).
 #ifndef BOUNCE_SL_GLSL
 #define BOUNCE_SL_GLSL
 
@@ -31,6 +30,8 @@ const int kSlThetaEntries = 256;
 const int kSlMagEntries = 128;
 const float kSlMaxMagnitude = 4.0;
 const float kSlMaxExponent = 80.0;  // e^80 < FLT_MAX: the DC factor stays finite (C++: 700, double)
+
+#include "sl/gaunt.glsl"
 
 // Rules 1 (containment) and 2 (tangent plane) of evaluate.hpp; returns false when culled.
 bool slAdjust(inout vec3 c, inout float r, vec3 p, vec3 n) {
@@ -81,7 +82,7 @@ float slIrradiance(in float v[16], vec3 n) {
 }
 
 // The hybrid exp (sh_exp.hpp expHybrid): DC isolation, optimal-linear on f̂ halved k times until
-// ‖f̂‖ ≤ 4, then k squarings by the Gaunt tensor.
+// ‖f̂‖ ≤ 4, then k squarings (slSquare: the Gaunt tensor, unrolled).
 void slExp(in float f[16], out float g[16]) {
   float m2 = 0.0;
   for (uint i = 1u; i < kSlCoeffs; ++i) m2 += f[i] * f[i];
@@ -100,14 +101,7 @@ void slExp(in float f[16], out float g[16]) {
   for (uint i = 1u; i < 16u; ++i) g[i] = i < kSlCoeffs ? ab.y * (f[i] * scale) : 0.0;
   for (int s = 0; s < k; ++s) {
     float h[16];
-    for (uint i = 0u; i < 16u; ++i) h[i] = 0.0;
-    uint count = slGauntCount();
-    for (uint e = 0u; e < count; ++e) {
-      vec4 c = slGaunt(e);
-      uint gi = uint(c.x), gj = uint(c.y), gk = uint(c.z);
-      if (gk >= kSlCoeffs) break;  // sorted by k
-      if (gi < kSlCoeffs && gj < kSlCoeffs) h[gk] += c.w * g[gi] * g[gj];
-    }
+    slSquare(g, h);
     g = h;
   }
   float dc = exp(min(f[0] / kSlSqrt4Pi, kSlMaxExponent));

@@ -5,7 +5,6 @@
 #include "engine/core/error.hpp"
 #include "engine/gpu/commands.hpp"
 #include "engine/math/sh_exp.hpp"
-#include "engine/math/sh_product.hpp"
 
 namespace bounce::gi::sl {
 
@@ -39,16 +38,6 @@ ShadeData::ShadeData(gpu::Context& ctx, int order) : ctx_(ctx), order_(order) {
   tables_ = gpu::Image(ctx, d);
   gpu::upload(ctx, tables_, std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(texels.data()), texels.size() * sizeof(float)));
 
-  const auto& tensor = sh::gauntTensor();
-  if (tensor.size() > kMaxGauntEntries) throw InternalError("sl::ShadeData: Gaunt tensor larger than its uniform block");
-  std::vector<glm::vec4> g(1 + kMaxGauntEntries, glm::vec4(0.0f));
-  const std::uint32_t n = std::uint32_t(tensor.size());
-  std::memcpy(&g[0], &n, sizeof n);
-  for (std::size_t e = 0; e < tensor.size(); ++e)
-    g[1 + e] = glm::vec4(float(tensor[e].i), float(tensor[e].j), float(tensor[e].k), float(tensor[e].value));
-  gaunt_ = gpu::Buffer(ctx, {g.size() * sizeof(glm::vec4), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                             gpu::MemoryUsage::GpuOnly, "sl.gaunt"});
-  gpu::upload(ctx, gaunt_, std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(g.data()), g.size() * sizeof(glm::vec4)));
   spheres_ = gpu::Buffer(ctx, {(1 + 4 * std::size_t(kMaxShadedSpheres)) * sizeof(glm::vec4), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                                gpu::MemoryUsage::Upload, "sl.spheres"});
   std::memset(spheres_.mapped(), 0, spheres_.size());
@@ -72,15 +61,13 @@ void ShadeData::write(gpu::DescriptorWriter& w, std::uint32_t first, const gpu::
   if (intensity.size() < kIntensityBlockBytes) throw InternalError("sl::ShadeData: intensity buffer smaller than its block");
   w.sampledImage(first, tables_.view(), nearest)
       .buffer(first + 1, spheres_, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER)
-      .buffer(first + 2, intensity, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 0, kIntensityBlockBytes)
-      .buffer(first + 3, gaunt_, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER);
+      .buffer(first + 2, intensity, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 0, kIntensityBlockBytes);
 }
 
 std::vector<gpu::Binding> ShadeData::bindings(std::uint32_t first) {
   return {{first, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
           {first + 1, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
-          {first + 2, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
-          {first + 3, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER}};
+          {first + 2, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER}};
 }
 
 gpu::SpecConstants ShadeData::specialization(int order, Blocking blocking, std::uint32_t spheres) {

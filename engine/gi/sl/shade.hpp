@@ -1,9 +1,10 @@
 #pragma once
 // SL pass 2's device data (shaders/sl/sl_data.glsl declares it, sl.glsl reads it): the
 // scene-independent tables as one rgba32f texture read with texelFetch (the blocker log ZH and
-// Eq. 16's weight ZH by angular radius, the optimal-linear (a, b) by ‖f̂‖), the Gaunt tensor and this
-// frame's SLs as uniform blocks (DESIGN.md: no SSBOs in llvmpipe fragment shaders). Pass 1's
-// intensity buffer (IntensityPass::intensity()) is the fourth resource. Order, blocking and the
+// Eq. 16's weight ZH by angular radius, the optimal-linear (a, b) by ‖f̂‖) and this frame's SLs as
+// a uniform block (DESIGN.md: no SSBOs in llvmpipe fragment shaders). Pass 1's intensity buffer
+// (IntensityPass::intensity()) is the third resource. The hybrid exp's squarings use the Gaunt
+// tensor as generated code (shaders/sl/gaunt.glsl), not a buffer: unrolled, g stays in registers. Order, blocking and the
 // per-receiver array size are specialization constants of the pipelines that read it
 // (specialization() below).
 #include <cstdint>
@@ -20,10 +21,9 @@
 
 namespace bounce::gi::sl {
 
-// sl_data.glsl's capacities: the SLs one pass shades (the intensity block is 128·16 vec4 = 32 KiB,
-// half of the smallest maxUniformBufferRange Vulkan allows) and Gaunt entries (353 at order 4).
+// sl_data.glsl's capacity: the SLs one pass shades (the intensity block is 128·16 vec4 = 32 KiB,
+// half of the smallest maxUniformBufferRange Vulkan allows).
 inline constexpr std::uint32_t kMaxShadedSpheres = 128;
-inline constexpr std::uint32_t kMaxGauntEntries = 512;
 // Bytes of the intensity uniform block: IntensityPass allocates at least this.
 inline constexpr std::size_t kIntensityBlockBytes = std::size_t(kMaxShadedSpheres) * 16 * 16;
 
@@ -42,7 +42,7 @@ class ShadeData {
   // This frame's SLs (host-visible: read at the next submitted use). At most kMaxShadedSpheres.
   void setSpheres(std::span<const ShadedSphere> spheres);
   std::uint32_t count() const { return count_; }
-  // Writes the four sl_data.glsl bindings first … first + 3 (intensity: pass 1's buffer, ≥
+  // Writes the three sl_data.glsl bindings first … first + 2 (intensity: pass 1's buffer, ≥
   // kIntensityBlockBytes).
   void write(gpu::DescriptorWriter& w, std::uint32_t first, const gpu::Buffer& intensity, VkSampler nearest) const;
   // The bindings' types, for a set layout.
@@ -56,7 +56,7 @@ class ShadeData {
   int order_ = 4;
   std::uint32_t count_ = 0;
   gpu::Image tables_;
-  gpu::Buffer gaunt_, spheres_;
+  gpu::Buffer spheres_;
 };
 
 }  // namespace bounce::gi::sl
