@@ -131,8 +131,28 @@ class SlTechnique final : public Technique {
     return runtime;
   }
 
-  // None yet (left for the next session: spheres × order × blocking rows).
-  void accuracyRows(std::vector<AccuracyRow>&) const override {}
+  // spheres × SH order × blocking (issue 13), with the probes' indirect light as DNRT's rows have it.
+  void accuracyRows(std::vector<AccuracyRow>& rows) const override {
+    for (const int spheres : {8, 16, 32})
+      for (const int order : {3, 4})
+        for (const bool perObject : {false, true}) {
+          AccuracyRow r;
+          r.technique = "sl";
+          r.setting = "spheres=" + std::to_string(spheres) + ";order=" + std::to_string(order) +
+                      ";blocking=" + (perObject ? "per-object" : "per-sphere") + ";ref=all";
+          r.effects = {"direct", "shadows", "probes", "sl"};
+          r.passes = {"shadow", "lighting", "probes", "sl.intensity", "sl"};
+          r.configure = [=](scene::Level& level) {
+            for (auto& e : level.entities)
+              if (e.sl) {
+                e.sl->spheres = spheres;
+                e.sl->order = order;
+                e.sl->perObject = perObject;
+              }
+          };
+          rows.push_back(std::move(r));
+        }
+  }
   std::vector<std::string> passes() const override { return {"sl.intensity", "sl"}; }
 };
 
