@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <optional>
 
 #include "engine/core/error.hpp"
 #include "engine/core/paths.hpp"
@@ -47,6 +48,17 @@ int runBenchSl(const cli::Args& args) {
   }
   const auto res = args.resolution("--resolution").value_or(std::pair{1280, 720});
   const int frames = args.positiveInt("--frames", 3);
+  std::optional<float> influence;
+  if (args.has("--influence")) {
+    double f = -1.0;
+    try {
+      f = std::stod(args.str("--influence"));
+    } catch (const std::exception&) {
+    }
+    if (!(f == 0.0 || (f >= 3.0 && f <= 1000.0)))
+      throwInputError("bounce bench", "--influence", "'" + args.str("--influence") + "' out of range", "0 (off) or 3..1000");
+    influence = float(f);
+  }
 
   gpu::Context ctx({args.str("--device")});
   gpu::OffscreenPresenter presenter(ctx, {std::uint32_t(res.first), std::uint32_t(res.second)});
@@ -58,6 +70,7 @@ int runBenchSl(const cli::Args& args) {
         if (e.sl) {
           e.sl->spheres = n / entities;
           e.sl->perObject = perObject;
+          if (influence) e.sl->influence = *influence;
         }
       TimingCollector timings;
       double updateMs = std::numeric_limits<double>::quiet_NaN();
@@ -83,8 +96,11 @@ int runBenchSl(const cli::Args& args) {
           timed = s.frames;
         }
       if (found != 2) throw InternalError("bench sl: the session did not run both SL passes");
-      std::printf("spheres=%d blocking=%s %dx%d sl_ms=%.3f sl_update_ms=%.3f frames=%zu\n", n,
-                  perObject ? "per-object" : "per-sphere", res.first, res.second, slMs, updateMs, timed);
+      float f = 0.0f;
+      for (const auto& e : configured.entities)
+        if (e.sl) f = e.sl->influence;
+      std::printf("spheres=%d blocking=%s %dx%d sl_ms=%.3f sl_update_ms=%.3f frames=%zu influence=%g\n", n,
+                  perObject ? "per-object" : "per-sphere", res.first, res.second, slMs, updateMs, timed, double(f));
       std::fflush(stdout);
     }
   return 0;

@@ -120,6 +120,7 @@ const std::vector<cli::CommandSpec>& commandSpecs() {
         {"--bounces", "N", "rtf: inter-object bounces 1..4 (default 2)"},
         {"--objects", "N", "rtf: only the level's first N dynamic objects (default all)"},
         // bench sl (game/bench_sl.hpp); --level (default characters), --resolution (default 1280x720) and --frames (default 3) above also apply
+        {"--influence", "F", "sl: every sl component's influence (0 = off, else 3..1000 radii; default the level's)"},
         {"--only", "TEXT", "skinning: only the models whose name contains TEXT (e.g. +subdiv)"}},
        1, 1},
   };

@@ -10,6 +10,7 @@ layout(local_size_x = 64) in;
 layout(constant_id = 0) const uint kOrder = 4u;
 layout(constant_id = 1) const bool kPerObject = false;
 layout(constant_id = 2) const uint kSpheres = 64u;
+layout(constant_id = 3) const float kInfluence = 0.0;
 
 #define SL_SET 0
 #define SL_BINDING 0

@@ -8,6 +8,7 @@
 layout(constant_id = 0) const uint kOrder = 4u;
 layout(constant_id = 1) const bool kPerObject = false;
 layout(constant_id = 2) const uint kSpheres = 64u;
+layout(constant_id = 3) const float kInfluence = 0.0;
 
 #include "frame.glsl"
 

@@ -8,7 +8,8 @@
 //
 // The includer defines before including this file:
 //   const uint kOrder (3 or 4), const bool kPerObject (§7.2 per-object blocking, else per-sphere),
-//   const uint kSpheres (≥ the SL count: sizes the per-receiver arrays) — specialization constants;
+//   const uint kSpheres (≥ the SL count: sizes the per-receiver arrays), const float kInfluence
+//   (evaluate.hpp rule 0's F; 0: off) — specialization constants;
 //   sampler2D slTables: rgba32f, 256×3, read with texelFetch — row 0 texel i: the blocker log ZH
 //     (sh_exp.hpp ExpTables::logTable) at θ_i = i/255 · π/2, row 1: Eq. 16's weight ZH
 //     (evaluate.hpp averageRadianceTable) at θ_i, row 2 texel i < 128: the optimal-linear (a, b)
@@ -33,10 +34,11 @@ const float kSlMaxExponent = 80.0;  // e^80 < FLT_MAX: the DC factor stays finit
 
 #include "sl/gaunt.glsl"
 
-// Rules 1 (containment) and 2 (tangent plane) of evaluate.hpp; returns false when culled.
+// Rules 0 (influence), 1 (containment) and 2 (tangent plane) of evaluate.hpp; false when culled.
 bool slAdjust(inout vec3 c, inout float r, vec3 p, vec3 n) {
   float d = length(c - p);
   r = max(0.0, r);
+  if (kInfluence > 0.0 && d > 0.5 * kInfluence * r) r *= clamp((kInfluence - d / r) / (0.5 * kInfluence), 0.0, 1.0);
   if (d < r) {
     float t = d / r;
     r = d * clamp((t - kSlCullFraction) / (1.0 - kSlCullFraction), 0.0, 1.0);

@@ -18,7 +18,7 @@ std::vector<gpu::Binding> inputBindings() {
 }  // namespace
 
 Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t framesInFlight,
-           std::span<const SphereSet* const> sets, int order, Blocking blocking)
+           std::span<const SphereSet* const> sets, int order, Blocking blocking, float influence)
     : ctx_(ctx),
       order_(order),
       blocking_(blocking),
@@ -38,7 +38,7 @@ Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t fra
   d.fragment = &frag_;
   d.colorFormats = {kHdrFormat};
   d.blend = gpu::Blend::Additive;
-  d.specialization = ShadeData::specialization(order, blocking, spheres_);
+  d.specialization = ShadeData::specialization(order, blocking, spheres_, influence);
   d.name = std::string("sl.") + (blocking == Blocking::PerObject ? "per-object" : "per-sphere") + ".sh" +
            std::to_string(order * order);
   pipeline_ = gpu::createGraphicsPipeline(ctx, layout_, d);

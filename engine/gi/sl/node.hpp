@@ -24,9 +24,10 @@ namespace bounce::gi::sl {
 
 class Node {
  public:
-  // `sets` (not owned, must outlive the node) in participant order; `order` ≥ every set's order.
+  // `sets` (not owned, must outlive the node) in participant order; `order` ≥ every set's order;
+  // `influence`: evaluate.hpp rule 0's F (0: off).
   Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t framesInFlight,
-       std::span<const SphereSet* const> sets, int order, Blocking blocking);
+       std::span<const SphereSet* const> sets, int order, Blocking blocking, float influence);
   // This frame's SLs, concatenated over the sets: pose, object index, probes' SH at the centre.
   void addTo(rg::RenderGraph& graph, const render::PassContext& pc, std::span<const PosedSphere> posed,
              std::span<const std::uint32_t> objects, std::span<const incident::RadianceSH> indirect);

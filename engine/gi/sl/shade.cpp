@@ -70,9 +70,11 @@ std::vector<gpu::Binding> ShadeData::bindings(std::uint32_t first) {
           {first + 2, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER}};
 }
 
-gpu::SpecConstants ShadeData::specialization(int order, Blocking blocking, std::uint32_t spheres) {
+gpu::SpecConstants ShadeData::specialization(int order, Blocking blocking, std::uint32_t spheres, float influence) {
   const std::uint32_t size = std::max<std::uint32_t>(8, (spheres + 7) / 8 * 8);
-  return {std::uint32_t(order), blocking == Blocking::PerObject ? 1u : 0u, size};
+  std::uint32_t f = 0;
+  std::memcpy(&f, &influence, sizeof f);
+  return {std::uint32_t(order), blocking == Blocking::PerObject ? 1u : 0u, size, f};
 }
 
 }  // namespace bounce::gi::sl

@@ -47,9 +47,9 @@ class ShadeData {
   void write(gpu::DescriptorWriter& w, std::uint32_t first, const gpu::Buffer& intensity, VkSampler nearest) const;
   // The bindings' types, for a set layout.
   static std::vector<gpu::Binding> bindings(std::uint32_t first);
-  // Constant ids 0, 1, 2 of sl.glsl's includers: kOrder, kPerObject, kSpheres (the per-receiver
-  // arrays' size: the SL count rounded up to a multiple of 8, at least 8).
-  static gpu::SpecConstants specialization(int order, Blocking blocking, std::uint32_t spheres);
+  // Constant ids 0–3 of sl.glsl's includers: kOrder, kPerObject, kSpheres (the per-receiver
+  // arrays' size: the SL count rounded up to a multiple of 8, at least 8), kInfluence (F, 0: off).
+  static gpu::SpecConstants specialization(int order, Blocking blocking, std::uint32_t spheres, float influence = 0.0f);
 
  private:
   gpu::Context& ctx_;

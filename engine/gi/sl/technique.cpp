@@ -285,7 +285,8 @@ void SessionRuntime::enableGpu(SessionContext& sc) {
     indirect_ = std::make_unique<dnrt::ProbeSource>(*sc.services.probeVolume);
   else
     indirect_ = std::make_unique<incident::ConstantEnvironment>(sc.level.background);
-  node_ = std::make_unique<Node>(sc.ctx, sc.renderer.pipelines(), sc.renderer.frames().framesInFlight(), sets, order, blocking);
+  node_ = std::make_unique<Node>(sc.ctx, sc.renderer.pipelines(), sc.renderer.frames().framesInFlight(), sets, order,
+                                 blocking, participants_.front().component.influence);
 }
 
 render::Renderer::GraphNode SessionRuntime::node() {

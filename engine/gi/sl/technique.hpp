@@ -57,7 +57,8 @@ class SessionRuntime final : public TechniqueRuntime {
   SessionRuntime(ecs::Registry& registry, const std::filesystem::path& cookCache, const std::filesystem::path& cacheDir);
   void update(const FrameUpdate& frame) override;
   // The GPU side (node.hpp): without it (CPU tests) node() adds nothing. Pass order = the highest
-  // of the components' orders; blocking = the first participant's (one pass shades every SL).
+  // of the components' orders; blocking and influence = the first participant's (one pass shades
+  // every SL).
   void enableGpu(SessionContext& sc);
   render::Renderer::GraphNode node() override;
   bool drawsPasses() const override { return node_ != nullptr; }

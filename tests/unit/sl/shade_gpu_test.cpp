@@ -89,7 +89,7 @@ Scene column(int order) {
 }
 
 std::vector<glm::vec3> runShader(gpu::Context& ctx, const Scene& s, std::span<const Receiver> receivers, int order,
-                                 Blocking blocking) {
+                                 Blocking blocking, float influence = 0.0f) {
   ShadeData data(ctx, order);
   data.setSpheres(s.shaded);
   gpu::Buffer intensity(ctx, {kIntensityBlockBytes, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::MemoryUsage::Upload, "sl.test.intensity"});
@@ -109,7 +109,7 @@ std::vector<glm::vec3> runShader(gpu::Context& ctx, const Scene& s, std::span<co
   gpu::PipelineLayout pipelineLayout(ctx, {layout.handle()}, {}, "sl.test");
   gpu::Pipeline pipeline =
       gpu::createComputePipeline(ctx, pipelineLayout, gpu::ShaderModule(ctx, "sl/evaluate_selftest.comp.spv"), "sl.test",
-                                 nullptr, ShadeData::specialization(order, blocking, std::uint32_t(s.shaded.size())));
+                                 nullptr, ShadeData::specialization(order, blocking, std::uint32_t(s.shaded.size()), influence));
   gpu::SamplerCache samplers(ctx);
   gpu::SamplerDesc nearest;
   nearest.filter = VK_FILTER_NEAREST;
@@ -153,10 +153,11 @@ std::vector<Receiver> planeAndHardReceivers(const Scene& s) {
 // other side — are skipped when `skipped` is given: those whose C++ value moves by more than the
 // tolerance when p moves ±1e-4 m. The caller bounds how many.
 void expectMatches(const Scene& s, std::span<const Receiver> receivers, const std::vector<glm::vec3>& gpu, int order,
-                   Blocking blocking, double* worst, int* skipped = nullptr) {
+                   Blocking blocking, double* worst, int* skipped = nullptr, double influence = 0.0) {
   EvalSettings es;
   es.order = order;
   es.blocking = blocking;
+  es.influence = influence;
   int lit = 0;
   for (std::size_t i = 0; i < receivers.size(); ++i) {
     const glm::dvec3 p(receivers[i].p), n(receivers[i].n);
@@ -281,4 +282,43 @@ TEST(SlShadeGpu, SphereSlidingThroughTheTangentPlaneIsContinuous) {
     }
   }
   std::printf("sliding sphere: worst |GPU - C++| / scale = %.3g\n", worst);
+}
+
+// Rule 0 (influence F = 4 radii, small enough that most of the fixture's SLs fade or vanish at some
+// receivers): GLSL = C++ with it on, it changes the result (so it is exercised), and a receiver
+// moving away from a lone sphere through the fade (t = 1.5 … 5 radii, steps of 1e-4 R) sees a
+// continuous output that reaches exactly 0 beyond F.
+TEST(SlShadeGpu, InfluenceCullingMatchesAndFadesContinuously) {
+  gpu::Context& ctx = gpu::testkit::sharedContext();
+  const Scene s = twoObjects(4);
+  const std::vector<Receiver> r = planeAndHardReceivers(s);
+  const std::vector<glm::vec3> on = runShader(ctx, s, r, 4, Blocking::PerSphere, 4.0f);
+  double worst = 0.0;
+  expectMatches(s, r, on, 4, Blocking::PerSphere, &worst, nullptr, 4.0);
+  const std::vector<glm::vec3> off = runShader(ctx, s, r, 4, Blocking::PerSphere, 0.0f);
+  int changed = 0;
+  for (std::size_t i = 0; i < r.size(); ++i) changed += glm::length(on[i] - off[i]) > 1e-2f * glm::length(off[i]);
+  EXPECT_GT(changed, int(r.size()) / 4);
+  std::printf("influence 4: worst |GPU - C++| / scale = %.3g, %d of %zu receivers changed by > 1%%\n", worst, changed, r.size());
+
+  math::Pcg32 rng(9);
+  Scene one;
+  const float R = 0.2f;
+  addLight(one, glm::vec3(0.0f, 0.0f, 0.0f), R, 0, rng, 4);
+  std::vector<Receiver> path;
+  const int steps = 35000;
+  for (int i = 0; i <= steps; ++i) {
+    const float t = 1.5f + 3.5f * float(i) / float(steps);
+    path.push_back({glm::vec4(0.0f, -0.6f * t * R, -0.8f * t * R, 0.0f), glm::vec4(0.0f, 0.6f, 0.8f, 0.0f)});
+  }
+  const std::vector<glm::vec3> e = runShader(ctx, one, path, 4, Blocking::PerSphere, 4.0f);
+  double peak = 0.0, worstStep = 0.0;
+  for (std::size_t i = 0; i < e.size(); ++i) {
+    peak = std::max(peak, double(glm::length(e[i])));
+    if (i > 0) worstStep = std::max(worstStep, double(glm::length(e[i] - e[i - 1])));
+  }
+  ASSERT_GT(peak, 1e-2);
+  EXPECT_LE(worstStep, 2e-3 * peak);
+  EXPECT_EQ(glm::length(e.back()), 0.0f);  // t = 5 > F: nothing
+  std::printf("influence fade: worst step %.3g of peak\n", worstStep / peak);
 }
