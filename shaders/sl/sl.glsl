@@ -16,6 +16,7 @@
 //     at ‖f̂‖ = i/127 · 4 (ExpTables::olTable);
 //   uint slCount(); vec4 slSphere(uint i) (world centre, radius, metres); mat3 slRotation(uint i)
 //     (SL local → world); uint slObject(uint i); vec3 slIntensity(uint i, uint k) (L^c_k, pass 1);
+//     uint slObjectCount() (ids 0 … count − 1); vec4 slObjectCentre(uint o) (mean sphere centre, count);
 // Includes sh.glsl and sl/gaunt.glsl (the SH square, generated from sh_product.hpp's tensor).
 #ifndef BOUNCE_SL_GLSL
 #define BOUNCE_SL_GLSL
@@ -220,16 +221,10 @@ vec3 slIrradianceAt(vec3 p, vec3 n) {
       // The next object: least (distance, id) above (last, lastId) — evaluate.cpp sorts (dist, id).
       float best = 3.4e38;
       uint bestId = 0xffffffffu;
-      for (uint i = 0u; i < count; ++i) {
-        uint id = slObject(i);
-        vec3 sum = vec3(0.0);
-        float m = 0.0;
-        for (uint j = 0u; j < count; ++j)
-          if (slObject(j) == id) {
-            sum += slSphere(j).xyz;
-            m += 1.0;
-          }
-        float d = length(sum / m - p);
+      for (uint id = 0u; id < slObjectCount(); ++id) {
+        vec4 oc = slObjectCentre(id);
+        if (oc.w < 0.5) continue;  // no sphere has this id
+        float d = length(oc.xyz - p);
         bool after = d > last || (d == last && id > lastId);
         if (after && (d < best || (d == best && id < bestId))) {
           best = d;

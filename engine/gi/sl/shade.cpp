@@ -38,16 +38,26 @@ ShadeData::ShadeData(gpu::Context& ctx, int order) : ctx_(ctx), order_(order) {
   tables_ = gpu::Image(ctx, d);
   gpu::upload(ctx, tables_, std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(texels.data()), texels.size() * sizeof(float)));
 
-  spheres_ = gpu::Buffer(ctx, {(1 + 4 * std::size_t(kMaxShadedSpheres)) * sizeof(glm::vec4), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+  spheres_ = gpu::Buffer(ctx, {(1 + 5 * std::size_t(kMaxShadedSpheres)) * sizeof(glm::vec4), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                                gpu::MemoryUsage::Upload, "sl.spheres"});
   std::memset(spheres_.mapped(), 0, spheres_.size());
 }
 
 void ShadeData::setSpheres(std::span<const ShadedSphere> spheres) {
   if (spheres.size() > kMaxShadedSpheres) throw InternalError("sl::ShadeData: more SLs than the uniform block holds");
-  std::vector<glm::vec4> v(1 + 4 * spheres.size(), glm::vec4(0.0f));
+  std::vector<glm::vec4> v(1 + 5 * std::size_t(kMaxShadedSpheres), glm::vec4(0.0f));
   count_ = std::uint32_t(spheres.size());
-  std::memcpy(&v[0], &count_, sizeof count_);
+  std::uint32_t objects = 0;
+  for (const ShadedSphere& s : spheres) objects = std::max(objects, s.object + 1);
+  if (objects > kMaxShadedSpheres) throw InternalError("sl::ShadeData: object index beyond the uniform block");
+  const std::uint32_t header[2] = {count_, objects};
+  std::memcpy(&v[0], header, sizeof header);
+  // Per-object blocking's order (evaluate.cpp: the mean of each object's sphere centres), in double
+  // as the reference sums it.
+  std::vector<glm::dvec4> mean(objects, glm::dvec4(0.0));
+  for (const ShadedSphere& s : spheres) mean[s.object] += glm::dvec4(glm::dvec3(s.centre), 1.0);
+  for (std::uint32_t o = 0; o < objects; ++o)
+    if (mean[o].w > 0.0) v[1 + 4 * std::size_t(kMaxShadedSpheres) + o] = glm::vec4(glm::dvec3(mean[o]) / mean[o].w, mean[o].w);
   for (std::size_t i = 0; i < spheres.size(); ++i) {
     const ShadedSphere& s = spheres[i];
     v[1 + 4 * i] = glm::vec4(s.centre, s.radius);
