@@ -322,3 +322,43 @@ TEST(SlShadeGpu, InfluenceCullingMatchesAndFadesContinuously) {
   EXPECT_EQ(glm::length(e.back()), 0.0f);  // t = 5 > F: nothing
   std::printf("influence fade: worst step %.3g of peak\n", worstStep / peak);
 }
+
+// The scale and size hard cases through the GPU path: the two-object scene scaled by 1e-6
+// and 1e6 (lengths only: every angle, so E, is unchanged) gives the scale-1 result within the
+// tolerance, and = C++ at that scale; a zero-radius SL adds nothing, and a huge one (radius 1e3 m,
+// its surface 0.5 m above the plane) keeps every output finite and = C++.
+TEST(SlShadeGpu, ScalesAndZeroAndHugeSpheres) {
+  gpu::Context& ctx = gpu::testkit::sharedContext();
+  const Scene base = twoObjects(4);
+  const std::vector<Receiver> r = planeAndHardReceivers(base);
+  const std::vector<glm::vec3> e1 = runShader(ctx, base, r, 4, Blocking::PerSphere);
+  for (double scale : {1e-6, 1e6}) {
+    Scene s = base;
+    for (Light& l : s.lights) l.sphere = {l.sphere.centre * scale, l.sphere.radius * scale};
+    for (ShadedSphere& g : s.shaded) g.centre *= float(scale), g.radius *= float(scale);
+    std::vector<Receiver> rs = r;
+    for (Receiver& x : rs) x.p *= float(scale);
+    const std::vector<glm::vec3> es = runShader(ctx, s, rs, 4, Blocking::PerSphere);
+    double worst = 0.0;
+    expectMatches(s, rs, es, 4, Blocking::PerSphere, &worst);
+    double peak = 0.0, diff = 0.0;
+    for (std::size_t i = 0; i < r.size(); ++i) {
+      peak = std::max(peak, double(glm::length(e1[i])));
+      diff = std::max(diff, double(glm::length(es[i] - e1[i])));
+    }
+    EXPECT_LE(diff, kTolerance * peak) << "scale " << scale;
+    std::printf("scale %g: worst |GPU - C++| / scale %.3g, worst |E(scaled) - E(1)| %.3g of the peak\n", scale, worst,
+                diff / peak);
+  }
+  math::Pcg32 rng(31);
+  Scene zero = base;
+  addLight(zero, {0.0f, 0.0f, 0.3f}, 0.0f, 7, rng, 4);
+  const std::vector<glm::vec3> ez = runShader(ctx, zero, r, 4, Blocking::PerSphere);
+  for (std::size_t i = 0; i < r.size(); ++i) EXPECT_EQ(ez[i], e1[i]) << "receiver " << i;
+  Scene huge = base;
+  addLight(huge, {0.0f, 0.0f, 1000.5f}, 1000.0f, 8, rng, 4);
+  const std::vector<glm::vec3> eh = runShader(ctx, huge, r, 4, Blocking::PerSphere);
+  double worst = 0.0;
+  expectMatches(huge, r, eh, 4, Blocking::PerSphere, &worst);
+  std::printf("huge sphere: worst |GPU - C++| / scale %.3g\n", worst);
+}
