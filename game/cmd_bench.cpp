@@ -13,6 +13,7 @@
 #include "engine/gi/vlm/grid.hpp"
 #include "game/bench_rtf.hpp"
 #include "game/bench_skinning.hpp"
+#include "game/bench_sl.hpp"
 #include "game/bench_vlm_gpu.hpp"
 #include "game/commands.hpp"
 
@@ -41,8 +42,9 @@ int runBench(const cli::Args& args) {
   if (what == "dnrt") return runBenchDnrt(args);  // bench_dnrt.cpp
   if (what == "skinning") return runBenchSkinning(args);  // bench_skinning.cpp
   if (what == "rtf") return runBenchRtf(args);  // bench_rtf.cpp
+  if (what == "sl") return runBenchSl(args);    // bench_sl.cpp
   if (what != "vlm-grid")
-    throwInputError("bounce bench", "benchmark", "unknown benchmark '" + what + "'", "vlm-grid, vlm-lights, vlm-k, dnrt, skinning or rtf");
+    throwInputError("bounce bench", "benchmark", "unknown benchmark '" + what + "'", "vlm-grid, vlm-lights, vlm-k, dnrt, skinning, rtf or sl");
   const int lights = args.positiveInt("--lights", 10000);
   const int grid = args.positiveInt("--grid", 50);
   const int k = args.positiveInt("--k", 32);

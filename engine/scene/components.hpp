@@ -176,6 +176,9 @@ struct Sl {
   int spheres = 16;        // 1..64 (gi::sl::kMaxSpheres; levels use 8..64)
   int order = 4;           // SH order of the basis sums, albedo and intensity: 3 or 4
   bool perObject = false;  // "blocking": "per-object" (true) or "per-sphere" (false, the default)
+  // "influence": F of sl::evaluate's rule 0 — a receiver ignores SLs farther than F radii (fading
+  // from F/2); 0 = every SL at every pixel. Run time only (pass 2), the bake is the same.
+  float influence = 12.0f;
   friend bool operator==(const Sl&, const Sl&) = default;
 };
 

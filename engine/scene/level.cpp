@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <unordered_map>
 
@@ -175,10 +176,11 @@ void parseDnrt(const json::Node& node, EntityDesc& d, const ParseContext&) {
   d.dnrt = c;
 }
 
-// "sl": {"spheres": 1..64, "order": 3|4, "blocking": "per-sphere"|"per-object"} — every key optional
-//        (defaults 16, 4, per-sphere). The sphere limit is gi::sl::kMaxSpheres (one uint64 mask).
+// "sl": {"spheres": 1..64, "order": 3|4, "blocking": "per-sphere"|"per-object", "influence": 0|3..1000}
+//        — every key optional (defaults 16, 4, per-sphere, 12). The sphere limit is gi::sl::kMaxSpheres
+//        (one uint64 mask).
 void parseSl(const json::Node& node, EntityDesc& d, const ParseContext&) {
-  const auto o = node.object({"spheres", "order", "blocking"});
+  const auto o = node.object({"spheres", "order", "blocking", "influence"});
   Sl c;
   if (auto v = o.optional("spheres")) c.spheres = int(v->integer(1, 64));
   if (auto v = o.optional("order")) {
@@ -189,6 +191,15 @@ void parseSl(const json::Node& node, EntityDesc& d, const ParseContext&) {
     const std::string m = v->string();
     if (m != "per-sphere" && m != "per-object") v->fail("unknown blocking " + json::inQuotes(m), "per-sphere or per-object");
     c.perObject = m == "per-object";
+  }
+  if (auto v = o.optional("influence")) {
+    const double f = v->real(json::Range::closed(0.0, 1000.0));
+    if (f > 0.0 && f < 3.0) {
+      char text[64];
+      std::snprintf(text, sizeof text, "influence %g", f);
+      v->fail(text, "0 (off) or 3..1000 sphere radii");
+    }
+    c.influence = float(f);
   }
   d.sl = c;
 }

@@ -18,7 +18,7 @@ namespace bounce::gi::sl {
 namespace {
 
 constexpr double kPi = math::kPi;
-constexpr int kThetaEntries = 256;  // w_θ table, θ in [0, π/2]
+constexpr int kThetaEntries = kAverageRadianceEntries;  // w_θ table, θ in [0, π/2]
 constexpr int kGaussNodes = 96;     // over the lit cap; the integrand is smooth there
 // Below this unoccluded Eq. 23 Ṽ (sr) the ratio is not formed: the cap is at the horizon or a few
 // 1e-9 of a steradian, and the exact Ṽ alone is used (continuous: both tend to 0 together).
@@ -50,6 +50,7 @@ class RadianceTable {
       for (int l = 0; l < order; ++l) row[l] = acc[l] / norm;
     }
   }
+  std::span<const double> rows() const { return table_; }
   std::vector<double> lookup(double theta) const {
     const double x = std::clamp(theta, 0.0, 0.5 * kPi) / (0.5 * kPi) * (kThetaEntries - 1);
     const int i0 = std::min(static_cast<int>(x), kThetaEntries - 2);
@@ -108,10 +109,12 @@ bool intersects(const Light& a, const Light& b) {
 
 }  // namespace
 
-Adjusted adjustForReceiver(const Sphere& s, const glm::dvec3& p, const glm::dvec3& n) {
+Adjusted adjustForReceiver(const Sphere& s, const glm::dvec3& p, const glm::dvec3& n, double influence) {
   Adjusted out{s, false};
   const double d = glm::length(s.centre - p);
   double r = std::max(0.0, s.radius);
+  // Rule 0: influence.
+  if (influence > 0.0 && d > 0.5 * influence * r) r *= std::clamp((influence - d / r) / (0.5 * influence), 0.0, 1.0);
   // Rule 1: containment.
   if (d < r) {
     const double t = d / r;
@@ -143,6 +146,8 @@ double cosGamma(double alpha, double theta) {
 
 std::vector<double> averageRadianceZonal(double theta, int order) { return radianceTable(order).lookup(theta); }
 
+std::span<const double> averageRadianceTable(int order) { return radianceTable(order).rows(); }
+
 Evaluation evaluate(std::span<const Light> lights, const glm::dvec3& p, const glm::dvec3& n,
                     const EvalSettings& settings) {
   const int order = settings.order;
@@ -155,7 +160,7 @@ Evaluation evaluate(std::span<const Light> lights, const glm::dvec3& p, const gl
   std::vector<Prepared> prep(lights.size());
   for (std::size_t i = 0; i < lights.size(); ++i) {
     if (lights[i].intensity.size() != nc) throw InternalError("sl::evaluate: intensity has the wrong SH count");
-    const Adjusted a = adjustForReceiver(lights[i].sphere, p, n);
+    const Adjusted a = adjustForReceiver(lights[i].sphere, p, n, settings.influence);
     Prepared& q = prep[i];
     q.s = a.sphere;
     q.dist = glm::length(a.sphere.centre - p);
@@ -268,11 +273,11 @@ std::vector<glm::dvec3> intensityFromSamples(std::span<const glm::dvec3> sampleR
 }
 
 std::vector<double> environmentVisibility(std::span<const Light> lights, const glm::dvec3& p, const glm::dvec3& n,
-                                          int order, sh::LogKind kind) {
+                                          int order, sh::LogKind kind, double influence) {
   const sh::ExpTables& tables = sh::expTables(order, kind);
   std::vector<double> sum(std::size_t(order) * order, 0.0);
   for (const Light& l : lights) {
-    const Adjusted a = adjustForReceiver(l.sphere, p, n);
+    const Adjusted a = adjustForReceiver(l.sphere, p, n, influence);
     const double d = glm::length(a.sphere.centre - p);
     if (a.culled || !(d > 0.0)) continue;
     addTo(sum, tables.logBlocker(std::asin(std::min(1.0, a.sphere.radius / d)), (a.sphere.centre - p) / d));

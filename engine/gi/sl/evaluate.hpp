@@ -27,6 +27,11 @@
 //     h + r₁ ≤ 0 (entirely below) culls it.
 // After both, no sphere contains p or reaches below its tangent plane, so every angular radius is
 // ≤ π/2, the range of the log table.
+//  0. influence (optional, EvalSettings::influence = F > 0; ours, for cost): with t = |c − p| / r, a
+//     sphere far from p fades out — r₀ = r · clamp((F − t) / (F/2), 0, 1): unchanged up to t = F/2
+//     (angular radius asin(2/F)), shrinking continuously to nothing at t = F — so a receiver only
+//     pays for the spheres near it (the "influence bounds", as Unreal's capsule shadows
+//     cull capsules by theirs). Applied before rules 1–2 (which act at t ≤ 1 < F/2).
 #include <span>
 #include <vector>
 
@@ -48,8 +53,8 @@ struct Adjusted {
   Sphere sphere;
   bool culled = false;
 };
-// Rules 1 and 2 above for one sphere at receiver (p, n).
-Adjusted adjustForReceiver(const Sphere& s, const glm::dvec3& p, const glm::dvec3& n);
+// Rules 0 (when influence > 0), 1 and 2 above for one sphere at receiver (p, n).
+Adjusted adjustForReceiver(const Sphere& s, const glm::dvec3& p, const glm::dvec3& n, double influence = 0.0);
 
 // Eq. 17: cos γ at angular distance α from the direction centre → p, for a sphere of angular radius θ
 // seen from p; max(0, ·). Equal to (cos α − sin θ) / √(1 − 2 sin θ cos α + sin² θ).
@@ -60,6 +65,10 @@ double cosGamma(double alpha, double theta);
 // (3 or 4) by 1D Gauss–Legendre quadrature over the lit cap cos α ∈ [sin θ, 1]; at θ = π/2 (p on the
 // sphere) the weight is a delta towards p.
 std::vector<double> averageRadianceZonal(double theta, int order);
+// The table itself for upload (pass 2 reads it as a texture): row i (θ_i = i/255 · π/2) at
+// [i·order, i·order + order).
+std::span<const double> averageRadianceTable(int order);
+inline constexpr int kAverageRadianceEntries = 256;
 
 // One spherical light as pass 2 sees it.
 struct Light {
@@ -89,6 +98,7 @@ struct EvalSettings {
   Blocking blocking = Blocking::PerSphere;
   VisibilityForm visibility = VisibilityForm::Ratio;
   sh::LogKind log = sh::LogKind::Windowed;  // which blocker log table (sh_exp.hpp)
+  double influence = 0.0;  // rule 0's F (> 2), or 0: every sphere counts at every receiver
 };
 
 // Per light, for tests and the GLSL comparison: the adjusted geometry and the two factors.
@@ -120,6 +130,6 @@ std::vector<glm::dvec3> intensityFromSamples(std::span<const glm::dvec3> sampleR
 // shadow the dynamic objects cast on distant/probe light). Dot with a cosine-convolved radiance to
 // shade.
 std::vector<double> environmentVisibility(std::span<const Light> lights, const glm::dvec3& p, const glm::dvec3& n,
-                                          int order, sh::LogKind kind = sh::LogKind::Windowed);
+                                          int order, sh::LogKind kind = sh::LogKind::Windowed, double influence = 0.0);
 
 }  // namespace bounce::gi::sl

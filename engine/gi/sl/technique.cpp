@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <limits>
 
 #include "engine/anim/pose.hpp"
 #include "engine/core/error.hpp"
@@ -10,6 +11,7 @@
 #include "engine/core/log.hpp"
 #include "engine/core/paths.hpp"
 #include "engine/gi/dnrt/object_scene.hpp"
+#include "engine/gi/dnrt/probe_source.hpp"
 #include "engine/scene/components.hpp"
 
 namespace bounce::gi::sl {
@@ -125,13 +127,33 @@ class SlTechnique final : public Technique {
 
   std::unique_ptr<TechniqueRuntime> create(SessionContext& sc) const override {
     auto runtime = std::make_unique<SessionRuntime>(sc.registry, sc.cookCache, cacheFolder());
-    printNoteOnce(noPassNote(runtime->participants().size()));
+    runtime->enableGpu(sc);
     return runtime;
   }
 
-  // None until pass 2 exists (a row needs its pass to time and render).
-  void accuracyRows(std::vector<AccuracyRow>&) const override {}
-  std::vector<std::string> passes() const override { return {}; }
+  // spheres × SH order × blocking (issue 13), with the probes' indirect light as DNRT's rows have it.
+  void accuracyRows(std::vector<AccuracyRow>& rows) const override {
+    for (const int spheres : {8, 16, 32})
+      for (const int order : {3, 4})
+        for (const bool perObject : {false, true}) {
+          AccuracyRow r;
+          r.technique = "sl";
+          r.setting = "spheres=" + std::to_string(spheres) + ";order=" + std::to_string(order) +
+                      ";blocking=" + (perObject ? "per-object" : "per-sphere") + ";ref=all";
+          r.effects = {"direct", "shadows", "probes", "sl"};
+          r.passes = {"shadow", "lighting", "probes", "sl.intensity", "sl"};
+          r.configure = [=](scene::Level& level) {
+            for (auto& e : level.entities)
+              if (e.sl) {
+                e.sl->spheres = spheres;
+                e.sl->order = order;
+                e.sl->perObject = perObject;
+              }
+          };
+          rows.push_back(std::move(r));
+        }
+  }
+  std::vector<std::string> passes() const override { return {"sl.intensity", "sl"}; }
 };
 
 }  // namespace
@@ -185,12 +207,6 @@ std::filesystem::path cachePath(const std::string& key, const std::filesystem::p
 
 std::filesystem::path cacheFolder() { return cacheDir(kCacheKind); }
 
-std::string noPassNote(std::size_t entities) {
-  return "note: effect sl: " + std::to_string(entities) +
-         (entities == 1 ? " entity's sphere set baked and posed" : " entities' sphere sets baked and posed") +
-         " each frame, but its GPU passes are not implemented yet: no pass";
-}
-
 SessionRuntime::SessionRuntime(ecs::Registry& registry, const std::filesystem::path& cookCache,
                                const std::filesystem::path& cacheDir) {
   const std::vector<ecs::Entity> entities = participantsOf(registry);
@@ -236,6 +252,13 @@ void SessionRuntime::update(const FrameUpdate& frame) {
   updateMs_.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
 }
 
+double SessionRuntime::medianUpdateMs() const {
+  if (updateMs_.empty()) return std::numeric_limits<double>::quiet_NaN();
+  std::vector<double> sorted = updateMs_;
+  std::sort(sorted.begin(), sorted.end());
+  return sorted[sorted.size() / 2];
+}
+
 std::vector<std::string> SessionRuntime::profileLines() const {
   if (updateMs_.empty()) return {};
   std::vector<double> sorted = updateMs_;
@@ -248,8 +271,38 @@ std::vector<std::string> SessionRuntime::profileLines() const {
   return {text};
 }
 
+void SessionRuntime::enableGpu(SessionContext& sc) {
+  if (participants_.empty()) return;
+  std::vector<const SphereSet*> sets;
+  int order = 3;
+  for (const Participant& p : participants_) {
+    sets.push_back(&p.set);
+    order = std::max(order, p.set.settings.order);
+  }
+  const Blocking blocking =
+      participants_.front().component.perObject ? Blocking::PerObject : Blocking::PerSphere;
+  if (sc.services.probeVolume)
+    indirect_ = std::make_unique<dnrt::ProbeSource>(*sc.services.probeVolume);
+  else
+    indirect_ = std::make_unique<incident::ConstantEnvironment>(sc.level.background);
+  node_ = std::make_unique<Node>(sc.ctx, sc.renderer.pipelines(), sc.renderer.frames().framesInFlight(), sets, order,
+                                 blocking, participants_.front().component.influence);
+}
+
 render::Renderer::GraphNode SessionRuntime::node() {
-  return [](rg::RenderGraph&, render::PassContext&) {};  // no pass yet (header comment)
+  if (!node_) return [](rg::RenderGraph&, render::PassContext&) {};
+  return [this](rg::RenderGraph& graph, render::PassContext& pc) {
+    posed_.clear();
+    objects_.clear();
+    indirectSh_.clear();
+    for (std::size_t o = 0; o < participants_.size(); ++o)
+      for (const PosedSphere& s : participants_[o].spheres) {
+        posed_.push_back(s);
+        objects_.push_back(std::uint32_t(o));
+        indirectSh_.push_back(indirect_->radianceSH(s.centre));
+      }
+    node_->addTo(graph, pc, posed_, objects_, indirectSh_);
+  };
 }
 
 }  // namespace bounce::gi::sl

@@ -3,15 +3,18 @@
 // and a mesh take part; one bake job per such entity (its sphere set, cache kind "sl"); the session
 // runtime loads the sets through the cache and poses the SLs every frame (update.hpp, §7.1).
 //
-// State (issue 13): passes 1 and 2 (GPU) are not written yet, so the runtime adds NO pass and says
-// so once per process ("note: effect sl: …: no pass"); passes() and the accuracy rows are empty
-// until they are.
+// The runtime's node (node.hpp) adds pass 1 ("sl.intensity", compute) and pass 2 ("sl", deferred)
+// each frame. The indirect light of pass 1's samples is the probes' (Services::probeVolume, sampled
+// at each SL's posed centre) when the probes run, else the level's background as a constant
+// environment (as DNRT's c_j).
 #include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "engine/gi/incident/incident.hpp"
 #include "engine/gi/sl/bake.hpp"
+#include "engine/gi/sl/node.hpp"
 #include "engine/gi/sl/update.hpp"
 #include "engine/gi/technique.hpp"
 #include "engine/ref/reference_scene.hpp"
@@ -37,8 +40,6 @@ std::string cacheKey(const ObjectInput& input, const BakeSettings& settings);
 std::filesystem::path cachePath(const std::string& key, const std::filesystem::path& cacheDir);
 std::filesystem::path cacheFolder();  // cacheDir("sl")
 
-// The note the runtime prints while the passes are missing.
-std::string noPassNote(std::size_t entities);
 
 // One entity taking part, as the session holds it.
 struct Participant {
@@ -55,18 +56,28 @@ class SessionRuntime final : public TechniqueRuntime {
   // Loads (baking on a miss) every participant's sphere set and poses it at the registry's state.
   SessionRuntime(ecs::Registry& registry, const std::filesystem::path& cookCache, const std::filesystem::path& cacheDir);
   void update(const FrameUpdate& frame) override;
-  // No pass yet (see the header comment): the node adds nothing to the graph.
+  // The GPU side (node.hpp): without it (CPU tests) node() adds nothing. Pass order = the highest
+  // of the components' orders; blocking and influence = the first participant's (one pass shades
+  // every SL).
+  void enableGpu(SessionContext& sc);
   render::Renderer::GraphNode node() override;
-  bool drawsPasses() const override { return false; }  // passes 1 and 2 not written yet
+  bool drawsPasses() const override { return node_ != nullptr; }
   const std::vector<Participant>& participants() const { return participants_; }
   // "sl update: S spheres on E entities, CPU median X ms over F frames (§7.1 poses)": what
   // `bounce profile` prints after its table (the issue's sl_update_ms).
   std::vector<std::string> profileLines() const override;
+  // The median CPU ms of update() so far (NaN before the first after construction): sl_update_ms.
+  double medianUpdateMs() const;
 
  private:
   ref::ReferenceAssets assets_;  // the cooked assets the posers read (skins, node hierarchy)
   std::vector<Participant> participants_;
   std::vector<double> updateMs_;  // CPU time of each update() (the first, at construction, excluded)
+  std::unique_ptr<Node> node_;
+  std::unique_ptr<incident::IndirectSource> indirect_;  // probes or the background
+  std::vector<PosedSphere> posed_;                      // concatenated over participants (update)
+  std::vector<std::uint32_t> objects_;
+  std::vector<incident::RadianceSH> indirectSh_;
 };
 
 }  // namespace bounce::gi::sl

@@ -50,7 +50,7 @@ class AccuracyRun : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
     AccuracyOptions o;
-    // cornell-1's box (split into one entity per wall), lamp and DNRT prop, plus Virtual Light
+    // cornell-1's box (split into one entity per wall), lamp and DNRT/SL prop, plus Virtual Light
     // Meshes: the one shipped level in which every technique's rows run.
     o.level = std::filesystem::path(BOUNCE_SOURCE_DIR) / "content/levels/cornell-vlm.json";
     o.out = std::filesystem::path(BOUNCE_TEST_OUT) / "accuracy" / "run";

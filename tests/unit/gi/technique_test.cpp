@@ -151,7 +151,7 @@ TEST(Techniques, AccuracyRowsComeFromTheTable) {
   std::set<std::string> fromRows;
   for (const auto& r : game::accuracyRows()) fromRows.insert(r.technique);
   std::set<std::string> expected = {"direct"};
-  // Every technique that adds passes (SL bakes and poses its spheres but has no pass yet, issue 13).
+  // Every technique that adds passes.
   for (const gi::Technique* t : gi::techniques())
     if (!t->reserved() && !t->passes().empty()) expected.insert(std::string(t->name()));
   EXPECT_EQ(fromRows, expected);

@@ -1,0 +1,52 @@
+#pragma once
+// The SL render-graph node: two passes per frame.
+//  "sl.intensity" (compute, pass 1, §5.1): every SL's intensity SH from the level's lights (with the
+//     shadow atlas when `shadows` runs) and the probes' light at its samples (IntensityPass);
+//  "sl" (fragment, pass 2, §5.2): a full-screen triangle adds ρ/π · Σ L̃ Ṽ to "lighting.hdr" per
+//     G-buffer pixel (shaders/sl/sl.frag), reading "gbuffer.albedo", "gbuffer.normal",
+//     "gbuffer.depth" from the blackboard.
+// Each is timed under its own name by the graph. Pass 2 shades every SL of every object in one draw
+// (the blocking couples objects: an object's Ṽ needs the closer objects' logs), so there are no
+// per-object rows. Per frame slot the node owns its own pass-1 buffers and pass-2 sphere block, so
+// a frame in flight never sees the next one's data.
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "engine/gi/incident/incident.hpp"
+#include "engine/gi/sl/evaluate.hpp"
+#include "engine/gi/sl/intensity.hpp"
+#include "engine/gi/sl/shade.hpp"
+#include "engine/render/graph/render_graph.hpp"
+#include "engine/render/pass_context.hpp"
+
+namespace bounce::gi::sl {
+
+class Node {
+ public:
+  // `sets` (not owned, must outlive the node) in participant order; `order` ≥ every set's order;
+  // `influence`: evaluate.hpp rule 0's F (0: off).
+  Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t framesInFlight,
+       std::span<const SphereSet* const> sets, int order, Blocking blocking, float influence);
+  // This frame's SLs, concatenated over the sets: pose, object index, probes' SH at the centre.
+  void addTo(rg::RenderGraph& graph, const render::PassContext& pc, std::span<const PosedSphere> posed,
+             std::span<const std::uint32_t> objects, std::span<const incident::RadianceSH> indirect);
+  std::uint32_t sphereCount() const { return spheres_; }
+
+ private:
+  struct Slot {
+    std::unique_ptr<IntensityPass> intensity;
+    std::unique_ptr<ShadeData> shade;
+  };
+  gpu::Context& ctx_;
+  int order_;
+  Blocking blocking_;
+  std::uint32_t spheres_ = 0;
+  std::vector<Slot> slots_;
+  gpu::DescriptorSetLayout inputLayout_;
+  gpu::PipelineLayout layout_;
+  gpu::ShaderModule vert_, frag_;
+  gpu::Pipeline pipeline_;
+};
+
+}  // namespace bounce::gi::sl

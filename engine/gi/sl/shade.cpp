@@ -1,0 +1,90 @@
+#include "engine/gi/sl/shade.hpp"
+
+#include <cstring>
+
+#include "engine/core/error.hpp"
+#include "engine/gpu/commands.hpp"
+#include "engine/math/sh_exp.hpp"
+
+namespace bounce::gi::sl {
+
+namespace {
+constexpr std::uint32_t kTableWidth = 256;  // θ entries (log and weight rows); the OL row uses 128
+static_assert(sh::ExpTables::kThetaEntries == int(kTableWidth) && kAverageRadianceEntries == int(kTableWidth) &&
+              sh::ExpTables::kMagEntries <= int(kTableWidth));
+}  // namespace
+
+ShadeData::ShadeData(gpu::Context& ctx, int order) : ctx_(ctx), order_(order) {
+  if (order != 3 && order != 4) throw InternalError("sl::ShadeData: order must be 3 or 4");
+  // Tables: sl.glsl's rows 0 (log ZH), 1 (weight ZH), 2 (OL a, b).
+  const sh::ExpTables& t = sh::expTables(order, sh::LogKind::Windowed);
+  const std::span<const double> w = averageRadianceTable(order);
+  std::vector<float> texels(std::size_t(kTableWidth) * 3 * 4, 0.0f);
+  for (std::uint32_t i = 0; i < kTableWidth; ++i)
+    for (int l = 0; l < order; ++l) {
+      texels[(0 * kTableWidth + i) * 4 + std::size_t(l)] = float(t.logTable()[std::size_t(i) * order + std::size_t(l)]);
+      texels[(1 * kTableWidth + i) * 4 + std::size_t(l)] = float(w[std::size_t(i) * order + std::size_t(l)]);
+    }
+  for (int i = 0; i < sh::ExpTables::kMagEntries; ++i) {
+    texels[(2 * kTableWidth + std::size_t(i)) * 4 + 0] = float(t.olTable()[2 * std::size_t(i)]);
+    texels[(2 * kTableWidth + std::size_t(i)) * 4 + 1] = float(t.olTable()[2 * std::size_t(i) + 1]);
+  }
+  gpu::ImageDesc d;
+  d.format = VK_FORMAT_R32G32B32A32_SFLOAT;
+  d.width = kTableWidth;
+  d.height = 3;
+  d.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+  d.name = "sl.tables";
+  tables_ = gpu::Image(ctx, d);
+  gpu::upload(ctx, tables_, std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(texels.data()), texels.size() * sizeof(float)));
+
+  spheres_ = gpu::Buffer(ctx, {(1 + 5 * std::size_t(kMaxShadedSpheres)) * sizeof(glm::vec4), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+                               gpu::MemoryUsage::Upload, "sl.spheres"});
+  std::memset(spheres_.mapped(), 0, spheres_.size());
+}
+
+void ShadeData::setSpheres(std::span<const ShadedSphere> spheres) {
+  if (spheres.size() > kMaxShadedSpheres) throw InternalError("sl::ShadeData: more SLs than the uniform block holds");
+  std::vector<glm::vec4> v(1 + 5 * std::size_t(kMaxShadedSpheres), glm::vec4(0.0f));
+  count_ = std::uint32_t(spheres.size());
+  std::uint32_t objects = 0;
+  for (const ShadedSphere& s : spheres) objects = std::max(objects, s.object + 1);
+  if (objects > kMaxShadedSpheres) throw InternalError("sl::ShadeData: object index beyond the uniform block");
+  const std::uint32_t header[2] = {count_, objects};
+  std::memcpy(&v[0], header, sizeof header);
+  // Per-object blocking's order (evaluate.cpp: the mean of each object's sphere centres), in double
+  // as the reference sums it.
+  std::vector<glm::dvec4> mean(objects, glm::dvec4(0.0));
+  for (const ShadedSphere& s : spheres) mean[s.object] += glm::dvec4(glm::dvec3(s.centre), 1.0);
+  for (std::uint32_t o = 0; o < objects; ++o)
+    if (mean[o].w > 0.0) v[1 + 4 * std::size_t(kMaxShadedSpheres) + o] = glm::vec4(glm::dvec3(mean[o]) / mean[o].w, mean[o].w);
+  for (std::size_t i = 0; i < spheres.size(); ++i) {
+    const ShadedSphere& s = spheres[i];
+    v[1 + 4 * i] = glm::vec4(s.centre, s.radius);
+    for (int c = 0; c < 3; ++c) v[2 + 4 * i + std::size_t(c)] = glm::vec4(s.rotation[c], 0.0f);
+    v[2 + 4 * i].w = float(s.object);
+  }
+  std::memcpy(spheres_.mapped(), v.data(), v.size() * sizeof(glm::vec4));
+}
+
+void ShadeData::write(gpu::DescriptorWriter& w, std::uint32_t first, const gpu::Buffer& intensity, VkSampler nearest) const {
+  if (intensity.size() < kIntensityBlockBytes) throw InternalError("sl::ShadeData: intensity buffer smaller than its block");
+  w.sampledImage(first, tables_.view(), nearest)
+      .buffer(first + 1, spheres_, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER)
+      .buffer(first + 2, intensity, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 0, kIntensityBlockBytes);
+}
+
+std::vector<gpu::Binding> ShadeData::bindings(std::uint32_t first) {
+  return {{first, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+          {first + 1, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
+          {first + 2, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER}};
+}
+
+gpu::SpecConstants ShadeData::specialization(int order, Blocking blocking, std::uint32_t spheres, float influence) {
+  const std::uint32_t size = std::max<std::uint32_t>(8, (spheres + 7) / 8 * 8);
+  std::uint32_t f = 0;
+  std::memcpy(&f, &influence, sizeof f);
+  return {std::uint32_t(order), blocking == Blocking::PerObject ? 1u : 0u, size, f};
+}
+
+}  // namespace bounce::gi::sl

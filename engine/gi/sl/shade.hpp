@@ -1,0 +1,62 @@
+#pragma once
+// SL pass 2's device data (shaders/sl/sl_data.glsl declares it, sl.glsl reads it): the
+// scene-independent tables as one rgba32f texture read with texelFetch (the blocker log ZH and
+// Eq. 16's weight ZH by angular radius, the optimal-linear (a, b) by ‖f̂‖) and this frame's SLs as
+// a uniform block (DESIGN.md: no SSBOs in llvmpipe fragment shaders). Pass 1's intensity buffer
+// (IntensityPass::intensity()) is the third resource. The hybrid exp's squarings use the Gaunt
+// tensor as generated code (shaders/sl/gaunt.glsl), not a buffer: unrolled, g stays in registers. Order, blocking and the
+// per-receiver array size are specialization constants of the pipelines that read it
+// (specialization() below).
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "engine/gi/sl/evaluate.hpp"
+#include "engine/gpu/buffer.hpp"
+#include "engine/gpu/descriptors.hpp"
+#include "engine/gpu/image.hpp"
+#include "engine/gpu/pipeline.hpp"
+
+namespace bounce::gi::sl {
+
+// sl_data.glsl's capacity: the SLs one pass shades (the intensity block is 128·16 vec4 = 32 KiB,
+// half of the smallest maxUniformBufferRange Vulkan allows).
+inline constexpr std::uint32_t kMaxShadedSpheres = 128;
+// Bytes of the intensity uniform block: IntensityPass allocates at least this.
+inline constexpr std::size_t kIntensityBlockBytes = std::size_t(kMaxShadedSpheres) * 16 * 16;
+
+// One SL as pass 2 reads it.
+struct ShadedSphere {
+  glm::vec3 centre{0.0f};
+  float radius = 0.0f;
+  glm::mat3 rotation{1.0f};  // SL local → world
+  std::uint32_t object = 0;  // SLs of one object may intersect (baked occlusion)
+};
+
+class ShadeData {
+ public:
+  ShadeData(gpu::Context& ctx, int order);
+  int order() const { return order_; }
+  // This frame's SLs (host-visible: read at the next submitted use). At most kMaxShadedSpheres.
+  void setSpheres(std::span<const ShadedSphere> spheres);
+  std::uint32_t count() const { return count_; }
+  // Writes the three sl_data.glsl bindings first … first + 2 (intensity: pass 1's buffer, ≥
+  // kIntensityBlockBytes).
+  void write(gpu::DescriptorWriter& w, std::uint32_t first, const gpu::Buffer& intensity, VkSampler nearest) const;
+  // The bindings' types, for a set layout.
+  static std::vector<gpu::Binding> bindings(std::uint32_t first);
+  // Constant ids 0–3 of sl.glsl's includers: kOrder, kPerObject, kSpheres (the per-receiver
+  // arrays' size: the SL count rounded up to a multiple of 8, at least 8), kInfluence (F, 0: off).
+  static gpu::SpecConstants specialization(int order, Blocking blocking, std::uint32_t spheres, float influence = 0.0f);
+
+ private:
+  gpu::Context& ctx_;
+  int order_ = 4;
+  std::uint32_t count_ = 0;
+  gpu::Image tables_;
+  gpu::Buffer spheres_;
+};
+
+}  // namespace bounce::gi::sl

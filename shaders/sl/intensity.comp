@@ -1,0 +1,120 @@
+#version 450
+// SL pass 1 (Guerrero, Jeschke, Wimmer 2008, §5.1 and §8.1): the light intensity SH vector L^c of
+// every SL for this frame. One workgroup per SL, one invocation per surface sample point (samples
+// beyond 64 loop with stride 64):
+//  1. the sample's world position and normal: its baked local position and normal moved with the
+//     SL's pose (engine/gi/sl/update.hpp: rotation about the SL's centre, uniform scale
+//     r_posed / r_rest, then the posed centre) — §7.1 moves the sample points with their SL;
+//  2. L_p (Eq. 3 with ρ_n = the white Lambertian BRDF, no albedo: the paper factors it in at
+//     Eq. 11): the light arriving there — the level's real lights projected into order-3 radiance
+//     SH by incident.glsl (radius 0: a point receiver), each times its shadow-map visibility
+//     (shadow.glsl), plus the probes' indirect radiance SH (sampled at the SL's centre on the CPU)
+//     — cosine-convolved at the normal (sh.glsl shIrradiance9), clamped ≥ 0 and divided by π:
+//     W/(m²·sr) per channel;
+//  3. Eq. 10: L_S = Σ_j L_pj Y'_j with Y'_j the baked basis sums (already × 4π/N), summed over the
+//     workgroup in shared memory;
+//  4. Eq. 11: L^c = L_S ∗ c_S, the SH product with the SL's albedo SH per channel, through the
+//     Gaunt tensor engine/math/sh_product.hpp computes (uploaded, not re-derived here).
+// The C++ reference is engine/gi/sl/intensity.hpp (sampleReflection + intensityFromSamples);
+// tests/unit/sl/intensity_gpu_test.cpp compares the two.
+//
+// Data (std430 unless noted, bytes): samples = Sample[], Sample = 96 (position.xyz local, normal.xyz
+// local unit, basis[16] as 4 vec4); spheres = Sphere[], Sphere = 240 (rest: local centre, radius;
+// posed: world centre, radius; rotation: 3 column vec4 (SL local → world); range: first sample,
+// sample count; indirect: 9 vec4, rgb = radiance SH at the posed centre); albedo = vec4[sphere·16 + k]
+// (rgb: c_S,k); gaunt = Gaunt[], Gaunt = 16 ((i, j, k) and C_ijk, sorted by (k, i, j)); lights and
+// shadow matrices as the lighting pass has them (std140 UBOs of kMaxLights / kMaxShadowLayers);
+// out = vec4[sphere·16 + k] (rgb: L^c_k, the SL's local frame; unused k ≥ order² are 0).
+// SSBOs are fine here: a compute pass (DESIGN's machine facts keep them out of fragment shaders).
+#extension GL_GOOGLE_include_directive : require
+#include "incident.glsl"
+
+layout(local_size_x = 64) in;
+
+// SH order of the basis sums, the albedo and the result: 3 or 4 (one pipeline per order).
+layout(constant_id = 0) const uint kOrder = 4u;
+const uint kCoeffs = kOrder * kOrder;
+
+struct Sample {
+  vec4 position;
+  vec4 normal;
+  vec4 basis[4];
+};
+struct Sphere {
+  vec4 rest;
+  vec4 posed;
+  vec4 rotation[3];
+  uvec4 range;
+  vec4 indirect[9];
+};
+struct Gaunt {
+  uint i;
+  uint j;
+  uint k;
+  float value;
+};
+
+layout(std430, binding = 0) readonly buffer Samples { Sample samples[]; };
+layout(std430, binding = 1) readonly buffer Spheres { Sphere spheres[]; };
+layout(std430, binding = 2) readonly buffer Albedo { vec4 albedo[]; };
+layout(std430, binding = 3) readonly buffer GauntTensor { Gaunt gaunt[]; };
+layout(std140, binding = 4) uniform Lights { Light lights[kMaxLights]; };
+layout(std140, binding = 5) uniform ShadowMatrices { mat4 shadowMatrices[kMaxShadowLayers]; };
+layout(binding = 6) uniform sampler2DArrayShadow shadowAtlas;
+#include "shadow.glsl"
+layout(std430, binding = 7) writeonly buffer Intensity { vec4 intensity[]; };
+
+layout(push_constant) uniform Push {
+  uint lightCount;
+  uint shadowsOn;   // 0: every light unoccluded (the level does not name `shadows`)
+  uint gaunts;      // entries in gaunt[]
+  uint pad;
+} pc;
+
+shared vec3 partial[64 * 16];
+
+void main() {
+  uint sl = gl_WorkGroupID.x;
+  uint lid = gl_LocalInvocationID.x;
+  Sphere s = spheres[sl];
+  mat3 rot = mat3(s.rotation[0].xyz, s.rotation[1].xyz, s.rotation[2].xyz);
+  float scale = s.rest.w > 0.0 ? s.posed.w / s.rest.w : 1.0;
+
+  vec3 acc[16];
+  for (uint k = 0u; k < 16u; ++k) acc[k] = vec3(0.0);
+  for (uint t = lid; t < s.range.y; t += 64u) {
+    Sample smp = samples[s.range.x + t];
+    vec3 p = s.posed.xyz + rot * ((smp.position.xyz - s.rest.xyz) * scale);
+    vec3 n = normalize(rot * smp.normal.xyz);
+    vec3 sh[9];
+    for (int k = 0; k < 9; ++k) sh[k] = s.indirect[k].rgb;
+    for (uint i = 0u; i < pc.lightCount; ++i) {
+      float v = 1.0;
+      if (pc.shadowsOn != 0u) {
+        uint type = uint(lights[i].positionType.w + 0.5);
+        float dist = type == kLightDirectional ? 0.0 : length(lights[i].positionType.xyz - p);
+        v = shadowVisibility(lights[i], p, n, dist);
+      }
+      if (v > 0.0) incidentAddLight(lights[i], p, 0.0, v, sh);
+    }
+    vec3 L = max(shIrradiance9(sh, n), vec3(0.0)) * (1.0 / 3.14159265358979324);  // L_p, Eq. 3
+    for (uint k = 0u; k < kCoeffs; ++k) acc[k] += L * smp.basis[k / 4u][k % 4u];   // Eq. 10
+  }
+  for (uint k = 0u; k < 16u; ++k) partial[lid * 16u + k] = acc[k];
+  barrier();
+  for (uint stride = 32u; stride > 0u; stride >>= 1u) {
+    if (lid < stride)
+      for (uint k = 0u; k < 16u; ++k) partial[lid * 16u + k] += partial[(lid + stride) * 16u + k];
+    barrier();
+  }
+  // Eq. 11: one output coefficient per invocation, c_k = Σ C_ijk L_S,i c_S,j (sh::product's order).
+  if (lid < 16u) {
+    vec3 c = vec3(0.0);
+    if (lid < kCoeffs)
+      for (uint e = 0u; e < pc.gaunts; ++e) {
+        Gaunt g = gaunt[e];
+        if (g.k == lid && g.i < kCoeffs && g.j < kCoeffs) c += g.value * partial[g.i] * albedo[sl * 16u + g.j].rgb;
+      }
+    intensity[sl * 16u + lid] = vec4(c, 0.0);
+  }
+}

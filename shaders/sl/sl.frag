@@ -1,0 +1,40 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+// SL pass 2 (Guerrero, Jeschke, Wimmer 2008, §5.2), deferred: every G-buffer pixel is a receiver;
+// the diffuse reflection of the light arriving from every SL, ρ(p)/π · E(p) with E(p) = Σ L̃ Ṽ
+// (Eq. 13–14, sl.glsl), is ADDED to "lighting.hdr" (additive blending; W/(m²·sr), linear HDR).
+// Background pixels (depth 1) receive nothing. Order, blocking and the per-receiver array size are
+// specialization constants (engine/gi/sl/shade.hpp ShadeData::specialization).
+layout(constant_id = 0) const uint kOrder = 4u;
+layout(constant_id = 1) const bool kPerObject = false;
+layout(constant_id = 2) const uint kSpheres = 64u;
+layout(constant_id = 3) const float kInfluence = 0.0;
+
+#include "frame.glsl"
+
+layout(set = 0, binding = 0) uniform FrameUbo { Camera camera; };
+layout(set = 1, binding = 0) uniform sampler2D gAlbedo;
+layout(set = 1, binding = 1) uniform sampler2D gNormal;
+layout(set = 1, binding = 2) uniform sampler2D gDepth;
+#define SL_SET 1
+#define SL_BINDING 3
+#include "sl/sl_data.glsl"
+#include "sl/sl.glsl"
+
+layout(location = 0) in vec2 inUv;
+layout(location = 0) out vec4 outRadiance;
+
+const float kInvPi = 0.31830988618379067;
+
+void main() {
+  ivec2 pixel = ivec2(gl_FragCoord.xy);
+  float depth = texelFetch(gDepth, pixel, 0).r;
+  if (depth >= 1.0) {
+    outRadiance = vec4(0.0);
+    return;
+  }
+  vec3 albedo = texelFetch(gAlbedo, pixel, 0).rgb;
+  vec3 n = texelFetch(gNormal, pixel, 0).xyz;
+  vec3 p = worldFromDepth(camera.invViewProj, (vec2(pixel) + 0.5) * camera.resolution.zw, depth);
+  outRadiance = vec4(albedo * kInvPi * max(slIrradianceAt(p, n), vec3(0.0)), 0.0);
+}

@@ -1,0 +1,28 @@
+// SL pass 2's resources (engine/gi/sl/shade.hpp ShadeData fills them) and the accessors sl.glsl
+// needs. All uniform blocks and a texture, no SSBOs: DESIGN.md's llvmpipe facts for fragment shaders.
+// The includer defines SL_SET (descriptor set) and SL_BINDING (first of three bindings) first.
+//   SL_BINDING + 0: slTables, rgba32f 256×3 (sl.glsl's header);
+//   SL_BINDING + 1: SlSpheres (std140): header.x = SL count; per SL i, spheres[4i] = (world centre,
+//                   radius), spheres[4i + 1 … 4i + 3] = the SL-local → world rotation's columns in
+//                   xyz, spheres[4i + 1].w = its object index; header.y = object ids in use (max + 1),
+//                   objects[o] = (mean of object o's sphere centres, its sphere count): per-object
+//                   blocking's order, the same for every pixel, so computed once on the CPU;
+//   SL_BINDING + 2: SlIntensity (std140): intensity[16i + k].rgb = L^c_k (pass 1's output buffer);
+#ifndef BOUNCE_SL_DATA_GLSL
+#define BOUNCE_SL_DATA_GLSL
+
+const uint kSlMaxLights = 128u;  // shade.hpp kMaxShadedSpheres: 128 · 16 vec4 = 32 KiB of intensity
+
+layout(set = SL_SET, binding = SL_BINDING) uniform sampler2D slTables;
+layout(std140, set = SL_SET, binding = SL_BINDING + 1) uniform SlSpheres { uvec4 slHeader; vec4 slSpheres[kSlMaxLights * 4u]; vec4 slObjects[kSlMaxLights]; };
+layout(std140, set = SL_SET, binding = SL_BINDING + 2) uniform SlIntensity { vec4 slIntensities[kSlMaxLights * 16u]; };
+
+uint slCount() { return slHeader.x; }
+vec4 slSphere(uint i) { return slSpheres[4u * i]; }
+mat3 slRotation(uint i) { return mat3(slSpheres[4u * i + 1u].xyz, slSpheres[4u * i + 2u].xyz, slSpheres[4u * i + 3u].xyz); }
+uint slObject(uint i) { return uint(slSpheres[4u * i + 1u].w + 0.5); }
+uint slObjectCount() { return slHeader.y; }
+vec4 slObjectCentre(uint o) { return slObjects[o]; }
+vec3 slIntensity(uint i, uint k) { return slIntensities[16u * i + k].rgb; }
+
+#endif  // BOUNCE_SL_DATA_GLSL
