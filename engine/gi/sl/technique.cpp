@@ -126,6 +126,15 @@ class SlTechnique final : public Technique {
   std::string_view cacheKind() const override { return kCacheKind; }
 
   std::unique_ptr<TechniqueRuntime> create(SessionContext& sc) const override {
+    // Pass 2 holds every SL of the frame in uniform blocks of kMaxShadedSpheres (shade.hpp): a level
+    // asking for more is bad input, said before anything is baked, not an internal error at frame 0.
+    std::size_t spheres = 0;
+    const std::vector<ecs::Entity> entities = participantsOf(sc.registry);
+    for (ecs::Entity e : entities) spheres += std::size_t(sc.registry.get<scene::Sl>(e).spheres);
+    if (spheres > kMaxShadedSpheres)
+      throw InputError(sc.level.source.string() + ": /entities: " + std::to_string(spheres) + " sl spheres on " +
+                       std::to_string(entities.size()) + " entities (expected at most " +
+                       std::to_string(kMaxShadedSpheres) + " in all: pass 2 holds them in uniform blocks)");
     auto runtime = std::make_unique<SessionRuntime>(sc.registry, sc.cookCache, cacheFolder());
     runtime->enableGpu(sc);
     return runtime;

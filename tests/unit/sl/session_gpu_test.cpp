@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <numeric>
 
+#include "engine/core/error.hpp"
 #include "engine/gpu/presenter_offscreen.hpp"
 #include "engine/gpu/testing.hpp"
 #include "game/session.hpp"
@@ -73,4 +74,29 @@ TEST(SlSession, RunsItsTwoPassesAndOnlyAddsLight) {
   EXPECT_GT(brighter, 0);
   std::printf("sl on the characters level at %ux%u: %d of %zu channel values brighter, none darker\n", kExtent.width,
               kExtent.height, brighter, a.rgb.size());
+}
+
+// Pass 2 holds at most kMaxShadedSpheres (128) SLs in all, in uniform blocks: three 64-sphere characters
+// are bad input — one line naming the level, /entities and the limit, thrown when the session is made
+// (before any bake), not an internal error at the first frame. Two of them (128) are accepted.
+TEST(SlSession, MoreSpheresThanPassTwoHoldsIsBadInput) {
+  scene::Level level = game::loadLevelWithEffects(kCharacters, std::vector<std::string>{"direct", "sl"});
+  std::vector<scene::EntityDesc> withSl;
+  for (scene::EntityDesc& e : level.entities)
+    if (e.sl) {
+      e.sl->spheres = 64;
+      withSl.push_back(e);
+    }
+  ASSERT_EQ(withSl.size(), 2u) << "the characters level has two SL entities (fox, CesiumMan)";
+  scene::EntityDesc third = withSl.front();
+  third.id += "-copy";
+  level.entities.push_back(third);
+  try {
+    game::Session session(gpu::testkit::sharedContext(), level);
+    FAIL() << "192 spheres were accepted";
+  } catch (const InputError& err) {
+    EXPECT_EQ(std::string(err.what()), kCharacters.string() +
+                                           ": /entities: 192 sl spheres on 3 entities (expected at most 128 in all: "
+                                           "pass 2 holds them in uniform blocks)");
+  }
 }
