@@ -16,9 +16,9 @@ namespace {
 
 constexpr std::size_t kBlock = 64;  // samples per task of the blocked products
 // Reassignment tries the sample's own cluster and the clusters of its kNearestMeans nearest means
-// (SHHS03 tries all n_c). Trying all is n_c·(n_e+1)·D multiply-adds per sample — 164·10⁹ a round
-// at the paper's settings, more than the whole bake may take; a sample whose best subspace belongs
-// to a cluster whose mean is not among its 4 nearest is rare, and the error is measured anyway.
+// (SHHS03 tries all n_c). Trying all is n_c·(n_e+1)·D multiply-adds per sample — 82·10⁹ a round
+// at the paper's settings, more than the whole bake may take. Measured (textured box, 16 spheres ×
+// 6·8² samples, 32 × 16): all 32 → 5.70 %, these ≤ 5 → 5.71 %, at 61 % of the CPU time.
 constexpr int kNearestMeans = 4;
 
 double dotd(const double* a, const double* b, std::size_t n) {
