@@ -16,7 +16,7 @@
 // an ITF's samples along a ray from the object differ mostly by the (η/d)² of the solid angle the
 // object covers, a factor 100 over the paper's spheres; k-means on the raw vectors cut them by
 // magnitude, and its farthest-point seeds spent most clusters on a few samples next to the surface
-// (a Cornell box prop at the paper's resolution: 24 of 32 clusters held 3 samples each).
+// (a Cornell box prop, 16 spheres × 6·8² samples: 24 of 32 clusters held 3 samples each).
 // The principal subspace comes from block power (subspace) iteration on the centred cluster,
 // X_cᵀ(X_c V), in float products (dense.hpp) re-orthonormalised by modified Gram–Schmidt in
 // double: only the span matters for Eq. 9 (α = Eᵀ(x − E_0) is the orthogonal projection), so no
