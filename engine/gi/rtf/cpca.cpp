@@ -154,6 +154,9 @@ Cpca compress(std::span<const float> data, std::size_t D, const CpcaSettings& s)
   std::vector<float> centreNorm2(static_cast<std::size_t>(nc));
   std::vector<double> nearest(N, std::numeric_limits<double>::infinity());
   std::size_t next = std::min<std::size_t>(N - 1, std::size_t(seedRng.nextDouble() * double(N)));
+  // The first seed must not be a zero sample (a zero vector is no line: every distance to it would
+  // be 0 and every later seed repeat it); the ITF has many (the samples inside the object).
+  for (std::size_t k = 0; k < N && !(norm2[next] > 0.0f); ++k) next = (next + 1) % N;
   for (int h = 0; h < nc; ++h) {
     float* c = centres.data() + std::size_t(h) * D;
     std::copy(rows[next], rows[next] + D, c);
@@ -209,11 +212,11 @@ Cpca compress(std::span<const float> data, std::size_t D, const CpcaSettings& s)
   for (int it = 0; it < kLloydRounds; ++it, progress.advance()) {
     bool moved = false;
     nearestCentres(&moved);
+    if (!moved && it > 0) break;
     parallelFor(0, N, [&](std::size_t r) {
-        const double xc = dense::dot(rows[r], centres.data() + std::size_t(assign[r]) * D, D);
-        weight[r] = norm2[r] > 0.0f ? (xc < 0.0 ? -1.0 : 1.0) / std::sqrt(double(norm2[r])) : 0.0;
-      }, 64);
-    if (!moved && it > 0) continue;
+      const double xc = dense::dot(rows[r], centres.data() + std::size_t(assign[r]) * D, D);
+      weight[r] = norm2[r] > 0.0f ? (xc < 0.0 ? -1.0 : 1.0) / std::sqrt(double(norm2[r])) : 0.0;
+    }, 64);
     std::vector<std::size_t> count(std::size_t(nc), 0);
     for (std::size_t r = 0; r < N; ++r) ++count[assign[r]];
     // Means in double, the columns split across threads.

@@ -52,6 +52,24 @@ TEST(RtfCpcaLines, SamplesThatDifferByScaleShareAClusterAndAreExact) {
   EXPECT_LT(measure(c, x).frobenius, 1e-5);
 }
 
+TEST(RtfCpcaLines, MostlyZeroDataStillSeedsEveryLine) {
+  // 96 zero samples (as the ITF's samples inside the object) and two lines through 0 of 2 samples
+  // each. A zero first seed would make every distance 0 and every seed the same sample.
+  const std::size_t D = 16;
+  std::vector<float> x(96 * D, 0.0f);
+  for (int line = 0; line < 2; ++line)
+    for (float scale : {1.0f, 3.0f})
+      for (std::size_t d = 0; d < D; ++d) x.push_back(scale * (line == 0 ? float(d + 1) : (d % 2 == 0 ? 1.0f : -2.0f)));
+  CpcaSettings s;
+  s.clusters = 3;
+  s.components = 1;
+  const Cpca c = compress(x, D, s);
+  EXPECT_EQ(c.cluster[96], c.cluster[97]);
+  EXPECT_EQ(c.cluster[98], c.cluster[99]);
+  EXPECT_NE(c.cluster[96], c.cluster[98]);
+  EXPECT_LT(measure(c, x).frobenius, 1e-5);
+}
+
 TEST(RtfDense, DotsEqualADoubleReferenceOnEveryRemainder) {
   const std::size_t na = 5, nb = 7, D = 1037;  // 5 = 2·2 + 1, 7 = 4 + 3, 1037 = 1024 + 8 + 5
   math::Pcg32 rng(11);
