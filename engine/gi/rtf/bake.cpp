@@ -14,6 +14,7 @@
 #include "engine/core/parallel.hpp"
 #include "engine/core/progress.hpp"
 #include "engine/gi/dnrt/bake.hpp"
+#include "engine/gi/rtf/dense.hpp"
 #include "engine/math/sampling.hpp"
 #include "engine/math/sh.hpp"
 
@@ -233,48 +234,68 @@ BakeResult bake(const ref::SceneDesc& object, const FieldSettings& s) {
   result.itf.assign(N * D, 0.0f);
   f.oof.assign(N * kShCount, 0.0f);
   std::vector<char> inside(N, 0);
+  // Eq. 6–7 regrouped by the vertex a ray's hit takes its transfer from:
+  //   M^{ij}_{q,k} = Σ_ω Δω y_i(ω) t^j_{p(ω),k} = Σ_v a_{q,v}^i t^j_{v,k},  a_{q,v}^i = Σ_{ω → v} Δω y_i(ω),
+  // so a sample costs 16·m·48 multiply-adds per distinct vertex seen instead of per ray (rays that
+  // reach the same vertex add their a first), done as one rank-n update in float (dense.hpp).
+  const float* tFloats = &t[0].x;  // glm::vec3 rows, m·16·3 floats per vertex: [(k·16 + j)·3 + c]
+  const std::size_t width = stride * 3, nVertices = v.position.size();
+  constexpr std::size_t kSamplesPerTask = 8;
   Progress progress("rtf field", N);
-  parallelFor(0, N, [&](std::size_t sample) {
-    const int sphere = int(sample / std::size_t(perSphere)), rest = int(sample % std::size_t(perSphere));
-    const int face = rest / n2, x = rest % n2 % s.faceSize, y = rest % n2 / s.faceSize;
-    const glm::dvec3 q = glm::dvec3(bs.centre) +
-                         double(bs.radius) * double(sphereRadius(s, sphere)) * sh::cubeTexelDirection(face, x, y, s.faceSize);
-    std::vector<double> M(D, 0.0);
-    std::array<double, kShCount> V{};
-    int front = 0, back = 0;
-    for (const Direction& dir : directions) {
-      const glm::dvec3& w = dir.w;
-      std::array<double, kShCount> y16;
-      for (int i = 0; i < kShCount; ++i) y16[std::size_t(i)] = dir.y[std::size_t(i)] * dir.solidAngle;
-      ref::Hit hit;
-      if (!bvh.intersect(glm::vec3(q), glm::vec3(w), 0.0f, std::numeric_limits<float>::infinity(), hit)) {
-        for (int i = 0; i < kShCount; ++i) V[std::size_t(i)] += y16[std::size_t(i)];
-        continue;
-      }
-      if (glm::dot(glm::dvec3(hit.geometricNormal), w) > 0.0) {
-        ++back;
-        continue;
-      }
-      ++front;
-      const glm::vec3* tp = t.data() + std::size_t(grid.nearest(hit.position, hit.geometricNormal)) * stride;
-      for (std::size_t k = 0; k < m; ++k)
-        for (int i = 0; i < kShCount; ++i) {
-          double* row = M.data() + itfIndex(int(k), i, 0, 0);
-          const double yi = y16[std::size_t(i)];
-          for (int j = 0; j < kShCount; ++j) {
-            const glm::vec3& tj = tp[k * kShCount + std::size_t(j)];
-            row[j * 3 + 0] += yi * tj.r, row[j * 3 + 1] += yi * tj.g, row[j * 3 + 2] += yi * tj.b;
-          }
+  parallelFor(0, (N + kSamplesPerTask - 1) / kSamplesPerTask, [&](std::size_t task) {
+    std::vector<float> a(nVertices * kShCount, 0.0f);  // a_{q,v}^i, only the touched vertices non-zero
+    std::vector<std::uint32_t> seen;
+    std::vector<float> packedA, Mi(kShCount * width);  // Mi: [i][(k·16 + j)·3 + c]
+    std::vector<const float*> tRows;
+    for (std::size_t sample = task * kSamplesPerTask; sample < std::min(N, (task + 1) * kSamplesPerTask); ++sample) {
+      const int sphere = int(sample / std::size_t(perSphere)), rest = int(sample % std::size_t(perSphere));
+      const int face = rest / n2, x = rest % n2 % s.faceSize, y = rest % n2 / s.faceSize;
+      const glm::dvec3 q = glm::dvec3(bs.centre) +
+                           double(bs.radius) * double(sphereRadius(s, sphere)) * sh::cubeTexelDirection(face, x, y, s.faceSize);
+      std::array<double, kShCount> V{};
+      int front = 0, back = 0;
+      seen.clear();
+      for (const Direction& dir : directions) {
+        const glm::dvec3& w = dir.w;
+        ref::Hit hit;
+        if (!bvh.intersect(glm::vec3(q), glm::vec3(w), 0.0f, std::numeric_limits<float>::infinity(), hit)) {
+          for (int i = 0; i < kShCount; ++i) V[std::size_t(i)] += dir.y[std::size_t(i)] * dir.solidAngle;
+          continue;
         }
+        if (glm::dot(glm::dvec3(hit.geometricNormal), w) > 0.0) {
+          ++back;
+          continue;
+        }
+        ++front;
+        const std::uint32_t vertex = grid.nearest(hit.position, hit.geometricNormal);
+        float* av = a.data() + std::size_t(vertex) * kShCount;
+        if (std::all_of(av, av + kShCount, [](float e) { return e == 0.0f; })) seen.push_back(vertex);
+        for (int i = 0; i < kShCount; ++i) av[i] += float(dir.y[std::size_t(i)] * dir.solidAngle);
+      }
+      if (back > front) {
+        inside[sample] = 1;  // M = 0, V = 0: no light reaches a point inside the object
+      } else {
+        std::sort(seen.begin(), seen.end());  // a fixed summation order: the same field on any thread
+        seen.erase(std::unique(seen.begin(), seen.end()), seen.end());
+        packedA.resize(seen.size() * kShCount);
+        tRows.resize(seen.size());
+        for (std::size_t u = 0; u < seen.size(); ++u) {
+          std::copy(a.begin() + std::ptrdiff_t(seen[u] * kShCount), a.begin() + std::ptrdiff_t((seen[u] + 1) * kShCount),
+                    packedA.begin() + std::ptrdiff_t(u * kShCount));
+          tRows[u] = tFloats + std::size_t(seen[u]) * width;
+        }
+        std::fill(Mi.begin(), Mi.end(), 0.0f);
+        dense::addOuter(packedA.data(), tRows.data(), seen.size(), kShCount, width, Mi.data());
+        float* out = result.itf.data() + sample * D;
+        for (std::size_t k = 0; k < m; ++k)
+          for (int i = 0; i < kShCount; ++i)
+            std::copy_n(Mi.data() + std::size_t(i) * width + k * kShCount * 3, kShCount * 3, out + itfIndex(int(k), i, 0, 0));
+        for (int i = 0; i < kShCount; ++i) f.oof[sample * kShCount + std::size_t(i)] = float(V[std::size_t(i)]);
+      }
+      for (std::uint32_t vertex : seen) std::fill_n(a.begin() + std::ptrdiff_t(std::size_t(vertex) * kShCount), kShCount, 0.0f);
+      progress.advance();
     }
-    if (back > front) {
-      inside[sample] = 1;  // M = 0, V = 0: no light reaches a point inside the object
-    } else {
-      for (std::size_t d = 0; d < D; ++d) result.itf[sample * D + d] = float(M[d]);
-      for (int i = 0; i < kShCount; ++i) f.oof[sample * kShCount + std::size_t(i)] = float(V[std::size_t(i)]);
-    }
-    progress.advance();
-  }, 4);
+  });
   progress.finish();
   result.stats.insideSamples = std::size_t(std::count(inside.begin(), inside.end(), 1));
 
@@ -294,7 +315,7 @@ BakeResult bake(const ref::SceneDesc& object, const FieldSettings& s) {
 
 std::string cacheKey(const ref::SceneDesc& object, const FieldSettings& s) {
   Hasher h;
-  h.str("rtf-field-v3");  // v2: cube-map projection directions; v3: warm-started CPCA  // baker and file format version: bump when either changes
+  h.str("rtf-field-v4");  // baker and file format version: bump when either changes (v2: cube-map projection directions; v3: warm-started CPCA; v4: CPCA on lines, k-means++ seeds, float products)
   h.pod(s.proxies).pod(s.spheres).pod(s.faceSize).pod(s.innerRadius).pod(s.outerRadius).pod(s.raysPerAxis);
   h.pod(s.vertexRaysPerAxis).pod(s.selfBounces).pod(s.clusters).pod(s.components);
   ref::hashGeometry(h, object);

@@ -9,14 +9,20 @@
 // principal subspace. The paper's Eq. 9 writes no mean term; SHHS03 (which the paper cites for
 // CPCA) keeps it, and it costs one component: we keep it (α_0 ≡ 1).
 //
-// Algorithm (SHHS03 §3, "iterative CPCA"): seeds by farthest-point sampling, Lloyd k-means on the
-// raw vectors, then `iterations` rounds of {per cluster: mean + principal subspace; every sample
-// moves to the cluster that reconstructs it best}. The principal subspace comes from block power
-// (subspace) iteration on the centred cluster, X_cᵀ(X_c V), re-orthonormalised by modified
-// Gram–Schmidt: only the span matters for Eq. 9 (α = Eᵀ(x − E_0) is the orthogonal projection),
-// so no eigen-decomposition is needed. Rounds after the first start each cluster from its previous
-// basis (powerIterations/4, at least 3, products). A cluster whose centred data has rank ≤ ne is reproduced
-// exactly (to float rounding): its span is found by the first product.
+// Algorithm (SHHS03 §3, "iterative CPCA"): k-means++ seeds and Lloyd k-means on LINES through 0
+// (the distance of two samples is the sine of their angle, so x and 10x fall together), then
+// `iterations` rounds of {per cluster: mean + principal subspace; every sample moves to the
+// cluster, among its own and those of its 4 nearest means, that reconstructs it best}. Why lines:
+// an ITF's samples along a ray from the object differ mostly by the (η/d)² of the solid angle the
+// object covers, a factor 100 over the paper's spheres; k-means on the raw vectors cut them by
+// magnitude, and its farthest-point seeds spent most clusters on a few samples next to the surface
+// (a Cornell box prop, 16 spheres × 6·8² samples: 24 of 32 clusters held 3 samples each).
+// The principal subspace comes from block power (subspace) iteration on the centred cluster,
+// X_cᵀ(X_c V), in float products (dense.hpp) re-orthonormalised by modified Gram–Schmidt in
+// double: only the span matters for Eq. 9 (α = Eᵀ(x − E_0) is the orthogonal projection), so no
+// eigen-decomposition is needed. Rounds after the first start each cluster from its previous
+// basis (powerIterations/4, at least 3, products). A cluster whose centred data has rank ≤ ne is
+// reproduced exactly (to float rounding): its span is found by the first product.
 // Deterministic: seeds and start vectors come from Pcg32 with a fixed seed.
 #include <cstddef>
 #include <cstdint>
