@@ -26,7 +26,7 @@ std::vector<NodeObject> Runtime::objectsFor(const render::RenderWorld& world) co
     const auto* component = registry_.tryGet<scene::Dnrt>(o.entity);
     const incident::RadianceSH L = incidentSH(pl.centreWorld, pl.radiusWorld, world.lights);
     out.push_back({o.textures.get(), packObject(o.field, placed->matrix, L, o.entity.index()), o.name,
-                   component && component->intrusion, component && component->fullScreen});
+                   component && component->intrusion, component ? component->mode : Mode::Box});
   }
   return out;
 }
