@@ -34,6 +34,58 @@ PixelRect screenRect(const glm::mat4& viewProj, const glm::mat4& boxToWorld, glm
   return r.empty() ? PixelRect{} : r;
 }
 
+ScreenHull screenHull(const glm::mat4& viewProj, const glm::mat4& boxToWorld, glm::uvec2 resolution) {
+  ScreenHull h;
+  if (screenRect(viewProj, boxToWorld, resolution).empty()) return h;
+  std::vector<glm::vec2> p;
+  for (int c = 0; c < 8; ++c) {
+    const glm::vec4 corner(float(c & 1) * 2.0f - 1.0f, float((c >> 1) & 1) * 2.0f - 1.0f,
+                           float((c >> 2) & 1) * 2.0f - 1.0f, 1.0f);
+    const glm::vec4 clip = viewProj * (boxToWorld * corner);
+    if (!(clip.w > 1e-6f)) {
+      h.all = true;
+      return h;
+    }
+    p.push_back((glm::vec2(clip) / clip.w * 0.5f + 0.5f) * glm::vec2(resolution));
+  }
+  // Andrew's monotone chain.
+  std::sort(p.begin(), p.end(), [](glm::vec2 a, glm::vec2 b) { return a.x < b.x || (a.x == b.x && a.y < b.y); });
+  const auto cross = [](glm::vec2 o, glm::vec2 a, glm::vec2 b) {
+    return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x);
+  };
+  std::vector<glm::vec2> hull(16);
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    while (k >= 2 && cross(hull[k - 2], hull[k - 1], p[i]) <= 0.0f) --k;
+    hull[k++] = p[i];
+  }
+  for (std::size_t i = p.size() - 1, t = k + 1; i-- > 0;) {
+    while (k >= t && cross(hull[k - 2], hull[k - 1], p[i]) <= 0.0f) --k;
+    hull[k++] = p[i];
+  }
+  hull.resize(k > 1 ? k - 1 : k);
+  h.points = std::move(hull);
+  return h;
+}
+
+bool hullMeetsSquare(const ScreenHull& h, glm::vec2 lo, glm::vec2 hi) {
+  if (h.all) return true;
+  if (h.points.empty()) return false;
+  glm::vec2 hmin(1e30f), hmax(-1e30f);
+  for (const glm::vec2 q : h.points) hmin = glm::min(hmin, q), hmax = glm::max(hmax, q);
+  if (hmax.x < lo.x || hmin.x > hi.x || hmax.y < lo.y || hmin.y > hi.y) return false;
+  // Each hull edge's outward side: the square is separated when all its corners lie beyond it.
+  const glm::vec2 corners[4] = {lo, {hi.x, lo.y}, hi, {lo.x, hi.y}};
+  for (std::size_t i = 0; i < h.points.size(); ++i) {
+    const glm::vec2 a = h.points[i], b = h.points[(i + 1) % h.points.size()];
+    const glm::vec2 outward(b.y - a.y, a.x - b.x);  // counter-clockwise hull: right of a→b is out
+    bool separated = true;
+    for (const glm::vec2 c : corners) separated = separated && glm::dot(c - a, outward) > 0.0f;
+    if (separated) return false;
+  }
+  return true;
+}
+
 std::vector<std::uint32_t> binObjects(const glm::mat4& viewProj, glm::uvec2 resolution,
                                       std::span<const glm::mat4> boxes) {
   const TileGrid grid = tileGrid(resolution);
@@ -42,11 +94,16 @@ std::vector<std::uint32_t> binObjects(const glm::mat4& viewProj, glm::uvec2 reso
   for (std::size_t i = 0; i < boxes.size(); ++i) {
     const PixelRect r = screenRect(viewProj, boxes[i], resolution);
     if (r.empty()) continue;
+    const ScreenHull hull = screenHull(viewProj, boxes[i], resolution);
     std::uint32_t* batch = masks.data() + (i / kClusterBatch) * grid.count();
     const std::uint32_t bit = 1u << (i % kClusterBatch);
     for (std::uint32_t ty = r.y0 / kClusterTile; ty < (r.y1 + kClusterTile - 1) / kClusterTile; ++ty)
-      for (std::uint32_t tx = r.x0 / kClusterTile; tx < (r.x1 + kClusterTile - 1) / kClusterTile; ++tx)
-        batch[std::size_t(ty) * grid.tilesX + tx] |= bit;
+      for (std::uint32_t tx = r.x0 / kClusterTile; tx < (r.x1 + kClusterTile - 1) / kClusterTile; ++tx) {
+        // The tile's pixels' centres span [16 tx + 0.5, 16 tx + 15.5]; widened by half a pixel
+        // each way so a pixel the cube's raster would cover is never left out.
+        const glm::vec2 lo(float(tx * kClusterTile), float(ty * kClusterTile));
+        if (hullMeetsSquare(hull, lo, lo + float(kClusterTile))) batch[std::size_t(ty) * grid.tilesX + tx] |= bit;
+      }
   }
   return masks;
 }

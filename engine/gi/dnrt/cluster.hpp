@@ -43,9 +43,22 @@ struct PixelRect {
 };
 PixelRect screenRect(const glm::mat4& viewProj, const glm::mat4& boxToWorld, glm::uvec2 resolution);
 
+// The screen footprint of the outer cube: the convex hull of its projected corners, in pixels
+// (counter-clockwise in y-down pixel space as Andrew's monotone chain emits it), or empty with
+// `all` set when a corner lies at or behind the eye plane (then every tile), or empty when
+// screenRect is. A tile is visited when its square meets the hull (separating axes: the square's
+// two and the hull's edge normals), which for a cube seen corner-on leaves out the rectangle's
+// corners — up to half its area.
+struct ScreenHull {
+  bool all = false;
+  std::vector<glm::vec2> points;
+};
+ScreenHull screenHull(const glm::mat4& viewProj, const glm::mat4& boxToWorld, glm::uvec2 resolution);
+bool hullMeetsSquare(const ScreenHull& hull, glm::vec2 lo, glm::vec2 hi);
+
 // Tile masks for `boxes` (each object's boxToWorld), batch b of kClusterBatch objects after batch
-// b − 1: mask[b·grid.count() + ty·tilesX + tx] has bit i set when object b·32 + i's screen rectangle
-// touches tile (tx, ty).
+// b − 1: mask[b·grid.count() + ty·tilesX + tx] has bit i set when object b·32 + i's screen hull
+// meets tile (tx, ty).
 std::vector<std::uint32_t> binObjects(const glm::mat4& viewProj, glm::uvec2 resolution,
                                       std::span<const glm::mat4> boxes);
 

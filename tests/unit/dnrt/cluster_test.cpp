@@ -70,6 +70,38 @@ TEST(DnrtCluster, TileMasksHoldEachObjectsBitInTheTilesItTouchesAndBatchesOf32) 
   EXPECT_EQ(tilesWith0, 4);
 }
 
+// A cube turned 45° about the view axis projects to a diamond: the tiles in its bounding
+// rectangle's corners are left out, exactly those whose square misses the diamond.
+TEST(DnrtCluster, TilesFollowTheProjectedHullNotItsRectangle) {
+  const glm::uvec2 res(160, 160);
+  // Half-size 4, 10 m ahead: the near face (depth 6) is the hull, a diamond about pixel (80, 80)
+  // with corners 80 · 4√2/6 = 75.4 pixels out (the far face, depth 14, lies inside it).
+  const glm::mat4 box = cube({0, 0, -10}, 4) * glm::rotate(glm::mat4(1.0f), glm::quarter_pi<float>(), glm::vec3(0, 0, 1));
+  const float r = 80.0f * 4.0f * std::sqrt(2.0f) / 6.0f;
+  const ScreenHull hull = screenHull(viewProj(res), box, res);
+  ASSERT_FALSE(hull.all);
+  EXPECT_EQ(hull.points.size(), 4u);
+  const std::vector<glm::mat4> boxes = {box};
+  const std::vector<std::uint32_t> masks = binObjects(viewProj(res), res, boxes);
+  const TileGrid grid = tileGrid(res);
+  int flagged = 0, expected = 0;
+  for (std::uint32_t ty = 0; ty < grid.tilesY; ++ty)
+    for (std::uint32_t tx = 0; tx < grid.tilesX; ++tx) {
+      // Distance of the tile's square from the centre in the diamond's (L1) metric.
+      const float dx = std::max({16.0f * tx - 80.0f, 0.0f, 80.0f - 16.0f * (tx + 1)});
+      const float dy = std::max({16.0f * ty - 80.0f, 0.0f, 80.0f - 16.0f * (ty + 1)});
+      const bool meets = dx + dy <= r;
+      // Within a pixel of the edge the float hull may go either way; none of these tiles is that close.
+      ASSERT_GT(std::abs(dx + dy - r), 1.0f) << tx << "," << ty;
+      EXPECT_EQ(masks[ty * grid.tilesX + tx] != 0u, meets) << tx << "," << ty;
+      flagged += masks[ty * grid.tilesX + tx] != 0u ? 1 : 0;
+      expected += meets ? 1 : 0;
+    }
+  EXPECT_EQ(flagged, expected);
+  EXPECT_LT(flagged, 100);  // the rectangle would be all 10 × 10
+  EXPECT_EQ(masks[0], 0u) << "the rectangle's corner tile";
+}
+
 Field smallField(int n, int sh, std::uint8_t seed) {
   Field f;
   f.settings.grid = n;
