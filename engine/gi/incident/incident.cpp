@@ -61,6 +61,10 @@ void addCap(glm::vec3 toLight, float cosAlpha, glm::vec3 e, RadianceSH& sh) {
 
 float capCosine(float radius, float dist) { return glsl::incidentCapCosine(radius, dist); }
 
+glm::vec3 lightIrradiance(const render::LightGpu& light, glm::vec3 p, glm::vec3& toLight, float& dist) {
+  return glsl::incidentIrradiance(light, p, toLight, dist);
+}
+
 namespace {
 
 // Ray origins' disc: p plus 8 points at 0.7·radius around it, in the plane facing the light, at

@@ -256,5 +256,36 @@ TEST(Incident, ServiceAddsIndirectAndLights) {
   for (int i = 0; i < 9; ++i) EXPECT_EQ(indirectOnly[i], envSh[i]) << i;
 }
 
+// lightIrradiance, the one CPU copy of lights.glsl's irradiance (VLM's phase-1 mirror uses it):
+// inverse square, the glTF range window, the spot ramp squared, directional as is.
+TEST(Incident, LightIrradianceIsLightsGlslsInverseSquareRangeAndCone) {
+  render::LightGpu point{};
+  point.positionType = glm::vec4(0.0f, 2.0f, 0.0f, float(render::LightType::Point));
+  point.radiance = glm::vec4(4.0f, 8.0f, 12.0f, 0.0f);  // intensity, W/sr
+  glm::vec3 toLight;
+  float dist = 0.0f;
+  EXPECT_EQ(lightIrradiance(point, glm::vec3(0.0f), toLight, dist), glm::vec3(1.0f, 2.0f, 3.0f));
+  EXPECT_EQ(toLight, glm::vec3(0.0f, 1.0f, 0.0f));
+  EXPECT_EQ(dist, 2.0f);
+  point.directionRange.w = 4.0f;  // range 4 m at d = 2: window (1 − (1/2)⁴)² = (15/16)²
+  EXPECT_NEAR(lightIrradiance(point, glm::vec3(0.0f), toLight, dist).x, (15.0f / 16.0f) * (15.0f / 16.0f), 1e-6f);
+
+  render::LightGpu spot = point;
+  spot.positionType.w = float(render::LightType::Spot);
+  spot.directionRange = glm::vec4(0.0f, -1.0f, 0.0f, 0.0f);
+  spot.cone = glm::vec4(0.5f, 1.0f, 0.0f, 0.0f);  // cos outer, cos inner
+  // At (2, 0, 0) the light is seen at cos = 2/√8 = 0.707 from its axis: t = (0.707 − 0.5) / 0.5.
+  const float t = (std::sqrt(0.5f) - 0.5f) / 0.5f;
+  EXPECT_NEAR(lightIrradiance(spot, glm::vec3(2.0f, 0.0f, 0.0f), toLight, dist).x, 4.0f / 8.0f * t * t, 1e-6f);
+
+  render::LightGpu sun{};
+  sun.positionType.w = float(render::LightType::Directional);
+  sun.directionRange = glm::vec4(0.0f, -1.0f, 0.0f, 0.0f);
+  sun.radiance = glm::vec4(3.0f);
+  EXPECT_EQ(lightIrradiance(sun, glm::vec3(5.0f), toLight, dist), glm::vec3(3.0f));
+  EXPECT_EQ(toLight, glm::vec3(0.0f, 1.0f, 0.0f));
+  EXPECT_EQ(dist, 1e30f);
+}
+
 }  // namespace
 }  // namespace bounce::gi::incident
