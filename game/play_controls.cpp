@@ -99,7 +99,7 @@ std::string keyMapSummary(const std::string& indent) {
          indent + "  +/- exposure, V vsync, P pause, O overlay, C culling, R reset camera, Esc quit\n" +
          indent + "  F12 screenshot (PNG + PFM)\n" +
          indent + "  VLM: T selects a tag, ]/[ its intensity up/down, H rotates its hue\n" +
-         indent + "  DNRT: M switches every object to the paper's full-screen pass and back\n" +
+         indent + "  DNRT: M cycles every object's mode: own -> full-screen (paper) -> clustered\n" +
          indent + "  animation: L selects a character, K plays its next clip";
 }
 
