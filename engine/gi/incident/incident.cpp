@@ -128,17 +128,24 @@ RadianceSH irradianceSH(const RadianceSH& radiance) {
   return out;
 }
 
-RadianceSH Service::lightsSH(glm::vec3 p, float radius, std::span<const render::LightGpu> lights) const {
+RadianceSH Service::lightsSH(glm::vec3 p, float radius, std::span<const render::LightGpu> lights,
+                             const BandWindow& window) const {
   RadianceSH sh{};
   for (const render::LightGpu& light : lights) {
     const float v = visibility_ ? std::clamp(visibility_->visible(light, p, radius), 0.0f, 1.0f) : 1.0f;
     if (v > 0.0f) addLight(light, p, radius, v, sh);
   }
+  applyWindow(window, sh);
   return sh;
 }
 
-RadianceSH Service::radianceSH(glm::vec3 p, float radius, std::span<const render::LightGpu> lights) const {
-  RadianceSH sh = lightsSH(p, radius, lights);
+void applyWindow(const BandWindow& window, RadianceSH& sh) {
+  for (std::size_t i = 0; i < sh.size(); ++i) sh[i] *= window[i == 0 ? 0 : i < 4 ? 1 : 2];
+}
+
+RadianceSH Service::radianceSH(glm::vec3 p, float radius, std::span<const render::LightGpu> lights,
+                               const BandWindow& window) const {
+  RadianceSH sh = lightsSH(p, radius, lights, window);
   if (indirect_) {
     const RadianceSH ind = indirect_->radianceSH(p);
     for (std::size_t i = 0; i < sh.size(); ++i) sh[i] += ind[i];

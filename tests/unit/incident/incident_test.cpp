@@ -246,9 +246,16 @@ TEST(Incident, ServiceAddsIndirectAndLights) {
   Service service;
   service.setIndirect(&env);
   const RadianceSH all = service.radianceSH(glm::vec3(0.0f), 0.2f, lights);
-  RadianceSH expected = env.radianceSH(glm::vec3(0.0f));
-  addLight(lamp, glm::vec3(0.0f), 0.2f, 1.0f, expected);
-  for (int i = 0; i < 9; ++i) EXPECT_EQ(all[i], expected[i]) << i;
+  RadianceSH lampSh{};
+  addLight(lamp, glm::vec3(0.0f), 0.2f, 1.0f, lampSh);
+  const RadianceSH envSh0 = env.radianceSH(glm::vec3(0.0f));
+  for (int i = 0; i < 9; ++i) EXPECT_EQ(all[i], lampSh[i] + envSh0[i]) << i;
+  // Windowed: the lamp's SH Hanning-windowed per band (1, 3/4, 1/4), the indirect light as it is.
+  const RadianceSH windowed = service.radianceSH(glm::vec3(0.0f), 0.2f, lights, kHanningWindow);
+  for (int i = 0; i < 9; ++i) {
+    const float h = i == 0 ? 1.0f : i < 4 ? 0.75f : 0.25f;
+    EXPECT_EQ(windowed[i], lampSh[i] * h + envSh0[i]) << i;
+  }
   const SceneVisibility blocked(boxScene(glm::vec3(-1, 0.4f, -1), glm::vec3(1, 0.5f, 1)));
   service.setVisibility(&blocked);
   const RadianceSH indirectOnly = service.radianceSH(glm::vec3(0.0f), 0.2f, lights);
