@@ -140,8 +140,10 @@ std::string onOffArg(const cli::Args& args, const std::string& option, const std
 }
 
 std::string dnrtModeText(const PlayState& state) {
-  return state.dnrtFullScreen ? "dnrt mode: full-screen pass per object (the paper's, for comparison)"
-                              : "dnrt mode: each object's own (outer cube, or its level \"mode\")";
+  if (!state.dnrtMode) return "dnrt mode: each object's own (outer cube, or its level \"mode\")";
+  return *state.dnrtMode == scene::DnrtMode::FullScreen
+             ? "dnrt mode: full-screen pass per object (the paper's, for comparison)"
+             : "dnrt mode: clustered (one pass, each pixel visits the objects over its 16x16 tile)";
 }
 
 // F12: the frame just rendered as <output root>/screenshots/<level>-<frame>.png (display, as
@@ -300,7 +302,7 @@ int runPlay(const cli::Args& args) {
         info.vlm = vlmControlText(state.vlm);
         info.animation = animationText(session.registry(), state.character);
         info.dnrtRuns = session.runs(scene::Effect::Dnrt) && session.level().effects.has(scene::Effect::Dnrt);
-        info.dnrtFullScreen = state.dnrtFullScreen;
+        info.dnrtMode = state.dnrtMode ? 1 + int(*state.dnrtMode == scene::DnrtMode::Clustered) : 0;
         if (session.vlm() && session.level().effects.has(scene::Effect::Vlm)) info.vlmControl = state.vlm;
         if (session.vlm()) info.vlmOverflow = gi::vlm::formatOverflow(session.vlm()->overflow());
         const OverlayActions actions = overlay->build(info, dt);
@@ -312,8 +314,10 @@ int runPlay(const cli::Args& args) {
           session.syncTechniques();
           log::info("effects: " + joined(session.level().effects.names()));
         }
-        if (actions.dnrtFullScreen && *actions.dnrtFullScreen != state.dnrtFullScreen) {  // as key M
-          state.dnrtFullScreen = *actions.dnrtFullScreen;
+        if (actions.dnrtMode && *actions.dnrtMode != info.dnrtMode) {  // as key M
+          state.dnrtMode = *actions.dnrtMode == 0   ? std::nullopt
+                           : *actions.dnrtMode == 1 ? std::optional(scene::DnrtMode::FullScreen)
+                                                    : std::optional(scene::DnrtMode::Clustered);
           log::info(dnrtModeText(state));
         }
         if (actions.vlmOverride && setVlmOverride(state.vlm, actions.vlmOverride->first, actions.vlmOverride->second)) {
@@ -325,7 +329,7 @@ int runPlay(const cli::Args& args) {
       }
       const bool shoot = std::exchange(screenshotPending, false);
       // DNRT's mode, whenever its runtime exists (it may be built by a key after start-up).
-      if (gi::dnrt::Runtime* dnrt = session.dnrt()) dnrt->settings().fullScreen = state.dnrtFullScreen;
+      if (gi::dnrt::Runtime* dnrt = session.dnrt()) dnrt->settings().mode = state.dnrtMode;
       render::FrameSettings settings = state.settings;
       settings.keepHdr = shoot;
       presenter.setOverlay(state.overlay && !shoot ? overlay.get() : nullptr);

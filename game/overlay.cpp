@@ -59,20 +59,21 @@ void onOff(const char* label, bool on) {
 // (§3.5, thesis Fig. 5.5: intensity in stops, hue rotation, colour). SL and RTF add their block
 // here when they land (see OverlayInfo). `vlm` is the caller's copy, edited in place so the
 // second layout of the frame shows the change.
-void layoutTechniques(const OverlayInfo& info, bool& dnrtFullScreen, VlmControl& vlm, OverlayActions& actions) {
+void layoutTechniques(const OverlayInfo& info, int& dnrtMode, VlmControl& vlm, OverlayActions& actions) {
   if (!info.dnrtRuns && vlm.tags.empty()) return;
   if (!ImGui::CollapsingHeader("techniques", ImGuiTreeNodeFlags_DefaultOpen)) return;
   if (info.dnrtRuns) {
-    int mode = dnrtFullScreen ? 1 : 0;
-    const char* modes[] = {"each object's own", "full-screen (paper)"};
+    int mode = dnrtMode;
+    const char* modes[] = {"each object's own", "full-screen (paper)", "clustered"};
     ImGui::SetNextItemWidth(150.0f);
-    if (ImGui::Combo("dnrt mode (M)", &mode, modes, IM_ARRAYSIZE(modes)) && (mode == 1) != dnrtFullScreen) {
-      dnrtFullScreen = mode == 1;
-      actions.dnrtFullScreen = dnrtFullScreen;
+    if (ImGui::Combo("dnrt mode (M)", &mode, modes, IM_ARRAYSIZE(modes)) && mode != dnrtMode) {
+      dnrtMode = mode;
+      actions.dnrtMode = dnrtMode;
     }
     if (ImGui::IsItemHovered())
       ImGui::SetTooltip("own: each object's outer cube is drawn (or its level \"mode\");\n"
-                        "full-screen: the paper's pass per object, for comparison (same image, more cost)");
+                        "full-screen: the paper's pass per object, for comparison (same image, more cost);\n"
+                        "clustered: one pass, each pixel visits the objects over its tile (same image)");
   }
   for (const std::uint32_t tag : vlm.tags) {
     scene::VlmOverride o;
@@ -98,7 +99,7 @@ void layoutTechniques(const OverlayInfo& info, bool& dnrtFullScreen, VlmControl&
 // The panel's controls write into `actions`; `exposure` and `view` are the values shown (the
 // caller's, updated by this frame's first layout so the second shows the change).
 void layoutPanel(const OverlayInfo& info, const std::vector<float>& frameMs, float& exposure,
-                 render::DebugView& view, bool& dnrtFullScreen, VlmControl& vlm, OverlayActions& actions) {
+                 render::DebugView& view, int& dnrtMode, VlmControl& vlm, OverlayActions& actions) {
   const ImVec2 display = ImGui::GetIO().DisplaySize;
   ImGui::SetNextWindowPos(ImVec2(8.0f, 8.0f), ImGuiCond_FirstUseEver);
   // Never taller than the window: the rest scrolls (640x360 shows the header and the first rows).
@@ -185,7 +186,7 @@ void layoutPanel(const OverlayInfo& info, const std::vector<float>& frameMs, flo
     if (!info.vlm.empty()) ImGui::TextUnformatted(info.vlm.c_str());  // per-tag VLM overrides (T, ]/[, H)
     if (!info.animation.empty()) ImGui::TextUnformatted(info.animation.c_str());  // clip and time (L, K)
   }
-  layoutTechniques(info, dnrtFullScreen, vlm, actions);
+  layoutTechniques(info, dnrtMode, vlm, actions);
   ImGui::End();
 }
 
@@ -251,7 +252,7 @@ OverlayActions Overlay::build(const OverlayInfo& info, double dtSeconds) {
   OverlayActions actions;
   float exposure = info.exposure;
   render::DebugView view = info.debugView;
-  bool dnrtFullScreen = info.dnrtFullScreen;
+  int dnrtMode = info.dnrtMode;
   VlmControl vlm = info.vlmControl;
   // Twice: the first layout measures (auto-size, table columns), the second is drawn.
   for (int pass = 0; pass < 2; ++pass) {
@@ -262,7 +263,7 @@ OverlayActions Overlay::build(const OverlayInfo& info, double dtSeconds) {
     io.DeltaTime = pass == 0 && dtSeconds > 0.0 ? float(dtSeconds) : 1e-4f;  // ImGui asserts on 0
     ImGui_ImplVulkan_NewFrame();
     ImGui::NewFrame();
-    layoutPanel(info, frameMs_, exposure, view, dnrtFullScreen, vlm, actions);
+    layoutPanel(info, frameMs_, exposure, view, dnrtMode, vlm, actions);
     actions.wantsMouse = actions.wantsMouse || io.WantCaptureMouse;
     if (pass == 0) ImGui::EndFrame();
   }

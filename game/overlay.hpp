@@ -61,7 +61,7 @@ struct OverlayInfo {
   // overlay.cpp once their runtimes have settings; until then they show nothing (a reserved
   // effect has no runtime, so there is nothing a control could change).
   bool dnrtRuns = false;        // the DNRT node runs (Session::runs(dnrt))
-  bool dnrtFullScreen = false;  // PlayState::dnrtFullScreen
+  int dnrtMode = 0;             // PlayState::dnrtMode: 0 each object's own, 1 full-screen, 2 clustered
   VlmControl vlmControl;        // tags (empty: no VLM runs) and live overrides, as the T ]/[ H keys
 };
 
@@ -71,7 +71,7 @@ struct OverlayActions {
   std::optional<render::DebugView> debugView;
   bool screenshot = false;   // the panel's screenshot button (as F12)
   std::optional<scene::Effect> toggleEffect;  // an effect checkbox was clicked (as its key 1-9)
-  std::optional<bool> dnrtFullScreen;  // the DNRT mode chosen (as key M): PlayState::dnrtFullScreen
+  std::optional<int> dnrtMode;  // the DNRT mode chosen (as key M), OverlayInfo::dnrtMode's numbering
   std::optional<std::pair<int, scene::VlmOverride>> vlmOverride;  // a tag's override edited (setVlmOverride)
   bool wantsMouse = false;   // the mouse is over the panel: play must not orbit or look with it
 };

@@ -56,7 +56,7 @@ std::vector<KeyBinding> makeBindings() {
   b.push_back({GLFW_KEY_LEFT_BRACKET, "[", PlayAction::VlmIntensityDown, 0, "VLM: selected tag's intensity /1.41"});
   b.push_back({GLFW_KEY_H, "H", PlayAction::VlmNextHue, 0, "VLM: rotate the selected tag's hue by 30 degrees"});
   b.push_back({GLFW_KEY_M, "M", PlayAction::DnrtToggleMode, 0,
-               "DNRT: every object in the paper's full-screen pass / each object's own mode"});
+               "DNRT mode: each object's own -> full-screen (paper) -> clustered -> own"});
   b.push_back({GLFW_KEY_F12, "F12", PlayAction::Screenshot, 0, "screenshot: PNG + PFM of the next frame (no overlay)"});
   b.push_back({GLFW_KEY_L, "L", PlayAction::AnimNextCharacter, 0, "animation: select the next animated character"});
   b.push_back({GLFW_KEY_K, "K", PlayAction::AnimNextClip, 0, "animation: the selected character's next clip"});
@@ -99,7 +99,7 @@ std::string keyMapSummary(const std::string& indent) {
          indent + "  +/- exposure, V vsync, P pause, O overlay, C culling, R reset camera, Esc quit\n" +
          indent + "  F12 screenshot (PNG + PFM)\n" +
          indent + "  VLM: T selects a tag, ]/[ its intensity up/down, H rotates its hue\n" +
-         indent + "  DNRT: M switches every object to the paper's full-screen pass and back\n" +
+         indent + "  DNRT: M cycles every object's mode: own -> full-screen (paper) -> clustered\n" +
          indent + "  animation: L selects a character, K plays its next clip";
 }
 
@@ -170,7 +170,11 @@ KeyEffect applyKey(int key, PlayState& state, scene::EffectSet& effects) {
     case PlayAction::Quit: state.quit = true; return KeyEffect::Handled;
     case PlayAction::AnimNextCharacter: ++state.character; return KeyEffect::AnimationChanged;
     case PlayAction::AnimNextClip: return KeyEffect::AnimationChanged;
-    case PlayAction::DnrtToggleMode: state.dnrtFullScreen = !state.dnrtFullScreen; return KeyEffect::DnrtModeChanged;
+    case PlayAction::DnrtToggleMode:
+      state.dnrtMode = !state.dnrtMode                                    ? std::optional(scene::DnrtMode::FullScreen)
+                       : *state.dnrtMode == scene::DnrtMode::FullScreen ? std::optional(scene::DnrtMode::Clustered)
+                                                                        : std::nullopt;
+      return KeyEffect::DnrtModeChanged;
     case PlayAction::VlmNextTag: {
       VlmControl& v = state.vlm;
       if (v.tags.empty()) return KeyEffect::Handled;

@@ -37,7 +37,7 @@ enum class PlayAction {
   Screenshot,        // F12: the next frame as PNG (display) + PFM (linear HDR), no overlay
   AnimNextCharacter, // select the next animated entity (engine/anim Animator)
   AnimNextClip,      // the selected one plays its next clip (after the last: the rest pose)
-  DnrtToggleMode,    // DNRT: each object's own mode <-> the paper's full-screen pass for every object
+  DnrtToggleMode,    // DNRT: each object's own mode -> full-screen for all -> clustered for all -> own
 };
 
 struct KeyBinding {
@@ -89,10 +89,11 @@ struct PlayState {
   bool vsync = true;
   bool paused = false;   // motion scripts and animation clips hold their pose (simulation time stops)
   int character = 0;     // the selected animated entity (in registry order) for AnimNextClip
-  // DNRT's mode for every object (gi::dnrt::NodeSettings::fullScreen): false = each object's own
-  // (the outer cube's draw, or the level's "mode": "fullscreen"), true = the paper's full-screen
-  // pass for all (§5.2, for comparison). Key M and the overlay's "dnrt" control.
-  bool dnrtFullScreen = false;
+  // DNRT's mode for every object (gi::dnrt::NodeSettings::mode): none = each object's own (its
+  // level "mode", default the outer cube's draw), else that mode for all: the paper's full-screen
+  // pass (§5.2, for comparison) or the clustered draw (issue 15). Key M cycles own → full-screen →
+  // clustered → own; the overlay's "dnrt mode" combo sets it too.
+  std::optional<scene::DnrtMode> dnrtMode;
   bool overlay = true;
   bool quit = false;
 };

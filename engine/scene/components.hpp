@@ -153,6 +153,13 @@ struct AnimationClip {
 // The entity moves at run time; GI techniques treat it as a dynamic object.
 struct Dynamic {};
 
+// How a DNRT object is drawn (run time only, level key "mode"; gi::dnrt::Node): its outer cube
+// ("box", the default: the cost follows the pixels the cube covers), the paper's full-screen pass
+// per object ("fullscreen", §5.2.2, for comparison), or in the clustered draw ("clustered": one
+// full-screen pass for all such objects in which each pixel reads the G-buffer once and visits only
+// the objects whose outer cube covers its screen tile; issue 15). All three give the same image.
+enum class DnrtMode : std::uint8_t { Box, FullScreen, Clustered };
+
 // A DNRT transfer field request (engine/gi/dnrt; level key "dnrt", README "Level format").
 // Extents are half-sizes of cubes about the bounding-sphere centre, in units of its radius R.
 struct Dnrt {
@@ -163,9 +170,8 @@ struct Dnrt {
   bool intrusion = false;     // §5.2.3 cube depth map from o (run-time visibility test)
   bool improvedAntiRadiance = false;  // App. B.2 instead of Eq. 12
   int samplesPerAxis = 16;    // bake rays per vertex = samplesPerAxis² ("rays", a square)
-  // Run time only ("mode"): false = rasterise the outer cube ("box", the default), true = the
-  // paper's full-screen pass for this object ("fullscreen", §5.2.2), kept for comparison.
-  bool fullScreen = false;
+  DnrtMode mode = DnrtMode::Box;  // run time only ("mode"), the field is the same
+
   friend bool operator==(const Dnrt&, const Dnrt&) = default;
 };
 

@@ -136,7 +136,7 @@ void parseLight(const json::Node& node, EntityDesc& d, const ParseContext&) {
 }
 
 // "dnrt": {"sh": 4|9, "grid": 16|32|64, "inner": 3, "outer": 6, "intrusion": false,
-//          "anti_radiance": "paper"|"improved", "rays": 256, "mode": "box"|"fullscreen"} — every key
+//          "anti_radiance": "paper"|"improved", "rays": 256, "mode": "box"|"fullscreen"|"clustered"} — every key
 //          optional (defaults above).
 void parseDnrt(const json::Node& node, EntityDesc& d, const ParseContext&) {
   const auto o = node.object({"sh", "grid", "inner", "outer", "intrusion", "anti_radiance", "rays", "mode"});
@@ -170,8 +170,9 @@ void parseDnrt(const json::Node& node, EntityDesc& d, const ParseContext&) {
   }
   if (auto v = o.optional("mode")) {
     const std::string m = v->string();
-    if (m != "box" && m != "fullscreen") v->fail("unknown mode " + json::inQuotes(m), "box or fullscreen");
-    c.fullScreen = m == "fullscreen";
+    if (m != "box" && m != "fullscreen" && m != "clustered")
+      v->fail("unknown mode " + json::inQuotes(m), "box, fullscreen or clustered");
+    c.mode = m == "fullscreen" ? DnrtMode::FullScreen : m == "clustered" ? DnrtMode::Clustered : DnrtMode::Box;
   }
   d.dnrt = c;
 }

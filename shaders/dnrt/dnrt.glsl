@@ -23,6 +23,20 @@ struct DnrtObject {
   uvec4 ids;          // x: entity index + 1 of the object (gbuffer.entity's encoding), 0 = none
 };
 
+// The clustered draw's per-object record (engine/gi/dnrt/gpu_object.hpp: DnrtClusterObject, std140):
+// DnrtObject without the box matrix, plus the atlas texel coordinate of grid vertex (0, 0, 0).
+struct DnrtClusterObject {
+  vec4 worldToQ[3];
+  vec4 centreWorld;
+  vec4 extents;
+  vec4 k[7];
+  vec4 a;
+  vec4 atlas;
+  uvec4 ids;
+};
+const uint kDnrtClusterBatch = 32u;  // engine/gi/dnrt/cluster.hpp kClusterBatch
+const int kDnrtClusterTileShift = 4;  // 16-pixel tiles (kClusterTile)
+
 float dnrtFalloff(vec3 q, float inner, float outer) {
   vec3 a = abs(q);
   float u = max(a.x, max(a.y, a.z));
@@ -33,10 +47,11 @@ float dnrtFalloff(vec3 q, float inner, float outer) {
   return (inv - floorTerm) / (1.0 - floorTerm);
 }
 
+// Grid coordinate (0..N − 1 per axis, vertices at integers) of a local offset q (units of R),
+// clamped to the inner cube.
+vec3 dnrtGrid(vec3 q, float inner, float n) { return (clamp(q / inner, -1.0, 1.0) + 1.0) * 0.5 * (n - 1.0); }
+
 // Texture coordinate of a local offset q (units of R): texel centres on grid vertices.
-vec3 dnrtUvw(vec3 q, float inner, float n) {
-  vec3 g = (clamp(q / inner, -1.0, 1.0) + 1.0) * 0.5 * (n - 1.0);
-  return (g + 0.5) / n;
-}
+vec3 dnrtUvw(vec3 q, float inner, float n) { return (dnrtGrid(q, inner, n) + 0.5) / n; }
 
 #endif

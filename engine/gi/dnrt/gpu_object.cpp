@@ -58,4 +58,16 @@ DnrtShaderObject fold(const DnrtObjectGpu& g) {
   return f;
 }
 
+DnrtClusterObject clusterObject(const DnrtShaderObject& f, std::uint32_t z0) {
+  DnrtClusterObject c;
+  for (int row = 0; row < 3; ++row) c.worldToQ[row] = f.worldToQ[row];
+  c.centreWorld = f.centreWorld;
+  c.extents = f.extents;
+  for (int t = 0; t < 7; ++t) c.k[t] = f.k[t];
+  c.a = f.a;
+  c.atlas = glm::vec4(1.5f, 1.5f, float(z0) + 1.5f, 0.0f);  // one padding texel, then texel centres
+  c.ids = f.ids;
+  return c;
+}
+
 }  // namespace bounce::gi::dnrt

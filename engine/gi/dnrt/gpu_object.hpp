@@ -38,6 +38,23 @@ struct DnrtShaderObject {
 };
 static_assert(sizeof(DnrtShaderObject) == 288, "must match DnrtObject in shaders/dnrt/dnrt.glsl (std430)");
 
+// shaders/dnrt/dnrt.glsl: DnrtClusterObject (std140, a uniform array of kClusterBatch in
+// clustered.frag): what a pixel of the clustered draw reads per object it visits — DnrtShaderObject
+// without the box matrix, plus where the object's brick sits in the field atlas (cluster.hpp).
+struct DnrtClusterObject {
+  glm::vec4 worldToQ[3]{};
+  glm::vec4 centreWorld{0.0f};
+  glm::vec4 extents{0.0f};
+  glm::vec4 k[7]{};
+  glm::vec4 a{0.0f};
+  glm::vec4 atlas{0.0f};  // xyz: atlas texel coordinate of grid vertex (0, 0, 0)'s centre: (1.5, 1.5, z0 + 1.5)
+  glm::uvec4 ids{0u};
+};
+static_assert(sizeof(DnrtClusterObject) == 240, "must match DnrtClusterObject in shaders/dnrt/dnrt.glsl (std140)");
+
+// The folded record for the clustered draw; `z0`: the brick's first layer in the atlas.
+DnrtClusterObject clusterObject(const DnrtShaderObject& folded, std::uint32_t z0);
+
 // The record folded for the shader (Table 2's slot layout: slots 0..2 hold m_0..3 of R, G, B,
 // slots 3..5 m_4..7 of R, G, B, slot 6 m_8 of R, G, B in its rgb).
 DnrtShaderObject fold(const DnrtObjectGpu& record);

@@ -1,5 +1,7 @@
 #include "engine/gi/dnrt/node.hpp"
 
+#include <algorithm>
+#include <atomic>
 #include <cstring>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -15,11 +17,18 @@ namespace bounce::gi::dnrt {
 namespace {
 constexpr VkDescriptorType kSampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
 constexpr VkDescriptorType kStorage = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+constexpr VkDescriptorType kUniform = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
 constexpr VkFormat kHdrFormat = VK_FORMAT_R16G16B16A16_SFLOAT;  // "lighting.hdr" (renderer.cpp)
 
 struct Push {
   std::uint32_t object = 0;
 };
+
+struct ClusterPush {  // clustered.frag's Push
+  glm::vec4 invAtlasSize;
+  std::uint32_t tileBase = 0, tilesX = 0, pad[2] = {0, 0};
+};
+constexpr VkDeviceSize kClusterBatchBytes = kClusterBatch * sizeof(DnrtClusterObject);  // 7680: 256-aligned
 
 struct CubePush {
   glm::mat4 viewProj;
@@ -38,7 +47,10 @@ glm::mat4 cubeFaceViewProj(int face, glm::vec3 origin, float nearM, float farM) 
   return glm::perspectiveRH_ZO(glm::half_pi<float>(), 1.0f, nearM, farM) * glm::lookAt(origin, origin + f, up);
 }
 
-FieldTextures::FieldTextures(gpu::Context& ctx, const Field& field, const std::string& name) {
+FieldTextures::FieldTextures(gpu::Context& ctx, const Field& field, const std::string& name)
+    : field_(std::make_shared<const Field>(field)) {
+  static std::atomic<std::uint64_t> next{1};
+  id_ = next++;
   for (std::size_t t = 0; t < field.textures.size(); ++t) {
     gpu::ImageDesc d;
     d.type = gpu::ImageType::Tex3D;
@@ -67,7 +79,16 @@ Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t fra
               {VkPushConstantRange{VK_SHADER_STAGE_ALL, 0, sizeof(Push)}}, "dnrt"),
       cubeLayout_(ctx, {shared.frameLayout.handle()}, {VkPushConstantRange{VK_SHADER_STAGE_ALL, 0, sizeof(CubePush)}},
                   "dnrt.cube"),
-      objectBuffers_(framesInFlight) {
+      objectBuffers_(framesInFlight),
+      clusterLayout_(ctx, {{0, kUniform}, {1, kSampled}, {2, kSampled}, {3, kSampled}, {4, kSampled}, {5, kSampled},
+                           {6, kSampled}, {7, kSampled}},
+                     "dnrt.cluster"),
+      clusterPipelineLayout_(ctx, {shared.frameLayout.handle(), inputLayout_.handle(), clusterLayout_.handle()},
+                             {VkPushConstantRange{VK_SHADER_STAGE_ALL, 0, sizeof(ClusterPush)}}, "dnrt.clustered"),
+      tileBuffers_(framesInFlight),
+      clusterObjectBuffers_(framesInFlight) {
+  fullscreenVert_ = gpu::ShaderModule(ctx, "passes/fullscreen.vert.spv");
+  clusterFrag_ = gpu::ShaderModule(ctx, "dnrt/clustered.frag.spv");
   vert_ = gpu::ShaderModule(ctx, "dnrt/dnrt.vert.spv");
   frag_ = gpu::ShaderModule(ctx, "dnrt/dnrt.frag.spv");
 
@@ -112,6 +133,57 @@ const gpu::Pipeline& Node::pipeline(const Variant& v) {
   return p;
 }
 
+const gpu::Pipeline& Node::clusteredPipeline(bool sh9) {
+  gpu::Pipeline& p = clustered_[sh9 ? 1 : 0];
+  if (p.handle()) return p;
+  gpu::GraphicsPipelineDesc d;
+  d.vertex = &fullscreenVert_;
+  d.fragment = &clusterFrag_;
+  d.colorFormats = {kHdrFormat};
+  d.blend = gpu::Blend::Additive;
+  d.specialization = {sh9 ? 1u : 0u};  // clustered.frag id 0
+  d.name = std::string("dnrt.clustered") + (sh9 ? ".sh9" : ".sh4");
+  p = gpu::createGraphicsPipeline(ctx_, clusterPipelineLayout_, d);
+  return p;
+}
+
+std::vector<int> Node::atlasFor(const std::vector<const FieldTextures*>& textures) {
+  const auto brickOf = [&](std::uint64_t id) {
+    const auto it = std::find(atlas_.ids.begin(), atlas_.ids.end(), id);
+    const int b = it == atlas_.ids.end() ? -1 : int(it - atlas_.ids.begin());
+    return b < int(atlas_.layout.z0.size()) ? b : -1;  // left out of the layout: no room
+  };
+  bool grow = false;
+  for (const FieldTextures* t : textures)
+    if (std::find(atlas_.ids.begin(), atlas_.ids.end(), t->id()) == atlas_.ids.end()) {
+      atlas_.ids.push_back(t->id());
+      atlas_.fields.push_back(t->sharedField());
+      grow = true;
+    }
+  if (grow) {
+    std::vector<const Field*> fields;
+    for (const auto& f : atlas_.fields) fields.push_back(f.get());
+    const AtlasLayout layout = atlasLayout(fields, ctx_.limits().maxImageDimension3D);
+    std::vector<std::unique_ptr<gpu::Image>> slots;
+    for (int slot = 0; slot < layout.slots; ++slot) {
+      gpu::ImageDesc d;
+      d.type = gpu::ImageType::Tex3D;
+      d.format = VK_FORMAT_R8G8B8A8_UNORM;
+      d.width = layout.size.x, d.height = layout.size.y, d.depth = layout.size.z;
+      d.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+      d.name = "dnrt.atlas." + std::to_string(slot);
+      slots.push_back(std::make_unique<gpu::Image>(ctx_, d));
+      gpu::upload(ctx_, *slots.back(), atlasTexels(layout, fields, slot));
+    }
+    ctx_.waitIdle();  // frames in flight may still sample the old atlas
+    atlas_.layout = layout;
+    atlas_.slots = std::move(slots);
+  }
+  std::vector<int> bricks;
+  for (const FieldTextures* t : textures) bricks.push_back(brickOf(t->id()));
+  return bricks;
+}
+
 void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::vector<NodeObject> objects,
                  NodeSettings settings) {
   if (objects.empty()) return;
@@ -119,6 +191,29 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
     if (!o.textures) throw InternalError("dnrt: object '" + o.name + "' has no field textures");
   auto& bb = graph.blackboard();
   const render::PassContext* pc = &pcIn;
+  const auto modeOf = [&](const NodeObject& o) { return settings.mode.value_or(o.mode); };
+  // The clustered draw's objects (object index, atlas brick); intrusion and no room: drawn alone.
+  struct ClusterItem {
+    std::size_t object = 0;
+    int brick = 0;
+  };
+  std::vector<ClusterItem> cluster;
+  std::vector<bool> clustered(objects.size(), false);
+  {
+    std::vector<std::size_t> asked;
+    std::vector<const FieldTextures*> textures;
+    for (std::size_t i = 0; i < objects.size(); ++i)
+      if (modeOf(objects[i]) == Mode::Clustered && !objects[i].intrusion) {
+        asked.push_back(i);
+        textures.push_back(objects[i].textures);
+      }
+    const std::vector<int> bricks = asked.empty() ? std::vector<int>{} : atlasFor(textures);
+    for (std::size_t k = 0; k < asked.size(); ++k)
+      if (bricks[k] >= 0) {
+        cluster.push_back({asked[k], bricks[k]});
+        clustered[asked[k]] = true;
+      }
+  }
   // Intrusion maps first, one pass per object that asks (timed as "dnrt.cube/<name>").
   std::vector<std::optional<rg::Handle<rg::Texture>>> maps(objects.size());
   const std::uint32_t res = settings.intrusionResolution;
@@ -185,8 +280,9 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
         d.hdr = b.write(bb.get<rg::Texture>("lighting.hdr"), rg::Usage::ColorAttachment);
         for (const auto& m : maps) d.maps.push_back(m ? std::optional(b.read(*m, rg::Usage::SampledFragment)) : std::nullopt);
       },
-      [this, pc, objects = std::move(objects), settings](const Data& d, const rg::PassResources& res,
-                                                          rg::CommandContext& c) {
+      [this, pc, objects = std::move(objects), cluster = std::move(cluster), clustered = std::move(clustered),
+       modeOf = [mode = settings.mode](const NodeObject& o) { return mode.value_or(o.mode); }](
+          const Data& d, const rg::PassResources& res, rg::CommandContext& c) {
         VkCommandBuffer cmd = pc->cmd(c);
         // This slot's object records (the ring waited for the slot's fence before the frame began).
         gpu::Buffer& buffer = objectBuffers_[pc->frame().slot % objectBuffers_.size()];
@@ -217,7 +313,8 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
         gpu::TimestampPool* ts = pc->frame().timestamps.get();
         const gpu::Pipeline* bound = nullptr;
         for (std::size_t i = 0; i < objects.size(); ++i) {
-          const bool full = settings.fullScreen || objects[i].fullScreen;
+          if (clustered[i]) continue;
+          const bool full = modeOf(objects[i]) == Mode::FullScreen;
           const gpu::Pipeline& p = pipeline({objects[i].data.extents.z > 4.5f, objects[i].intrusion, full});
           if (bound != &p) {  // bind on a change of variant (per object: SH count, intrusion, "mode")
             p.bind(cmd);
@@ -236,6 +333,60 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
           if (ts) ts->begin(cmd, "dnrt/" + objects[i].name);
           vkCmdDraw(cmd, full ? 3 : 36, 1, 0, 0);
           if (ts) ts->end(cmd);
+        }
+        if (!cluster.empty()) {
+          // Clustered draws (cluster.hpp): this frame's tile masks and records, one draw per 32 objects.
+          std::vector<glm::mat4> boxes;
+          for (const ClusterItem& item : cluster) boxes.push_back(objects[item.object].data.boxToWorld);
+          const glm::uvec2 resolution(extent.width, extent.height);
+          const TileGrid grid = tileGrid(resolution);
+          const std::vector<std::uint32_t> masks = binObjects(pc->world->camera.viewProj, resolution, boxes);
+          const std::size_t batches = (cluster.size() + kClusterBatch - 1) / kClusterBatch;
+          const std::size_t slot = pc->frame().slot % tileBuffers_.size();
+          gpu::Buffer& tiles = tileBuffers_[slot];
+          const VkDeviceSize tileBytes = masks.size() * sizeof(std::uint32_t);
+          if (!tiles || tiles.size() < tileBytes)
+            tiles = gpu::Buffer(ctx_, {tileBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::Upload, "dnrt.tiles"});
+          std::memcpy(tiles.mapped(), masks.data(), tileBytes);
+          gpu::Buffer& records = clusterObjectBuffers_[slot];
+          const VkDeviceSize recordBytes = batches * kClusterBatchBytes;
+          if (!records || records.size() < recordBytes)
+            records = gpu::Buffer(ctx_, {recordBytes, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::MemoryUsage::Upload,
+                                         "dnrt.cluster-objects"});
+          std::memset(records.mapped(), 0, recordBytes);
+          for (std::size_t k = 0; k < cluster.size(); ++k) {
+            const DnrtClusterObject rec = clusterObject(fold(objects[cluster[k].object].data),
+                                                        atlas_.layout.z0[std::size_t(cluster[k].brick)]);
+            std::memcpy(records.mapped() + k * sizeof(DnrtClusterObject), &rec, sizeof rec);
+          }
+          VkDescriptorSet clusterInputs = pc->frame().descriptors->allocate(inputLayout_);
+          gpu::DescriptorWriter()
+              .sampledImage(0, view(d.albedo), point)
+              .sampledImage(1, view(d.normal), point)
+              .sampledImage(2, view(d.depth), point)
+              .buffer(3, tiles)
+              .sampledImage(4, view(d.entity), point)
+              .update(ctx_, clusterInputs);
+          const glm::vec4 invAtlas(1.0f / glm::vec3(atlas_.layout.size), 0.0f);
+          for (std::size_t b = 0; b < batches; ++b) {
+            bool sh9 = false;
+            for (std::size_t k = b * kClusterBatch; k < std::min(cluster.size(), (b + 1) * kClusterBatch); ++k)
+              sh9 = sh9 || objects[cluster[k].object].data.extents.z > 4.5f;
+            const gpu::Pipeline& p = clusteredPipeline(sh9);
+            p.bind(cmd);
+            p.bindSet(cmd, 0, pc->frameSet);
+            p.bindSet(cmd, 1, clusterInputs);
+            VkDescriptorSet set = pc->frame().descriptors->allocate(clusterLayout_);
+            gpu::DescriptorWriter w;
+            w.buffer(0, records, kUniform, b * kClusterBatchBytes, kClusterBatchBytes);
+            for (int s = 0; s < 7; ++s)
+              w.sampledImage(std::uint32_t(s + 1), atlas_.slots[std::size_t(s) < atlas_.slots.size() ? std::size_t(s) : 0]->view(),
+                             linear);
+            w.update(ctx_, set);
+            p.bindSet(cmd, 2, set);
+            p.push(cmd, ClusterPush{invAtlas, std::uint32_t(b * grid.count()), grid.tilesX});
+            vkCmdDraw(cmd, 3, 1, 0, 0);
+          }
         }
         ctx_.cmdEndRendering(cmd);
       });

@@ -4,11 +4,16 @@
 // "gbuffer.albedo", "gbuffer.normal", "gbuffer.depth" and "gbuffer.entity" (to skip each object's
 // own pixels) from the blackboard.
 //
-// Better than the paper's full-screen pass per object: by default each object rasterises its
-// outer cube (back faces, no depth test), so the cost follows the pixels the cube covers; the
-// paper's mode (a full-screen triangle per object) is NodeObject::fullScreen (the level's
-// "mode": "fullscreen") or NodeSettings::fullScreen for all objects, for comparison.
-// Each object's draw sits in its own GPU timestamp scope "dnrt/<name>" inside the pass's scope.
+// Modes (scene::DnrtMode: NodeObject::mode from the level's "mode", NodeSettings::mode for all):
+// - box (default), better than the paper's full-screen pass per object: each object rasterises its
+//   outer cube (back faces, no depth test), so the cost follows the pixels the cube covers;
+// - fullscreen: the paper's mode (a full-screen triangle per object), for comparison;
+// - clustered (issue 15, cluster.hpp): one full-screen draw per 32 objects, each pixel reading the
+//   G-buffer once and visiting only the objects whose outer cube covers its 16×16 tile, the fields
+//   read from one 3D atlas. An object with intrusion, or whose field no longer fits the atlas, is
+//   drawn as a box instead. Same image as the others within fp16 blending (one blend, not one per object).
+// A box or full-screen object's draw sits in its own GPU timestamp scope "dnrt/<name>" inside the
+// pass's scope (profiling per object); a clustered draw has none of its own (it is all objects).
 //
 // Intrusion (§5.2.3), per object: a pass "dnrt.cube/<name>" renders every OTHER drawn mesh from o
 // into six 90° views (distance from o, R32F, 128² per face); the object's term then reaches r only
@@ -19,6 +24,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/gi/dnrt/cluster.hpp"
 #include "engine/gi/dnrt/field.hpp"
 #include "engine/gi/dnrt/gpu_object.hpp"
 #include "engine/gpu/buffer.hpp"
@@ -27,18 +33,28 @@
 #include "engine/gpu/pipeline.hpp"
 #include "engine/render/graph/render_graph.hpp"
 #include "engine/render/pass_context.hpp"
+#include "engine/scene/components.hpp"
 
 namespace bounce::gi::dnrt {
 
-// One field's 3 (4 SH) or 7 (9 SH) RGBA8 3D textures (Table 2), uploaded once.
+using Mode = scene::DnrtMode;
+
+// One field's 3 (4 SH) or 7 (9 SH) RGBA8 3D textures (Table 2), uploaded once. Keeps the field's
+// CPU copy for the clustered mode's atlas, which is built when a new field first appears there.
 class FieldTextures {
  public:
   FieldTextures(gpu::Context& ctx, const Field& field, const std::string& name);
   // Slot 0..6 of the shader's set 2; a 4-SH field answers its texture 0 for slots 3..6 (never read).
   VkImageView view(int slot) const;
+  const Field& field() const { return *field_; }
+  const std::shared_ptr<const Field>& sharedField() const { return field_; }
+  // Unique for the process (an address may be reused by a later FieldTextures, an id is not).
+  std::uint64_t id() const { return id_; }
 
  private:
   std::vector<std::unique_ptr<gpu::Image>> images_;
+  std::shared_ptr<const Field> field_;
+  std::uint64_t id_ = 0;
 };
 
 struct NodeObject {
@@ -46,11 +62,11 @@ struct NodeObject {
   DnrtObjectGpu data;                       // packObject(field, world, radiance SH at o)
   std::string name;                         // timestamp scope "dnrt/<name>" (the entity id)
   bool intrusion = false;                   // render and test an intrusion map (§5.2.3)
-  bool fullScreen = false;                  // the paper's full-screen pass for this object (level "mode")
+  Mode mode = Mode::Box;                    // the level's "mode"
 };
 
 struct NodeSettings {
-  bool fullScreen = false;  // every object in the paper's full-screen mode, whatever NodeObject::fullScreen says
+  std::optional<Mode> mode;  // every object in this mode, whatever NodeObject::mode says (key M)
   std::uint32_t intrusionResolution = 128;  // texels per cube face
 };
 
@@ -74,6 +90,18 @@ class Node {
   };
   const gpu::Pipeline& pipeline(const Variant& v);
 
+  // The clustered mode's field atlas (cluster.hpp): every field seen in that mode so far, so it is
+  // rebuilt only when a new field appears (after the device is idle: frames in flight read it).
+  struct Atlas {
+    std::vector<std::uint64_t> ids;        // FieldTextures::id per brick, in atlas order
+    std::vector<std::shared_ptr<const Field>> fields;  // the bricks' fields
+    AtlasLayout layout;
+    std::vector<std::unique_ptr<gpu::Image>> slots;
+  };
+  // The atlas holding `objects`' fields (grown if needed); brick index per object, -1 = no room.
+  std::vector<int> atlasFor(const std::vector<const FieldTextures*>& textures);
+  const gpu::Pipeline& clusteredPipeline(bool sh9);
+
   gpu::Context& ctx_;
   gpu::DescriptorSetLayout inputLayout_, fieldLayout_;
   gpu::PipelineLayout layout_, cubeLayout_;
@@ -82,6 +110,12 @@ class Node {
   gpu::Pipeline cube_;
   std::unique_ptr<gpu::Image> noIntrusion_;  // 1×1×6 R32F "nothing nearer than 1e30 m"
   std::vector<gpu::Buffer> objectBuffers_;  // per frame slot, DnrtObjectGpu[]
+  gpu::DescriptorSetLayout clusterLayout_;
+  gpu::PipelineLayout clusterPipelineLayout_;
+  gpu::ShaderModule fullscreenVert_, clusterFrag_;
+  std::array<gpu::Pipeline, 2> clustered_;  // index: sh9
+  Atlas atlas_;
+  std::vector<gpu::Buffer> tileBuffers_, clusterObjectBuffers_;  // per frame slot: masks, DnrtClusterObject[]
 };
 
 }  // namespace bounce::gi::dnrt

@@ -40,7 +40,9 @@ class Runtime {
   void setLightVisibility(const incident::Visibility* visibility) { incident_.setVisibility(visibility); }
   // c_j's source for one object: the radiance SH arriving at its bounding sphere (centre, radius
   // in world units), world axes, before convolution and rotation.
-  incident::RadianceSH incidentSH(glm::vec3 centre, float radius, std::span<const render::LightGpu> lights) const;
+  // `window`: per-band factors on the lights' part (incident.hpp BandWindow).
+  incident::RadianceSH incidentSH(glm::vec3 centre, float radius, std::span<const render::LightGpu> lights,
+                                  const incident::BandWindow& window = incident::kNoWindow) const;
   NodeSettings& settings() { return settings_; }
   std::size_t objectCount() const { return objects_.size(); }
   const Field& field(std::size_t i) const { return objects_[i].field; }

@@ -10,8 +10,9 @@
 
 namespace bounce::gi::dnrt {
 
-incident::RadianceSH Runtime::incidentSH(glm::vec3 centre, float radius, std::span<const render::LightGpu> lights) const {
-  return incident_.radianceSH(centre, radius, lights);
+incident::RadianceSH Runtime::incidentSH(glm::vec3 centre, float radius, std::span<const render::LightGpu> lights,
+                                         const incident::BandWindow& window) const {
+  return incident_.radianceSH(centre, radius, lights, window);
 }
 
 std::vector<NodeObject> Runtime::objectsFor(const render::RenderWorld& world) const {
@@ -24,9 +25,13 @@ std::vector<NodeObject> Runtime::objectsFor(const render::RenderWorld& world) co
     if (!drawn || !placed) continue;
     const Placement pl = place(o.field, placed->matrix);
     const auto* component = registry_.tryGet<scene::Dnrt>(o.entity);
-    const incident::RadianceSH L = incidentSH(pl.centreWorld, pl.radiusWorld, world.lights);
+    // App. B.2's improved anti-radiance divides band 2 by Â_2 (×4) and so amplifies the ringing of
+    // a lamp's truncated lobe: its fields get the lights' SH Hanning-windowed (incident.hpp).
+    const bool improved = o.field.settings.antiRadiance == AntiRadiance::Improved;
+    const incident::RadianceSH L = incidentSH(pl.centreWorld, pl.radiusWorld, world.lights,
+                                              improved ? incident::kHanningWindow : incident::kNoWindow);
     out.push_back({o.textures.get(), packObject(o.field, placed->matrix, L, o.entity.index()), o.name,
-                   component && component->intrusion, component && component->fullScreen});
+                   component && component->intrusion, component ? component->mode : Mode::Box});
   }
   return out;
 }

@@ -61,6 +61,10 @@ void addCap(glm::vec3 toLight, float cosAlpha, glm::vec3 e, RadianceSH& sh) {
 
 float capCosine(float radius, float dist) { return glsl::incidentCapCosine(radius, dist); }
 
+glm::vec3 lightIrradiance(const render::LightGpu& light, glm::vec3 p, glm::vec3& toLight, float& dist) {
+  return glsl::incidentIrradiance(light, p, toLight, dist);
+}
+
 namespace {
 
 // Ray origins' disc: p plus 8 points at 0.7·radius around it, in the plane facing the light, at
@@ -124,17 +128,24 @@ RadianceSH irradianceSH(const RadianceSH& radiance) {
   return out;
 }
 
-RadianceSH Service::lightsSH(glm::vec3 p, float radius, std::span<const render::LightGpu> lights) const {
+RadianceSH Service::lightsSH(glm::vec3 p, float radius, std::span<const render::LightGpu> lights,
+                             const BandWindow& window) const {
   RadianceSH sh{};
   for (const render::LightGpu& light : lights) {
     const float v = visibility_ ? std::clamp(visibility_->visible(light, p, radius), 0.0f, 1.0f) : 1.0f;
     if (v > 0.0f) addLight(light, p, radius, v, sh);
   }
+  applyWindow(window, sh);
   return sh;
 }
 
-RadianceSH Service::radianceSH(glm::vec3 p, float radius, std::span<const render::LightGpu> lights) const {
-  RadianceSH sh = lightsSH(p, radius, lights);
+void applyWindow(const BandWindow& window, RadianceSH& sh) {
+  for (std::size_t i = 0; i < sh.size(); ++i) sh[i] *= window[i == 0 ? 0 : i < 4 ? 1 : 2];
+}
+
+RadianceSH Service::radianceSH(glm::vec3 p, float radius, std::span<const render::LightGpu> lights,
+                               const BandWindow& window) const {
+  RadianceSH sh = lightsSH(p, radius, lights, window);
   if (indirect_) {
     const RadianceSH ind = indirect_->radianceSH(p);
     for (std::size_t i = 0; i < sh.size(); ++i) sh[i] += ind[i];

@@ -37,6 +37,11 @@ using RadianceSH = std::array<glm::vec3, 9>;
 // from which the sphere sees the light, carrying the flux the sphere intercepts (incident.glsl's
 // header derives it; a delta when radius = 0). Directional: a delta. incidentAddLight in GLSL.
 void addLight(const render::LightGpu& light, glm::vec3 p, float radius, float visibility, RadianceSH& sh);
+// Irradiance at p from one level light on a surface facing it, before the cosine and visibility
+// (W/m² per channel; lights.glsl incidentIrradiance, term for term: engine/ref's on the light
+// converted field by field). Writes the unit direction towards the light and the distance (1e30
+// for directional). The one CPU copy for the techniques (VLM's phase-1 mirror uses it too).
+glm::vec3 lightIrradiance(const render::LightGpu& light, glm::vec3 p, glm::vec3& toLight, float& dist);
 // A uniform cap of half-angle α (cosAlpha = cos α) about unit direction toLight carrying
 // irradiance-weight e = ∫_cap L dω (W/m² per channel): s_l-scaled delta (incidentAddCap).
 void addCap(glm::vec3 toLight, float cosAlpha, glm::vec3 e, RadianceSH& sh);
@@ -99,6 +104,22 @@ RadianceSH irradianceSH(const RadianceSH& radiance);
 
 // ---- the service ----------------------------------------------------------------------------------
 
+// Per-band factors (l = 0, 1, 2) applied to the lights' SH (not to the indirect light's) before the
+// service hands them out. A lamp's lobe truncated at l = 2 rings (negative lobes opposite the lamp);
+// App. B.2's improved anti-radiance divides band l by Â_l, ×4 on band 2, and amplifies that ringing
+// (issue 15: its 9-SH indirect-only error 0.959 against Eq. 12's 0.938 on cornell-1). A Hanning
+// window, h_l = (1 + cos(π l / 3)) / 2 (Sloan, "Stupid Spherical Harmonics Tricks", §windowing),
+// trades the ringing for a wider lobe. Measured (`bounce accuracy content/levels/cornell-1.json
+// --rows direct,probes,dnrt --frames 3`, 4 / 9 SH, 32³, indirect-only, paper / improved): none
+// 0.942 / 0.942, 0.938 / 0.959; Lanczos σ (sinc(l/3): 1, 0.827, 0.413) 0.944 / 0.941,
+// 0.940 / 0.940; Hanning 0.945 / 0.942, 0.942 / 0.938. The window helps the improved
+// anti-radiance and costs Eq. 12 a little, so callers choose: DNRT windows with Hanning for
+// improved fields only (update.cpp).
+using BandWindow = std::array<float, 3>;
+inline constexpr BandWindow kNoWindow = {1.0f, 1.0f, 1.0f};
+inline constexpr BandWindow kHanningWindow = {1.0f, 0.75f, 0.25f};
+void applyWindow(const BandWindow& window, RadianceSH& sh);
+
 class Service {
  public:
   // Not owned; must outlive the service. Null: no indirect light / every light unoccluded.
@@ -106,10 +127,13 @@ class Service {
   void setVisibility(const Visibility* visibility) { visibility_ = visibility; }
   const IndirectSource* indirect() const { return indirect_; }
 
-  // The level's lights alone at the receiver (sphere of `radius` around p), with visibility.
-  RadianceSH lightsSH(glm::vec3 p, float radius, std::span<const render::LightGpu> lights) const;
-  // Indirect + lights: the light arriving at the receiver.
-  RadianceSH radianceSH(glm::vec3 p, float radius, std::span<const render::LightGpu> lights) const;
+  // The level's lights alone at the receiver (sphere of `radius` around p), with visibility,
+  // windowed per band by `window`.
+  RadianceSH lightsSH(glm::vec3 p, float radius, std::span<const render::LightGpu> lights,
+                      const BandWindow& window = kNoWindow) const;
+  // Indirect + lights (the lights' part windowed): the light arriving at the receiver.
+  RadianceSH radianceSH(glm::vec3 p, float radius, std::span<const render::LightGpu> lights,
+                        const BandWindow& window = kNoWindow) const;
 
  private:
   const IndirectSource* indirect_ = nullptr;

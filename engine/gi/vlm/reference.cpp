@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <numbers>
 
+#include "engine/gi/incident/incident.hpp"
 #include "engine/gi/vlm/form_factor.hpp"
 
 namespace bounce::gi::vlm {
@@ -14,28 +15,6 @@ glm::dvec3 samplePoint(const VirtualLight& l, int i) {
   return 0.5 * (c + glm::dvec3(v));
 }
 
-glm::dvec3 incidentIrradiance(const render::LightGpu& light, const glm::dvec3& p, glm::dvec3& toLight) {
-  const auto type = render::LightType(std::uint32_t(light.positionType.w + 0.5f));
-  if (type == render::LightType::Directional) {
-    toLight = -glm::dvec3(light.directionRange);
-    return glm::dvec3(light.radiance);
-  }
-  const glm::dvec3 v = glm::dvec3(light.positionType) - p;
-  const double d2 = std::max(glm::dot(v, v), 1e-12), d = std::sqrt(d2);
-  toLight = v / d;
-  glm::dvec3 e = glm::dvec3(light.radiance) / d2;
-  if (light.directionRange.w > 0.0f) {  // glTF range window
-    const double r = d / light.directionRange.w, w = std::clamp(1.0 - r * r * r * r, 0.0, 1.0);
-    e *= w * w;
-  }
-  if (type == render::LightType::Spot) {
-    const double cd = glm::dot(-toLight, glm::dvec3(light.directionRange));
-    const double t = std::clamp((cd - light.cone.x) / std::max(double(light.cone.y - light.cone.x), 1e-4), 0.0, 1.0);
-    e *= t * t;
-  }
-  return e;
-}
-
 glm::dvec3 emittedRadiance(const VirtualLight& l, std::span<const render::LightGpu> lights, double lift) {
   glm::dvec3 n = glm::cross(glm::dvec3(l.v1) - glm::dvec3(l.v0), glm::dvec3(l.v2) - glm::dvec3(l.v0));
   const double len = glm::length(n);
@@ -45,9 +24,11 @@ glm::dvec3 emittedRadiance(const VirtualLight& l, std::span<const render::LightG
   for (int s = 0; s < kPhase1Samples; ++s) {
     const glm::dvec3 p = samplePoint(l, s) + n * lift;
     for (const auto& light : lights) {
-      glm::dvec3 toLight;
-      const glm::dvec3 ei = incidentIrradiance(light, p, toLight);
-      e += ei * std::max(glm::dot(n, toLight), 0.0);
+      // The one CPU copy of lights.glsl's irradiance (engine/gi/incident), in float as the pass.
+      glm::vec3 toLight;
+      float dist = 0.0f;
+      const glm::dvec3 ei(incident::lightIrradiance(light, glm::vec3(p), toLight, dist));
+      e += ei * std::max(glm::dot(n, glm::dvec3(toLight)), 0.0);
     }
   }
   return glm::dvec3(l.scale) * (e / double(kPhase1Samples)) / std::numbers::pi;

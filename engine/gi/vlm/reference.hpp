@@ -14,10 +14,6 @@ inline constexpr int kPhase1Samples = 4;  // vlm_common.glsl VLM_PHASE1_SAMPLES
 // Phase-1 sample point i (centroid, then halfway to each vertex).
 glm::dvec3 samplePoint(const VirtualLight& l, int i);
 
-// Irradiance from one real light at p for a surface facing it (lights.glsl incidentIrradiance);
-// writes the unit direction towards the light.
-glm::dvec3 incidentIrradiance(const render::LightGpu& light, const glm::dvec3& p, glm::dvec3& toLight);
-
 // L = scale · E / π with E averaged over the sample points, unshadowed; `lift` as in the pass.
 glm::dvec3 emittedRadiance(const VirtualLight& l, std::span<const render::LightGpu> lights, double lift);
 

@@ -41,7 +41,7 @@ TEST(DnrtLevel, CornellPropsCarryFields) {
         EXPECT_TRUE(e.dynamic);
         EXPECT_EQ(e.dnrt->shCount, 4);
         EXPECT_EQ(e.dnrt->grid, 32);
-        EXPECT_FALSE(e.dnrt->fullScreen) << "the default mode rasterises the outer cube";
+        EXPECT_EQ(e.dnrt->mode, scene::DnrtMode::Box) << "the default mode rasterises the outer cube";
       }
     EXPECT_EQ(withField, name == std::string("cornell-1.json") ? 1 : name == std::string("cornell-5.json") ? 5 : 10);
   }
@@ -61,10 +61,20 @@ TEST(DnrtLevel, ParsesEverySetting) {
   EXPECT_TRUE(d.intrusion);
   EXPECT_TRUE(d.improvedAntiRadiance);
   EXPECT_EQ(d.samplesPerAxis, 8);
-  EXPECT_TRUE(d.fullScreen);
+  EXPECT_EQ(d.mode, scene::DnrtMode::FullScreen);
   const FieldSettings s = settingsFrom(d);
   EXPECT_EQ(s.antiRadiance, AntiRadiance::Improved);
   EXPECT_NO_THROW(checkSettings(s));
+}
+
+TEST(DnrtLevel, ParsesEveryMode) {
+  const std::pair<const char*, scene::DnrtMode> cases[] = {
+      {"box", scene::DnrtMode::Box}, {"fullscreen", scene::DnrtMode::FullScreen}, {"clustered", scene::DnrtMode::Clustered}};
+  for (const auto& [name, mode] : cases) {
+    const scene::Level level = scene::loadLevel(writeLevel("dnrt-mode.json", std::string(R"({"mode": ")") + name + "\"}"));
+    ASSERT_TRUE(level.entities[0].dnrt);
+    EXPECT_EQ(level.entities[0].dnrt->mode, mode) << name;
+  }
 }
 
 TEST(DnrtLevel, RejectsBadSettingsWithOneLine) {

@@ -246,14 +246,52 @@ TEST(Incident, ServiceAddsIndirectAndLights) {
   Service service;
   service.setIndirect(&env);
   const RadianceSH all = service.radianceSH(glm::vec3(0.0f), 0.2f, lights);
-  RadianceSH expected = env.radianceSH(glm::vec3(0.0f));
-  addLight(lamp, glm::vec3(0.0f), 0.2f, 1.0f, expected);
-  for (int i = 0; i < 9; ++i) EXPECT_EQ(all[i], expected[i]) << i;
+  RadianceSH lampSh{};
+  addLight(lamp, glm::vec3(0.0f), 0.2f, 1.0f, lampSh);
+  const RadianceSH envSh0 = env.radianceSH(glm::vec3(0.0f));
+  for (int i = 0; i < 9; ++i) EXPECT_EQ(all[i], lampSh[i] + envSh0[i]) << i;
+  // Windowed: the lamp's SH Hanning-windowed per band (1, 3/4, 1/4), the indirect light as it is.
+  const RadianceSH windowed = service.radianceSH(glm::vec3(0.0f), 0.2f, lights, kHanningWindow);
+  for (int i = 0; i < 9; ++i) {
+    const float h = i == 0 ? 1.0f : i < 4 ? 0.75f : 0.25f;
+    EXPECT_EQ(windowed[i], lampSh[i] * h + envSh0[i]) << i;
+  }
   const SceneVisibility blocked(boxScene(glm::vec3(-1, 0.4f, -1), glm::vec3(1, 0.5f, 1)));
   service.setVisibility(&blocked);
   const RadianceSH indirectOnly = service.radianceSH(glm::vec3(0.0f), 0.2f, lights);
   const RadianceSH envSh = env.radianceSH(glm::vec3(0.0f));
   for (int i = 0; i < 9; ++i) EXPECT_EQ(indirectOnly[i], envSh[i]) << i;
+}
+
+// lightIrradiance, the one CPU copy of lights.glsl's irradiance (VLM's phase-1 mirror uses it):
+// inverse square, the glTF range window, the spot ramp squared, directional as is.
+TEST(Incident, LightIrradianceIsLightsGlslsInverseSquareRangeAndCone) {
+  render::LightGpu point{};
+  point.positionType = glm::vec4(0.0f, 2.0f, 0.0f, float(render::LightType::Point));
+  point.radiance = glm::vec4(4.0f, 8.0f, 12.0f, 0.0f);  // intensity, W/sr
+  glm::vec3 toLight;
+  float dist = 0.0f;
+  EXPECT_EQ(lightIrradiance(point, glm::vec3(0.0f), toLight, dist), glm::vec3(1.0f, 2.0f, 3.0f));
+  EXPECT_EQ(toLight, glm::vec3(0.0f, 1.0f, 0.0f));
+  EXPECT_EQ(dist, 2.0f);
+  point.directionRange.w = 4.0f;  // range 4 m at d = 2: window (1 − (1/2)⁴)² = (15/16)²
+  EXPECT_NEAR(lightIrradiance(point, glm::vec3(0.0f), toLight, dist).x, (15.0f / 16.0f) * (15.0f / 16.0f), 1e-6f);
+
+  render::LightGpu spot = point;
+  spot.positionType.w = float(render::LightType::Spot);
+  spot.directionRange = glm::vec4(0.0f, -1.0f, 0.0f, 0.0f);
+  spot.cone = glm::vec4(0.5f, 1.0f, 0.0f, 0.0f);  // cos outer, cos inner
+  // At (2, 0, 0) the light is seen at cos = 2/√8 = 0.707 from its axis: t = (0.707 − 0.5) / 0.5.
+  const float t = (std::sqrt(0.5f) - 0.5f) / 0.5f;
+  EXPECT_NEAR(lightIrradiance(spot, glm::vec3(2.0f, 0.0f, 0.0f), toLight, dist).x, 4.0f / 8.0f * t * t, 1e-6f);
+
+  render::LightGpu sun{};
+  sun.positionType.w = float(render::LightType::Directional);
+  sun.directionRange = glm::vec4(0.0f, -1.0f, 0.0f, 0.0f);
+  sun.radiance = glm::vec4(3.0f);
+  EXPECT_EQ(lightIrradiance(sun, glm::vec3(5.0f), toLight, dist), glm::vec3(3.0f));
+  EXPECT_EQ(toLight, glm::vec3(0.0f, 1.0f, 0.0f));
+  EXPECT_EQ(dist, 1e30f);
 }
 
 }  // namespace

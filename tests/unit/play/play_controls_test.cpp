@@ -338,15 +338,18 @@ TEST(PlayKeys, MisspeltEffectSuggestsTheNearest) {
 }
 
 // Issue 16: DNRT's mode as a run-time setting. M switches every object to the paper's full-screen
-// pass (gi::dnrt::NodeSettings::fullScreen) and back; the overlay's combo does the same.
+// pass, then (issue 15) to the clustered draw (gi::dnrt::NodeSettings::mode), then back to each
+// object's own; the overlay's combo does the same.
 TEST(PlayKeys, MSwitchesTheDnrtMode) {
   PlayState state;
   scene::EffectSet effects;
-  EXPECT_FALSE(state.dnrtFullScreen) << "starts in each object's own mode";
+  EXPECT_EQ(state.dnrtMode, std::nullopt) << "starts in each object's own mode";
   EXPECT_EQ(applyKey(GLFW_KEY_M, state, effects), KeyEffect::DnrtModeChanged);
-  EXPECT_TRUE(state.dnrtFullScreen);
+  EXPECT_EQ(state.dnrtMode, scene::DnrtMode::FullScreen);
   EXPECT_EQ(applyKey(GLFW_KEY_M, state, effects), KeyEffect::DnrtModeChanged);
-  EXPECT_FALSE(state.dnrtFullScreen);
+  EXPECT_EQ(state.dnrtMode, scene::DnrtMode::Clustered);
+  EXPECT_EQ(applyKey(GLFW_KEY_M, state, effects), KeyEffect::DnrtModeChanged);
+  EXPECT_EQ(state.dnrtMode, std::nullopt);
   EXPECT_EQ(parseKeyScript("M@2").at(0).key, GLFW_KEY_M);
 }
 

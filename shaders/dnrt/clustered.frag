@@ -1,0 +1,90 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+// DNRT, clustered mode (issue 15; engine/gi/dnrt/cluster.hpp): one full-screen triangle for a
+// batch of up to 32 objects. Each pixel reads the G-buffer once, then visits only the objects in its
+// 16×16 tile's mask and adds Σ_objects L_DNRT (Eq. 16, term for term dnrt.frag's) in one blend.
+//
+// Why two loops: llvmpipe runs both sides of a branch under a mask but leaves a loop as soon as no
+// lane of the 8 is still in it. The first loop is cheap (the affine map, s(r), (n_o·n_r)₊ and the
+// own-pixel test) and keeps only the objects that reach r; the second, with the three (seven)
+// atlas fetches, then runs as often as the most-reached pixel of the 8 needs, not once per object
+// whose screen rectangle merely covers the tile.
+// Per-object records are a uniform array indexed per pixel (no flat varyings here: one draw serves
+// every object); the fields share one 3D atlas per slot (no descriptor indexing on lavapipe).
+#include "frame.glsl"
+#include "dnrt/dnrt.glsl"
+
+layout(constant_id = 0) const bool kSh9 = false;
+
+layout(set = 0, binding = 0) uniform FrameUbo { Camera camera; };
+layout(set = 1, binding = 0) uniform sampler2D gAlbedo;
+layout(set = 1, binding = 1) uniform sampler2D gNormal;
+layout(set = 1, binding = 2) uniform sampler2D gDepth;
+layout(std430, set = 1, binding = 3) readonly buffer Tiles { uint tileMasks[]; };
+layout(set = 1, binding = 4) uniform usampler2D gEntity;
+layout(std140, set = 2, binding = 0) uniform Objects { DnrtClusterObject objects[kDnrtClusterBatch]; };
+// The field atlas, Table 2's slots (cluster.hpp); a 3-slot atlas binds slot 0 in 3..6 (kSh9 false).
+layout(set = 2, binding = 1) uniform sampler3D atlas0;
+layout(set = 2, binding = 2) uniform sampler3D atlas1;
+layout(set = 2, binding = 3) uniform sampler3D atlas2;
+layout(set = 2, binding = 4) uniform sampler3D atlas3;
+layout(set = 2, binding = 5) uniform sampler3D atlas4;
+layout(set = 2, binding = 6) uniform sampler3D atlas5;
+layout(set = 2, binding = 7) uniform sampler3D atlas6;
+layout(push_constant) uniform Push {
+  vec4 invAtlasSize;  // xyz: 1 / the atlas's texels per axis
+  uint tileBase;      // this batch's first mask in Tiles
+  uint tilesX;
+} pc;
+
+layout(location = 0) out vec4 outRadiance;
+
+void main() {
+  ivec2 pixel = ivec2(gl_FragCoord.xy);
+  uint mask = tileMasks[pc.tileBase + uint(pixel.y >> kDnrtClusterTileShift) * pc.tilesX +
+                        uint(pixel.x >> kDnrtClusterTileShift)];
+  if (mask == 0u) discard;
+  float depth = texelFetch(gDepth, pixel, 0).r;
+  if (depth >= 1.0) discard;
+  vec4 r = vec4(worldFromDepth(camera.invViewProj, (vec2(pixel) + 0.5) * camera.resolution.zw, depth), 1.0);
+  vec3 nr = texelFetch(gNormal, pixel, 0).xyz;
+  uint entity = texelFetch(gEntity, pixel, 0).r;
+
+  // 1. The tile's objects that reach r: dnrt.frag's discards, as a bit each.
+  uint live = 0u;
+  for (uint m = mask; m != 0u; m &= m - 1u) {
+    int i = findLSB(m);
+    vec3 q = vec3(dot(objects[i].worldToQ[0], r), dot(objects[i].worldToQ[1], r), dot(objects[i].worldToQ[2], r));
+    float s = dnrtFalloff(q, objects[i].extents.x, objects[i].extents.y);
+    vec3 toO = objects[i].centreWorld.xyz - r.xyz;
+    float len = length(toO);
+    uint self = objects[i].ids.x;
+    bool reaches = s > 0.0 && len > 1e-6 * objects[i].centreWorld.w && max(dot(toO / len, nr), 0.0) > 0.0 &&
+                   !(self != 0u && entity == self);
+    if (reaches) live |= 1u << uint(i);
+  }
+  if (live == 0u) discard;
+
+  // 2. Their terms: (n_o·n_r)₊ s(r) (a + Σ_slot dot(k_slot, texel_slot)), summed, times ρ_r once.
+  vec3 total = vec3(0.0);
+  for (uint m = live; m != 0u; m &= m - 1u) {
+    int i = findLSB(m);
+    vec3 q = vec3(dot(objects[i].worldToQ[0], r), dot(objects[i].worldToQ[1], r), dot(objects[i].worldToQ[2], r));
+    vec4 ext = objects[i].extents;
+    float s = dnrtFalloff(q, ext.x, ext.y);
+    vec3 toO = objects[i].centreWorld.xyz - r.xyz;
+    float lamb = max(dot(toO / length(toO), nr), 0.0);
+    vec3 uvw = (dnrtGrid(q, ext.x, ext.w) + objects[i].atlas.xyz) * pc.invAtlasSize.xyz;
+    vec3 sum = objects[i].a.rgb + vec3(dot(objects[i].k[0], texture(atlas0, uvw)),
+                                       dot(objects[i].k[1], texture(atlas1, uvw)),
+                                       dot(objects[i].k[2], texture(atlas2, uvw)));
+    if (kSh9) {
+      sum += vec3(dot(objects[i].k[3], texture(atlas3, uvw)), dot(objects[i].k[4], texture(atlas4, uvw)),
+                  dot(objects[i].k[5], texture(atlas5, uvw)));
+      sum += objects[i].k[6].rgb * texture(atlas6, uvw).rgb;
+    }
+    total += (lamb * s) * sum;
+  }
+  vec3 albedo = texelFetch(gAlbedo, pixel, 0).rgb;
+  outRadiance = vec4(albedo * total, 0.0);
+}
