@@ -40,7 +40,10 @@ XiPass::XiPass(gpu::Context& ctx, const Field& f)
   basis_ = storage(ctx, f.itf.basis, "rtf.basis");
   alpha_ = storage(ctx, f.itf.alpha, "rtf.alpha");
   cluster_ = storage(ctx, f.itf.cluster, "rtf.cluster");
-  light_ = gpu::Buffer(ctx, {std::size_t(s.proxies) * kShCount * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::Upload, "rtf.light"});
+  // Written by vkCmdUpdateBuffer in record(): ordered in the command stream, so a frame in flight
+  // never sees the next frame's light (m·16·16 bytes ≤ 16 KiB < the command's 64 KiB limit).
+  light_ = gpu::Buffer(ctx, {std::size_t(s.proxies) * kShCount * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                             gpu::MemoryUsage::GpuOnly, "rtf.light"});
   eigen_ = gpu::Buffer(ctx, {std::size_t(f.itf.clusters) * std::size_t(f.itf.components + 1) * kShCount * 16,
                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::GpuOnly, "rtf.eigen"});
   gpu::ImageDesc d;
@@ -85,12 +88,20 @@ XiPass::XiPass(gpu::Context& ctx, const Field& f)
 
 void XiPass::setProxyLight(std::span<const glm::vec3> light) {
   if (light.size() != std::size_t(settings_.proxies) * kShCount) throw InternalError("rtf::XiPass: proxy light is not m·16 coefficients");
-  std::vector<glm::vec4> packed;
-  for (const glm::vec3& l : light) packed.emplace_back(l, 0.0f);
-  gpu::upload(ctx_, light_, std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(packed.data()), packed.size() * sizeof(glm::vec4)));
+  pending_.clear();
+  for (const glm::vec3& l : light) pending_.emplace_back(l, 0.0f);
 }
 
 void XiPass::record(VkCommandBuffer cmd) {
+  // The previous frame's reads (ξ in fragment shaders, light and eigen here) finish before this
+  // frame's writes (write-after-read: an execution dependency suffices).
+  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                       VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 0, nullptr, 0, nullptr, 0,
+                       nullptr);
+  vkCmdUpdateBuffer(cmd, light_.handle(), 0, pending_.size() * sizeof(glm::vec4), pending_.data());
+  VkMemoryBarrier uploaded{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_TRANSFER_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT};
+  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &uploaded, 0, nullptr,
+                       0, nullptr);
   if (xi_.layout() != VK_IMAGE_LAYOUT_GENERAL) gpu::transition(cmd, xi_, VK_IMAGE_LAYOUT_GENERAL);
   pipeline_.bind(cmd);
   pipeline_.bindSet(cmd, 0, set_);

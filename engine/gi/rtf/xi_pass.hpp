@@ -4,6 +4,7 @@
 // sphere·16 + i, texel (face·n_r + x, y)) for the shading step to read with texelFetch. The CPU
 // reference is xiCache() (evaluate.hpp); tests/unit/rtf/xi_gpu_test.cpp compares the two.
 #include <span>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -18,8 +19,8 @@ namespace bounce::gi::rtf {
 class XiPass {
  public:
   XiPass(gpu::Context& ctx, const Field& field);
-  // The proxies' incident light, m·16 RGB in the object's frame (host-visible: takes effect at
-  // the next record()).
+  // The proxies' incident light, m·16 RGB in the object's frame: record() writes it into the
+  // command buffer (vkCmdUpdateBuffer), so it takes effect at the next record().
   void setProxyLight(std::span<const glm::vec3> light);
   // Both dispatches with the barriers they need; ξ ends in GENERAL layout, its writes made
   // visible to later compute and fragment reads.
@@ -37,6 +38,7 @@ class XiPass {
   FieldSettings settings_;
   Push push_{};
   gpu::Buffer basis_, alpha_, cluster_, light_, eigen_;
+  std::vector<glm::vec4> pending_;  // the light record() writes
   gpu::Image xi_, oof_;
   gpu::DescriptorSetLayout setLayout_;
   gpu::PipelineLayout layout_;
