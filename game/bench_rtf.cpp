@@ -12,7 +12,9 @@
 #include "engine/math/sampling.hpp"
 #include "engine/scene/systems.hpp"
 #include "game/bench_dnrt.hpp"
+#include "engine/gpu/presenter_offscreen.hpp"
 #include "game/session.hpp"
+#include "game/timing_stats.hpp"
 
 namespace bounce::game {
 
@@ -96,6 +98,53 @@ int runBenchRtf(const cli::Args& args) {
     std::sort(shadeUs.begin(), shadeUs.end());
     std::printf("objects=%zu bounces=%d rtf_bounce_cpu_ms=%.3f rtf_shade_cpu_us_per_receiver=%.2f runs=%d\n", n, bounces,
                 bounceMs[bounceMs.size() / 2], shadeUs[shadeUs.size() / 2], runs);
+    std::fflush(stdout);
+  }
+
+  // GPU: the level with the first n of those objects carrying an `rtf` component at the settings
+  // above (the fields just baked: same key), the others drawn without one, rendered with
+  // direct,shadows,probes,rtf; medians of the "rtf.bounce" (ξ pass) and "rtf" (shading) scopes,
+  // and of the per-object shading scopes "rtf/<id>", over --frames after kWarmup frames.
+  if (args.has("--no-gpu")) return 0;
+  const auto res = args.resolution("--resolution").value_or(std::pair<int, int>{1280, 720});
+  const int frames = intIn(args, "--frames", 30, 1, 100000);
+  constexpr int kWarmup = 5;  // the first draws compile pipelines (DESIGN.md machine facts)
+  gpu::Context ctx({args.str("--device", "")});
+  gpu::OffscreenPresenter presenter(ctx, {std::uint32_t(res.first), std::uint32_t(res.second)});
+  for (std::size_t n = 1; n <= fields.size(); ++n) {
+    scene::Level configured = level;
+    scene::overrideEffects(configured, "direct,shadows,probes,rtf");
+    std::size_t k = 0;
+    for (auto& e : configured.entities) {
+      if (!e.dnrt) continue;  // the bench's objects (above)
+      e.rtf.reset();
+      if (k++ >= n) continue;
+      scene::Rtf c;
+      c.proxies = s.proxies, c.bounces = bounces, c.spheres = s.spheres, c.face = s.faceSize, c.rays = s.raysPerAxis;
+      c.vertexRays = s.vertexRaysPerAxis, c.clusters = s.clusters, c.components = s.components;
+      c.inner = s.innerRadius, c.outer = s.outerRadius;
+      e.rtf = c;
+    }
+    TimingCollector timings;
+    {
+      Session session(ctx, configured);
+      for (int f = 0; f < frames + kWarmup; ++f) {
+        session.update(double(f) / 60.0);
+        session.render(presenter, {});
+        timings.collect(session.renderer().frames(), kWarmup);
+      }
+      session.renderer().frames().waitIdle();
+      timings.collect(session.renderer().frames(), kWarmup);
+    }
+    double bounceGpu = 0.0, shade = 0.0, perObject = 0.0;
+    std::size_t objectRows = 0, measured = 0;
+    for (const PassStats& p : timings.stats()) {
+      if (p.pass == "rtf.bounce" && p.object.empty()) bounceGpu = p.medianMs, measured = p.frames;
+      if (p.pass == "rtf" && p.object.empty()) shade = p.medianMs;
+      if (p.pass == "rtf" && !p.object.empty()) perObject += p.medianMs, ++objectRows;
+    }
+    std::printf("objects=%zu bounces=%d %dx%d rtf_bounce_ms=%.3f rtf_ms=%.3f rtf_per_object_ms=%.3f frames=%zu\n", n, bounces,
+                res.first, res.second, bounceGpu, shade, objectRows ? perObject / double(objectRows) : 0.0, measured);
     std::fflush(stdout);
   }
   return 0;

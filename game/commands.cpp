@@ -89,7 +89,7 @@ const std::vector<cli::CommandSpec>& commandSpecs() {
        "vlm-grid: time the VLM grid builds (scatter vs gather) on a random scene, one line; vlm-lights / vlm-k: GPU ms\n"
        "              of the VLM passes vs lights per pixel without a grid / vs cell list size K, one line per setting;\n"
        "              dnrt: the DNRT paper's Tables 6-8 (GPU ms, ratios); skinning: vertices/ms, GPU pass vs CPU;\n"
-       "              rtf: RTF bake + CPCA per object, CPU bouncing/shading step vs objects (game/bench_rtf.hpp)",
+       "              rtf: RTF bake + CPCA per object, CPU bouncing/shading step and GPU passes vs objects (game/bench_rtf.hpp)",
        {device,
         {"--lights", "N", "virtual lights (vlm-grid default 10000; vlm-k default 240)"},
         {"--grid", "G", "vlm-grid: cells per axis (default 50)"},
@@ -99,8 +99,8 @@ const std::vector<cli::CommandSpec>& commandSpecs() {
         {"--no-gather", "", "vlm-grid: skip the gather build (it is O(cells × lights); needed for 100^3 x 100k)"},
         {"--counts", "LIST", "vlm-lights: light counts (default 20,40,...,240); vlm-k: K values (default 10,20,...,120)"},
         {"--level", "FILE", "vlm-lights/vlm-k: a level with a VLM (default content/levels/cornell-vlm.json); rtf: default cornell-5"},
-        {"--resolution", "WxH", "vlm-lights/vlm-k/dnrt: render size (default 1280x720)"},
-        {"--frames", "N", "vlm-lights/vlm-k: timed frames per setting (default 3); dnrt: per session (default 30, after 5 warm-up)"},
+        {"--resolution", "WxH", "vlm-lights/vlm-k/dnrt/rtf: render size (default 1280x720)"},
+        {"--frames", "N", "vlm-lights/vlm-k: timed frames per setting (default 3); dnrt/rtf: per session (default 30, after 5 warm-up)"},
         {"--warmup", "N", "vlm-lights/vlm-k: untimed frames after each change (default 1)"},
         // bench dnrt (game/bench_dnrt.hpp)
         {"--levels", "LIST", "dnrt: Table 8 levels, names in content/levels or .json (default cornell-1,cornell-5,cornell-10)"},
@@ -118,6 +118,7 @@ const std::vector<cli::CommandSpec>& commandSpecs() {
         {"--components", "N", "rtf: CPCA components per cluster (default 16)"},
         {"--bounces", "N", "rtf: inter-object bounces 1..4 (default 2)"},
         {"--objects", "N", "rtf: only the level's first N dynamic objects (default all)"},
+        {"--no-gpu", "", "rtf: only the bake and CPU lines"},
         {"--only", "TEXT", "skinning: only the models whose name contains TEXT (e.g. +subdiv)"}},
        1, 1},
   };
