@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 
 #include "engine/core/error.hpp"
 #include "engine/core/paths.hpp"
@@ -43,6 +44,17 @@ int runBenchRtf(const cli::Args& args) {
   s.vertexRaysPerAxis = intIn(args, "--vertex-rays", s.vertexRaysPerAxis, 1, 256);
   s.clusters = intIn(args, "--clusters", s.clusters, 1, 4096);
   s.components = intIn(args, "--components", s.components, 1, 256);
+  if (args.has("--radii")) {  // "INNER,OUTER" in units of η (a level component's inner/outer)
+    const std::string v = args.str("--radii");
+    const std::size_t comma = v.find(',');
+    char* end = nullptr;
+    const double inner = std::strtod(v.c_str(), &end);
+    const bool innerOk = comma != std::string::npos && end == v.c_str() + comma;
+    const double outer = innerOk ? std::strtod(v.c_str() + comma + 1, &end) : 0.0;
+    if (!innerOk || *end != '\0' || !(inner > 0.0) || !(outer > inner) || !(outer <= 100.0))
+      throwInputError("bounce bench rtf", "--radii", "'" + v + "' is not INNER,OUTER", "0 < INNER < OUTER <= 100, e.g. 0.5,4");
+    s.innerRadius = float(inner), s.outerRadius = float(outer);
+  }
   const int bounces = intIn(args, "--bounces", 2, 1, 4);
   const int runs = intIn(args, "--runs", 3, 1, 1000);
   const int maxObjects = intIn(args, "--objects", 1000, 1, 1000);

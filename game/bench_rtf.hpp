@@ -2,7 +2,8 @@
 // `bounce bench rtf` (issue 14), CPU part: the RTF bake and CPCA of every dynamic object of a
 // level (default cornell-5: its entities with a `dnrt` component, the level's dynamic props), one line per object
 //   object=ID proxies=M clusters=C components=P ratio=R frobenius=E bake_s=… raw_mb=… compressed_mb=…
-// (bake_s=0 cached=1 when the field came from cache/rtf), then the bouncing step (§5, Algorithm 1)
+// (bake_s=0 cached=1 when the field came from cache/rtf; --radii INNER,OUTER sets the spheres' radii in η,
+// as a level component's inner/outer), then the bouncing step (§5, Algorithm 1)
 // and the shading step on the CPU (engine/gi/rtf/evaluate.hpp, the test reference) for scenes of
 // 1…N of those objects (--objects N: only the first N), one line per scene size:
 //   objects=N bounces=B rtf_bounce_cpu_ms=… rtf_shade_cpu_us_per_receiver=… runs=…

@@ -118,6 +118,7 @@ const std::vector<cli::CommandSpec>& commandSpecs() {
         {"--components", "N", "rtf: CPCA components per cluster (default 16)"},
         {"--bounces", "N", "rtf: inter-object bounces 1..4 (default 2)"},
         {"--objects", "N", "rtf: only the level's first N dynamic objects (default all)"},
+        {"--radii", "INNER,OUTER", "rtf: innermost and outermost sphere radii in units of the bounding radius (default 0.1,8)"},
         {"--no-gpu", "", "rtf: only the bake and CPU lines"},
         {"--only", "TEXT", "skinning: only the models whose name contains TEXT (e.g. +subdiv)"}},
        1, 1},

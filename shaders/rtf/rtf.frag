@@ -6,7 +6,8 @@
 // ξ(q) the trilinear lookup of the object's ξ image (its interreflected light arriving at q), V(q)
 // its OOF, u the SH of V ≡ 1, L the indirect light at o (the record's product matrix), all in the
 // object's frame (the normal is rotated there instead of 16 coefficients into the world), and
-// E_n(L) = Σ Â_l L_lm Y_lm(n) with Â_3 = 0, so only 9 ξ coefficients are read. Added to
+// E_n(L) = Σ Â_l L_lm Y_lm(n) with Â_3 = 0, so only 9 ξ coefficients are read (2 filtered taps
+// each, rtf.glsl rtfTaps; linear samplers). Added to
 // "lighting.hdr" with additive blending.
 #include "frame.glsl"
 #include "sh.glsl"
@@ -40,21 +41,11 @@ void main() {
   float y[9];
   shEval9(n, y);
 
-  ivec2 texel[8];
-  int sphere[8];
-  float weight[8];
-  rtfLookup(g, q, texel, sphere, weight);
   // Interreflected: ξ's bands 0..2 (Eq. 10), convolved and evaluated at n.
+  vec3 L[16];
+  rtfInterreflection(xiTex, g, q, 9, L);
   vec3 E = vec3(0.0);
-  for (int c = 0; c < 8; ++c) {
-    if (weight[c] == 0.0) continue;
-    vec3 s = vec3(0.0);
-    for (int i = 0; i < 9; ++i) {
-      float a = i == 0 ? SH_A0 : (i < 4 ? SH_A1 : SH_A2);
-      s += (a * y[i]) * texelFetch(xiTex, ivec3(texel[c], sphere[c] * 16 + i), 0).rgb;
-    }
-    E += weight[c] * s;
-  }
+  for (int i = 0; i < 9; ++i) E += ((i == 0 ? SH_A0 : (i < 4 ? SH_A1 : SH_A2)) * y[i]) * L[i];
   E *= 1.0 / 3.14159265358979324;
   // Blocked: (u − V)_j against the record's W_j = Σ_i Â_l/π y_i T_ij.
   float V[16];

@@ -81,6 +81,8 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
           std::memcpy(buffer.mapped() + i * kRtfObjectStride, &objects[i].record, sizeof(RtfObjectGpu));
 
         VkSampler point = pc->samplers->get({VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST});
+        // The fields: bilinear within a cube face is the sampler's (shaders/rtf/rtf.glsl rtfTaps).
+        VkSampler linear = pc->samplers->get({VK_FILTER_LINEAR, VK_SAMPLER_MIPMAP_MODE_NEAREST});
         auto view = [&](rg::Handle<rg::Texture> h) { return pc->backend->image(res.texture(h)).view(); };
         VkDescriptorSet inputs = pc->frame().descriptors->allocate(inputLayout_);
         gpu::DescriptorWriter()
@@ -102,8 +104,8 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
           VkDescriptorSet set = pc->frame().descriptors->allocate(objectLayout_);
           gpu::DescriptorWriter()
               .buffer(0, buffer, kUniform, i * kRtfObjectStride, sizeof(RtfObjectGpu))
-              .sampledImage(1, objects[i].xi->xi().view(), point, VK_IMAGE_LAYOUT_GENERAL)
-              .sampledImage(2, objects[i].xi->oof().view(), point)
+              .sampledImage(1, objects[i].xi->xi().view(), linear, VK_IMAGE_LAYOUT_GENERAL)
+              .sampledImage(2, objects[i].xi->oof().view(), linear)
               .update(ctx_, set);
           pipeline_.bindSet(cmd, 2, set);
           if (ts) ts->begin(cmd, "rtf/" + objects[i].name);
