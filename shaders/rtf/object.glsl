@@ -6,5 +6,5 @@ struct RtfObject {
   vec4 centreWorld;   // xyz: o; w: half-size of the drawn box (m)
   vec4 grid;          // spheres, face size, inner, outer (η)
   uvec4 ids;          // x: entity + 1
-  vec4 blocked[144];  // [j·9 + i].rgb = Â_l(i)/π · T_ij (the indirect light's product matrix)
+  vec4 blocked[144];  // [j·9 + i].rgb = Â_l(i)/π · T_ij: folded into X by the ξ pass (xi.comp), not read here
 };

@@ -6,8 +6,9 @@
 // ξ(q) the trilinear lookup of the object's ξ image (its interreflected light arriving at q), V(q)
 // its OOF, u the SH of V ≡ 1, L the indirect light at o (the record's product matrix), all in the
 // object's frame (the normal is rotated there instead of 16 coefficients into the world), and
-// E_n(L) = Σ Â_l L_lm Y_lm(n) with Â_3 = 0, so only 9 ξ coefficients are read (2 filtered taps
-// each, rtf.glsl rtfTaps; linear samplers). Added to
+// E_n(L) = Σ Â_l L_lm Y_lm(n) with Â_3 = 0, so only bands 0..2 matter. Both terms are folded per
+// sample by the ξ pass into X_i (i < 9, xi.comp), looked up with 2 filtered taps per coefficient
+// (rtf.glsl rtfTaps, a linear sampler): ρ Σ_i y_i(n) X_i(q). Added to
 // "lighting.hdr" with additive blending.
 #include "frame.glsl"
 #include "sh.glsl"
@@ -20,8 +21,8 @@ layout(set = 1, binding = 1) uniform sampler2D gNormal;
 layout(set = 1, binding = 2) uniform sampler2D gDepth;
 layout(set = 1, binding = 3) uniform usampler2D gEntity;
 layout(set = 2, binding = 0) uniform ObjectUbo { RtfObject ob; };
-layout(set = 2, binding = 1) uniform sampler2DArray xiTex;
-layout(set = 2, binding = 2) uniform sampler2DArray oofTex;
+// X_i = Â_l/π ξ_i − Σ_j T'_ij (u − V)_j per sample, i < 9 (xi.comp): layer sphere·9 + i.
+layout(set = 2, binding = 1) uniform sampler2DArray netTex;
 
 layout(location = 0) out vec4 outRadiance;
 
@@ -41,22 +42,18 @@ void main() {
   float y[9];
   shEval9(n, y);
 
-  // Interreflected: ξ's bands 0..2 (Eq. 10), convolved and evaluated at n.
-  vec3 L[16];
-  rtfInterreflection(xiTex, g, q, 9, L);
-  vec3 E = vec3(0.0);
-  for (int i = 0; i < 9; ++i) E += ((i == 0 ? SH_A0 : (i < 4 ? SH_A1 : SH_A2)) * y[i]) * L[i];
-  E *= 1.0 / 3.14159265358979324;
-  // Blocked: (u − V)_j against the record's W_j = Σ_i Â_l/π y_i T_ij.
-  float V[16];
-  rtfOcclusion(oofTex, g, q, V);
-  V[0] -= kRtfUnitVisibility;
-  vec3 blocked = vec3(0.0);
-  for (int j = 0; j < 16; ++j) {
-    vec3 w = vec3(0.0);
-    for (int i = 0; i < 9; ++i) w += y[i] * ob.blocked[j * 9 + i].rgb;
-    blocked -= V[j] * w;
+  // Both terms are linear in what Eq. 10 interpolates, so the ξ pass folded them per sample
+  // (xi.comp's X): the lookup of X with Eq. 10's weights, evaluated at n.
+  vec2 uv;
+  int s0, s1;
+  float w0, w1;
+  rtfTaps(g, q, uv, s0, s1, w0, w1);
+  vec3 sum = vec3(0.0);
+  for (int i = 0; i < 9; ++i) {
+    vec3 x = w0 * texture(netTex, vec3(uv, float(s0 * 9 + i))).rgb;
+    if (w1 != 0.0) x += w1 * texture(netTex, vec3(uv, float(s1 * 9 + i))).rgb;
+    sum += y[i] * x;
   }
   vec3 albedo = texelFetch(gAlbedo, pixel, 0).rgb;
-  outRadiance = vec4(albedo * (E - blocked), 0.0);
+  outRadiance = vec4(albedo * sum, 0.0);
 }

@@ -17,7 +17,7 @@ constexpr VkFormat kHdrFormat = VK_FORMAT_R16G16B16A16_SFLOAT;  // "lighting.hdr
 Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t framesInFlight)
     : ctx_(ctx),
       inputLayout_(ctx, {{0, kSampled}, {1, kSampled}, {2, kSampled}, {3, kSampled}}, "rtf.inputs"),
-      objectLayout_(ctx, {{0, kUniform}, {1, kSampled}, {2, kSampled}}, "rtf.object"),
+      objectLayout_(ctx, {{0, kUniform}, {1, kSampled}}, "rtf.object"),
       layout_(ctx, {shared.frameLayout.handle(), inputLayout_.handle(), objectLayout_.handle()}, {}, "rtf"),
       records_(framesInFlight) {
   const gpu::ShaderModule vert(ctx, "rtf/rtf.vert.spv"), frag(ctx, "rtf/rtf.frag.spv");
@@ -42,18 +42,27 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
   // side-effect pass; XiPass::record's barriers order them before this frame's fragment reads and
   // after the previous frame's. Declaration order is execution order (render_graph.hpp).
   struct BounceData {};
-  std::vector<std::pair<XiPass*, std::vector<glm::vec3>>> lights;
+  struct Light {
+    XiPass* xi;
+    std::vector<glm::vec3> proxies;
+    std::vector<glm::vec4> blocked;
+  };
+  std::vector<Light> lights;
   std::vector<std::string> names;
-  for (NodeObject& o : objects) lights.emplace_back(o.xi, std::move(o.proxyLight)), names.push_back(o.name);
+  for (NodeObject& o : objects) {
+    lights.push_back({o.xi, std::move(o.proxyLight), {std::begin(o.record.blocked), std::end(o.record.blocked)}});
+    names.push_back(o.name);
+  }
   graph.addPass<BounceData>(
       "rtf.bounce", [](rg::Builder& b, BounceData&) { b.sideEffect(); },
       [pc, lights = std::move(lights), names](const BounceData&, const rg::PassResources&, rg::CommandContext& c) {
         VkCommandBuffer cmd = pc->cmd(c);
         gpu::TimestampPool* ts = pc->frame().timestamps.get();
         for (std::size_t i = 0; i < lights.size(); ++i) {
-          lights[i].first->setProxyLight(lights[i].second);
+          lights[i].xi->setProxyLight(lights[i].proxies);
+          lights[i].xi->setBlockedLight(lights[i].blocked);
           if (ts) ts->begin(cmd, "rtf.bounce/" + names[i]);
-          lights[i].first->record(cmd);
+          lights[i].xi->record(cmd);
           if (ts) ts->end(cmd);
         }
       });
@@ -104,8 +113,7 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
           VkDescriptorSet set = pc->frame().descriptors->allocate(objectLayout_);
           gpu::DescriptorWriter()
               .buffer(0, buffer, kUniform, i * kRtfObjectStride, sizeof(RtfObjectGpu))
-              .sampledImage(1, objects[i].xi->xi().view(), linear, VK_IMAGE_LAYOUT_GENERAL)
-              .sampledImage(2, objects[i].xi->oof().view(), linear)
+              .sampledImage(1, objects[i].xi->net().view(), linear, VK_IMAGE_LAYOUT_GENERAL)
               .update(ctx_, set);
           pipeline_.bindSet(cmd, 2, set);
           if (ts) ts->begin(cmd, "rtf/" + objects[i].name);

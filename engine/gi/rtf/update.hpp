@@ -40,7 +40,8 @@ struct RtfObjectGpu {
   glm::uvec4 ids;          // x: entity index + 1 (its own pixels skip the field)
   // blocked[j·9 + i].rgb = Â_{l(i)}/π · T_ij, T the product matrix of the indirect radiance L
   // (object frame, at o): ((u − V) ⊙ L)_i = Σ_j T_ij (u − V)_j (sh_product.hpp productMatrix). Only
-  // i < 9: the clamped cosine has Â_3 = 0.
+  // i < 9: the clamped cosine has Â_3 = 0. The ξ pass folds it into its per-sample X
+  // (XiPass::setBlockedLight, xi.comp), so the fragment shader reads 9 coefficients per tap.
   glm::vec4 blocked[kShCount * 9];
 };
 static_assert(sizeof(RtfObjectGpu) == (9 + kShCount * 9) * 16);
