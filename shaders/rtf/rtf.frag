@@ -7,8 +7,8 @@
 // its OOF, u the SH of V ≡ 1, L the indirect light at o (the record's product matrix), all in the
 // object's frame (the normal is rotated there instead of 16 coefficients into the world), and
 // E_n(L) = Σ Â_l L_lm Y_lm(n) with Â_3 = 0, so only bands 0..2 matter. Both terms are folded per
-// sample by the ξ pass into X_i (i < 9, xi.comp), looked up with 2 filtered taps per coefficient
-// (rtf.glsl rtfTaps, a linear sampler): ρ Σ_i y_i(n) X_i(q). Added to
+// sample by the ξ pass into X_i (i < 9, xi.comp), looked up by hardware filtering
+// (rtf.glsl rtfTaps, a linear sampler; one trilinear fetch each): ρ Σ_i y_i(n) X_i(q). Added to
 // "lighting.hdr" with additive blending.
 #include "frame.glsl"
 #include "sh.glsl"
@@ -21,8 +21,8 @@ layout(set = 1, binding = 1) uniform sampler2D gNormal;
 layout(set = 1, binding = 2) uniform sampler2D gDepth;
 layout(set = 1, binding = 3) uniform usampler2D gEntity;
 layout(set = 2, binding = 0) uniform ObjectUbo { RtfObject ob; };
-// X_i = Â_l/π ξ_i − Σ_j T'_ij (u − V)_j per sample, i < 9 (xi.comp): layer sphere·9 + i.
-layout(set = 2, binding = 1) uniform sampler2DArray netTex;
+// X_i = Â_l/π ξ_i − Σ_j T'_ij (u − V)_j per sample, i < 9 (xi.comp): 3D, slice i·spheres + sphere.
+layout(set = 2, binding = 1) uniform sampler3D netTex;
 
 layout(location = 0) out vec4 outRadiance;
 
@@ -44,16 +44,21 @@ void main() {
 
   // Both terms are linear in what Eq. 10 interpolates, so the ξ pass folded them per sample
   // (xi.comp's X): the lookup of X with Eq. 10's weights, evaluated at n.
+  // One trilinear fetch per coefficient: bilinear within the face (rtfTaps' clamped coordinates),
+  // linear between the spheres by the slice coordinate t = (|q| − inner)/Δr clamped to the first and
+  // last sphere's slice centres (inside the innermost sphere: its value), times the fade beyond the
+  // outermost — Eq. 10's weights exactly (rtfTaps gives them separately; the C++ is lookup()).
   vec2 uv;
   int s0, s1;
   float w0, w1;
   rtfTaps(g, q, uv, s0, s1, w0, w1);
+  float fade = w0 + w1;
+  if (fade <= 0.0) discard;
+  float t = clamp((length(q) - g.innerRadius) / dr, 0.0, float(g.spheres - 1));
+  float slices = float(9 * g.spheres);
   vec3 sum = vec3(0.0);
-  for (int i = 0; i < 9; ++i) {
-    vec3 x = w0 * texture(netTex, vec3(uv, float(s0 * 9 + i))).rgb;
-    if (w1 != 0.0) x += w1 * texture(netTex, vec3(uv, float(s1 * 9 + i))).rgb;
-    sum += y[i] * x;
-  }
+  for (int i = 0; i < 9; ++i) sum += y[i] * texture(netTex, vec3(uv, (float(i * g.spheres) + t + 0.5) / slices)).rgb;
+  sum *= fade;
   vec3 albedo = texelFetch(gAlbedo, pixel, 0).rgb;
   outRadiance = vec4(albedo * sum, 0.0);
 }

@@ -26,9 +26,10 @@ layout(rgba32f, binding = 5) uniform writeonly image2DArray xi;
 // product matrix of the indirect light blocked by the object (light[m·16 + j·9 + i].rgb, after the
 // proxies' light). Both parts are linear in what Eq. 10 interpolates, so the shading pass looks X up
 // with the same trilinear weights (the fade included: u − V fades to 0 with them) and only evaluates
-// Σ_i y_i(n) X_i. Image: rgba32f 2D array, layer sphere·9 + i, texel as ξ's.
+// Σ_i y_i(n) X_i. Image: rgba32f 3D, texel (face·n_r + x, y, i·spheres + sphere): the spheres of one
+// coefficient are consecutive slices, so one trilinear fetch is Eq. 10's whole lookup (rtf.frag).
 layout(std430, binding = 6) readonly buffer Oof { float oof[]; };
-layout(rgba32f, binding = 7) uniform writeonly image2DArray net;
+layout(rgba32f, binding = 7) uniform writeonly image3D net;
 
 layout(push_constant) uniform Push {
   uint stage;
@@ -73,7 +74,7 @@ void main() {
         float notV = (j == 0u ? 3.5449077018110318 : 0.0) - oof[r * 16u + j];  // u_0 = 2√π
         X -= notV * light[T + j * 9u + i].rgb;
       }
-      imageStore(net, ivec3(texel, int(sphere * 9u + i)), vec4(X, 0.0));
+      imageStore(net, ivec3(texel, int(i * (pc.samples / (6u * n2)) + sphere)), vec4(X, 0.0));
     }
   }
 }

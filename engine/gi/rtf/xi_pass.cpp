@@ -57,7 +57,9 @@ XiPass::XiPass(gpu::Context& ctx, const Field& f)
   d.name = "rtf.xi";
   xi_ = gpu::Image(ctx, d);
   gpu::ImageDesc nd = d;
-  nd.layers = std::uint32_t(s.spheres * 9);
+  nd.type = gpu::ImageType::Tex3D;
+  nd.layers = 1;
+  nd.depth = std::uint32_t(s.spheres * 9);
   nd.name = "rtf.net";
   net_ = gpu::Image(ctx, nd);
   oofBuffer_ = storage(ctx, f.oof, "rtf.oof-buffer");

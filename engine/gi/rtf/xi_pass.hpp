@@ -29,7 +29,7 @@ class XiPass {
   // T'_ij = blocked[j·9 + i].rgb (update.hpp RtfObjectGpu::blocked), 144 entries; zero until set.
   // Written with the light by the next record().
   void setBlockedLight(std::span<const glm::vec4> blocked);
-  // X for i < 9: rgba32f 2D array, layer sphere·9 + i, texel as ξ's; GENERAL layout after record().
+  // X for i < 9: rgba32f 3D, texel (face·n_r + x, y, i·spheres + sphere); GENERAL layout after record().
   gpu::Image& net() { return net_; }
   gpu::Image& xi() { return xi_; }
   // The object occlusion field, uploaded once: rgba32f 2D array, layer sphere·4 + i/4, texel
