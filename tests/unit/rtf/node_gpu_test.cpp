@@ -91,6 +91,11 @@ TEST(RtfGpu, ShaderMatchesCpuShadingOnTheFloor) {
   std::vector<glm::vec3> want;
   std::vector<glm::vec3> got;
   float largest = 0.0f, largestInter = 0.0f, largestBlocked = 0.0f;
+  // The hard cases by |q| (units of η): inside the innermost sphere (its value), between
+  // spheres, in the fade past the outermost, beyond it (exactly zero on the GPU: discarded).
+  const FieldSettings& fsettings = s.field.settings;
+  const float dr = (fsettings.outerRadius - fsettings.innerRadius) / float(fsettings.spheres - 1);
+  int inside = 0, between = 0, fading = 0, beyond = 0, beyondNonZero = 0;
   for (std::uint32_t y = 0; y < kH; ++y)
     for (std::uint32_t x = 0; x < kW; ++x) {
       const auto p = rtest::floorPoint(floor, kW, kH, x, y);
@@ -99,6 +104,12 @@ TEST(RtfGpu, ShaderMatchesCpuShadingOnTheFloor) {
       if (glm::length(glm::vec2(p->x - 0.05f, p->z + 0.03f)) < 0.15f) continue;
       const Shading sh = shade(objects, bounced, sky, *p, glm::vec3(0, 1, 0), floor.albedo, -1);
       const std::size_t i = (std::size_t(y) * kW + x) * 3;
+      const glm::vec4 pw(*p, 1.0f);
+      const float qLen = glm::length(glm::vec3(glm::dot(record.toQ[0], pw), glm::dot(record.toQ[1], pw), glm::dot(record.toQ[2], pw)));
+      if (qLen < fsettings.innerRadius) ++inside;
+      else if (qLen < fsettings.outerRadius) ++between;
+      else if (qLen < fsettings.outerRadius + dr) ++fading;
+      else beyondNonZero += (rgb[i] != 0.0f || rgb[i + 1] != 0.0f || rgb[i + 2] != 0.0f), ++beyond;
       want.push_back(sh.net());
       got.emplace_back(rgb[i], rgb[i + 1], rgb[i + 2]);
       largest = std::max(largest, glm::length(sh.net()));
@@ -115,6 +126,13 @@ TEST(RtfGpu, ShaderMatchesCpuShadingOnTheFloor) {
   std::printf("rtf shader vs shade(): %zu floor pixels, largest |net| %.4f (interreflected %.4f, blocked %.4f), "
               "worst |difference| %.2g = %.2f of its bound\n",
               want.size(), largest, largestInter, largestBlocked, worst, worstRatio);
+  std::printf("floor pixels by |q|: %d inside the innermost sphere, %d between spheres, %d fading, %d beyond\n", inside,
+              between, fading, beyond);
+  EXPECT_GT(inside, 20);
+  EXPECT_GT(between, 1000);
+  EXPECT_GT(fading, 300);
+  EXPECT_GT(beyond, 100);
+  EXPECT_EQ(beyondNonZero, 0);
   EXPECT_GT(want.size(), 5000u);
   EXPECT_GT(largestInter, 1e-3f);
   EXPECT_GT(largestBlocked, 1e-3f);
