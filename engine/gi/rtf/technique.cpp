@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdio>
 
+#include "engine/anim/skinning.hpp"
 #include "engine/core/cache_entry.hpp"
 #include "engine/core/error.hpp"
 #include "engine/core/log.hpp"
@@ -60,6 +61,18 @@ ref::SceneDesc objectOf(ecs::Registry& registry, ecs::Entity e, const ref::Refer
   return object;
 }
 
+// RTF is for rigid objects (§3: the transfer is baked once in the object's frame): a skinned or
+// morphed mesh is baked in its bind pose and its field does not follow the animation. Said once,
+// when its field is planned or loaded.
+void warnIfDeformed(ecs::Registry& registry, ecs::Entity e, const ref::ReferenceAssets& assets) {
+  const asset::CookedAsset& cooked = assets.get(registry.get<scene::MeshRef>(e)).cpu;
+  bool deformed = false;
+  for (std::size_t n = 0; n < cooked.nodes.size(); ++n) deformed = deformed || anim::isDeformed(cooked, int(n));
+  if (deformed)
+    log::warn("rtf " + nameOf(registry, e) + ": the mesh is skinned or morphed; its RTF is baked in the bind pose "
+              "and does not follow the animation");
+}
+
 struct ObjectBake {
   std::string name;
   ref::SceneDesc object;
@@ -100,6 +113,7 @@ class RtfTechnique final : public Technique {
       auto ob = std::make_shared<ObjectBake>();
       ob->name = nameOf(lc.registry, e);
       ob->object = objectOf(lc.registry, e, assets);
+      warnIfDeformed(lc.registry, e, assets);
       ob->settings = settingsFrom(lc.registry.get<scene::Rtf>(e));
       BakeJob job;
       job.technique = "rtf";
@@ -188,6 +202,7 @@ SessionRuntime::SessionRuntime(SessionContext& sc, const std::filesystem::path& 
     const scene::Rtf& c = sc.registry.get<scene::Rtf>(e);
     p.bounces = c.bounces;
     ObjectBake ob{p.name, objectOf(sc.registry, e, assets), settingsFrom(c), {}};
+    warnIfDeformed(sc.registry, e, assets);
     ob.output = cacheDir / ("rtf-" + cacheKey(ob.object, ob.settings) + ".field");
     bool cached = false;
     p.field = loadOrBake(
