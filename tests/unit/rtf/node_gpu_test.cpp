@@ -204,5 +204,96 @@ TEST(RtfGpu, SessionRunsTheBouncingStepAndBothPasses) {
   s.session.renderer().frames().waitIdle();
 }
 
+
+// Two objects whose fields overlap (the hard case): the pass adds each object's term on
+// its own, so the frame with both = the frames with each alone summed, and = Σ_k shade() of each
+// object alone (with the ξ of the two-object bouncing step) within fp16 rounding. Algorithm 1 at a
+// receiver instead multiplies the visibilities (shade() with both): the departure of update.hpp,
+// printed as a number (second order in (1 − V)).
+TEST(RtfGpu, OverlappingObjectsAddAndMatchTheCpuSum) {
+  gpu::Context& ctx = gpu::testkit::sharedContext();
+  const fs::path level = fs::path(BOUNCE_SOURCE_DIR) / "tests/data/rtf/two-boxes.json";
+  game::Session session(ctx, game::loadLevelWithEffects(level, std::nullopt));
+  session.update(0.0);
+  ecs::Registry& reg = session.registry();
+  ref::ReferenceAssets assets;
+  assets.load(reg, fs::path(BOUNCE_TEST_OUT) / "rtf" / "cooked");
+  std::vector<ecs::Entity> boxes;
+  reg.view<scene::Rtf>().each([&](ecs::Entity e, scene::Rtf&) { boxes.push_back(e); });
+  std::sort(boxes.begin(), boxes.end());
+  ASSERT_EQ(boxes.size(), 2u);
+  std::vector<Field> fields;
+  std::vector<Object> objects;
+  for (ecs::Entity e : boxes)
+    fields.push_back(bakeCached(dnrt::objectScene(reg, e, assets), settingsFrom(reg.get<scene::Rtf>(e)), cacheFolder()));
+  for (std::size_t k = 0; k < 2; ++k) objects.push_back({&fields[k], reg.get<scene::WorldTransform>(boxes[k]).matrix});
+  const Sky sky;
+  const BounceResult bounced = bounce(objects, sky, 2);
+  ASSERT_EQ(bounced.bounceEnergy.size(), 2u);
+  EXPECT_GT(bounced.bounceEnergy[1], 0.0);
+  EXPECT_LE(bounced.bounceEnergy[1], 0.9 * bounced.bounceEnergy[0]);  // bounces converge: ≤ albedo × the previous
+  std::vector<std::unique_ptr<XiPass>> xi;
+  std::vector<NodeObject> nodeObjects;
+  for (std::size_t k = 0; k < 2; ++k) {
+    xi.push_back(std::make_unique<XiPass>(ctx, fields[k]));
+    const Placement pl = place(fields[k], objects[k].world);
+    nodeObjects.push_back({xi.back().get(), bounced.proxyLight[k],
+                           packObject(fields[k], objects[k].world, sourceRadiance(sky, pl.centreWorld), boxes[k].index()),
+                           k == 0 ? "box-a" : "box-b"});
+  }
+  Node node(ctx, session.renderer().pipelines(), gpu::FrameRing::kDefaultFramesInFlight);
+  constexpr std::uint32_t kW = 96, kH = 96;
+  std::vector<float> frames[3];  // both, a alone, b alone
+  for (int f = 0; f < 3; ++f) {
+    std::vector<NodeObject> drawn = f == 0 ? nodeObjects : std::vector<NodeObject>{nodeObjects[std::size_t(f - 1)]};
+    session.renderer().setNode("rtf", [&](rg::RenderGraph& graph, render::PassContext& pc) { node.addTo(graph, pc, drawn); });
+    frames[f] = renderHdr(session, ctx, kW, kH);
+  }
+  const rtest::FloorScene floor = rtest::readFloorScene(session.level());
+  constexpr float kHalfRel = 1e-3f, kSumRel = 1e-4f;
+  float largest = 0.0f, worstAdd = 0.0f, worstSum = 0.0f, departure = 0.0f;
+  int compared = 0, overlap = 0;
+  // Each object's term has the single-object bound (kHalfRel of the term + kSumRel of the image's
+  // largest), and adding b onto a's fp16 value rounds once more: 2·kHalfRel(|a| + |b|) + 2·kSumRel·max.
+  float largestGpu = 0.0f;
+  for (float v : frames[0]) largestGpu = std::max(largestGpu, std::abs(v));
+  for (std::uint32_t y = 0; y < kH; ++y)
+    for (std::uint32_t x = 0; x < kW; ++x) {
+      const auto p = rtest::floorPoint(floor, kW, kH, x, y);
+      if (!p) continue;
+      bool hidden = false;  // the floor under either box
+      for (const Object& o : objects) hidden = hidden || glm::length(glm::vec2(p->x - o.world[3].x, p->z - o.world[3].z)) < 0.15f;
+      if (hidden) continue;
+      glm::vec3 sum(0.0f);
+      for (std::size_t k = 0; k < 2; ++k) {
+        BounceResult alone;
+        alone.xi = {bounced.xi[k]};
+        sum += shade(std::vector<Object>{objects[k]}, alone, sky, *p, glm::vec3(0, 1, 0), floor.albedo, -1).net();
+      }
+      const glm::vec3 product = shade(objects, bounced, sky, *p, glm::vec3(0, 1, 0), floor.albedo, -1).net();
+      const std::size_t i = (std::size_t(y) * kW + x) * 3;
+      largest = std::max(largest, glm::length(sum));
+      for (int c = 0; c < 3; ++c) {
+        const float both = frames[0][i + std::size_t(c)], a = frames[1][i + std::size_t(c)], b = frames[2][i + std::size_t(c)];
+        worstAdd = std::max(worstAdd, std::abs(both - a - b) / (2.0f * kHalfRel * (std::abs(a) + std::abs(b)) + 1e-7f));
+        worstSum = std::max(worstSum, std::abs(both - sum[c]) /
+                                          (2.0f * kHalfRel * (std::abs(a) + std::abs(b)) + 2.0f * kSumRel * largestGpu + 1e-6f));
+        departure = std::max(departure, std::abs(product[c] - sum[c]));
+      }
+      overlap += frames[1][i] != 0.0f && frames[2][i] != 0.0f;
+      ++compared;
+    }
+  std::printf("two rtf objects: %d floor pixels (%d in both fields), largest |sum| %.4f; both vs a + b %.2f and vs "
+              "the CPU sum %.2f of their bounds; Algorithm 1's product departs from the sum by at most %.2g (%.1f%% of the largest)\n",
+              compared, overlap, largest, worstAdd, worstSum, departure, 100.0f * departure / largest);
+  EXPECT_GT(compared, 5000);
+  EXPECT_GT(overlap, 1000);
+  EXPECT_GT(largest, 1e-3f);
+  EXPECT_LE(worstAdd, 1.0f);
+  EXPECT_LE(worstSum, 1.0f);
+  EXPECT_LT(departure, 0.1f * largest);  // second order: small against the terms themselves
+  session.renderer().frames().waitIdle();
+}
+
 }  // namespace
 }  // namespace bounce::gi::rtf
