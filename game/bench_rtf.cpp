@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <ctime>
 
 #include "engine/core/error.hpp"
@@ -13,7 +14,9 @@
 #include "engine/math/sampling.hpp"
 #include "engine/scene/systems.hpp"
 #include "game/bench_dnrt.hpp"
+#include "engine/gpu/presenter_offscreen.hpp"
 #include "game/session.hpp"
+#include "game/timing_stats.hpp"
 
 namespace bounce::game {
 
@@ -42,6 +45,17 @@ int runBenchRtf(const cli::Args& args) {
   s.vertexRaysPerAxis = intIn(args, "--vertex-rays", s.vertexRaysPerAxis, 1, 256);
   s.clusters = intIn(args, "--clusters", s.clusters, 1, 4096);
   s.components = intIn(args, "--components", s.components, 1, 256);
+  if (args.has("--radii")) {  // "INNER,OUTER" in units of η (a level component's inner/outer)
+    const std::string v = args.str("--radii");
+    const std::size_t comma = v.find(',');
+    char* end = nullptr;
+    const double inner = std::strtod(v.c_str(), &end);
+    const bool innerOk = comma != std::string::npos && end == v.c_str() + comma;
+    const double outer = innerOk ? std::strtod(v.c_str() + comma + 1, &end) : 0.0;
+    if (!innerOk || *end != '\0' || !(inner > 0.0) || !(outer > inner) || !(outer <= 100.0))
+      throwInputError("bounce bench rtf", "--radii", "'" + v + "' is not INNER,OUTER", "0 < INNER < OUTER <= 100, e.g. 0.5,4");
+    s.innerRadius = float(inner), s.outerRadius = float(outer);
+  }
   const int bounces = intIn(args, "--bounces", 2, 1, 4);
   const int runs = intIn(args, "--runs", 3, 1, 1000);
   const int maxObjects = intIn(args, "--objects", 1000, 1, 1000);
@@ -99,6 +113,53 @@ int runBenchRtf(const cli::Args& args) {
     std::sort(shadeUs.begin(), shadeUs.end());
     std::printf("objects=%zu bounces=%d rtf_bounce_cpu_ms=%.3f rtf_shade_cpu_us_per_receiver=%.2f runs=%d\n", n, bounces,
                 bounceMs[bounceMs.size() / 2], shadeUs[shadeUs.size() / 2], runs);
+    std::fflush(stdout);
+  }
+
+  // GPU: the level with the first n of those objects carrying an `rtf` component at the settings
+  // above (the fields just baked: same key), the others drawn without one, rendered with
+  // direct,shadows,probes,rtf; medians of the "rtf.bounce" (ξ pass) and "rtf" (shading) scopes,
+  // and of the per-object shading scopes "rtf/<id>", over --frames after kWarmup frames.
+  if (args.has("--no-gpu")) return 0;
+  const auto res = args.resolution("--resolution").value_or(std::pair<int, int>{1280, 720});
+  const int frames = intIn(args, "--frames", 30, 1, 100000);
+  constexpr int kWarmup = 5;  // the first draws compile pipelines (DESIGN.md machine facts)
+  gpu::Context ctx({args.str("--device", "")});
+  gpu::OffscreenPresenter presenter(ctx, {std::uint32_t(res.first), std::uint32_t(res.second)});
+  for (std::size_t n = 1; n <= fields.size(); ++n) {
+    scene::Level configured = level;
+    scene::overrideEffects(configured, "direct,shadows,probes,rtf");
+    std::size_t k = 0;
+    for (auto& e : configured.entities) {
+      if (!e.dnrt) continue;  // the bench's objects (above)
+      e.rtf.reset();
+      if (k++ >= n) continue;
+      scene::Rtf c;
+      c.proxies = s.proxies, c.bounces = bounces, c.spheres = s.spheres, c.face = s.faceSize, c.rays = s.raysPerAxis;
+      c.vertexRays = s.vertexRaysPerAxis, c.clusters = s.clusters, c.components = s.components;
+      c.inner = s.innerRadius, c.outer = s.outerRadius;
+      e.rtf = c;
+    }
+    TimingCollector timings;
+    {
+      Session session(ctx, configured);
+      for (int f = 0; f < frames + kWarmup; ++f) {
+        session.update(double(f) / 60.0);
+        session.render(presenter, {});
+        timings.collect(session.renderer().frames(), kWarmup);
+      }
+      session.renderer().frames().waitIdle();
+      timings.collect(session.renderer().frames(), kWarmup);
+    }
+    double bounceGpu = 0.0, shade = 0.0, perObject = 0.0;
+    std::size_t objectRows = 0, measured = 0;
+    for (const PassStats& p : timings.stats()) {
+      if (p.pass == "rtf.bounce" && p.object.empty()) bounceGpu = p.medianMs, measured = p.frames;
+      if (p.pass == "rtf" && p.object.empty()) shade = p.medianMs;
+      if (p.pass == "rtf" && !p.object.empty()) perObject += p.medianMs, ++objectRows;
+    }
+    std::printf("objects=%zu bounces=%d %dx%d rtf_bounce_ms=%.3f rtf_ms=%.3f rtf_per_object_ms=%.3f frames=%zu\n", n, bounces,
+                res.first, res.second, bounceGpu, shade, objectRows ? perObject / double(objectRows) : 0.0, measured);
     std::fflush(stdout);
   }
   return 0;

@@ -89,7 +89,7 @@ const std::vector<cli::CommandSpec>& commandSpecs() {
        "vlm-grid: time the VLM grid builds (scatter vs gather) on a random scene, one line; vlm-lights / vlm-k: GPU ms\n"
        "              of the VLM passes vs lights per pixel without a grid / vs cell list size K, one line per setting;\n"
        "              dnrt: the DNRT paper's Tables 6-8 (GPU ms, ratios); skinning: vertices/ms, GPU pass vs CPU;\n"
-       "              rtf: RTF bake + CPCA per object, CPU bouncing/shading step vs objects (game/bench_rtf.hpp);\n"
+       "              rtf: RTF bake + CPCA per object, CPU bouncing/shading step and GPU passes vs objects (game/bench_rtf.hpp);\n"
        "              sl: SL GPU ms vs sphere count, per-sphere and per-object blocking (game/bench_sl.hpp)",
        {device,
         {"--lights", "N", "virtual lights (vlm-grid default 10000; vlm-k default 240)"},
@@ -100,8 +100,8 @@ const std::vector<cli::CommandSpec>& commandSpecs() {
         {"--no-gather", "", "vlm-grid: skip the gather build (it is O(cells × lights); needed for 100^3 x 100k)"},
         {"--counts", "LIST", "vlm-lights: light counts (default 20,40,...,240); vlm-k: K values (default 10,20,...,120); sl: total sphere counts over the level's sl entities (default 8,16,32,64,128)"},
         {"--level", "FILE", "vlm-lights/vlm-k: a level with a VLM (default content/levels/cornell-vlm.json); rtf: default cornell-5"},
-        {"--resolution", "WxH", "vlm-lights/vlm-k/dnrt: render size (default 1280x720)"},
-        {"--frames", "N", "vlm-lights/vlm-k: timed frames per setting (default 3); dnrt: per session (default 30, after 5 warm-up)"},
+        {"--resolution", "WxH", "vlm-lights/vlm-k/dnrt/rtf: render size (default 1280x720)"},
+        {"--frames", "N", "vlm-lights/vlm-k: timed frames per setting (default 3); dnrt/rtf: per session (default 30, after 5 warm-up)"},
         {"--warmup", "N", "vlm-lights/vlm-k: untimed frames after each change (default 1)"},
         // bench dnrt (game/bench_dnrt.hpp)
         {"--levels", "LIST", "dnrt: Table 8 levels, names in content/levels or .json (default cornell-1,cornell-5,cornell-10)"},
@@ -121,6 +121,8 @@ const std::vector<cli::CommandSpec>& commandSpecs() {
         {"--objects", "N", "rtf: only the level's first N dynamic objects (default all)"},
         // bench sl (game/bench_sl.hpp); --level (default characters), --resolution (default 1280x720) and --frames (default 3) above also apply
         {"--influence", "F", "sl: every sl component's influence (0 = off, else 3..1000 radii; default the level's)"},
+        {"--radii", "INNER,OUTER", "rtf: innermost and outermost sphere radii in units of the bounding radius (default 0.1,8)"},
+        {"--no-gpu", "", "rtf: only the bake and CPU lines"},
         {"--only", "TEXT", "skinning: only the models whose name contains TEXT (e.g. +subdiv)"}},
        1, 1},
   };

@@ -4,6 +4,7 @@
 #include "engine/gi/ao/technique.hpp"
 #include "engine/gi/dnrt/technique.hpp"
 #include "engine/gi/probes/technique.hpp"
+#include "engine/gi/rtf/technique.hpp"
 #include "engine/gi/sl/technique.hpp"
 #include "engine/gi/technique.hpp"
 #include "engine/gi/vlm/technique.hpp"
@@ -11,7 +12,6 @@
 namespace bounce::gi {
 
 const std::vector<const Technique*>& techniques() {
-  static const ReservedTechnique rtf(scene::Effect::Rtf);  // issue 14
   static const std::vector<const Technique*> table = {
       &ao::technique(ao::Kind::Ssao),  // first: a later node may read "ao.term"
       &ao::technique(ao::Kind::Hbao),
@@ -19,7 +19,7 @@ const std::vector<const Technique*>& techniques() {
       &dnrt::technique(),    // what the dynamic objects add and take away (c_j from the probes)
       &vlm::technique(),
       &sl::technique(),  // spherical lights (issue 13): bake + poses; passes not yet (it says so)
-      &rtf,
+      &rtf::technique(),  // radiance transfer fields (issue 14): multi-bounce between the dynamic objects
   };
   return table;
 }

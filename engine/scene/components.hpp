@@ -188,4 +188,23 @@ struct Sl {
   friend bool operator==(const Sl&, const Sl&) = default;
 };
 
+// A radiance transfer field request (engine/gi/rtf, issue 14; level key "rtf", README "Level
+// format"): the entity's mesh gets an RTF (Pan et al. 2007) baked at these settings, and its light
+// bounces `bounces` times between the rtf objects each frame (§5, Algorithm 1). Defaults are small
+// enough for a prop to bake in seconds on 2 cores; the paper's resolution is 16 proxies, 16
+// spheres, face 16, 64 rays, 32 clusters × 16 components (`bounce bench rtf` defaults to it).
+struct Rtf {
+  int proxies = 8;           // m, k-means centres (§3.2; paper 8–24)
+  int bounces = 2;           // inter-object bounces in the bouncing step, 1..4
+  int spheres = 8;           // concentric spheres of samples (paper 16)
+  int face = 8;              // n_r: 6·n_r² samples per sphere (paper 16)
+  int rays = 8;              // ITF/OOF projection: 6·rays² directions per sample (paper 64)
+  int vertexRays = 8;        // Eq. 8 vertex transfer: vertexRays² rays per vertex
+  int clusters = 8;          // CPCA n_c (paper 32)
+  int components = 4;        // CPCA n_e (paper 16)
+  float inner = 0.5f;        // innermost sphere, units of the bounding radius η (paper 0.1)
+  float outer = 4.0f;        // outermost sphere, units of η (paper 8); the field fades out one spacing beyond
+  friend bool operator==(const Rtf&, const Rtf&) = default;
+};
+
 }  // namespace bounce::scene

@@ -205,6 +205,30 @@ void parseSl(const json::Node& node, EntityDesc& d, const ParseContext&) {
   d.sl = c;
 }
 
+// "rtf": {"proxies": 1..64, "bounces": 1..4, "spheres": 2..64, "face": 1..64, "rays": 1..256,
+//         "vertex_rays": 1..256, "clusters": 1..4096, "components": 0..256, "inner": η, "outer": η} —
+//         every key optional (defaults in components.hpp Rtf); 0 < inner < outer ≤ 100.
+void parseRtf(const json::Node& node, EntityDesc& d, const ParseContext&) {
+  const auto o = node.object({"proxies", "bounces", "spheres", "face", "rays", "vertex_rays", "clusters", "components",
+                              "inner", "outer"});
+  Rtf c;
+  if (auto v = o.optional("proxies")) c.proxies = int(v->integer(1, 64));
+  if (auto v = o.optional("bounces")) c.bounces = int(v->integer(1, 4));
+  if (auto v = o.optional("spheres")) c.spheres = int(v->integer(2, 64));
+  if (auto v = o.optional("face")) c.face = int(v->integer(1, 64));
+  if (auto v = o.optional("rays")) c.rays = int(v->integer(1, 256));
+  if (auto v = o.optional("vertex_rays")) c.vertexRays = int(v->integer(1, 256));
+  if (auto v = o.optional("clusters")) c.clusters = int(v->integer(1, 4096));
+  if (auto v = o.optional("components")) c.components = int(v->integer(0, 256));
+  if (auto v = o.optional("inner")) c.inner = v->real(json::Range::openClosed(0.0, 100.0));
+  if (auto v = o.optional("outer")) c.outer = v->real(json::Range::openClosed(0.0, 100.0));
+  if (!(c.outer > c.inner))
+    (o.has("outer") ? o.node().child("outer") : o.node().child("inner"))
+        .fail("outer radius " + json::formatNumber(c.outer) + " is not above inner " + json::formatNumber(c.inner),
+              "outer > inner (defaults 0.5 and 4)");
+  d.rtf = c;
+}
+
 // "vlm": {"tag": int ≥ 1, "color": [r,g,b], "intensity": float, "reflectance": [r,g,b]} — tag
 // required; the mesh is attached in parseEntity (the "mesh" key is read first).
 void parseVlm(const json::Node& node, EntityDesc& d, const ParseContext&) {
@@ -308,6 +332,7 @@ const ComponentKey kComponentKeys[] = {
     {"animation", parseAnimation, emplaceIfSet<&EntityDesc::animation>},
     {"dnrt", parseDnrt, emplaceIfSet<&EntityDesc::dnrt>},
     {"sl", parseSl, emplaceIfSet<&EntityDesc::sl>},
+    {"rtf", parseRtf, emplaceIfSet<&EntityDesc::rtf>},
     {"vlm", parseVlm, emplaceIfSet<&EntityDesc::vlm>},
     {"vlm_tag", parseVlmTag, emplaceIfSet<&EntityDesc::vlmTag>},
 };
@@ -342,10 +367,14 @@ EntityDesc parseEntity(const json::Node& node, const ParseContext& ctx) {
   if (d.sl && !d.mesh) o.node().child("sl").fail("spherical lights on an entity without a mesh", "a \"mesh\" key");
   if (d.sl && !d.dynamic)
     o.node().child("sl").fail("spherical lights on a static entity", "\"dynamic\": true or a motion");
+  if (d.rtf && !d.mesh) o.node().child("rtf").fail("a radiance transfer field on an entity without a mesh", "a \"mesh\" key");
+  if (d.rtf && !d.dynamic)
+    o.node().child("rtf").fail("a radiance transfer field on a static entity", "\"dynamic\": true or a motion");
   if (d.vlm) {
     if (!d.mesh) o.node().child("vlm").fail("a VLM on an entity without a mesh", "a \"mesh\" key");
     if (d.dnrt) o.node().child("dnrt").fail("a DNRT field on a VLM entity (not drawn)", "no \"dnrt\" key");
     if (d.sl) o.node().child("sl").fail("spherical lights on a VLM entity (not drawn)", "no \"sl\" key");
+    if (d.rtf) o.node().child("rtf").fail("a radiance transfer field on a VLM entity (not drawn)", "no \"rtf\" key");
     if (d.vlmTag) o.node().child("vlm_tag").fail("a vlm_tag on a VLM entity (the tag is in \"vlm\")", "no \"vlm_tag\" key");
     d.vlm->mesh = *d.mesh;
     if (d.material) d.vlm->albedoOverride = d.material->albedo;

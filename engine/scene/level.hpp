@@ -61,6 +61,7 @@ struct EntityDesc {
   std::optional<AnimationClip> animation;  // "animation" (needs a mesh); absent = the first clip
   std::optional<Dnrt> dnrt;      // needs a mesh and a dynamic entity
   std::optional<Sl> sl;          // needs a mesh and a dynamic entity
+  std::optional<Rtf> rtf;        // needs a mesh and a dynamic entity
   std::optional<Vlm> vlm;        // needs a mesh (then not drawn); moves with a dynamic entity
   std::optional<VlmTag> vlmTag;  // on real geometry (not on a vlm entity)
 };

@@ -31,7 +31,7 @@ void main() {
   RtfGrid g = RtfGrid(pc.spheres, pc.faceSize, pc.innerRadius, pc.outerRadius);
   vec3 L[16];
   float V[16];
-  rtfInterreflection(xiTex, g, points[t].xyz, L);
+  rtfInterreflection(xiTex, g, points[t].xyz, 16, L);
   rtfOcclusion(oofTex, g, points[t].xyz, V);
   for (int i = 0; i < 16; ++i) {
     outputs[t].xi[i] = vec4(L[i], 0.0);

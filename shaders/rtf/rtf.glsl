@@ -1,9 +1,10 @@
-// RTF field lookup (Pan et al. 2007, Eq. 10), term for term what engine/gi/rtf/evaluate.cpp
-// lookup() / interreflection() / occlusion() compute (tests/unit/rtf/lookup_gpu_test.cpp checks it):
-// the 8 samples around q (local offset from the bounding-sphere centre in units of η) — bilinear
-// between the texel centres of the cube face q's direction falls on (clamped to that face), linear
-// between the two spheres bracketing |q|, the innermost sphere inside it, a linear fade to zero over
-// one sphere spacing beyond the outermost. Fields are read with texelFetch from 2D-array textures:
+// RTF field lookup (Pan et al. 2007, Eq. 10), what engine/gi/rtf/evaluate.cpp lookup() /
+// interreflection() / occlusion() compute (tests/unit/rtf/lookup_gpu_test.cpp checks it): the 8
+// samples around q (local offset from the bounding-sphere centre in units of η) — bilinear between
+// the texel centres of the cube face q's direction falls on (clamped to that face), linear between
+// the two spheres bracketing |q|, the innermost sphere inside it, a linear fade to zero over one
+// sphere spacing beyond the outermost. Fields are read from 2D-array textures with a LINEAR sampler
+// (the bilinear part; two taps per coefficient, rtfTaps):
 //   ξ:   rgba32f, layer sphere·16 + i, texel (face·n_r + x, y)   (xi.comp)
 //   OOF: rgba32f, layer sphere·4 + i/4, texel (face·n_r + x, y), component i%4 (xi_pass.cpp)
 
@@ -39,13 +40,18 @@ void rtfFace(vec3 d, int size, out int face, out vec2 f) {
   f = clamp((vec2(u, v) + 1.0) * 0.5 * float(size) - 0.5, vec2(0.0), vec2(float(size - 1)));
 }
 
-// The 8 (layer base, texel) pairs and weights: layerBase[c] is the sphere index.
-void rtfLookup(RtfGrid g, vec3 q, out ivec2 texel[8], out int sphere[8], out float weight[8]) {
+// Eq. 10's trilinear weights as two filtered taps: the bilinear part between the texel centres of
+// the face is the sampler's (linear filter, coordinates clamped to that face's outer texel centres,
+// so a tap never reaches into the neighbouring face), the radial part is done here: sphere s0 with
+// weight w0, s1 with w1 (both × the fade beyond the outermost sphere). Four texelFetch per tap
+// cost llvmpipe about 4× one filtered fetch (DESIGN.md "What costs what in a fragment shader").
+// The sampler's sub-texel precision (Vulkan: ≥ 4 bits; lavapipe: 8) bounds the difference from the
+// C++ weights (lookup_gpu_test.cpp).
+void rtfTaps(RtfGrid g, vec3 q, out vec2 uv, out int s0, out int s1, out float w0, out float w1) {
   float r = length(q);
   float r0 = rtfSphereRadius(g, 0), rN = rtfSphereRadius(g, g.spheres - 1);
   float dr = (g.outerRadius - g.innerRadius) / float(g.spheres - 1);
-  int s0 = 0, s1 = 0;
-  float w1 = 0.0, fade = 1.0;
+  float t1 = 0.0, fade = 1.0;
   if (r <= r0) {
     s0 = 0; s1 = 0;
   } else if (r >= rN) {
@@ -55,55 +61,43 @@ void rtfLookup(RtfGrid g, vec3 q, out ivec2 texel[8], out int sphere[8], out flo
     float t = (r - g.innerRadius) / dr;
     s0 = min(int(floor(t)), g.spheres - 2);
     s1 = s0 + 1;
-    w1 = clamp(t - float(s0), 0.0, 1.0);
+    t1 = clamp(t - float(s0), 0.0, 1.0);
   }
+  w0 = (1.0 - t1) * fade;
+  w1 = t1 * fade;
   int face;
   vec2 f;
   rtfFace(r > 0.0 ? q / r : vec3(0.0), g.faceSize, face, f);
-  int x0 = min(int(f.x), g.faceSize - 1), y0 = min(int(f.y), g.faceSize - 1);
-  int x1 = min(x0 + 1, g.faceSize - 1), y1 = min(y0 + 1, g.faceSize - 1);
-  float ax = f.x - float(x0), ay = f.y - float(y0);
-  int c = 0;
-  for (int a = 0; a < 2; ++a)
-    for (int b = 0; b < 2; ++b)
-      for (int e = 0; e < 2; ++e, ++c) {
-        sphere[c] = a == 0 ? s0 : s1;
-        texel[c] = ivec2(face * g.faceSize + (e == 0 ? x0 : x1), b == 0 ? y0 : y1);
-        float ws = (a == 0 ? 1.0 - w1 : w1) * fade;
-        weight[c] = ws * (b == 0 ? 1.0 - ay : ay) * (e == 0 ? 1.0 - ax : ax);
-      }
+  uv = vec2((float(face * g.faceSize) + f.x + 0.5) / float(6 * g.faceSize), (f.y + 0.5) / float(g.faceSize));
 }
 
-// ξ at q: the object's interreflected radiance SH (16 RGB, the object's frame).
-void rtfInterreflection(sampler2DArray xi, RtfGrid g, vec3 q, out vec3 L[16]) {
-  ivec2 texel[8];
-  int sphere[8];
-  float weight[8];
-  rtfLookup(g, q, texel, sphere, weight);
+// ξ at q: the object's interreflected radiance SH (the first `count` of 16 RGB coefficients, the
+// object's frame; the shading pass needs 9: the clamped cosine has Â_3 = 0). `xi` needs a linear sampler.
+void rtfInterreflection(sampler2DArray xi, RtfGrid g, vec3 q, int count, out vec3 L[16]) {
+  vec2 uv;
+  int s0, s1;
+  float w0, w1;
+  rtfTaps(g, q, uv, s0, s1, w0, w1);
   for (int i = 0; i < 16; ++i) L[i] = vec3(0.0);
-  for (int c = 0; c < 8; ++c) {
-    if (weight[c] == 0.0) continue;
-    for (int i = 0; i < 16; ++i) L[i] += weight[c] * texelFetch(xi, ivec3(texel[c], sphere[c] * 16 + i), 0).rgb;
+  for (int i = 0; i < count; ++i) {
+    if (w0 != 0.0) L[i] += w0 * texture(xi, vec3(uv, float(s0 * 16 + i))).rgb;
+    if (w1 != 0.0) L[i] += w1 * texture(xi, vec3(uv, float(s1 * 16 + i))).rgb;
   }
 }
 
-// The OOF at q, faded to unoccluded beyond the field (16 floats, the object's frame).
+// The OOF at q, faded to unoccluded beyond the field (16 floats, the object's frame). Linear sampler.
 void rtfOcclusion(sampler2DArray oof, RtfGrid g, vec3 q, out float V[16]) {
-  ivec2 texel[8];
-  int sphere[8];
-  float weight[8];
-  rtfLookup(g, q, texel, sphere, weight);
-  for (int i = 0; i < 16; ++i) V[i] = 0.0;
-  float total = 0.0;
-  for (int c = 0; c < 8; ++c) {
-    total += weight[c];
-    for (int k = 0; k < 4; ++k) {
-      vec4 v = texelFetch(oof, ivec3(texel[c], sphere[c] * 4 + k), 0);
-      V[4 * k] += weight[c] * v.x;
-      V[4 * k + 1] += weight[c] * v.y;
-      V[4 * k + 2] += weight[c] * v.z;
-      V[4 * k + 3] += weight[c] * v.w;
-    }
+  vec2 uv;
+  int s0, s1;
+  float w0, w1;
+  rtfTaps(g, q, uv, s0, s1, w0, w1);
+  for (int k = 0; k < 4; ++k) {
+    vec4 v = w0 * texture(oof, vec3(uv, float(s0 * 4 + k)));
+    if (w1 != 0.0) v += w1 * texture(oof, vec3(uv, float(s1 * 4 + k)));
+    V[4 * k] = v.x;
+    V[4 * k + 1] = v.y;
+    V[4 * k + 2] = v.z;
+    V[4 * k + 3] = v.w;
   }
-  V[0] += (1.0 - total) * kRtfUnitVisibility;
+  V[0] += (1.0 - w0 - w1) * kRtfUnitVisibility;
 }

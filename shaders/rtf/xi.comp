@@ -20,6 +20,16 @@ layout(std430, binding = 2) readonly buffer Cluster { uint cluster[]; };
 layout(std430, binding = 3) readonly buffer Light { vec4 light[]; };
 layout(std430, binding = 4) buffer Eigen { vec4 eigen[]; };
 layout(rgba32f, binding = 5) uniform writeonly image2DArray xi;
+// The shading step folded per sample (engine/gi/rtf/node.hpp): for i < 9,
+//   X_i = Â_l(i)/π · ξ_i − Σ_j T'_ij (u − V)_j
+// with V the sample's OOF (oof = float[N·16]), u the SH of V ≡ 1 and T'_ij = Â_l(i)/π · T_ij the
+// product matrix of the indirect light blocked by the object (light[m·16 + j·9 + i].rgb, after the
+// proxies' light). Both parts are linear in what Eq. 10 interpolates, so the shading pass looks X up
+// with the same trilinear weights (the fade included: u − V fades to 0 with them) and only evaluates
+// Σ_i y_i(n) X_i. Image: rgba32f 3D, texel (face·n_r + x, y, i·spheres + sphere): the spheres of one
+// coefficient are consecutive slices, so one trilinear fetch is Eq. 10's whole lookup (rtf.frag).
+layout(std430, binding = 6) readonly buffer Oof { float oof[]; };
+layout(rgba32f, binding = 7) uniform writeonly image3D net;
 
 layout(push_constant) uniform Push {
   uint stage;
@@ -53,6 +63,18 @@ void main() {
     uint n2 = pc.faceSize * pc.faceSize, per = 6u * n2;
     uint sphere = r / per, rest = r % per, face = rest / n2;
     uint px = rest % pc.faceSize, py = (rest % n2) / pc.faceSize;
-    imageStore(xi, ivec3(int(face * pc.faceSize + px), int(py), int(sphere * 16u + i)), vec4(x, 0.0));
+    ivec2 texel = ivec2(int(face * pc.faceSize + px), int(py));
+    imageStore(xi, ivec3(texel, int(sphere * 16u + i)), vec4(x, 0.0));
+    if (i < 9u) {
+      const float kInvPi = 0.31830988618379067;
+      float a = (i == 0u ? 3.14159265358979324 : (i < 4u ? 2.09439510239319549 : 0.78539816339744831)) * kInvPi;
+      vec3 X = a * x;
+      uint T = pc.proxies * 16u;
+      for (uint j = 0u; j < 16u; ++j) {
+        float notV = (j == 0u ? 3.5449077018110318 : 0.0) - oof[r * 16u + j];  // u_0 = 2√π
+        X -= notV * light[T + j * 9u + i].rgb;
+      }
+      imageStore(net, ivec3(texel, int(i * (pc.samples / (6u * n2)) + sphere)), vec4(X, 0.0));
+    }
   }
 }

@@ -30,7 +30,9 @@ XiPass::XiPass(gpu::Context& ctx, const Field& f)
                   {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                   {3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                   {4, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                  {5, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}},
+                  {5, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
+                  {6, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                  {7, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}},
                  "rtf.xi"),
       layout_(ctx, {setLayout_.handle()}, {{VK_SHADER_STAGE_ALL, 0, sizeof(Push)}}, "rtf.xi"),
       descriptors_(ctx) {
@@ -40,7 +42,10 @@ XiPass::XiPass(gpu::Context& ctx, const Field& f)
   basis_ = storage(ctx, f.itf.basis, "rtf.basis");
   alpha_ = storage(ctx, f.itf.alpha, "rtf.alpha");
   cluster_ = storage(ctx, f.itf.cluster, "rtf.cluster");
-  light_ = gpu::Buffer(ctx, {std::size_t(s.proxies) * kShCount * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::Upload, "rtf.light"});
+  // Written by vkCmdUpdateBuffer in record(): ordered in the command stream, so a frame in flight
+  // never sees the next frame's light (m·16·16 bytes ≤ 16 KiB < the command's 64 KiB limit).
+  light_ = gpu::Buffer(ctx, {(std::size_t(s.proxies) * kShCount + kShCount * 9) * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                             gpu::MemoryUsage::GpuOnly, "rtf.light"});
   eigen_ = gpu::Buffer(ctx, {std::size_t(f.itf.clusters) * std::size_t(f.itf.components + 1) * kShCount * 16,
                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::GpuOnly, "rtf.eigen"});
   gpu::ImageDesc d;
@@ -51,6 +56,13 @@ XiPass::XiPass(gpu::Context& ctx, const Field& f)
   d.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
   d.name = "rtf.xi";
   xi_ = gpu::Image(ctx, d);
+  gpu::ImageDesc nd = d;
+  nd.type = gpu::ImageType::Tex3D;
+  nd.layers = 1;
+  nd.depth = std::uint32_t(s.spheres * 9);
+  nd.name = "rtf.net";
+  net_ = gpu::Image(ctx, nd);
+  oofBuffer_ = storage(ctx, f.oof, "rtf.oof-buffer");
   gpu::ImageDesc o = d;
   o.layers = std::uint32_t(s.spheres * 4);
   o.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
@@ -78,20 +90,39 @@ XiPass::XiPass(gpu::Context& ctx, const Field& f)
       .buffer(3, light_)
       .buffer(4, eigen_)
       .storageImage(5, xi_.view())
+      .buffer(6, oofBuffer_)
+      .storageImage(7, net_.view())
       .update(ctx, set_);
+  blocked_.assign(kShCount * 9, glm::vec4(0.0f));
   std::vector<glm::vec3> zero(std::size_t(s.proxies) * kShCount, glm::vec3(0.0f));
   setProxyLight(zero);
 }
 
 void XiPass::setProxyLight(std::span<const glm::vec3> light) {
   if (light.size() != std::size_t(settings_.proxies) * kShCount) throw InternalError("rtf::XiPass: proxy light is not m·16 coefficients");
-  std::vector<glm::vec4> packed;
-  for (const glm::vec3& l : light) packed.emplace_back(l, 0.0f);
-  gpu::upload(ctx_, light_, std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(packed.data()), packed.size() * sizeof(glm::vec4)));
+  pending_.clear();
+  for (const glm::vec3& l : light) pending_.emplace_back(l, 0.0f);
+}
+
+void XiPass::setBlockedLight(std::span<const glm::vec4> blocked) {
+  if (blocked.size() != std::size_t(kShCount) * 9) throw InternalError("rtf::XiPass: blocked light is not 16·9 entries");
+  blocked_.assign(blocked.begin(), blocked.end());
 }
 
 void XiPass::record(VkCommandBuffer cmd) {
+  // The previous frame's reads (ξ in fragment shaders, light and eigen here) finish before this
+  // frame's writes (write-after-read: an execution dependency suffices).
+  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                       VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 0, nullptr, 0, nullptr, 0,
+                       nullptr);
+  std::vector<glm::vec4> data = pending_;
+  data.insert(data.end(), blocked_.begin(), blocked_.end());
+  vkCmdUpdateBuffer(cmd, light_.handle(), 0, data.size() * sizeof(glm::vec4), data.data());
+  VkMemoryBarrier uploaded{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_TRANSFER_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT};
+  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &uploaded, 0, nullptr,
+                       0, nullptr);
   if (xi_.layout() != VK_IMAGE_LAYOUT_GENERAL) gpu::transition(cmd, xi_, VK_IMAGE_LAYOUT_GENERAL);
+  if (net_.layout() != VK_IMAGE_LAYOUT_GENERAL) gpu::transition(cmd, net_, VK_IMAGE_LAYOUT_GENERAL);
   pipeline_.bind(cmd);
   pipeline_.bindSet(cmd, 0, set_);
   Push p = push_;

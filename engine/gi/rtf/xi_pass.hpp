@@ -4,6 +4,7 @@
 // sphere·16 + i, texel (face·n_r + x, y)) for the shading step to read with texelFetch. The CPU
 // reference is xiCache() (evaluate.hpp); tests/unit/rtf/xi_gpu_test.cpp compares the two.
 #include <span>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -18,12 +19,18 @@ namespace bounce::gi::rtf {
 class XiPass {
  public:
   XiPass(gpu::Context& ctx, const Field& field);
-  // The proxies' incident light, m·16 RGB in the object's frame (host-visible: takes effect at
-  // the next record()).
+  // The proxies' incident light, m·16 RGB in the object's frame: record() writes it into the
+  // command buffer (vkCmdUpdateBuffer), so it takes effect at the next record().
   void setProxyLight(std::span<const glm::vec3> light);
   // Both dispatches with the barriers they need; ξ ends in GENERAL layout, its writes made
   // visible to later compute and fragment reads.
   void record(VkCommandBuffer cmd);
+  // The shading step's blocked light folded per sample (xi.comp: X_i = Â_l/π ξ_i − Σ_j T'_ij (u − V)_j):
+  // T'_ij = blocked[j·9 + i].rgb (update.hpp RtfObjectGpu::blocked), 144 entries; zero until set.
+  // Written with the light by the next record().
+  void setBlockedLight(std::span<const glm::vec4> blocked);
+  // X for i < 9: rgba32f 3D, texel (face·n_r + x, y, i·spheres + sphere); GENERAL layout after record().
+  gpu::Image& net() { return net_; }
   gpu::Image& xi() { return xi_; }
   // The object occlusion field, uploaded once: rgba32f 2D array, layer sphere·4 + i/4, texel
   // (face·n_r + x, y), component i%4 (shaders/rtf/rtf.glsl), SHADER_READ_ONLY_OPTIMAL.
@@ -37,7 +44,10 @@ class XiPass {
   FieldSettings settings_;
   Push push_{};
   gpu::Buffer basis_, alpha_, cluster_, light_, eigen_;
-  gpu::Image xi_, oof_;
+  std::vector<glm::vec4> pending_;  // the light record() writes: m·16 proxy light, then 144 of T'
+  std::vector<glm::vec4> blocked_;
+  gpu::Image xi_, oof_, net_;
+  gpu::Buffer oofBuffer_;  // the OOF again as floats, for xi.comp's X
   gpu::DescriptorSetLayout setLayout_;
   gpu::PipelineLayout layout_;
   gpu::Pipeline pipeline_;

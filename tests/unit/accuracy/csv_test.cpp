@@ -40,7 +40,7 @@ TEST(AccuracyCsv, ExactHeaderThenOneLinePerResult) {
 TEST(AccuracyRows, EffectNamesValidSettingsUniqueAndCommaFree) {
   const auto rows = accuracyRows();
   std::set<std::pair<std::string, std::string>> seen;
-  std::size_t direct = 0, probes = 0, ao = 0, dnrt = 0, vlm = 0;
+  std::size_t direct = 0, probes = 0, ao = 0, dnrt = 0, vlm = 0, rtf = 0;
   for (const auto& r : rows) {
     EXPECT_TRUE(scene::effectFromName(r.technique).has_value()) << r.technique;
     EXPECT_EQ(r.setting.find(','), std::string::npos) << r.setting;
@@ -59,12 +59,14 @@ TEST(AccuracyRows, EffectNamesValidSettingsUniqueAndCommaFree) {
     ao += r.technique == "ssao" || r.technique == "hbao";
     dnrt += r.technique == "dnrt";
     vlm += r.technique == "vlm";
+    rtf += r.technique == "rtf";
   }
   EXPECT_EQ(direct, 3u);  // against the bounces-0, the full and the one-bounce reference
   EXPECT_EQ(probes, 4u);  // two spacings × two SH orders
   EXPECT_EQ(ao, 2u);      // SSAO and HBAO over probes (the DNRT paper's baselines)
   EXPECT_EQ(dnrt, 24u);   // {4, 9} SH × grid {16, 32, 64} × intrusion {off, on} × anti-radiance {paper, improved}
   EXPECT_EQ(vlm, 16u);    // range {1.5, 2.5, 3.5, 4.5} × K {10, 20, 30, 60}, against one bounce
+  EXPECT_EQ(rtf, 2u);     // bounces {1, 2} against the full reference
 }
 
 TEST(AccuracyRows, AvailableOnlyWhenTheRendererRanEveryPass) {

@@ -201,11 +201,11 @@ TEST_F(BakeCli, TwoProcessesBakingOneKeyLeaveOneValidEntry) {
   EXPECT_EQ(entries(root).size(), ks.size()) << "one entry per key, no temporary file left";
 }
 
-TEST_F(BakeCli, ReservedEffectSaysSoInOneLine) {
+TEST_F(BakeCli, RtfWithoutParticipantsSaysSoInOneLine) {
   const Outcome r = bounce(dir_ / "cache", {"bake", kTiny.string(), "--effects", "direct,rtf"});
   EXPECT_EQ(r.code, 0);
-  EXPECT_EQ(r.err, "note: effect rtf is reserved (not implemented yet): no pass\n");
-  EXPECT_EQ(r.out, "nothing to bake: the effects name none of probes, dnrt, nor sl\n");
+  EXPECT_EQ(r.err, "note: effect rtf is named but no entity takes part (no entity has an rtf component): no pass\n");
+  EXPECT_EQ(r.out, "nothing to bake: no entity takes part in the effects that bake\n");
 }
 
 TEST_F(BakeCli, EffectWithoutParticipantsSaysSoInOneLine) {

@@ -34,7 +34,7 @@ TEST(SessionTechniques, ReservedAndUnusedEffectsAreNotedAndDoNotRun) {
                 "note: effect vlm is named but no entity takes part (no entity has a vlm component or a mesh with "
                 "extras.bounce_vlm): no pass",
                 "note: effect sl is named but no entity takes part (no entity has an sl component): no pass",
-                "note: effect rtf is reserved (not implemented yet): no pass"}));
+                "note: effect rtf is named but no entity takes part (no entity has an rtf component): no pass"}));
   EXPECT_EQ(session.vlm(), nullptr);
   EXPECT_FALSE(session.runs(scene::Effect::Vlm));
   EXPECT_FALSE(session.runs(scene::Effect::Sl));
@@ -63,7 +63,8 @@ TEST(SessionTechniques, WhyCannotRunNamesReservedAndUnusedEffectsOnly) {
   EXPECT_EQ(session.whyCannotRun(scene::Effect::Ssao), "");
   EXPECT_EQ(session.whyCannotRun(scene::Effect::Sl),
             "note: effect sl is named but no entity takes part (no entity has an sl component): no pass");
-  EXPECT_EQ(session.whyCannotRun(scene::Effect::Rtf), "note: effect rtf is reserved (not implemented yet): no pass");
+  EXPECT_EQ(session.whyCannotRun(scene::Effect::Rtf),
+            "note: effect rtf is named but no entity takes part (no entity has an rtf component): no pass");
   EXPECT_EQ(session.whyCannotRun(scene::Effect::Vlm),
             "note: effect vlm is named but no entity takes part (no entity has a vlm component or a mesh with "
             "extras.bounce_vlm): no pass");

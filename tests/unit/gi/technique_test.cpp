@@ -40,7 +40,7 @@ struct Loaded {
 TEST(Techniques, OneEntryPerTechniqueEffectInNodeOrder) {
   std::vector<std::string> names;
   for (const gi::Technique* t : gi::techniques()) names.emplace_back(t->name());
-  // AO first (probes read "ao.term"), probes before DNRT (its c_j), the reserved ones last.
+  // AO first (probes read "ao.term"), probes before DNRT (its c_j), RTF last (it adds to all before it).
   EXPECT_EQ(names, (std::vector<std::string>{"ssao", "hbao", "probes", "dnrt", "vlm", "sl", "rtf"}));
   for (int i = 0; i < scene::kEffectCount; ++i) {
     const auto e = scene::Effect(i);
@@ -49,23 +49,19 @@ TEST(Techniques, OneEntryPerTechniqueEffectInNodeOrder) {
   }
 }
 
-TEST(Techniques, RtfIsReservedAndSaysSo) {
+// RTF (issue 14) took the last reserved entry: no technique of the table is reserved any more, and
+// a level naming rtf without an rtf entity gets the table's "no entity takes part" note.
+TEST(Techniques, NoneIsReservedAndRtfWithoutParticipantsSaysSo) {
   Loaded l(kCornell1, "direct,rtf");
   const auto lc = l.context();
-  for (const auto e : {scene::Effect::Rtf}) {
-    const gi::Technique* t = gi::findTechnique(e);
-    ASSERT_NE(t, nullptr);
-    EXPECT_TRUE(t->reserved());
-    EXPECT_FALSE(t->takesPart(lc, nullptr));
-    EXPECT_TRUE(t->bakeJobs(lc, {}).empty());
-    std::vector<gi::AccuracyRow> rows;
-    t->accuracyRows(rows);
-    EXPECT_TRUE(rows.empty());
-    EXPECT_EQ(gi::effectNote(*t, lc),
-              "note: effect " + std::string(scene::effectName(e)) + " is reserved (not implemented yet): no pass");
-  }
-  for (const gi::Technique* t : gi::techniques())
-    EXPECT_EQ(t->reserved(), t->effect() == scene::Effect::Rtf) << t->name();
+  const gi::Technique* t = gi::findTechnique(scene::Effect::Rtf);
+  ASSERT_NE(t, nullptr);
+  EXPECT_FALSE(t->takesPart(lc, nullptr));
+  EXPECT_TRUE(t->bakeJobs(lc, {}).empty());
+  EXPECT_EQ(t->cacheKind(), "rtf");
+  EXPECT_EQ(t->passes(), (std::vector<std::string>{"rtf.bounce", "rtf"}));
+  EXPECT_EQ(gi::effectNote(*t, lc), "note: effect rtf is named but no entity takes part (no entity has an rtf component): no pass");
+  for (const gi::Technique* each : gi::techniques()) EXPECT_FALSE(each->reserved()) << each->name();
 }
 
 TEST(Techniques, NamedWithoutParticipantsGetsOneNote) {

@@ -188,7 +188,7 @@ TEST_F(Cli, BakeReportsEachBakeThenTheCache) {
 
   const Outcome none = bounce({"bake", kCornell.string(), "--effects", "direct,shadows"});
   EXPECT_EQ(none.code, 0);
-  EXPECT_EQ(none.out, "nothing to bake: the effects name none of probes, dnrt, nor sl\n");
+  EXPECT_EQ(none.out, "nothing to bake: the effects name none of probes, dnrt, sl, nor rtf\n");
 
   const Outcome bad = bounce({"bake", kCornell.string(), "--effects", "direct,glow"});
   EXPECT_EQ(bad.code, 2);

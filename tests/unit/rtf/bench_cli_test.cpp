@@ -15,8 +15,9 @@ const std::filesystem::path kOut = std::filesystem::path(BOUNCE_TEST_OUT) / "rtf
 
 TEST(RtfBenchCli, OutOfRangeSettingsAreOneLineAndExit2) {
   for (const auto& [option, value] : {std::pair<std::string, std::string>{"--bounces", "5"}, {"--proxies", "65"},
-                                      {"--spheres", "1"}, {"--components", "0"}}) {
-    const auto r = runBounce({"bench", "rtf", option, value}, kOut / option.substr(2));
+                                      {"--spheres", "1"}, {"--components", "0"}, {"--radii", "4,2"},
+                                      {"--radii", "0.5"}, {"--radii", "0,4"}}) {
+    const auto r = runBounce({"bench", "rtf", option, value}, kOut / (option.substr(2) + "-" + value));
     EXPECT_EQ(r.code, 2) << option;
     const auto err = lines(r.err);
     ASSERT_EQ(err.size(), 1u) << r.err;

@@ -63,14 +63,15 @@ TEST(RtfLookupGpu, GlslLookupEqualsTheCpuEvaluation) {
   gpu::PipelineLayout pipelineLayout(ctx, {layout.handle()}, {{VK_SHADER_STAGE_ALL, 0, sizeof(Push)}}, "rtf.lookup");
   gpu::Pipeline pipeline = gpu::createComputePipeline(ctx, pipelineLayout, gpu::ShaderModule(ctx, "rtf/lookup_selftest.comp.spv"), "rtf.lookup");
   gpu::SamplerCache samplers(ctx);
-  const VkSampler nearest = samplers.get({VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST});
+  // Linear: the bilinear part of Eq. 10 is the sampler's (rtf.glsl rtfTaps).
+  const VkSampler linear = samplers.get({VK_FILTER_LINEAR, VK_SAMPLER_MIPMAP_MODE_NEAREST});
   gpu::DescriptorAllocator descriptors(ctx);
   VkDescriptorSet set = descriptors.allocate(layout);
   gpu::DescriptorWriter()
       .buffer(0, in)
       .buffer(1, out)
-      .sampledImage(2, pass.xi().view(), nearest, VK_IMAGE_LAYOUT_GENERAL)
-      .sampledImage(3, pass.oof().view(), nearest)
+      .sampledImage(2, pass.xi().view(), linear, VK_IMAGE_LAYOUT_GENERAL)
+      .sampledImage(3, pass.oof().view(), linear)
       .update(ctx, set);
   const Push push{n, s.spheres, s.faceSize, s.innerRadius, s.outerRadius};
   gpu::submitAndWait(ctx, [&](VkCommandBuffer cmd) {

@@ -130,7 +130,7 @@ TEST(Level, EffectsOverrideReplacesAndValidates) {
 TEST(LevelErrors, UnknownKey) {
   EXPECT_EQ(loadError("unknown-key", levelJson(R"({"id": "a", "colour": [1, 1, 1]})")),
             "FILE: /entities/0/colour: unknown key \"colour\" (expected one of: id, parent, dynamic, transform, mesh, "
-            "material, camera, light, motion, animation, dnrt, sl, vlm, vlm_tag)");
+            "material, camera, light, motion, animation, dnrt, sl, rtf, vlm, vlm_tag)");
   EXPECT_EQ(loadError("unknown-key-nested", levelJson(R"({"id": "a", "light": {"type": "point", "power": 1}})")),
             "FILE: /entities/0/light/power: unknown key \"power\" (expected one of: type, color, intensity, range, "
             "inner_cone_deg, outer_cone_deg, shadows)");

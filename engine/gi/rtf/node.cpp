@@ -1,0 +1,128 @@
+#include "engine/gi/rtf/node.hpp"
+
+#include <cstring>
+
+#include "engine/core/error.hpp"
+#include "engine/gpu/commands.hpp"
+#include "engine/render/passes/rendering.hpp"
+
+namespace bounce::gi::rtf {
+
+namespace {
+constexpr VkDescriptorType kSampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+constexpr VkDescriptorType kUniform = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+constexpr VkFormat kHdrFormat = VK_FORMAT_R16G16B16A16_SFLOAT;  // "lighting.hdr" (renderer.cpp)
+}  // namespace
+
+Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t framesInFlight)
+    : ctx_(ctx),
+      inputLayout_(ctx, {{0, kSampled}, {1, kSampled}, {2, kSampled}, {3, kSampled}}, "rtf.inputs"),
+      objectLayout_(ctx, {{0, kUniform}, {1, kSampled}}, "rtf.object"),
+      layout_(ctx, {shared.frameLayout.handle(), inputLayout_.handle(), objectLayout_.handle()}, {}, "rtf"),
+      records_(framesInFlight) {
+  const gpu::ShaderModule vert(ctx, "rtf/rtf.vert.spv"), frag(ctx, "rtf/rtf.frag.spv");
+  gpu::GraphicsPipelineDesc d;
+  d.vertex = &vert;
+  d.fragment = &frag;
+  d.colorFormats = {kHdrFormat};
+  d.blend = gpu::Blend::Additive;
+  d.cull = VK_CULL_MODE_FRONT_BIT;  // back faces of the box: each covered pixel once, camera inside or out
+  d.name = "rtf";
+  pipeline_ = gpu::createGraphicsPipeline(ctx, layout_, d);
+}
+
+void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::vector<NodeObject> objects) {
+  if (objects.empty()) return;
+  for (const NodeObject& o : objects)
+    if (!o.xi) throw InternalError("rtf: object '" + o.name + "' has no field on the GPU");
+  auto& bb = graph.blackboard();
+  const render::PassContext* pc = &pcIn;
+
+  // The ξ caches: written into images the graph does not track (each XiPass's own), so a
+  // side-effect pass; XiPass::record's barriers order them before this frame's fragment reads and
+  // after the previous frame's. Declaration order is execution order (render_graph.hpp).
+  struct BounceData {};
+  struct Light {
+    XiPass* xi;
+    std::vector<glm::vec3> proxies;
+    std::vector<glm::vec4> blocked;
+  };
+  std::vector<Light> lights;
+  std::vector<std::string> names;
+  for (NodeObject& o : objects) {
+    lights.push_back({o.xi, std::move(o.proxyLight), {std::begin(o.record.blocked), std::end(o.record.blocked)}});
+    names.push_back(o.name);
+  }
+  graph.addPass<BounceData>(
+      "rtf.bounce", [](rg::Builder& b, BounceData&) { b.sideEffect(); },
+      [pc, lights = std::move(lights), names](const BounceData&, const rg::PassResources&, rg::CommandContext& c) {
+        VkCommandBuffer cmd = pc->cmd(c);
+        gpu::TimestampPool* ts = pc->frame().timestamps.get();
+        for (std::size_t i = 0; i < lights.size(); ++i) {
+          lights[i].xi->setProxyLight(lights[i].proxies);
+          lights[i].xi->setBlockedLight(lights[i].blocked);
+          if (ts) ts->begin(cmd, "rtf.bounce/" + names[i]);
+          lights[i].xi->record(cmd);
+          if (ts) ts->end(cmd);
+        }
+      });
+
+  struct Data {
+    rg::Handle<rg::Texture> albedo, normal, depth, entity, hdr;
+  };
+  const auto& data = graph.addPass<Data>(
+      "rtf",
+      [&](rg::Builder& b, Data& d) {
+        d.albedo = b.read(bb.get<rg::Texture>("gbuffer.albedo"), rg::Usage::SampledFragment);
+        d.normal = b.read(bb.get<rg::Texture>("gbuffer.normal"), rg::Usage::SampledFragment);
+        d.depth = b.read(bb.get<rg::Texture>("gbuffer.depth"), rg::Usage::SampledFragment);
+        d.entity = b.read(bb.get<rg::Texture>("gbuffer.entity"), rg::Usage::SampledFragment);
+        d.hdr = b.write(bb.get<rg::Texture>("lighting.hdr"), rg::Usage::ColorAttachment);
+      },
+      [this, pc, objects = std::move(objects)](const Data& d, const rg::PassResources& res, rg::CommandContext& c) {
+        VkCommandBuffer cmd = pc->cmd(c);
+        // This slot's records (the ring waited for the slot's fence before the frame began).
+        gpu::Buffer& buffer = records_[pc->frame().slot % records_.size()];
+        const VkDeviceSize bytes = objects.size() * kRtfObjectStride;
+        if (!buffer || buffer.size() < bytes)
+          buffer = gpu::Buffer(ctx_, {bytes, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::MemoryUsage::Upload, "rtf.objects"});
+        for (std::size_t i = 0; i < objects.size(); ++i)
+          std::memcpy(buffer.mapped() + i * kRtfObjectStride, &objects[i].record, sizeof(RtfObjectGpu));
+
+        VkSampler point = pc->samplers->get({VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST});
+        // The fields: bilinear within a cube face is the sampler's (shaders/rtf/rtf.glsl rtfTaps).
+        VkSampler linear = pc->samplers->get({VK_FILTER_LINEAR, VK_SAMPLER_MIPMAP_MODE_NEAREST});
+        auto view = [&](rg::Handle<rg::Texture> h) { return pc->backend->image(res.texture(h)).view(); };
+        VkDescriptorSet inputs = pc->frame().descriptors->allocate(inputLayout_);
+        gpu::DescriptorWriter()
+            .sampledImage(0, view(d.albedo), point)
+            .sampledImage(1, view(d.normal), point)
+            .sampledImage(2, view(d.depth), point)
+            .sampledImage(3, view(d.entity), point)
+            .update(ctx_, inputs);
+
+        gpu::Image& target = pc->backend->image(res.texture(d.hdr));
+        render::Attachment color{target.view(), res.keepsContents(d.hdr)};
+        const VkExtent2D extent{target.desc().width, target.desc().height};
+        render::beginRendering(ctx_, cmd, extent, {&color, 1}, nullptr);
+        pipeline_.bind(cmd);
+        pipeline_.bindSet(cmd, 0, pc->frameSet);
+        pipeline_.bindSet(cmd, 1, inputs);
+        gpu::TimestampPool* ts = pc->frame().timestamps.get();
+        for (std::size_t i = 0; i < objects.size(); ++i) {
+          VkDescriptorSet set = pc->frame().descriptors->allocate(objectLayout_);
+          gpu::DescriptorWriter()
+              .buffer(0, buffer, kUniform, i * kRtfObjectStride, sizeof(RtfObjectGpu))
+              .sampledImage(1, objects[i].xi->net().view(), linear, VK_IMAGE_LAYOUT_GENERAL)
+              .update(ctx_, set);
+          pipeline_.bindSet(cmd, 2, set);
+          if (ts) ts->begin(cmd, "rtf/" + objects[i].name);
+          vkCmdDraw(cmd, 36, 1, 0, 0);
+          if (ts) ts->end(cmd);
+        }
+        ctx_.cmdEndRendering(cmd);
+      });
+  bb.put("lighting.hdr", data.hdr);
+}
+
+}  // namespace bounce::gi::rtf

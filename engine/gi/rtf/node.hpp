@@ -1,0 +1,47 @@
+#pragma once
+// The RTF render-graph node (Pan et al. 2007 §5 on the GPU), two passes:
+//  "rtf.bounce"  compute, a side-effect pass: per object (scope "rtf.bounce/<name>") the ξ caches of
+//                Eq. 11–12 from the proxies' light of the frame's bouncing step (xi_pass.hpp), into
+//                the object's ξ image;
+//  "rtf"         deferred shading, additive into "lighting.hdr": per object (scope "rtf/<name>") its
+//                box of half-size (outer + Δr)·η is rasterised (back faces, no depth test, as DNRT's
+//                box mode) and every covered receiver pixel gets ρ/π·E_n of the Eq. 10 lookup of ξ
+//                (the interreflected light) minus ρ/π·E_n((1 − V) ⊙ L) (the indirect light the
+//                object's OOF blocks), shaders/rtf/rtf.frag. The object's own pixels skip its field.
+// Reads "gbuffer.albedo", "gbuffer.normal", "gbuffer.depth", "gbuffer.entity"; puts back "lighting.hdr".
+// No object: no pass.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "engine/gi/rtf/update.hpp"
+#include "engine/gi/rtf/xi_pass.hpp"
+#include "engine/gpu/buffer.hpp"
+#include "engine/gpu/descriptors.hpp"
+#include "engine/gpu/pipeline.hpp"
+#include "engine/render/graph/render_graph.hpp"
+#include "engine/render/pass_context.hpp"
+
+namespace bounce::gi::rtf {
+
+struct NodeObject {
+  XiPass* xi = nullptr;               // the object's field on the GPU (outlives the frame)
+  std::vector<glm::vec3> proxyLight;  // m·16 RGB, object frame: this frame's bouncing step
+  RtfObjectGpu record{};              // packObject()
+  std::string name;                   // timestamp scopes "rtf/<name>", "rtf.bounce/<name>"
+};
+
+class Node {
+ public:
+  Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t framesInFlight);
+  void addTo(rg::RenderGraph& graph, const render::PassContext& pc, std::vector<NodeObject> objects);
+
+ private:
+  gpu::Context& ctx_;
+  gpu::DescriptorSetLayout inputLayout_, objectLayout_;
+  gpu::PipelineLayout layout_;
+  gpu::Pipeline pipeline_;
+  std::vector<gpu::Buffer> records_;  // per frame slot, RtfObjectGpu at kRtfObjectStride
+};
+
+}  // namespace bounce::gi::rtf

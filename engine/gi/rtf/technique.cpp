@@ -1,0 +1,260 @@
+#include "engine/gi/rtf/technique.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+
+#include "engine/anim/skinning.hpp"
+#include "engine/core/cache_entry.hpp"
+#include "engine/core/error.hpp"
+#include "engine/core/log.hpp"
+#include "engine/core/paths.hpp"
+#include "engine/gi/dnrt/object_scene.hpp"
+#include "engine/gi/probes/bake.hpp"
+#include "engine/gi/rtf/bake.hpp"
+
+namespace bounce::gi::rtf {
+namespace {
+
+constexpr std::string_view kCacheKind = "rtf";
+
+std::string describe(const std::string& name, const FieldSettings& s) {
+  char text[256];
+  std::snprintf(text, sizeof text, "rtf     %s: %d proxies, %d spheres x 6x%dx%d, %d x %d CPCA", name.c_str(), s.proxies,
+                s.spheres, s.faceSize, s.faceSize, s.clusters, s.components);
+  return text;
+}
+
+std::vector<ecs::Entity> participantsOf(ecs::Registry& registry, std::string_view part = {}) {
+  std::vector<ecs::Entity> out;
+  registry.view<scene::Rtf, scene::MeshRef>().each([&](ecs::Entity e, scene::Rtf&, scene::MeshRef&) {
+    const auto* name = registry.tryGet<scene::Name>(e);
+    if (part.empty() || (name && name->id == part)) out.push_back(e);
+  });
+  std::sort(out.begin(), out.end());  // deterministic order
+  return out;
+}
+
+// Only the assets of `entities` (a job's process loads its own mesh only).
+void loadAssets(ecs::Registry& registry, const std::vector<ecs::Entity>& entities, const std::filesystem::path& cookCache,
+                ref::ReferenceAssets& assets) {
+  for (ecs::Entity e : entities) {
+    ecs::Registry one;
+    one.emplace<scene::MeshRef>(one.create(), registry.get<scene::MeshRef>(e));
+    assets.load(one, cookCache);
+  }
+}
+
+std::string nameOf(ecs::Registry& registry, ecs::Entity e) {
+  const auto* name = registry.tryGet<scene::Name>(e);
+  return name ? name->id : std::to_string(e.index());
+}
+
+// The object as its bake sees it; a mesh without triangles is bad input (one line).
+ref::SceneDesc objectOf(ecs::Registry& registry, ecs::Entity e, const ref::ReferenceAssets& assets) {
+  ref::SceneDesc object = dnrt::objectScene(registry, e, assets);
+  std::size_t indices = 0;
+  for (const auto& m : object.meshes) indices += m.indices.size();
+  if (indices < 3)
+    throwInputError(registry.get<scene::MeshRef>(e).asset.string(), "mesh",
+                    "no triangles for the rtf field of entity " + nameOf(registry, e), "a mesh with triangles");
+  return object;
+}
+
+// RTF is for rigid objects (§3: the transfer is baked once in the object's frame): a skinned or
+// morphed mesh is baked in its bind pose and its field does not follow the animation. Said once,
+// when its field is planned or loaded.
+void warnIfDeformed(ecs::Registry& registry, ecs::Entity e, const ref::ReferenceAssets& assets) {
+  const asset::CookedAsset& cooked = assets.get(registry.get<scene::MeshRef>(e)).cpu;
+  bool deformed = false;
+  for (std::size_t n = 0; n < cooked.nodes.size(); ++n) deformed = deformed || anim::isDeformed(cooked, int(n));
+  if (deformed)
+    log::warn("rtf " + nameOf(registry, e) + ": the mesh is skinned or morphed; its RTF is baked in the bind pose "
+              "and does not follow the animation");
+}
+
+struct ObjectBake {
+  std::string name;
+  ref::SceneDesc object;
+  FieldSettings settings;
+  std::filesystem::path output;
+};
+
+std::string bakeAndSave(const ObjectBake& ob) {
+  const auto start = std::chrono::steady_clock::now();
+  const BakeResult r = bake(ob.object, ob.settings);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::filesystem::create_directories(ob.output.parent_path());
+  save(r.field, ob.output);
+  char text[512];
+  std::snprintf(text, sizeof text, ": %.3f s, CPCA %.1f:1 at Frobenius error %.4f, %.2f -> %.2f MB -> %s", seconds,
+                r.stats.ratio, r.stats.frobenius, r.stats.rawMB, r.stats.compressedMB, ob.output.c_str());
+  return describe(ob.name, ob.settings) + text;
+}
+
+class RtfTechnique final : public Technique {
+ public:
+  scene::Effect effect() const override { return scene::Effect::Rtf; }
+
+  bool takesPart(const LevelContext& lc, std::string* why) const override {
+    const bool any = !participantsOf(lc.registry).empty();
+    if (!any && why) *why = "no entity has an rtf component";
+    return any;
+  }
+
+  std::vector<BakeJob> bakeJobs(const LevelContext& lc, std::string_view part) const override {
+    const std::vector<ecs::Entity> entities = participantsOf(lc.registry, part);
+    ref::ReferenceAssets assets;
+    loadAssets(lc.registry, entities, lc.cookCache, assets);
+    std::vector<std::filesystem::path> inputs;
+    if (!lc.level.source.empty()) inputs.push_back(lc.level.source);
+    std::vector<BakeJob> jobs;
+    for (ecs::Entity e : entities) {
+      auto ob = std::make_shared<ObjectBake>();
+      ob->name = nameOf(lc.registry, e);
+      ob->object = objectOf(lc.registry, e, assets);
+      warnIfDeformed(lc.registry, e, assets);
+      ob->settings = settingsFrom(lc.registry.get<scene::Rtf>(e));
+      BakeJob job;
+      job.technique = "rtf";
+      job.what = "rtf " + ob->name;
+      job.part = ob->name;
+      job.key = cacheKey(ob->object, ob->settings);  // ref::hashGeometry + settings + format version
+      ob->output = cacheFolder() / ("rtf-" + job.key + ".field");
+      job.output = ob->output;
+      job.inputs = inputs;
+      job.inputs.push_back(lc.registry.get<scene::MeshRef>(e).asset);
+      job.cached = [ob]() -> std::optional<std::string> {
+        if (!std::filesystem::exists(ob->output)) return std::nullopt;
+        try {
+          load(ob->output);
+        } catch (const InputError& err) {
+          log::warn(std::string("rtf: re-baking a corrupt cache entry: ") + err.what());
+          return std::nullopt;
+        }
+        return describe(ob->name, ob->settings) + ": cached " + ob->output.string();
+      };
+      job.run = [ob] { return bakeAndSave(*ob); };
+      jobs.push_back(std::move(job));
+    }
+    return jobs;
+  }
+
+  std::string_view cacheKind() const override { return kCacheKind; }
+
+  std::unique_ptr<TechniqueRuntime> create(SessionContext& sc) const override {
+    return std::make_unique<SessionRuntime>(sc, cacheFolder());
+  }
+
+  // RTF on top of probes, against the full multi-bounce reference: 1 and 2 inter-object bounces
+  // (the "2 bounces better than 1"), applied to every `rtf` entity; the bake settings stay
+  // the level's. Its effect_rel_rmse is the number that matters (the static part is the probes').
+  void accuracyRows(std::vector<AccuracyRow>& rows) const override {
+    for (const int bounces : {1, 2}) {
+      AccuracyRow r;
+      r.technique = "rtf";
+      r.setting = "bounces=" + std::to_string(bounces) + ";ref=all";
+      r.effects = {"direct", "shadows", "probes", "rtf"};
+      r.passes = {"shadow", "lighting", "probes", "rtf.bounce", "rtf"};
+      r.configure = [=](scene::Level& level) {
+        for (auto& e : level.entities)
+          if (e.rtf) e.rtf->bounces = bounces;
+      };
+      rows.push_back(std::move(r));
+    }
+  }
+  std::vector<std::string> passes() const override { return {"rtf.bounce", "rtf"}; }
+};
+
+}  // namespace
+
+const Technique& technique() {
+  static const RtfTechnique t;
+  return t;
+}
+
+FieldSettings settingsFrom(const scene::Rtf& c) {
+  FieldSettings s;
+  s.proxies = c.proxies;
+  s.spheres = c.spheres;
+  s.faceSize = c.face;
+  s.raysPerAxis = c.rays;
+  s.vertexRaysPerAxis = c.vertexRays;
+  s.clusters = c.clusters;
+  s.components = c.components;
+  s.innerRadius = c.inner;
+  s.outerRadius = c.outer;
+  checkSettings(s);
+  return s;
+}
+
+std::filesystem::path cacheFolder() { return cacheDir(kCacheKind); }
+
+SessionRuntime::SessionRuntime(SessionContext& sc, const std::filesystem::path& cacheDir) {
+  const std::vector<ecs::Entity> entities = participantsOf(sc.registry);
+  ref::ReferenceAssets assets;
+  loadAssets(sc.registry, entities, sc.cookCache, assets);
+  std::vector<Participant> participants;
+  for (ecs::Entity e : entities) {
+    Participant p;
+    p.entity = e;
+    p.name = nameOf(sc.registry, e);
+    const scene::Rtf& c = sc.registry.get<scene::Rtf>(e);
+    p.bounces = c.bounces;
+    ObjectBake ob{p.name, objectOf(sc.registry, e, assets), settingsFrom(c), {}};
+    warnIfDeformed(sc.registry, e, assets);
+    ob.output = cacheDir / ("rtf-" + cacheKey(ob.object, ob.settings) + ".field");
+    bool cached = false;
+    p.field = loadOrBake(
+        ob.output, "rtf: re-baking a corrupt cache entry: ", [](const std::filesystem::path& f) { return load(f); },
+        [&] {
+          log::info(describe(p.name, ob.settings) + ": baking");
+          return bake(ob.object, ob.settings).field;
+        },
+        [](const Field& f, const std::filesystem::path& path) { save(f, path); }, &cached);
+    baked_ += cached ? 0 : 1;
+    participants.push_back(std::move(p));
+  }
+  update_ = std::make_unique<Update>(sc.registry, std::move(participants));
+  // The proxies' light: the probes (or the level's background) plus the frame's lights, their
+  // visibility traced through the level's STATIC geometry (as DNRT's c_j; the dynamic objects
+  // occlude each other through their OOFs in Algorithm 1 instead).
+  if (sc.services.probeVolume) {
+    probeSource_ = std::make_unique<dnrt::ProbeSource>(*sc.services.probeVolume);
+    update_->setIndirect(probeSource_.get());
+  } else {
+    background_ = std::make_unique<incident::ConstantEnvironment>(sc.level.background);
+    update_->setIndirect(background_.get());
+  }
+  ref::SceneDesc occluders = probes::staticScene(sc.level, sc.cookCache, nullptr, /*withTextures=*/false);
+  for (ref::RefMaterial& m : occluders.materials) m.albedoTexture = m.emissiveTexture = -1;  // shadow rays only
+  lightVisibility_ = std::make_unique<incident::SceneVisibility>(std::move(occluders));
+  update_->setLightVisibility(lightVisibility_.get());
+  for (const Participant& p : update_->participants()) xi_.push_back(std::make_unique<XiPass>(sc.ctx, p.field));
+  node_ = std::make_unique<Node>(sc.ctx, sc.renderer.pipelines(), sc.renderer.frames().framesInFlight());
+}
+
+render::Renderer::GraphNode SessionRuntime::node() {
+  return [this](rg::RenderGraph& graph, render::PassContext& pc) {
+    FrameObjects f = update_->frame(pc.world->lights);
+    std::vector<NodeObject> objects;
+    for (std::size_t o = 0; o < f.participant.size(); ++o) {
+      const std::size_t i = f.participant[o];
+      objects.push_back({xi_[i].get(), std::move(f.proxyLight[o]), f.records[o], update_->participants()[i].name});
+    }
+    node_->addTo(graph, pc, std::move(objects));
+  };
+}
+
+std::vector<std::string> SessionRuntime::profileLines() const {
+  const std::vector<double>& ms = update_->bounceMs();
+  if (ms.empty()) return {};
+  std::vector<double> sorted = ms;
+  std::sort(sorted.begin(), sorted.end());
+  char text[256];
+  std::snprintf(text, sizeof text, "rtf bouncing step: %zu objects, %d bounces, CPU median %.3f ms over %zu frames (§5, Algorithm 1)",
+                update_->participants().size(), update_->bounces(), sorted[sorted.size() / 2], sorted.size());
+  return {text};
+}
+
+}  // namespace bounce::gi::rtf

@@ -1,0 +1,83 @@
+#include "engine/gi/rtf/update.hpp"
+// The bouncing step per frame and the shading records (update.hpp). The math is evaluate.cpp's; this
+// file only gathers the frame's objects and folds what the fragment shader would otherwise recompute
+// per pixel (the product matrix of the indirect light, the q mapping) into the records.
+
+#include <algorithm>
+
+#include "engine/math/sampling.hpp"
+#include "engine/math/sh.hpp"
+#include "engine/scene/components.hpp"
+
+namespace bounce::gi::rtf {
+
+RtfObjectGpu packObject(const Field& f, const glm::mat4& world, const ShRgb& indirect, std::uint32_t entity) {
+  const Placement p = place(f, world);
+  RtfObjectGpu o{};
+  // q = (worldToLocal·p − centre)/η: rows of the affine map.
+  for (int r = 0; r < 3; ++r) {
+    glm::vec4 row(p.worldToLocal[0][r], p.worldToLocal[1][r], p.worldToLocal[2][r], p.worldToLocal[3][r]);
+    row.w -= f.centre[r];
+    o.toQ[r] = row / f.radius;
+  }
+  const glm::mat3 toLocal = glm::transpose(p.localToWorldRotation);
+  for (int r = 0; r < 3; ++r) o.toLocal[r] = glm::vec4(toLocal[0][r], toLocal[1][r], toLocal[2][r], 0.0f);
+  const FieldSettings& s = f.settings;
+  const float dr = (s.outerRadius - s.innerRadius) / float(s.spheres - 1);
+  o.centreWorld = glm::vec4(p.centreWorld, (s.outerRadius + dr) * p.radiusWorld);
+  o.grid = glm::vec4(float(s.spheres), float(s.faceSize), s.innerRadius, s.outerRadius);
+  o.ids = glm::uvec4(entity + 1u, 0u, 0u, 0u);
+  // T per channel in the object frame (Eq. 10's occlusion, shade() in evaluate.cpp).
+  const ShRgb L = rotate(indirect, toLocal);
+  for (int c = 0; c < 3; ++c) {
+    std::vector<float> Lc(kShCount);
+    for (int k = 0; k < kShCount; ++k) Lc[std::size_t(k)] = L[std::size_t(k)][c];
+    const std::vector<float> T = sh::productMatrix<float>(std::span<const float>(Lc), kShOrder);  // T[i·16 + j]
+    for (int i = 0; i < 9; ++i) {
+      const float a = float(sh::cosineLobeBand(i == 0 ? 0 : i < 4 ? 1 : 2) / math::kPi);
+      for (int j = 0; j < kShCount; ++j) o.blocked[j * 9 + i][c] = a * T[std::size_t(i * kShCount + j)];
+    }
+  }
+  return o;
+}
+
+Update::Update(ecs::Registry& registry, std::vector<Participant> participants)
+    : registry_(registry), participants_(std::move(participants)) {}
+
+int Update::bounces() const {
+  int b = 1;
+  for (const Participant& p : participants_) b = std::max(b, p.bounces);
+  return b;
+}
+
+FrameObjects Update::frame(std::span<const render::LightGpu> lights) {
+  const auto start = std::chrono::steady_clock::now();
+  FrameObjects out;
+  out.bounces = bounces();
+  std::vector<Object> objects;
+  for (std::size_t i = 0; i < participants_.size(); ++i) {
+    const Participant& p = participants_[i];
+    if (!registry_.valid(p.entity)) continue;
+    const auto* placed = registry_.tryGet<scene::WorldTransform>(p.entity);
+    if (!placed) continue;
+    out.participant.push_back(i);
+    objects.push_back({&p.field, placed->matrix});
+  }
+  if (!objects.empty()) {
+    const LitSource source(service_, lights);
+    BounceResult b = bounce(objects, source, out.bounces);
+    out.proxyLight = std::move(b.proxyLight);
+    out.bounceEnergy = std::move(b.bounceEnergy);
+    const incident::ConstantEnvironment none(glm::vec3(0.0f));
+    const incident::IndirectSource& indirect = service_.indirect() ? *service_.indirect() : none;
+    for (std::size_t o = 0; o < objects.size(); ++o) {
+      const Placement pl = place(*objects[o].field, objects[o].world);
+      out.records.push_back(packObject(*objects[o].field, objects[o].world, sourceRadiance(indirect, pl.centreWorld),
+                                       participants_[out.participant[o]].entity.index()));
+    }
+  }
+  bounceMs_.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+  return out;
+}
+
+}  // namespace bounce::gi::rtf

@@ -1,0 +1,104 @@
+#pragma once
+// RTF's per-frame CPU work (the "update" of the one technique shape, Pan et al. 2007 §5): the
+// bouncing step (Algorithm 1, evaluate.hpp bounce()) for every rtf object of the level, lit by the
+// incident-light service (engine/gi/incident: the probes' or background's indirect light plus the
+// frame's real lights with their visibility through the static geometry), and the per-object
+// records the shading node draws with (node.hpp). It runs in the node's setup because the lights
+// are the frame's (RenderWorld::lights), as DNRT's objectsFor does.
+//
+// Departures (README "RTF"):
+//  - one bounce count for the scene: the largest `bounces` of the participants (Algorithm 1 bounces
+//    light between all objects at once, so a per-object count has no meaning);
+//  - the shading step's blocked light (Eq. 10's occlusion of the incident light, the OOF) is the
+//    INDIRECT light only (probes / background), taken at the object's centre: the real lights'
+//    direct light is already removed by the shadow maps, which draw every dynamic object;
+//  - the GPU pass adds each object's term on its own (additive blending); Algorithm 1 at a receiver
+//    multiplies the objects' visibilities (V_{<i}). The two agree for one object (the GPU test) and
+//    to first order in (1 − V) where objects' fields overlap.
+#include <chrono>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "engine/ecs/registry.hpp"
+#include "engine/gi/incident/incident.hpp"
+#include "engine/gi/rtf/evaluate.hpp"
+#include "engine/render/gpu_types.hpp"
+
+namespace bounce::gi::rtf {
+
+// One object's shading record, std140 (shaders/rtf/rtf.vert/.frag RtfObject), in a uniform buffer:
+// the fragment shader reads it directly (uniform blocks, not SSBOs, in fragment shaders: DESIGN.md
+// "What costs what in a fragment shader on llvmpipe").
+struct RtfObjectGpu {
+  glm::vec4 toQ[3];        // rows: q = toQ · (p, 1): the field's local offset from o in units of η
+  glm::vec4 toLocal[3];    // rows: world → object-frame rotation (normals)
+  glm::vec4 centreWorld;   // xyz: o in the world; w: half-size (m) of the drawn box, (outer + Δr)·η
+  glm::vec4 grid;          // spheres, face size, inner, outer (η)
+  glm::uvec4 ids;          // x: entity index + 1 (its own pixels skip the field)
+  // blocked[j·9 + i].rgb = Â_{l(i)}/π · T_ij, T the product matrix of the indirect radiance L
+  // (object frame, at o): ((u − V) ⊙ L)_i = Σ_j T_ij (u − V)_j (sh_product.hpp productMatrix). Only
+  // i < 9: the clamped cosine has Â_3 = 0. The ξ pass folds it into its per-sample X
+  // (XiPass::setBlockedLight, xi.comp), so the fragment shader reads 9 coefficients per tap.
+  glm::vec4 blocked[kShCount * 9];
+};
+static_assert(sizeof(RtfObjectGpu) == (9 + kShCount * 9) * 16);
+inline constexpr std::size_t kRtfObjectStride = 2560;  // a multiple of every minUniformBufferOffsetAlignment (≤ 256)
+static_assert(sizeof(RtfObjectGpu) <= kRtfObjectStride);
+
+// The record of a field placed by `world` with indirect radiance `indirect` (world frame, at o),
+// entity `entity` (index; its own pixels skip the field).
+RtfObjectGpu packObject(const Field& field, const glm::mat4& world, const ShRgb& indirect, std::uint32_t entity);
+
+// The incident-light service as the bouncing step's source: indirect + lights at a point (radius 0).
+class LitSource final : public incident::IndirectSource {
+ public:
+  LitSource(const incident::Service& service, std::span<const render::LightGpu> lights)
+      : service_(service), lights_(lights) {}
+  incident::RadianceSH radianceSH(glm::vec3 p) const override { return service_.radianceSH(p, 0.0f, lights_); }
+
+ private:
+  const incident::Service& service_;
+  std::span<const render::LightGpu> lights_;
+};
+
+struct Participant {
+  ecs::Entity entity;
+  std::string name;  // the entity id: timestamp scopes "rtf/<name>", "rtf.bounce/<name>"
+  Field field;
+  int bounces = 2;
+};
+
+// One frame's objects after the bouncing step, in participant order (objects without a world
+// transform are left out).
+struct FrameObjects {
+  std::vector<std::size_t> participant;            // index into Update::participants()
+  std::vector<std::vector<glm::vec3>> proxyLight;  // m·16 RGB per object, object frame (for the ξ pass)
+  std::vector<RtfObjectGpu> records;
+  std::vector<double> bounceEnergy;                // BounceResult::bounceEnergy
+  int bounces = 0;
+};
+
+class Update {
+ public:
+  Update(ecs::Registry& registry, std::vector<Participant> participants);
+  // Not owned. Null indirect: none; null visibility: every light unoccluded.
+  void setIndirect(const incident::IndirectSource* indirect) { service_.setIndirect(indirect); }
+  void setLightVisibility(const incident::Visibility* visibility) { service_.setVisibility(visibility); }
+  const std::vector<Participant>& participants() const { return participants_; }
+  int bounces() const;
+
+  // The bouncing step for the frame's lights; its CPU time is appended to bounceMs().
+  FrameObjects frame(std::span<const render::LightGpu> lights);
+  const std::vector<double>& bounceMs() const { return bounceMs_; }
+
+ private:
+  ecs::Registry& registry_;
+  std::vector<Participant> participants_;
+  incident::Service service_;
+  std::vector<double> bounceMs_;
+};
+
+}  // namespace bounce::gi::rtf

@@ -1,0 +1,299 @@
+// The RTF node on the GPU (lavapipe on CPU-only machines, validation on): the shading pass against
+// its C++ reference (evaluate.hpp shade()) pixel by pixel on a floor below a rotated box, and the
+// session path (technique table → runtime → bouncing step → "rtf.bounce" and "rtf" passes).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+#include "engine/gi/dnrt/object_scene.hpp"
+#include "engine/gi/rtf/bake.hpp"
+#include "engine/gi/rtf/node.hpp"
+#include "engine/gi/rtf/technique.hpp"
+#include "engine/gpu/presenter_offscreen.hpp"
+#include "engine/gpu/testing.hpp"
+#include "game/session.hpp"
+#include "tests/unit/render/analytic.hpp"
+
+namespace bounce::gi::rtf {
+namespace {
+
+namespace fs = std::filesystem;
+const fs::path kLevel = fs::path(BOUNCE_SOURCE_DIR) / "tests/data/rtf/floor-box.json";
+
+// A directional sky with l = 1 and l = 2 content, the same at every point (so the GPU's light at o
+// and shade()'s light at r agree, and the rotation into the object's frame matters).
+struct Sky final : incident::IndirectSource {
+  incident::RadianceSH sh{};
+  Sky() {
+    const float v[9] = {3.0f, 0.8f, 1.4f, -0.6f, 0.5f, -0.9f, 0.7f, 0.4f, -1.1f};
+    for (int i = 0; i < 9; ++i) sh[std::size_t(i)] = v[i] * glm::vec3(1.0f, 0.8f, 0.6f);
+  }
+  incident::RadianceSH radianceSH(glm::vec3) const override { return sh; }
+};
+
+struct Scene {
+  game::Session session;
+  ecs::Entity box;
+  Field field;
+  glm::mat4 world{1.0f};
+  explicit Scene(gpu::Context& ctx) : session(ctx, game::loadLevelWithEffects(kLevel, std::nullopt)) {
+    session.update(0.0);
+    ecs::Registry& reg = session.registry();
+    reg.view<scene::Rtf>().each([&](ecs::Entity e, scene::Rtf&) { box = e; });
+    ref::ReferenceAssets assets;
+    assets.load(reg, fs::path(BOUNCE_TEST_OUT) / "rtf" / "cooked");
+    // The session's runtime baked it into the cache already: this loads that entry.
+    field = bakeCached(dnrt::objectScene(reg, box, assets), settingsFrom(reg.get<scene::Rtf>(box)), cacheFolder());
+    world = reg.get<scene::WorldTransform>(box).matrix;
+  }
+};
+
+std::vector<float> renderHdr(game::Session& session, gpu::Context& ctx, std::uint32_t w, std::uint32_t h,
+                             std::vector<std::string>* passes = nullptr) {
+  gpu::OffscreenPresenter presenter(ctx, {w, h});
+  render::FrameSettings settings;
+  settings.keepHdr = true;
+  session.render(presenter, settings);
+  if (passes) *passes = session.renderer().executedPasses();
+  return session.renderer().readHdr();
+}
+
+// The shader = shade() for one object: interreflected (ξ lookup, Eq. 10) minus blocked ((u − V) ⊙ L),
+// both convolved with the clamped cosine at the floor's normal, times the floor's albedo. The HDR
+// image holds nothing else (no direct light, black background).
+TEST(RtfGpu, ShaderMatchesCpuShadingOnTheFloor) {
+  gpu::Context& ctx = gpu::testkit::sharedContext();
+  Scene s(ctx);
+  ASSERT_FALSE(s.box.isNull());
+  const Sky sky;
+  const std::vector<Object> objects = {{&s.field, s.world}};
+  const BounceResult bounced = bounce(objects, sky, 1);
+  XiPass xi(ctx, s.field);
+  Node node(ctx, s.session.renderer().pipelines(), gpu::FrameRing::kDefaultFramesInFlight);
+  const Placement pl = place(s.field, s.world);
+  const RtfObjectGpu record = packObject(s.field, s.world, sourceRadiance(sky, pl.centreWorld), s.box.index());
+  s.session.renderer().setNode("rtf", [&](rg::RenderGraph& graph, render::PassContext& pc) {
+    node.addTo(graph, pc, {NodeObject{&xi, bounced.proxyLight[0], record, "box"}});
+  });
+  constexpr std::uint32_t kW = 96, kH = 96;
+  std::vector<std::string> passes;
+  const std::vector<float> rgb = renderHdr(s.session, ctx, kW, kH, &passes);
+  EXPECT_NE(std::find(passes.begin(), passes.end(), "rtf.bounce"), passes.end());
+  EXPECT_NE(std::find(passes.begin(), passes.end(), "rtf"), passes.end());
+
+  const rtest::FloorScene floor = rtest::readFloorScene(s.session.level());
+  // fp16 output (11-bit mantissa, two roundings in the blend): 1e-3 relative; f32 ξ and OOF and the
+  // float sums of 8 × 25 terms: 1e-4 of the largest term in the image.
+  constexpr float kHalfRel = 1e-3f, kSumRel = 1e-4f;
+  std::vector<glm::vec3> want;
+  std::vector<glm::vec3> got;
+  float largest = 0.0f, largestInter = 0.0f, largestBlocked = 0.0f;
+  // The hard cases by |q| (units of η): inside the innermost sphere (its value), between
+  // spheres, in the fade past the outermost, beyond it (exactly zero on the GPU: discarded).
+  const FieldSettings& fsettings = s.field.settings;
+  const float dr = (fsettings.outerRadius - fsettings.innerRadius) / float(fsettings.spheres - 1);
+  int inside = 0, between = 0, fading = 0, beyond = 0, beyondNonZero = 0;
+  for (std::uint32_t y = 0; y < kH; ++y)
+    for (std::uint32_t x = 0; x < kW; ++x) {
+      const auto p = rtest::floorPoint(floor, kW, kH, x, y);
+      if (!p) continue;
+      // Skip the floor hidden by the box (half-diagonal 0.087 at height ≤ 0.21, seen from 1 m).
+      if (glm::length(glm::vec2(p->x - 0.05f, p->z + 0.03f)) < 0.15f) continue;
+      const Shading sh = shade(objects, bounced, sky, *p, glm::vec3(0, 1, 0), floor.albedo, -1);
+      const std::size_t i = (std::size_t(y) * kW + x) * 3;
+      const glm::vec4 pw(*p, 1.0f);
+      const float qLen = glm::length(glm::vec3(glm::dot(record.toQ[0], pw), glm::dot(record.toQ[1], pw), glm::dot(record.toQ[2], pw)));
+      if (qLen < fsettings.innerRadius) ++inside;
+      else if (qLen < fsettings.outerRadius) ++between;
+      else if (qLen < fsettings.outerRadius + dr) ++fading;
+      else beyondNonZero += (rgb[i] != 0.0f || rgb[i + 1] != 0.0f || rgb[i + 2] != 0.0f), ++beyond;
+      want.push_back(sh.net());
+      got.emplace_back(rgb[i], rgb[i + 1], rgb[i + 2]);
+      largest = std::max(largest, glm::length(sh.net()));
+      largestInter = std::max(largestInter, glm::length(sh.interreflected));
+      largestBlocked = std::max(largestBlocked, glm::length(sh.blocked));
+    }
+  float worstRatio = 0.0f, worst = 0.0f;
+  for (std::size_t k = 0; k < want.size(); ++k)
+    for (int c = 0; c < 3; ++c) {
+      const float err = std::abs(got[k][c] - want[k][c]);
+      worst = std::max(worst, err);
+      worstRatio = std::max(worstRatio, err / (kHalfRel * std::abs(want[k][c]) + kSumRel * largest + 1e-6f));
+    }
+  std::printf("rtf shader vs shade(): %zu floor pixels, largest |net| %.4f (interreflected %.4f, blocked %.4f), "
+              "worst |difference| %.2g = %.2f of its bound\n",
+              want.size(), largest, largestInter, largestBlocked, worst, worstRatio);
+  std::printf("floor pixels by |q|: %d inside the innermost sphere, %d between spheres, %d fading, %d beyond\n", inside,
+              between, fading, beyond);
+  EXPECT_GT(inside, 20);
+  EXPECT_GT(between, 1000);
+  EXPECT_GT(fading, 300);
+  EXPECT_GT(beyond, 100);
+  EXPECT_EQ(beyondNonZero, 0);
+  EXPECT_GT(want.size(), 5000u);
+  EXPECT_GT(largestInter, 1e-3f);
+  EXPECT_GT(largestBlocked, 1e-3f);
+  EXPECT_LE(worstRatio, 1.0f);
+
+  // The object's own pixels skip its field: with the id cleared the box's top changes, the floor not.
+  RtfObjectGpu anonymous = record;
+  anonymous.ids.x = 0u;
+  s.session.renderer().setNode("rtf", [&](rg::RenderGraph& graph, render::PassContext& pc) {
+    node.addTo(graph, pc, {NodeObject{&xi, bounced.proxyLight[0], anonymous, "box"}});
+  });
+  const std::vector<float> selfLit = renderHdr(s.session, ctx, kW, kH);
+  int changed = 0, changedOnFloor = 0;
+  for (std::uint32_t y = 0; y < kH; ++y)
+    for (std::uint32_t x = 0; x < kW; ++x) {
+      const std::size_t i = (std::size_t(y) * kW + x) * 3;
+      const bool differs = selfLit[i] != rgb[i] || selfLit[i + 1] != rgb[i + 1] || selfLit[i + 2] != rgb[i + 2];
+      changed += differs;
+      const auto p = rtest::floorPoint(floor, kW, kH, x, y);
+      if (differs && p && glm::length(glm::vec2(p->x - 0.05f, p->z + 0.03f)) >= 0.15f) ++changedOnFloor;
+    }
+  EXPECT_GT(changed, 50);
+  EXPECT_EQ(changedOnFloor, 0);
+  s.session.renderer().frames().waitIdle();
+}
+
+// The session path: naming rtf builds the runtime (field from the cache), every frame runs the
+// bouncing step for the frame's lights and both passes; the image is shade() with the lamp as the
+// proxies' source (unoccluded: nothing static lies between the box and the lamp) and no indirect
+// light (black background: nothing is blocked).
+TEST(RtfGpu, SessionRunsTheBouncingStepAndBothPasses) {
+  gpu::Context& ctx = gpu::testkit::sharedContext();
+  Scene s(ctx);
+  EXPECT_TRUE(s.session.runs(scene::Effect::Rtf));
+  constexpr std::uint32_t kW = 64, kH = 64;
+  std::vector<std::string> passes;
+  const std::vector<float> rgb = renderHdr(s.session, ctx, kW, kH, &passes);
+  EXPECT_NE(std::find(passes.begin(), passes.end(), "rtf.bounce"), passes.end());
+  EXPECT_NE(std::find(passes.begin(), passes.end(), "rtf"), passes.end());
+  const std::vector<std::string> lines = s.session.profileLines();
+  ASSERT_FALSE(lines.empty());
+  EXPECT_NE(std::find_if(lines.begin(), lines.end(),
+                         [](const std::string& l) { return l.rfind("rtf bouncing step: 1 objects, 1 bounces, CPU median ", 0) == 0; }),
+            lines.end());
+
+  incident::Service service;
+  const incident::ConstantEnvironment black(glm::vec3(0.0f));
+  service.setIndirect(&black);
+  const LitSource lit(service, s.session.world().lights);
+  const std::vector<Object> objects = {{&s.field, s.world}};
+  const BounceResult bounced = bounce(objects, lit, 1);
+  const rtest::FloorScene floor = rtest::readFloorScene(s.session.level());
+  float largest = 0.0f, worst = 0.0f;
+  int compared = 0;
+  for (std::uint32_t y = 0; y < kH; ++y)
+    for (std::uint32_t x = 0; x < kW; ++x) {
+      const auto p = rtest::floorPoint(floor, kW, kH, x, y);
+      if (!p || glm::length(glm::vec2(p->x - 0.05f, p->z + 0.03f)) < 0.15f) continue;
+      const glm::vec3 want = shade(objects, bounced, black, *p, glm::vec3(0, 1, 0), floor.albedo, -1).net();
+      const std::size_t i = (std::size_t(y) * kW + x) * 3;
+      for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(rgb[i + std::size_t(c)] - want[c]) - 1e-3f * std::abs(want[c]));
+      largest = std::max(largest, glm::length(want));
+      ++compared;
+    }
+  std::printf("rtf session: %d floor pixels, largest added %.4f, worst excess over fp16 rounding %.2g\n", compared, largest, worst);
+  EXPECT_GT(compared, 2000);
+  EXPECT_GT(largest, 1e-4f);
+  EXPECT_LE(worst, 1e-4f * largest + 1e-6f);
+  s.session.renderer().frames().waitIdle();
+}
+
+
+// Two objects whose fields overlap (the hard case): the pass adds each object's term on
+// its own, so the frame with both = the frames with each alone summed, and = Σ_k shade() of each
+// object alone (with the ξ of the two-object bouncing step) within fp16 rounding. Algorithm 1 at a
+// receiver instead multiplies the visibilities (shade() with both): the departure of update.hpp,
+// printed as a number (second order in (1 − V)).
+TEST(RtfGpu, OverlappingObjectsAddAndMatchTheCpuSum) {
+  gpu::Context& ctx = gpu::testkit::sharedContext();
+  const fs::path level = fs::path(BOUNCE_SOURCE_DIR) / "tests/data/rtf/two-boxes.json";
+  game::Session session(ctx, game::loadLevelWithEffects(level, std::nullopt));
+  session.update(0.0);
+  ecs::Registry& reg = session.registry();
+  ref::ReferenceAssets assets;
+  assets.load(reg, fs::path(BOUNCE_TEST_OUT) / "rtf" / "cooked");
+  std::vector<ecs::Entity> boxes;
+  reg.view<scene::Rtf>().each([&](ecs::Entity e, scene::Rtf&) { boxes.push_back(e); });
+  std::sort(boxes.begin(), boxes.end());
+  ASSERT_EQ(boxes.size(), 2u);
+  std::vector<Field> fields;
+  std::vector<Object> objects;
+  for (ecs::Entity e : boxes)
+    fields.push_back(bakeCached(dnrt::objectScene(reg, e, assets), settingsFrom(reg.get<scene::Rtf>(e)), cacheFolder()));
+  for (std::size_t k = 0; k < 2; ++k) objects.push_back({&fields[k], reg.get<scene::WorldTransform>(boxes[k]).matrix});
+  const Sky sky;
+  const BounceResult bounced = bounce(objects, sky, 2);
+  ASSERT_EQ(bounced.bounceEnergy.size(), 2u);
+  EXPECT_GT(bounced.bounceEnergy[1], 0.0);
+  EXPECT_LE(bounced.bounceEnergy[1], 0.9 * bounced.bounceEnergy[0]);  // bounces converge: ≤ albedo × the previous
+  std::vector<std::unique_ptr<XiPass>> xi;
+  std::vector<NodeObject> nodeObjects;
+  for (std::size_t k = 0; k < 2; ++k) {
+    xi.push_back(std::make_unique<XiPass>(ctx, fields[k]));
+    const Placement pl = place(fields[k], objects[k].world);
+    nodeObjects.push_back({xi.back().get(), bounced.proxyLight[k],
+                           packObject(fields[k], objects[k].world, sourceRadiance(sky, pl.centreWorld), boxes[k].index()),
+                           k == 0 ? "box-a" : "box-b"});
+  }
+  Node node(ctx, session.renderer().pipelines(), gpu::FrameRing::kDefaultFramesInFlight);
+  constexpr std::uint32_t kW = 96, kH = 96;
+  std::vector<float> frames[3];  // both, a alone, b alone
+  for (int f = 0; f < 3; ++f) {
+    std::vector<NodeObject> drawn = f == 0 ? nodeObjects : std::vector<NodeObject>{nodeObjects[std::size_t(f - 1)]};
+    session.renderer().setNode("rtf", [&](rg::RenderGraph& graph, render::PassContext& pc) { node.addTo(graph, pc, drawn); });
+    frames[f] = renderHdr(session, ctx, kW, kH);
+  }
+  const rtest::FloorScene floor = rtest::readFloorScene(session.level());
+  constexpr float kHalfRel = 1e-3f, kSumRel = 1e-4f;
+  float largest = 0.0f, worstAdd = 0.0f, worstSum = 0.0f, departure = 0.0f;
+  int compared = 0, overlap = 0;
+  // Each object's term has the single-object bound (kHalfRel of the term + kSumRel of the image's
+  // largest), and adding b onto a's fp16 value rounds once more: 2·kHalfRel(|a| + |b|) + 2·kSumRel·max.
+  float largestGpu = 0.0f;
+  for (float v : frames[0]) largestGpu = std::max(largestGpu, std::abs(v));
+  for (std::uint32_t y = 0; y < kH; ++y)
+    for (std::uint32_t x = 0; x < kW; ++x) {
+      const auto p = rtest::floorPoint(floor, kW, kH, x, y);
+      if (!p) continue;
+      bool hidden = false;  // the floor under either box
+      for (const Object& o : objects) hidden = hidden || glm::length(glm::vec2(p->x - o.world[3].x, p->z - o.world[3].z)) < 0.15f;
+      if (hidden) continue;
+      glm::vec3 sum(0.0f);
+      for (std::size_t k = 0; k < 2; ++k) {
+        BounceResult alone;
+        alone.xi = {bounced.xi[k]};
+        sum += shade(std::vector<Object>{objects[k]}, alone, sky, *p, glm::vec3(0, 1, 0), floor.albedo, -1).net();
+      }
+      const glm::vec3 product = shade(objects, bounced, sky, *p, glm::vec3(0, 1, 0), floor.albedo, -1).net();
+      const std::size_t i = (std::size_t(y) * kW + x) * 3;
+      largest = std::max(largest, glm::length(sum));
+      for (int c = 0; c < 3; ++c) {
+        const float both = frames[0][i + std::size_t(c)], a = frames[1][i + std::size_t(c)], b = frames[2][i + std::size_t(c)];
+        worstAdd = std::max(worstAdd, std::abs(both - a - b) / (2.0f * kHalfRel * (std::abs(a) + std::abs(b)) + 1e-7f));
+        worstSum = std::max(worstSum, std::abs(both - sum[c]) /
+                                          (2.0f * kHalfRel * (std::abs(a) + std::abs(b)) + 2.0f * kSumRel * largestGpu + 1e-6f));
+        departure = std::max(departure, std::abs(product[c] - sum[c]));
+      }
+      overlap += frames[1][i] != 0.0f && frames[2][i] != 0.0f;
+      ++compared;
+    }
+  std::printf("two rtf objects: %d floor pixels (%d in both fields), largest |sum| %.4f; both vs a + b %.2f and vs "
+              "the CPU sum %.2f of their bounds; Algorithm 1's product departs from the sum by at most %.2g (%.1f%% of the largest)\n",
+              compared, overlap, largest, worstAdd, worstSum, departure, 100.0f * departure / largest);
+  EXPECT_GT(compared, 5000);
+  EXPECT_GT(overlap, 1000);
+  EXPECT_GT(largest, 1e-3f);
+  EXPECT_LE(worstAdd, 1.0f);
+  EXPECT_LE(worstSum, 1.0f);
+  EXPECT_LT(departure, 0.1f * largest);  // second order: small against the terms themselves
+  session.renderer().frames().waitIdle();
+}
+
+}  // namespace
+}  // namespace bounce::gi::rtf

@@ -1,0 +1,250 @@
+// RTF in the technique table (issue 14, step 1–2) on the CPU: the level component (strict parsing,
+// one-line errors), participation, the bake job (content key, cache entry, the line it prints, a
+// corrupt entry re-baked), and the per-frame update (the bouncing step of Algorithm 1 and the
+// records the shading pass reads) against evaluate.hpp.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+
+#include "engine/core/error.hpp"
+#include "engine/core/file.hpp"
+#include "engine/core/paths.hpp"
+#include "engine/gi/rtf/technique.hpp"
+#include "engine/math/sampling.hpp"
+#include "engine/math/sh.hpp"
+#include "engine/scene/level.hpp"
+#include "engine/scene/systems.hpp"
+
+namespace bounce::gi::rtf {
+namespace {
+
+namespace fs = std::filesystem;
+const fs::path kSource = BOUNCE_SOURCE_DIR;
+fs::path outDir() { return fs::path(BOUNCE_TEST_OUT) / "rtf"; }
+fs::path cookCache() {
+  if (const char* env = std::getenv("BOUNCE_COOK_CACHE"); env && *env) return env;
+  return cacheDir("cooked");
+}
+std::string boxAsset() { return (kSource / "content/src/BoxTextured/glTF-Draco-gltfpipeline/BoxTextured.gltf").string(); }
+std::string mesh() { return R"("mesh": {"asset": ")" + boxAsset() + R"("})"; }
+// Test-sized settings: a bake of the 24-vertex box in well under a second.
+const std::string kTiny = R"("proxies": 2, "spheres": 3, "face": 2, "rays": 4, "vertex_rays": 4, "clusters": 2, "components": 2)";
+
+fs::path writeLevel(const std::string& name, const std::string& entities, const std::string& effects = R"(["direct", "rtf"])") {
+  const fs::path path = outDir() / (name + ".json");
+  writeFileAtomic(path, R"({"bounce_level": 1, "effects": )" + effects + R"(, "entities": [)" + entities + "]}");
+  return path;
+}
+
+std::string loadError(const std::string& name, const std::string& entity) {
+  const fs::path path = writeLevel(name, entity);
+  try {
+    ecs::Registry r;
+    scene::instantiate(scene::loadLevel(path), r);
+  } catch (const InputError& e) {
+    std::string msg = e.what();
+    const std::string prefix = path.string() + ": ";
+    if (msg.rfind(prefix, 0) == 0) msg = "FILE: " + msg.substr(prefix.size());
+    return msg;
+  }
+  return "(no error)";
+}
+
+struct Loaded {
+  scene::Level level;
+  ecs::Registry registry;
+  explicit Loaded(const fs::path& path) : level(scene::loadLevel(path)) {
+    scene::instantiate(level, registry);
+    scene::transformSystem(registry);
+  }
+  LevelContext context() { return {level, registry, cookCache()}; }
+};
+
+TEST(RtfComponent, ParsesWithDefaults) {
+  const fs::path path = writeLevel("rtf-ok", R"({"id": "a", "dynamic": true, )" + mesh() +
+                                                 R"(, "rtf": {"proxies": 12, "bounces": 3, "spheres": 6, "face": 4, "rays": 16,
+                                                   "vertex_rays": 6, "clusters": 5, "components": 0, "inner": 0.25, "outer": 6}},
+                                                 {"id": "b", "dynamic": true, )" + mesh() + R"(, "rtf": {}})");
+  const scene::Level level = scene::loadLevel(path);
+  ASSERT_EQ(level.entities.size(), 2u);
+  EXPECT_EQ(level.entities[0].rtf, (scene::Rtf{12, 3, 6, 4, 16, 6, 5, 0, 0.25f, 6.0f}));
+  EXPECT_EQ(level.entities[1].rtf, scene::Rtf{});
+  const FieldSettings s = settingsFrom(*level.entities[0].rtf);
+  EXPECT_EQ(s.proxies, 12);
+  EXPECT_EQ(s.spheres, 6);
+  EXPECT_EQ(s.faceSize, 4);
+  EXPECT_EQ(s.raysPerAxis, 16);
+  EXPECT_EQ(s.vertexRaysPerAxis, 6);
+  EXPECT_EQ(s.clusters, 5);
+  EXPECT_EQ(s.components, 0);
+  EXPECT_EQ(s.innerRadius, 0.25f);
+  EXPECT_EQ(s.outerRadius, 6.0f);
+}
+
+TEST(RtfComponent, BadInputIsOneLine) {
+  const std::string dyn = R"({"id": "a", "dynamic": true, )" + mesh();
+  EXPECT_EQ(loadError("rtf-proxies", dyn + R"(, "rtf": {"proxies": 65}})"),
+            "FILE: /entities/0/rtf/proxies: 65 is out of range (expected an integer in [1, 64])");
+  EXPECT_EQ(loadError("rtf-bounces0", dyn + R"(, "rtf": {"bounces": 0}})"),
+            "FILE: /entities/0/rtf/bounces: 0 is out of range (expected an integer in [1, 4])");
+  EXPECT_EQ(loadError("rtf-bounces5", dyn + R"(, "rtf": {"bounces": 5}})"),
+            "FILE: /entities/0/rtf/bounces: 5 is out of range (expected an integer in [1, 4])");
+  EXPECT_EQ(loadError("rtf-spheres", dyn + R"(, "rtf": {"spheres": 1}})"),
+            "FILE: /entities/0/rtf/spheres: 1 is out of range (expected an integer in [2, 64])");
+  EXPECT_EQ(loadError("rtf-bounces-type", dyn + R"(, "rtf": {"bounces": "two"}})").rfind("FILE: /entities/0/rtf/bounces: ", 0), 0u);
+  EXPECT_EQ(loadError("rtf-outer", dyn + R"(, "rtf": {"inner": 2, "outer": 2}})"),
+            "FILE: /entities/0/rtf/outer: outer radius 2 is not above inner 2 (expected outer > inner (defaults 0.5 and 4))");
+  EXPECT_EQ(loadError("rtf-inner", dyn + R"(, "rtf": {"inner": 5}})"),
+            "FILE: /entities/0/rtf/inner: outer radius 4 is not above inner 5 (expected outer > inner (defaults 0.5 and 4))");
+  EXPECT_EQ(loadError("rtf-key", dyn + R"(, "rtf": {"proxy": 8}})").rfind("FILE: /entities/0/rtf/proxy: unknown key", 0), 0u);
+  EXPECT_EQ(loadError("rtf-static", R"({"id": "a", )" + mesh() + R"(, "rtf": {}})"),
+            "FILE: /entities/0/rtf: a radiance transfer field on a static entity (expected \"dynamic\": true or a motion)");
+  EXPECT_EQ(loadError("rtf-no-mesh", R"({"id": "a", "dynamic": true, "rtf": {}})"),
+            "FILE: /entities/0/rtf: a radiance transfer field on an entity without a mesh (expected a \"mesh\" key)");
+}
+
+TEST(RtfTechnique, TakesPartAndBakesOneEntryPerEntity) {
+  const Technique& t = technique();
+  EXPECT_FALSE(t.reserved());
+  EXPECT_EQ(t.cacheKind(), "rtf");
+  Loaded none(writeLevel("rtf-none", R"({"id": "a", "dynamic": true, )" + mesh() + "}"));
+  EXPECT_EQ(effectNote(t, none.context()),
+            "note: effect rtf is named but no entity takes part (no entity has an rtf component): no pass");
+  Loaded l(writeLevel("rtf-box", R"({"id": "box", "dynamic": true, )" + mesh() + R"(, "rtf": {)" + kTiny + "}}"));
+  const auto lc = l.context();
+  EXPECT_EQ(effectNote(t, lc), std::nullopt);
+  const auto jobs = t.bakeJobs(lc, {});
+  ASSERT_EQ(jobs.size(), 1u);
+  const BakeJob& job = jobs[0];
+  EXPECT_EQ(job.technique, "rtf");
+  EXPECT_EQ(job.part, "box");
+  EXPECT_EQ(job.key.size(), 16u);
+  EXPECT_EQ(job.output, cacheFolder() / ("rtf-" + job.key + ".field"));
+  EXPECT_TRUE(t.bakeJobs(lc, "no-such-entity").empty());
+  ASSERT_EQ(t.bakeJobs(lc, "box").size(), 1u);
+  EXPECT_EQ(t.bakeJobs(lc, "box")[0].key, job.key);  // planned alone: same key
+  // The bounce count is a run-time setting: same entry. A bake setting is another entry.
+  Loaded bounces(writeLevel("rtf-box-b3", R"({"id": "box", "dynamic": true, )" + mesh() + R"(, "rtf": {)" + kTiny +
+                                               R"(, "bounces": 3}})"));
+  EXPECT_EQ(t.bakeJobs(bounces.context(), {})[0].key, job.key);
+  Loaded other(writeLevel("rtf-box-p3", R"({"id": "box", "dynamic": true, )" + mesh() +
+                                            R"(, "rtf": {"proxies": 3, "spheres": 3, "face": 2, "rays": 4, "vertex_rays": 4, "clusters": 2, "components": 2}})"));
+  EXPECT_NE(t.bakeJobs(other.context(), {})[0].key, job.key);
+
+  fs::remove(job.output);
+  EXPECT_EQ(job.cached(), std::nullopt);
+  const std::string line = job.run();
+  EXPECT_EQ(line.rfind("rtf     box: 2 proxies, 3 spheres x 6x2x2, 2 x 2 CPCA: ", 0), 0u) << line;
+  EXPECT_NE(line.find(" MB -> " + job.output.string()), std::string::npos) << line;
+  const Field f = load(job.output);
+  EXPECT_EQ(f.settings.proxies, 2);
+  EXPECT_EQ(f.proxies.size(), 2u);
+  EXPECT_EQ(sampleCount(f.settings), 3u * 6u * 4u);
+  EXPECT_EQ(job.cached(), "rtf     box: 2 proxies, 3 spheres x 6x2x2, 2 x 2 CPCA: cached " + job.output.string());
+  // A corrupt entry is not "cached" (it is re-baked).
+  writeFileAtomic(job.output, std::string("BRTFFLD garbage"));
+  EXPECT_EQ(job.cached(), std::nullopt);
+  fs::remove(job.output);
+}
+
+// An rtf entity whose mesh has no triangles (tests/data's box.gltf is a mesh-less stub): one line.
+TEST(RtfTechnique, MeshWithoutTrianglesIsBadInput) {
+  const std::string stub = (kSource / "tests/data/levels/assets/box.gltf").string();
+  Loaded l(writeLevel("rtf-no-triangles", R"({"id": "a", "dynamic": true, "mesh": {"asset": ")" + stub + R"("}, "rtf": {}})"));
+  try {
+    technique().bakeJobs(l.context(), {});
+    ADD_FAILURE() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), stub + ": mesh: no triangles for the rtf field of entity a (expected a mesh with triangles)");
+  }
+}
+
+// A constant directional sky: radiance SH with l = 1 and l = 2 content, the same at every point.
+struct Sky final : incident::IndirectSource {
+  incident::RadianceSH sh{};
+  Sky() {
+    const float v[9] = {3.0f, 0.8f, 1.4f, -0.6f, 0.5f, -0.9f, 0.7f, 0.4f, -1.1f};
+    for (int i = 0; i < 9; ++i) sh[std::size_t(i)] = v[i] * glm::vec3(1.0f, 0.8f, 0.6f);
+  }
+  incident::RadianceSH radianceSH(glm::vec3) const override { return sh; }
+};
+
+// Two boxes with fields: Update::frame is the bouncing step of evaluate.hpp with the largest
+// `bounces`, its records map o to q = 0 and a point one η away to |q| = 1, and rotate normals into
+// the object's frame; the blocked matrix reproduces shade()'s blocked term.
+TEST(RtfUpdate, FrameIsTheBouncingStepAndPacksTheRecords) {
+  // Its own bake settings (vertex_rays 5): the test above corrupts and removes kTiny's entry, and
+  // ctest runs tests in parallel.
+  const std::string kTiny = R"("proxies": 2, "spheres": 3, "face": 2, "rays": 4, "vertex_rays": 5, "clusters": 2, "components": 2)";
+  Loaded l(writeLevel("rtf-two", R"({"id": "a", "dynamic": true, "transform": {"translation": [0, 0, 0], "scale": [0.1, 0.1, 0.1]}, )" +
+                                     mesh() + R"(, "rtf": {)" + kTiny + R"(, "bounces": 1}},
+                                     {"id": "b", "dynamic": true, "transform": {"translation": [0.3, 0, 0], "rotation_euler_deg": [10, 40, 0], "scale": [0.1, 0.1, 0.1]}, )" +
+                                     mesh() + R"(, "rtf": {)" + kTiny + R"(, "bounces": 2}})"));
+  std::vector<Participant> parts;
+  for (const BakeJob& job : technique().bakeJobs(l.context(), {})) {
+    if (!job.cached()) job.run();
+    Participant p;
+    p.name = job.part;
+    p.field = load(job.output);
+    l.registry.view<scene::Name>().each([&](ecs::Entity e, scene::Name& n) {
+      if (n.id == job.part) p.entity = e;
+    });
+    p.bounces = l.registry.get<scene::Rtf>(p.entity).bounces;
+    parts.push_back(std::move(p));
+  }
+  ASSERT_EQ(parts.size(), 2u);
+  Update update(l.registry, parts);
+  EXPECT_EQ(update.bounces(), 2);
+  const Sky sky;
+  update.setIndirect(&sky);
+  const FrameObjects f = update.frame({});
+  ASSERT_EQ(f.participant, (std::vector<std::size_t>{0, 1}));
+  ASSERT_EQ(update.bounceMs().size(), 1u);
+  std::vector<Object> objects;
+  for (const Participant& p : parts) objects.push_back({&p.field, l.registry.get<scene::WorldTransform>(p.entity).matrix});
+  const BounceResult want = bounce(objects, sky, 2);
+  ASSERT_EQ(f.proxyLight.size(), 2u);
+  EXPECT_EQ(f.proxyLight, want.proxyLight);
+  EXPECT_EQ(f.bounceEnergy, want.bounceEnergy);
+  ASSERT_EQ(f.bounceEnergy.size(), 2u);
+  EXPECT_GT(f.bounceEnergy[1], 0.0);  // light did bounce from one box onto the other
+
+  for (std::size_t o = 0; o < 2; ++o) {
+    const Field& field = parts[o].field;
+    const Placement pl = place(field, objects[o].world);
+    const RtfObjectGpu& r = f.records[o];
+    EXPECT_EQ(r.ids.x, parts[o].entity.index() + 1u);
+    auto q = [&](glm::vec3 p) { return glm::vec3(glm::dot(r.toQ[0], glm::vec4(p, 1.0f)), glm::dot(r.toQ[1], glm::vec4(p, 1.0f)),
+                                                 glm::dot(r.toQ[2], glm::vec4(p, 1.0f))); };
+    EXPECT_LT(glm::length(q(pl.centreWorld)), 1e-4f);
+    EXPECT_NEAR(glm::length(q(pl.centreWorld + pl.radiusWorld * glm::normalize(glm::vec3(1, 2, -1)))), 1.0f, 1e-4f);
+    const float dr = (field.settings.outerRadius - field.settings.innerRadius) / float(field.settings.spheres - 1);
+    EXPECT_NEAR(r.centreWorld.w, (field.settings.outerRadius + dr) * pl.radiusWorld, 1e-5f);
+    // The blocked term of shade() for object o alone at a receiver outside it, normal n:
+    // ρ/π E_n((u − V) ⊙ L) = Σ_j (u − V)_j Σ_i y_i(n_local) blocked[j·9 + i].
+    const glm::vec3 rWorld = pl.centreWorld + 1.7f * pl.radiusWorld * glm::normalize(glm::vec3(0.3f, 1.0f, 0.2f));
+    const glm::vec3 n = glm::normalize(glm::vec3(-0.2f, -1.0f, 0.1f));
+    const std::vector<Object> alone = {objects[o]};
+    BounceResult none;
+    none.xi = {std::vector<glm::vec3>(sampleCount(field.settings) * kShCount, glm::vec3(0.0f))};
+    const Shading s = shade(alone, none, sky, rWorld, n, glm::vec3(1.0f), -1);
+    const glm::vec3 qLocal = q(rWorld);
+    const ShScalar V = occlusion(field, qLocal);
+    const glm::vec3 nLocal(glm::dot(glm::vec3(r.toLocal[0]), n), glm::dot(glm::vec3(r.toLocal[1]), n), glm::dot(glm::vec3(r.toLocal[2]), n));
+    const auto y = sh::evalBasis<float>(3, nLocal);
+    glm::vec3 blocked(0.0f);
+    for (int j = 0; j < kShCount; ++j) {
+      glm::vec3 w(0.0f);
+      for (int i = 0; i < 9; ++i) w += y[i] * glm::vec3(r.blocked[j * 9 + i]);
+      blocked += ((j == 0 ? float(4.0 * math::kPi * sh::constants::kY00) : 0.0f) - V[std::size_t(j)]) * w;
+    }
+    EXPECT_EQ(s.interreflected, glm::vec3(0.0f));
+    EXPECT_GT(glm::length(s.blocked), 1e-3f);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(blocked[c], s.blocked[c], 1e-4f * std::max(1.0f, std::abs(s.blocked[c]))) << o << " " << c;
+  }
+}
+
+}  // namespace
+}  // namespace bounce::gi::rtf
