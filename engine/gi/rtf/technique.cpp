@@ -9,6 +9,7 @@
 #include "engine/core/error.hpp"
 #include "engine/core/log.hpp"
 #include "engine/core/paths.hpp"
+#include "engine/gi/participants.hpp"
 #include "engine/gi/dnrt/object_scene.hpp"
 #include "engine/gi/probes/bake.hpp"
 #include "engine/gi/rtf/bake.hpp"
@@ -23,26 +24,6 @@ std::string describe(const std::string& name, const FieldSettings& s) {
   std::snprintf(text, sizeof text, "rtf     %s: %d proxies, %d spheres x 6x%dx%d, %d x %d CPCA", name.c_str(), s.proxies,
                 s.spheres, s.faceSize, s.faceSize, s.clusters, s.components);
   return text;
-}
-
-std::vector<ecs::Entity> participantsOf(ecs::Registry& registry, std::string_view part = {}) {
-  std::vector<ecs::Entity> out;
-  registry.view<scene::Rtf, scene::MeshRef>().each([&](ecs::Entity e, scene::Rtf&, scene::MeshRef&) {
-    const auto* name = registry.tryGet<scene::Name>(e);
-    if (part.empty() || (name && name->id == part)) out.push_back(e);
-  });
-  std::sort(out.begin(), out.end());  // deterministic order
-  return out;
-}
-
-// Only the assets of `entities` (a job's process loads its own mesh only).
-void loadAssets(ecs::Registry& registry, const std::vector<ecs::Entity>& entities, const std::filesystem::path& cookCache,
-                ref::ReferenceAssets& assets) {
-  for (ecs::Entity e : entities) {
-    ecs::Registry one;
-    one.emplace<scene::MeshRef>(one.create(), registry.get<scene::MeshRef>(e));
-    assets.load(one, cookCache);
-  }
 }
 
 std::string nameOf(ecs::Registry& registry, ecs::Entity e) {
@@ -97,15 +78,15 @@ class RtfTechnique final : public Technique {
   scene::Effect effect() const override { return scene::Effect::Rtf; }
 
   bool takesPart(const LevelContext& lc, std::string* why) const override {
-    const bool any = !participantsOf(lc.registry).empty();
+    const bool any = !gi::participantsOf<scene::Rtf>(lc.registry).empty();
     if (!any && why) *why = "no entity has an rtf component";
     return any;
   }
 
   std::vector<BakeJob> bakeJobs(const LevelContext& lc, std::string_view part) const override {
-    const std::vector<ecs::Entity> entities = participantsOf(lc.registry, part);
+    const std::vector<ecs::Entity> entities = gi::participantsOf<scene::Rtf>(lc.registry, part);
     ref::ReferenceAssets assets;
-    loadAssets(lc.registry, entities, lc.cookCache, assets);
+    gi::loadAssetsOf(lc.registry, entities, lc.cookCache, assets);
     std::vector<std::filesystem::path> inputs;
     if (!lc.level.source.empty()) inputs.push_back(lc.level.source);
     std::vector<BakeJob> jobs;
@@ -191,9 +172,9 @@ FieldSettings settingsFrom(const scene::Rtf& c) {
 std::filesystem::path cacheFolder() { return cacheDir(kCacheKind); }
 
 SessionRuntime::SessionRuntime(SessionContext& sc, const std::filesystem::path& cacheDir) {
-  const std::vector<ecs::Entity> entities = participantsOf(sc.registry);
+  const std::vector<ecs::Entity> entities = gi::participantsOf<scene::Rtf>(sc.registry);
   ref::ReferenceAssets assets;
-  loadAssets(sc.registry, entities, sc.cookCache, assets);
+  gi::loadAssetsOf(sc.registry, entities, sc.cookCache, assets);
   std::vector<Participant> participants;
   for (ecs::Entity e : entities) {
     Participant p;

@@ -10,6 +10,7 @@
 #include "engine/core/hash.hpp"
 #include "engine/core/log.hpp"
 #include "engine/core/paths.hpp"
+#include "engine/gi/participants.hpp"
 #include "engine/gi/dnrt/object_scene.hpp"
 #include "engine/gi/dnrt/probe_source.hpp"
 #include "engine/scene/components.hpp"
@@ -24,26 +25,6 @@ std::string describe(const std::string& name, const BakeSettings& s) {
   std::snprintf(text, sizeof text, "sl      %s: %d spheres, order %d, %d directions", name.c_str(), s.spheres, s.order,
                 s.directions);
   return text;
-}
-
-std::vector<ecs::Entity> participantsOf(ecs::Registry& registry, std::string_view part = {}) {
-  std::vector<ecs::Entity> out;
-  registry.view<scene::Sl, scene::MeshRef>().each([&](ecs::Entity e, scene::Sl&, scene::MeshRef&) {
-    const auto* name = registry.tryGet<scene::Name>(e);
-    if (part.empty() || (name && name->id == part)) out.push_back(e);
-  });
-  std::sort(out.begin(), out.end());  // deterministic order
-  return out;
-}
-
-// Only the assets of `entities` (a job's process loads its own mesh only).
-void loadAssets(ecs::Registry& registry, const std::vector<ecs::Entity>& entities, const std::filesystem::path& cookCache,
-                ref::ReferenceAssets& assets) {
-  for (ecs::Entity e : entities) {
-    ecs::Registry one;
-    one.emplace<scene::MeshRef>(one.create(), registry.get<scene::MeshRef>(e));
-    assets.load(one, cookCache);
-  }
 }
 
 // One entity's bake, gathered once per job list.
@@ -77,15 +58,15 @@ class SlTechnique final : public Technique {
   scene::Effect effect() const override { return scene::Effect::Sl; }
 
   bool takesPart(const LevelContext& lc, std::string* why) const override {
-    const bool any = !participantsOf(lc.registry).empty();
+    const bool any = !gi::participantsOf<scene::Sl>(lc.registry).empty();
     if (!any && why) *why = "no entity has an sl component";
     return any;
   }
 
   std::vector<BakeJob> bakeJobs(const LevelContext& lc, std::string_view part) const override {
-    const std::vector<ecs::Entity> entities = participantsOf(lc.registry, part);
+    const std::vector<ecs::Entity> entities = gi::participantsOf<scene::Sl>(lc.registry, part);
     ref::ReferenceAssets assets;
-    loadAssets(lc.registry, entities, lc.cookCache, assets);
+    gi::loadAssetsOf(lc.registry, entities, lc.cookCache, assets);
     std::vector<std::filesystem::path> inputs;
     if (!lc.level.source.empty()) inputs.push_back(lc.level.source);
     std::vector<BakeJob> jobs;
@@ -129,7 +110,7 @@ class SlTechnique final : public Technique {
     // Pass 2 holds every SL of the frame in uniform blocks of kMaxShadedSpheres (shade.hpp): a level
     // asking for more is bad input, said before anything is baked, not an internal error at frame 0.
     std::size_t spheres = 0;
-    const std::vector<ecs::Entity> entities = participantsOf(sc.registry);
+    const std::vector<ecs::Entity> entities = gi::participantsOf<scene::Sl>(sc.registry);
     for (ecs::Entity e : entities) spheres += std::size_t(sc.registry.get<scene::Sl>(e).spheres);
     if (spheres > kMaxShadedSpheres)
       throw InputError(sc.level.source.string() + ": /entities: " + std::to_string(spheres) + " sl spheres on " +
@@ -218,8 +199,8 @@ std::filesystem::path cacheFolder() { return cacheDir(kCacheKind); }
 
 SessionRuntime::SessionRuntime(ecs::Registry& registry, const std::filesystem::path& cookCache,
                                const std::filesystem::path& cacheDir) {
-  const std::vector<ecs::Entity> entities = participantsOf(registry);
-  loadAssets(registry, entities, cookCache, assets_);
+  const std::vector<ecs::Entity> entities = gi::participantsOf<scene::Sl>(registry);
+  gi::loadAssetsOf(registry, entities, cookCache, assets_);
   for (ecs::Entity e : entities) {
     Participant p;
     p.entity = e;
