@@ -16,8 +16,8 @@ using namespace bounce;
 
 namespace {
 
-// cornell-5: no entity with a vlm or sl component (cornell-1's prop has an sl one).
-const std::filesystem::path kCornell = std::filesystem::path(BOUNCE_SOURCE_DIR) / "content/levels/cornell-5.json";
+// cornell-10: no entity with a vlm, sl or rtf component (cornell-1's prop has an sl one, cornell-5's props rtf).
+const std::filesystem::path kCornell = std::filesystem::path(BOUNCE_SOURCE_DIR) / "content/levels/cornell-10.json";
 constexpr VkExtent2D kExtent{64, 64};
 
 scene::EffectSet effects(std::initializer_list<scene::Effect> list) {
