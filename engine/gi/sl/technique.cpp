@@ -116,6 +116,31 @@ class SlTechnique final : public Technique {
       throw InputError(sc.level.source.string() + ": /entities: " + std::to_string(spheres) + " sl spheres on " +
                        std::to_string(entities.size()) + " entities (expected at most " +
                        std::to_string(kMaxShadedSpheres) + " in all: pass 2 holds them in uniform blocks)");
+    // Pass 2 shades every SL of the frame in one draw (blocking couples the objects), so blocking and
+    // influence are per level, not per entity: entities that disagree are bad input, not silently the
+    // first one's setting.
+    const scene::EntityDesc* first = nullptr;
+    for (const scene::EntityDesc& e : sc.level.entities) {
+      if (!e.sl) continue;
+      if (!first) {
+        first = &e;
+        continue;
+      }
+      const auto blockingName = [](const scene::Sl& c) { return c.perObject ? "per-object" : "per-sphere"; };
+      const auto num = [](float f) {
+        char text[32];
+        std::snprintf(text, sizeof text, "%g", double(f));
+        return std::string(text);
+      };
+      if (e.sl->perObject != first->sl->perObject)
+        throw InputError(sc.level.source.string() + ": " + e.pointer + "/sl/blocking: \"" + blockingName(*e.sl) +
+                         "\" differs from entity \"" + first->id + "\"'s \"" + blockingName(*first->sl) +
+                         "\" (expected one blocking for every sl entity of a level: pass 2 shades them in one draw)");
+      if (e.sl->influence != first->sl->influence)
+        throw InputError(sc.level.source.string() + ": " + e.pointer + "/sl/influence: " + num(e.sl->influence) +
+                         " differs from entity \"" + first->id + "\"'s " + num(first->sl->influence) +
+                         " (expected one influence for every sl entity of a level: pass 2 shades them in one draw)");
+    }
     auto runtime = std::make_unique<SessionRuntime>(sc.registry, sc.cookCache, cacheFolder());
     runtime->enableGpu(sc);
     return runtime;

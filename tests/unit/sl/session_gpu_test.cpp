@@ -100,3 +100,38 @@ TEST(SlSession, MoreSpheresThanPassTwoHoldsIsBadInput) {
                                            "pass 2 holds them in uniform blocks)");
   }
 }
+
+// Pass 2 shades every SL in one draw, so blocking and influence hold for the whole level: a second
+// entity that asks for another is bad input naming its own pointer and the first entity's setting.
+TEST(SlSession, EntitiesThatDisagreeOnBlockingOrInfluenceAreBadInput) {
+  for (const bool blocking : {true, false}) {
+    scene::Level level = game::loadLevelWithEffects(kCharacters, std::vector<std::string>{"direct", "sl"});
+    scene::EntityDesc* second = nullptr;
+    const scene::EntityDesc* first = nullptr;
+    for (scene::EntityDesc& e : level.entities)
+      if (e.sl && !first)
+        first = &e;
+      else if (e.sl)
+        second = &e;
+    ASSERT_NE(second, nullptr);
+    std::string expected;
+    if (blocking) {
+      second->sl->perObject = !first->sl->perObject;
+      expected = kCharacters.string() + ": " + second->pointer + "/sl/blocking: \"per-object\" differs from entity \"" +
+                 first->id + "\"'s \"per-sphere\" (expected one blocking for every sl entity of a level: pass 2 shades "
+                 "them in one draw)";
+      ASSERT_FALSE(first->sl->perObject) << "the characters level uses per-sphere blocking";
+    } else {
+      second->sl->influence = 24.0f;
+      expected = kCharacters.string() + ": " + second->pointer + "/sl/influence: 24 differs from entity \"" + first->id +
+                 "\"'s 12 (expected one influence for every sl entity of a level: pass 2 shades them in one draw)";
+      ASSERT_EQ(first->sl->influence, 12.0f) << "the characters level uses the default influence";
+    }
+    try {
+      game::Session session(gpu::testkit::sharedContext(), level);
+      FAIL() << "disagreeing settings were accepted";
+    } catch (const InputError& err) {
+      EXPECT_EQ(std::string(err.what()), expected);
+    }
+  }
+}
