@@ -393,5 +393,58 @@ TEST(DnrtGpu, ClusteredModeDrawsThePerObjectImage) {
   }
 }
 
+
+// The c_j the runtime packs each frame (update.cpp) are the incident-light service's SH at the object's
+// bounding sphere, with the lights' part Hanning-windowed for a field baked with App. B.2's improved
+// anti-radiance and unwindowed for the paper's Eq. 12 (issue 15: the window keeps the improved
+// anti-radiance's ×4 on band 2 from amplifying a lamp's ringing). cornell-1's lamp makes band 2 non-zero,
+// so the two choices differ and the test can tell which one was taken.
+TEST(DnrtGpu, ImprovedAntiRadianceFieldsGetTheLightsSHWindowedAndPaperFieldsDoNot) {
+  gpu::Context& ctx = gpu::testkit::sharedContext();
+  for (const bool improved : {true, false}) {
+    scene::Level level = game::loadLevelWithEffects(fs::path(BOUNCE_SOURCE_DIR) / "content/levels/cornell-1.json",
+                                                    std::vector<std::string>{"direct", "shadows"});
+    for (scene::EntityDesc& e : level.entities)
+      if (e.dnrt) {
+        e.dnrt->improvedAntiRadiance = improved;
+        e.dnrt->shCount = 9;
+        e.dnrt->grid = 16;
+        e.dnrt->samplesPerAxis = 4;  // the field's values do not matter here, only which c_j are packed
+      }
+    game::Session session(ctx, level);
+    session.update(0.0);
+    renderOnce(session, ctx);
+    ref::ReferenceAssets assets;
+    assets.load(session.registry(), fs::path(BOUNCE_TEST_OUT) / "dnrt" / "cooked");
+    const fs::path cache = fs::path(BOUNCE_TEST_OUT) / "dnrt" / "window-cache";
+    Runtime dnrt(ctx, session.renderer().pipelines(), session.registry(), assets, cache,
+                 gpu::FrameRing::kDefaultFramesInFlight, session.level().background);
+    ASSERT_EQ(dnrt.objectCount(), 1u);
+    const render::RenderWorld& world = session.world();
+    ASSERT_FALSE(world.lights.empty());
+    const std::vector<NodeObject> packed = dnrt.objectsFor(world);
+    ASSERT_EQ(packed.size(), 1u);
+
+    ecs::Entity entity{};
+    session.registry().view<scene::Dnrt, scene::WorldTransform>().each(
+        [&](ecs::Entity e, scene::Dnrt&, scene::WorldTransform&) { entity = e; });
+    const glm::mat4 matrix = session.registry().get<scene::WorldTransform>(entity).matrix;
+    const Field& field = dnrt.field(0);
+    const Placement pl = place(field, matrix);
+    const auto expect = [&](const incident::BandWindow& window) {
+      return packObject(field, matrix, dnrt.incidentSH(pl.centreWorld, pl.radiusWorld, world.lights, window),
+                        entity.index());
+    };
+    const DnrtObjectGpu windowed = expect(incident::kHanningWindow), plain = expect(incident::kNoWindow);
+    float differ = 0.0f;
+    for (int j = 4; j < 9; ++j) differ = std::max(differ, glm::length(glm::vec3(windowed.c[j] - plain.c[j])));
+    EXPECT_GT(differ, 1e-4f * glm::length(glm::vec3(plain.c[0]))) << "band 2 carries the lamp: the window shows";
+    const DnrtObjectGpu& want = improved ? windowed : plain;
+    for (int j = 0; j < 9; ++j)
+      for (int ch = 0; ch < 3; ++ch)
+        EXPECT_FLOAT_EQ(packed[0].data.c[j][ch], want.c[j][ch]) << (improved ? "improved" : "paper") << " c_" << j;
+  }
+}
+
 }  // namespace
 }  // namespace bounce::gi::dnrt
