@@ -108,6 +108,12 @@ bool isDeformed(const asset::CookedAsset& a, int node) {
   return false;
 }
 
+bool anyDeformed(const asset::CookedAsset& a) {
+  for (std::size_t n = 0; n < a.nodes.size(); ++n)
+    if (isDeformed(a, int(n))) return true;
+  return false;
+}
+
 bool posePrimitive(const asset::CookedAsset& a, int node, std::size_t prim, const Pose* pose,
                    std::vector<glm::vec3>& positions, std::vector<glm::vec3>& normals) {
   const asset::Mesh& mesh = a.meshes[std::size_t(a.nodes[std::size_t(node)].mesh)];

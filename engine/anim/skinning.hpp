@@ -49,6 +49,8 @@ glm::mat4 skinMatrix(const asset::Primitive& p, std::span<const glm::mat4> joint
 bool isSkinned(const asset::CookedAsset& asset, int node);
 // Whether a node's geometry changes with a pose: skinned, or a mesh with morph targets.
 bool isDeformed(const asset::CookedAsset& asset, int node);
+// Whether any node of the asset is (a baked technique on it is baked in the bind pose and says so).
+bool anyDeformed(const asset::CookedAsset& asset);
 
 // Morph targets, then skinning (when isSkinned()), of primitive `p` of node `node`'s mesh or of its
 // cage: what posePrimitive() does before any refinement. Returns true when skinned.

@@ -172,9 +172,10 @@ const std::vector<const Technique*>& techniques();
 // The table's entry for an effect; null for direct and shadows (the renderer's own passes).
 const Technique* findTechnique(scene::Effect effect);
 
-// The one-line note for a technique whose effect is named but that will not run — reserved, or no
-// entity takes part — e.g. "note: effect sl is reserved (not implemented yet): no pass"; nullopt
-// when it runs.
+// The one-line note for a technique whose effect is named but that will not run — reserved (no entry
+// of today's table is: the mechanism stays for the next technique), or no entity takes part — e.g.
+// "note: effect rtf is named but no entity takes part (no entity has an rtf component): no pass";
+// nullopt when it runs.
 std::optional<std::string> effectNote(const Technique& technique, const LevelContext& lc);
 // Prints a note on stderr once per process (a command building several sessions of one level, as
 // `bounce accuracy` does, says it once).

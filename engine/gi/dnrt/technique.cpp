@@ -46,10 +46,7 @@ struct ObjectBake {
     if (material) one.emplace<scene::MaterialOverride>(e, *material);
     ref::ReferenceAssets assets;
     assets.load(one, cookCache);
-    if (deformed) {
-      const asset::CookedAsset& cooked = assets.get(mesh).cpu;
-      for (std::size_t n = 0; n < cooked.nodes.size(); ++n) *deformed = *deformed || anim::isDeformed(cooked, int(n));
-    }
+    if (deformed) *deformed = anim::anyDeformed(assets.get(mesh).cpu);
     ref::SceneDesc out = objectScene(one, e, assets);
     if (cacheKey(out, settings) != key)  // planning and baking must name the same entry
       throw InternalError("dnrt: " + name + ": the baked object's key differs from the planned " + key);

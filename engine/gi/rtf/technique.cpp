@@ -46,10 +46,7 @@ ref::SceneDesc objectOf(ecs::Registry& registry, ecs::Entity e, const ref::Refer
 // morphed mesh is baked in its bind pose and its field does not follow the animation. Said once,
 // when its field is planned or loaded.
 void warnIfDeformed(ecs::Registry& registry, ecs::Entity e, const ref::ReferenceAssets& assets) {
-  const asset::CookedAsset& cooked = assets.get(registry.get<scene::MeshRef>(e)).cpu;
-  bool deformed = false;
-  for (std::size_t n = 0; n < cooked.nodes.size(); ++n) deformed = deformed || anim::isDeformed(cooked, int(n));
-  if (deformed)
+  if (anim::anyDeformed(assets.get(registry.get<scene::MeshRef>(e)).cpu))
     log::warn("rtf " + nameOf(registry, e) + ": the mesh is skinned or morphed; its RTF is baked in the bind pose "
               "and does not follow the animation");
 }
