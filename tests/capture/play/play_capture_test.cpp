@@ -67,8 +67,9 @@ std::string slurp(const fs::path& p) {
 std::string quoted(const std::string& s) { return "'" + s + "'"; }
 
 // Runs `args` with the bounce executable (under xvfb-run when `display`); stdout and stderr go to
-// files in `dir`. xvfb-run -a can lose a race for a server number against a parallel test: that
-// attempt is retried.
+// files in `dir`. xvfb-run -a can lose a race for a server number against a parallel test, and its
+// own cleanup can fail after the program ran ("problem while cleaning up temporary directory", exit
+// 5, seen under asan in CI): both are the wrapper's failures, not bounce's, and the attempt is retried.
 // `wrapper` goes between xvfb-run and the executable (e.g. "timeout 120 ").
 ProcessRun runBounce(const fs::path& dir, const std::string& args, bool display, const std::string& wrapper = "") {
   fs::create_directories(dir);
@@ -82,7 +83,9 @@ ProcessRun runBounce(const fs::path& dir, const std::string& args, bool display,
     r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     r.out = slurp(out);
     r.err = slurp(err);
-    if (r.err.find("Xvfb failed to start") == std::string::npos) break;
+    if (r.err.find("Xvfb failed to start") == std::string::npos &&
+        r.err.find("xvfb-run: error: problem while cleaning up") == std::string::npos)
+      break;
   }
   return r;
 }
