@@ -6,12 +6,9 @@
 #include <cstring>
 
 #include "engine/gi/incident/incident.hpp"
-#include "engine/gpu/buffer.hpp"
-#include "engine/gpu/commands.hpp"
-#include "engine/gpu/descriptors.hpp"
-#include "engine/gpu/pipeline.hpp"
 #include "engine/gpu/testing.hpp"
 #include "engine/math/sampling.hpp"
+#include "tests/support/compute_selftest.hpp"
 
 using namespace bounce;
 
@@ -59,32 +56,9 @@ TEST(IncidentGpu, GlslMatchesCpuFaceForEveryLightKind) {
     c.pointRadius[0] = p.x, c.pointRadius[1] = p.y, c.pointRadius[2] = p.z, c.pointRadius[3] = radius;
     c.visibility[0] = (i % 5 == 0) ? 0.0f : rng.nextFloat3().z;
   }
-  std::vector<std::uint8_t> inBytes(16 + sizeof(Case) * kCases);
-  const std::uint32_t count = kCases;
-  std::memcpy(inBytes.data(), &count, 4);
-  std::memcpy(inBytes.data() + 16, cases.data(), sizeof(Case) * kCases);
-
-  gpu::Buffer in(ctx, {inBytes.size(), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::Upload, "incident.in"});
-  gpu::Buffer out(ctx, {sizeof(Output) * kCases, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::Readback,
-                        "incident.out"});
-  gpu::upload(ctx, in, inBytes);
-  gpu::DescriptorSetLayout layout(ctx, {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}, {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}},
-                                  "incident");
-  gpu::PipelineLayout pipelineLayout(ctx, {layout.handle()}, {}, "incident");
-  gpu::ShaderModule shader(ctx, "common/incident_selftest.comp.spv");
-  gpu::Pipeline pipeline = gpu::createComputePipeline(ctx, pipelineLayout, shader, "incident-selftest");
-  gpu::DescriptorAllocator descriptors(ctx);
-  VkDescriptorSet set = descriptors.allocate(layout);
-  gpu::DescriptorWriter().buffer(0, in).buffer(1, out).update(ctx, set);
-  gpu::submitAndWait(ctx, [&](VkCommandBuffer cmd) {
-    pipeline.bind(cmd);
-    pipeline.bindSet(cmd, 0, set);
-    vkCmdDispatch(cmd, (kCases + 63) / 64, 1, 1);
-  });
-  auto bytes = gpu::readback(ctx, out);
-  ASSERT_EQ(bytes.size(), sizeof(Output) * kCases);
-  std::vector<Output> results(kCases);
-  std::memcpy(results.data(), bytes.data(), bytes.size());
+  const std::vector<Output> results =
+      testgpu::runComputeSelfTest<Output>(ctx, "common/incident_selftest.comp.spv", std::span<const Case>(cases));
+  ASSERT_EQ(results.size(), kCases);
 
   int nonZero = 0;
   for (std::uint32_t i = 0; i < kCases; ++i) {

@@ -4,13 +4,10 @@
 
 #include <cstring>
 
-#include "engine/gpu/buffer.hpp"
-#include "engine/gpu/commands.hpp"
-#include "engine/gpu/descriptors.hpp"
-#include "engine/gpu/pipeline.hpp"
 #include "engine/gpu/testing.hpp"
 #include "engine/math/sampling.hpp"
 #include "engine/math/sh.hpp"
+#include "tests/support/compute_selftest.hpp"
 
 using namespace bounce;
 
@@ -59,30 +56,9 @@ TEST(ShGpu, GlslMatchesLibraryForBasisReconstructionAndIrradiance) {
       for (int ch = 0; ch < 3; ++ch) inputs[i].coeff[k][ch] = float(c[ch]);
     }
   }
-  std::vector<std::uint8_t> inBytes(16 + sizeof(Input) * kDirections);
-  const std::uint32_t count = kDirections;
-  std::memcpy(inBytes.data(), &count, 4);
-  std::memcpy(inBytes.data() + 16, inputs.data(), sizeof(Input) * kDirections);
-
-  gpu::Buffer in(ctx, {inBytes.size(), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::Upload, "sh.in"});
-  gpu::Buffer out(ctx, {sizeof(Output) * kDirections, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::Readback, "sh.out"});
-  gpu::upload(ctx, in, inBytes);
-  gpu::DescriptorSetLayout layout(ctx, {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}, {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}}, "sh");
-  gpu::PipelineLayout pipelineLayout(ctx, {layout.handle()}, {}, "sh");
-  gpu::ShaderModule shader(ctx, "common/sh_selftest.comp.spv");
-  gpu::Pipeline pipeline = gpu::createComputePipeline(ctx, pipelineLayout, shader, "sh-selftest");
-  gpu::DescriptorAllocator descriptors(ctx);
-  VkDescriptorSet set = descriptors.allocate(layout);
-  gpu::DescriptorWriter().buffer(0, in).buffer(1, out).update(ctx, set);
-  gpu::submitAndWait(ctx, [&](VkCommandBuffer cmd) {
-    pipeline.bind(cmd);
-    pipeline.bindSet(cmd, 0, set);
-    vkCmdDispatch(cmd, (kDirections + 63) / 64, 1, 1);
-  });
-  auto bytes = gpu::readback(ctx, out);
-  ASSERT_EQ(bytes.size(), sizeof(Output) * kDirections);
-  std::vector<Output> results(kDirections);
-  std::memcpy(results.data(), bytes.data(), bytes.size());
+  const std::vector<Output> results =
+      testgpu::runComputeSelfTest<Output>(ctx, "common/sh_selftest.comp.spv", std::span<const Input>(inputs));
+  ASSERT_EQ(results.size(), kDirections);
 
   double worst = 0.0;
   for (std::uint32_t i = 0; i < kDirections; ++i) {

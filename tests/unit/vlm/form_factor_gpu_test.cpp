@@ -7,12 +7,9 @@
 #include <iostream>
 
 #include "engine/gi/vlm/form_factor.hpp"
-#include "engine/gpu/buffer.hpp"
-#include "engine/gpu/commands.hpp"
-#include "engine/gpu/descriptors.hpp"
-#include "engine/gpu/pipeline.hpp"
 #include "engine/gpu/testing.hpp"
 #include "engine/math/sampling.hpp"
+#include "tests/support/compute_selftest.hpp"
 
 using namespace bounce;
 
@@ -63,29 +60,9 @@ TEST(VlmFormFactorGpu, GlslMatchesCppOnRandomAndAwkwardCases) {
     add(x, n, x + rnd(-2, 2), x + rnd(-2, 2), x + rnd(-2, 2));
   }
   const std::uint32_t count = std::uint32_t(cases.size());
-  std::vector<std::uint8_t> inBytes(16 + sizeof(Case) * count);
-  std::memcpy(inBytes.data(), &count, 4);
-  std::memcpy(inBytes.data() + 16, cases.data(), sizeof(Case) * count);
-
-  gpu::Buffer in(ctx, {inBytes.size(), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::Upload, "vlm.in"});
-  gpu::Buffer out(ctx, {sizeof(float) * count, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::Readback, "vlm.out"});
-  gpu::upload(ctx, in, inBytes);
-  gpu::DescriptorSetLayout layout(ctx, {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}, {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}}, "vlm");
-  gpu::PipelineLayout pipelineLayout(ctx, {layout.handle()}, {}, "vlm");
-  gpu::ShaderModule shader(ctx, "vlm/form_factor_selftest.comp.spv");
-  gpu::Pipeline pipeline = gpu::createComputePipeline(ctx, pipelineLayout, shader, "vlm-selftest");
-  gpu::DescriptorAllocator descriptors(ctx);
-  VkDescriptorSet descriptorSet = descriptors.allocate(layout);
-  gpu::DescriptorWriter().buffer(0, in).buffer(1, out).update(ctx, descriptorSet);
-  gpu::submitAndWait(ctx, [&](VkCommandBuffer cmd) {
-    pipeline.bind(cmd);
-    pipeline.bindSet(cmd, 0, descriptorSet);
-    vkCmdDispatch(cmd, (count + 63) / 64, 1, 1);
-  });
-  auto bytes = gpu::readback(ctx, out);
-  ASSERT_EQ(bytes.size(), sizeof(float) * count);
-  std::vector<float> gpuF(count);
-  std::memcpy(gpuF.data(), bytes.data(), bytes.size());
+  const std::vector<float> gpuF =
+      testgpu::runComputeSelfTest<float>(ctx, "vlm/form_factor_selftest.comp.spv", std::span<const Case>(cases));
+  ASSERT_EQ(gpuF.size(), count);
 
   auto v = [](const float* p) { return glm::vec3(p[0], p[1], p[2]); };
   double worst = 0.0;
