@@ -3,7 +3,8 @@
 // SL pass 2 (Guerrero, Jeschke, Wimmer 2008, §5.2), deferred: every G-buffer pixel is a receiver;
 // the diffuse reflection of the light arriving from every SL, ρ(p)/π · E(p) with E(p) = Σ L̃ Ṽ
 // (Eq. 13–14, sl.glsl), is ADDED to "lighting.hdr" (additive blending; W/(m²·sr), linear HDR).
-// Background pixels (depth 1) receive nothing. Order, blocking and the per-receiver array size are
+// Background pixels (depth 1) receive nothing. Drawn as tiles (shaders/sl/tiles.vert): a pixel
+// visits only its tile's SLs, those whose influence bound covers the tile. Order, blocking and the per-receiver array size are
 // specialization constants (engine/gi/sl/shade.hpp ShadeData::specialization).
 layout(constant_id = 0) const uint kOrder = 4u;
 layout(constant_id = 1) const bool kPerObject = false;
@@ -21,7 +22,7 @@ layout(set = 1, binding = 2) uniform sampler2D gDepth;
 #include "sl/sl_data.glsl"
 #include "sl/sl.glsl"
 
-layout(location = 0) in vec2 inUv;
+layout(location = 0) flat in uvec4 inCandidates;
 layout(location = 0) out vec4 outRadiance;
 
 const float kInvPi = 0.31830988618379067;
@@ -36,5 +37,5 @@ void main() {
   vec3 albedo = texelFetch(gAlbedo, pixel, 0).rgb;
   vec3 n = texelFetch(gNormal, pixel, 0).xyz;
   vec3 p = worldFromDepth(camera.invViewProj, (vec2(pixel) + 0.5) * camera.resolution.zw, depth);
-  outRadiance = vec4(albedo * kInvPi * max(slIrradianceAt(p, n), vec3(0.0)), 0.0);
+  outRadiance = vec4(albedo * kInvPi * max(slIrradianceAt(p, n, inCandidates), vec3(0.0)), 0.0);
 }

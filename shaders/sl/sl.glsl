@@ -128,45 +128,67 @@ bool slIntersects(uint i, uint j) {
   return slObject(i) == slObject(j) && length(a.xyz - b.xyz) < a.w + b.w;
 }
 
-// Per-light state at this receiver (evaluate.cpp's Prepared).
-bool slCulled[kSpheres];
+// Per-light state at this receiver, by slot s of the live list (evaluate.cpp's Prepared): only the
+// SLs that reach p after the receiver rules take a slot, so every later loop runs over them alone.
+uint slLive[kSpheres];         // the SL's index
 float slDist[kSpheres];
 float slLogs[kSpheres * 16u];
 float slRatio[kSpheres];       // exact Ṽ / Eq. 23 Ṽ of the unoccluded cap, when formed
 float slExactOpen[kSpheres];   // the exact Ṽ, used alone when the ratio is not formed
 bool slRatioFormed[kSpheres];
 vec3 slAverage[kSpheres];
-uint slOrder[kSpheres];
+uint slOrder[kSpheres];        // slots, closest first
 
-// Ṽ_i from the blockers' summed log, with the Ratio form; adds L̃ Ṽ to e.
-void slFinish(uint i, in float blockers[16], vec3 n, inout vec3 e) {
+// Ṽ_i from the blockers' summed log, with the Ratio form; adds L̃ Ṽ to e. `s`: i's slot.
+void slFinish(uint s, in float blockers[16], vec3 n, inout vec3 e) {
   float own[16];
-  for (uint k = 0u; k < 16u; ++k) own[k] = slLogs[i * 16u + k];
+  for (uint k = 0u; k < 16u; ++k) own[k] = slLogs[s * 16u + k];
   float vis = slEq23(blockers, own, n);
-  vis = slRatioFormed[i] ? vis * slRatio[i] : slExactOpen[i];
-  e += slAverage[i] * vis;
+  vis = slRatioFormed[s] ? vis * slRatio[s] : slExactOpen[s];
+  e += slAverage[s] * vis;
 }
 
-// E(p) (Eq. 14), W/m² per channel for L^c in W/(m²·sr).
-vec3 slIrradianceAt(vec3 p, vec3 n) {
-  uint count = min(slCount(), kSpheres);
+// E(p) (Eq. 14), W/m² per channel for L^c in W/(m²·sr), from the SLs whose bit is set in `candidates`
+// (bit i % 32 of word i / 32; the tiled pass gives its tile's list, engine/gi/sl/tiles.hpp). SLs left
+// out must be ones the receiver rules cull at p (beyond the influence bound): a culled SL neither
+// lights nor blocks, so the sum is the same as over all SLs, term for term and in the same order.
+//
+// Two loops, because llvmpipe runs both sides of a branch but leaves a loop once none of its 8
+// lanes is still in it (README "What costs what on lavapipe"): the first applies the cheap receiver
+// rules to every candidate and keeps the ones that reach p; the second, with the rotations and exps,
+// runs as often as the 8 pixels' longest live list, not once per candidate.
+vec3 slIrradianceAt(vec3 p, vec3 n, uvec4 candidates) {
   float zero[16];
   for (uint k = 0u; k < 16u; ++k) zero[k] = 0.0;
-  for (uint i = 0u; i < count; ++i) {
-    vec4 sp = slSphere(i);
-    vec3 c = sp.xyz;
-    float r = sp.w;
-    bool kept = slAdjust(c, r, p, n);
-    float d = length(c - p);
-    slDist[i] = d;
-    slCulled[i] = !kept || !(d > 0.0);
-    slOrder[i] = i;
-    if (slCulled[i]) continue;
+  vec4 adjusted[kSpheres];
+  uint count = 0u;
+  for (uint w = 0u; w < 4u; ++w)
+    for (uint m = candidates[w]; m != 0u; m &= m - 1u) {
+      uint i = 32u * w + uint(findLSB(m));
+      if (i >= min(slCount(), kSpheres)) continue;
+      vec4 sp = slSphere(i);
+      vec3 c = sp.xyz;
+      float r = sp.w;
+      bool kept = slAdjust(c, r, p, n);
+      float d = length(c - p);
+      if (kept && d > 0.0) {
+        slLive[count] = i;
+        slDist[count] = d;
+        adjusted[count] = vec4(c, r);
+        slOrder[count] = count;
+        ++count;
+      }
+    }
+  for (uint s = 0u; s < count; ++s) {
+    uint i = slLive[s];
+    vec3 c = adjusted[s].xyz;
+    float r = adjusted[s].w;
+    float d = slDist[s];
     vec3 dir = (c - p) / d;
     float theta = asin(min(1.0, r / d));
     float lg[16];
     slRotateZonal(slThetaRow(0, theta), dir, lg);
-    for (uint k = 0u; k < 16u; ++k) slLogs[i * 16u + k] = lg[k];
+    for (uint k = 0u; k < 16u; ++k) slLogs[s * 16u + k] = lg[k];
     // The unoccluded cap's Ṽ: exact (1 − cap's closed-form ZH, sh_exp.hpp capVisibilityZonal) and
     // as Eq. 23 sees it (exp(0) − exp(G_i)).
     float t = cos(theta);
@@ -177,15 +199,15 @@ vec3 slIrradianceAt(vec3 p, vec3 n) {
     slRotateZonal(z, dir, cap);
     float exactOpen = slIrradiance(cap, n);
     float eq23Open = slEq23(zero, lg, n);
-    slRatioFormed[i] = eq23Open > kSlMinOpen;
-    slRatio[i] = slRatioFormed[i] ? exactOpen / eq23Open : 0.0;
-    slExactOpen[i] = exactOpen;
+    slRatioFormed[s] = eq23Open > kSlMinOpen;
+    slRatio[s] = slRatioFormed[s] ? exactOpen / eq23Open : 0.0;
+    slExactOpen[s] = exactOpen;
     // Eq. 18: the weight rotated to the SL-local direction from its centre to p (§7.1).
     float wz[16];
     slRotateZonal(slThetaRow(1, theta), transpose(slRotation(i)) * (-dir), wz);
     vec3 avg = vec3(0.0);
     for (uint k = 0u; k < kSlCoeffs; ++k) avg += wz[k] * slIntensity(i, k);
-    slAverage[i] = avg;
+    slAverage[s] = avg;
   }
   // Closest first; insertion sort is stable, as evaluate.cpp's stable_sort.
   for (uint a = 1u; a < count; ++a) {
@@ -200,15 +222,14 @@ vec3 slIrradianceAt(vec3 p, vec3 n) {
   vec3 e = vec3(0.0);
   if (!kPerObject) {
     for (uint a = 0u; a < count; ++a) {
-      uint i = slOrder[a];
-      if (slCulled[i]) continue;
+      uint s = slOrder[a];
       float blockers[16] = zero;
       for (uint b = 0u; b < a; ++b) {
-        uint j = slOrder[b];
-        if (slCulled[j] || slIntersects(i, j)) continue;
-        for (uint k = 0u; k < kSlCoeffs; ++k) blockers[k] += slLogs[j * 16u + k];
+        uint t = slOrder[b];
+        if (slIntersects(slLive[s], slLive[t])) continue;
+        for (uint k = 0u; k < kSlCoeffs; ++k) blockers[k] += slLogs[t * 16u + k];
       }
-      slFinish(i, blockers, n, e);
+      slFinish(s, blockers, n, e);
     }
   } else {
     // §7.2: objects by the distance from p to the mean of their (unadjusted) sphere centres; each
@@ -234,25 +255,36 @@ vec3 slIrradianceAt(vec3 p, vec3 n) {
       if (bestId == 0xffffffffu) break;
       float objectSum[16] = zero;
       for (uint a = 0u; a < count; ++a) {
-        uint i = slOrder[a];
-        if (slObject(i) != bestId || slCulled[i]) continue;
+        uint s = slOrder[a];
+        if (slObject(slLive[s]) != bestId) continue;
         float blockers[16] = closer;
         for (uint b = 0u; b < a; ++b) {
-          uint j = slOrder[b];
-          if (slObject(j) != bestId || slCulled[j] || slIntersects(i, j)) continue;
-          for (uint k = 0u; k < kSlCoeffs; ++k) blockers[k] += slLogs[j * 16u + k];
+          uint t = slOrder[b];
+          if (slObject(slLive[t]) != bestId || slIntersects(slLive[s], slLive[t])) continue;
+          for (uint k = 0u; k < kSlCoeffs; ++k) blockers[k] += slLogs[t * 16u + k];
         }
-        slFinish(i, blockers, n, e);
-        for (uint k = 0u; k < kSlCoeffs; ++k) objectSum[k] += slLogs[i * 16u + k];
+        slFinish(s, blockers, n, e);
+        for (uint k = 0u; k < kSlCoeffs; ++k) objectSum[k] += slLogs[s * 16u + k];
       }
       for (uint k = 0u; k < 16u; ++k) closer[k] += objectSum[k];
       last = best;
       lastId = bestId;
       ++done;
-      if (done > count) break;
+      if (done > slObjectCount()) break;
     }
   }
   return e;
+}
+
+// Over every SL (the self-test's receivers, which no tile list culls).
+vec3 slIrradianceAt(vec3 p, vec3 n) {
+  uvec4 all = uvec4(0u);
+  uint count = min(slCount(), kSpheres);
+  for (uint w = 0u; w < 4u; ++w) {
+    uint bits = uint(clamp(int(count) - int(32u * w), 0, 32));
+    all[w] = bits == 32u ? 0xffffffffu : (1u << bits) - 1u;
+  }
+  return slIrradianceAt(p, n, all);
 }
 
 #endif  // BOUNCE_SL_GLSL

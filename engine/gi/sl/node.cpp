@@ -1,6 +1,9 @@
 #include "engine/gi/sl/node.hpp"
 
+#include <cstring>
+
 #include "engine/core/error.hpp"
+#include "engine/gi/sl/tiles.hpp"
 #include "engine/render/passes/rendering.hpp"
 
 namespace bounce::gi::sl {
@@ -9,10 +12,18 @@ namespace {
 constexpr VkDescriptorType kSampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
 constexpr VkFormat kHdrFormat = VK_FORMAT_R16G16B16A16_SFLOAT;  // "lighting.hdr" (renderer.cpp)
 constexpr std::uint32_t kFirstShadeBinding = 3;                // sl.frag: SL_BINDING
+constexpr std::uint32_t kTilesBinding = 6;                     // tiles.vert: SlTiles
+
+struct TilePush {  // tiles.vert
+  glm::vec2 invExtent;
+  std::uint32_t tileSize;
+  std::uint32_t pad;
+};
 
 std::vector<gpu::Binding> inputBindings() {
   std::vector<gpu::Binding> b = {{0, kSampled}, {1, kSampled}, {2, kSampled}};
   for (const gpu::Binding& s : ShadeData::bindings(kFirstShadeBinding)) b.push_back(s);
+  b.push_back({kTilesBinding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
   return b;
 }
 }  // namespace
@@ -22,8 +33,10 @@ Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t fra
     : ctx_(ctx),
       order_(order),
       blocking_(blocking),
+      influence_(influence),
       inputLayout_(ctx, inputBindings(), "sl.inputs"),
-      layout_(ctx, {shared.frameLayout.handle(), inputLayout_.handle()}, {}, "sl") {
+      layout_(ctx, {shared.frameLayout.handle(), inputLayout_.handle()},
+              {VkPushConstantRange{VK_SHADER_STAGE_ALL, 0, sizeof(TilePush)}}, "sl") {
   for (std::uint32_t i = 0; i < std::max<std::uint32_t>(framesInFlight, 1); ++i) {
     Slot s;
     s.intensity = std::make_unique<IntensityPass>(ctx, sets, order);
@@ -31,7 +44,7 @@ Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t fra
     slots_.push_back(std::move(s));
   }
   spheres_ = slots_[0].intensity->sphereCount();
-  vert_ = gpu::ShaderModule(ctx, "passes/fullscreen.vert.spv");
+  vert_ = gpu::ShaderModule(ctx, "sl/tiles.vert.spv");
   frag_ = gpu::ShaderModule(ctx, "sl/sl.frag.spv");
   gpu::GraphicsPipelineDesc d;
   d.vertex = &vert_;
@@ -56,6 +69,14 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::s
   std::vector<ShadedSphere> shaded(spheres_);
   for (std::uint32_t i = 0; i < spheres_; ++i) shaded[i] = {posed[i].centre, posed[i].radius, posed[i].rotation, objects[i]};
   slot.shade->setSpheres(shaded);
+  // The tiles this frame's SLs may reach (tiles.hpp), in the target's pixels.
+  const glm::uvec2 resolution(std::uint32_t(pc->world->camera.resolution.x), std::uint32_t(pc->world->camera.resolution.y));
+  std::vector<ShadeTile> tiles = binTiles(pc->world->camera.viewProj, resolution, shaded, influence_);
+  const VkDeviceSize tileBytes = std::max<std::size_t>(tiles.size(), 1) * sizeof(ShadeTile);
+  if (!slot.tiles || slot.tiles.size() < tileBytes)
+    slot.tiles = gpu::Buffer(ctx_, {tileBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::Upload, "sl.tiles"});
+  if (!tiles.empty()) std::memcpy(slot.tiles.mapped(), tiles.data(), tiles.size() * sizeof(ShadeTile));
+  const std::uint32_t tileCount = std::uint32_t(tiles.size());
 
   auto& bb = graph.blackboard();
   struct IntensityData {
@@ -90,7 +111,7 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::s
         d.depth = b.read(bb.get<rg::Texture>("gbuffer.depth"), rg::Usage::SampledFragment);
         d.hdr = b.write(bb.get<rg::Texture>("lighting.hdr"), rg::Usage::ColorAttachment);
       },
-      [this, pc, &slot](const Data& d, const rg::PassResources& res, rg::CommandContext& c) {
+      [this, pc, &slot, tileCount](const Data& d, const rg::PassResources& res, rg::CommandContext& c) {
         VkCommandBuffer cmd = pc->cmd(c);
         VkSampler point = pc->samplers->get({VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST});
         auto view = [&](rg::Handle<rg::Texture> h) { return pc->backend->image(res.texture(h)).view(); };
@@ -98,6 +119,7 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::s
         gpu::DescriptorWriter w;
         w.sampledImage(0, view(d.albedo), point).sampledImage(1, view(d.normal), point).sampledImage(2, view(d.depth), point);
         slot.shade->write(w, kFirstShadeBinding, slot.intensity->intensity(), point);
+        w.buffer(kTilesBinding, slot.tiles);
         w.update(ctx_, inputs);
         gpu::Image& target = pc->backend->image(res.texture(d.hdr));
         render::Attachment color{target.view(), res.keepsContents(d.hdr)};
@@ -106,7 +128,9 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::s
         pipeline_.bind(cmd);
         pipeline_.bindSet(cmd, 0, pc->frameSet);
         pipeline_.bindSet(cmd, 1, inputs);
-        vkCmdDraw(cmd, 3, 1, 0, 0);
+        pipeline_.push(cmd, TilePush{glm::vec2(1.0f / float(extent.width), 1.0f / float(extent.height)), kScreenTile, 0u});
+        // Two triangles per tile with any SL; the other tiles' pixels do no work.
+        if (tileCount > 0) vkCmdDraw(cmd, 6, tileCount, 0, 0);
         ctx_.cmdEndRendering(cmd);
       });
   bb.put("lighting.hdr", data.hdr);

@@ -37,10 +37,12 @@ class Node {
   struct Slot {
     std::unique_ptr<IntensityPass> intensity;
     std::unique_ptr<ShadeData> shade;
+    gpu::Buffer tiles;  // this frame's drawn tiles (tiles.hpp ShadeTile), host-visible
   };
   gpu::Context& ctx_;
   int order_;
   Blocking blocking_;
+  float influence_ = 0.0f;
   std::uint32_t spheres_ = 0;
   std::vector<Slot> slots_;
   gpu::DescriptorSetLayout inputLayout_;
