@@ -63,10 +63,9 @@ vec4 slThetaRow(int row, float theta) {
   return (1.0 - w) * texelFetch(slTables, ivec2(i0, row), 0) + w * texelFetch(slTables, ivec2(i0 + 1, row), 0);
 }
 
-// f_lm = √(4π/(2l+1)) z_l Y_lm(d) (sh_rotate.hpp rotateZonal).
-void slRotateZonal(vec4 z, vec3 d, out float f[16]) {
-  float y[16];
-  shEval16(d, y);
+// f_lm = √(4π/(2l+1)) z_l Y_lm(d) (sh_rotate.hpp rotateZonal), y = Y(d) (shEval16): a receiver
+// evaluates Y once per direction and reuses it (the log and the cap of one SL share theirs).
+void slRotateZonalY(vec4 z, in float y[16], out float f[16]) {
   const float s[4] = float[4](3.54490770181103205, 2.04665341589297697, 1.58533091904240551, 1.33984917138736218);
   for (uint i = 0u; i < 16u; ++i) {
     uint l = i < 1u ? 0u : (i < 4u ? 1u : (i < 9u ? 2u : 3u));
@@ -74,10 +73,15 @@ void slRotateZonal(vec4 z, vec3 d, out float f[16]) {
   }
 }
 
-// E = Σ Â_l v_lm Y_lm(n) for a scalar SH vector (sh_convolve.hpp evalIrradiance, Â_3 = 0).
-float slIrradiance(in float v[16], vec3 n) {
+void slRotateZonal(vec4 z, vec3 d, out float f[16]) {
   float y[16];
-  shEval16(n, y);
+  shEval16(d, y);
+  slRotateZonalY(z, y, f);
+}
+
+// E = Σ Â_l v_lm Y_lm(n) for a scalar SH vector (sh_convolve.hpp evalIrradiance, Â_3 = 0), with
+// y = Y(n): evaluated once per receiver.
+float slIrradianceY(in float v[16], in float y[16]) {
   float e = SH_A0 * v[0] * y[0];
   for (uint i = 1u; i < 4u; ++i) e += SH_A1 * v[i] * y[i];
   for (uint i = 4u; i < 9u; ++i) e += SH_A2 * v[i] * y[i];
@@ -111,17 +115,6 @@ void slExp(in float f[16], out float g[16]) {
   for (uint i = 0u; i < 16u; ++i) g[i] *= dc;
 }
 
-// Eq. 23–24: Ṽ = ρ_n · [exp(B) − exp(B + G_i)] for blocker sum B and the light's own log G.
-float slEq23(in float blockers[16], in float own[16], vec3 n) {
-  float with[16];
-  for (uint i = 0u; i < 16u; ++i) with[i] = blockers[i] + own[i];
-  float a[16], b[16];
-  slExp(blockers, a);
-  slExp(with, b);
-  for (uint i = 0u; i < 16u; ++i) a[i] -= b[i];
-  return slIrradiance(a, n);
-}
-
 // Lights i and j of one object whose spheres overlap ignore each other (baked occlusion, §6.2).
 bool slIntersects(uint i, uint j) {
   vec4 a = slSphere(i), b = slSphere(j);
@@ -139,11 +132,21 @@ bool slRatioFormed[kSpheres];
 vec3 slAverage[kSpheres];
 uint slOrder[kSpheres];        // slots, closest first
 
-// Ṽ_i from the blockers' summed log, with the Ratio form; adds L̃ Ṽ to e. `s`: i's slot.
-void slFinish(uint s, in float blockers[16], vec3 n, inout vec3 e) {
-  float own[16];
-  for (uint k = 0u; k < 16u; ++k) own[k] = slLogs[s * 16u + k];
-  float vis = slEq23(blockers, own, n);
+// Eq. 23–24: Ṽ_i = ρ_n · [exp(B) − exp(B + G_i)] from the blockers' summed log B and i's own G_i,
+// with the Ratio form; adds L̃ Ṽ to e. `s`: i's slot.
+// Eq. 23 needs exp(B) and exp(B + G_i). When `haveExpB`, expB already holds exp(B) (the previous
+// SL's exp(B + G), see slIrradianceAt) and that exp is skipped; expWith returns exp(B + G_i).
+void slFinish(uint s, in float blockers[16], bool haveExpB, inout float expB[16], out float expWith[16],
+              in float yn[16], inout vec3 e) {
+  float with[16];
+  for (uint k = 0u; k < 16u; ++k) with[k] = blockers[k] + slLogs[s * 16u + k];
+  // A loop of 0 or 1 turns, not an if: llvmpipe leaves a loop no lane is in, but runs both sides of
+  // a branch (README "What costs what on lavapipe").
+  for (uint t = haveExpB ? 1u : 0u; t < 1u; ++t) slExp(blockers, expB);
+  slExp(with, expWith);
+  float v[16];
+  for (uint k = 0u; k < 16u; ++k) v[k] = expB[k] - expWith[k];
+  float vis = slIrradianceY(v, yn);  // Eq. 24
   vis = slRatioFormed[s] ? vis * slRatio[s] : slExactOpen[s];
   e += slAverage[s] * vis;
 }
@@ -160,6 +163,8 @@ void slFinish(uint s, in float blockers[16], vec3 n, inout vec3 e) {
 vec3 slIrradianceAt(vec3 p, vec3 n, uvec4 candidates) {
   float zero[16];
   for (uint k = 0u; k < 16u; ++k) zero[k] = 0.0;
+  float yn[16];
+  shEval16(n, yn);
   vec4 adjusted[kSpheres];
   uint count = 0u;
   for (uint w = 0u; w < 4u; ++w)
@@ -187,7 +192,9 @@ vec3 slIrradianceAt(vec3 p, vec3 n, uvec4 candidates) {
     vec3 dir = (c - p) / d;
     float theta = asin(min(1.0, r / d));
     float lg[16];
-    slRotateZonal(slThetaRow(0, theta), dir, lg);
+    float ydir[16];
+    shEval16(dir, ydir);
+    slRotateZonalY(slThetaRow(0, theta), ydir, lg);
     for (uint k = 0u; k < 16u; ++k) slLogs[s * 16u + k] = lg[k];
     // The unoccluded cap's Ṽ: exact (1 − cap's closed-form ZH, sh_exp.hpp capVisibilityZonal) and
     // as Eq. 23 sees it (exp(0) − exp(G_i)).
@@ -196,9 +203,13 @@ vec3 slIrradianceAt(vec3 p, vec3 n, uvec4 candidates) {
     vec4 z = vec4(kSlSqrt4Pi - sqrt(kSlPi) * (1.0 + t), -sqrt(3.0 * kSlPi) * (p2 - 1.0) / 3.0,
                   -sqrt(5.0 * kSlPi) * (p3 - t) / 5.0, -sqrt(7.0 * kSlPi) * (p4 - p2) / 7.0);
     float cap[16];
-    slRotateZonal(z, dir, cap);
-    float exactOpen = slIrradiance(cap, n);
-    float eq23Open = slEq23(zero, lg, n);
+    slRotateZonalY(z, ydir, cap);
+    float exactOpen = slIrradianceY(cap, yn);
+    // exp(0) is the OL table's first entry as a constant (slExp of zeros, without its arithmetic).
+    float open[16];
+    slExp(lg, open);
+    for (uint k = 0u; k < 16u; ++k) open[k] = (k == 0u ? texelFetch(slTables, ivec2(0, 2), 0).x * kSlSqrt4Pi : 0.0) - open[k];
+    float eq23Open = slIrradianceY(open, yn);
     slRatioFormed[s] = eq23Open > kSlMinOpen;
     slRatio[s] = slRatioFormed[s] ? exactOpen / eq23Open : 0.0;
     slExactOpen[s] = exactOpen;
@@ -209,69 +220,70 @@ vec3 slIrradianceAt(vec3 p, vec3 n, uvec4 candidates) {
     for (uint k = 0u; k < kSlCoeffs; ++k) avg += wz[k] * slIntensity(i, k);
     slAverage[s] = avg;
   }
-  // Closest first; insertion sort is stable, as evaluate.cpp's stable_sort.
+  // Per-object blocking (§7.2) visits objects nearest first, by the distance from p to the mean of
+  // their (unadjusted) sphere centres, ties by id (evaluate.cpp sorts (dist, id)): each object's rank.
+  uint rank[kSpheres];
+  for (uint t = 0u; t < count; ++t) rank[t] = 0u;
+  if (kPerObject) {
+    for (uint t = 0u; t < count; ++t) {
+      uint id = slObject(slLive[t]);
+      float d = length(slObjectCentre(id).xyz - p);
+      uint r = 0u;
+      for (uint o = 0u; o < slObjectCount(); ++o) {
+        vec4 oc = slObjectCentre(o);
+        float od = length(oc.xyz - p);
+        if (oc.w >= 0.5 && (od < d || (od == d && o < id))) ++r;
+      }
+      rank[t] = r;
+    }
+  }
+  // Closest first (per-object: within each object, objects nearest first); insertion sort is
+  // stable, as evaluate.cpp's stable_sort.
   for (uint a = 1u; a < count; ++a) {
     uint v = slOrder[a];
     uint b = a;
-    while (b > 0u && slDist[slOrder[b - 1u]] > slDist[v]) {
+    while (b > 0u && (rank[slOrder[b - 1u]] > rank[v] ||
+                      (rank[slOrder[b - 1u]] == rank[v] && slDist[slOrder[b - 1u]] > slDist[v]))) {
       slOrder[b] = slOrder[b - 1u];
       --b;
     }
     slOrder[b] = v;
   }
+  // One pass in that order. An SL's blockers are the closer objects' summed logs (per-sphere: none)
+  // plus the closer SLs of its own object (per-sphere: every closer SL) that do not intersect it, so
+  // the inner loop runs over the SL's own object only: n_l² N additions, not n² (§7.2, §8.3).
+  // Exp reuse: when an SL's blockers are ALL the closer SLs of its run, and so were its predecessor's,
+  // its exp(B) is the predecessor's exp(B + G) — the same floats summed in the same order — so Eq. 23
+  // costs one exp, not two (overlapping spheres of one object break the chain: §7.2's "we have to
+  // ignore intersecting SLs").
   vec3 e = vec3(0.0);
-  if (!kPerObject) {
-    for (uint a = 0u; a < count; ++a) {
-      uint s = slOrder[a];
-      float blockers[16] = zero;
-      for (uint b = 0u; b < a; ++b) {
-        uint t = slOrder[b];
-        if (slIntersects(slLive[s], slLive[t])) continue;
-        for (uint k = 0u; k < kSlCoeffs; ++k) blockers[k] += slLogs[t * 16u + k];
-      }
-      slFinish(s, blockers, n, e);
-    }
-  } else {
-    // §7.2: objects by the distance from p to the mean of their (unadjusted) sphere centres; each
-    // object's spheres see the closer objects' summed logs plus their own closer spheres.
-    float closer[16] = zero;
-    uint done = 0u;  // objects handled: ids are small (0..count), visited nearest first
-    float last = -1.0;
-    uint lastId = 0xffffffffu;
-    for (;;) {
-      // The next object: least (distance, id) above (last, lastId) — evaluate.cpp sorts (dist, id).
-      float best = 3.4e38;
-      uint bestId = 0xffffffffu;
-      for (uint id = 0u; id < slObjectCount(); ++id) {
-        vec4 oc = slObjectCentre(id);
-        if (oc.w < 0.5) continue;  // no sphere has this id
-        float d = length(oc.xyz - p);
-        bool after = d > last || (d == last && id > lastId);
-        if (after && (d < best || (d == best && id < bestId))) {
-          best = d;
-          bestId = id;
-        }
-      }
-      if (bestId == 0xffffffffu) break;
-      float objectSum[16] = zero;
-      for (uint a = 0u; a < count; ++a) {
-        uint s = slOrder[a];
-        if (slObject(slLive[s]) != bestId) continue;
-        float blockers[16] = closer;
-        for (uint b = 0u; b < a; ++b) {
-          uint t = slOrder[b];
-          if (slObject(slLive[t]) != bestId || slIntersects(slLive[s], slLive[t])) continue;
-          for (uint k = 0u; k < kSlCoeffs; ++k) blockers[k] += slLogs[t * 16u + k];
-        }
-        slFinish(s, blockers, n, e);
-        for (uint k = 0u; k < kSlCoeffs; ++k) objectSum[k] += slLogs[s * 16u + k];
-      }
+  float closer[16] = zero;
+  float objectSum[16] = zero;
+  float expPrev[16] = zero;
+  bool prevFull = false;
+  uint start = 0u;  // the current object's first position (per-sphere: 0)
+  for (uint a = 0u; a < count; ++a) {
+    uint s = slOrder[a];
+    if (kPerObject && a > 0u && rank[s] != rank[slOrder[a - 1u]]) {
       for (uint k = 0u; k < 16u; ++k) closer[k] += objectSum[k];
-      last = best;
-      lastId = bestId;
-      ++done;
-      if (done > slObjectCount()) break;
+      objectSum = zero;
+      start = a;
     }
+    float blockers[16] = closer;
+    bool full = true;
+    for (uint b = start; b < a; ++b) {
+      uint t = slOrder[b];
+      if (slIntersects(slLive[s], slLive[t])) {
+        full = false;
+        continue;
+      }
+      for (uint k = 0u; k < kSlCoeffs; ++k) blockers[k] += slLogs[t * 16u + k];
+    }
+    float expWith[16];
+    slFinish(s, blockers, full && prevFull && a > start, expPrev, expWith, yn, e);
+    expPrev = expWith;
+    prevFull = full;
+    for (uint k = 0u; k < kSlCoeffs; ++k) objectSum[k] += slLogs[s * 16u + k];
   }
   return e;
 }
