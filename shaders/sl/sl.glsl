@@ -115,12 +115,6 @@ void slExp(in float f[16], out float g[16]) {
   for (uint i = 0u; i < 16u; ++i) g[i] *= dc;
 }
 
-// Lights i and j of one object whose spheres overlap ignore each other (baked occlusion, §6.2).
-bool slIntersects(uint i, uint j) {
-  vec4 a = slSphere(i), b = slSphere(j);
-  return slObject(i) == slObject(j) && length(a.xyz - b.xyz) < a.w + b.w;
-}
-
 // Per-light state at this receiver, by slot s of the live list (evaluate.cpp's Prepared): only the
 // SLs that reach p after the receiver rules take a slot, so every later loop runs over them alone.
 uint slLive[kSpheres];         // the SL's index
@@ -131,6 +125,7 @@ float slExactOpen[kSpheres];   // the exact Ṽ, used alone when the ratio is no
 bool slRatioFormed[kSpheres];
 vec3 slAverage[kSpheres];
 uint slOrder[kSpheres];        // slots, closest first
+uint slSlotOf[kSpheres];       // the slot of SL i, for the live ones
 
 // Eq. 23–24: Ṽ_i = ρ_n · [exp(B) − exp(B + G_i)] from the blockers' summed log B and i's own G_i,
 // with the Ratio form; adds L̃ Ṽ to e. `s`: i's slot.
@@ -181,6 +176,7 @@ vec3 slIrradianceAt(vec3 p, vec3 n, uvec4 candidates) {
         slDist[count] = d;
         adjusted[count] = vec4(c, r);
         slOrder[count] = count;
+        slSlotOf[i] = count;
         ++count;
       }
     }
@@ -249,41 +245,39 @@ vec3 slIrradianceAt(vec3 p, vec3 n, uvec4 candidates) {
     }
     slOrder[b] = v;
   }
-  // One pass in that order. An SL's blockers are the closer objects' summed logs (per-sphere: none)
-  // plus the closer SLs of its own object (per-sphere: every closer SL) that do not intersect it, so
-  // the inner loop runs over the SL's own object only: n_l² N additions, not n² (§7.2, §8.3).
-  // Exp reuse: when an SL's blockers are ALL the closer SLs of its run, and so were its predecessor's,
-  // its exp(B) is the predecessor's exp(B + G) — the same floats summed in the same order — so Eq. 23
-  // costs one exp, not two (overlapping spheres of one object break the chain: §7.2's "we have to
-  // ignore intersecting SLs").
+  // One pass in that order. An SL's blockers are the SLs before it (per-sphere: the closer ones;
+  // per-object: the closer objects' and its own object's closer ones) except those of its own object
+  // that intersect it (§6.2). So they are the running sum of the logs visited so far minus the few
+  // visited SLs that intersect it (slIntersecting: a mask built once per frame on the CPU): n + n·m
+  // vector additions for m intersections per SL, not n(n+1)/2 with a pair test each — §8.3's
+  // "O(mn) if results were re-used". Per-object and per-sphere blocking thereby cost the same here;
+  // they differ only in the order of the visit. (Floats: the sum is formed in another order than
+  // evaluate.cpp's, a change at rounding level.)
+  // Exp reuse: when neither this SL nor its predecessor skips an intersecting SL, this SL's blockers
+  // are the predecessor's plus its log — the predecessor's exp(B + G), the same floats summed the
+  // same way — so Eq. 23 costs one exp, not two.
   vec3 e = vec3(0.0);
-  float closer[16] = zero;
-  float objectSum[16] = zero;
-  float expPrev[16] = zero;
+  float run[16] = zero;      // Σ logs of the SLs visited so far
+  float expPrev[16] = zero;  // the predecessor's exp(B + G)
   bool prevFull = false;
-  uint start = 0u;  // the current object's first position (per-sphere: 0)
+  uvec4 visited = uvec4(0u);  // SL i at bit i % 32 of word i / 32
   for (uint a = 0u; a < count; ++a) {
     uint s = slOrder[a];
-    if (kPerObject && a > 0u && rank[s] != rank[slOrder[a - 1u]]) {
-      for (uint k = 0u; k < 16u; ++k) closer[k] += objectSum[k];
-      objectSum = zero;
-      start = a;
-    }
-    float blockers[16] = closer;
-    bool full = true;
-    for (uint b = start; b < a; ++b) {
-      uint t = slOrder[b];
-      if (slIntersects(slLive[s], slLive[t])) {
-        full = false;
-        continue;
+    uint i = slLive[s];
+    uvec4 skip = slIntersecting(i) & visited;
+    float blockers[16] = run;
+    for (uint w = 0u; w < 4u; ++w)
+      for (uint m = skip[w]; m != 0u; m &= m - 1u) {
+        uint t = slSlotOf[32u * w + uint(findLSB(m))];
+        for (uint k = 0u; k < kSlCoeffs; ++k) blockers[k] -= slLogs[t * 16u + k];
       }
-      for (uint k = 0u; k < kSlCoeffs; ++k) blockers[k] += slLogs[t * 16u + k];
-    }
+    bool full = skip == uvec4(0u);
     float expWith[16];
-    slFinish(s, blockers, full && prevFull && a > start, expPrev, expWith, yn, e);
+    slFinish(s, blockers, full && prevFull, expPrev, expWith, yn, e);
     expPrev = expWith;
     prevFull = full;
-    for (uint k = 0u; k < kSlCoeffs; ++k) objectSum[k] += slLogs[s * 16u + k];
+    for (uint k = 0u; k < 16u; ++k) run[k] += slLogs[s * 16u + k];
+    visited[i >> 5u] |= 1u << (i & 31u);
   }
   return e;
 }
