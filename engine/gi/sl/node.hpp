@@ -22,12 +22,17 @@
 
 namespace bounce::gi::sl {
 
+// Pass 2's resolution: every pixel, or half the pixels per axis with an edge-aware upsample
+// ("sl.upsample", shaders/sl/upsample.frag) — the level key "sl": {"resolution": "full"|"half"}.
+enum class Resolution { Full, Half };
+
 class Node {
  public:
   // `sets` (not owned, must outlive the node) in participant order; `order` ≥ every set's order;
   // `influence`: evaluate.hpp rule 0's F (0: off).
   Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t framesInFlight,
-       std::span<const SphereSet* const> sets, int order, Blocking blocking, float influence);
+       std::span<const SphereSet* const> sets, int order, Blocking blocking, float influence,
+       Resolution resolution = Resolution::Full);
   // This frame's SLs, concatenated over the sets: pose, object index, probes' SH at the centre.
   void addTo(rg::RenderGraph& graph, const render::PassContext& pc, std::span<const PosedSphere> posed,
              std::span<const std::uint32_t> objects, std::span<const incident::RadianceSH> indirect);
@@ -43,12 +48,15 @@ class Node {
   int order_;
   Blocking blocking_;
   float influence_ = 0.0f;
+  Resolution resolution_ = Resolution::Full;
   std::uint32_t spheres_ = 0;
   std::vector<Slot> slots_;
   gpu::DescriptorSetLayout inputLayout_;
   gpu::PipelineLayout layout_;
-  gpu::ShaderModule vert_, frag_;
-  gpu::Pipeline pipeline_;
+  gpu::DescriptorSetLayout upsampleInputs_;  // at half resolution only
+  gpu::PipelineLayout upsampleLayout_;
+  gpu::ShaderModule vert_, frag_, upsampleFrag_;
+  gpu::Pipeline pipeline_, upsample_;  // upsample_: at half resolution only
 };
 
 }  // namespace bounce::gi::sl
