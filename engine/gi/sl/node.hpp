@@ -1,14 +1,18 @@
 #pragma once
-// The SL render-graph node: two passes per frame.
+// The SL render-graph node: two passes per frame, three at half resolution.
 //  "sl.intensity" (compute, pass 1, §5.1): every SL's intensity SH from the level's lights (with the
 //     shadow atlas when `shadows` runs) and the probes' light at its samples (IntensityPass);
-//  "sl" (fragment, pass 2, §5.2): a full-screen triangle adds ρ/π · Σ L̃ Ṽ to "lighting.hdr" per
-//     G-buffer pixel (shaders/sl/sl.frag), reading "gbuffer.albedo", "gbuffer.normal",
-//     "gbuffer.depth" from the blackboard.
+//  "sl" (fragment, pass 2, §5.2): adds ρ/π · Σ L̃ Ṽ to "lighting.hdr" per G-buffer pixel
+//     (shaders/sl/sl.frag), reading "gbuffer.albedo", "gbuffer.normal", "gbuffer.depth" from the
+//     blackboard. Drawn as 16×16 tiles: only the tiles some SL's influence bound covers, each pixel
+//     visiting only its tile's SLs (tiles.hpp, shaders/sl/tiles.vert);
+//  at Resolution::Half, "sl" writes E at every second G-buffer pixel per axis into the transient
+//     "sl.half" (half size, RGBA16F) and "sl.upsample" (shaders/sl/upsample.frag) adds the
+//     depth- and normal-weighted upsample times ρ/π to "lighting.hdr".
 // Each is timed under its own name by the graph. Pass 2 shades every SL of every object in one draw
 // (the blocking couples objects: an object's Ṽ needs the closer objects' logs), so there are no
-// per-object rows. Per frame slot the node owns its own pass-1 buffers and pass-2 sphere block, so
-// a frame in flight never sees the next one's data.
+// per-object rows. Per frame slot the node owns its own pass-1 buffers, pass-2 sphere block and tile
+// list, so a frame in flight never sees the next one's data.
 #include <memory>
 #include <span>
 #include <vector>
