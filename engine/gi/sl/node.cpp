@@ -87,12 +87,16 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::s
   if (posed.size() != spheres_ || objects.size() != spheres_ || indirect.size() != spheres_)
     throw InternalError("sl::Node: one pose, object and indirect SH per SL");
   const render::PassContext* pc = &pcIn;
-  Slot& slot = slots_[pc->frame().slot % slots_.size()];
-  // CPU writes of this slot's host-visible blocks: the ring waited for the slot's last frame.
-  slot.intensity->setSpheres(posed, indirect);
+  // `bounce graph` builds the graph without a frame ring (and records nothing): no CPU writes then.
+  const bool recording = pc->frames != nullptr;
+  Slot& slot = slots_[recording ? pc->frame().slot % slots_.size() : 0];
   std::vector<ShadedSphere> shaded(spheres_);
   for (std::uint32_t i = 0; i < spheres_; ++i) shaded[i] = {posed[i].centre, posed[i].radius, posed[i].rotation, objects[i]};
-  slot.shade->setSpheres(shaded);
+  if (recording) {
+    // CPU writes of this slot's host-visible blocks: the ring waited for the slot's last frame.
+    slot.intensity->setSpheres(posed, indirect);
+    slot.shade->setSpheres(shaded);
+  }
   // The tiles this frame's SLs may reach (tiles.hpp), in the target's pixels: at half resolution
   // the half-size target's tiles for pass 2, then the full-size ones for the upsample.
   const glm::uvec2 resolution(std::uint32_t(pc->world->camera.resolution.x), std::uint32_t(pc->world->camera.resolution.y));
@@ -105,9 +109,9 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::s
     tiles.insert(tiles.end(), full.begin(), full.end());
   }
   const VkDeviceSize tileBytes = std::max<std::size_t>(tiles.size(), 1) * sizeof(ShadeTile);
-  if (!slot.tiles || slot.tiles.size() < tileBytes)
+  if (recording && (!slot.tiles || slot.tiles.size() < tileBytes))
     slot.tiles = gpu::Buffer(ctx_, {tileBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::Upload, "sl.tiles"});
-  if (!tiles.empty()) std::memcpy(slot.tiles.mapped(), tiles.data(), tiles.size() * sizeof(ShadeTile));
+  if (recording && !tiles.empty()) std::memcpy(slot.tiles.mapped(), tiles.data(), tiles.size() * sizeof(ShadeTile));
   const std::uint32_t tileCount = shadeTiles;
   const std::uint32_t upsampleTiles = std::uint32_t(tiles.size()) - shadeTiles;
 

@@ -122,6 +122,22 @@ TEST(SlSession, HalfResolutionUpsamplesAndStaysCloseToFull) {
   EXPECT_LT(relRmse, 0.6);  // 0.47 measured: mostly the 8-bit rounding of a small term at 48×48 samples
 }
 
+// `bounce graph` builds the graph with no frame ring and records nothing (Renderer::graphDot): the SL
+// node then writes no buffers (it used to index the missing ring and crash) and still declares its
+// passes — at half resolution also "sl.upsample" and the transient "sl.half" between them.
+TEST(SlSession, GraphDotListsItsPassesWithoutAFrame) {
+  scene::Level level = game::loadLevelWithEffects(kCharacters, std::vector<std::string>{"direct", "shadows", "sl"});
+  for (scene::EntityDesc& e : level.entities)
+    if (e.sl) e.sl->half = true;
+  game::Session session(gpu::testkit::sharedContext(), level);
+  const Frame rendered = oneFrame(session);  // the session's GI nodes join the renderer with its first frame
+  EXPECT_EQ(std::count(rendered.passes.begin(), rendered.passes.end(), "sl.upsample"), 1);
+  const std::string dot = session.renderer().graphDot(session.world(), kExtent, {});
+  for (const char* pass : {"sl.intensity", "sl", "sl.upsample"})
+    EXPECT_NE(dot.find("[label=\"" + std::string(pass) + "\", shape=box"), std::string::npos) << pass;
+  EXPECT_NE(dot.find("sl.half"), std::string::npos);
+}
+
 // Pass 2 holds at most kMaxShadedSpheres (128) SLs in all, in uniform blocks: three 64-sphere characters
 // are bad input — one line naming the level, /entities and the limit, thrown when the session is made
 // (before any bake), not an internal error at the first frame. Two of them (128) are accepted.
