@@ -60,10 +60,18 @@ int runBenchSl(const cli::Args& args) {
     influence = float(f);
   }
 
+  std::vector<bool> halves;
+  for (const std::string& r : args.list("--sl-resolution").value_or(std::vector<std::string>{"full"})) {
+    if (r != "full" && r != "half")
+      throwInputError("bounce bench", "--sl-resolution", "'" + r + "' is not a resolution", "full, half or both: full,half");
+    halves.push_back(r == "half");
+  }
+
   gpu::Context ctx({args.str("--device")});
   gpu::OffscreenPresenter presenter(ctx, {std::uint32_t(res.first), std::uint32_t(res.second)});
   for (int n : counts)
-    for (bool perObject : {false, true}) {
+    for (bool half : halves)
+      for (bool perObject : {false, true}) {
       scene::Level configured = level;
       scene::overrideEffects(configured, "direct,shadows,sl");
       for (auto& e : configured.entities)
@@ -71,6 +79,7 @@ int runBenchSl(const cli::Args& args) {
           e.sl->spheres = n / entities;
           e.sl->perObject = perObject;
           if (influence) e.sl->influence = *influence;
+          e.sl->half = half;
         }
       TimingCollector timings;
       double updateMs = std::numeric_limits<double>::quiet_NaN();
@@ -90,17 +99,18 @@ int runBenchSl(const cli::Args& args) {
       int found = 0;
       std::size_t timed = 0;
       for (const PassStats& s : timings.stats())
-        if (s.depth == 0 && s.object.empty() && (s.pass == "sl" || s.pass == "sl.intensity")) {
+        if (s.depth == 0 && s.object.empty() && (s.pass == "sl" || s.pass == "sl.intensity" || s.pass == "sl.upsample")) {
           slMs += s.medianMs;
           ++found;
           timed = s.frames;
         }
-      if (found != 2) throw InternalError("bench sl: the session did not run both SL passes");
+      if (found != (half ? 3 : 2)) throw InternalError("bench sl: the session did not run every SL pass");
       float f = 0.0f;
       for (const auto& e : configured.entities)
         if (e.sl) f = e.sl->influence;
-      std::printf("spheres=%d blocking=%s %dx%d sl_ms=%.3f sl_update_ms=%.3f frames=%zu influence=%g\n", n,
-                  perObject ? "per-object" : "per-sphere", res.first, res.second, slMs, updateMs, timed, double(f));
+      std::printf("spheres=%d blocking=%s %dx%d sl_ms=%.3f sl_update_ms=%.3f frames=%zu influence=%g resolution=%s\n", n,
+                  perObject ? "per-object" : "per-sphere", res.first, res.second, slMs, updateMs, timed, double(f),
+                  half ? "half" : "full");
       std::fflush(stdout);
     }
   return 0;

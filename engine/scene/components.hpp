@@ -185,6 +185,9 @@ struct Sl {
   // "influence": F of sl::evaluate's rule 0 — a receiver ignores SLs farther than F radii (fading
   // from F/2); 0 = every SL at every pixel. Run time only (pass 2), the bake is the same.
   float influence = 12.0f;
+  // "resolution": "full" (false, the default) or "half" (true): pass 2 shades every second pixel per
+  // axis and an edge-aware upsample fills the rest (engine/gi/sl/node.hpp Resolution). Run time only.
+  bool half = false;
   friend bool operator==(const Sl&, const Sl&) = default;
 };
 

@@ -177,11 +177,11 @@ void parseDnrt(const json::Node& node, EntityDesc& d, const ParseContext&) {
   d.dnrt = c;
 }
 
-// "sl": {"spheres": 1..64, "order": 3|4, "blocking": "per-sphere"|"per-object", "influence": 0|3..1000}
-//        — every key optional (defaults 16, 4, per-sphere, 12). The sphere limit is gi::sl::kMaxSpheres
+// "sl": {"spheres": 1..64, "order": 3|4, "blocking": "per-sphere"|"per-object", "influence": 0|3..1000,
+//        "resolution": "full"|"half"} — every key optional (defaults 16, 4, per-sphere, 12, full). The sphere limit is gi::sl::kMaxSpheres
 //        (one uint64 mask).
 void parseSl(const json::Node& node, EntityDesc& d, const ParseContext&) {
-  const auto o = node.object({"spheres", "order", "blocking", "influence"});
+  const auto o = node.object({"spheres", "order", "blocking", "influence", "resolution"});
   Sl c;
   if (auto v = o.optional("spheres")) c.spheres = int(v->integer(1, 64));
   if (auto v = o.optional("order")) {
@@ -201,6 +201,11 @@ void parseSl(const json::Node& node, EntityDesc& d, const ParseContext&) {
       v->fail(text, "0 (off) or 3..1000 sphere radii");
     }
     c.influence = float(f);
+  }
+  if (auto v = o.optional("resolution")) {
+    const std::string m = v->string();
+    if (m != "full" && m != "half") v->fail("unknown resolution " + json::inQuotes(m), "full or half");
+    c.half = m == "half";
   }
   d.sl = c;
 }

@@ -3,12 +3,18 @@
 // SL pass 2 (Guerrero, Jeschke, Wimmer 2008, §5.2), deferred: every G-buffer pixel is a receiver;
 // the diffuse reflection of the light arriving from every SL, ρ(p)/π · E(p) with E(p) = Σ L̃ Ṽ
 // (Eq. 13–14, sl.glsl), is ADDED to "lighting.hdr" (additive blending; W/(m²·sr), linear HDR).
-// Background pixels (depth 1) receive nothing. Order, blocking and the per-receiver array size are
-// specialization constants (engine/gi/sl/shade.hpp ShadeData::specialization).
+// Background pixels (depth 1) receive nothing. Drawn as tiles (shaders/sl/tiles.vert): a pixel
+// visits only its tile's SLs, those whose influence bound covers the tile. Order, blocking, the
+// per-receiver array size and the resolution are specialization constants
+// (engine/gi/sl/shade.hpp ShadeData::specialization, kHalf: engine/gi/sl/node.cpp).
+// Half resolution (kHalf): pixel j of the half-size target shades the G-buffer's pixel 2j and writes
+// E itself (W/m², no albedo) into "sl.half"; shaders/sl/upsample.frag spreads it over the full
+// resolution with depth and normal weights and applies each full pixel's own albedo.
 layout(constant_id = 0) const uint kOrder = 4u;
 layout(constant_id = 1) const bool kPerObject = false;
 layout(constant_id = 2) const uint kSpheres = 64u;
 layout(constant_id = 3) const float kInfluence = 0.0;
+layout(constant_id = 4) const bool kHalf = false;
 
 #include "frame.glsl"
 
@@ -21,20 +27,21 @@ layout(set = 1, binding = 2) uniform sampler2D gDepth;
 #include "sl/sl_data.glsl"
 #include "sl/sl.glsl"
 
-layout(location = 0) in vec2 inUv;
+layout(location = 0) flat in uvec4 inCandidates;
 layout(location = 0) out vec4 outRadiance;
 
 const float kInvPi = 0.31830988618379067;
 
 void main() {
-  ivec2 pixel = ivec2(gl_FragCoord.xy);
+  // The receiver: this pixel, or at half resolution the G-buffer pixel it stands for.
+  ivec2 pixel = kHalf ? min(2 * ivec2(gl_FragCoord.xy), ivec2(camera.resolution.xy) - 1) : ivec2(gl_FragCoord.xy);
   float depth = texelFetch(gDepth, pixel, 0).r;
   if (depth >= 1.0) {
     outRadiance = vec4(0.0);
     return;
   }
-  vec3 albedo = texelFetch(gAlbedo, pixel, 0).rgb;
   vec3 n = texelFetch(gNormal, pixel, 0).xyz;
   vec3 p = worldFromDepth(camera.invViewProj, (vec2(pixel) + 0.5) * camera.resolution.zw, depth);
-  outRadiance = vec4(albedo * kInvPi * max(slIrradianceAt(p, n), vec3(0.0)), 0.0);
+  vec3 e = max(slIrradianceAt(p, n, inCandidates), vec3(0.0));
+  outRadiance = kHalf ? vec4(e, 0.0) : vec4(texelFetch(gAlbedo, pixel, 0).rgb * kInvPi * e, 0.0);
 }

@@ -63,10 +63,9 @@ vec4 slThetaRow(int row, float theta) {
   return (1.0 - w) * texelFetch(slTables, ivec2(i0, row), 0) + w * texelFetch(slTables, ivec2(i0 + 1, row), 0);
 }
 
-// f_lm = √(4π/(2l+1)) z_l Y_lm(d) (sh_rotate.hpp rotateZonal).
-void slRotateZonal(vec4 z, vec3 d, out float f[16]) {
-  float y[16];
-  shEval16(d, y);
+// f_lm = √(4π/(2l+1)) z_l Y_lm(d) (sh_rotate.hpp rotateZonal), y = Y(d) (shEval16): a receiver
+// evaluates Y once per direction and reuses it (the log and the cap of one SL share theirs).
+void slRotateZonalY(vec4 z, in float y[16], out float f[16]) {
   const float s[4] = float[4](3.54490770181103205, 2.04665341589297697, 1.58533091904240551, 1.33984917138736218);
   for (uint i = 0u; i < 16u; ++i) {
     uint l = i < 1u ? 0u : (i < 4u ? 1u : (i < 9u ? 2u : 3u));
@@ -74,10 +73,15 @@ void slRotateZonal(vec4 z, vec3 d, out float f[16]) {
   }
 }
 
-// E = Σ Â_l v_lm Y_lm(n) for a scalar SH vector (sh_convolve.hpp evalIrradiance, Â_3 = 0).
-float slIrradiance(in float v[16], vec3 n) {
+void slRotateZonal(vec4 z, vec3 d, out float f[16]) {
   float y[16];
-  shEval16(n, y);
+  shEval16(d, y);
+  slRotateZonalY(z, y, f);
+}
+
+// E = Σ Â_l v_lm Y_lm(n) for a scalar SH vector (sh_convolve.hpp evalIrradiance, Â_3 = 0), with
+// y = Y(n): evaluated once per receiver.
+float slIrradianceY(in float v[16], in float y[16]) {
   float e = SH_A0 * v[0] * y[0];
   for (uint i = 1u; i < 4u; ++i) e += SH_A1 * v[i] * y[i];
   for (uint i = 4u; i < 9u; ++i) e += SH_A2 * v[i] * y[i];
@@ -111,62 +115,83 @@ void slExp(in float f[16], out float g[16]) {
   for (uint i = 0u; i < 16u; ++i) g[i] *= dc;
 }
 
-// Eq. 23–24: Ṽ = ρ_n · [exp(B) − exp(B + G_i)] for blocker sum B and the light's own log G.
-float slEq23(in float blockers[16], in float own[16], vec3 n) {
-  float with[16];
-  for (uint i = 0u; i < 16u; ++i) with[i] = blockers[i] + own[i];
-  float a[16], b[16];
-  slExp(blockers, a);
-  slExp(with, b);
-  for (uint i = 0u; i < 16u; ++i) a[i] -= b[i];
-  return slIrradiance(a, n);
-}
-
-// Lights i and j of one object whose spheres overlap ignore each other (baked occlusion, §6.2).
-bool slIntersects(uint i, uint j) {
-  vec4 a = slSphere(i), b = slSphere(j);
-  return slObject(i) == slObject(j) && length(a.xyz - b.xyz) < a.w + b.w;
-}
-
-// Per-light state at this receiver (evaluate.cpp's Prepared).
-bool slCulled[kSpheres];
+// Per-light state at this receiver, by slot s of the live list (evaluate.cpp's Prepared): only the
+// SLs that reach p after the receiver rules take a slot, so every later loop runs over them alone.
+uint slLive[kSpheres];         // the SL's index
 float slDist[kSpheres];
 float slLogs[kSpheres * 16u];
 float slRatio[kSpheres];       // exact Ṽ / Eq. 23 Ṽ of the unoccluded cap, when formed
 float slExactOpen[kSpheres];   // the exact Ṽ, used alone when the ratio is not formed
 bool slRatioFormed[kSpheres];
 vec3 slAverage[kSpheres];
-uint slOrder[kSpheres];
+uint slOrder[kSpheres];        // slots, closest first
+uint slSlotOf[kSpheres];       // the slot of SL i, for the live ones
 
-// Ṽ_i from the blockers' summed log, with the Ratio form; adds L̃ Ṽ to e.
-void slFinish(uint i, in float blockers[16], vec3 n, inout vec3 e) {
-  float own[16];
-  for (uint k = 0u; k < 16u; ++k) own[k] = slLogs[i * 16u + k];
-  float vis = slEq23(blockers, own, n);
-  vis = slRatioFormed[i] ? vis * slRatio[i] : slExactOpen[i];
-  e += slAverage[i] * vis;
+// Eq. 23–24: Ṽ_i = ρ_n · [exp(B) − exp(B + G_i)] from the blockers' summed log B and i's own G_i,
+// with the Ratio form; adds L̃ Ṽ to e. `s`: i's slot.
+// Eq. 23 needs exp(B) and exp(B + G_i). When `haveExpB`, expB already holds exp(B) (the previous
+// SL's exp(B + G), see slIrradianceAt) and that exp is skipped; expWith returns exp(B + G_i).
+void slFinish(uint s, in float blockers[16], bool haveExpB, inout float expB[16], out float expWith[16],
+              in float yn[16], inout vec3 e) {
+  float with[16];
+  for (uint k = 0u; k < 16u; ++k) with[k] = blockers[k] + slLogs[s * 16u + k];
+  // A loop of 0 or 1 turns, not an if: llvmpipe leaves a loop no lane is in, but runs both sides of
+  // a branch (README "What costs what on lavapipe").
+  for (uint t = haveExpB ? 1u : 0u; t < 1u; ++t) slExp(blockers, expB);
+  slExp(with, expWith);
+  float v[16];
+  for (uint k = 0u; k < 16u; ++k) v[k] = expB[k] - expWith[k];
+  float vis = slIrradianceY(v, yn);  // Eq. 24
+  vis = slRatioFormed[s] ? vis * slRatio[s] : slExactOpen[s];
+  e += slAverage[s] * vis;
 }
 
-// E(p) (Eq. 14), W/m² per channel for L^c in W/(m²·sr).
-vec3 slIrradianceAt(vec3 p, vec3 n) {
-  uint count = min(slCount(), kSpheres);
+// E(p) (Eq. 14), W/m² per channel for L^c in W/(m²·sr), from the SLs whose bit is set in `candidates`
+// (bit i % 32 of word i / 32; the tiled pass gives its tile's list, engine/gi/sl/tiles.hpp). SLs left
+// out must be ones the receiver rules cull at p (beyond the influence bound): a culled SL neither
+// lights nor blocks, so the sum is the same as over all SLs, term for term and in the same order.
+//
+// Two loops, because llvmpipe runs both sides of a branch but leaves a loop once none of its 8
+// lanes is still in it (README "What costs what on lavapipe"): the first applies the cheap receiver
+// rules to every candidate and keeps the ones that reach p; the second, with the rotations and exps,
+// runs as often as the 8 pixels' longest live list, not once per candidate.
+vec3 slIrradianceAt(vec3 p, vec3 n, uvec4 candidates) {
   float zero[16];
   for (uint k = 0u; k < 16u; ++k) zero[k] = 0.0;
-  for (uint i = 0u; i < count; ++i) {
-    vec4 sp = slSphere(i);
-    vec3 c = sp.xyz;
-    float r = sp.w;
-    bool kept = slAdjust(c, r, p, n);
-    float d = length(c - p);
-    slDist[i] = d;
-    slCulled[i] = !kept || !(d > 0.0);
-    slOrder[i] = i;
-    if (slCulled[i]) continue;
+  float yn[16];
+  shEval16(n, yn);
+  vec4 adjusted[kSpheres];
+  uint count = 0u;
+  for (uint w = 0u; w < 4u; ++w)
+    for (uint m = candidates[w]; m != 0u; m &= m - 1u) {
+      uint i = 32u * w + uint(findLSB(m));
+      if (i >= min(slCount(), kSpheres)) continue;
+      vec4 sp = slSphere(i);
+      vec3 c = sp.xyz;
+      float r = sp.w;
+      bool kept = slAdjust(c, r, p, n);
+      float d = length(c - p);
+      if (kept && d > 0.0) {
+        slLive[count] = i;
+        slDist[count] = d;
+        adjusted[count] = vec4(c, r);
+        slOrder[count] = count;
+        slSlotOf[i] = count;
+        ++count;
+      }
+    }
+  for (uint s = 0u; s < count; ++s) {
+    uint i = slLive[s];
+    vec3 c = adjusted[s].xyz;
+    float r = adjusted[s].w;
+    float d = slDist[s];
     vec3 dir = (c - p) / d;
     float theta = asin(min(1.0, r / d));
     float lg[16];
-    slRotateZonal(slThetaRow(0, theta), dir, lg);
-    for (uint k = 0u; k < 16u; ++k) slLogs[i * 16u + k] = lg[k];
+    float ydir[16];
+    shEval16(dir, ydir);
+    slRotateZonalY(slThetaRow(0, theta), ydir, lg);
+    for (uint k = 0u; k < 16u; ++k) slLogs[s * 16u + k] = lg[k];
     // The unoccluded cap's Ṽ: exact (1 − cap's closed-form ZH, sh_exp.hpp capVisibilityZonal) and
     // as Eq. 23 sees it (exp(0) − exp(G_i)).
     float t = cos(theta);
@@ -174,85 +199,98 @@ vec3 slIrradianceAt(vec3 p, vec3 n) {
     vec4 z = vec4(kSlSqrt4Pi - sqrt(kSlPi) * (1.0 + t), -sqrt(3.0 * kSlPi) * (p2 - 1.0) / 3.0,
                   -sqrt(5.0 * kSlPi) * (p3 - t) / 5.0, -sqrt(7.0 * kSlPi) * (p4 - p2) / 7.0);
     float cap[16];
-    slRotateZonal(z, dir, cap);
-    float exactOpen = slIrradiance(cap, n);
-    float eq23Open = slEq23(zero, lg, n);
-    slRatioFormed[i] = eq23Open > kSlMinOpen;
-    slRatio[i] = slRatioFormed[i] ? exactOpen / eq23Open : 0.0;
-    slExactOpen[i] = exactOpen;
+    slRotateZonalY(z, ydir, cap);
+    float exactOpen = slIrradianceY(cap, yn);
+    // exp(0) is the OL table's first entry as a constant (slExp of zeros, without its arithmetic).
+    float open[16];
+    slExp(lg, open);
+    for (uint k = 0u; k < 16u; ++k) open[k] = (k == 0u ? texelFetch(slTables, ivec2(0, 2), 0).x * kSlSqrt4Pi : 0.0) - open[k];
+    float eq23Open = slIrradianceY(open, yn);
+    slRatioFormed[s] = eq23Open > kSlMinOpen;
+    slRatio[s] = slRatioFormed[s] ? exactOpen / eq23Open : 0.0;
+    slExactOpen[s] = exactOpen;
     // Eq. 18: the weight rotated to the SL-local direction from its centre to p (§7.1).
     float wz[16];
     slRotateZonal(slThetaRow(1, theta), transpose(slRotation(i)) * (-dir), wz);
     vec3 avg = vec3(0.0);
     for (uint k = 0u; k < kSlCoeffs; ++k) avg += wz[k] * slIntensity(i, k);
-    slAverage[i] = avg;
+    slAverage[s] = avg;
   }
-  // Closest first; insertion sort is stable, as evaluate.cpp's stable_sort.
+  // Per-object blocking (§7.2) visits objects nearest first, by the distance from p to the mean of
+  // their (unadjusted) sphere centres, ties by id (evaluate.cpp sorts (dist, id)): each object's rank.
+  uint rank[kSpheres];
+  for (uint t = 0u; t < count; ++t) rank[t] = 0u;
+  if (kPerObject) {
+    for (uint t = 0u; t < count; ++t) {
+      uint id = slObject(slLive[t]);
+      float d = length(slObjectCentre(id).xyz - p);
+      uint r = 0u;
+      for (uint o = 0u; o < slObjectCount(); ++o) {
+        vec4 oc = slObjectCentre(o);
+        float od = length(oc.xyz - p);
+        if (oc.w >= 0.5 && (od < d || (od == d && o < id))) ++r;
+      }
+      rank[t] = r;
+    }
+  }
+  // Closest first (per-object: within each object, objects nearest first); insertion sort is
+  // stable, as evaluate.cpp's stable_sort.
   for (uint a = 1u; a < count; ++a) {
     uint v = slOrder[a];
     uint b = a;
-    while (b > 0u && slDist[slOrder[b - 1u]] > slDist[v]) {
+    while (b > 0u && (rank[slOrder[b - 1u]] > rank[v] ||
+                      (rank[slOrder[b - 1u]] == rank[v] && slDist[slOrder[b - 1u]] > slDist[v]))) {
       slOrder[b] = slOrder[b - 1u];
       --b;
     }
     slOrder[b] = v;
   }
+  // One pass in that order. An SL's blockers are the SLs before it (per-sphere: the closer ones;
+  // per-object: the closer objects' and its own object's closer ones) except those of its own object
+  // that intersect it (§6.2). So they are the running sum of the logs visited so far minus the few
+  // visited SLs that intersect it (slIntersecting: a mask built once per frame on the CPU): n + n·m
+  // vector additions for m intersections per SL, not n(n+1)/2 with a pair test each — §8.3's
+  // "O(mn) if results were re-used". Per-object and per-sphere blocking thereby cost the same here;
+  // they differ only in the order of the visit. (Floats: the sum is formed in another order than
+  // evaluate.cpp's, a change at rounding level.)
+  // Exp reuse: when neither this SL nor its predecessor skips an intersecting SL, this SL's blockers
+  // are the predecessor's plus its log — the predecessor's exp(B + G), the same floats summed the
+  // same way — so Eq. 23 costs one exp, not two.
   vec3 e = vec3(0.0);
-  if (!kPerObject) {
-    for (uint a = 0u; a < count; ++a) {
-      uint i = slOrder[a];
-      if (slCulled[i]) continue;
-      float blockers[16] = zero;
-      for (uint b = 0u; b < a; ++b) {
-        uint j = slOrder[b];
-        if (slCulled[j] || slIntersects(i, j)) continue;
-        for (uint k = 0u; k < kSlCoeffs; ++k) blockers[k] += slLogs[j * 16u + k];
+  float run[16] = zero;      // Σ logs of the SLs visited so far
+  float expPrev[16] = zero;  // the predecessor's exp(B + G)
+  bool prevFull = false;
+  uvec4 visited = uvec4(0u);  // SL i at bit i % 32 of word i / 32
+  for (uint a = 0u; a < count; ++a) {
+    uint s = slOrder[a];
+    uint i = slLive[s];
+    uvec4 skip = slIntersecting(i) & visited;
+    float blockers[16] = run;
+    for (uint w = 0u; w < 4u; ++w)
+      for (uint m = skip[w]; m != 0u; m &= m - 1u) {
+        uint t = slSlotOf[32u * w + uint(findLSB(m))];
+        for (uint k = 0u; k < kSlCoeffs; ++k) blockers[k] -= slLogs[t * 16u + k];
       }
-      slFinish(i, blockers, n, e);
-    }
-  } else {
-    // §7.2: objects by the distance from p to the mean of their (unadjusted) sphere centres; each
-    // object's spheres see the closer objects' summed logs plus their own closer spheres.
-    float closer[16] = zero;
-    uint done = 0u;  // objects handled: ids are small (0..count), visited nearest first
-    float last = -1.0;
-    uint lastId = 0xffffffffu;
-    for (;;) {
-      // The next object: least (distance, id) above (last, lastId) — evaluate.cpp sorts (dist, id).
-      float best = 3.4e38;
-      uint bestId = 0xffffffffu;
-      for (uint id = 0u; id < slObjectCount(); ++id) {
-        vec4 oc = slObjectCentre(id);
-        if (oc.w < 0.5) continue;  // no sphere has this id
-        float d = length(oc.xyz - p);
-        bool after = d > last || (d == last && id > lastId);
-        if (after && (d < best || (d == best && id < bestId))) {
-          best = d;
-          bestId = id;
-        }
-      }
-      if (bestId == 0xffffffffu) break;
-      float objectSum[16] = zero;
-      for (uint a = 0u; a < count; ++a) {
-        uint i = slOrder[a];
-        if (slObject(i) != bestId || slCulled[i]) continue;
-        float blockers[16] = closer;
-        for (uint b = 0u; b < a; ++b) {
-          uint j = slOrder[b];
-          if (slObject(j) != bestId || slCulled[j] || slIntersects(i, j)) continue;
-          for (uint k = 0u; k < kSlCoeffs; ++k) blockers[k] += slLogs[j * 16u + k];
-        }
-        slFinish(i, blockers, n, e);
-        for (uint k = 0u; k < kSlCoeffs; ++k) objectSum[k] += slLogs[i * 16u + k];
-      }
-      for (uint k = 0u; k < 16u; ++k) closer[k] += objectSum[k];
-      last = best;
-      lastId = bestId;
-      ++done;
-      if (done > count) break;
-    }
+    bool full = skip == uvec4(0u);
+    float expWith[16];
+    slFinish(s, blockers, full && prevFull, expPrev, expWith, yn, e);
+    expPrev = expWith;
+    prevFull = full;
+    for (uint k = 0u; k < 16u; ++k) run[k] += slLogs[s * 16u + k];
+    visited[i >> 5u] |= 1u << (i & 31u);
   }
   return e;
+}
+
+// Over every SL (the self-test's receivers, which no tile list culls).
+vec3 slIrradianceAt(vec3 p, vec3 n) {
+  uvec4 all = uvec4(0u);
+  uint count = min(slCount(), kSpheres);
+  for (uint w = 0u; w < 4u; ++w) {
+    uint bits = uint(clamp(int(count) - int(32u * w), 0, 32));
+    all[w] = bits == 32u ? 0xffffffffu : (1u << bits) - 1u;
+  }
+  return slIrradianceAt(p, n, all);
 }
 
 #endif  // BOUNCE_SL_GLSL

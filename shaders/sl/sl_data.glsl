@@ -7,6 +7,9 @@
 //                   xyz, spheres[4i + 1].w = its object index; header.y = object ids in use (max + 1),
 //                   objects[o] = (mean of object o's sphere centres, its sphere count): per-object
 //                   blocking's order, the same for every pixel, so computed once on the CPU;
+//                   intersects[i]: bit j % 32 of word j / 32 set when SLs i and j belong to one
+//                   object and overlap (evaluate.cpp's intersects(), in double on the CPU: they
+//                   ignore each other as blockers, §6.2);
 //   SL_BINDING + 2: SlIntensity (std140): intensity[16i + k].rgb = L^c_k (pass 1's output buffer);
 #ifndef BOUNCE_SL_DATA_GLSL
 #define BOUNCE_SL_DATA_GLSL
@@ -14,7 +17,7 @@
 const uint kSlMaxLights = 128u;  // shade.hpp kMaxShadedSpheres: 128 · 16 vec4 = 32 KiB of intensity
 
 layout(set = SL_SET, binding = SL_BINDING) uniform sampler2D slTables;
-layout(std140, set = SL_SET, binding = SL_BINDING + 1) uniform SlSpheres { uvec4 slHeader; vec4 slSpheres[kSlMaxLights * 4u]; vec4 slObjects[kSlMaxLights]; };
+layout(std140, set = SL_SET, binding = SL_BINDING + 1) uniform SlSpheres { uvec4 slHeader; vec4 slSpheres[kSlMaxLights * 4u]; vec4 slObjects[kSlMaxLights]; uvec4 slIntersectMasks[kSlMaxLights]; };
 layout(std140, set = SL_SET, binding = SL_BINDING + 2) uniform SlIntensity { vec4 slIntensities[kSlMaxLights * 16u]; };
 
 uint slCount() { return slHeader.x; }
@@ -23,6 +26,7 @@ mat3 slRotation(uint i) { return mat3(slSpheres[4u * i + 1u].xyz, slSpheres[4u *
 uint slObject(uint i) { return uint(slSpheres[4u * i + 1u].w + 0.5); }
 uint slObjectCount() { return slHeader.y; }
 vec4 slObjectCentre(uint o) { return slObjects[o]; }
+uvec4 slIntersecting(uint i) { return slIntersectMasks[i]; }
 vec3 slIntensity(uint i, uint k) { return slIntensities[16u * i + k].rgb; }
 
 #endif  // BOUNCE_SL_DATA_GLSL

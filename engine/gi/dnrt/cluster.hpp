@@ -21,46 +21,22 @@
 #include <glm/glm.hpp>
 
 #include "engine/gi/dnrt/field.hpp"
+#include "engine/gi/screen_tiles.hpp"
 
 namespace bounce::gi::dnrt {
 
-constexpr std::uint32_t kClusterTile = 16;   // pixels per tile side (clustered.frag shifts by 4)
-constexpr std::uint32_t kClusterBatch = 32;  // objects per clustered draw: one bit each of a tile's mask
+constexpr std::uint32_t kClusterTile = kScreenTile;   // pixels per tile side (clustered.frag shifts by 4)
+constexpr std::uint32_t kClusterBatch = kTileMaskBits;  // objects per clustered draw: one bit each of a tile's mask
+// The screen-tile binning is shared with SL's tiled pass 2 (engine/gi/screen_tiles.hpp).
+using gi::binObjects;
+using gi::hullMeetsSquare;
+using gi::PixelRect;
+using gi::ScreenHull;
+using gi::screenHull;
+using gi::screenRect;
+using gi::TileGrid;
+using gi::tileGrid;
 
-struct TileGrid {
-  std::uint32_t tilesX = 0, tilesY = 0;
-  std::size_t count() const { return std::size_t(tilesX) * tilesY; }
-};
-TileGrid tileGrid(glm::uvec2 resolution);
-
-// Pixels [x0, x1) × [y0, y1) that may show the outer cube boxToWorld·[−1, 1]³ through viewProj
-// (Vulkan clip space, +Y down, depth 0..1). A cube with a corner at or behind the eye plane
-// (w ≤ 0) gets the whole screen; one wholly beyond the far plane or beside the frustum none.
-struct PixelRect {
-  std::uint32_t x0 = 0, y0 = 0, x1 = 0, y1 = 0;
-  bool empty() const { return x0 >= x1 || y0 >= y1; }
-  friend bool operator==(const PixelRect&, const PixelRect&) = default;
-};
-PixelRect screenRect(const glm::mat4& viewProj, const glm::mat4& boxToWorld, glm::uvec2 resolution);
-
-// The screen footprint of the outer cube: the convex hull of its projected corners, in pixels
-// (counter-clockwise in y-down pixel space as Andrew's monotone chain emits it), or empty with
-// `all` set when a corner lies at or behind the eye plane (then every tile), or empty when
-// screenRect is. A tile is visited when its square meets the hull (separating axes: the square's
-// two and the hull's edge normals), which for a cube seen corner-on leaves out the rectangle's
-// corners — up to half its area.
-struct ScreenHull {
-  bool all = false;
-  std::vector<glm::vec2> points;
-};
-ScreenHull screenHull(const glm::mat4& viewProj, const glm::mat4& boxToWorld, glm::uvec2 resolution);
-bool hullMeetsSquare(const ScreenHull& hull, glm::vec2 lo, glm::vec2 hi);
-
-// Tile masks for `boxes` (each object's boxToWorld), batch b of kClusterBatch objects after batch
-// b − 1: mask[b·grid.count() + ty·tilesX + tx] has bit i set when object b·32 + i's screen hull
-// meets tile (tx, ty).
-std::vector<std::uint32_t> binObjects(const glm::mat4& viewProj, glm::uvec2 resolution,
-                                      std::span<const glm::mat4> boxes);
 
 // Where each field's brick sits in the atlas. Brick i occupies z ∈ [z0[i], z0[i] + N_i + 2) and
 // x, y ∈ [0, N_i + 2); its grid vertex (0, 0, 0) is texel (1, 1, z0[i] + 1).

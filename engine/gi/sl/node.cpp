@@ -1,6 +1,9 @@
 #include "engine/gi/sl/node.hpp"
 
+#include <cstring>
+
 #include "engine/core/error.hpp"
+#include "engine/gi/sl/tiles.hpp"
 #include "engine/render/passes/rendering.hpp"
 
 namespace bounce::gi::sl {
@@ -9,21 +12,39 @@ namespace {
 constexpr VkDescriptorType kSampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
 constexpr VkFormat kHdrFormat = VK_FORMAT_R16G16B16A16_SFLOAT;  // "lighting.hdr" (renderer.cpp)
 constexpr std::uint32_t kFirstShadeBinding = 3;                // sl.frag: SL_BINDING
+constexpr std::uint32_t kTilesBinding = 6;                     // tiles.vert: SlTiles
+constexpr std::uint32_t kHalfBinding = 7;                      // upsample.frag: slHalf
+
+struct TilePush {  // tiles.vert
+  glm::vec2 invExtent;
+  std::uint32_t tileSize;
+  std::uint32_t pad;
+};
 
 std::vector<gpu::Binding> inputBindings() {
   std::vector<gpu::Binding> b = {{0, kSampled}, {1, kSampled}, {2, kSampled}};
   for (const gpu::Binding& s : ShadeData::bindings(kFirstShadeBinding)) b.push_back(s);
+  b.push_back({kTilesBinding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
   return b;
+}
+
+// upsample.frag's set 1 (every binding written: lavapipe reads a bound set's unwritten image
+// descriptors and crashes).
+std::vector<gpu::Binding> upsampleBindings() {
+  return {{0, kSampled}, {1, kSampled}, {2, kSampled}, {kTilesBinding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}, {kHalfBinding, kSampled}};
 }
 }  // namespace
 
 Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t framesInFlight,
-           std::span<const SphereSet* const> sets, int order, Blocking blocking, float influence)
+           std::span<const SphereSet* const> sets, int order, Blocking blocking, float influence, Resolution resolution)
     : ctx_(ctx),
       order_(order),
       blocking_(blocking),
+      influence_(influence),
+      resolution_(resolution),
       inputLayout_(ctx, inputBindings(), "sl.inputs"),
-      layout_(ctx, {shared.frameLayout.handle(), inputLayout_.handle()}, {}, "sl") {
+      layout_(ctx, {shared.frameLayout.handle(), inputLayout_.handle()},
+              {VkPushConstantRange{VK_SHADER_STAGE_ALL, 0, sizeof(TilePush)}}, "sl") {
   for (std::uint32_t i = 0; i < std::max<std::uint32_t>(framesInFlight, 1); ++i) {
     Slot s;
     s.intensity = std::make_unique<IntensityPass>(ctx, sets, order);
@@ -31,17 +52,33 @@ Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t fra
     slots_.push_back(std::move(s));
   }
   spheres_ = slots_[0].intensity->sphereCount();
-  vert_ = gpu::ShaderModule(ctx, "passes/fullscreen.vert.spv");
+  vert_ = gpu::ShaderModule(ctx, "sl/tiles.vert.spv");
   frag_ = gpu::ShaderModule(ctx, "sl/sl.frag.spv");
   gpu::GraphicsPipelineDesc d;
   d.vertex = &vert_;
   d.fragment = &frag_;
+  const bool half = resolution == Resolution::Half;
   d.colorFormats = {kHdrFormat};
-  d.blend = gpu::Blend::Additive;
+  // Full: added to "lighting.hdr"; half: written into the cleared "sl.half" for the upsample.
+  d.blend = half ? gpu::Blend::None : gpu::Blend::Additive;
   d.specialization = ShadeData::specialization(order, blocking, spheres_, influence);
+  d.specialization.push_back(half ? 1u : 0u);  // sl.frag kHalf (constant_id 4)
   d.name = std::string("sl.") + (blocking == Blocking::PerObject ? "per-object" : "per-sphere") + ".sh" +
-           std::to_string(order * order);
+           std::to_string(order * order) + (half ? ".half" : "");
   pipeline_ = gpu::createGraphicsPipeline(ctx, layout_, d);
+  if (half) {
+    upsampleInputs_ = gpu::DescriptorSetLayout(ctx, upsampleBindings(), "sl.upsample.inputs");
+    upsampleLayout_ = gpu::PipelineLayout(ctx, {shared.frameLayout.handle(), upsampleInputs_.handle()},
+                                          {VkPushConstantRange{VK_SHADER_STAGE_ALL, 0, sizeof(TilePush)}}, "sl.upsample");
+    upsampleFrag_ = gpu::ShaderModule(ctx, "sl/upsample.frag.spv");
+    gpu::GraphicsPipelineDesc u;
+    u.vertex = &vert_;
+    u.fragment = &upsampleFrag_;
+    u.colorFormats = {kHdrFormat};
+    u.blend = gpu::Blend::Additive;
+    u.name = "sl.upsample";
+    upsample_ = gpu::createGraphicsPipeline(ctx, upsampleLayout_, u);
+  }
 }
 
 void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::span<const PosedSphere> posed,
@@ -50,12 +87,33 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::s
   if (posed.size() != spheres_ || objects.size() != spheres_ || indirect.size() != spheres_)
     throw InternalError("sl::Node: one pose, object and indirect SH per SL");
   const render::PassContext* pc = &pcIn;
-  Slot& slot = slots_[pc->frame().slot % slots_.size()];
-  // CPU writes of this slot's host-visible blocks: the ring waited for the slot's last frame.
-  slot.intensity->setSpheres(posed, indirect);
+  // `bounce graph` builds the graph without a frame ring (and records nothing): no CPU writes then.
+  const bool recording = pc->frames != nullptr;
+  Slot& slot = slots_[recording ? pc->frame().slot % slots_.size() : 0];
   std::vector<ShadedSphere> shaded(spheres_);
   for (std::uint32_t i = 0; i < spheres_; ++i) shaded[i] = {posed[i].centre, posed[i].radius, posed[i].rotation, objects[i]};
-  slot.shade->setSpheres(shaded);
+  if (recording) {
+    // CPU writes of this slot's host-visible blocks: the ring waited for the slot's last frame.
+    slot.intensity->setSpheres(posed, indirect);
+    slot.shade->setSpheres(shaded);
+  }
+  // The tiles this frame's SLs may reach (tiles.hpp), in the target's pixels: at half resolution
+  // the half-size target's tiles for pass 2, then the full-size ones for the upsample.
+  const glm::uvec2 resolution(std::uint32_t(pc->world->camera.resolution.x), std::uint32_t(pc->world->camera.resolution.y));
+  const bool half = resolution_ == Resolution::Half;
+  const glm::uvec2 halfSize = (resolution + 1u) / 2u;
+  std::vector<ShadeTile> tiles = binTiles(pc->world->camera.viewProj, half ? halfSize : resolution, shaded, influence_);
+  const std::uint32_t shadeTiles = std::uint32_t(tiles.size());
+  if (half) {
+    const std::vector<ShadeTile> full = binTiles(pc->world->camera.viewProj, resolution, shaded, influence_);
+    tiles.insert(tiles.end(), full.begin(), full.end());
+  }
+  const VkDeviceSize tileBytes = std::max<std::size_t>(tiles.size(), 1) * sizeof(ShadeTile);
+  if (recording && (!slot.tiles || slot.tiles.size() < tileBytes))
+    slot.tiles = gpu::Buffer(ctx_, {tileBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::Upload, "sl.tiles"});
+  if (recording && !tiles.empty()) std::memcpy(slot.tiles.mapped(), tiles.data(), tiles.size() * sizeof(ShadeTile));
+  const std::uint32_t tileCount = shadeTiles;
+  const std::uint32_t upsampleTiles = std::uint32_t(tiles.size()) - shadeTiles;
 
   auto& bb = graph.blackboard();
   struct IntensityData {
@@ -88,9 +146,12 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::s
         d.albedo = b.read(bb.get<rg::Texture>("gbuffer.albedo"), rg::Usage::SampledFragment);
         d.normal = b.read(bb.get<rg::Texture>("gbuffer.normal"), rg::Usage::SampledFragment);
         d.depth = b.read(bb.get<rg::Texture>("gbuffer.depth"), rg::Usage::SampledFragment);
-        d.hdr = b.write(bb.get<rg::Texture>("lighting.hdr"), rg::Usage::ColorAttachment);
+        d.hdr = half ? b.write(b.create<rg::Texture>("sl.half", rg::TextureDesc{halfSize.x, halfSize.y, 1, 1, 1,
+                                                                                 rg::Format::RGBA16F, false}),
+                               rg::Usage::ColorAttachment)
+                     : b.write(bb.get<rg::Texture>("lighting.hdr"), rg::Usage::ColorAttachment);
       },
-      [this, pc, &slot](const Data& d, const rg::PassResources& res, rg::CommandContext& c) {
+      [this, pc, &slot, tileCount](const Data& d, const rg::PassResources& res, rg::CommandContext& c) {
         VkCommandBuffer cmd = pc->cmd(c);
         VkSampler point = pc->samplers->get({VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST});
         auto view = [&](rg::Handle<rg::Texture> h) { return pc->backend->image(res.texture(h)).view(); };
@@ -98,18 +159,60 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::s
         gpu::DescriptorWriter w;
         w.sampledImage(0, view(d.albedo), point).sampledImage(1, view(d.normal), point).sampledImage(2, view(d.depth), point);
         slot.shade->write(w, kFirstShadeBinding, slot.intensity->intensity(), point);
+        w.buffer(kTilesBinding, slot.tiles);
         w.update(ctx_, inputs);
         gpu::Image& target = pc->backend->image(res.texture(d.hdr));
-        render::Attachment color{target.view(), res.keepsContents(d.hdr)};
+        // "sl.half" starts at zero (tiles no SL reaches are not drawn); "lighting.hdr" keeps its light.
+        render::Attachment color{target.view(), resolution_ == Resolution::Full && res.keepsContents(d.hdr)};
         const VkExtent2D extent{target.desc().width, target.desc().height};
         render::beginRendering(ctx_, cmd, extent, {&color, 1}, nullptr);
         pipeline_.bind(cmd);
         pipeline_.bindSet(cmd, 0, pc->frameSet);
         pipeline_.bindSet(cmd, 1, inputs);
-        vkCmdDraw(cmd, 3, 1, 0, 0);
+        pipeline_.push(cmd, TilePush{glm::vec2(1.0f / float(extent.width), 1.0f / float(extent.height)), kScreenTile, 0u});
+        // Two triangles per tile with any SL; the other tiles' pixels do no work.
+        if (tileCount > 0) vkCmdDraw(cmd, 6, tileCount, 0, 0);
         ctx_.cmdEndRendering(cmd);
       });
-  bb.put("lighting.hdr", data.hdr);
+  if (!half) {
+    bb.put("lighting.hdr", data.hdr);
+    return;
+  }
+  struct UpData {
+    rg::Handle<rg::Texture> albedo, normal, depth, half, hdr;
+  };
+  const auto& up = graph.addPass<UpData>(
+      "sl.upsample",
+      [&](rg::Builder& b, UpData& d) {
+        d.albedo = b.read(bb.get<rg::Texture>("gbuffer.albedo"), rg::Usage::SampledFragment);
+        d.normal = b.read(bb.get<rg::Texture>("gbuffer.normal"), rg::Usage::SampledFragment);
+        d.depth = b.read(bb.get<rg::Texture>("gbuffer.depth"), rg::Usage::SampledFragment);
+        d.half = b.read(data.hdr, rg::Usage::SampledFragment);
+        d.hdr = b.write(bb.get<rg::Texture>("lighting.hdr"), rg::Usage::ColorAttachment);
+      },
+      [this, pc, &slot, shadeTiles, upsampleTiles](const UpData& d, const rg::PassResources& res, rg::CommandContext& c) {
+        VkCommandBuffer cmd = pc->cmd(c);
+        VkSampler point = pc->samplers->get({VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST});
+        auto view = [&](rg::Handle<rg::Texture> h) { return pc->backend->image(res.texture(h)).view(); };
+        VkDescriptorSet inputs = pc->frame().descriptors->allocate(upsampleInputs_);
+        gpu::DescriptorWriter w;
+        w.sampledImage(0, view(d.albedo), point).sampledImage(1, view(d.normal), point).sampledImage(2, view(d.depth), point);
+        w.buffer(kTilesBinding, slot.tiles);
+        w.sampledImage(kHalfBinding, view(d.half), point);
+        w.update(ctx_, inputs);
+        gpu::Image& target = pc->backend->image(res.texture(d.hdr));
+        render::Attachment color{target.view(), res.keepsContents(d.hdr)};
+        const VkExtent2D extent{target.desc().width, target.desc().height};
+        render::beginRendering(ctx_, cmd, extent, {&color, 1}, nullptr);
+        upsample_.bind(cmd);
+        upsample_.bindSet(cmd, 0, pc->frameSet);
+        upsample_.bindSet(cmd, 1, inputs);
+        upsample_.push(cmd, TilePush{glm::vec2(1.0f / float(extent.width), 1.0f / float(extent.height)), kScreenTile, 0u});
+        // The full-resolution tiles follow the half-size ones in the tile buffer.
+        if (upsampleTiles > 0) vkCmdDraw(cmd, 6, upsampleTiles, 0, shadeTiles);
+        ctx_.cmdEndRendering(cmd);
+      });
+  bb.put("lighting.hdr", up.hdr);
 }
 
 }  // namespace bounce::gi::sl

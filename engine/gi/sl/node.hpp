@@ -1,14 +1,18 @@
 #pragma once
-// The SL render-graph node: two passes per frame.
+// The SL render-graph node: two passes per frame, three at half resolution.
 //  "sl.intensity" (compute, pass 1, §5.1): every SL's intensity SH from the level's lights (with the
 //     shadow atlas when `shadows` runs) and the probes' light at its samples (IntensityPass);
-//  "sl" (fragment, pass 2, §5.2): a full-screen triangle adds ρ/π · Σ L̃ Ṽ to "lighting.hdr" per
-//     G-buffer pixel (shaders/sl/sl.frag), reading "gbuffer.albedo", "gbuffer.normal",
-//     "gbuffer.depth" from the blackboard.
+//  "sl" (fragment, pass 2, §5.2): adds ρ/π · Σ L̃ Ṽ to "lighting.hdr" per G-buffer pixel
+//     (shaders/sl/sl.frag), reading "gbuffer.albedo", "gbuffer.normal", "gbuffer.depth" from the
+//     blackboard. Drawn as 16×16 tiles: only the tiles some SL's influence bound covers, each pixel
+//     visiting only its tile's SLs (tiles.hpp, shaders/sl/tiles.vert);
+//  at Resolution::Half, "sl" writes E at every second G-buffer pixel per axis into the transient
+//     "sl.half" (half size, RGBA16F) and "sl.upsample" (shaders/sl/upsample.frag) adds the
+//     depth- and normal-weighted upsample times ρ/π to "lighting.hdr".
 // Each is timed under its own name by the graph. Pass 2 shades every SL of every object in one draw
 // (the blocking couples objects: an object's Ṽ needs the closer objects' logs), so there are no
-// per-object rows. Per frame slot the node owns its own pass-1 buffers and pass-2 sphere block, so
-// a frame in flight never sees the next one's data.
+// per-object rows. Per frame slot the node owns its own pass-1 buffers, pass-2 sphere block and tile
+// list, so a frame in flight never sees the next one's data.
 #include <memory>
 #include <span>
 #include <vector>
@@ -22,12 +26,17 @@
 
 namespace bounce::gi::sl {
 
+// Pass 2's resolution: every pixel, or half the pixels per axis with an edge-aware upsample
+// ("sl.upsample", shaders/sl/upsample.frag) — the level key "sl": {"resolution": "full"|"half"}.
+enum class Resolution { Full, Half };
+
 class Node {
  public:
   // `sets` (not owned, must outlive the node) in participant order; `order` ≥ every set's order;
   // `influence`: evaluate.hpp rule 0's F (0: off).
   Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t framesInFlight,
-       std::span<const SphereSet* const> sets, int order, Blocking blocking, float influence);
+       std::span<const SphereSet* const> sets, int order, Blocking blocking, float influence,
+       Resolution resolution = Resolution::Full);
   // This frame's SLs, concatenated over the sets: pose, object index, probes' SH at the centre.
   void addTo(rg::RenderGraph& graph, const render::PassContext& pc, std::span<const PosedSphere> posed,
              std::span<const std::uint32_t> objects, std::span<const incident::RadianceSH> indirect);
@@ -37,16 +46,21 @@ class Node {
   struct Slot {
     std::unique_ptr<IntensityPass> intensity;
     std::unique_ptr<ShadeData> shade;
+    gpu::Buffer tiles;  // this frame's drawn tiles (tiles.hpp ShadeTile), host-visible
   };
   gpu::Context& ctx_;
   int order_;
   Blocking blocking_;
+  float influence_ = 0.0f;
+  Resolution resolution_ = Resolution::Full;
   std::uint32_t spheres_ = 0;
   std::vector<Slot> slots_;
   gpu::DescriptorSetLayout inputLayout_;
   gpu::PipelineLayout layout_;
-  gpu::ShaderModule vert_, frag_;
-  gpu::Pipeline pipeline_;
+  gpu::DescriptorSetLayout upsampleInputs_;  // at half resolution only
+  gpu::PipelineLayout upsampleLayout_;
+  gpu::ShaderModule vert_, frag_, upsampleFrag_;
+  gpu::Pipeline pipeline_, upsample_;  // upsample_: at half resolution only
 };
 
 }  // namespace bounce::gi::sl

@@ -38,14 +38,14 @@ ShadeData::ShadeData(gpu::Context& ctx, int order) : ctx_(ctx), order_(order) {
   tables_ = gpu::Image(ctx, d);
   gpu::upload(ctx, tables_, std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(texels.data()), texels.size() * sizeof(float)));
 
-  spheres_ = gpu::Buffer(ctx, {(1 + 5 * std::size_t(kMaxShadedSpheres)) * sizeof(glm::vec4), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+  spheres_ = gpu::Buffer(ctx, {(1 + 6 * std::size_t(kMaxShadedSpheres)) * sizeof(glm::vec4), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                                gpu::MemoryUsage::Upload, "sl.spheres"});
   std::memset(spheres_.mapped(), 0, spheres_.size());
 }
 
 void ShadeData::setSpheres(std::span<const ShadedSphere> spheres) {
   if (spheres.size() > kMaxShadedSpheres) throw InternalError("sl::ShadeData: more SLs than the uniform block holds");
-  std::vector<glm::vec4> v(1 + 5 * std::size_t(kMaxShadedSpheres), glm::vec4(0.0f));
+  std::vector<glm::vec4> v(1 + 6 * std::size_t(kMaxShadedSpheres), glm::vec4(0.0f));
   count_ = std::uint32_t(spheres.size());
   std::uint32_t objects = 0;
   for (const ShadedSphere& s : spheres) objects = std::max(objects, s.object + 1);
@@ -64,6 +64,17 @@ void ShadeData::setSpheres(std::span<const ShadedSphere> spheres) {
     for (int c = 0; c < 3; ++c) v[2 + 4 * i + std::size_t(c)] = glm::vec4(s.rotation[c], 0.0f);
     v[2 + 4 * i].w = float(s.object);
   }
+  // Pairs of one object that overlap (evaluate.cpp's intersects(), in double): pass 2 subtracts
+  // them from the running blocker sum instead of testing every pair per pixel.
+  std::vector<glm::uvec4> masks(kMaxShadedSpheres, glm::uvec4(0u));
+  for (std::size_t i = 0; i < spheres.size(); ++i)
+    for (std::size_t j = 0; j < spheres.size(); ++j) {
+      const ShadedSphere &a = spheres[i], &b = spheres[j];
+      if (i == j || a.object != b.object) continue;
+      if (glm::length(glm::dvec3(a.centre) - glm::dvec3(b.centre)) < double(a.radius) + double(b.radius))
+        masks[i][int(j / 32)] |= 1u << (j % 32);
+    }
+  std::memcpy(&v[1 + 5 * std::size_t(kMaxShadedSpheres)], masks.data(), masks.size() * sizeof(glm::uvec4));
   std::memcpy(spheres_.mapped(), v.data(), v.size() * sizeof(glm::vec4));
 }
 

@@ -140,6 +140,11 @@ class SlTechnique final : public Technique {
         throw InputError(sc.level.source.string() + ": " + e.pointer + "/sl/influence: " + num(e.sl->influence) +
                          " differs from entity \"" + first->id + "\"'s " + num(first->sl->influence) +
                          " (expected one influence for every sl entity of a level: pass 2 shades them in one draw)");
+      const auto resolutionName = [](const scene::Sl& c) { return c.half ? "half" : "full"; };
+      if (e.sl->half != first->sl->half)
+        throw InputError(sc.level.source.string() + ": " + e.pointer + "/sl/resolution: \"" + resolutionName(*e.sl) +
+                         "\" differs from entity \"" + first->id + "\"'s \"" + resolutionName(*first->sl) +
+                         "\" (expected one resolution for every sl entity of a level: pass 2 shades them in one draw)");
     }
     auto runtime = std::make_unique<SessionRuntime>(sc.registry, sc.cookCache, cacheFolder());
     runtime->enableGpu(sc);
@@ -301,7 +306,8 @@ void SessionRuntime::enableGpu(SessionContext& sc) {
   else
     indirect_ = std::make_unique<incident::ConstantEnvironment>(sc.level.background);
   node_ = std::make_unique<Node>(sc.ctx, sc.renderer.pipelines(), sc.renderer.frames().framesInFlight(), sets, order,
-                                 blocking, participants_.front().component.influence);
+                                 blocking, participants_.front().component.influence,
+                                 participants_.front().component.half ? Resolution::Half : Resolution::Full);
 }
 
 render::Renderer::GraphNode SessionRuntime::node() {

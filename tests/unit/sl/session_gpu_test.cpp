@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 
 #include "engine/core/error.hpp"
@@ -74,6 +75,67 @@ TEST(SlSession, RunsItsTwoPassesAndOnlyAddsLight) {
   EXPECT_GT(brighter, 0);
   std::printf("sl on the characters level at %ux%u: %d of %zu channel values brighter, none darker\n", kExtent.width,
               kExtent.height, brighter, a.rgb.size());
+}
+
+// "resolution": "half": pass 2 shades every second pixel per axis into "sl.half" and "sl.upsample"
+// adds the edge-aware upsample to the lighting; the image still only gains light, and the light it
+// gains is close to the full-resolution pass's (the measured difference is printed).
+TEST(SlSession, HalfResolutionUpsamplesAndStaysCloseToFull) {
+  const auto levelAt = [](bool half, bool sl) {
+    scene::Level level = game::loadLevelWithEffects(
+        kCharacters, sl ? std::vector<std::string>{"direct", "shadows", "sl"} : std::vector<std::string>{"direct", "shadows"});
+    for (scene::EntityDesc& e : level.entities)
+      if (e.sl) e.sl->half = half;
+    return level;
+  };
+  game::Session halfSession(gpu::testkit::sharedContext(), levelAt(true, true));
+  const Frame h = oneFrame(halfSession);
+  game::Session fullSession(gpu::testkit::sharedContext(), levelAt(false, true));
+  const Frame f = oneFrame(fullSession);
+  game::Session noneSession(gpu::testkit::sharedContext(), levelAt(false, false));
+  const Frame b = oneFrame(noneSession);
+
+  for (const char* pass : {"sl.intensity", "sl", "sl.upsample"})
+    ASSERT_EQ(std::count(h.passes.begin(), h.passes.end(), pass), 1) << pass;
+  EXPECT_EQ(std::count(f.passes.begin(), f.passes.end(), "sl.upsample"), 0);
+  const auto at = [&](const std::string& name) { return std::find(h.passes.begin(), h.passes.end(), name) - h.passes.begin(); };
+  EXPECT_LT(at("sl"), at("sl.upsample"));
+  EXPECT_LT(at("lighting"), at("sl.upsample"));
+
+  ASSERT_EQ(h.rgb.size(), b.rgb.size());
+  int darker = 0;
+  double fullSum = 0.0, halfSum = 0.0, diff2 = 0.0, term2 = 0.0;
+  for (std::size_t i = 0; i < h.rgb.size(); ++i) {
+    darker += h.rgb[i] < b.rgb[i] - 1.5f / 255.0f;
+    const double tf = double(f.rgb[i]) - b.rgb[i], th = double(h.rgb[i]) - b.rgb[i];
+    fullSum += tf;
+    halfSum += th;
+    diff2 += (th - tf) * (th - tf);
+    term2 += tf * tf;
+  }
+  EXPECT_EQ(darker, 0);
+  ASSERT_GT(fullSum, 0.0);
+  const double relSum = std::abs(halfSum - fullSum) / fullSum, relRmse = std::sqrt(diff2 / term2);
+  std::printf("sl half vs full at %ux%u (8-bit output): light added %.4f vs %.4f (%.1f %% apart), rel RMSE of the SL term %.3f\n",
+              kExtent.width, kExtent.height, halfSum, fullSum, 100.0 * relSum, relRmse);
+  EXPECT_LT(relSum, 0.1);
+  EXPECT_LT(relRmse, 0.6);  // 0.47 measured: mostly the 8-bit rounding of a small term at 48×48 samples
+}
+
+// `bounce graph` builds the graph with no frame ring and records nothing (Renderer::graphDot): the SL
+// node then writes no buffers (it used to index the missing ring and crash) and still declares its
+// passes — at half resolution also "sl.upsample" and the transient "sl.half" between them.
+TEST(SlSession, GraphDotListsItsPassesWithoutAFrame) {
+  scene::Level level = game::loadLevelWithEffects(kCharacters, std::vector<std::string>{"direct", "shadows", "sl"});
+  for (scene::EntityDesc& e : level.entities)
+    if (e.sl) e.sl->half = true;
+  game::Session session(gpu::testkit::sharedContext(), level);
+  const Frame rendered = oneFrame(session);  // the session's GI nodes join the renderer with its first frame
+  EXPECT_EQ(std::count(rendered.passes.begin(), rendered.passes.end(), "sl.upsample"), 1);
+  const std::string dot = session.renderer().graphDot(session.world(), kExtent, {});
+  for (const char* pass : {"sl.intensity", "sl", "sl.upsample"})
+    EXPECT_NE(dot.find("[label=\"" + std::string(pass) + "\", shape=box"), std::string::npos) << pass;
+  EXPECT_NE(dot.find("sl.half"), std::string::npos);
 }
 
 // Pass 2 holds at most kMaxShadedSpheres (128) SLs in all, in uniform blocks: three 64-sphere characters

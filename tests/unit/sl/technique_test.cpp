@@ -56,12 +56,12 @@ std::string mesh() { return R"("mesh": {"asset": ")" + boxAsset() + R"("})"; }
 
 TEST(SlComponent, ParsesWithDefaults) {
   const fs::path path = writeLevel("sl-ok", R"({"id": "a", "dynamic": true, )" + mesh() +
-                                                R"(, "sl": {"spheres": 32, "order": 3, "blocking": "per-object", "influence": 0}},
+                                                R"(, "sl": {"spheres": 32, "order": 3, "blocking": "per-object", "influence": 0, "resolution": "half"}},
                                                {"id": "b", "dynamic": true, )" + mesh() + R"(, "sl": {}})");
   const scene::Level level = scene::loadLevel(path);
   ASSERT_EQ(level.entities.size(), 2u);
-  EXPECT_EQ(level.entities[0].sl, (scene::Sl{32, 3, true, 0.0f}));
-  EXPECT_EQ(level.entities[1].sl, (scene::Sl{16, 4, false, 12.0f}));
+  EXPECT_EQ(level.entities[0].sl, (scene::Sl{32, 3, true, 0.0f, true}));
+  EXPECT_EQ(level.entities[1].sl, (scene::Sl{16, 4, false, 12.0f, false}));
   EXPECT_EQ(settingsFrom(*level.entities[0].sl).spheres, 32);
   EXPECT_EQ(settingsFrom(*level.entities[0].sl).order, 3);
 }
@@ -76,6 +76,8 @@ TEST(SlComponent, BadInputIsOneLine) {
             "FILE: /entities/0/sl/blocking: unknown blocking \"per-pixel\" (expected per-sphere or per-object)");
   EXPECT_EQ(loadError("sl-influence", dyn + R"(, "sl": {"influence": 2.5}})"),
             "FILE: /entities/0/sl/influence: influence 2.5 (expected 0 (off) or 3..1000 sphere radii)");
+  EXPECT_EQ(loadError("sl-resolution", dyn + R"(, "sl": {"resolution": "quarter"}})"),
+            "FILE: /entities/0/sl/resolution: unknown resolution \"quarter\" (expected full or half)");
   EXPECT_EQ(loadError("sl-key", dyn + R"(, "sl": {"sphere": 8}})").rfind("FILE: /entities/0/sl/sphere: unknown key", 0), 0u);
   EXPECT_EQ(loadError("sl-static", R"({"id": "a", )" + mesh() + R"(, "sl": {}})"),
             "FILE: /entities/0/sl: spherical lights on a static entity (expected \"dynamic\": true or a motion)");
