@@ -17,7 +17,7 @@ constexpr VkFormat kHdrFormat = VK_FORMAT_R16G16B16A16_SFLOAT;  // "lighting.hdr
 Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t framesInFlight)
     : ctx_(ctx),
       inputLayout_(ctx, {{0, kSampled}, {1, kSampled}, {2, kSampled}, {3, kSampled}}, "rtf.inputs"),
-      objectLayout_(ctx, {{0, kUniform}, {1, kSampled}}, "rtf.object"),
+      objectLayout_(ctx, {{0, kUniform}, {1, kSampled}, {2, kUniform}}, "rtf.object"),
       layout_(ctx, {shared.frameLayout.handle(), inputLayout_.handle(), objectLayout_.handle()}, {}, "rtf"),
       records_(framesInFlight) {
   const gpu::ShaderModule vert(ctx, "rtf/rtf.vert.spv"), frag(ctx, "rtf/rtf.frag.spv");
@@ -114,6 +114,7 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
           gpu::DescriptorWriter()
               .buffer(0, buffer, kUniform, i * kRtfObjectStride, sizeof(RtfObjectGpu))
               .sampledImage(1, objects[i].xi->net().view(), linear, VK_IMAGE_LAYOUT_GENERAL)
+              .buffer(2, objects[i].xi->netRange(), kUniform)
               .update(ctx_, set);
           pipeline_.bindSet(cmd, 2, set);
           if (ts) ts->begin(cmd, "rtf/" + objects[i].name);
