@@ -29,9 +29,9 @@
 
 namespace bounce::gi::rtf {
 
-// One object's shading record, std140 (shaders/rtf/rtf.vert/.frag RtfObject), in a uniform buffer:
-// the fragment shader reads it directly (uniform blocks, not SSBOs, in fragment shaders: DESIGN.md
-// "What costs what in a fragment shader on llvmpipe").
+// One object's shading record, std140 (shaders/rtf/object.glsl RtfObject), in a uniform buffer:
+// rtf.vert reads it and hands rtf.frag flat varyings (cheaper per pixel than uniform-block reads,
+// which are cheaper than SSBOs: DESIGN.md "What costs what in a fragment shader on llvmpipe").
 struct RtfObjectGpu {
   glm::vec4 toQ[3];        // rows: q = toQ · (p, 1): the field's local offset from o in units of η
   glm::vec4 toLocal[3];    // rows: world → object-frame rotation (normals)
@@ -41,7 +41,7 @@ struct RtfObjectGpu {
   // blocked[j·9 + i].rgb = Â_{l(i)}/π · T_ij, T the product matrix of the indirect radiance L
   // (object frame, at o): ((u − V) ⊙ L)_i = Σ_j T_ij (u − V)_j (sh_product.hpp productMatrix). Only
   // i < 9: the clamped cosine has Â_3 = 0. The ξ pass folds it into its per-sample X
-  // (XiPass::setBlockedLight, xi.comp), so the fragment shader reads 9 coefficients per tap.
+  // (XiPass::setBlockedLight, xi.comp), so the fragment shader reads only X (7 RGBA8 texels per tap).
   glm::vec4 blocked[kShCount * 9];
 };
 static_assert(sizeof(RtfObjectGpu) == (9 + kShCount * 9) * 16);
