@@ -15,6 +15,9 @@
 #include "sh.glsl"
 #include "rtf/rtf.glsl"
 
+// 9 SH (bands 0–2) or 4 (bands 0–1: texels 0..2 only), the object's "sh" (node.cpp: one pipeline each).
+layout(constant_id = 0) const bool kSh9 = true;
+
 layout(set = 0, binding = 0) uniform FrameUbo { Camera camera; };
 layout(set = 1, binding = 0) uniform sampler2D gAlbedo;
 layout(set = 1, binding = 1) uniform sampler2D gNormal;
@@ -57,7 +60,7 @@ void main() {
   vec3 nw = normalize(texelFetch(gNormal, pixel, 0).xyz);
   vec3 n = vec3(dot(toLocal[0].xyz, nw), dot(toLocal[1].xyz, nw), dot(toLocal[2].xyz, nw));
   float y[9];
-  shEval9(n, y);
+  shEval9(n, y);  // bands 0–1 only when !kSh9: the compiler drops the rest
 
   // Σ_i y_i X_i with X = m(2t − 1) per slot and t trilinear (one fetch per texel: bilinear in the
   // face, linear between the spheres by the slice coordinate; the weights sum to 1 before the fade):
@@ -66,13 +69,19 @@ void main() {
   vec4 y0 = vec4(y[0], y[1], y[2], y[3]), y1 = vec4(y[4], y[5], y[6], y[7]);
   vec3 sum;
   for (int c = 0; c < 3; ++c) {
-    vec4 a = y0 * inRange[c], b = y1 * inRange[3 + c];
+    vec4 a = y0 * inRange[c];
     vec4 ta = texture(netTex, vec3(uv, (float(c) * spheres + t + 0.5) * face.w));
-    vec4 tb = texture(netTex, vec3(uv, (float(3 + c) * spheres + t + 0.5) * face.w));
-    sum[c] = dot(a, 2.0 * ta - 1.0) + dot(b, 2.0 * tb - 1.0);
+    sum[c] = dot(a, 2.0 * ta - 1.0);
+    if (kSh9) {
+      vec4 b = y1 * inRange[3 + c];
+      vec4 tb = texture(netTex, vec3(uv, (float(3 + c) * spheres + t + 0.5) * face.w));
+      sum[c] += dot(b, 2.0 * tb - 1.0);
+    }
   }
-  vec3 e = y[8] * inRange[6].rgb;
-  sum += e * (2.0 * texture(netTex, vec3(uv, (6.0 * spheres + t + 0.5) * face.w)).rgb - 1.0);
+  if (kSh9) {
+    vec3 e = y[8] * inRange[6].rgb;
+    sum += e * (2.0 * texture(netTex, vec3(uv, (6.0 * spheres + t + 0.5) * face.w)).rgb - 1.0);
+  }
   vec3 albedo = texelFetch(gAlbedo, pixel, 0).rgb;
   outRadiance = vec4(albedo * (fade * sum), 0.0);
 }

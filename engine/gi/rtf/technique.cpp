@@ -179,6 +179,7 @@ SessionRuntime::SessionRuntime(SessionContext& sc, const std::filesystem::path& 
     p.name = nameOf(sc.registry, e);
     const scene::Rtf& c = sc.registry.get<scene::Rtf>(e);
     p.bounces = c.bounces;
+    p.sh = c.sh;
     ObjectBake ob{p.name, objectOf(sc.registry, e, assets), settingsFrom(c), {}};
     warnIfDeformed(sc.registry, e, assets);
     ob.output = cacheDir / ("rtf-" + cacheKey(ob.object, ob.settings) + ".field");

@@ -55,11 +55,13 @@ inline std::array<float, 28> netRanges(std::span<const glm::vec3> X) {
 // |t̃ − t| ≤ (½ + 3·2)/255 and X to 13 m/255. The bound Vulkan itself gives (≥ 4 bits of sub-texel
 // weight precision) is looser; this is the implementation the tests run on.
 inline constexpr float kNetSteps = 13.0f;
-inline float netBound(const std::array<float, 28>& m, const glm::vec4 toLocal[3], glm::vec3 n, float fade, float rho, int c) {
+// shCount: the coefficients the shading reads (the record's ids.y: 9 or 4).
+inline float netBound(const std::array<float, 28>& m, const glm::vec4 toLocal[3], glm::vec3 n, float fade, float rho, int c,
+                      int shCount = 9) {
   const glm::vec3 nl(glm::dot(glm::vec3(toLocal[0]), n), glm::dot(glm::vec3(toLocal[1]), n), glm::dot(glm::vec3(toLocal[2]), n));
   const auto y = sh::evalBasis<float>(3, nl);
   float s = 0.0f;
-  for (int i = 0; i < 9; ++i) s += std::abs(y[std::size_t(i)]) * m[std::size_t(XiPass::netSlot(c, i))];
+  for (int i = 0; i < shCount; ++i) s += std::abs(y[std::size_t(i)]) * m[std::size_t(XiPass::netSlot(c, i))];
   return rho * fade * s * kNetSteps / 255.0f;
 }
 

@@ -168,6 +168,64 @@ TEST(RtfGpu, ShaderMatchesCpuShadingOnTheFloor) {
   s.session.renderer().frames().waitIdle();
 }
 
+// "sh": 4 (its own pipeline, texels 0..2 of X): the image = shade() with bands 0–1 only, within
+// fp16 rounding and the 8-bit bound of those 4 coefficients; and band 2 matters here (the 9-SH
+// shade() differs from it by more than that bound on some pixels), so the variant is not the 9-SH one.
+TEST(RtfGpu, FourShShadingMatchesCpuShadingWithBandsZeroAndOne) {
+  gpu::Context& ctx = gpu::testkit::sharedContext();
+  Scene s(ctx);
+  ASSERT_FALSE(s.box.isNull());
+  const Sky sky;
+  const std::vector<Object> objects = {{&s.field, s.world}};
+  const BounceResult bounced = bounce(objects, sky, 1);
+  XiPass xi(ctx, s.field);
+  Node node(ctx, s.session.renderer().pipelines(), gpu::FrameRing::kDefaultFramesInFlight);
+  const Placement pl = place(s.field, s.world);
+  const RtfObjectGpu record = packObject(s.field, s.world, sourceRadiance(sky, pl.centreWorld), s.box.index(), 4);
+  EXPECT_EQ(record.ids.y, 4u);
+  s.session.renderer().setNode("rtf", [&](rg::RenderGraph& graph, render::PassContext& pc) {
+    node.addTo(graph, pc, {NodeObject{&xi, bounced.proxyLight[0], record, "box"}});
+  });
+  constexpr std::uint32_t kW = 96, kH = 96;
+  const std::vector<float> rgb = renderHdr(s.session, ctx, kW, kH);
+  const rtest::FloorScene floor = rtest::readFloorScene(s.session.level());
+  constexpr float kHalfRel = 1e-3f, kSumRel = 1e-4f;
+  const std::array<float, 28> range = testing::netRanges(testing::netValues(s.field, bounced.xi[0], record.blocked));
+  const FieldSettings& fs = s.field.settings;
+  const float dr = (fs.outerRadius - fs.innerRadius) / float(fs.spheres - 1);
+  float largest = 0.0f;
+  for (std::uint32_t y = 0; y < kH; ++y)
+    for (std::uint32_t x = 0; x < kW; ++x)
+      if (const auto p = rtest::floorPoint(floor, kW, kH, x, y))
+        largest = std::max(largest, glm::length(shade(objects, bounced, sky, *p, glm::vec3(0, 1, 0), floor.albedo, -1, 4).net()));
+  float worst = 0.0f, band2 = 0.0f;
+  int compared = 0;
+  for (std::uint32_t y = 0; y < kH; ++y)
+    for (std::uint32_t x = 0; x < kW; ++x) {
+      const auto p = rtest::floorPoint(floor, kW, kH, x, y);
+      if (!p || glm::length(glm::vec2(p->x - 0.05f, p->z + 0.03f)) < 0.15f) continue;
+      const glm::vec3 want = shade(objects, bounced, sky, *p, glm::vec3(0, 1, 0), floor.albedo, -1, 4).net();
+      const glm::vec3 nine = shade(objects, bounced, sky, *p, glm::vec3(0, 1, 0), floor.albedo, -1, 9).net();
+      const glm::vec4 pw(*p, 1.0f);
+      const float qLen = glm::length(glm::vec3(glm::dot(record.toQ[0], pw), glm::dot(record.toQ[1], pw), glm::dot(record.toQ[2], pw)));
+      const float fade = std::clamp(1.0f - (qLen - fs.outerRadius) / dr, 0.0f, 1.0f);
+      const std::size_t i = (std::size_t(y) * kW + x) * 3;
+      for (int c = 0; c < 3; ++c) {
+        const float bound = kHalfRel * std::abs(want[c]) + kSumRel * largest +
+                            testing::netBound(range, record.toLocal, glm::vec3(0, 1, 0), fade, floor.albedo[c], c, 4) + 1e-6f;
+        worst = std::max(worst, std::abs(rgb[i + std::size_t(c)] - want[c]) / bound);
+        band2 = std::max(band2, std::abs(nine[c] - want[c]) / bound);
+      }
+      ++compared;
+    }
+  std::printf("rtf 4-SH shader vs shade(..., 4): %d floor pixels, worst %.2f of its bound; band 2 reaches %.1f of it\n", compared,
+              worst, band2);
+  EXPECT_GT(compared, 5000);
+  EXPECT_LE(worst, 1.0f);
+  EXPECT_GT(band2, 1.0f);  // the 9-SH pipeline would fail the bound above
+  s.session.renderer().frames().waitIdle();
+}
+
 // The session path: naming rtf builds the runtime (field from the cache), every frame runs the
 // bouncing step for the frame's lights and both passes; the image is shade() with the lamp as the
 // proxies' source (unoccluded: nothing static lies between the box and the lamp) and no indirect
