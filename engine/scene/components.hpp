@@ -207,6 +207,9 @@ struct Rtf {
   int components = 4;        // CPCA n_e (paper 16)
   float inner = 0.5f;        // innermost sphere, units of the bounding radius η (paper 0.1)
   float outer = 4.0f;        // outermost sphere, units of η (paper 8); the field fades out one spacing beyond
+  // Run time: the SH coefficients a receiver's irradiance takes from the field, 9 (bands 0–2 of the
+  // clamped cosine: all it has, Â_3 = 0) or 4 (bands 0–1, as DNRT's "sh": 4; 3 fetches, not 7).
+  int sh = 9;
   friend bool operator==(const Rtf&, const Rtf&) = default;
 };
 

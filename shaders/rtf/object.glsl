@@ -1,5 +1,5 @@
-// One RTF object's shading record (engine/gi/rtf/update.hpp RtfObjectGpu, std140, a uniform block:
-// fragment shaders read uniform blocks, not SSBOs, on llvmpipe).
+// One RTF object's shading record (engine/gi/rtf/update.hpp RtfObjectGpu, std140, a uniform block
+// read by rtf.vert, which passes it on as flat varyings).
 struct RtfObject {
   vec4 toQ[3];        // rows: q = toQ · (p, 1), the field's offset from o in units of η
   vec4 toLocal[3];    // rows: world → object-frame rotation

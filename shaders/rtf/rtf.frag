@@ -7,22 +7,33 @@
 // its OOF, u the SH of V ≡ 1, L the indirect light at o (the record's product matrix), all in the
 // object's frame (the normal is rotated there instead of 16 coefficients into the world), and
 // E_n(L) = Σ Â_l L_lm Y_lm(n) with Â_3 = 0, so only bands 0..2 matter. Both terms are folded per
-// sample by the ξ pass into X_i (i < 9, xi.comp), looked up by hardware filtering
-// (rtf.glsl rtfTaps, a linear sampler; one trilinear fetch each): ρ Σ_i y_i(n) X_i(q). Added to
+// sample by the ξ pass into X_i (i < 9, xi.comp), stored in 8 bits as 7 RGBA texels (DNRT's
+// Table 2 order) and looked up by hardware filtering (rtf.glsl rtfTaps, a linear sampler; one
+// trilinear fetch per texel, 7 against 9 float fetches before): ρ Σ_i y_i(n) X_i(q). Added to
 // "lighting.hdr" with additive blending.
 #include "frame.glsl"
 #include "sh.glsl"
-#include "rtf/object.glsl"
 #include "rtf/rtf.glsl"
+
+// 9 SH (bands 0–2) or 4 (bands 0–1: texels 0..2 only), the object's "sh" (node.cpp: one pipeline each).
+layout(constant_id = 0) const bool kSh9 = true;
 
 layout(set = 0, binding = 0) uniform FrameUbo { Camera camera; };
 layout(set = 1, binding = 0) uniform sampler2D gAlbedo;
 layout(set = 1, binding = 1) uniform sampler2D gNormal;
 layout(set = 1, binding = 2) uniform sampler2D gDepth;
 layout(set = 1, binding = 3) uniform usampler2D gEntity;
-layout(set = 2, binding = 0) uniform ObjectUbo { RtfObject ob; };
-// X_i = Â_l/π ξ_i − Σ_j T'_ij (u − V)_j per sample, i < 9 (xi.comp): 3D, slice i·spheres + sphere.
+// X_i = Â_l/π ξ_i − Σ_j T'_ij (u − V)_j per sample, i < 9 (xi.comp): RGBA8 3D, slice k·spheres + sphere
+// for texel k < 7; a slot's t decodes to X = m(2t − 1) with m its range (inRange, from xi.comp).
 layout(set = 2, binding = 1) uniform sampler3D netTex;
+
+// The object's record, folded by rtf.vert.
+layout(location = 0) flat in vec4 toQ[3];
+layout(location = 3) flat in vec4 toLocal[3];
+layout(location = 6) flat in vec4 radial;  // inner (η), 1/Δr, spheres − 1, outer (η)
+layout(location = 7) flat in vec4 face;    // n_r, 1/(6 n_r), 1/n_r, 1/(7 · spheres)
+layout(location = 8) flat in vec4 inRange[7];
+layout(location = 15) flat in uint self;
 
 layout(location = 0) out vec4 outRadiance;
 
@@ -30,35 +41,47 @@ void main() {
   ivec2 pixel = ivec2(gl_FragCoord.xy);
   float depth = texelFetch(gDepth, pixel, 0).r;
   if (depth >= 1.0) discard;
-  // The object's own surface: its transfer already holds its self-interreflection (Eq. 8).
-  if (texelFetch(gEntity, pixel, 0).r == ob.ids.x) discard;
   vec4 r = vec4(worldFromDepth(camera.invViewProj, (vec2(pixel) + 0.5) * camera.resolution.zw, depth), 1.0);
-  vec3 q = vec3(dot(ob.toQ[0], r), dot(ob.toQ[1], r), dot(ob.toQ[2], r));
-  RtfGrid g = RtfGrid(int(ob.grid.x), int(ob.grid.y), ob.grid.z, ob.grid.w);
-  float dr = (g.outerRadius - g.innerRadius) / float(g.spheres - 1);
-  if (length(q) >= g.outerRadius + dr) discard;  // beyond the fade: the field is zero
+  vec3 q = vec3(dot(toQ[0], r), dot(toQ[1], r), dot(toQ[2], r));
+  // Eq. 10's radial weights (rtf.glsl rtfTaps, evaluate.cpp lookup()): the slice coordinate
+  // t = (|q| − inner)/Δr clamped to the first and last sphere's slice centres (inside the innermost
+  // sphere: its value), times the fade over one spacing beyond the outermost.
+  float len = length(q);
+  float fade = clamp(1.0 - (len - radial.w) * radial.y, 0.0, 1.0);
+  if (fade <= 0.0) discard;  // beyond the fade: the field is zero
+  // The object's own surface: its transfer already holds its self-interreflection (Eq. 8).
+  if (texelFetch(gEntity, pixel, 0).r == self) discard;
+  float t = clamp((len - radial.x) * radial.y, 0.0, radial.z);
+  // Bilinear within the face by clamped coordinates (rtfFace): the sampler's.
+  int f;
+  vec2 st;
+  rtfFace(len > 0.0 ? q / len : vec3(0.0), int(face.x), f, st);
+  vec2 uv = vec2((float(f) * face.x + st.x + 0.5) * face.y, (st.y + 0.5) * face.z);
   vec3 nw = normalize(texelFetch(gNormal, pixel, 0).xyz);
-  vec3 n = vec3(dot(ob.toLocal[0].xyz, nw), dot(ob.toLocal[1].xyz, nw), dot(ob.toLocal[2].xyz, nw));
+  vec3 n = vec3(dot(toLocal[0].xyz, nw), dot(toLocal[1].xyz, nw), dot(toLocal[2].xyz, nw));
   float y[9];
-  shEval9(n, y);
+  shEval9(n, y);  // bands 0–1 only when !kSh9: the compiler drops the rest
 
-  // Both terms are linear in what Eq. 10 interpolates, so the ξ pass folded them per sample
-  // (xi.comp's X): the lookup of X with Eq. 10's weights, evaluated at n.
-  // One trilinear fetch per coefficient: bilinear within the face (rtfTaps' clamped coordinates),
-  // linear between the spheres by the slice coordinate t = (|q| − inner)/Δr clamped to the first and
-  // last sphere's slice centres (inside the innermost sphere: its value), times the fade beyond the
-  // outermost — Eq. 10's weights exactly (rtfTaps gives them separately; the C++ is lookup()).
-  vec2 uv;
-  int s0, s1;
-  float w0, w1;
-  rtfTaps(g, q, uv, s0, s1, w0, w1);
-  float fade = w0 + w1;
-  if (fade <= 0.0) discard;
-  float t = clamp((length(q) - g.innerRadius) / dr, 0.0, float(g.spheres - 1));
-  float slices = float(9 * g.spheres);
-  vec3 sum = vec3(0.0);
-  for (int i = 0; i < 9; ++i) sum += y[i] * texture(netTex, vec3(uv, (float(i * g.spheres) + t + 0.5) / slices)).rgb;
-  sum *= fade;
+  // Σ_i y_i X_i with X = m(2t − 1) per slot and t trilinear (one fetch per texel: bilinear in the
+  // face, linear between the spheres by the slice coordinate; the weights sum to 1 before the fade):
+  // Σ (y m)(2t − 1) = 2 (y m)·t − Σ (y m).
+  float spheres = radial.z + 1.0;
+  vec4 y0 = vec4(y[0], y[1], y[2], y[3]), y1 = vec4(y[4], y[5], y[6], y[7]);
+  vec3 sum;
+  for (int c = 0; c < 3; ++c) {
+    vec4 a = y0 * inRange[c];
+    vec4 ta = texture(netTex, vec3(uv, (float(c) * spheres + t + 0.5) * face.w));
+    sum[c] = dot(a, 2.0 * ta - 1.0);
+    if (kSh9) {
+      vec4 b = y1 * inRange[3 + c];
+      vec4 tb = texture(netTex, vec3(uv, (float(3 + c) * spheres + t + 0.5) * face.w));
+      sum[c] += dot(b, 2.0 * tb - 1.0);
+    }
+  }
+  if (kSh9) {
+    vec3 e = y[8] * inRange[6].rgb;
+    sum += e * (2.0 * texture(netTex, vec3(uv, (6.0 * spheres + t + 0.5) * face.w)).rgb - 1.0);
+  }
   vec3 albedo = texelFetch(gAlbedo, pixel, 0).rgb;
-  outRadiance = vec4(albedo * sum, 0.0);
+  outRadiance = vec4(albedo * (fade * sum), 0.0);
 }

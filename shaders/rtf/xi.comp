@@ -1,10 +1,11 @@
 #version 450
 // RTF caches (Pan et al. 2007, §5 "Caching RTF eigens" and "Caching RTF samples") as one
-// per-frame compute pass in two dispatches (push constant `stage`), engine/gi/rtf/xi_pass.hpp:
+// per-frame compute pass in three dispatches (push constant `stage`), engine/gi/rtf/xi_pass.hpp:
 //  stage 0, Eq. 12: u_{h,e,i} = Σ_k Σ_j E_{he,k}[i][j] L_{k,j}  (per RGB channel), one invocation
 //           per (cluster h, component e = 0 (mean) … n_e, output coefficient i);
 //  stage 1, Eq. 11: ξ_{r,i} = u_{h(r),0,i} + Σ_e α_e(r) u_{h(r),e,i}, one invocation per
-//           (sample r, coefficient i), stored in the ξ image the shading step reads.
+//           (sample r, coefficient i), stored in the ξ image; with it X (below) and its range;
+//  stage 2: X encoded into the 8-bit image the shading step reads (below).
 // Data (std430, bytes): basis = float[n_c·(n_e+1)·D], D = m·16·16·3, element
 // ((k·16 + i)·16 + j)·3 + c of a component (field.hpp itfIndex); alpha = float[N·n_e];
 // cluster = uint[N]; light = vec4[m·16] (rgb: L_{k,j}, proxies' light in the object's frame);
@@ -26,10 +27,22 @@ layout(rgba32f, binding = 5) uniform writeonly image2DArray xi;
 // product matrix of the indirect light blocked by the object (light[m·16 + j·9 + i].rgb, after the
 // proxies' light). Both parts are linear in what Eq. 10 interpolates, so the shading pass looks X up
 // with the same trilinear weights (the fade included: u − V fades to 0 with them) and only evaluates
-// Σ_i y_i(n) X_i. Image: rgba32f 3D, texel (face·n_r + x, y, i·spheres + sphere): the spheres of one
-// coefficient are consecutive slices, so one trilinear fetch is Eq. 10's whole lookup (rtf.frag).
+// Σ_i y_i(n) X_i.
+// Stored as RGBA8 UNORM (llvmpipe filters 8-bit unorm texels on its fast fixed-point path; a float
+// texel goes through the general one, DESIGN.md "What costs what"), 27 values in 7 texels in
+// DNRT's Table 2 order (rtfNetSlot): texel k < 3 holds channel k's X_0..3, 3 ≤ k < 6 channel
+// (k−3)'s X_4..7, texel 6 X_8.rgb. Each of the 28 slots has its own scale m = max |X| over the
+// samples this frame (range[], atomicMax of the float bits: non-negative floats order as uints), and
+// holds t = X/(2m) + ½ rounded to 1/255, so X = m(2t − 1) to ½·2m/255. Image: 3D, texel
+// (face·n_r + x, y, k·spheres + sphere): one coefficient group's spheres are consecutive slices, so
+// one trilinear fetch is Eq. 10's whole lookup for 4 values (rtf.frag).
 layout(std430, binding = 6) readonly buffer Oof { float oof[]; };
-layout(rgba32f, binding = 7) uniform writeonly image3D net;
+layout(rgba8, binding = 7) uniform writeonly image3D net;
+layout(std430, binding = 8) buffer Range { uint range[28]; };  // float bits of max |X| per slot; 0 before stage 1
+layout(std430, binding = 9) buffer Net { vec4 netValue[]; };    // X per (sample, i < 9), rgb
+
+// Slot (texel k · 4 + component) of channel c's coefficient i (Table 2 order above).
+uint rtfNetSlot(uint c, uint i) { return i < 8u ? ((i / 4u) * 3u + c) * 4u + i % 4u : 24u + c; }
 
 layout(push_constant) uniform Push {
   uint stage;
@@ -40,8 +53,31 @@ layout(push_constant) uniform Push {
   uint faceSize;    // n_r
 } pc;
 
+// Stage 2: after every X and its slot's range are known, one invocation per (sample, texel k < 7).
+void encode(uint t) {
+  if (t >= pc.samples * 7u) return;
+  uint r = t / 7u, k = t % 7u;
+  vec4 v = vec4(128.0 / 255.0);  // slot 27 (texel 6's w) holds nothing: m = 0, so X = 0
+  for (uint comp = 0u; comp < 4u; ++comp) {
+    uint slot = k * 4u + comp;
+    if (slot >= 27u) break;
+    uint c = k < 6u ? k % 3u : comp, i = k < 6u ? (k / 3u) * 4u + comp : 8u;
+    float m = uintBitsToFloat(range[slot]);
+    float enc = m > 0.0 ? netValue[r * 9u + i][c] / (2.0 * m) + 0.5 : 0.5;
+    v[comp] = roundEven(clamp(enc, 0.0, 1.0) * 255.0) / 255.0;  // exact in UNORM8: no conversion rounding left
+  }
+  uint n2 = pc.faceSize * pc.faceSize, per = 6u * n2;
+  uint sphere = r / per, rest = r % per, face = rest / n2;
+  uint px = rest % pc.faceSize, py = (rest % n2) / pc.faceSize;
+  imageStore(net, ivec3(int(face * pc.faceSize + px), int(py), int(k * (pc.samples / per) + sphere)), v);
+}
+
 void main() {
   uint t = gl_GlobalInvocationID.x;
+  if (pc.stage == 2u) {
+    encode(t);
+    return;
+  }
   if (pc.stage == 0u) {
     uint count = pc.clusters * (pc.components + 1u) * 16u;
     if (t >= count) return;
@@ -74,7 +110,9 @@ void main() {
         float notV = (j == 0u ? 3.5449077018110318 : 0.0) - oof[r * 16u + j];  // u_0 = 2√π
         X -= notV * light[T + j * 9u + i].rgb;
       }
-      imageStore(net, ivec3(texel, int(i * (pc.samples / (6u * n2)) + sphere)), vec4(X, 0.0));
+      netValue[r * 9u + i] = vec4(X, 0.0);
+      for (uint c = 0u; c < 3u; ++c) atomicMax(range[rtfNetSlot(c, i)], floatBitsToUint(abs(X[c])));
     }
   }
 }
+

@@ -259,7 +259,7 @@ BounceResult bounce(std::span<const Object> objects, const dnrt::IrradianceSourc
 }
 
 Shading shade(std::span<const Object> objects, const BounceResult& bounced, const dnrt::IrradianceSource& source,
-              glm::vec3 r, glm::vec3 n, glm::vec3 rho, int skip) {
+              glm::vec3 r, glm::vec3 n, glm::vec3 rho, int skip, int shCount) {
   std::vector<const std::vector<glm::vec3>*> xiPtr;
   for (const auto& x : bounced.xi) xiPtr.push_back(&x);
   const Incident in = incidentRadiance(objects, xiPtr, nullptr, r, skip);
@@ -273,7 +273,8 @@ Shading shade(std::span<const Object> objects, const BounceResult& bounced, cons
   }
   const auto irradiance = [&](const ShRgb& radiance) {
     const auto e = sh::convolveCosine<glm::vec3>(std::span<const glm::vec3>(radiance));
-    return sh::evalSum<glm::vec3, float>(std::span<const glm::vec3>(e), glm::normalize(n));
+    return sh::evalSum<glm::vec3, float>(std::span<const glm::vec3>(e).first(std::size_t(shCount == 4 ? 4 : kShCount)),
+                                         glm::normalize(n));
   };
   Shading s;
   const glm::vec3 k = rho / float(math::kPi);

@@ -104,8 +104,9 @@ struct Shading {
   glm::vec3 blocked{0.0f};
   glm::vec3 net() const { return interreflected - blocked; }
 };
+// `shCount` 9: E_n with every band the clamped cosine has (Â_3 = 0); 4: bands 0–1 only (scene::Rtf::sh).
 Shading shade(std::span<const Object> objects, const BounceResult& bounced, const dnrt::IrradianceSource& source,
-              glm::vec3 r, glm::vec3 n, glm::vec3 rho, int skip);
+              glm::vec3 r, glm::vec3 n, glm::vec3 rho, int skip, int shCount = 9);
 
 // The source's 9 radiance coefficients padded with zeros to 16 (band 3 unknown to the source).
 ShRgb sourceRadiance(const dnrt::IrradianceSource& source, glm::vec3 p);

@@ -17,7 +17,7 @@ constexpr VkFormat kHdrFormat = VK_FORMAT_R16G16B16A16_SFLOAT;  // "lighting.hdr
 Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t framesInFlight)
     : ctx_(ctx),
       inputLayout_(ctx, {{0, kSampled}, {1, kSampled}, {2, kSampled}, {3, kSampled}}, "rtf.inputs"),
-      objectLayout_(ctx, {{0, kUniform}, {1, kSampled}}, "rtf.object"),
+      objectLayout_(ctx, {{0, kUniform}, {1, kSampled}, {2, kUniform}}, "rtf.object"),
       layout_(ctx, {shared.frameLayout.handle(), inputLayout_.handle(), objectLayout_.handle()}, {}, "rtf"),
       records_(framesInFlight) {
   const gpu::ShaderModule vert(ctx, "rtf/rtf.vert.spv"), frag(ctx, "rtf/rtf.frag.spv");
@@ -27,8 +27,13 @@ Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t fra
   d.colorFormats = {kHdrFormat};
   d.blend = gpu::Blend::Additive;
   d.cull = VK_CULL_MODE_FRONT_BIT;  // back faces of the box: each covered pixel once, camera inside or out
+  // One pipeline per SH count (rtf.frag's kSh9): llvmpipe runs an untaken branch in full.
   d.name = "rtf";
-  pipeline_ = gpu::createGraphicsPipeline(ctx, layout_, d);
+  d.specialization = {1u};
+  pipeline9_ = gpu::createGraphicsPipeline(ctx, layout_, d);
+  d.name = "rtf.sh4";
+  d.specialization = {0u};
+  pipeline4_ = gpu::createGraphicsPipeline(ctx, layout_, d);
 }
 
 void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::vector<NodeObject> objects) {
@@ -105,17 +110,22 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
         render::Attachment color{target.view(), res.keepsContents(d.hdr)};
         const VkExtent2D extent{target.desc().width, target.desc().height};
         render::beginRendering(ctx_, cmd, extent, {&color, 1}, nullptr);
-        pipeline_.bind(cmd);
-        pipeline_.bindSet(cmd, 0, pc->frameSet);
-        pipeline_.bindSet(cmd, 1, inputs);
+        // Both pipelines share the layout: sets bound through one stay bound for the other.
+        pipeline9_.bind(cmd);
+        pipeline9_.bindSet(cmd, 0, pc->frameSet);
+        pipeline9_.bindSet(cmd, 1, inputs);
+        const gpu::Pipeline* bound = &pipeline9_;
         gpu::TimestampPool* ts = pc->frame().timestamps.get();
         for (std::size_t i = 0; i < objects.size(); ++i) {
           VkDescriptorSet set = pc->frame().descriptors->allocate(objectLayout_);
           gpu::DescriptorWriter()
               .buffer(0, buffer, kUniform, i * kRtfObjectStride, sizeof(RtfObjectGpu))
               .sampledImage(1, objects[i].xi->net().view(), linear, VK_IMAGE_LAYOUT_GENERAL)
+              .buffer(2, objects[i].xi->netRange(), kUniform)
               .update(ctx_, set);
-          pipeline_.bindSet(cmd, 2, set);
+          const gpu::Pipeline* want = objects[i].record.ids.y == 4u ? &pipeline4_ : &pipeline9_;
+          if (want != bound) want->bind(cmd), bound = want;
+          bound->bindSet(cmd, 2, set);
           if (ts) ts->begin(cmd, "rtf/" + objects[i].name);
           vkCmdDraw(cmd, 36, 1, 0, 0);
           if (ts) ts->end(cmd);

@@ -40,7 +40,7 @@ class Node {
   gpu::Context& ctx_;
   gpu::DescriptorSetLayout inputLayout_, objectLayout_;
   gpu::PipelineLayout layout_;
-  gpu::Pipeline pipeline_;
+  gpu::Pipeline pipeline9_, pipeline4_;
   std::vector<gpu::Buffer> records_;  // per frame slot, RtfObjectGpu at kRtfObjectStride
 };
 

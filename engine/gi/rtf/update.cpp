@@ -5,13 +5,15 @@
 
 #include <algorithm>
 
+#include "engine/core/error.hpp"
 #include "engine/math/sampling.hpp"
 #include "engine/math/sh.hpp"
 #include "engine/scene/components.hpp"
 
 namespace bounce::gi::rtf {
 
-RtfObjectGpu packObject(const Field& f, const glm::mat4& world, const ShRgb& indirect, std::uint32_t entity) {
+RtfObjectGpu packObject(const Field& f, const glm::mat4& world, const ShRgb& indirect, std::uint32_t entity, int shCount) {
+  if (shCount != 4 && shCount != 9) throw InternalError("rtf::packObject: SH count " + std::to_string(shCount) + " (4 or 9)");
   const Placement p = place(f, world);
   RtfObjectGpu o{};
   // q = (worldToLocal·p − centre)/η: rows of the affine map.
@@ -26,7 +28,7 @@ RtfObjectGpu packObject(const Field& f, const glm::mat4& world, const ShRgb& ind
   const float dr = (s.outerRadius - s.innerRadius) / float(s.spheres - 1);
   o.centreWorld = glm::vec4(p.centreWorld, (s.outerRadius + dr) * p.radiusWorld);
   o.grid = glm::vec4(float(s.spheres), float(s.faceSize), s.innerRadius, s.outerRadius);
-  o.ids = glm::uvec4(entity + 1u, 0u, 0u, 0u);
+  o.ids = glm::uvec4(entity + 1u, std::uint32_t(shCount), 0u, 0u);
   // T per channel in the object frame (Eq. 10's occlusion, shade() in evaluate.cpp).
   const ShRgb L = rotate(indirect, toLocal);
   for (int c = 0; c < 3; ++c) {
@@ -73,7 +75,7 @@ FrameObjects Update::frame(std::span<const render::LightGpu> lights) {
     for (std::size_t o = 0; o < objects.size(); ++o) {
       const Placement pl = place(*objects[o].field, objects[o].world);
       out.records.push_back(packObject(*objects[o].field, objects[o].world, sourceRadiance(indirect, pl.centreWorld),
-                                       participants_[out.participant[o]].entity.index()));
+                                       participants_[out.participant[o]].entity.index(), participants_[out.participant[o]].sh));
     }
   }
   bounceMs_.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());

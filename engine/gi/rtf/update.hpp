@@ -29,19 +29,19 @@
 
 namespace bounce::gi::rtf {
 
-// One object's shading record, std140 (shaders/rtf/rtf.vert/.frag RtfObject), in a uniform buffer:
-// the fragment shader reads it directly (uniform blocks, not SSBOs, in fragment shaders: DESIGN.md
-// "What costs what in a fragment shader on llvmpipe").
+// One object's shading record, std140 (shaders/rtf/object.glsl RtfObject), in a uniform buffer:
+// rtf.vert reads it and hands rtf.frag flat varyings (cheaper per pixel than uniform-block reads,
+// which are cheaper than SSBOs: DESIGN.md "What costs what in a fragment shader on llvmpipe").
 struct RtfObjectGpu {
   glm::vec4 toQ[3];        // rows: q = toQ · (p, 1): the field's local offset from o in units of η
   glm::vec4 toLocal[3];    // rows: world → object-frame rotation (normals)
   glm::vec4 centreWorld;   // xyz: o in the world; w: half-size (m) of the drawn box, (outer + Δr)·η
   glm::vec4 grid;          // spheres, face size, inner, outer (η)
-  glm::uvec4 ids;          // x: entity index + 1 (its own pixels skip the field)
+  glm::uvec4 ids;          // x: entity index + 1 (its own pixels skip the field); y: SH count 4 or 9 (the pipeline)
   // blocked[j·9 + i].rgb = Â_{l(i)}/π · T_ij, T the product matrix of the indirect radiance L
   // (object frame, at o): ((u − V) ⊙ L)_i = Σ_j T_ij (u − V)_j (sh_product.hpp productMatrix). Only
   // i < 9: the clamped cosine has Â_3 = 0. The ξ pass folds it into its per-sample X
-  // (XiPass::setBlockedLight, xi.comp), so the fragment shader reads 9 coefficients per tap.
+  // (XiPass::setBlockedLight, xi.comp), so the fragment shader reads only X (7 RGBA8 texels per tap).
   glm::vec4 blocked[kShCount * 9];
 };
 static_assert(sizeof(RtfObjectGpu) == (9 + kShCount * 9) * 16);
@@ -49,8 +49,9 @@ inline constexpr std::size_t kRtfObjectStride = 2560;  // a multiple of every mi
 static_assert(sizeof(RtfObjectGpu) <= kRtfObjectStride);
 
 // The record of a field placed by `world` with indirect radiance `indirect` (world frame, at o),
-// entity `entity` (index; its own pixels skip the field).
-RtfObjectGpu packObject(const Field& field, const glm::mat4& world, const ShRgb& indirect, std::uint32_t entity);
+// entity `entity` (index; its own pixels skip the field), shaded with `shCount` (4 or 9) SH.
+RtfObjectGpu packObject(const Field& field, const glm::mat4& world, const ShRgb& indirect, std::uint32_t entity,
+                        int shCount = 9);
 
 // The incident-light service as the bouncing step's source: indirect + lights at a point (radius 0).
 class LitSource final : public incident::IndirectSource {
@@ -69,6 +70,7 @@ struct Participant {
   std::string name;  // the entity id: timestamp scopes "rtf/<name>", "rtf.bounce/<name>"
   Field field;
   int bounces = 2;
+  int sh = 9;  // receiver SH count (scene::Rtf::sh): the record's ids.y
 };
 
 // One frame's objects after the bouncing step, in participant order (objects without a world

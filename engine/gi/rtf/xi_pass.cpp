@@ -32,7 +32,9 @@ XiPass::XiPass(gpu::Context& ctx, const Field& f)
                   {4, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                   {5, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
                   {6, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                  {7, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}},
+                  {7, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
+                  {8, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                  {9, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}},
                  "rtf.xi"),
       layout_(ctx, {setLayout_.handle()}, {{VK_SHADER_STAGE_ALL, 0, sizeof(Push)}}, "rtf.xi"),
       descriptors_(ctx) {
@@ -57,11 +59,17 @@ XiPass::XiPass(gpu::Context& ctx, const Field& f)
   d.name = "rtf.xi";
   xi_ = gpu::Image(ctx, d);
   gpu::ImageDesc nd = d;
+  nd.format = VK_FORMAT_R8G8B8A8_UNORM;  // X in DNRT's Table 2 order, 7 texels per sample (xi.comp)
   nd.type = gpu::ImageType::Tex3D;
   nd.layers = 1;
-  nd.depth = std::uint32_t(s.spheres * 9);
+  nd.depth = std::uint32_t(s.spheres * kNetTexels);
   nd.name = "rtf.net";
   net_ = gpu::Image(ctx, nd);
+  // Read by xi.comp (atomicMax, then the encoding) and by the shading pass as a uniform block.
+  range_ = gpu::Buffer(ctx, {kNetTexels * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT |
+                                                   VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                             gpu::MemoryUsage::GpuOnly, "rtf.net-range"});
+  netValue_ = gpu::Buffer(ctx, {sampleCount(s) * 9 * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::GpuOnly, "rtf.net-value"});
   oofBuffer_ = storage(ctx, f.oof, "rtf.oof-buffer");
   gpu::ImageDesc o = d;
   o.layers = std::uint32_t(s.spheres * 4);
@@ -92,6 +100,8 @@ XiPass::XiPass(gpu::Context& ctx, const Field& f)
       .storageImage(5, xi_.view())
       .buffer(6, oofBuffer_)
       .storageImage(7, net_.view())
+      .buffer(8, range_)
+      .buffer(9, netValue_)
       .update(ctx, set_);
   blocked_.assign(kShCount * 9, glm::vec4(0.0f));
   std::vector<glm::vec3> zero(std::size_t(s.proxies) * kShCount, glm::vec3(0.0f));
@@ -110,15 +120,17 @@ void XiPass::setBlockedLight(std::span<const glm::vec4> blocked) {
 }
 
 void XiPass::record(VkCommandBuffer cmd) {
-  // The previous frame's reads (ξ in fragment shaders, light and eigen here) finish before this
+  // The previous frame's reads (X in fragment shaders, its ranges in vertex shaders, light and eigen here) finish before this
   // frame's writes (write-after-read: an execution dependency suffices).
-  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
                        VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 0, nullptr, 0, nullptr, 0,
                        nullptr);
   std::vector<glm::vec4> data = pending_;
   data.insert(data.end(), blocked_.begin(), blocked_.end());
   vkCmdUpdateBuffer(cmd, light_.handle(), 0, data.size() * sizeof(glm::vec4), data.data());
-  VkMemoryBarrier uploaded{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_TRANSFER_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT};
+  vkCmdFillBuffer(cmd, range_.handle(), 0, VK_WHOLE_SIZE, 0u);  // atomicMax starts from +0.0
+  VkMemoryBarrier uploaded{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_TRANSFER_WRITE_BIT,
+                           VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT};  // the atomics read and write
   vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &uploaded, 0, nullptr,
                        0, nullptr);
   if (xi_.layout() != VK_IMAGE_LAYOUT_GENERAL) gpu::transition(cmd, xi_, VK_IMAGE_LAYOUT_GENERAL);
@@ -137,9 +149,19 @@ void XiPass::record(VkCommandBuffer cmd) {
   p.stage = 1;
   pipeline_.push(cmd, p);
   vkCmdDispatch(cmd, (p.samples * kShCount + 63) / 64, 1, 1);
-  VkMemoryBarrier done{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_SHADER_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT};
+  // Stage 2 reads every X and the finished ranges.
+  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &barrier, 0,
+                       nullptr, 0, nullptr);
+  p.stage = 2;
+  pipeline_.push(cmd, p);
+  vkCmdDispatch(cmd, (p.samples * kNetTexels + 63) / 64, 1, 1);
+  VkMemoryBarrier done{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_SHADER_WRITE_BIT,
+                       VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_UNIFORM_READ_BIT};
+  // The shading pass reads the ranges in its vertex shader (rtf.vert), X in its fragment shader.
   vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
-                       VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, 0, 1, &done, 0,
+                       VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_VERTEX_SHADER_BIT |
+                           VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT,
+                       0, 1, &done, 0,
                        nullptr, 0, nullptr);
 }
 

@@ -1,7 +1,7 @@
 #pragma once
 // One object's RTF on the GPU: the bouncing step's caches (Eq. 11–12, shaders/rtf/xi.comp): one object's CPCA field
 // uploaded once, the proxies' light each frame, ξ written into an rgba32f 2D-array image (layer
-// sphere·16 + i, texel (face·n_r + x, y)) for the shading step to read with texelFetch. The CPU
+// sphere·16 + i, texel (face·n_r + x, y)) and the shading step's X into an 8-bit 3D image (net()). The CPU
 // reference is xiCache() (evaluate.hpp); tests/unit/rtf/xi_gpu_test.cpp compares the two.
 #include <span>
 #include <vector>
@@ -29,8 +29,15 @@ class XiPass {
   // T'_ij = blocked[j·9 + i].rgb (update.hpp RtfObjectGpu::blocked), 144 entries; zero until set.
   // Written with the light by the next record().
   void setBlockedLight(std::span<const glm::vec4> blocked);
-  // X for i < 9: rgba32f 3D, texel (face·n_r + x, y, i·spheres + sphere); GENERAL layout after record().
+  // X for i < 9 in 8 bits (xi.comp): RGBA8 UNORM 3D, texel (face·n_r + x, y, k·spheres + sphere) for
+  // texel k < kNetTexels in DNRT's Table 2 order; slot k·4 + c holds t = X/(2m) + ½ with m =
+  // netRange()'s slot (float max |X| this frame), so X = m(2t − 1). GENERAL layout after record().
+  static constexpr std::uint32_t kNetTexels = 7;
+  // The slot (texel k · 4 + component) of channel c's X_i, i < 9 (xi.comp rtfNetSlot).
+  static constexpr int netSlot(int c, int i) { return i < 8 ? ((i / 4) * 3 + c) * 4 + i % 4 : 24 + c; }
   gpu::Image& net() { return net_; }
+  // 28 floats (vec4[7]): each slot's m; the shading pass binds it as a uniform block.
+  gpu::Buffer& netRange() { return range_; }
   gpu::Image& xi() { return xi_; }
   // The object occlusion field, uploaded once: rgba32f 2D array, layer sphere·4 + i/4, texel
   // (face·n_r + x, y), component i%4 (shaders/rtf/rtf.glsl), SHADER_READ_ONLY_OPTIMAL.
@@ -48,6 +55,7 @@ class XiPass {
   std::vector<glm::vec4> blocked_;
   gpu::Image xi_, oof_, net_;
   gpu::Buffer oofBuffer_;  // the OOF again as floats, for xi.comp's X
+  gpu::Buffer range_, netValue_;  // X's per-slot range and X itself before the encoding
   gpu::DescriptorSetLayout setLayout_;
   gpu::PipelineLayout layout_;
   gpu::Pipeline pipeline_;

@@ -2,7 +2,10 @@
 // hold what README promises: the closed box, one point light, and 1/5/10 dynamic props.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
+#include <vector>
 
 #include "engine/ecs/registry.hpp"
 #include "engine/scene/capture.hpp"
@@ -53,4 +56,25 @@ TEST(Content, CornellLevelsHaveTheirDynamicProps) {
     EXPECT_EQ(cameras, 1);
     EXPECT_TRUE(level.effects.has(scene::Effect::Direct));
   }
+}
+
+// cornell-rtf is the RTF multi-bounce level (README "RTF"): three boxes with rtf and dnrt
+// components side by side, the gap between neighbours within one bounding radius of a box (the
+// Box asset is the unit cube: half-size s/2 and bounding radius s·√3/2 at scale s), so their
+// fields reach each other's surfaces and light bounces between them.
+TEST(Content, CornellRtfBoxesStandWithinOneBoundingRadius) {
+  auto level = scene::loadLevel(kContent / "levels" / "cornell-rtf.json");
+  std::vector<const scene::EntityDesc*> boxes;
+  for (const auto& e : level.entities)
+    if (e.rtf && e.dnrt) boxes.push_back(&e);
+  ASSERT_EQ(boxes.size(), 3u);
+  std::sort(boxes.begin(), boxes.end(), [](auto* a, auto* b) { return a->transform.translation.x < b->transform.translation.x; });
+  for (std::size_t i = 0; i + 1 < boxes.size(); ++i) {
+    const float s = boxes[i]->transform.scale.x;
+    const float gap = boxes[i + 1]->transform.translation.x - boxes[i]->transform.translation.x - s;
+    EXPECT_GT(gap, 0.0f);                               // not overlapping
+    EXPECT_LE(gap, s * std::sqrt(3.0f) / 2.0f) << i;    // within one bounding radius
+    EXPECT_EQ(boxes[i]->transform.translation.y, boxes[i + 1]->transform.translation.y);
+  }
+  EXPECT_TRUE(level.effects.has(scene::Effect::Rtf));
 }

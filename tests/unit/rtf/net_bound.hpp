@@ -1,0 +1,68 @@
+#pragma once
+// What the ξ pass's 8-bit X image (xi.comp, XiPass::net) holds, on the CPU, and the error bound its
+// 8 bits put on the shading pass (rtf.frag) — shared by the GPU tests of both passes.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <span>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "engine/gi/rtf/evaluate.hpp"
+#include "engine/gi/rtf/xi_pass.hpp"
+#include "engine/math/sh.hpp"
+#include "engine/math/sh_convolve.hpp"
+#include "engine/math/sampling.hpp"
+#include "engine/math/sh_eval.hpp"
+
+namespace bounce::gi::rtf::testing {
+
+// X_i = Â_l(i)/π ξ_i − Σ_j T'_ij (u − V)_j per sample and i < 9, [sample·9 + i] (xi.comp's fold;
+// T'_ij = blocked[j·9 + i].rgb as RtfObjectGpu::blocked, u_0 = 2√π).
+inline std::vector<glm::vec3> netValues(const Field& f, std::span<const glm::vec3> xi, std::span<const glm::vec4> blocked) {
+  const std::size_t N = sampleCount(f.settings);
+  std::vector<glm::vec3> X(N * 9);
+  for (std::size_t r = 0; r < N; ++r)
+    for (int i = 0; i < 9; ++i) {
+      const float a = float(sh::cosineLobeBand(i == 0 ? 0 : i < 4 ? 1 : 2) / math::kPi);
+      glm::vec3 x = a * xi[r * kShCount + std::size_t(i)];
+      for (int j = 0; j < kShCount; ++j) {
+        const float notV = (j == 0 ? 3.5449077018110318f : 0.0f) - f.oof[r * kShCount + std::size_t(j)];
+        x -= notV * glm::vec3(blocked[std::size_t(j * 9 + i)]);
+      }
+      X[r * 9 + std::size_t(i)] = x;
+    }
+  return X;
+}
+
+// Each slot's scale m = max |X| over the samples (XiPass::netRange), [slot].
+inline std::array<float, 28> netRanges(std::span<const glm::vec3> X) {
+  std::array<float, 28> m{};
+  for (std::size_t k = 0; k < X.size(); ++k)
+    for (int c = 0; c < 3; ++c) {
+      float& slot = m[std::size_t(XiPass::netSlot(c, int(k % 9)))];
+      slot = std::max(slot, std::abs(X[k][c]));
+    }
+  return m;
+}
+
+// The 8-bit image's share of a shaded pixel's error, channel c, receiver normal n (world), albedo
+// ρ_c: ρ_c · fade · Σ_i |y_i(n_local)| · m_slot(c,i) · kNetSteps/255. Per slot the stored
+// t = X/(2m) + ½ is X to ½ step of 1/255 (X: m/255); the sampler then filters 8-bit texels on
+// llvmpipe's fixed-point path: 8-bit weights and an 8-bit result for each of the 3 lerps of a
+// trilinear fetch, ≤ 1 step of t from the weight and ≤ 1 from the result each, so
+// |t̃ − t| ≤ (½ + 3·2)/255 and X to 13 m/255. The bound Vulkan itself gives (≥ 4 bits of sub-texel
+// weight precision) is looser; this is the implementation the tests run on.
+inline constexpr float kNetSteps = 13.0f;
+// shCount: the coefficients the shading reads (the record's ids.y: 9 or 4).
+inline float netBound(const std::array<float, 28>& m, const glm::vec4 toLocal[3], glm::vec3 n, float fade, float rho, int c,
+                      int shCount = 9) {
+  const glm::vec3 nl(glm::dot(glm::vec3(toLocal[0]), n), glm::dot(glm::vec3(toLocal[1]), n), glm::dot(glm::vec3(toLocal[2]), n));
+  const auto y = sh::evalBasis<float>(3, nl);
+  float s = 0.0f;
+  for (int i = 0; i < shCount; ++i) s += std::abs(y[std::size_t(i)]) * m[std::size_t(XiPass::netSlot(c, i))];
+  return rho * fade * s * kNetSteps / 255.0f;
+}
+
+}  // namespace bounce::gi::rtf::testing
