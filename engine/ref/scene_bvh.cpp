@@ -10,18 +10,26 @@
 #include "engine/core/error.hpp"
 
 namespace bounce::ref {
+
+// lights.glsl compiled as C++ (its header): the passes' light math, one copy. Light has the
+// members of the shader's struct (render::LightGpu's; engine/ref does not depend on render).
+// Outside the anonymous namespace: there, cubeFace (not called here) would warn as unused.
+namespace lightsglsl {
+using namespace glm;
+struct Light {
+  vec4 positionType, directionRange, radiance, cone, shadow;
+};
+#define BOUNCE_LIGHTS_HOST
+#define LIGHTS_OUT(T) T&
+#include "shaders/common/lights.glsl"
+#undef LIGHTS_OUT
+#undef BOUNCE_LIGHTS_HOST
+}  // namespace lightsglsl
+
 namespace {
 
 // sRGB EOTF (IEC 61966-2-1), what the GPU applies to each texel of an *_SRGB image before filtering.
 float srgbToLinear(float c) { return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f); }
-
-// glTF KHR_lights_punctual range window (lights.glsl rangeWindow()).
-float rangeWindow(float d, float range) {
-  if (range <= 0.0f) return 1.0f;
-  const float r = d / range;
-  const float w = std::clamp(1.0f - r * r * r * r, 0.0f, 1.0f);
-  return w * w;
-}
 
 void check(bool ok, const std::string& what) {
   if (!ok) throw InternalError("ref::SceneBvh: " + what);
@@ -64,22 +72,13 @@ glm::vec3 RefTexture::sample(glm::vec2 uv) const {
 }
 
 glm::vec3 incidentIrradiance(const RefLight& light, const glm::vec3& p, glm::vec3& toLight, float& dist) {
-  if (light.type == RefLightType::Directional) {
-    toLight = -light.direction;
-    dist = 1e30f;
-    return light.radiance;
-  }
-  const glm::vec3 v = light.position - p;
-  const float d2 = std::max(glm::dot(v, v), 1e-12f);  // receivers on the light itself stay finite
-  dist = std::sqrt(d2);
-  toLight = v / dist;
-  glm::vec3 e = light.radiance / d2 * rangeWindow(dist, light.range);
-  if (light.type == RefLightType::Spot) {
-    const float cd = glm::dot(-toLight, light.direction);
-    const float t = std::clamp((cd - light.cosOuter) / std::max(light.cosInner - light.cosOuter, 1e-4f), 0.0f, 1.0f);
-    e *= t * t;
-  }
-  return e;
+  const std::uint32_t type = light.type == RefLightType::Directional ? lightsglsl::kLightDirectional
+                             : light.type == RefLightType::Spot      ? lightsglsl::kLightSpot
+                                                                     : lightsglsl::kLightPoint;
+  const lightsglsl::Light l{glm::vec4(light.position, float(type)), glm::vec4(light.direction, light.range),
+                            glm::vec4(light.radiance, 0.0f), glm::vec4(light.cosOuter, light.cosInner, 0.0f, 0.0f),
+                            glm::vec4(0.0f)};
+  return lightsglsl::incidentIrradiance(l, p, toLight, dist);
 }
 
 struct SceneBvh::Embree {

@@ -90,9 +90,10 @@ struct SceneDesc {
 void hashGeometry(Hasher& h, const SceneDesc& scene);
 
 // Irradiance at p from one light on a surface facing it, before the cosine and visibility.
-// lights.glsl incidentIrradiance(), term for term: 1/d² with d² ≥ 1e-12, the glTF range window,
-// and the spot cone falloff t², t the clamped linear ramp from cos(outer) to cos(inner). Writes
-// the unit direction towards the light and the distance (1e30 for directional).
+// lights.glsl incidentIrradiance() itself, compiled as C++ (scene_bvh.cpp): 1/d² with d² ≥ 1e-12,
+// the glTF range window, and the spot cone falloff t², t the clamped linear ramp from cos(outer)
+// to cos(inner). Writes the unit direction towards the light and the distance (1e30 for
+// directional).
 glm::vec3 incidentIrradiance(const RefLight& light, const glm::vec3& p, glm::vec3& toLight, float& dist);
 
 struct Hit {

@@ -13,6 +13,9 @@
 
 layout(constant_id = 0) const int kCoeffs = 9;  // order²: 4 or 9
 const int kTexels = (3 * kCoeffs + 4) / 4;      // SH texels per probe: 3 floats a coefficient + valid
+// The SH texels from the uniform block below instead of the image when the volume fits it (node.cpp
+// kShUboBytes): the same floats, fetched cheaper (README "What costs what on lavapipe").
+layout(constant_id = 1) const bool kShInUbo = false;
 
 layout(set = 0, binding = 0) uniform FrameUbo { Camera camera; };
 layout(set = 1, binding = 0) uniform sampler2D gAlbedo;
@@ -24,6 +27,7 @@ layout(set = 1, binding = 2) uniform sampler2D gDepth;
 // texel (bin + PROBE_VIS_BINS·x, row) = (mean, mean square) (m, m²).
 layout(set = 1, binding = 3) uniform sampler2D probeSh;       // RGBA32F
 layout(set = 1, binding = 4) uniform sampler2D probeMoments;  // RG32F
+layout(std140, set = 1, binding = 5) uniform ProbeShBlock { vec4 probeShUbo[4096]; };  // texel t of p: [kTexels·p + t]
 layout(set = 1, binding = 6) uniform sampler2D aoTerm;  // "ao.term" (1 = unoccluded) when bias.w = 1
 
 layout(push_constant) uniform Push {
@@ -36,8 +40,12 @@ ivec2 probeTexel(int probe, int slot, int slotsPerProbe) {
   return ivec2(slot + slotsPerProbe * (probe % pc.countOrder.x), probe / pc.countOrder.x);
 }
 
+vec4 probeShTexel(int probe, int t) {
+  return kShInUbo ? probeShUbo[kTexels * probe + t] : texelFetch(probeSh, probeTexel(probe, t, kTexels), 0);
+}
+
 #define PROBE_DATA_PARAM
-#define PROBE_VALID(i) (texelFetch(probeSh, probeTexel(i, kTexels - 1, kTexels), 0)[(3 * kCoeffs) % 4] != 0.0)
+#define PROBE_VALID(i) (probeShTexel(i, kTexels - 1)[(3 * kCoeffs) % 4] != 0.0)
 #define PROBE_MOMENTS(i, b) texelFetch(probeMoments, probeTexel(i, b, PROBE_VIS_BINS), 0).rg
 #include "probes/probe_weights.glsl"
 
@@ -67,7 +75,7 @@ void main() {
   for (int k = 0; k < 8; ++k) {
     float f[28];  // kTexels · 4 ≤ 28
     for (int t = 0; t < kTexels; ++t) {
-      vec4 v = texelFetch(probeSh, probeTexel(probe[k], t, kTexels), 0);
+      vec4 v = probeShTexel(probe[k], t);
       f[4 * t] = v.x, f[4 * t + 1] = v.y, f[4 * t + 2] = v.z, f[4 * t + 3] = v.w;
     }
     for (int i = 0; i < kCoeffs; ++i) L[i] += weight[k] * vec3(f[3 * i], f[3 * i + 1], f[3 * i + 2]);

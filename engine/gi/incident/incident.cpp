@@ -10,14 +10,18 @@ namespace bounce::gi::incident {
 
 namespace glsl {
 using namespace glm;
-// lights.glsl's contract for incident.glsl (its header): the Light struct is render::LightGpu
-// (same members, same std430 layout), its type constants render::LightType, and the irradiance of
-// a light at p is engine/ref's incidentIrradiance — lights.glsl's, term for term (1/d² with
-// d² ≥ 1e-12, glTF range window, spot cone t²) — on the same light converted field by field.
+// lights.glsl compiled as C++ (its header): the Light struct is render::LightGpu (same members,
+// same std430 layout); rangeWindow, cubeFace, incidentIrradiance and the kLight* type constants
+// come from the shader file itself, so this CPU face, the passes and the path tracer (engine/ref,
+// which compiles it too) share one copy of the light math.
 using Light = render::LightGpu;
-const uint kLightDirectional = uint(render::LightType::Directional);
-const uint kLightPoint = uint(render::LightType::Point);
-const uint kLightSpot = uint(render::LightType::Spot);
+#define BOUNCE_LIGHTS_HOST
+#define LIGHTS_OUT(T) T&
+#include "shaders/common/lights.glsl"
+#undef LIGHTS_OUT
+#undef BOUNCE_LIGHTS_HOST
+static_assert(kLightDirectional == uint(render::LightType::Directional) && kLightPoint == uint(render::LightType::Point) &&
+              kLightSpot == uint(render::LightType::Spot));
 
 ref::RefLight refLight(const Light& l) {
   ref::RefLight r;
@@ -32,10 +36,6 @@ ref::RefLight refLight(const Light& l) {
   r.cosOuter = l.cone.x;
   r.cosInner = l.cone.y;
   return r;
-}
-
-vec3 incidentIrradiance(const Light& light, vec3 p, vec3& toLight, float& dist) {
-  return ref::incidentIrradiance(refLight(light), p, toLight, dist);
 }
 
 // GLSL parameter qualifiers: `inout vec3 sh[9]` / `out float y[9]` decay to pointers, so writes

@@ -38,9 +38,9 @@ using RadianceSH = std::array<glm::vec3, 9>;
 // header derives it; a delta when radius = 0). Directional: a delta. incidentAddLight in GLSL.
 void addLight(const render::LightGpu& light, glm::vec3 p, float radius, float visibility, RadianceSH& sh);
 // Irradiance at p from one level light on a surface facing it, before the cosine and visibility
-// (W/m² per channel; lights.glsl incidentIrradiance, term for term: engine/ref's on the light
-// converted field by field). Writes the unit direction towards the light and the distance (1e30
-// for directional). The one CPU copy for the techniques (VLM's phase-1 mirror uses it too).
+// (W/m² per channel): lights.glsl's incidentIrradiance itself, compiled as C++ (incident.cpp; the
+// path tracer compiles the same file). Writes the unit direction towards the light and the distance
+// (1e30 for directional). The techniques' CPU face (VLM's phase-1 mirror uses it too).
 glm::vec3 lightIrradiance(const render::LightGpu& light, glm::vec3 p, glm::vec3& toLight, float& dist);
 // A uniform cap of half-angle α (cosAlpha = cos α) about unit direction toLight carrying
 // irradiance-weight e = ∫_cap L dω (W/m² per channel): s_l-scaled delta (incidentAddCap).

@@ -28,18 +28,24 @@ gpu::ImageDesc probeImageDesc(gpu::Context& ctx, const ProbeGrid& g, std::uint32
 // SH texels per probe: 3 floats a coefficient, then the valid flag, 4 floats a texel (probes.frag kTexels).
 std::uint32_t shTexels(const ProbeVolume& v) { return std::uint32_t(3 * v.coeffs() + 4) / 4; }
 
-// SH texels (t + shTexels·x, row), packing L_0.rgb, L_1.rgb, …, valid, as probes.frag reads them.
-std::unique_ptr<gpu::Image> uploadSh(gpu::Context& ctx, const ProbeVolume& v) {
-  const std::uint32_t texels = shTexels(v);
-  auto image = std::make_unique<gpu::Image>(ctx, probeImageDesc(ctx, v.grid, texels, VK_FORMAT_R32G32B32A32_SFLOAT, "probes.sh"));
-  const std::size_t probes = v.grid.probeCount(), coeffs = std::size_t(v.coeffs()), stride = 4 * texels;
-  std::vector<float> floats(probes * stride, 0.0f);  // probe-major = the row-major image layout
+// SH texels, probe-major: probe p's texel t at 4·(t + shTexels·p), packing L_0.rgb, L_1.rgb, …,
+// valid, as probes.frag reads them (the row-major image layout, and the uniform block's).
+std::vector<float> shTexelFloats(const ProbeVolume& v) {
+  const std::size_t probes = v.grid.probeCount(), coeffs = std::size_t(v.coeffs()), stride = 4 * shTexels(v);
+  std::vector<float> floats(probes * stride, 0.0f);
   for (std::size_t p = 0; p < probes; ++p) {
     float* out = floats.data() + p * stride;
     for (std::size_t i = 0; i < coeffs; ++i)
       for (int ch = 0; ch < 3; ++ch) out[3 * i + std::size_t(ch)] = v.sh[p * coeffs + i][ch];
     out[3 * coeffs] = v.valid[p] != 0 ? 1.0f : 0.0f;
   }
+  return floats;
+}
+
+// SH texels (t + shTexels·x, row).
+std::unique_ptr<gpu::Image> uploadSh(gpu::Context& ctx, const ProbeVolume& v) {
+  auto image = std::make_unique<gpu::Image>(ctx, probeImageDesc(ctx, v.grid, shTexels(v), VK_FORMAT_R32G32B32A32_SFLOAT, "probes.sh"));
+  const std::vector<float> floats = shTexelFloats(v);
   gpu::upload(ctx, *image, {reinterpret_cast<const std::uint8_t*>(floats.data()), floats.size() * sizeof(float)});
   return image;
 }
@@ -53,6 +59,11 @@ std::unique_ptr<gpu::Image> uploadMoments(gpu::Context& ctx, const ProbeVolume& 
   return image;
 }
 
+// probes.frag's ProbeShBlock: 4096 vec4 = 64 KiB, lavapipe's maxUniformBufferRange (the Vulkan
+// minimum is 16 KiB; a device below 64 KiB keeps the image path). Order 3: 585 probes (9³ = 729, a
+// 0.125 m grid over cornell-1, takes the image path); order 2: 1365.
+constexpr VkDeviceSize kShUboBytes = 4096 * 16;
+
 struct Push {
   glm::vec4 originSpacing;
   glm::ivec4 countOrder;
@@ -61,7 +72,7 @@ struct Push {
 
 }  // namespace
 
-ProbeNode::ProbeNode(gpu::Context& ctx, const render::Pipelines& pipelines, ProbeVolume volume)
+ProbeNode::ProbeNode(gpu::Context& ctx, const render::Pipelines& pipelines, ProbeVolume volume, bool shInUbo)
     : volume_(std::move(volume)),
       sh_(uploadSh(ctx, volume_)),
       moments_(uploadMoments(ctx, volume_)),
@@ -71,8 +82,17 @@ ProbeNode::ProbeNode(gpu::Context& ctx, const render::Pipelines& pipelines, Prob
                   {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                   {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                   {4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+                  {5, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
                   {6, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}},
                  "probes") {
+  {
+    const std::vector<float> floats = shTexelFloats(volume_);
+    const VkDeviceSize bytes = floats.size() * sizeof(float);
+    shInUbo_ = shInUbo && bytes <= kShUboBytes && kShUboBytes <= ctx.limits().maxUniformBufferRange;
+    shUbo_ = gpu::Buffer(ctx, {kShUboBytes, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                               gpu::MemoryUsage::GpuOnly, "probes.sh.ubo"});
+    if (shInUbo_) gpu::upload(ctx, shUbo_, {reinterpret_cast<const std::uint8_t*>(floats.data()), std::size_t(bytes)});
+  }
   layout_ = gpu::PipelineLayout(ctx, {pipelines.frameLayout.handle(), setLayout_.handle()},
                                 {{VK_SHADER_STAGE_ALL, 0, sizeof(Push)}}, "probes");
   gpu::ShaderModule vert(ctx, "passes/fullscreen.vert.spv");
@@ -82,7 +102,7 @@ ProbeNode::ProbeNode(gpu::Context& ctx, const render::Pipelines& pipelines, Prob
   d.fragment = &frag;
   d.colorFormats = {VK_FORMAT_R16G16B16A16_SFLOAT};
   d.blend = gpu::Blend::Additive;
-  d.specialization = {std::uint32_t(volume_.coeffs())};  // probes.frag kCoeffs
+  d.specialization = {std::uint32_t(volume_.coeffs()), shInUbo_ ? 1u : 0u};  // probes.frag kCoeffs, kShInUbo
   d.name = "probes";
   pipeline_ = gpu::createGraphicsPipeline(ctx, layout_, d);
 }
@@ -116,6 +136,7 @@ void ProbeNode::addPasses(rg::RenderGraph& graph, const render::PassContext* pc)
             .sampledImage(2, view(d.depth), point)
             .sampledImage(3, sh_->view(), point)
             .sampledImage(4, moments_->view(), point)
+            .buffer(5, shUbo_, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 0, kShUboBytes)
             .sampledImage(6, view(withAo ? d.ao : d.albedo), point)
             .update(*pc->gpu, set);
         gpu::Image& target = pc->backend->image(res.texture(d.hdr));

@@ -18,7 +18,10 @@ namespace bounce::gi::probes {
 class ProbeNode final : public TechniqueRuntime {
  public:
   // `pipelines` gives the shared frame layout (set 0: camera).
-  ProbeNode(gpu::Context& ctx, const render::Pipelines& pipelines, ProbeVolume volume);
+  // `shInUbo`: read the SH from a uniform block when they fit one (the default; probes.frag
+  // kShInUbo), false: always from the image (tests compare the two paths).
+  ProbeNode(gpu::Context& ctx, const render::Pipelines& pipelines, ProbeVolume volume, bool shInUbo = true);
+  bool shInUbo() const { return shInUbo_; }
   // Reads the G-buffer from the blackboard ("gbuffer.albedo", "gbuffer.normal", "gbuffer.depth"),
   // blends into "lighting.hdr" and publishes the new version under the same key.
   void addPasses(rg::RenderGraph& graph, const render::PassContext* pc);
@@ -31,6 +34,11 @@ class ProbeNode final : public TechniqueRuntime {
  private:
   ProbeVolume volume_;
   std::unique_ptr<gpu::Image> sh_, moments_;
+  // The same SH texels as sh_ in a uniform block when they fit kShUboBytes (probes.frag kShInUbo):
+  // llvmpipe gathers a uniform-array vec4 per lane for less than a texelFetch (README "What costs
+  // what on lavapipe"). Always kShUboBytes long, so the block the shader declares is always bound.
+  gpu::Buffer shUbo_;
+  bool shInUbo_ = false;
   gpu::DescriptorSetLayout setLayout_;
   gpu::PipelineLayout layout_;
   gpu::Pipeline pipeline_;

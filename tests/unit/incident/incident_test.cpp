@@ -294,5 +294,42 @@ TEST(Incident, LightIrradianceIsLightsGlslsInverseSquareRangeAndCone) {
   EXPECT_EQ(dist, 1e30f);
 }
 
+
+// One copy of the light math: the techniques' CPU face (lightIrradiance) and the path tracer's
+// (ref::incidentIrradiance on its own light type) both compile lights.glsl's incidentIrradiance,
+// so on the same light they agree bit for bit — direction, distance and irradiance — for every
+// kind, with and without a range window, inside and outside a spot's cone, on the light itself.
+TEST(Incident, PathTracerAndTechniquesShareLightsGlslsIrradianceBitForBit) {
+  const glm::vec3 receivers[] = {{0.0f, 0.0f, 0.0f}, {0.3f, -0.2f, 0.1f}, {2.0f, 0.0f, 0.0f}, {0.0f, 2.0f, 0.0f}};
+  int compared = 0;
+  for (const render::LightType type : {render::LightType::Point, render::LightType::Spot, render::LightType::Directional})
+    for (const float range : {0.0f, 1.5f}) {
+      render::LightGpu l{};
+      l.positionType = glm::vec4(0.0f, 2.0f, 0.0f, float(type));
+      l.directionRange = glm::vec4(glm::normalize(glm::vec3(0.2f, -1.0f, 0.1f)), range);
+      l.radiance = glm::vec4(4.0f, 8.0f, 12.0f, 0.0f);
+      l.cone = glm::vec4(0.8f, 0.95f, 0.0f, 0.0f);
+      ref::RefLight r;
+      r.type = type == render::LightType::Point ? ref::RefLightType::Point
+               : type == render::LightType::Spot ? ref::RefLightType::Spot
+                                                 : ref::RefLightType::Directional;
+      r.position = glm::vec3(l.positionType);
+      r.direction = glm::vec3(l.directionRange);
+      r.radiance = glm::vec3(l.radiance);
+      r.range = range;
+      r.cosOuter = l.cone.x;
+      r.cosInner = l.cone.y;
+      for (const glm::vec3& p : receivers) {
+        glm::vec3 toA, toB;
+        float distA = 0.0f, distB = 0.0f;
+        const glm::vec3 a = lightIrradiance(l, p, toA, distA), b = ref::incidentIrradiance(r, p, toB, distB);
+        EXPECT_EQ(a, b) << int(type) << " range " << range << " at " << p.x << "," << p.y << "," << p.z;
+        EXPECT_EQ(toA, toB);
+        EXPECT_EQ(distA, distB);
+        ++compared;
+      }
+    }
+  EXPECT_EQ(compared, 24);
+}
 }  // namespace
 }  // namespace bounce::gi::incident

@@ -5,10 +5,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "engine/core/file.hpp"
 #include "engine/core/paths.hpp"
 #include "engine/gi/probes/bake.hpp"
+#include "engine/gi/probes/node.hpp"
+#include "engine/gpu/presenter_offscreen.hpp"
 #include "engine/gpu/image_io.hpp"
 #include "engine/gpu/testing.hpp"
 #include "engine/ref/reference_scene.hpp"
@@ -80,4 +83,48 @@ TEST(ProbeGpu, PassEqualsCpuApiAtEveryPixel) {
   const double fraction = double(disagree) / double(compared);
   std::printf("probes pass vs CPU API: %.2f %% of %zu pixels differ\n", 100 * fraction, compared);
   EXPECT_LE(fraction, kMaxDisagreeing);
+}
+
+// Issue 15: probes.frag reads the probes' SH from a uniform block when the volume fits 64 KiB
+// (cheaper on llvmpipe than a texelFetch per texel) and from the image otherwise. The two paths
+// read the same floats, so the pass's image is the same bit for bit; and a volume past the block
+// (order 3: more than 585 probes) takes the image path.
+TEST(ProbeGpu, ShFromTheUniformBlockEqualsTheImagePathBitForBit) {
+  gpu::Context& ctx = gpu::testkit::sharedContext();
+  const fs::path levelPath = fs::path(BOUNCE_SOURCE_DIR) / "content/levels/cornell-1.json";
+  game::Session session(ctx, game::loadLevelWithEffects(levelPath, std::vector<std::string>{"probes"}));
+  session.update(0.0);
+  const auto baked =
+      gi::probes::loadOrBake(scene::loadLevel(levelPath), game::cookCacheDir(), bounce::cacheDir("probes"), {});
+  ASSERT_EQ(baked.volume.order, 3);
+  ASSERT_EQ(baked.volume.grid.probeCount(), 216u);
+  gi::probes::ProbeNode ubo(ctx, session.renderer().pipelines(), baked.volume);
+  gi::probes::ProbeNode image(ctx, session.renderer().pipelines(), baked.volume, false);
+  EXPECT_TRUE(ubo.shInUbo());
+  EXPECT_FALSE(image.shInUbo());
+  const auto render = [&](gi::probes::ProbeNode& node) {
+    session.renderer().setNode("probes", node.node());
+    gpu::OffscreenPresenter presenter(ctx, {160, 120});
+    render::FrameSettings settings;
+    settings.keepHdr = true;
+    session.render(presenter, settings);
+    return session.renderer().readHdr();
+  };
+  const std::vector<float> a = render(ubo), b = render(image);
+  ASSERT_EQ(a.size(), b.size());
+  std::size_t lit = 0, equal = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) lit += a[i] > 0.0f, equal += a[i] == b[i];
+  std::printf("probes, SH from the uniform block vs the image: %zu of %zu channel values equal, %zu lit\n", equal,
+              a.size(), lit);
+  EXPECT_GT(lit, a.size() / 2);
+  EXPECT_EQ(equal, a.size());
+
+  // 9³ probes at order 3: 729 × 7 texels × 16 B = 81648 B, past the 64 KiB block.
+  gi::probes::ProbeVolume big = baked.volume;
+  big.grid.count = glm::ivec3(9);
+  const std::size_t n = big.grid.probeCount();
+  big.sh.assign(n * std::size_t(big.coeffs()), glm::vec3(0.1f));
+  big.moments.assign(n * std::size_t(gi::probes::kVisBins), glm::vec2(1.0f, 1.0f));
+  big.valid.assign(n, 1u);
+  EXPECT_FALSE(gi::probes::ProbeNode(ctx, session.renderer().pipelines(), big).shInUbo());
 }
