@@ -1,0 +1,58 @@
+#include "engine/gi/sl/probe_shadow.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "engine/core/error.hpp"
+#include "engine/math/sh_convolve.hpp"
+#include "engine/math/sampling.hpp"
+#include "engine/math/sh_exp.hpp"
+#include "engine/math/sh_product.hpp"
+
+namespace bounce::gi::sl {
+
+ProbeShadow probeShadow(std::span<const Light> lights, const glm::dvec3& p, const glm::dvec3& n,
+                        std::span<const glm::dvec3> radiance, const ShadowSettings& settings) {
+  const int lOrder = sh::orderFromCount(radiance.size());
+  if (lOrder != 2 && lOrder != 3)
+    throw InternalError("sl::probeShadow: the probes' SH has " + std::to_string(radiance.size()) + " coefficients (expected 4 or 9)");
+  const int order = settings.order;
+  ProbeShadow out;
+  out.unshadowed = sh::evalIrradiance<glm::dvec3, double>(radiance, n);
+
+  // Eq. 6: V with every SL as a blocker.
+  const std::vector<double> v = environmentVisibility(lights, p, n, order, settings.log, settings.influence);
+  // P = V ∗ ĉ_n onto L's order; E_s = Σ L_j P_j (Eq. 3's triple product).
+  std::vector<double> lobe(9, 0.0);
+  const auto y = sh::evalBasis<double>(3, n);
+  for (int l = 0; l < 3; ++l)
+    for (int m = -l; m <= l; ++m) lobe[std::size_t(sh::index(l, m))] = sh::cosineLobeBand(l) * y[std::size_t(sh::index(l, m))];
+  const std::vector<double> transfer = sh::product<double>(v, lobe, lOrder);
+  glm::dvec3 shadowed(0.0);
+  for (std::size_t j = 0; j < radiance.size(); ++j) shadowed += radiance[j] * transfer[j];
+
+  if (settings.form == ShadowForm::Ratio) {
+    // k = Σ X_j / Σ A_j over the blockers left after the receiver rules (probe_shadow.hpp).
+    const sh::ExpTables& tables = sh::expTables(order, settings.log);
+    double exact = kShadowEpsilon, approx = kShadowEpsilon;
+    for (const Light& l : lights) {
+      const Adjusted a = adjustForReceiver(l.sphere, p, n, settings.influence);
+      const double d = glm::length(a.sphere.centre - p);
+      if (a.culled || !(d > 0.0)) continue;
+      const glm::dvec3 dir = (a.sphere.centre - p) / d;
+      const double s = std::min(1.0, a.sphere.radius / d);
+      exact += math::kPi * s * s * std::max(0.0, glm::dot(n, dir));
+      const auto one = sh::expHybrid(tables.logBlocker(std::asin(s), dir), nullptr, settings.log);
+      approx += math::kPi - sh::evalIrradiance<double, double>(std::span<const double>(one), n);
+    }
+    out.ratio = std::clamp(exact / approx, 1.0 / kShadowMaxRatio, kShadowMaxRatio);
+  }
+  const glm::dvec3 blocked = out.unshadowed - shadowed;
+  for (int c = 0; c < 3; ++c)
+    out.delta[c] = std::clamp(-out.ratio * blocked[c], -std::max(out.unshadowed[c], 0.0), 0.0);
+  return out;
+}
+
+}  // namespace bounce::gi::sl

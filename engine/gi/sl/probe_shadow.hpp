@@ -1,0 +1,59 @@
+#pragma once
+// The dynamic objects' soft shadow on the probes' indirect light (issue 13, pass 2: "plus the
+// dynamic objects' soft shadows on the probes' indirect light"; the SL paper §5.1, Eq. 3 and 6, with
+// the probes' radiance in place of the paper's distant environment). The C++ reference of
+// shaders/sl/probe_shadow.glsl, in double precision, for ONE receiver point p with unit normal n.
+//
+// The probes pass adds ρ/π · E_u with E_u = Σ Â_l L_lm Y_lm(n) (the probes' radiance SH L at p,
+// unshadowed: the probes were baked without the dynamic objects). With every SL as a blocker the
+// visibility is V = exp(Σ_j G_j) (Eq. 6: the SLs' rotated log ZH after the receiver rules of
+// evaluate.hpp, the hybrid exp), and the shadowed irradiance is the triple product (Eq. 3)
+//   E_s = ∫ L V max(0, n·ω) dω ≈ Σ_j L_j P_j,   P = V ∗ ĉ_n   (sh::product, truncated to L's order)
+// with ĉ_n the clamped cosine about n (ĉ_lm = Â_l Y_lm(n), l ≤ 2). The pass adds ρ/π · ΔE, with
+//   ΔE = clamp(−k (E_u − E_s), −max(E_u, 0), 0)                                     (per channel)
+// negative: it takes light away. The clamps keep the probes' light plus ΔE in [0, E_u] — a blocker
+// only removes light, never more than there is — and are continuous.
+//
+// k (ShadowForm::Ratio, ours, the analogue of evaluate.hpp's Ratio form for Ṽ) rescales the exp's
+// blocked amount to the exact one of the caps: k = (Σ_j X_j + ε)/(Σ_j A_j + ε) with, per blocker j
+// after the receiver rules (angular radius θ_j, unit direction d_j, so n·d_j ≥ sin θ_j: rule 2 keeps
+// the cap above the tangent plane),
+//   X_j = π sin²θ_j (n·d_j)         the cap's exact cosine-weighted solid angle (sphere form factor × π), sr
+//   A_j = ρ_n · (1 − exp(G_j))       the same as one blocker's exp sees it
+// Why: the windowed log (sh_exp.hpp) blurs one small cap, and plain Eq. 6 misses one sphere's
+// darkening by up to 37 % (tests/unit/sl/probe_shadow_test.cpp, printed); Eq. 6 keeps the shape of the shadow (where the blockers overlap, how the light's
+// direction meets them), the caps' closed form its amount. One sphere under uniform light gives
+// exactly the closed form, E_s/E_u = 1 − sin²θ cos β; a directional light behind 1–3 spheres is
+// within 0.082 of E_u of brute force (plain Eq. 6: 0.18). ShadowForm::Eq6 is the paper's plain k = 1.
+// ε = kShadowEpsilon keeps k continuous (→ 1) where every cap vanishes at the horizon.
+#include <span>
+
+#include <glm/glm.hpp>
+
+#include "engine/gi/sl/evaluate.hpp"
+
+namespace bounce::gi::sl {
+
+enum class ShadowForm { Ratio, Eq6 };
+
+inline constexpr double kShadowEpsilon = 1e-9;  // sr; ε of k above
+inline constexpr double kShadowMaxRatio = 4.0;  // k is clamped to [1/4, 4]: a bound, not reached by one cap
+
+struct ShadowSettings {
+  int order = 4;  // the SLs' SH order (3 or 4): V's
+  ShadowForm form = ShadowForm::Ratio;
+  sh::LogKind log = sh::LogKind::Windowed;
+  double influence = 0.0;  // evaluate.hpp rule 0's F (0: off)
+};
+
+struct ProbeShadow {
+  glm::dvec3 delta{0.0};      // ΔE, W/m² (≤ 0)
+  glm::dvec3 unshadowed{0.0};  // E_u
+  double ratio = 1.0;          // k
+};
+
+// `radiance`: the probes' radiance SH at p, 4 or 9 RGB coefficients (W/(m²·sr)).
+ProbeShadow probeShadow(std::span<const Light> lights, const glm::dvec3& p, const glm::dvec3& n,
+                        std::span<const glm::dvec3> radiance, const ShadowSettings& settings);
+
+}  // namespace bounce::gi::sl
