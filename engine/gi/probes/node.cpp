@@ -28,7 +28,9 @@ gpu::ImageDesc probeImageDesc(gpu::Context& ctx, const ProbeGrid& g, std::uint32
 // SH texels per probe: 3 floats a coefficient, then the valid flag, 4 floats a texel (probes.frag kTexels).
 std::uint32_t shTexels(const ProbeVolume& v) { return std::uint32_t(3 * v.coeffs() + 4) / 4; }
 
-// SH texels (t + shTexels·x, row), packing L_0.rgb, L_1.rgb, …, valid, as probes.frag reads them.
+}  // namespace
+
+// SH texels (t + shTexels·x, row), packing L_0.rgb, L_1.rgb, …, valid, as probe_sh.glsl reads them.
 std::unique_ptr<gpu::Image> uploadSh(gpu::Context& ctx, const ProbeVolume& v) {
   const std::uint32_t texels = shTexels(v);
   auto image = std::make_unique<gpu::Image>(ctx, probeImageDesc(ctx, v.grid, texels, VK_FORMAT_R32G32B32A32_SFLOAT, "probes.sh"));
@@ -53,13 +55,11 @@ std::unique_ptr<gpu::Image> uploadMoments(gpu::Context& ctx, const ProbeVolume& 
   return image;
 }
 
-struct Push {
-  glm::vec4 originSpacing;
-  glm::ivec4 countOrder;
-  glm::vec4 bias;
-};
-
-}  // namespace
+ProbePush probePush(const ProbeVolume& v, float flag) {
+  const ProbeGrid& g = v.grid;
+  return {glm::vec4(g.origin, g.spacing), glm::ivec4(g.count, v.order),
+          glm::vec4(g.spacing * v.bias.normal, g.spacing * v.bias.view, v.minVariance(), flag)};
+}
 
 ProbeNode::ProbeNode(gpu::Context& ctx, const render::Pipelines& pipelines, ProbeVolume volume)
     : volume_(std::move(volume)),
@@ -74,7 +74,7 @@ ProbeNode::ProbeNode(gpu::Context& ctx, const render::Pipelines& pipelines, Prob
                   {6, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}},
                  "probes") {
   layout_ = gpu::PipelineLayout(ctx, {pipelines.frameLayout.handle(), setLayout_.handle()},
-                                {{VK_SHADER_STAGE_ALL, 0, sizeof(Push)}}, "probes");
+                                {{VK_SHADER_STAGE_ALL, 0, sizeof(ProbePush)}}, "probes");
   gpu::ShaderModule vert(ctx, "passes/fullscreen.vert.spv");
   gpu::ShaderModule frag(ctx, "probes/probes.frag.spv");
   gpu::GraphicsPipelineDesc d;
@@ -125,11 +125,7 @@ void ProbeNode::addPasses(rg::RenderGraph& graph, const render::PassContext* pc)
         pipeline_.bind(cmd);
         pipeline_.bindSet(cmd, 0, pc->frameSet);
         pipeline_.bindSet(cmd, 1, set);
-        const ProbeGrid& g = volume_.grid;
-        const Push push{glm::vec4(g.origin, g.spacing), glm::ivec4(g.count, volume_.order),
-                        glm::vec4(g.spacing * volume_.bias.normal, g.spacing * volume_.bias.view,
-                                  volume_.minVariance(), withAo ? 1.0f : 0.0f)};
-        pipeline_.push(cmd, push);
+        pipeline_.push(cmd, probePush(volume_, withAo ? 1.0f : 0.0f));
         vkCmdDraw(cmd, 3, 1, 0, 0);
         pc->gpu->cmdEndRendering(cmd);
       });

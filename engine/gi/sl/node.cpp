@@ -18,7 +18,8 @@ std::vector<gpu::Binding> inputBindings() {
 }  // namespace
 
 Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t framesInFlight,
-           std::span<const SphereSet* const> sets, int order, Blocking blocking, float influence)
+           std::span<const SphereSet* const> sets, int order, Blocking blocking, float influence,
+           const probes::ProbeVolume* probes)
     : ctx_(ctx),
       order_(order),
       blocking_(blocking),
@@ -42,6 +43,8 @@ Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t fra
   d.name = std::string("sl.") + (blocking == Blocking::PerObject ? "per-object" : "per-sphere") + ".sh" +
            std::to_string(order * order);
   pipeline_ = gpu::createGraphicsPipeline(ctx, layout_, d);
+  if (probes && spheres_ > 0)
+    shadow_ = std::make_unique<ProbeShadowPass>(ctx, shared, *probes, order, blocking, spheres_, influence);
 }
 
 void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::span<const PosedSphere> posed,
@@ -110,6 +113,7 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::s
         ctx_.cmdEndRendering(cmd);
       });
   bb.put("lighting.hdr", data.hdr);
+  if (shadow_) shadow_->addTo(graph, pc, *slot.shade, slot.intensity->intensity());
 }
 
 }  // namespace bounce::gi::sl

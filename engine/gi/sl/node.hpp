@@ -4,7 +4,9 @@
 //     shadow atlas when `shadows` runs) and the probes' light at its samples (IntensityPass);
 //  "sl" (fragment, pass 2, §5.2): a full-screen triangle adds ρ/π · Σ L̃ Ṽ to "lighting.hdr" per
 //     G-buffer pixel (shaders/sl/sl.frag), reading "gbuffer.albedo", "gbuffer.normal",
-//     "gbuffer.depth" from the blackboard.
+//     "gbuffer.depth" from the blackboard;
+//  "sl.shadow" (fragment, pass 2's shadow on the probes' light): when a probe volume is given and
+//     the probes pass runs, the SLs' soft shadow on it (ProbeShadowPass).
 // Each is timed under its own name by the graph. Pass 2 shades every SL of every object in one draw
 // (the blocking couples objects: an object's Ṽ needs the closer objects' logs), so there are no
 // per-object rows. Per frame slot the node owns its own pass-1 buffers and pass-2 sphere block, so
@@ -16,6 +18,7 @@
 #include "engine/gi/incident/incident.hpp"
 #include "engine/gi/sl/evaluate.hpp"
 #include "engine/gi/sl/intensity.hpp"
+#include "engine/gi/sl/probe_shadow_pass.hpp"
 #include "engine/gi/sl/shade.hpp"
 #include "engine/render/graph/render_graph.hpp"
 #include "engine/render/pass_context.hpp"
@@ -25,9 +28,11 @@ namespace bounce::gi::sl {
 class Node {
  public:
   // `sets` (not owned, must outlive the node) in participant order; `order` ≥ every set's order;
-  // `influence`: evaluate.hpp rule 0's F (0: off).
+  // `influence`: evaluate.hpp rule 0's F (0: off); `probes` (not owned, may be null: no "sl.shadow"):
+  // the probes' baked volume.
   Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t framesInFlight,
-       std::span<const SphereSet* const> sets, int order, Blocking blocking, float influence);
+       std::span<const SphereSet* const> sets, int order, Blocking blocking, float influence,
+       const probes::ProbeVolume* probes = nullptr);
   // This frame's SLs, concatenated over the sets: pose, object index, probes' SH at the centre.
   void addTo(rg::RenderGraph& graph, const render::PassContext& pc, std::span<const PosedSphere> posed,
              std::span<const std::uint32_t> objects, std::span<const incident::RadianceSH> indirect);
@@ -47,6 +52,7 @@ class Node {
   gpu::PipelineLayout layout_;
   gpu::ShaderModule vert_, frag_;
   gpu::Pipeline pipeline_;
+  std::unique_ptr<ProbeShadowPass> shadow_;
 };
 
 }  // namespace bounce::gi::sl

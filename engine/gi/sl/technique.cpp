@@ -156,7 +156,7 @@ class SlTechnique final : public Technique {
           r.setting = "spheres=" + std::to_string(spheres) + ";order=" + std::to_string(order) +
                       ";blocking=" + (perObject ? "per-object" : "per-sphere") + ";ref=all";
           r.effects = {"direct", "shadows", "probes", "sl"};
-          r.passes = {"shadow", "lighting", "probes", "sl.intensity", "sl"};
+          r.passes = {"shadow", "lighting", "probes", "sl.intensity", "sl", "sl.shadow"};
           r.configure = [=](scene::Level& level) {
             for (auto& e : level.entities)
               if (e.sl) {
@@ -168,7 +168,8 @@ class SlTechnique final : public Technique {
           rows.push_back(std::move(r));
         }
   }
-  std::vector<std::string> passes() const override { return {"sl.intensity", "sl"}; }
+  // "sl.shadow" runs only beside "probes" (its light is what it shadows).
+  std::vector<std::string> passes() const override { return {"sl.intensity", "sl", "sl.shadow"}; }
 };
 
 }  // namespace
@@ -301,7 +302,7 @@ void SessionRuntime::enableGpu(SessionContext& sc) {
   else
     indirect_ = std::make_unique<incident::ConstantEnvironment>(sc.level.background);
   node_ = std::make_unique<Node>(sc.ctx, sc.renderer.pipelines(), sc.renderer.frames().framesInFlight(), sets, order,
-                                 blocking, participants_.front().component.influence);
+                                 blocking, participants_.front().component.influence, sc.services.probeVolume);
 }
 
 render::Renderer::GraphNode SessionRuntime::node() {
