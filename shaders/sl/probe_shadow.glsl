@@ -4,7 +4,8 @@
 // are summed, exponentiated once (slExp: Eq. 6), multiplied with the clamped cosine about n
 // (slProduct9, gaunt.glsl: P = V ∗ ĉ_n) and dotted with the probes' radiance SH L: E_s = Σ_j L_j P_j.
 // Returns ΔE = clamp(−k (E_u − E_s), −max(E_u, 0), 0) per channel (W/m², ≤ 0), with k the Ratio
-// form's Σ X_j / Σ A_j (exact caps over single-blocker exps) clamped to [1/4, 4].
+// form's Σ u_o X_j / Σ A_j (exact caps, weighted by their object's union share, over single-blocker
+// exps) clamped to [1/4, 4].
 // Needs sl.glsl (and what it needs) included first.
 #ifndef BOUNCE_SL_PROBE_SHADOW_GLSL
 #define BOUNCE_SL_PROBE_SHADOW_GLSL
@@ -36,7 +37,7 @@ vec3 slProbeShadow(vec3 p, vec3 n, in vec3 L[9]) {
     // X_j: the cap's exact cosine-weighted solid angle; A_j: ρ_n · (1 − exp(G_j)) with the OL exp
     // (one blocker's ‖f̂‖ ≤ 1.9 < 4 for every θ of the table: no squarings, tested in C++).
     float cd = dot(n, dir);
-    exact += kSlPi * s * s * max(0.0, cd);
+    exact += slShare(i) * kSlPi * s * s * max(0.0, cd);
     float m = sqrt(z.y * z.y + z.z * z.z + (kOrder > 3u ? z.w * z.w : 0.0));
     float x = clamp(m, 0.0, kSlMaxMagnitude) / kSlMaxMagnitude * float(kSlMagEntries - 1);
     int i0 = min(int(x), kSlMagEntries - 2);

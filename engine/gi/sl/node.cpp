@@ -1,6 +1,7 @@
 #include "engine/gi/sl/node.hpp"
 
 #include "engine/core/error.hpp"
+#include "engine/gi/sl/probe_shadow.hpp"
 #include "engine/render/passes/rendering.hpp"
 
 namespace bounce::gi::sl {
@@ -43,6 +44,11 @@ Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t fra
   d.name = std::string("sl.") + (blocking == Blocking::PerObject ? "per-object" : "per-sphere") + ".sh" +
            std::to_string(order * order);
   pipeline_ = gpu::createGraphicsPipeline(ctx, layout_, d);
+  for (const SphereSet* set : sets) {
+    std::vector<Sphere> local;
+    for (const SlSphere& s : set->spheres) local.push_back({glm::dvec3(s.centre), double(s.radius)});
+    share_.push_back(float(unionShare(local)));
+  }
   if (probes && spheres_ > 0)
     shadow_ = std::make_unique<ProbeShadowPass>(ctx, shared, *probes, order, blocking, spheres_, influence);
 }
@@ -57,7 +63,9 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::s
   // CPU writes of this slot's host-visible blocks: the ring waited for the slot's last frame.
   slot.intensity->setSpheres(posed, indirect);
   std::vector<ShadedSphere> shaded(spheres_);
-  for (std::uint32_t i = 0; i < spheres_; ++i) shaded[i] = {posed[i].centre, posed[i].radius, posed[i].rotation, objects[i]};
+  for (std::uint32_t i = 0; i < spheres_; ++i)
+    shaded[i] = {posed[i].centre, posed[i].radius, posed[i].rotation, objects[i],
+                 objects[i] < share_.size() ? share_[objects[i]] : 1.0f};
   slot.shade->setSpheres(shaded);
 
   auto& bb = graph.blackboard();

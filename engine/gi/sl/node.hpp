@@ -53,6 +53,7 @@ class Node {
   gpu::ShaderModule vert_, frag_;
   gpu::Pipeline pipeline_;
   std::unique_ptr<ProbeShadowPass> shadow_;
+  std::vector<float> share_;  // per object (set): unionShare of its spheres, for "sl.shadow"
 };
 
 }  // namespace bounce::gi::sl

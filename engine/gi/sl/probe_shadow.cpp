@@ -43,7 +43,9 @@ ProbeShadow probeShadow(std::span<const Light> lights, const glm::dvec3& p, cons
       if (a.culled || !(d > 0.0)) continue;
       const glm::dvec3 dir = (a.sphere.centre - p) / d;
       const double s = std::min(1.0, a.sphere.radius / d);
-      exact += math::kPi * s * s * std::max(0.0, glm::dot(n, dir));
+      const double share =
+          l.object >= 0 && std::size_t(l.object) < settings.objectShare.size() ? settings.objectShare[std::size_t(l.object)] : 1.0;
+      exact += share * math::kPi * s * s * std::max(0.0, glm::dot(n, dir));
       const auto one = sh::expHybrid(tables.logBlocker(std::asin(s), dir), nullptr, settings.log);
       approx += math::kPi - sh::evalIrradiance<double, double>(std::span<const double>(one), n);
     }
@@ -53,6 +55,39 @@ ProbeShadow probeShadow(std::span<const Light> lights, const glm::dvec3& p, cons
   for (int c = 0; c < 3; ++c)
     out.delta[c] = std::clamp(-out.ratio * blocked[c], -std::max(out.unshadowed[c], 0.0), 0.0);
   return out;
+}
+
+double unionShare(std::span<const Sphere> spheres) {
+  if (spheres.size() < 2) return 1.0;
+  double unionArea = 0.0, sumArea = 0.0;
+  for (int k = 0; k < kShareDirections; ++k) {
+    const glm::dvec3 d = math::fibonacciSphere(k, kShareDirections);
+    const glm::dvec3 a = glm::normalize(glm::cross(d, std::abs(d.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0)));
+    const glm::dvec3 b = glm::cross(d, a);
+    double lo[2] = {1e300, 1e300}, hi[2] = {-1e300, -1e300};
+    for (const Sphere& s : spheres) {
+      const double u = glm::dot(s.centre, a), v = glm::dot(s.centre, b);
+      lo[0] = std::min(lo[0], u - s.radius), hi[0] = std::max(hi[0], u + s.radius);
+      lo[1] = std::min(lo[1], v - s.radius), hi[1] = std::max(hi[1], v + s.radius);
+      sumArea += math::kPi * s.radius * s.radius;
+    }
+    const double cell = std::max(hi[0] - lo[0], hi[1] - lo[1]) / kShareGrid;
+    if (!(cell > 0.0)) continue;
+    int covered = 0;
+    for (int y = 0; y < kShareGrid; ++y)
+      for (int x = 0; x < kShareGrid; ++x) {
+        const double u = lo[0] + (x + 0.5) * cell, v = lo[1] + (y + 0.5) * cell;
+        for (const Sphere& s : spheres) {
+          const double du = u - glm::dot(s.centre, a), dv = v - glm::dot(s.centre, b);
+          if (du * du + dv * dv < s.radius * s.radius) {
+            ++covered;
+            break;
+          }
+        }
+      }
+    unionArea += covered * cell * cell;
+  }
+  return sumArea > 0.0 ? std::clamp(unionArea / sumArea, 0.0, 1.0) : 1.0;
 }
 
 }  // namespace bounce::gi::sl

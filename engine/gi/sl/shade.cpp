@@ -63,6 +63,7 @@ void ShadeData::setSpheres(std::span<const ShadedSphere> spheres) {
     v[1 + 4 * i] = glm::vec4(s.centre, s.radius);
     for (int c = 0; c < 3; ++c) v[2 + 4 * i + std::size_t(c)] = glm::vec4(s.rotation[c], 0.0f);
     v[2 + 4 * i].w = float(s.object);
+    v[3 + 4 * i].w = s.share;
   }
   std::memcpy(spheres_.mapped(), v.data(), v.size() * sizeof(glm::vec4));
 }

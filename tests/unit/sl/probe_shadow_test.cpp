@@ -193,3 +193,31 @@ TEST(SlProbeShadow, SlidingThroughTheTangentPlaneIsContinuous) {
     EXPECT_LT(worst, kMaxStep);
   }
 }
+
+// unionShare: the direction-averaged union of the silhouettes over their sum. Tolerance: the 64²
+// raster of each silhouette square (a disc's edge cells, ~2 % of its area at these sizes).
+TEST(SlProbeShadow, UnionShareOfDisjointCoincidentAndOverlappingSpheres) {
+  constexpr double kRaster = 0.03;
+  const Sphere a{{0, 0, 0}, 1.0};
+  EXPECT_EQ(unionShare(std::span<const Sphere>(&a, 1)), 1.0);
+  const std::vector<Sphere> two = {a, a}, four = {a, a, a, a};
+  EXPECT_NEAR(unionShare(two), 0.5, kRaster * 0.5);
+  EXPECT_NEAR(unionShare(four), 0.25, kRaster * 0.25);
+  // Far apart: silhouettes overlap only in the few directions along the line of centres.
+  const std::vector<Sphere> apart = {{{-10, 0, 0}, 1.0}, {{10, 0, 0}, 1.0}};
+  EXPECT_NEAR(unionShare(apart), 1.0, 0.05);
+  // Half-overlapping pair: strictly between.
+  const std::vector<Sphere> pair = {{{-0.5, 0, 0}, 1.0}, {{0.5, 0, 0}, 1.0}};
+  const double u = unionShare(pair);
+  EXPECT_GT(u, 0.55);
+  EXPECT_LT(u, 0.95);
+  // Invariant under translation and scale (it is evaluated in the object's bind frame).
+  const std::vector<Sphere> moved = {{{-5.0, 3.0, 1.0}, 10.0}, {{5.0, 3.0, 1.0}, 10.0}};
+  EXPECT_NEAR(unionShare(moved), u, 1e-9);
+  // The weight scales the exact part of k: with share u and one sphere, the darkening is u × the cap's.
+  const Light l = blocker({0, 0, 2}, 1.0);
+  ShadowSettings s = shadowSettings(4);
+  s.objectShare = {0.5};
+  const ProbeShadow half = probeShadow(std::span<const Light>(&l, 1), glm::dvec3(0.0), {0, 0, 1}, uniformRadiance(1.0), s);
+  EXPECT_NEAR(half.delta.x / half.unshadowed.x, -0.5 * 0.25, 1e-9);  // sin²θ = 1/4
+}
