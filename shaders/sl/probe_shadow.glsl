@@ -35,14 +35,12 @@ vec3 slProbeShadow(vec3 p, vec3 n, in vec3 L[9]) {
     slRotateZonal(z, dir, lg);
     for (uint k = 0u; k < kSlCoeffs; ++k) sum[k] += lg[k];
     // X_j: the cap's exact cosine-weighted solid angle; A_j: ρ_n · (1 − exp(G_j)) with the OL exp
-    // (one blocker's ‖f̂‖ ≤ 1.9 < 4 for every θ of the table: no squarings, tested in C++).
+    // (one blocker's ‖f̂‖ ≤ 1.9 < kHybridBlendStart for every θ of the table: no blend, no squarings;
+    // SlProbeShadow.OneCapsLogIsBelowTheHybridsBlend checks it).
     float cd = dot(n, dir);
     exact += slShare(i) * kSlPi * s * s * max(0.0, cd);
     float m = sqrt(z.y * z.y + z.z * z.z + (kOrder > 3u ? z.w * z.w : 0.0));
-    float x = clamp(m, 0.0, kSlMaxMagnitude) / kSlMaxMagnitude * float(kSlMagEntries - 1);
-    int i0 = min(int(x), kSlMagEntries - 2);
-    float w = x - float(i0);
-    vec2 ab = (1.0 - w) * texelFetch(slTables, ivec2(i0, 2), 0).xy + w * texelFetch(slTables, ivec2(i0 + 1, 2), 0).xy;
+    vec2 ab = slOl(m);
     float p2 = 0.5 * (3.0 * cd * cd - 1.0);
     float dotted = ab.x * SH_A0 + ab.y * (lobeZonal.y * z.y * cd + lobeZonal.z * z.z * p2);
     approx += SH_A0 - exp(min(z.x / kSlSqrt4Pi, kSlMaxExponent)) * dotted;

@@ -13,6 +13,7 @@
 #include "engine/math/sampling.hpp"
 #include "engine/math/sh_convolve.hpp"
 #include "engine/math/sh_eval.hpp"
+#include "engine/math/sh_exp.hpp"
 
 using namespace bounce;
 using namespace bounce::gi::sl;
@@ -220,4 +221,19 @@ TEST(SlProbeShadow, UnionShareOfDisjointCoincidentAndOverlappingSpheres) {
   s.objectShare = {0.5};
   const ProbeShadow half = probeShadow(std::span<const Light>(&l, 1), glm::dvec3(0.0), {0, 0, 1}, uniformRadiance(1.0), s);
   EXPECT_NEAR(half.delta.x / half.unshadowed.x, -0.5 * 0.25, 1e-9);  // sin²θ = 1/4
+}
+
+// probe_shadow.glsl forms each blocker's A_j with the OL exp alone (no blend, no squarings): valid
+// because one cap's log never reaches expHybrid's blend band (‖f̂‖ = 1.81 at most, order 3 and 4).
+TEST(SlProbeShadow, OneCapsLogIsBelowTheHybridsBlend) {
+  for (int order : {3, 4}) {
+    const sh::ExpTables& t = sh::expTables(order);
+    double worst = 0.0;
+    for (int i = 0; i < sh::ExpTables::kThetaEntries; ++i) {
+      double m = 0.0;
+      for (int l = 1; l < order; ++l) m += t.logTable()[std::size_t(i * order + l)] * t.logTable()[std::size_t(i * order + l)];
+      worst = std::max(worst, std::sqrt(m));
+    }
+    EXPECT_LT(worst, sh::ExpTables::kHybridBlendStart) << "order " << order;
+  }
 }
