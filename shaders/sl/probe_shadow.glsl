@@ -4,8 +4,8 @@
 // are summed, exponentiated once (slExp: Eq. 6), multiplied with the clamped cosine about n
 // (slProduct9, gaunt.glsl: P = V ∗ ĉ_n) and dotted with the probes' radiance SH L: E_s = Σ_j L_j P_j.
 // Returns ΔE = clamp(−k (E_u − E_s), −max(E_u, 0), 0) per channel (W/m², ≤ 0), with k the Ratio
-// form's Σ u_o X_j / Σ A_j (exact caps, weighted by their object's union share, over single-blocker
-// exps) clamped to [1/4, 4].
+// form's (σ Σ u_o X_j + (1 − σ) Σ X_j) / Σ A_j (exact caps, weighted by their object's union share
+// as far as exp acts additively here, over single-blocker exps) clamped to [1/4, 4].
 // Needs sl.glsl (and what it needs) included first.
 #ifndef BOUNCE_SL_PROBE_SHADOW_GLSL
 #define BOUNCE_SL_PROBE_SHADOW_GLSL
@@ -17,7 +17,7 @@ vec3 slProbeShadow(vec3 p, vec3 n, in vec3 L[9]) {
   uint count = min(slCount(), kSpheres);
   float sum[16];
   for (uint k = 0u; k < 16u; ++k) sum[k] = 0.0;
-  float exact = kSlShadowEpsilon, approx = kSlShadowEpsilon;
+  float exact = kSlShadowEpsilon, sharedX = kSlShadowEpsilon, approx = kSlShadowEpsilon;
   // Â_l √((2l+1)/(4π)): ρ_n · (a ZH z rotated to d) = Σ_l Â_l √((2l+1)/(4π)) z_l P_l(n·d) (addition
   // theorem), so one blocker's A_j needs no 16-coefficient rotation.
   const vec4 lobeZonal = vec4(SH_A0 * 0.28209479177387814, SH_A1 * 0.48860251190291992, SH_A2 * 0.63078313050504001, 0.0);
@@ -38,7 +38,9 @@ vec3 slProbeShadow(vec3 p, vec3 n, in vec3 L[9]) {
     // (one blocker's ‖f̂‖ ≤ 1.9 < kHybridBlendStart for every θ of the table: no blend, no squarings;
     // SlProbeShadow.OneCapsLogIsBelowTheHybridsBlend checks it).
     float cd = dot(n, dir);
-    exact += slShare(i) * kSlPi * s * s * max(0.0, cd);
+    float capX = kSlPi * s * s * max(0.0, cd);
+    exact += capX;
+    sharedX += slShare(i) * capX;
     float m = sqrt(z.y * z.y + z.z * z.z + (kOrder > 3u ? z.w * z.w : 0.0));
     vec2 ab = slOl(m);
     float p2 = 0.5 * (3.0 * cd * cd - 1.0);
@@ -60,7 +62,11 @@ vec3 slProbeShadow(vec3 p, vec3 n, in vec3 L[9]) {
     shadowed += transfer[k] * L[k];
     unshadowed += lobe[k] * L[k];
   }
-  float ratio = clamp(exact / approx, 1.0 / kSlShadowMaxRatio, kSlShadowMaxRatio);
+  // σ: how additive exp is here (probe_shadow.hpp), from its blocked amount under uniform light.
+  float vDotLobe = 0.0;
+  for (int k = 0; k < 9; ++k) vDotLobe += v[k] * lobe[k];
+  float additive = sqrt(clamp((SH_A0 - vDotLobe + kSlShadowEpsilon) / approx, 0.0, 1.0));
+  float ratio = clamp((additive * sharedX + (1.0 - additive) * exact) / approx, 1.0 / kSlShadowMaxRatio, kSlShadowMaxRatio);
   return clamp(-ratio * (unshadowed - shadowed), -max(unshadowed, vec3(0.0)), vec3(0.0));
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <string>
 #include <vector>
 
@@ -36,7 +37,7 @@ ProbeShadow probeShadow(std::span<const Light> lights, const glm::dvec3& p, cons
   if (settings.form == ShadowForm::Ratio) {
     // k = Σ X_j / Σ A_j over the blockers left after the receiver rules (probe_shadow.hpp).
     const sh::ExpTables& tables = sh::expTables(order, settings.log);
-    double exact = kShadowEpsilon, approx = kShadowEpsilon;
+    double exact = kShadowEpsilon, shared = kShadowEpsilon, approx = kShadowEpsilon;
     for (const Light& l : lights) {
       const Adjusted a = adjustForReceiver(l.sphere, p, n, settings.influence);
       const double d = glm::length(a.sphere.centre - p);
@@ -45,11 +46,18 @@ ProbeShadow probeShadow(std::span<const Light> lights, const glm::dvec3& p, cons
       const double s = std::min(1.0, a.sphere.radius / d);
       const double share =
           l.object >= 0 && std::size_t(l.object) < settings.objectShare.size() ? settings.objectShare[std::size_t(l.object)] : 1.0;
-      exact += share * math::kPi * s * s * std::max(0.0, glm::dot(n, dir));
+      const double x = math::kPi * s * s * std::max(0.0, glm::dot(n, dir));
+      exact += x;
+      shared += share * x;
       const auto one = sh::expHybrid(tables.logBlocker(std::asin(s), dir), nullptr, settings.log);
       approx += math::kPi - sh::evalIrradiance<double, double>(std::span<const double>(one), n);
     }
-    out.ratio = std::clamp(exact / approx, 1.0 / kShadowMaxRatio, kShadowMaxRatio);
+    // σ: how additive exp is here (1: linear regime, the far field; → 0: saturated, near the
+    // objects, where exp already discounts the overlaps), from its blocked amount under uniform light.
+    const double blockedUniform = math::kPi - std::inner_product(v.begin(), v.begin() + 9, lobe.begin(), 0.0);
+    out.additive = std::sqrt(std::clamp((blockedUniform + kShadowEpsilon) / approx, 0.0, 1.0));
+    const double target = out.additive * shared + (1.0 - out.additive) * exact;
+    out.ratio = std::clamp(target / approx, 1.0 / kShadowMaxRatio, kShadowMaxRatio);
   }
   const glm::dvec3 blocked = out.unshadowed - shadowed;
   for (int c = 0; c < 3; ++c)
