@@ -18,6 +18,7 @@
 #include "engine/gi/sl/evaluate.hpp"
 #include "engine/gi/sl/intensity.hpp"
 #include "engine/math/sampling.hpp"
+#include "engine/math/sh_eval.hpp"
 #include "tests/unit/dnrt/test_meshes.hpp"
 
 using namespace bounce;
@@ -190,5 +191,118 @@ TEST(SlBounceUnits, DirectionallyLitSphereLightsTheRightSide) {
     // The dark half faces the receiver below: it gets a small fraction of what the one above gets.
     EXPECT_LT(slBelow, 0.05 * slAbove);
     EXPECT_GT(slAbove, 0.0);
+  }
+}
+
+// Why SL's bounce is ~10× the reference's on the floor around the characters' feet (README "SL"):
+// not a units error (the two tests above) but pass 1's input. A sphere (albedo 0.6, R = 0.3 m)
+// resting on a floor (albedo 0.5) under a point lamp 3 m above it. Pass 1 is fed what a probe at the
+// sphere's centre holds: the floor as the STATIC scene has it, lit everywhere (probes are baked
+// without the dynamic objects, §5.1's departure in intensity.hpp). The real floor is dark in the
+// sphere's umbra — exactly the floor the sphere's underside faces, and whose bounce comes back to
+// the floor around it. Brute force (floor radiance ρ_f E_lamp V/π, V = 0 in the umbra, integrated
+// over the floor for each point of the sphere, then over the sphere for each floor receiver):
+// the SL must match the unshadowed truth (it models what it is given), and the shadowed truth —
+// what the path-traced reference sees — is less. Measured: by a factor 1.4–1.7 only (receivers
+// outside the umbra see the sphere's side, which faces the lit floor beyond it), so this explains
+// a part of the excess, not the factor ~10.
+TEST(SlBounceUnits, StaticProbeLightOverLightsTheFloorAroundAnObjectByLessThan2x) {
+  constexpr double kH = 3.0, kI = 6.0, kRhoFloor = 0.5, kR = 0.3;
+  const glm::vec3 rhoS(0.6f);
+  const glm::dvec3 c(0.0, 0.0, kR + 0.005);
+  const glm::dvec3 lamp(0.0, 0.0, kH);
+  auto inUmbra = [&](const glm::dvec3& q) {  // the lamp → q segment passes through the sphere
+    const glm::dvec3 d = lamp - q;
+    const double t = std::clamp(glm::dot(c - q, d) / glm::dot(d, d), 0.0, 1.0);
+    return glm::length(q + t * d - c) < kR;
+  };
+  auto floorRadiance = [&](const glm::dvec3& q, bool shadowed) {
+    const glm::dvec3 d = lamp - q;
+    const double r2 = glm::dot(d, d);
+    const double e = kI * (d.z / std::sqrt(r2)) / r2;  // point lamp: I cos / r²  (W/m²)
+    return shadowed && inUmbra(q) ? 0.0 : kRhoFloor * e / kPi;
+  };
+  // Floor quadrature: polar rings, geometric in radius (the contact point needs fine rings).
+  struct FloorPoint {
+    glm::dvec3 q;
+    double area;
+  };
+  std::vector<FloorPoint> floor;
+  {
+    constexpr int kRings = 240, kSectors = 96;
+    const double r0 = 1e-3, r1 = 40.0, g = std::pow(r1 / r0, 1.0 / kRings);
+    for (int i = 0; i < kRings; ++i) {
+      const double a = r0 * std::pow(g, i), b = a * g, rm = 0.5 * (a + b);
+      for (int k = 0; k < kSectors; ++k) {
+        const double phi = 2.0 * kPi * (k + 0.5) / kSectors;
+        floor.push_back({{rm * std::cos(phi), rm * std::sin(phi), 0.0}, 0.5 * (b * b - a * a) * 2.0 * kPi / kSectors});
+      }
+    }
+  }
+  // Radiance a point x of the real sphere (outward normal m) reflects: ρ_s E(x)/π, E from the floor.
+  auto sphereRadiance = [&](const glm::dvec3& x, const glm::dvec3& m, bool shadowed) {
+    double e = 0.0;
+    for (const FloorPoint& f : floor) {
+      const glm::dvec3 d = f.q - x;
+      const double r2 = glm::dot(d, d), r = std::sqrt(r2);
+      const double cx = glm::dot(m, d) / r, cf = -d.z / r;
+      if (cx > 0.0 && cf > 0.0) e += floorRadiance(f.q, shadowed) * cx * cf / r2 * f.area;
+    }
+    return double(rhoS.x) * e / kPi;
+  };
+
+  // The probe at the centre: the static floor's radiance in the lower hemisphere, order 3.
+  gi::incident::RadianceSH probe{};
+  {
+    constexpr int kN = 20000;
+    for (int i = 0; i < kN; ++i) {
+      const glm::dvec3 w = math::fibonacciSphere(i, kN);
+      if (w.z >= 0.0) continue;
+      const double l = floorRadiance(c + (-c.z / w.z) * w, false);
+      const auto y = sh::evalBasis<double>(3, w);
+      for (int k = 0; k < 9; ++k) probe[std::size_t(k)] += glm::vec3(float(l * y[std::size_t(k)] * 4.0 * kPi / kN));
+    }
+  }
+  const auto mesh = gi::dnrt::testing::sphere(glm::vec3(c), float(kR), rhoS, 48);
+  const SphereSet set = bake(mesh, oneSphere());
+  const SlSphere& s = set.spheres[0];
+  const PosedSphere posed{s.centre, s.radius, glm::mat3(1.0f)};
+  Light light;
+  light.sphere = {glm::dvec3(s.centre), double(s.radius)};
+  light.intensity = intensityReference(s, 4, posed, {}, probe);
+
+  // Precompute the real sphere's reflected radiance, both ways, on a point set.
+  constexpr int kS = 1500;
+  std::vector<double> lOpen(kS), lShadowed(kS);
+  for (int i = 0; i < kS; ++i) {
+    const glm::dvec3 m = math::fibonacciSphere(i, kS);
+    lOpen[std::size_t(i)] = sphereRadiance(c + kR * m, m, false);
+    lShadowed[std::size_t(i)] = sphereRadiance(c + kR * m, m, true);
+  }
+  auto truth = [&](const glm::dvec3& p, const std::vector<double>& l) {
+    double e = 0.0;
+    const double dA = 4.0 * kPi * kR * kR / kS;
+    for (int i = 0; i < kS; ++i) {
+      const glm::dvec3 m = math::fibonacciSphere(i, kS);
+      const glm::dvec3 d = c + kR * m - p;
+      const double r2 = glm::dot(d, d), r = std::sqrt(r2);
+      const double cx = -glm::dot(m, d) / r, cp = d.z / r;
+      if (cx > 0.0 && cp > 0.0) e += l[std::size_t(i)] * cx * cp / r2 * dA;
+    }
+    return e;
+  };
+  for (double x : {0.35, 0.5, 0.8, 1.5}) {
+    const glm::dvec3 p(x, 0.0, 0.0), n(0.0, 0.0, 1.0);
+    const double sl = evaluate(std::span<const Light>(&light, 1), p, n, {}).irradiance.x;
+    const double open = truth(p, lOpen), shadowed = truth(p, lShadowed);
+    std::printf("floor receiver %.2f m from the contact point: SL %.5f, truth with the static (lit) floor %.5f, "
+                "truth with the sphere's shadow on the floor %.5f: SL / real = %.1f\n",
+                x, sl, open, shadowed, sl / shadowed);
+    // The SL models what pass 1 is given: measured within 18 % of the unshadowed truth up to 0.8 m
+    // (order-3 probe, order-4 SL), 46 % at 1.5 m where the receiver sees the sphere's side at grazing.
+    EXPECT_NEAR(sl, open, (x > 1.0 ? 0.5 : 0.25) * open) << x;
+    // The umbra's share: measured SL / real 1.4–1.7 — a factor < 2, NOT the ~10 the characters show.
+    EXPECT_GT(sl, 1.2 * shadowed) << x;
+    EXPECT_LT(sl, 2.5 * shadowed) << x;
   }
 }
