@@ -38,7 +38,7 @@ vec3 slProbeShadow(vec3 p, vec3 n, in vec3 L[9]) {
     // (one blocker's ‖f̂‖ ≤ 1.9 < kHybridBlendStart for every θ of the table: no blend, no squarings;
     // SlProbeShadow.OneCapsLogIsBelowTheHybridsBlend checks it).
     float cd = dot(n, dir);
-    float capX = kSlPi * s * s * max(0.0, cd);
+    float capX = slSilhouette(i) * kSlPi * s * s * max(0.0, cd);  // × the set's shadow scale (bounce_scale.hpp)
     exact += capX;
     sharedX += slShare(i) * capX;
     float m = sqrt(z.y * z.y + z.z * z.z + (kOrder > 3u ? z.w * z.w : 0.0));

@@ -5,7 +5,8 @@
 //   SL_BINDING + 1: SlSpheres (std140): header.x = SL count; per SL i, spheres[4i] = (world centre,
 //                   radius), spheres[4i + 1 … 4i + 3] = the SL-local → world rotation's columns in
 //                   xyz, spheres[4i + 1].w = its object index, spheres[4i + 2].w = its object's
-//                   union share (sl/probe_shadow.glsl); header.y = object ids in use (max + 1),
+//                   union share (sl/probe_shadow.glsl), spheres[4i + 3].w = its set's shadow
+//                   scale (SlSphere::shadowScale); header.y = object ids in use (max + 1),
 //                   objects[o] = (mean of object o's sphere centres, its sphere count): per-object
 //                   blocking's order, the same for every pixel, so computed once on the CPU;
 //   SL_BINDING + 2: SlIntensity (std140): intensity[16i + k].rgb = L^c_k (pass 1's output buffer);
@@ -24,6 +25,7 @@ mat3 slRotation(uint i) { return mat3(slSpheres[4u * i + 1u].xyz, slSpheres[4u *
 uint slObject(uint i) { return uint(slSpheres[4u * i + 1u].w + 0.5); }
 uint slObjectCount() { return slHeader.y; }
 float slShare(uint i) { return slSpheres[4u * i + 2u].w; }
+float slSilhouette(uint i) { return slSpheres[4u * i + 3u].w; }
 vec4 slObjectCentre(uint o) { return slObjects[o]; }
 vec3 slIntensity(uint i, uint k) { return slIntensities[16u * i + k].rgb; }
 

@@ -337,8 +337,8 @@ SphereSet bake(const ref::SceneDesc& object, const BakeSettings& settings, const
   });
   progress.finish();
   // 6. The bounce scale (bounce_scale.hpp): the mesh's light over the SLs' under uniform light.
-  const float bounce = float(fitBounceScale(set, bvh));
-  for (SlSphere& sp : set.spheres) sp.bounceScale = bounce;
+  const BounceScales scales = fitBounceScale(set, bvh);
+  for (SlSphere& sp : set.spheres) sp.bounceScale = float(scales.bounce), sp.shadowScale = float(scales.shadow);
   return set;
 }
 

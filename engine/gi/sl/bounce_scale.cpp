@@ -9,10 +9,10 @@
 
 namespace bounce::gi::sl {
 
-double fitBounceScale(const SphereSet& set, const ref::SceneBvh& bvh) {
+BounceScales fitBounceScale(const SphereSet& set, const ref::SceneBvh& bvh) {
   const int order = set.settings.order;
   const std::size_t nc = std::size_t(order) * order;
-  if (set.spheres.empty() || !(set.boundRadius > 0.0f)) return 1.0;
+  if (set.spheres.empty() || !(set.boundRadius > 0.0f)) return {};
   // White albedo: c_S = √(4π) Y_00's coefficient, i.e. the constant 1 (Eq. 11 then leaves L_S as is).
   std::vector<float> white(nc * 3, 0.0f);
   for (int ch = 0; ch < 3; ++ch) white[std::size_t(ch)] = float(std::sqrt(4.0 * math::kPi));
@@ -31,7 +31,7 @@ double fitBounceScale(const SphereSet& set, const ref::SceneBvh& bvh) {
   settings.order = order;
   const glm::dvec3 c(set.boundCentre);
   const double R = set.boundRadius;
-  double mesh = 0.0, sl = 0.0;
+  double mesh = 0.0, sl = 0.0, unionOmega = 0.0;
   for (double shell : {1.1, 2.0})
     for (int k = 0; k < kBounceScaleDirections; ++k) {
       const glm::dvec3 axis = math::fibonacciSphere(k, kBounceScaleDirections);
@@ -39,12 +39,24 @@ double fitBounceScale(const SphereSet& set, const ref::SceneBvh& bvh) {
       for (int i = 0; i < kBounceScaleRays; ++i) {
         const glm::dvec3 d = math::fibonacciSphere(i, kBounceScaleRays);
         const double cs = glm::dot(d, n);
-        if (cs > 0.0 && bvh.occluded(glm::vec3(p), glm::vec3(d), 1e-5f * float(R), std::numeric_limits<float>::max()))
+        if (!(cs > 0.0)) continue;
+        if (bvh.occluded(glm::vec3(p), glm::vec3(d), 1e-5f * float(R), std::numeric_limits<float>::max()))
           mesh += cs * 4.0 * math::kPi / kBounceScaleRays;
+        for (const Light& l : lights) {
+          const glm::dvec3 oc = l.sphere.centre - p;
+          const double b = glm::dot(oc, d);
+          if (b > 0.0 && glm::dot(oc, oc) - b * b < l.sphere.radius * l.sphere.radius) {
+            unionOmega += cs * 4.0 * math::kPi / kBounceScaleRays;
+            break;
+          }
+        }
       }
       sl += evaluate(lights, p, n, settings).irradiance.x;
     }
-  return sl > 0.0 ? std::clamp(mesh / sl, kMinBounceScale, 1.0) : 1.0;
+  BounceScales out;
+  if (sl > 0.0) out.bounce = std::clamp(mesh / sl, kMinBounceScale, 1.0);
+  if (unionOmega > 0.0) out.shadow = std::clamp(mesh / unionOmega, kMinBounceScale, 1.0);
+  return out;
 }
 
 }  // namespace bounce::gi::sl

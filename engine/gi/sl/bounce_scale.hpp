@@ -26,8 +26,17 @@ inline constexpr int kBounceScaleDirections = 26;
 inline constexpr int kBounceScaleRays = 2048;
 inline constexpr double kMinBounceScale = 0.05;
 
+// The shadow's twin (SlSphere::shadowScale): sl.shadow's caps already count an object's overlapping
+// spheres once (its union share u_o), but the union is still fatter than the mesh, so each cap's
+// exact amount X_j is multiplied by s_shadow = Σ_p Ω_mesh(p) / Σ_p Ω_union(p), the two
+// cosine-weighted solid angles on the same receivers and rays (Ω_union: a ray counts when it meets
+// any sphere). Same clamp.
+struct BounceScales {
+  double bounce = 1.0;
+  double shadow = 1.0;
+};
 // `set`: spheres with their samples and basis sums (bake step 3 done); `bvh`: the object's mesh, in
 // the set's frame. Deterministic.
-double fitBounceScale(const SphereSet& set, const ref::SceneBvh& bvh);
+BounceScales fitBounceScale(const SphereSet& set, const ref::SceneBvh& bvh);
 
 }  // namespace bounce::gi::sl

@@ -48,6 +48,7 @@ Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t fra
     std::vector<Sphere> local;
     for (const SlSphere& s : set->spheres) local.push_back({glm::dvec3(s.centre), double(s.radius)});
     share_.push_back(float(unionShare(local)));
+    silhouette_.push_back(set->spheres.empty() ? 1.0f : set->spheres.front().shadowScale);
   }
   if (probes && spheres_ > 0)
     shadow_ = std::make_unique<ProbeShadowPass>(ctx, shared, *probes, order, blocking, spheres_, influence);
@@ -65,7 +66,8 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::s
   std::vector<ShadedSphere> shaded(spheres_);
   for (std::uint32_t i = 0; i < spheres_; ++i)
     shaded[i] = {posed[i].centre, posed[i].radius, posed[i].rotation, objects[i],
-                 objects[i] < share_.size() ? share_[objects[i]] : 1.0f};
+                 objects[i] < share_.size() ? share_[objects[i]] : 1.0f,
+                 objects[i] < silhouette_.size() ? silhouette_[objects[i]] : 1.0f};
   slot.shade->setSpheres(shaded);
 
   auto& bb = graph.blackboard();

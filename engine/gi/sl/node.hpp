@@ -54,6 +54,7 @@ class Node {
   gpu::Pipeline pipeline_;
   std::unique_ptr<ProbeShadowPass> shadow_;
   std::vector<float> share_;  // per object (set): unionShare of its spheres, for "sl.shadow"
+  std::vector<float> silhouette_;  // per object (set): its shadow scale (SlSphere::shadowScale)
 };
 
 }  // namespace bounce::gi::sl

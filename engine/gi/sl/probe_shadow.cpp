@@ -46,7 +46,10 @@ ProbeShadow probeShadow(std::span<const Light> lights, const glm::dvec3& p, cons
       const double s = std::min(1.0, a.sphere.radius / d);
       const double share =
           l.object >= 0 && std::size_t(l.object) < settings.objectShare.size() ? settings.objectShare[std::size_t(l.object)] : 1.0;
-      const double x = math::kPi * s * s * std::max(0.0, glm::dot(n, dir));
+      const double silhouette = l.object >= 0 && std::size_t(l.object) < settings.objectSilhouette.size()
+                                    ? settings.objectSilhouette[std::size_t(l.object)]
+                                    : 1.0;
+      const double x = silhouette * math::kPi * s * s * std::max(0.0, glm::dot(n, dir));
       exact += x;
       shared += share * x;
       const auto one = sh::expHybrid(tables.logBlocker(std::asin(s), dir), nullptr, settings.log);

@@ -41,6 +41,8 @@
 // → 0 where they saturate). Ours; the square root is fitted on four coincident spheres, which must
 // darken like one (tests/unit/sl/probe_shadow_test.cpp: within 17 % from touching to far, against
 // 34 % with σ² and a near shadow quartered without σ). Measured in README Results "SL".
+// Every X_j is also multiplied by its set's shadow scale (bounce_scale.hpp: the mesh's silhouette
+// over the spheres' union, baked), settings.objectSilhouette / sl_data.glsl slSilhouette.
 #include <span>
 #include <vector>
 
@@ -62,6 +64,9 @@ struct ShadowSettings {
   double influence = 0.0;  // evaluate.hpp rule 0's F (0: off)
   // u_o per Light::object (missing ids: 1), Ratio form only.
   std::vector<double> objectShare;
+  // s_shadow per Light::object (SlSphere::shadowScale, bounce_scale.hpp; missing ids: 1): every
+  // cap's exact amount X_j is multiplied by it (Ratio form only).
+  std::vector<double> objectSilhouette;
 };
 
 // u_o of one object's spheres (any frame: a rigid motion or uniform scale leaves it unchanged):

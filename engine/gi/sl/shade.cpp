@@ -64,6 +64,7 @@ void ShadeData::setSpheres(std::span<const ShadedSphere> spheres) {
     for (int c = 0; c < 3; ++c) v[2 + 4 * i + std::size_t(c)] = glm::vec4(s.rotation[c], 0.0f);
     v[2 + 4 * i].w = float(s.object);
     v[3 + 4 * i].w = s.share;
+    v[4 + 4 * i].w = s.silhouette;
   }
   std::memcpy(spheres_.mapped(), v.data(), v.size() * sizeof(glm::vec4));
 }

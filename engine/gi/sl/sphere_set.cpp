@@ -81,6 +81,7 @@ std::vector<std::uint8_t> serialize(const SphereSet& set) {
     if (sp.albedo.size() != nc * 3) throw InternalError("sl::serialize: albedo size");
     for (float a : sp.albedo) w.put(a);
     w.put(sp.bounceScale);
+    w.put(sp.shadowScale);
   }
   return std::move(w.bytes);
 }
@@ -136,6 +137,8 @@ SphereSet deserialize(std::span<const std::uint8_t> bytes, const std::string& fi
     for (float& a : sp.albedo) a = r.getFinite(where + "/albedo");
     sp.bounceScale = r.getFinite(where + "/bounceScale");
     if (!(sp.bounceScale > 0.0f) || sp.bounceScale > 1.0f) r.fail(where + "/bounceScale", "outside (0, 1]", "a scale in (0, 1]");
+    sp.shadowScale = r.getFinite(where + "/shadowScale");
+    if (!(sp.shadowScale > 0.0f) || sp.shadowScale > 1.0f) r.fail(where + "/shadowScale", "outside (0, 1]", "a scale in (0, 1]");
   }
   if (!r.atEnd()) r.fail("end", "trailing bytes", "nothing after the last sphere");
   return set;
