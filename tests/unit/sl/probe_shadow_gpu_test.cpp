@@ -41,6 +41,10 @@ struct Fixture {
   std::vector<ShadedSphere> shaded;
   std::vector<double> shares;  // per object (missing: 1)
   float share(int object) const { return std::size_t(object) < shares.size() ? float(shares[std::size_t(object)]) : 1.0f; }
+  std::vector<double> silhouettes;  // per object: the sets' shadow scales (missing: 1)
+  float silhouette(int object) const {
+    return std::size_t(object) < silhouettes.size() ? float(silhouettes[std::size_t(object)]) : 1.0f;
+  }
 };
 
 void addSphere(Fixture& f, glm::vec3 c, float r, int object) {
@@ -49,7 +53,7 @@ void addSphere(Fixture& f, glm::vec3 c, float r, int object) {
   l.intensity.assign(16, glm::dvec3(0.0));
   l.object = object;
   f.lights.push_back(l);
-  f.shaded.push_back({c, r, glm::mat3(1.0f), std::uint32_t(object), f.share(object)});
+  f.shaded.push_back({c, r, glm::mat3(1.0f), std::uint32_t(object), f.share(object), f.silhouette(object)});
 }
 
 // A 5×5×4 volume over [−1, 1]² × [−0.2, 1]: smooth, non-negative radiance lobes varying over the grid
@@ -157,6 +161,7 @@ double expectMatches(const Fixture& f, const gi::probes::ProbeVolume& vol, std::
   ShadowSettings s;
   s.order = order;
   s.objectShare = f.shares;
+  s.objectSilhouette = f.silhouettes;
   double worst = 0.0;
   for (std::size_t i = 0; i < r.size(); ++i) {
     const auto L = cpuRadiance(vol, r[i]);
@@ -181,6 +186,7 @@ TEST(SlProbeShadowGpu, GlslEqualsProbeShadowOnAPlaneInsideAndUnderACluster) {
   gpu::Context& ctx = gpu::testkit::sharedContext();
   Fixture f;
   f.shares = {0.55, 0.8};  // the union shares of the first two objects (the column's: 1)
+  f.silhouettes = {0.45, 0.7};  // their sets' shadow scales (bounce_scale.hpp; the column's: 1)
   // Two objects above z = 0 (a chain of overlapping spheres and a cluster of three), as SlShadeGpu's.
   addSphere(f, {-0.3f, 0.0f, 0.6f}, 0.25f, 0);
   addSphere(f, {-0.1f, 0.1f, 0.75f}, 0.2f, 0);
