@@ -102,6 +102,12 @@ TEST(SlProbeShadow, OneSphereUnderUniformLightDarkensByTheCapsFormFactor) {
         EXPECT_NEAR(s.unshadowed.x, 2.0 * kPi, 1e-12);
         EXPECT_NEAR(s.delta.x / s.unshadowed.x, want, kTol) << order << " d " << d << " β " << beta;
         EXPECT_NEAR(s.delta.y, s.delta.x, 1e-12);
+        // A set's shadow scale (bounce_scale.hpp) multiplies the cap's exact amount: one sphere of
+        // shadow scale 0.4 darkens by exactly 0.4 sin²θ cos β.
+        ShadowSettings scaled = shadowSettings(order);
+        scaled.objectSilhouette = {0.4};
+        const ProbeShadow sc = probeShadow(std::span<const Light>(&l, 1), glm::dvec3(0.0), {0, 0, 1}, L, scaled);
+        EXPECT_NEAR(sc.delta.x / sc.unshadowed.x, 0.4 * want, kTol) << order << " d " << d << " β " << beta;
         const ProbeShadow e6 =
             probeShadow(std::span<const Light>(&l, 1), glm::dvec3(0.0), {0, 0, 1}, L, shadowSettings(order, ShadowForm::Eq6));
         worstEq6 = std::max(worstEq6, std::abs(e6.delta.x / e6.unshadowed.x - want) / -want);
