@@ -39,8 +39,13 @@ std::string bakeLine(const ObjectBake& ob, const SphereSet& set, double seconds)
   std::size_t samples = 0;
   for (const auto& s : set.spheres) samples += s.samples.size();
   char text[512];
-  std::snprintf(text, sizeof text, ": %.3f s, %zu surface samples, coverage error %.4f, volume overshoot %.3f -> %s",
-                seconds, samples, double(set.coverageError), double(set.volumeOvershoot), ob.output.c_str());
+  const float bounce = set.spheres.empty() ? 1.0f : set.spheres.front().bounceScale;
+  const float shadow = set.spheres.empty() ? 1.0f : set.spheres.front().shadowScale;
+  std::snprintf(text, sizeof text,
+                ": %.3f s, %zu surface samples, coverage error %.4f, volume overshoot %.3f, bounce scale %.3f, shadow "
+                "scale %.3f -> %s",
+                seconds, samples, double(set.coverageError), double(set.volumeOvershoot), double(bounce), double(shadow),
+                ob.output.c_str());
   return describe(ob.name, ob.settings) + text;
 }
 
