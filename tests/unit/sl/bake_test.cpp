@@ -187,6 +187,13 @@ TEST(SlBake, MalformedFilesAreInputErrors) {
   const float q = std::numeric_limits<float>::quiet_NaN();
   std::memcpy(nan.data() + 8 + 4 + 24 + 16 + 8 + 4 + 12, &q, 4);
   expectInput(nan, "nan radius");
+  // The last sphere's scales are the file's last 8 bytes (bounce, shadow): each must be in (0, 1].
+  for (std::size_t back : {8u, 4u})
+    for (float bad : {0.0f, 1.5f, -0.25f}) {
+      auto scale = bytes;
+      std::memcpy(scale.data() + scale.size() - back, &bad, 4);
+      expectInput(scale, back == 8 ? "bounce scale" : "shadow scale");
+    }
 }
 
 // Pass 1's projection (Eq. 10–11) on baked data: a sphere mesh of albedo ρ whose samples all
