@@ -4,7 +4,8 @@
 // uniform light, where every surface point re-emits the same radiance and the truth at a receiver is
 // that radiance times the MESH's cosine-weighted solid angle: the SLs of CesiumMan / Fox give 1.9–2.8×
 // / 2.7–4.0× the mesh's light (8–32 spheres). Two causes, both geometric, neither a units error
-// (tests/unit/sl/bounce_units_test.cpp checks every factor of pass 1 and 2 on a sphere):
+// (tests/unit/sl/bounce_units_test.cpp checks every factor of pass 1 and 2 on a sphere), both caught
+// by the fit below (on other receivers the scaled SLs give 0.84–0.98× the mesh's light):
 //  - the spheres bound the surface and are fatter than it (the union's solid angle is 1.9–2.4× the
 //    mesh's: volume overshoot 2.7–5);
 //  - overlapping spheres of one object do not block each other (§6.2 ignores intersecting SLs; their
@@ -13,7 +14,7 @@
 // Fit: s = Σ_p E_mesh(p) / Σ_p E_SL(p) over receivers on two shells around the set (1.1 and 2
 // bounding radii, kBounceScaleDirections directions each, facing the centre), with every sample
 // re-emitting 1 and white albedo; E_mesh by kBounceScaleRays cosine-weighted rays against the mesh,
-// E_SL by sl::evaluate (per-sphere blocking, ratio form, the set's order). One number per set,
+// E_SL by sl::evaluate (per-sphere blocking, ratio form, the set's order). One bounce number per set,
 // stored on each sphere (SlSphere::bounceScale) and multiplied into pass 1's Eq. 11 (both faces:
 // intensity.cpp's reference and IntensityPass's albedo upload). Clamped to [kMinBounceScale, 1]: the
 // SLs are bounds, so they are never made brighter than baked.
