@@ -356,6 +356,16 @@ std::vector<double> expHybrid(std::span<const double> f, int* squarings, LogKind
   const double scale = std::ldexp(1.0, -k);
   for (std::size_t i = 1; i < h.size(); ++i) h[i] *= scale;
   auto g = olNoDc(t, h, m);
+  // Continuity at the switch (sh_exp.hpp): blend towards one more halving as m nears the OL range's end.
+  const double x = std::clamp((m - ExpTables::kHybridBlendStart) / (ExpTables::kMaxMagnitude - ExpTables::kHybridBlendStart), 0.0, 1.0);
+  const double w = x * x * (3.0 - 2.0 * x);
+  if (w > 0.0) {
+    std::vector<double> half(h);
+    for (std::size_t i = 1; i < half.size(); ++i) half[i] *= 0.5;
+    auto q = olNoDc(t, half, 0.5 * m);
+    q = product<double>(q, q, order);
+    for (std::size_t i = 0; i < g.size(); ++i) g[i] = (1.0 - w) * g[i] + w * q[i];
+  }
   for (int i = 0; i < k; ++i) g = product<double>(g, g, order);  // exp(2x) = exp(x)²
   const double s = dcFactor(f[0]);
   for (double& x : g) x *= s;

@@ -20,7 +20,13 @@
 //    a and b tabulated by ‖f̂‖ by least squares against exp on a training set of log-visibility
 //    directions (sums of 1–8 rotated single-blocker logs, fixed seed), see ExpTables;
 //  - expHybrid(f): for ‖f̂‖ above the table's range, f̂ is halved k times until it fits, OL is
-//    applied, and the result is squared k times with sh::product (Ren et al.'s "hybrid").
+//    applied, and the result is squared k times with sh::product (Ren et al.'s "hybrid"). Ren et
+//    al.'s switch is not continuous: where ‖f̂‖/2^k reaches kMaxMagnitude, OL(f̂) ≠ OL(f̂/2)² (a
+//    step of 18–37 % of ‖exp‖ at ‖f̂‖ = 32 in tests/unit/sl/sh_exp_test.cpp). Ours: with m = ‖f̂‖/2^k in
+//    (kMaxMagnitude/2, kMaxMagnitude], OL(f̂/2^k) is blended towards OL(f̂/2^{k+1})² by
+//    w = smoothstep((m − kHybridBlendStart)/(kMaxMagnitude − kHybridBlendStart)), then squared k
+//    times: at m = kMaxMagnitude it is exactly the k + 1 result the next magnitude starts from. Cost:
+//    one more OL and one squaring inside the band only.
 #include <array>
 #include <span>
 #include <vector>
@@ -56,6 +62,7 @@ class ExpTables {
   static constexpr int kThetaEntries = 256;     // θ in [0, π/2], uniform
   static constexpr int kMagEntries = 128;       // ‖f̂‖ in [0, kMaxMagnitude], uniform
   static constexpr double kMaxMagnitude = 4.0;  // OL range; beyond it the hybrid halves
+  static constexpr double kHybridBlendStart = 3.0;  // expHybrid blends over [this, kMaxMagnitude]
 
   int order() const { return order_; }
   // log(g_θ) as ZH (order coefficients), linear interpolation in θ; θ clamped to [0, π/2]

@@ -12,7 +12,6 @@
 #include "sh.glsl"
 
 layout(constant_id = 0) const int kCoeffs = 9;  // order²: 4 or 9
-const int kTexels = (3 * kCoeffs + 4) / 4;      // SH texels per probe: 3 floats a coefficient + valid
 // The SH texels from the uniform block below instead of the image when the volume fits it (node.cpp
 // kShUboBytes): the same floats, fetched cheaper (README "What costs what on lavapipe").
 layout(constant_id = 1) const bool kShInUbo = false;
@@ -21,10 +20,7 @@ layout(set = 0, binding = 0) uniform FrameUbo { Camera camera; };
 layout(set = 1, binding = 0) uniform sampler2D gAlbedo;
 layout(set = 1, binding = 1) uniform sampler2D gNormal;
 layout(set = 1, binding = 2) uniform sampler2D gDepth;
-// engine/gi/probes/node.cpp: probe p = x + count.x·row sits in texel row `row`, its data in
-// `slots` texels from slots·x on: SH, kTexels texels packing L_0.rgb, L_1.rgb, … then the valid
-// flag, 4 floats a texel (order 3: 7 texels, not 9: the gathers are most of the pass); moments,
-// texel (bin + PROBE_VIS_BINS·x, row) = (mean, mean square) (m, m²).
+// The probe images' layout: probes/probe_sh.glsl.
 layout(set = 1, binding = 3) uniform sampler2D probeSh;       // RGBA32F
 layout(set = 1, binding = 4) uniform sampler2D probeMoments;  // RG32F
 layout(std140, set = 1, binding = 5) uniform ProbeShBlock { vec4 probeShUbo[4096]; };  // texel t of p: [kTexels·p + t]
@@ -36,18 +32,8 @@ layout(push_constant) uniform Push {
   vec4 bias;           // x: normal bias (m), y: view bias (m), z: Chebyshev variance floor (m²), w: 1 = multiply by aoTerm
 } pc;
 
-ivec2 probeTexel(int probe, int slot, int slotsPerProbe) {
-  return ivec2(slot + slotsPerProbe * (probe % pc.countOrder.x), probe / pc.countOrder.x);
-}
-
-vec4 probeShTexel(int probe, int t) {
-  return kShInUbo ? probeShUbo[kTexels * probe + t] : texelFetch(probeSh, probeTexel(probe, t, kTexels), 0);
-}
-
-#define PROBE_DATA_PARAM
-#define PROBE_VALID(i) (probeShTexel(i, kTexels - 1)[(3 * kCoeffs) % 4] != 0.0)
-#define PROBE_MOMENTS(i, b) texelFetch(probeMoments, probeTexel(i, b, PROBE_VIS_BINS), 0).rg
-#include "probes/probe_weights.glsl"
+#define PROBE_SH_UBO  // probe_sh.glsl: read kShInUbo's probeShUbo
+#include "probes/probe_sh.glsl"
 
 layout(location = 0) in vec2 inUv;
 layout(location = 0) out vec4 outRadiance;
@@ -64,22 +50,8 @@ void main() {
   vec3 albedo = texelFetch(gAlbedo, pixel, 0).rgb;
   vec3 n = texelFetch(gNormal, pixel, 0).xyz;
   vec3 x = worldFromDepth(camera.invViewProj, (vec2(pixel) + 0.5) * camera.resolution.zw, depth);
-  vec3 v = normalize(camera.position.xyz - x);
-  vec3 q = x + pc.bias.x * n + pc.bias.y * v;
-  int probe[8];
-  float weight[8];
-  probeWeights(pc.countOrder.xyz, pc.originSpacing.xyz, pc.originSpacing.w, pc.bias.z, q, n, probe, weight);
   vec3 L[9];
-  for (int i = 0; i < 9; ++i) L[i] = vec3(0.0);
-  // No test of weight[k] == 0: a branch is not skipped on llvmpipe, and 0·L adds nothing.
-  for (int k = 0; k < 8; ++k) {
-    float f[28];  // kTexels · 4 ≤ 28
-    for (int t = 0; t < kTexels; ++t) {
-      vec4 v = probeShTexel(probe[k], t);
-      f[4 * t] = v.x, f[4 * t + 1] = v.y, f[4 * t + 2] = v.z, f[4 * t + 3] = v.w;
-    }
-    for (int i = 0; i < kCoeffs; ++i) L[i] += weight[k] * vec3(f[3 * i], f[3 * i + 1], f[3 * i + 2]);
-  }
+  probeRadianceSh(x, n, normalize(camera.position.xyz - x), L);
   float ao = pc.bias.w > 0.5 ? texelFetch(aoTerm, pixel, 0).r : 1.0;
   outRadiance = vec4(albedo * kInvPi * ao * max(shIrradiance9(L, n), vec3(0.0)), 0.0);
 }

@@ -31,6 +31,7 @@ const float kSlMinOpen = 1e-9;      // evaluate.cpp kMinOpen
 const int kSlThetaEntries = 256;
 const int kSlMagEntries = 128;
 const float kSlMaxMagnitude = 4.0;
+const float kSlBlendStart = 3.0;    // sh_exp.hpp ExpTables::kHybridBlendStart
 const float kSlMaxExponent = 80.0;  // e^80 < FLT_MAX: the DC factor stays finite (C++: 700, double)
 
 #include "sl/gaunt.glsl"
@@ -88,8 +89,17 @@ float slIrradianceY(in float v[16], in float y[16]) {
   return e;
 }
 
+// The optimal-linear (a, b) at ‖f̂‖ = m (sh_exp.hpp ExpTables::olCoefficients; m clamped to [0, 4]).
+vec2 slOl(float m) {
+  float x = clamp(m, 0.0, kSlMaxMagnitude) / kSlMaxMagnitude * float(kSlMagEntries - 1);
+  int i0 = min(int(x), kSlMagEntries - 2);
+  float w = x - float(i0);
+  return (1.0 - w) * texelFetch(slTables, ivec2(i0, 2), 0).xy + w * texelFetch(slTables, ivec2(i0 + 1, 2), 0).xy;
+}
+
 // The hybrid exp (sh_exp.hpp expHybrid): DC isolation, optimal-linear on f̂ halved k times until
-// ‖f̂‖ ≤ 4, then k squarings (slSquare: the Gaunt tensor, unrolled).
+// ‖f̂‖ ≤ 4, blended over ‖f̂‖/2^k in [3, 4] towards one more halving (continuity, sh_exp.hpp), then k
+// squarings (slSquare: the Gaunt tensor, unrolled).
 void slExp(in float f[16], out float g[16]) {
   float m2 = 0.0;
   for (uint i = 1u; i < kSlCoeffs; ++i) m2 += f[i] * f[i];
@@ -99,13 +109,20 @@ void slExp(in float f[16], out float g[16]) {
     m *= 0.5;
     ++k;
   }
-  float x = clamp(m, 0.0, kSlMaxMagnitude) / kSlMaxMagnitude * float(kSlMagEntries - 1);
-  int i0 = min(int(x), kSlMagEntries - 2);
-  float w = x - float(i0);
-  vec2 ab = (1.0 - w) * texelFetch(slTables, ivec2(i0, 2), 0).xy + w * texelFetch(slTables, ivec2(i0 + 1, 2), 0).xy;
+  vec2 ab = slOl(m);
   float scale = exp2(-float(k));
   g[0] = ab.x * kSlSqrt4Pi;
   for (uint i = 1u; i < 16u; ++i) g[i] = i < kSlCoeffs ? ab.y * (f[i] * scale) : 0.0;
+  float x = clamp((m - kSlBlendStart) / (kSlMaxMagnitude - kSlBlendStart), 0.0, 1.0);
+  float blend = x * x * (3.0 - 2.0 * x);
+  if (blend > 0.0) {
+    vec2 abHalf = slOl(0.5 * m);
+    float q[16], q2[16];
+    q[0] = abHalf.x * kSlSqrt4Pi;
+    for (uint i = 1u; i < 16u; ++i) q[i] = i < kSlCoeffs ? abHalf.y * (f[i] * (0.5 * scale)) : 0.0;
+    slSquare(q, q2);
+    for (uint i = 0u; i < 16u; ++i) g[i] = (1.0 - blend) * g[i] + blend * q2[i];
+  }
   for (int s = 0; s < k; ++s) {
     float h[16];
     slSquare(g, h);

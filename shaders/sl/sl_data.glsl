@@ -4,7 +4,9 @@
 //   SL_BINDING + 0: slTables, rgba32f 256×3 (sl.glsl's header);
 //   SL_BINDING + 1: SlSpheres (std140): header.x = SL count; per SL i, spheres[4i] = (world centre,
 //                   radius), spheres[4i + 1 … 4i + 3] = the SL-local → world rotation's columns in
-//                   xyz, spheres[4i + 1].w = its object index; header.y = object ids in use (max + 1),
+//                   xyz, spheres[4i + 1].w = its object index, spheres[4i + 2].w = its object's
+//                   union share (sl/probe_shadow.glsl), spheres[4i + 3].w = its set's shadow
+//                   scale (SlSphere::shadowScale); header.y = object ids in use (max + 1),
 //                   objects[o] = (mean of object o's sphere centres, its sphere count): per-object
 //                   blocking's order, the same for every pixel, so computed once on the CPU;
 //                   intersects[i]: bit j % 32 of word j / 32 set when SLs i and j belong to one
@@ -25,6 +27,8 @@ vec4 slSphere(uint i) { return slSpheres[4u * i]; }
 mat3 slRotation(uint i) { return mat3(slSpheres[4u * i + 1u].xyz, slSpheres[4u * i + 2u].xyz, slSpheres[4u * i + 3u].xyz); }
 uint slObject(uint i) { return uint(slSpheres[4u * i + 1u].w + 0.5); }
 uint slObjectCount() { return slHeader.y; }
+float slShare(uint i) { return slSpheres[4u * i + 2u].w; }
+float slSilhouette(uint i) { return slSpheres[4u * i + 3u].w; }
 vec4 slObjectCentre(uint o) { return slObjects[o]; }
 uvec4 slIntersecting(uint i) { return slIntersectMasks[i]; }
 vec3 slIntensity(uint i, uint k) { return slIntensities[16u * i + k].rgb; }

@@ -29,7 +29,7 @@ gpu::ImageDesc probeImageDesc(gpu::Context& ctx, const ProbeGrid& g, std::uint32
 std::uint32_t shTexels(const ProbeVolume& v) { return std::uint32_t(3 * v.coeffs() + 4) / 4; }
 
 // SH texels, probe-major: probe p's texel t at 4·(t + shTexels·p), packing L_0.rgb, L_1.rgb, …,
-// valid, as probes.frag reads them (the row-major image layout, and the uniform block's).
+// valid, as probe_sh.glsl reads them (the row-major image layout, and the uniform block's).
 std::vector<float> shTexelFloats(const ProbeVolume& v) {
   const std::size_t probes = v.grid.probeCount(), coeffs = std::size_t(v.coeffs()), stride = 4 * shTexels(v);
   std::vector<float> floats(probes * stride, 0.0f);
@@ -41,6 +41,13 @@ std::vector<float> shTexelFloats(const ProbeVolume& v) {
   }
   return floats;
 }
+
+// probes.frag's ProbeShBlock: 4096 vec4 = 64 KiB, lavapipe's maxUniformBufferRange (the Vulkan
+// minimum is 16 KiB; a device below 64 KiB keeps the image path). Order 3: 585 probes (9³ = 729, a
+// 0.125 m grid over cornell-1, takes the image path); order 2: 1365.
+constexpr VkDeviceSize kShUboBytes = 4096 * 16;
+
+}  // namespace
 
 // SH texels (t + shTexels·x, row).
 std::unique_ptr<gpu::Image> uploadSh(gpu::Context& ctx, const ProbeVolume& v) {
@@ -59,18 +66,11 @@ std::unique_ptr<gpu::Image> uploadMoments(gpu::Context& ctx, const ProbeVolume& 
   return image;
 }
 
-// probes.frag's ProbeShBlock: 4096 vec4 = 64 KiB, lavapipe's maxUniformBufferRange (the Vulkan
-// minimum is 16 KiB; a device below 64 KiB keeps the image path). Order 3: 585 probes (9³ = 729, a
-// 0.125 m grid over cornell-1, takes the image path); order 2: 1365.
-constexpr VkDeviceSize kShUboBytes = 4096 * 16;
-
-struct Push {
-  glm::vec4 originSpacing;
-  glm::ivec4 countOrder;
-  glm::vec4 bias;
-};
-
-}  // namespace
+ProbePush probePush(const ProbeVolume& v, float flag) {
+  const ProbeGrid& g = v.grid;
+  return {glm::vec4(g.origin, g.spacing), glm::ivec4(g.count, v.order),
+          glm::vec4(g.spacing * v.bias.normal, g.spacing * v.bias.view, v.minVariance(), flag)};
+}
 
 ProbeNode::ProbeNode(gpu::Context& ctx, const render::Pipelines& pipelines, ProbeVolume volume, bool shInUbo)
     : volume_(std::move(volume)),
@@ -94,7 +94,7 @@ ProbeNode::ProbeNode(gpu::Context& ctx, const render::Pipelines& pipelines, Prob
     if (shInUbo_) gpu::upload(ctx, shUbo_, {reinterpret_cast<const std::uint8_t*>(floats.data()), std::size_t(bytes)});
   }
   layout_ = gpu::PipelineLayout(ctx, {pipelines.frameLayout.handle(), setLayout_.handle()},
-                                {{VK_SHADER_STAGE_ALL, 0, sizeof(Push)}}, "probes");
+                                {{VK_SHADER_STAGE_ALL, 0, sizeof(ProbePush)}}, "probes");
   gpu::ShaderModule vert(ctx, "passes/fullscreen.vert.spv");
   gpu::ShaderModule frag(ctx, "probes/probes.frag.spv");
   gpu::GraphicsPipelineDesc d;
@@ -146,11 +146,7 @@ void ProbeNode::addPasses(rg::RenderGraph& graph, const render::PassContext* pc)
         pipeline_.bind(cmd);
         pipeline_.bindSet(cmd, 0, pc->frameSet);
         pipeline_.bindSet(cmd, 1, set);
-        const ProbeGrid& g = volume_.grid;
-        const Push push{glm::vec4(g.origin, g.spacing), glm::ivec4(g.count, volume_.order),
-                        glm::vec4(g.spacing * volume_.bias.normal, g.spacing * volume_.bias.view,
-                                  volume_.minVariance(), withAo ? 1.0f : 0.0f)};
-        pipeline_.push(cmd, push);
+        pipeline_.push(cmd, probePush(volume_, withAo ? 1.0f : 0.0f));
         vkCmdDraw(cmd, 3, 1, 0, 0);
         pc->gpu->cmdEndRendering(cmd);
       });

@@ -15,6 +15,19 @@
 
 namespace bounce::gi::probes {
 
+// The volume on the device as shaders/probes/probe_sh.glsl reads it (probes.frag, and the SL
+// shadow on the probes' light): SH with the valid flag (RGBA32F) and visibility moments (RG32F).
+std::unique_ptr<gpu::Image> uploadSh(gpu::Context& ctx, const ProbeVolume& v);
+std::unique_ptr<gpu::Image> uploadMoments(gpu::Context& ctx, const ProbeVolume& v);
+// probe_sh.glsl's push-constant block `pc`; bias.w is the includer's flag (probes.frag: multiply by
+// "ao.term").
+struct ProbePush {
+  glm::vec4 originSpacing;
+  glm::ivec4 countOrder;
+  glm::vec4 bias;
+};
+ProbePush probePush(const ProbeVolume& v, float flag);
+
 class ProbeNode final : public TechniqueRuntime {
  public:
   // `pipelines` gives the shared frame layout (set 0: camera).

@@ -8,6 +8,7 @@
 #include "engine/core/error.hpp"
 #include "engine/core/parallel.hpp"
 #include "engine/core/progress.hpp"
+#include "engine/gi/sl/bounce_scale.hpp"
 #include "engine/gi/sl/evaluate.hpp"
 #include "engine/math/sampling.hpp"
 #include "engine/math/sh_eval.hpp"
@@ -335,6 +336,9 @@ SphereSet bake(const ref::SceneDesc& object, const BakeSettings& settings, const
     progress.advance();
   });
   progress.finish();
+  // 6. The bounce scale (bounce_scale.hpp): the mesh's light over the SLs' under uniform light.
+  const BounceScales scales = fitBounceScale(set, bvh);
+  for (SlSphere& sp : set.spheres) sp.bounceScale = float(scales.bounce), sp.shadowScale = float(scales.shadow);
   return set;
 }
 

@@ -39,7 +39,10 @@ std::vector<glm::dvec3> intensityReference(const SlSphere& rest, int order, cons
     radiance.push_back(glm::dvec3(sampleReflection(s, rest, posed, lights, indirect)));
     basis.push_back(s.basis);
   }
-  return intensityFromSamples(radiance, basis, rest.albedo, order);
+  // Eq. 11 with the set's bounce scale folded into c_S (bounce_scale.hpp), as IntensityPass uploads it.
+  std::vector<float> albedo = rest.albedo;
+  for (float& a : albedo) a *= rest.bounceScale;
+  return intensityFromSamples(radiance, basis, albedo, order);
 }
 
 namespace {
@@ -103,7 +106,7 @@ IntensityPass::IntensityPass(gpu::Context& ctx, std::span<const SphereSet* const
       }
       for (std::size_t k = 0; k < 16; ++k)
         albedo.push_back(k < nc && k * 3 + 2 < s.albedo.size()
-                             ? glm::vec4(s.albedo[k * 3], s.albedo[k * 3 + 1], s.albedo[k * 3 + 2], 0.0f)
+                             ? s.bounceScale * glm::vec4(s.albedo[k * 3], s.albedo[k * 3 + 1], s.albedo[k * 3 + 2], 0.0f)
                              : glm::vec4(0.0f));
     }
   }

@@ -9,6 +9,8 @@
 //   world normal    n = normalize(R · n_local)                  update.hpp, §7.1)
 //   L_pj = max(0, E(n)) / π   (Eq. 3 with ρ_n the white Lambertian BRDF — the albedo enters at
 //                              Eq. 11 — so W/(m²·sr) per channel)
+// Eq. 11's c_S is multiplied by the set's bounce scale (SlSphere::bounceScale, bounce_scale.hpp:
+// the spheres are fatter than the mesh and their overlaps add, measured 2–4× the mesh's light).
 // with E(n) the irradiance from the order-3 radiance SH of the light arriving at p: the level's real
 // lights through incident.glsl (radius 0: a point receiver) each times its visibility, plus the
 // probes' indirect light. DEPARTURES: (1) the probes are sampled once per SL, at its posed centre,

@@ -4,6 +4,7 @@
 
 #include "engine/core/error.hpp"
 #include "engine/gi/sl/tiles.hpp"
+#include "engine/gi/sl/probe_shadow.hpp"
 #include "engine/render/passes/rendering.hpp"
 
 namespace bounce::gi::sl {
@@ -36,7 +37,8 @@ std::vector<gpu::Binding> upsampleBindings() {
 }  // namespace
 
 Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t framesInFlight,
-           std::span<const SphereSet* const> sets, int order, Blocking blocking, float influence, Resolution resolution)
+           std::span<const SphereSet* const> sets, int order, Blocking blocking, float influence, Resolution resolution,
+           const probes::ProbeVolume* probes)
     : ctx_(ctx),
       order_(order),
       blocking_(blocking),
@@ -79,6 +81,14 @@ Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t fra
     u.name = "sl.upsample";
     upsample_ = gpu::createGraphicsPipeline(ctx, upsampleLayout_, u);
   }
+  for (const SphereSet* set : sets) {
+    std::vector<Sphere> local;
+    for (const SlSphere& s : set->spheres) local.push_back({glm::dvec3(s.centre), double(s.radius)});
+    share_.push_back(float(unionShare(local)));
+    silhouette_.push_back(set->spheres.empty() ? 1.0f : set->spheres.front().shadowScale);
+  }
+  if (probes && spheres_ > 0)
+    shadow_ = std::make_unique<ProbeShadowPass>(ctx, shared, *probes, order, blocking, spheres_, influence);
 }
 
 void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::span<const PosedSphere> posed,
@@ -91,7 +101,10 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::s
   const bool recording = pc->frames != nullptr;
   Slot& slot = slots_[recording ? pc->frame().slot % slots_.size() : 0];
   std::vector<ShadedSphere> shaded(spheres_);
-  for (std::uint32_t i = 0; i < spheres_; ++i) shaded[i] = {posed[i].centre, posed[i].radius, posed[i].rotation, objects[i]};
+  for (std::uint32_t i = 0; i < spheres_; ++i)
+    shaded[i] = {posed[i].centre, posed[i].radius, posed[i].rotation, objects[i],
+                 objects[i] < share_.size() ? share_[objects[i]] : 1.0f,
+                 objects[i] < silhouette_.size() ? silhouette_[objects[i]] : 1.0f};
   if (recording) {
     // CPU writes of this slot's host-visible blocks: the ring waited for the slot's last frame.
     slot.intensity->setSpheres(posed, indirect);
@@ -176,6 +189,7 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::s
       });
   if (!half) {
     bb.put("lighting.hdr", data.hdr);
+    if (shadow_) shadow_->addTo(graph, pc, *slot.shade, slot.intensity->intensity());
     return;
   }
   struct UpData {
@@ -213,6 +227,7 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::s
         ctx_.cmdEndRendering(cmd);
       });
   bb.put("lighting.hdr", up.hdr);
+  if (shadow_) shadow_->addTo(graph, pc, *slot.shade, slot.intensity->intensity());
 }
 
 }  // namespace bounce::gi::sl

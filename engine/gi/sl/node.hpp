@@ -9,6 +9,8 @@
 //  at Resolution::Half, "sl" writes E at every second G-buffer pixel per axis into the transient
 //     "sl.half" (half size, RGBA16F) and "sl.upsample" (shaders/sl/upsample.frag) adds the
 //     depth- and normal-weighted upsample times ρ/π to "lighting.hdr".
+//  "sl.shadow" (fragment, pass 2's shadow on the probes' light): when a probe volume is given and
+//     the probes pass runs, the SLs' soft shadow on it (ProbeShadowPass), at full resolution.
 // Each is timed under its own name by the graph. Pass 2 shades every SL of every object in one draw
 // (the blocking couples objects: an object's Ṽ needs the closer objects' logs), so there are no
 // per-object rows. Per frame slot the node owns its own pass-1 buffers, pass-2 sphere block and tile
@@ -20,6 +22,7 @@
 #include "engine/gi/incident/incident.hpp"
 #include "engine/gi/sl/evaluate.hpp"
 #include "engine/gi/sl/intensity.hpp"
+#include "engine/gi/sl/probe_shadow_pass.hpp"
 #include "engine/gi/sl/shade.hpp"
 #include "engine/render/graph/render_graph.hpp"
 #include "engine/render/pass_context.hpp"
@@ -33,10 +36,11 @@ enum class Resolution { Full, Half };
 class Node {
  public:
   // `sets` (not owned, must outlive the node) in participant order; `order` ≥ every set's order;
-  // `influence`: evaluate.hpp rule 0's F (0: off).
+  // `influence`: evaluate.hpp rule 0's F (0: off); `probes` (not owned, may be null: no "sl.shadow"):
+  // the probes' baked volume.
   Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t framesInFlight,
        std::span<const SphereSet* const> sets, int order, Blocking blocking, float influence,
-       Resolution resolution = Resolution::Full);
+       Resolution resolution = Resolution::Full, const probes::ProbeVolume* probes = nullptr);
   // This frame's SLs, concatenated over the sets: pose, object index, probes' SH at the centre.
   void addTo(rg::RenderGraph& graph, const render::PassContext& pc, std::span<const PosedSphere> posed,
              std::span<const std::uint32_t> objects, std::span<const incident::RadianceSH> indirect);
@@ -61,6 +65,9 @@ class Node {
   gpu::PipelineLayout upsampleLayout_;
   gpu::ShaderModule vert_, frag_, upsampleFrag_;
   gpu::Pipeline pipeline_, upsample_;  // upsample_: at half resolution only
+  std::unique_ptr<ProbeShadowPass> shadow_;
+  std::vector<float> share_;  // per object (set): unionShare of its spheres, for "sl.shadow"
+  std::vector<float> silhouette_;  // per object (set): its shadow scale (SlSphere::shadowScale)
 };
 
 }  // namespace bounce::gi::sl

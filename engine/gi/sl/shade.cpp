@@ -63,6 +63,8 @@ void ShadeData::setSpheres(std::span<const ShadedSphere> spheres) {
     v[1 + 4 * i] = glm::vec4(s.centre, s.radius);
     for (int c = 0; c < 3; ++c) v[2 + 4 * i + std::size_t(c)] = glm::vec4(s.rotation[c], 0.0f);
     v[2 + 4 * i].w = float(s.object);
+    v[3 + 4 * i].w = s.share;
+    v[4 + 4 * i].w = s.silhouette;
   }
   // Pairs of one object that overlap (evaluate.cpp's intersects(), in double): pass 2 subtracts
   // them from the running blocker sum instead of testing every pair per pixel.

@@ -11,7 +11,7 @@ namespace bounce::gi::sl {
 namespace {
 
 constexpr char kMagic[8] = {'B', 'S', 'L', 'S', 'P', 'S', 'E', 'T'};
-constexpr std::uint32_t kVersion = 1;
+constexpr std::uint32_t kVersion = 2;  // 2: SlSphere::bounceScale
 constexpr std::uint32_t kMaxVertices = 1u << 26;
 constexpr std::uint32_t kMaxJoints = 1u << 16;
 
@@ -80,6 +80,8 @@ std::vector<std::uint8_t> serialize(const SphereSet& set) {
     }
     if (sp.albedo.size() != nc * 3) throw InternalError("sl::serialize: albedo size");
     for (float a : sp.albedo) w.put(a);
+    w.put(sp.bounceScale);
+    w.put(sp.shadowScale);
   }
   return std::move(w.bytes);
 }
@@ -133,6 +135,10 @@ SphereSet deserialize(std::span<const std::uint8_t> bytes, const std::string& fi
     }
     sp.albedo.resize(nc * 3);
     for (float& a : sp.albedo) a = r.getFinite(where + "/albedo");
+    sp.bounceScale = r.getFinite(where + "/bounceScale");
+    if (!(sp.bounceScale > 0.0f) || sp.bounceScale > 1.0f) r.fail(where + "/bounceScale", "outside (0, 1]", "a scale in (0, 1]");
+    sp.shadowScale = r.getFinite(where + "/shadowScale");
+    if (!(sp.shadowScale > 0.0f) || sp.shadowScale > 1.0f) r.fail(where + "/shadowScale", "outside (0, 1]", "a scale in (0, 1]");
   }
   if (!r.atEnd()) r.fail("end", "trailing bytes", "nothing after the last sphere");
   return set;

@@ -6,7 +6,7 @@
 // each other's blockers, their occlusion is baked into the samples) and the set's bounding sphere
 // (object sorting for per-object blocking, tile culling).
 //
-// File: versioned binary ("BSLSPSET", version), little-endian as the host writes it (as DNRT's
+// File: versioned binary ("BSLSPSET", version 2: + per-sphere bounce and shadow scales), little-endian as the host writes it (as DNRT's
 // field), validated on load: every count against its limit, every float finite, radii ≥ 0, sample
 // directions < the direction count, no trailing bytes. A malformed file is an InputError naming it.
 #include <cstdint>
@@ -49,6 +49,8 @@ struct SlSphere {
   std::vector<std::uint16_t> joints;    // joints of those vertices with weight > 0, ascending
   std::vector<SurfaceSample> samples;
   std::vector<float> albedo;            // c_S (§4.2): RGB SH, order² × 3 floats, coefficient-major
+  float bounceScale = 1.0f;             // the set's fitted bounce scale (bounce_scale.hpp), in (0, 1]
+  float shadowScale = 1.0f;             // and its shadow's (sl.shadow's caps), in (0, 1]
 };
 
 struct SphereSet {

@@ -39,8 +39,13 @@ std::string bakeLine(const ObjectBake& ob, const SphereSet& set, double seconds)
   std::size_t samples = 0;
   for (const auto& s : set.spheres) samples += s.samples.size();
   char text[512];
-  std::snprintf(text, sizeof text, ": %.3f s, %zu surface samples, coverage error %.4f, volume overshoot %.3f -> %s",
-                seconds, samples, double(set.coverageError), double(set.volumeOvershoot), ob.output.c_str());
+  const float bounce = set.spheres.empty() ? 1.0f : set.spheres.front().bounceScale;
+  const float shadow = set.spheres.empty() ? 1.0f : set.spheres.front().shadowScale;
+  std::snprintf(text, sizeof text,
+                ": %.3f s, %zu surface samples, coverage error %.4f, volume overshoot %.3f, bounce scale %.3f, shadow "
+                "scale %.3f -> %s",
+                seconds, samples, double(set.coverageError), double(set.volumeOvershoot), double(bounce), double(shadow),
+                ob.output.c_str());
   return describe(ob.name, ob.settings) + text;
 }
 
@@ -161,7 +166,7 @@ class SlTechnique final : public Technique {
           r.setting = "spheres=" + std::to_string(spheres) + ";order=" + std::to_string(order) +
                       ";blocking=" + (perObject ? "per-object" : "per-sphere") + ";ref=all";
           r.effects = {"direct", "shadows", "probes", "sl"};
-          r.passes = {"shadow", "lighting", "probes", "sl.intensity", "sl"};
+          r.passes = {"shadow", "lighting", "probes", "sl.intensity", "sl", "sl.shadow"};
           r.configure = [=](scene::Level& level) {
             for (auto& e : level.entities)
               if (e.sl) {
@@ -173,7 +178,8 @@ class SlTechnique final : public Technique {
           rows.push_back(std::move(r));
         }
   }
-  std::vector<std::string> passes() const override { return {"sl.intensity", "sl"}; }
+  // "sl.shadow" runs only beside "probes" (its light is what it shadows).
+  std::vector<std::string> passes() const override { return {"sl.intensity", "sl", "sl.shadow"}; }
 };
 
 }  // namespace
@@ -209,7 +215,7 @@ ObjectInput objectInput(ecs::Registry& registry, ecs::Entity entity, const ref::
 
 std::string cacheKey(const ObjectInput& in, const BakeSettings& s) {
   Hasher h;
-  h.str("sl-sphere-set-v1");  // baker and BSLSPSET format version: bump when either changes
+  h.str("sl-sphere-set-v2");  // baker and BSLSPSET format version: bump when either changes
   h.pod(s.spheres).pod(s.order).pod(s.directions).pod(s.samplesPerAxis).pod(s.surfaceSamples).pod(s.iterations);
   const ref::SceneDesc& object = in.object;
   ref::hashGeometry(h, object);
@@ -307,7 +313,8 @@ void SessionRuntime::enableGpu(SessionContext& sc) {
     indirect_ = std::make_unique<incident::ConstantEnvironment>(sc.level.background);
   node_ = std::make_unique<Node>(sc.ctx, sc.renderer.pipelines(), sc.renderer.frames().framesInFlight(), sets, order,
                                  blocking, participants_.front().component.influence,
-                                 participants_.front().component.half ? Resolution::Half : Resolution::Full);
+                                 participants_.front().component.half ? Resolution::Half : Resolution::Full,
+                                 sc.services.probeVolume);
 }
 
 render::Renderer::GraphNode SessionRuntime::node() {

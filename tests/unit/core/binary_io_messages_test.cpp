@@ -69,10 +69,10 @@ TEST(BinaryIoMessages, RtfField) {
 
 TEST(BinaryIoMessages, SlSphereSetCarriesTheByteOffset) {
   // `where (byte N)`: N is the read position when the check failed (after the byte or word read).
-  expectMessages(gi::sl::deserialize, "BSLSPSET", 1,
+  expectMessages(gi::sl::deserialize, "BSLSPSET", 2,
                  {"f.bin: header (byte 3): truncated (expected a complete SL sphere-set file)",
                   "f.bin: header (byte 3): not an SL sphere set (expected magic BSLSPSET)",
-                  "f.bin: version (byte 12): version 8 (expected version 1)",
+                  "f.bin: version (byte 12): version 9 (expected version 2)",
                   "f.bin: settings (byte 12): truncated (expected a complete SL sphere-set file)"});
 }
 

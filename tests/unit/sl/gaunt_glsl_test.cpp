@@ -38,6 +38,25 @@ std::string generate() {
   std::istringstream in(order4);
   for (std::string l; std::getline(in, l);) out += "  " + l + "\n";
   out += "  }\n}\n";
+
+  // The shadow on the probes' light (shaders/sl/probe_shadow.glsl): a visibility v (kSlCoeffs) times a
+  // band-limited c (order 3), projected onto order 3.
+  out +=
+      "\n// p = the projection of v·c onto the first 9 coefficients for v with kSlCoeffs and c with 9 coefficients:\n"
+      "// p_k = Σ_ij C_ijk v_i c_j (sl/probe_shadow.glsl: the visibility times the clamped cosine).\n"
+      "void slProduct9(in float v[16], in float c[9], out float p[9]) {\n"
+      "  for (int i = 0; i < 9; ++i) p[i] = 0.0;\n";
+  std::string low, high;
+  for (const sh::GauntEntry& e : sh::gauntTensor()) {
+    if (e.k >= 9 || e.j >= 9) continue;
+    std::snprintf(line, sizeof line, "  p[%d] += %.9e * v[%d] * c[%d];\n", int(e.k), e.value, int(e.i), int(e.j));
+    (e.i < 9 ? low : high) += line;
+  }
+  out += low;
+  out += "  if (kSlCoeffs > 9u) {\n";
+  std::istringstream in2(high);
+  for (std::string l; std::getline(in2, l);) out += "  " + l + "\n";
+  out += "  }\n}\n";
   return out;
 }
 

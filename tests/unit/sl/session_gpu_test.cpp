@@ -8,6 +8,8 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <string>
+#include <vector>
 
 #include "engine/core/error.hpp"
 #include "engine/gpu/presenter_offscreen.hpp"
@@ -196,4 +198,42 @@ TEST(SlSession, EntitiesThatDisagreeOnBlockingOrInfluenceAreBadInput) {
       EXPECT_EQ(std::string(err.what()), expected);
     }
   }
+}
+
+// With the probes running, SL adds a third pass, "sl.shadow" (the SLs' soft shadow on the probes'
+// light), after "probes" and "sl": the frame's passes are those of the level without `sl` plus
+// "sl.intensity", "sl" and "sl.shadow", once each. The shadow takes light away around the
+// characters (some values darker than without `sl`), never more than the probes added: no value is
+// darker than the same frame without probes (the clamp ΔE ≥ −E_u; tonemapping is monotonic).
+TEST(SlSession, WithProbesItShadowsTheirLightButNeverBelowTheFrameWithoutThem) {
+  const auto frame = [](std::vector<std::string> effects) {
+    game::Session s(gpu::testkit::sharedContext(), game::loadLevelWithEffects(kCharacters, effects));
+    return oneFrame(s);
+  };
+  const Frame a = frame({"direct", "shadows", "probes", "sl"});
+  const Frame b = frame({"direct", "shadows", "probes"});
+  const Frame c = frame({"direct", "shadows"});
+  for (const char* name : {"sl.intensity", "sl", "sl.shadow"})
+    ASSERT_EQ(std::count(a.passes.begin(), a.passes.end(), name), 1) << name;
+  const auto at = [&](const std::string& name) { return std::find(a.passes.begin(), a.passes.end(), name) - a.passes.begin(); };
+  EXPECT_LT(at("probes"), at("sl.shadow"));
+  EXPECT_LT(at("sl"), at("sl.shadow"));
+  std::vector<std::string> rest;
+  for (const std::string& p : a.passes)
+    if (p != "sl" && p != "sl.intensity" && p != "sl.shadow") rest.push_back(p);
+  EXPECT_EQ(rest, b.passes);
+
+  ASSERT_EQ(a.rgb.size(), b.rgb.size());
+  ASSERT_EQ(a.rgb.size(), c.rgb.size());
+  constexpr float kStep = 1.5f / 255.0f;  // 8-bit output: one step of rounding either way
+  int darker = 0, belowNoProbes = 0;
+  for (std::size_t i = 0; i < a.rgb.size(); ++i) {
+    darker += a.rgb[i] < b.rgb[i] - kStep;
+    belowNoProbes += a.rgb[i] < c.rgb[i] - kStep;
+  }
+  EXPECT_GT(darker, 0);
+  EXPECT_EQ(belowNoProbes, 0);
+  std::printf("sl with probes on the characters level at %ux%u: %d of %zu channel values darker than probes alone, "
+              "none below the frame without probes\n",
+              kExtent.width, kExtent.height, darker, a.rgb.size());
 }

@@ -231,3 +231,48 @@ TEST(ShExp, RejectsOrdersOtherThanThreeAndFour) {
   EXPECT_THROW(expHybrid(f), InternalError);
   EXPECT_THROW(expTables(2), InternalError);
 }
+
+// The hybrid exp is continuous in f: along f = s·u (u a DC-free sum of blocker logs, DC kept at a
+// fixed −2 √(4π)), ‖f̂‖ = s from 0.5 to 50 in relative steps of 1e-4, the largest change of exp(f) per
+// step is bounded. Ren et al.'s plain hybrid jumps where ‖f̂‖ crosses 4, 8, 16, 32 (OL at 4 ≠ OL at 2
+// squared); sh_exp.hpp's blend over [kHybridBlendStart, kMaxMagnitude] closes those jumps.
+TEST(ShExp, HybridIsContinuousWhereTheHalvingCountChanges) {
+  // ‖Δ exp‖₂ / ‖exp‖₂ per step Δs = 1e-4 s, divided by Δs: exp(s u) changes at a rate ~‖u‖ = 1, so
+  // a continuous exp stays O(1) (measured worst 0.43, printed); the plain hybrid's jumps at
+  // ‖f̂‖ = 4…32 give 40–115.
+  constexpr double kMaxRate = 2.0;
+  for (LogKind kind : {LogKind::Windowed, LogKind::Raw})
+    for (int order : {3, 4}) {
+      const ExpTables& t = expTables(order, kind);
+      math::Pcg32 rng(5);
+      std::vector<double> u(std::size_t(order * order), 0.0);
+      for (int b = 0; b < 6; ++b) {
+        const auto g = t.logBlocker(0.3 + 0.9 * rng.nextDouble(), testutil::randomDirection(rng));
+        for (std::size_t i = 0; i < u.size(); ++i) u[i] += g[i];
+      }
+      u[0] = 0.0;
+      double norm = 0.0;
+      for (double x : u) norm += x * x;
+      for (double& x : u) x /= std::sqrt(norm);
+      double worst = 0.0, worstAt = 0.0;
+      std::vector<double> last;
+      for (double s = 0.5; s <= 50.0; s *= 1.0 + 1e-4) {
+        std::vector<double> f(u.size());
+        for (std::size_t i = 0; i < u.size(); ++i) f[i] = s * u[i];
+        f[0] = -2.0 * kSqrt4Pi;
+        const auto e = expHybrid(f, nullptr, kind);
+        double en = 0.0, dn = 0.0;
+        for (std::size_t i = 0; i < e.size(); ++i) {
+          ASSERT_TRUE(std::isfinite(e[i]));
+          en += e[i] * e[i];
+          if (!last.empty()) dn += (e[i] - last[i]) * (e[i] - last[i]);
+        }
+        const double rate = std::sqrt(dn / en) / (s * 1e-4 / (1.0 + 1e-4));
+        if (!last.empty() && rate > worst) worst = rate, worstAt = s;
+        last = e;
+      }
+      std::printf("%s order %d: largest relative change of exp per unit of |f^| = %.3g (at |f^| = %.3f)\n",
+                  kind == LogKind::Windowed ? "windowed" : "raw", order, worst, worstAt);
+      EXPECT_LT(worst, kMaxRate) << "at |f^| = " << worstAt;
+    }
+}

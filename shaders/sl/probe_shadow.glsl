@@ -1,0 +1,73 @@
+// The SLs' soft shadow on the probes' indirect light at one receiver (issue 13 pass 2, the SL paper
+// §5.1 Eq. 3 and 6): the GLSL port of engine/gi/sl/probe_shadow.cpp (whose header derives it), float
+// instead of double. Every SL blocks: after the receiver rules (sl.glsl slAdjust) the rotated log ZH
+// are summed, exponentiated once (slExp: Eq. 6), multiplied with the clamped cosine about n
+// (slProduct9, gaunt.glsl: P = V ∗ ĉ_n) and dotted with the probes' radiance SH L: E_s = Σ_j L_j P_j.
+// Returns ΔE = clamp(−k (E_u − E_s), −max(E_u, 0), 0) per channel (W/m², ≤ 0), with k the Ratio
+// form's (σ Σ u_o X_j + (1 − σ) Σ X_j) / Σ A_j (exact caps, weighted by their object's union share
+// as far as exp acts additively here, over single-blocker exps) clamped to [1/4, 4].
+// Needs sl.glsl (and what it needs) included first.
+#ifndef BOUNCE_SL_PROBE_SHADOW_GLSL
+#define BOUNCE_SL_PROBE_SHADOW_GLSL
+
+const float kSlShadowEpsilon = 1e-9;  // probe_shadow.hpp kShadowEpsilon (sr)
+const float kSlShadowMaxRatio = 4.0;  // probe_shadow.hpp kShadowMaxRatio
+
+vec3 slProbeShadow(vec3 p, vec3 n, in vec3 L[9]) {
+  uint count = min(slCount(), kSpheres);
+  float sum[16];
+  for (uint k = 0u; k < 16u; ++k) sum[k] = 0.0;
+  float exact = kSlShadowEpsilon, sharedX = kSlShadowEpsilon, approx = kSlShadowEpsilon;
+  // Â_l √((2l+1)/(4π)): ρ_n · (a ZH z rotated to d) = Σ_l Â_l √((2l+1)/(4π)) z_l P_l(n·d) (addition
+  // theorem), so one blocker's A_j needs no 16-coefficient rotation.
+  const vec4 lobeZonal = vec4(SH_A0 * 0.28209479177387814, SH_A1 * 0.48860251190291992, SH_A2 * 0.63078313050504001, 0.0);
+  for (uint i = 0u; i < count; ++i) {
+    vec4 sp = slSphere(i);
+    vec3 c = sp.xyz;
+    float r = sp.w;
+    bool kept = slAdjust(c, r, p, n);
+    float d = length(c - p);
+    if (!kept || !(d > 0.0)) continue;
+    vec3 dir = (c - p) / d;
+    float s = min(1.0, r / d);
+    vec4 z = slThetaRow(0, asin(s));
+    float lg[16];
+    slRotateZonal(z, dir, lg);
+    for (uint k = 0u; k < kSlCoeffs; ++k) sum[k] += lg[k];
+    // X_j: the cap's exact cosine-weighted solid angle; A_j: ρ_n · (1 − exp(G_j)) with the OL exp
+    // (one blocker's ‖f̂‖ ≤ 1.9 < kHybridBlendStart for every θ of the table: no blend, no squarings;
+    // SlProbeShadow.OneCapsLogIsBelowTheHybridsBlend checks it).
+    float cd = dot(n, dir);
+    float capX = slSilhouette(i) * kSlPi * s * s * max(0.0, cd);  // × the set's shadow scale (bounce_scale.hpp)
+    exact += capX;
+    sharedX += slShare(i) * capX;
+    float m = sqrt(z.y * z.y + z.z * z.z + (kOrder > 3u ? z.w * z.w : 0.0));
+    vec2 ab = slOl(m);
+    float p2 = 0.5 * (3.0 * cd * cd - 1.0);
+    float dotted = ab.x * SH_A0 + ab.y * (lobeZonal.y * z.y * cd + lobeZonal.z * z.z * p2);
+    approx += SH_A0 - exp(min(z.x / kSlSqrt4Pi, kSlMaxExponent)) * dotted;
+  }
+  float v[16];
+  slExp(sum, v);
+  float y[9];
+  shEval9(n, y);
+  float lobe[9];
+  lobe[0] = SH_A0 * y[0];
+  for (int k = 1; k < 4; ++k) lobe[k] = SH_A1 * y[k];
+  for (int k = 4; k < 9; ++k) lobe[k] = SH_A2 * y[k];
+  float transfer[9];
+  slProduct9(v, lobe, transfer);
+  vec3 shadowed = vec3(0.0), unshadowed = vec3(0.0);
+  for (int k = 0; k < 9; ++k) {
+    shadowed += transfer[k] * L[k];
+    unshadowed += lobe[k] * L[k];
+  }
+  // σ: how additive exp is here (probe_shadow.hpp), from its blocked amount under uniform light.
+  float vDotLobe = 0.0;
+  for (int k = 0; k < 9; ++k) vDotLobe += v[k] * lobe[k];
+  float additive = sqrt(clamp((SH_A0 - vDotLobe + kSlShadowEpsilon) / approx, 0.0, 1.0));
+  float ratio = clamp((additive * sharedX + (1.0 - additive) * exact) / approx, 1.0 / kSlShadowMaxRatio, kSlShadowMaxRatio);
+  return clamp(-ratio * (unshadowed - shadowed), -max(unshadowed, vec3(0.0)), vec3(0.0));
+}
+
+#endif  // BOUNCE_SL_PROBE_SHADOW_GLSL
