@@ -316,7 +316,9 @@ TEST(SlProbeShadow, OverlappingSpheresOfOneObjectDarkenLikeTheirUnion) {
       const ProbeShadow all = probeShadow(lights, p, n, uniformRadiance(1.0), shadowSettings(order));
       worst = std::max(worst, std::abs(got - blocked) / blocked);
       EXPECT_NEAR(got, blocked, kTol * blocked) << "order " << order << " x " << x;
-      if (x <= 0.8) EXPECT_GT(-all.delta.x / all.unshadowed.x, 1.8 * blocked) << "the share matters here";
+      if (x <= 0.8) {
+        EXPECT_GT(-all.delta.x / all.unshadowed.x, 1.8 * blocked) << "the share matters here";
+      }
     }
     std::printf("order %d: a limb's shadow vs its union's (share %.3f): worst relative error %.3f\n", order, u, worst);
   }
