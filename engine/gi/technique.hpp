@@ -33,6 +33,9 @@ namespace bounce::gi {
 namespace probes {
 struct ProbeVolume;
 }
+namespace incident {
+class SessionLight;
+}
 
 // One configuration `bounce accuracy` measures: a row of accuracy.csv.
 struct AccuracyRow {
@@ -88,6 +91,10 @@ struct BakeJob {
 // point is ONE shared service). Filled by runtimes as they are created, in table order.
 struct Services {
   const probes::ProbeVolume* probeVolume = nullptr;  // the probes' baked volume, when they run
+  // The incident-light service's session inputs (incident/session_light.hpp: the indirect source
+  // and the static scene's light visibility), created by the first technique that asks through
+  // incident::sessionLight(sc); shared_ptr so this header needs no complete type.
+  std::shared_ptr<incident::SessionLight> light;
 };
 
 // What a technique's runtime is built from.

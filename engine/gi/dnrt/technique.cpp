@@ -11,6 +11,7 @@
 #include "engine/core/paths.hpp"
 #include "engine/gi/dnrt/bake.hpp"
 #include "engine/gi/dnrt/object_scene.hpp"
+#include "engine/gi/incident/session_light.hpp"
 #include "engine/gi/probes/bake.hpp"
 
 namespace bounce::gi::dnrt {
@@ -178,17 +179,12 @@ SessionRuntime::SessionRuntime(SessionContext& sc) {
   assets_.load(sc.registry, sc.cookCache);  // the bakes start from the CPU copies
   runtime_ = std::make_unique<Runtime>(sc.ctx, sc.renderer.pipelines(), sc.registry, assets_, cacheFolder(),
                                        sc.renderer.frames().framesInFlight(), sc.level.background);
-  if (sc.services.probeVolume) {
-    probeSource_ = std::make_unique<ProbeSource>(*sc.services.probeVolume);
-    runtime_->setIrradianceSource(probeSource_.get());
-  }
-  // Light visibility for c_j: rays from the object's centre (and a disc around it) to each light
-  // through the level's STATIC geometry. Not the shadow map: the object occludes its own centre
-  // there (incident.hpp, SceneVisibility).
-  ref::SceneDesc occluders = probes::staticScene(sc.level, sc.cookCache, nullptr, /*withTextures=*/false);
-  for (ref::RefMaterial& m : occluders.materials) m.albedoTexture = m.emissiveTexture = -1;  // shadow rays only
-  lightVisibility_ = std::make_unique<incident::SceneVisibility>(std::move(occluders));
-  runtime_->setLightVisibility(lightVisibility_.get());
+  // c_j from the session's incident-light inputs: the probes (or the background) and light
+  // visibility from the object's centre (and a disc around it) through the level's STATIC geometry.
+  // Not the shadow map: the object occludes its own centre there (incident.hpp, SceneVisibility).
+  incident::SessionLight& light = incident::sessionLight(sc);
+  runtime_->setIrradianceSource(&light.indirect());
+  runtime_->setLightVisibility(&light.lightVisibility());
 }
 
 }  // namespace bounce::gi::dnrt

@@ -6,7 +6,6 @@
 // static geometry (incident::SceneVisibility; the object itself is not in it).
 #include <memory>
 
-#include "engine/gi/dnrt/probe_source.hpp"
 #include "engine/gi/dnrt/runtime.hpp"
 #include "engine/gi/technique.hpp"
 
@@ -24,8 +23,6 @@ class SessionRuntime final : public TechniqueRuntime {
 
  private:
   ref::ReferenceAssets assets_;
-  std::unique_ptr<ProbeSource> probeSource_;
-  std::unique_ptr<incident::SceneVisibility> lightVisibility_;
   std::unique_ptr<Runtime> runtime_;
 };
 

@@ -82,7 +82,7 @@ class SceneVisibility final : public Visibility {
 
 // ---- indirect light -------------------------------------------------------------------------------
 
-// Radiance SH of the indirect (baked) light at a point: the probe volume (gi::dnrt::ProbeSource) or
+// Radiance SH of the indirect (baked) light at a point: the probe volume (ProbeSource, session_light.hpp) or
 // a constant environment. Was gi::dnrt::IrradianceSource (still an alias there).
 struct IndirectSource {
   virtual ~IndirectSource() = default;

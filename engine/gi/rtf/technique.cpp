@@ -12,6 +12,7 @@
 #include "engine/core/paths.hpp"
 #include "engine/gi/participants.hpp"
 #include "engine/gi/dnrt/object_scene.hpp"
+#include "engine/gi/incident/session_light.hpp"
 #include "engine/gi/probes/bake.hpp"
 #include "engine/gi/rtf/bake.hpp"
 
@@ -201,17 +202,9 @@ SessionRuntime::SessionRuntime(SessionContext& sc, const std::filesystem::path& 
   // The proxies' light: the probes (or the level's background) plus the frame's lights, their
   // visibility traced through the level's STATIC geometry (as DNRT's c_j; the dynamic objects
   // occlude each other through their OOFs in Algorithm 1 instead).
-  if (sc.services.probeVolume) {
-    probeSource_ = std::make_unique<dnrt::ProbeSource>(*sc.services.probeVolume);
-    update_->setIndirect(probeSource_.get());
-  } else {
-    background_ = std::make_unique<incident::ConstantEnvironment>(sc.level.background);
-    update_->setIndirect(background_.get());
-  }
-  ref::SceneDesc occluders = probes::staticScene(sc.level, sc.cookCache, nullptr, /*withTextures=*/false);
-  for (ref::RefMaterial& m : occluders.materials) m.albedoTexture = m.emissiveTexture = -1;  // shadow rays only
-  lightVisibility_ = std::make_unique<incident::SceneVisibility>(std::move(occluders));
-  update_->setLightVisibility(lightVisibility_.get());
+  incident::SessionLight& light = incident::sessionLight(sc);
+  update_->setIndirect(&light.indirect());
+  update_->setLightVisibility(&light.lightVisibility());
   for (const Participant& p : update_->participants()) xi_.push_back(std::make_unique<XiPass>(sc.ctx, p.field));
   node_ = std::make_unique<Node>(sc.ctx, sc.renderer.pipelines(), sc.renderer.frames().framesInFlight());
 }

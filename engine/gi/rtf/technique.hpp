@@ -8,7 +8,6 @@
 #include <string>
 #include <vector>
 
-#include "engine/gi/dnrt/probe_source.hpp"
 #include "engine/gi/rtf/field.hpp"
 #include "engine/gi/rtf/node.hpp"
 #include "engine/gi/rtf/update.hpp"
@@ -38,9 +37,6 @@ class SessionRuntime final : public TechniqueRuntime {
   std::size_t bakedCount() const { return baked_; }
 
  private:
-  std::unique_ptr<dnrt::ProbeSource> probeSource_;
-  std::unique_ptr<incident::SceneVisibility> lightVisibility_;
-  std::unique_ptr<incident::ConstantEnvironment> background_;
   std::unique_ptr<Update> update_;
   std::vector<std::unique_ptr<XiPass>> xi_;  // per participant
   std::unique_ptr<Node> node_;

@@ -12,7 +12,7 @@
 #include "engine/core/paths.hpp"
 #include "engine/gi/participants.hpp"
 #include "engine/gi/dnrt/object_scene.hpp"
-#include "engine/gi/dnrt/probe_source.hpp"
+#include "engine/gi/incident/session_light.hpp"
 #include "engine/scene/components.hpp"
 
 namespace bounce::gi::sl {
@@ -307,10 +307,7 @@ void SessionRuntime::enableGpu(SessionContext& sc) {
   }
   const Blocking blocking =
       participants_.front().component.perObject ? Blocking::PerObject : Blocking::PerSphere;
-  if (sc.services.probeVolume)
-    indirect_ = std::make_unique<dnrt::ProbeSource>(*sc.services.probeVolume);
-  else
-    indirect_ = std::make_unique<incident::ConstantEnvironment>(sc.level.background);
+  indirect_ = &incident::sessionLight(sc).indirect();
   node_ = std::make_unique<Node>(sc.ctx, sc.renderer.pipelines(), sc.renderer.frames().framesInFlight(), sets, order,
                                  blocking, participants_.front().component.influence,
                                  participants_.front().component.half ? Resolution::Half : Resolution::Full,

@@ -74,7 +74,7 @@ class SessionRuntime final : public TechniqueRuntime {
   std::vector<Participant> participants_;
   std::vector<double> updateMs_;  // CPU time of each update() (the first, at construction, excluded)
   std::unique_ptr<Node> node_;
-  std::unique_ptr<incident::IndirectSource> indirect_;  // probes or the background
+  const incident::IndirectSource* indirect_ = nullptr;  // the session light's: probes or the background
   std::vector<PosedSphere> posed_;                      // concatenated over participants (update)
   std::vector<std::uint32_t> objects_;
   std::vector<incident::RadianceSH> indirectSh_;
