@@ -74,7 +74,14 @@ std::string quoted(const std::string& s) { return "'" + s + "'"; }
 ProcessRun runBounce(const fs::path& dir, const std::string& args, bool display, const std::string& wrapper = "") {
   fs::create_directories(dir);
   const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
-  const std::string prefix = (display ? "xvfb-run -a " : "") + wrapper;
+  // Under the sanitizer environment ctest preloads the Vulkan driver (LD_PRELOAD, tests/sanitizer);
+  // it is for bounce only. Inherited by xvfb-run's own helpers (xauth, Xvfb, the `rm` of its cleanup)
+  // it loads lavapipe and LLVM into each: our best explanation for the cleanup's `rm` failing with no
+  // message (exit 5; three attempts in a row once under asan in CI, never without the preload; not
+  // reproduced by hand). So the helpers run without it, and bounce gets it back through `env`.
+  const char* preload = std::getenv("LD_PRELOAD");
+  const std::string keepPreload = preload && *preload ? "env LD_PRELOAD=" + quoted(preload) + " " : "";
+  const std::string prefix = (display ? "env -u LD_PRELOAD xvfb-run -a " + keepPreload : "") + wrapper;
   const std::string cmd =
       prefix + quoted(BOUNCE_EXE) + " " + args + " >" + quoted(out.string()) + " 2>" + quoted(err.string());
   ProcessRun r;
