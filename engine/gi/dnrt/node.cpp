@@ -11,6 +11,7 @@
 #include "engine/render/mesh_gpu.hpp"
 #include "engine/render/passes/rendering.hpp"
 #include "engine/render/passes/skinning_pass.hpp"
+#include "engine/render/passes/gbuffer_pass.hpp"
 
 namespace bounce::gi::dnrt {
 
@@ -267,16 +268,14 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
   }
 
   struct Data {
-    rg::Handle<rg::Texture> albedo, normal, depth, entity, hdr;
+    render::DeferredInputs g;  // with entity
+    rg::Handle<rg::Texture> hdr;
     std::vector<std::optional<rg::Handle<rg::Texture>>> maps;
   };
   const auto& data = graph.addPass<Data>(
       "dnrt",
       [&](rg::Builder& b, Data& d) {
-        d.albedo = b.read(bb.get<rg::Texture>("gbuffer.albedo"), rg::Usage::SampledFragment);
-        d.normal = b.read(bb.get<rg::Texture>("gbuffer.normal"), rg::Usage::SampledFragment);
-        d.depth = b.read(bb.get<rg::Texture>("gbuffer.depth"), rg::Usage::SampledFragment);
-        d.entity = b.read(bb.get<rg::Texture>("gbuffer.entity"), rg::Usage::SampledFragment);
+        d.g = render::readDeferredInputs(b, bb, /*withEntity=*/true);
         d.hdr = b.write(bb.get<rg::Texture>("lighting.hdr"), rg::Usage::ColorAttachment);
         for (const auto& m : maps) d.maps.push_back(m ? std::optional(b.read(*m, rg::Usage::SampledFragment)) : std::nullopt);
       },
@@ -299,11 +298,11 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
         auto view = [&](rg::Handle<rg::Texture> h) { return pc->backend->image(res.texture(h)).view(); };
         VkDescriptorSet inputs = pc->frame().descriptors->allocate(inputLayout_);
         gpu::DescriptorWriter()
-            .sampledImage(0, view(d.albedo), point)
-            .sampledImage(1, view(d.normal), point)
-            .sampledImage(2, view(d.depth), point)
+            .sampledImage(0, view(d.g.albedo), point)
+            .sampledImage(1, view(d.g.normal), point)
+            .sampledImage(2, view(d.g.depth), point)
             .buffer(3, buffer)
-            .sampledImage(4, view(d.entity), point)
+            .sampledImage(4, view(d.g.entity), point)
             .update(ctx_, inputs);
 
         gpu::Image& target = pc->backend->image(res.texture(d.hdr));
@@ -361,11 +360,11 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
           }
           VkDescriptorSet clusterInputs = pc->frame().descriptors->allocate(inputLayout_);
           gpu::DescriptorWriter()
-              .sampledImage(0, view(d.albedo), point)
-              .sampledImage(1, view(d.normal), point)
-              .sampledImage(2, view(d.depth), point)
+              .sampledImage(0, view(d.g.albedo), point)
+              .sampledImage(1, view(d.g.normal), point)
+              .sampledImage(2, view(d.g.depth), point)
               .buffer(3, tiles)
-              .sampledImage(4, view(d.entity), point)
+              .sampledImage(4, view(d.g.entity), point)
               .update(ctx_, clusterInputs);
           const glm::vec4 invAtlas(1.0f / glm::vec3(atlas_.layout.size), 0.0f);
           for (std::size_t b = 0; b < batches; ++b) {

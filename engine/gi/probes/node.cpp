@@ -3,6 +3,7 @@
 #include "engine/core/error.hpp"
 #include "engine/gpu/commands.hpp"
 #include "engine/render/passes/rendering.hpp"
+#include "engine/render/passes/gbuffer_pass.hpp"
 
 namespace bounce::gi::probes {
 namespace {
@@ -109,7 +110,8 @@ ProbeNode::ProbeNode(gpu::Context& ctx, const render::Pipelines& pipelines, Prob
 
 void ProbeNode::addPasses(rg::RenderGraph& graph, const render::PassContext* pc) {
   struct Data {
-    rg::Handle<rg::Texture> albedo, normal, depth, hdr, ao;
+    render::DeferredInputs g;
+    rg::Handle<rg::Texture> hdr, ao;
   };
   auto& bb = graph.blackboard();
   // An AO node (ssao/hbao) set before this one publishes "ao.term": the indirect term is then
@@ -119,9 +121,7 @@ void ProbeNode::addPasses(rg::RenderGraph& graph, const render::PassContext* pc)
   const auto& data = graph.addPass<Data>(
       "probes",
       [&](rg::Builder& b, Data& d) {
-        d.albedo = b.read(bb.get<rg::Texture>("gbuffer.albedo"), rg::Usage::SampledFragment);
-        d.normal = b.read(bb.get<rg::Texture>("gbuffer.normal"), rg::Usage::SampledFragment);
-        d.depth = b.read(bb.get<rg::Texture>("gbuffer.depth"), rg::Usage::SampledFragment);
+        d.g = render::readDeferredInputs(b, bb);
         d.hdr = b.write(bb.get<rg::Texture>("lighting.hdr"), rg::Usage::ColorAttachment);
         if (withAo) d.ao = b.read(bb.get<rg::Texture>("ao.term"), rg::Usage::SampledFragment);
       },
@@ -131,13 +131,13 @@ void ProbeNode::addPasses(rg::RenderGraph& graph, const render::PassContext* pc)
         auto view = [&](rg::Handle<rg::Texture> h) { return pc->backend->image(res.texture(h)).view(); };
         VkDescriptorSet set = pc->frame().descriptors->allocate(setLayout_);
         gpu::DescriptorWriter()
-            .sampledImage(0, view(d.albedo), point)
-            .sampledImage(1, view(d.normal), point)
-            .sampledImage(2, view(d.depth), point)
+            .sampledImage(0, view(d.g.albedo), point)
+            .sampledImage(1, view(d.g.normal), point)
+            .sampledImage(2, view(d.g.depth), point)
             .sampledImage(3, sh_->view(), point)
             .sampledImage(4, moments_->view(), point)
             .buffer(5, shUbo_, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 0, kShUboBytes)
-            .sampledImage(6, view(withAo ? d.ao : d.albedo), point)
+            .sampledImage(6, view(withAo ? d.ao : d.g.albedo), point)
             .update(*pc->gpu, set);
         gpu::Image& target = pc->backend->image(res.texture(d.hdr));
         render::Attachment color{target.view(), true};  // additive: keep the direct light

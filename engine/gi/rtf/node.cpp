@@ -5,6 +5,7 @@
 #include "engine/core/error.hpp"
 #include "engine/gpu/commands.hpp"
 #include "engine/render/passes/rendering.hpp"
+#include "engine/render/passes/gbuffer_pass.hpp"
 
 namespace bounce::gi::rtf {
 
@@ -73,15 +74,13 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
       });
 
   struct Data {
-    rg::Handle<rg::Texture> albedo, normal, depth, entity, hdr;
+    render::DeferredInputs g;  // with entity
+    rg::Handle<rg::Texture> hdr;
   };
   const auto& data = graph.addPass<Data>(
       "rtf",
       [&](rg::Builder& b, Data& d) {
-        d.albedo = b.read(bb.get<rg::Texture>("gbuffer.albedo"), rg::Usage::SampledFragment);
-        d.normal = b.read(bb.get<rg::Texture>("gbuffer.normal"), rg::Usage::SampledFragment);
-        d.depth = b.read(bb.get<rg::Texture>("gbuffer.depth"), rg::Usage::SampledFragment);
-        d.entity = b.read(bb.get<rg::Texture>("gbuffer.entity"), rg::Usage::SampledFragment);
+        d.g = render::readDeferredInputs(b, bb, /*withEntity=*/true);
         d.hdr = b.write(bb.get<rg::Texture>("lighting.hdr"), rg::Usage::ColorAttachment);
       },
       [this, pc, objects = std::move(objects)](const Data& d, const rg::PassResources& res, rg::CommandContext& c) {
@@ -100,10 +99,10 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
         auto view = [&](rg::Handle<rg::Texture> h) { return pc->backend->image(res.texture(h)).view(); };
         VkDescriptorSet inputs = pc->frame().descriptors->allocate(inputLayout_);
         gpu::DescriptorWriter()
-            .sampledImage(0, view(d.albedo), point)
-            .sampledImage(1, view(d.normal), point)
-            .sampledImage(2, view(d.depth), point)
-            .sampledImage(3, view(d.entity), point)
+            .sampledImage(0, view(d.g.albedo), point)
+            .sampledImage(1, view(d.g.normal), point)
+            .sampledImage(2, view(d.g.depth), point)
+            .sampledImage(3, view(d.g.entity), point)
             .update(ctx_, inputs);
 
         gpu::Image& target = pc->backend->image(res.texture(d.hdr));

@@ -6,6 +6,7 @@
 #include "engine/gi/sl/tiles.hpp"
 #include "engine/gi/sl/probe_shadow.hpp"
 #include "engine/render/passes/rendering.hpp"
+#include "engine/render/passes/gbuffer_pass.hpp"
 
 namespace bounce::gi::sl {
 
@@ -151,14 +152,13 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::s
       });
 
   struct Data {
-    rg::Handle<rg::Texture> albedo, normal, depth, hdr;
+    render::DeferredInputs g;
+    rg::Handle<rg::Texture> hdr;
   };
   const auto& data = graph.addPass<Data>(
       "sl",
       [&](rg::Builder& b, Data& d) {
-        d.albedo = b.read(bb.get<rg::Texture>("gbuffer.albedo"), rg::Usage::SampledFragment);
-        d.normal = b.read(bb.get<rg::Texture>("gbuffer.normal"), rg::Usage::SampledFragment);
-        d.depth = b.read(bb.get<rg::Texture>("gbuffer.depth"), rg::Usage::SampledFragment);
+        d.g = render::readDeferredInputs(b, bb);
         d.hdr = half ? b.write(b.create<rg::Texture>("sl.half", rg::TextureDesc{halfSize.x, halfSize.y, 1, 1, 1,
                                                                                  rg::Format::RGBA16F, false}),
                                rg::Usage::ColorAttachment)
@@ -170,7 +170,7 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::s
         auto view = [&](rg::Handle<rg::Texture> h) { return pc->backend->image(res.texture(h)).view(); };
         VkDescriptorSet inputs = pc->frame().descriptors->allocate(inputLayout_);
         gpu::DescriptorWriter w;
-        w.sampledImage(0, view(d.albedo), point).sampledImage(1, view(d.normal), point).sampledImage(2, view(d.depth), point);
+        w.sampledImage(0, view(d.g.albedo), point).sampledImage(1, view(d.g.normal), point).sampledImage(2, view(d.g.depth), point);
         slot.shade->write(w, kFirstShadeBinding, slot.intensity->intensity(), point);
         w.buffer(kTilesBinding, slot.tiles);
         w.update(ctx_, inputs);
@@ -193,14 +193,13 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::s
     return;
   }
   struct UpData {
-    rg::Handle<rg::Texture> albedo, normal, depth, half, hdr;
+    render::DeferredInputs g;
+    rg::Handle<rg::Texture> half, hdr;
   };
   const auto& up = graph.addPass<UpData>(
       "sl.upsample",
       [&](rg::Builder& b, UpData& d) {
-        d.albedo = b.read(bb.get<rg::Texture>("gbuffer.albedo"), rg::Usage::SampledFragment);
-        d.normal = b.read(bb.get<rg::Texture>("gbuffer.normal"), rg::Usage::SampledFragment);
-        d.depth = b.read(bb.get<rg::Texture>("gbuffer.depth"), rg::Usage::SampledFragment);
+        d.g = render::readDeferredInputs(b, bb);
         d.half = b.read(data.hdr, rg::Usage::SampledFragment);
         d.hdr = b.write(bb.get<rg::Texture>("lighting.hdr"), rg::Usage::ColorAttachment);
       },
@@ -210,7 +209,7 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::s
         auto view = [&](rg::Handle<rg::Texture> h) { return pc->backend->image(res.texture(h)).view(); };
         VkDescriptorSet inputs = pc->frame().descriptors->allocate(upsampleInputs_);
         gpu::DescriptorWriter w;
-        w.sampledImage(0, view(d.albedo), point).sampledImage(1, view(d.normal), point).sampledImage(2, view(d.depth), point);
+        w.sampledImage(0, view(d.g.albedo), point).sampledImage(1, view(d.g.normal), point).sampledImage(2, view(d.g.depth), point);
         w.buffer(kTilesBinding, slot.tiles);
         w.sampledImage(kHalfBinding, view(d.half), point);
         w.update(ctx_, inputs);

@@ -2,6 +2,7 @@
 
 #include "engine/gi/probes/node.hpp"
 #include "engine/render/passes/rendering.hpp"
+#include "engine/render/passes/gbuffer_pass.hpp"
 
 namespace bounce::gi::sl {
 
@@ -46,14 +47,13 @@ void ProbeShadowPass::addTo(rg::RenderGraph& graph, const render::PassContext* p
   auto& bb = graph.blackboard();
   const bool withAo = bb.contains("ao.term");  // as the probes pass: its light was multiplied by it
   struct Data {
-    rg::Handle<rg::Texture> albedo, normal, depth, hdr, ao;
+    render::DeferredInputs g;
+    rg::Handle<rg::Texture> hdr, ao;
   };
   const auto& data = graph.addPass<Data>(
       "sl.shadow",
       [&](rg::Builder& b, Data& d) {
-        d.albedo = b.read(bb.get<rg::Texture>("gbuffer.albedo"), rg::Usage::SampledFragment);
-        d.normal = b.read(bb.get<rg::Texture>("gbuffer.normal"), rg::Usage::SampledFragment);
-        d.depth = b.read(bb.get<rg::Texture>("gbuffer.depth"), rg::Usage::SampledFragment);
+        d.g = render::readDeferredInputs(b, bb);
         d.hdr = b.write(bb.get<rg::Texture>("lighting.hdr"), rg::Usage::ColorAttachment);
         if (withAo) d.ao = b.read(bb.get<rg::Texture>("ao.term"), rg::Usage::SampledFragment);
       },
@@ -63,12 +63,12 @@ void ProbeShadowPass::addTo(rg::RenderGraph& graph, const render::PassContext* p
         auto view = [&](rg::Handle<rg::Texture> h) { return pc->backend->image(res.texture(h)).view(); };
         VkDescriptorSet inputs = pc->frame().descriptors->allocate(inputLayout_);
         gpu::DescriptorWriter w;
-        w.sampledImage(0, view(d.albedo), point)
-            .sampledImage(1, view(d.normal), point)
-            .sampledImage(2, view(d.depth), point)
+        w.sampledImage(0, view(d.g.albedo), point)
+            .sampledImage(1, view(d.g.normal), point)
+            .sampledImage(2, view(d.g.depth), point)
             .sampledImage(3, sh_->view(), point)
             .sampledImage(4, moments_->view(), point)
-            .sampledImage(5, view(withAo ? d.ao : d.albedo), point);
+            .sampledImage(5, view(withAo ? d.ao : d.g.albedo), point);
         shade.write(w, kFirstShadeBinding, intensity, point);
         w.update(ctx_, inputs);
         gpu::Image& target = pc->backend->image(res.texture(d.hdr));

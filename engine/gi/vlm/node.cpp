@@ -7,6 +7,7 @@
 #include "engine/gpu/timestamps.hpp"
 #include "engine/render/passes/rendering.hpp"
 #include "engine/scene/components.hpp"
+#include "engine/render/passes/gbuffer_pass.hpp"
 
 namespace bounce::gi::vlm {
 namespace {
@@ -179,15 +180,13 @@ void Runtime::addTo(rg::RenderGraph& graph, render::PassContext& pc) {
 
   // Phase 2: full screen, additive into "lighting.hdr".
   struct ShadeData {
-    rg::Handle<rg::Texture> albedo, normal, depth, entity, radiance, hdr;
+    render::DeferredInputs g;  // with entity
+    rg::Handle<rg::Texture> radiance, hdr;
   };
   const auto& data = graph.addPass<ShadeData>(
       "vlm",
       [&](rg::Builder& b, ShadeData& d) {
-        d.albedo = b.read(bb.get<rg::Texture>("gbuffer.albedo"), rg::Usage::SampledFragment);
-        d.normal = b.read(bb.get<rg::Texture>("gbuffer.normal"), rg::Usage::SampledFragment);
-        d.depth = b.read(bb.get<rg::Texture>("gbuffer.depth"), rg::Usage::SampledFragment);
-        d.entity = b.read(bb.get<rg::Texture>("gbuffer.entity"), rg::Usage::SampledFragment);
+        d.g = render::readDeferredInputs(b, bb, /*withEntity=*/true);
         d.radiance = b.read(radiance, rg::Usage::SampledFragment);
         d.hdr = b.write(bb.get<rg::Texture>("lighting.hdr"), rg::Usage::ColorAttachment);
       },
@@ -199,10 +198,10 @@ void Runtime::addTo(rg::RenderGraph& graph, render::PassContext& pc) {
         auto view = [&](rg::Handle<rg::Texture> h) { return ctx->backend->image(res.texture(h)).view(); };
         VkDescriptorSet set = ctx->frame().descriptors->allocate(shadeLayout_);
         gpu::DescriptorWriter()
-            .sampledImage(0, view(d.albedo), point)
-            .sampledImage(1, view(d.normal), point)
-            .sampledImage(2, view(d.depth), point)
-            .sampledImage(3, view(d.entity), point)
+            .sampledImage(0, view(d.g.albedo), point)
+            .sampledImage(1, view(d.g.normal), point)
+            .sampledImage(2, view(d.g.depth), point)
+            .sampledImage(3, view(d.g.entity), point)
             .buffer(4, buf.lights)
             .sampledImage(5, view(d.radiance), point)
             .buffer(6, buf.slots)

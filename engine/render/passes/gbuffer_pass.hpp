@@ -12,4 +12,13 @@ struct GBuffer {
 
 const GBuffer& addGBufferPass(rg::RenderGraph& graph, const PassContext* pc, VkExtent2D extent);
 
+// What a deferred GI pass (probes, dnrt, vlm, sl, rtf) reads of the G-buffer: albedo, normal and
+// depth, and the entity ids where the pass skips an object's own pixels — the gbuffer pass's
+// blackboard names, sampled in the fragment stage. Each shader binds albedo, normal, depth at
+// bindings 0, 1, 2 (point-sampled: one texel per pixel); where entity goes is the shader's.
+struct DeferredInputs {
+  rg::Handle<rg::Texture> albedo, normal, depth, entity;  // entity: invalid unless asked for
+};
+DeferredInputs readDeferredInputs(rg::Builder& b, rg::Blackboard& bb, bool withEntity = false);
+
 }  // namespace bounce::render
