@@ -20,15 +20,24 @@ void main() {
   if (radiusPx < 1.0) { outAo = vec4(1.0); return; }
   float jitter = ign(vec2(pixel));
   float occlusion = 0.0;
-  for (uint d = 0u; d < pc.directions; ++d) {
+  // Both loops do-while, not for: llvmpipe tests "is any lane still looping" only at the end of an
+  // iteration, so a top-tested loop runs one more body with every lane masked (n + 1 for n; README
+  // "What costs what on lavapipe"). Each body therefore also runs once with a count of 0: the
+  // step's `s > samples` exit and the direction's `liveD` keep those passes from adding.
+  uint d = 0u;
+  do {
+    bool liveD = d < pc.directions;
     float angle = 6.2831853 * (float(d) + jitter) / float(pc.directions);
     vec2 dir = vec2(cos(angle), sin(angle));
     float sinH = pc.bias;  // the tangent plane (sin t = 0) plus the bias
     float contribution = 0.0;
-    for (uint s = 1u; s <= pc.samples; ++s) {
+    uint s = 1u;
+    do {
       vec2 spx = vec2(pixel) + 0.5 + dir * radiusPx * (float(s) - 1.0 + jitter) / float(pc.samples);
       ivec2 sp = ivec2(spx);
-      if (any(lessThan(sp, ivec2(0))) || any(greaterThanEqual(sp, ivec2(camera.resolution.xy)))) break;
+      bool liveS = s <= pc.samples;
+      ++s;  // before the `continue`s, which jump to the test
+      if (!liveS || any(lessThan(sp, ivec2(0))) || any(greaterThanEqual(sp, ivec2(camera.resolution.xy)))) break;
       float sd = texelFetch(gDepth, sp, 0).r;
       if (sd >= 1.0) continue;
       vec3 v = worldAt((vec2(sp) + 0.5) * camera.resolution.zw, sd) - p;
@@ -39,8 +48,9 @@ void main() {
         contribution += (sinE - sinH) * (1.0 - r2 / (pc.radius * pc.radius));
         sinH = sinE;
       }
-    }
-    occlusion += contribution;
-  }
+    } while (s <= pc.samples);
+    if (liveD) occlusion += contribution;
+    ++d;
+  } while (d < pc.directions);
   outAo = vec4(clamp(1.0 - occlusion / float(max(pc.directions, 1u)), 0.0, 1.0));
 }

@@ -20,16 +20,23 @@ void main() {
   vec3 b = cross(n, t);
   vec3 tr = cos(a) * t + sin(a) * b, br = cross(n, tr);
   float occluded = 0.0;
-  for (uint i = 0u; i < pc.samples; ++i) {
+  // do-while, not for: llvmpipe tests "is any lane still looping" only at the end of an iteration,
+  // so a top-tested loop runs one more body with every lane masked (17 bodies for 16 samples; README
+  // "What costs what on lavapipe"). The body therefore also runs once with no sample, and `live`
+  // keeps that pass from adding (no early exit: llvmpipe runs both sides of a branch anyway).
+  uint i = 0u;
+  do {
+    bool live = i < pc.samples;
     // Fibonacci points on the hemisphere, scaled towards the centre (more weight close by).
     float fi = float(i) + 0.5;
+    ++i;  // before the `continue`s, which jump to the test
     float z = 1.0 - fi / float(pc.samples);
     float r = sqrt(max(0.0, 1.0 - z * z));
     float phi = 2.39996323 * fi;
     float scale = mix(0.1, 1.0, (fi / float(pc.samples)) * (fi / float(pc.samples)));
     vec3 s = p + pc.radius * scale * (r * cos(phi) * tr + r * sin(phi) * br + z * n);
     vec4 clip = camera.viewProj * vec4(s, 1.0);
-    if (clip.w <= 0.0) continue;
+    if (!live || clip.w <= 0.0) continue;
     vec2 suv = clip.xy / clip.w * 0.5 + 0.5;
     if (any(lessThan(suv, vec2(0.0))) || any(greaterThan(suv, vec2(1.0)))) continue;
     float sceneDepth = texelFetch(gDepth, ivec2(suv * camera.resolution.xy), 0).r;
@@ -37,6 +44,6 @@ void main() {
     float zScene = viewDepth(worldAt(suv, sceneDepth)), zSample = viewDepth(s);
     float range = smoothstep(0.0, 1.0, pc.radius / max(abs(viewDepth(p) - zScene), 1e-6));
     occluded += (zScene <= zSample - pc.bias ? 1.0 : 0.0) * range;
-  }
+  } while (i < pc.samples);
   outAo = vec4(1.0 - occluded / float(max(pc.samples, 1u)));
 }

@@ -46,8 +46,14 @@ vec3 gridIrradiance(GridGpu g, vec3 x, vec3 n, uint tag) {
   uint k = uint(g.originK.w);
   uint base = uint(g.cellBase.w) + (uint(c.x) + uint(g.dims.x) * (uint(c.y) + uint(g.dims.y) * uint(c.z))) * k;
   vec3 e = vec3(0.0);
-  for (uint s = 0u; s < k; ++s) {
+  // do-while, not for: llvmpipe tests "is any lane still looping" only at the end of an iteration,
+  // so a top-tested loop runs one more body with every lane masked (k + 1 for a full list; README
+  // "What costs what on lavapipe"). The body therefore also runs once for k = 0: `s >= k` leaves.
+  uint s = 0u;
+  do {
+    if (s >= k) break;
     uint i = slots[base + s];
+    ++s;  // before the `continue`s, which jump to the test
     if (i == kNullLight || i >= pc.counts.x) break;  // lists are packed: the rest are null lights
     if (i < pc.lightRange.x || i >= pc.lightRange.y) continue;
     VlmLight vl = vlmLights[i];
@@ -61,7 +67,7 @@ vec3 gridIrradiance(GridGpu g, vec3 x, vec3 n, uint tag) {
     if (f <= 0.0) continue;
     vec3 L = texelFetch(vlmRadiance, ivec2(i % pc.counts.z, i / pc.counts.z), 0).rgb;
     e += kPi * L * f;
-  }
+  } while (s < k);
   return e;
 }
 

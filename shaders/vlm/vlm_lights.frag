@@ -47,15 +47,18 @@ void main() {
   vec3 e = vec3(0.0);
   for (int s = 0; s < VLM_PHASE1_SAMPLES; ++s) {
     vec3 p = vlmSamplePoint(vl, s) + ln * pc.lift;
-    for (uint i = 0u; i < pc.lightCount; ++i) {
+    // do-while, not for (as lighting.frag's light loop): llvmpipe would run n + 1 light bodies,
+    // shadow taps included, for n lights; the guard keeps the pass with no light from adding.
+    uint i = 0u;
+    do {
       vec3 l;
       float dist;
       vec3 ei = incidentIrradiance(lights[i], p, l, dist);
       float c = max(dot(ln, l), 0.0);
-      if (c <= 0.0) continue;
       float v = pc.shadowsOn != 0u ? shadowVisibility(lights[i], p, ln, dist) : 1.0;
-      e += ei * c * v;
-    }
+      if (c > 0.0 && i < pc.lightCount) e += ei * c * v;
+      ++i;
+    } while (i < pc.lightCount);
   }
   e /= float(VLM_PHASE1_SAMPLES);
   outRadiance = vec4(vl.scale.rgb * e * kInvPi, 1.0);
