@@ -21,16 +21,22 @@
 // exactly rays/R² stratified rays.
 const int PROBE_VIS_RES = 8;
 const int PROBE_VIS_BINS = 64;  // PROBE_VIS_RES²
-const float PROBE_TWO_PI = 6.28318530717958648f;
 
 int probeVisBin(vec3 d) {
   float u = clamp((1.0f - d.z) * 0.5f, 0.0f, 1.0f);
-  float phi = atan(d.y, d.x);
-  if (phi < 0.0f) phi += PROBE_TWO_PI;
-  float v = clamp(phi / PROBE_TWO_PI, 0.0f, 1.0f);
   int i = min(int(u * float(PROBE_VIS_RES)), PROBE_VIS_RES - 1);
-  int j = min(int(v * float(PROBE_VIS_RES)), PROBE_VIS_RES - 1);
-  return i * PROBE_VIS_RES + j;
+  // j = ⌊8·φ/2π⌋ for φ = atan2(y, x) in [0, 2π): with 8 columns a column is an octant of the
+  // xy-plane, found from signs and |x| vs |y| without the atan (about a tenth of the probes pass
+  // on llvmpipe, README "What costs what on lavapipe"). Same column as ⌊8·atan2/2π⌋ except where
+  // float rounding sits on an octant edge (y = 0, y = ±x, x = 0; measure zero); x = y = 0 (φ := 0)
+  // is column 0 as atan2(0, 0) = 0 gave. The lower half-plane (φ ≥ π: y < 0, or y = 0 and x < 0) is
+  // turned by π onto the upper one, octants 4–7 onto 0–3.
+  bool lower = d.y < 0.0f || (d.y == 0.0f && d.x < 0.0f);
+  float x = lower ? -d.x : d.x;
+  float y = lower ? -d.y : d.y;
+  int q = x > 0.0f ? (y < x ? 0 : 1) : (y > -x ? 2 : 3);
+  if (x == 0.0f && y == 0.0f) q = 0;
+  return i * PROBE_VIS_RES + (lower ? q + 4 : q);
 }
 
 // Chebyshev's one-sided bound P(D ≥ d) ≤ σ²/(σ² + (d − μ)²) (variance shadow maps, Donnelly &

@@ -1,8 +1,13 @@
 // CPU lookups on hand-made volumes: exact interpolation cases and the binary format.
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
 #include <gtest/gtest.h>
 
 #include "engine/core/error.hpp"
 #include "engine/gi/probes/probe_volume.hpp"
+#include "engine/math/sampling.hpp"
 #include "engine/math/sh.hpp"
 
 using namespace bounce;
@@ -112,4 +117,44 @@ TEST(ProbeFormat, RoundTripsAndRejectsEveryCorruption) {
   }
   for (std::size_t n : {std::size_t(0), std::size_t(10), bytes.size() - 1})
     EXPECT_THROW(deserialize(std::span(bytes).first(n), "p.bin"), InputError);
+}
+
+// probeVisBin finds the φ column from the octant (signs, |x| vs |y|) instead of atan2: the bins
+// must be the equal-area map's ⌊8·φ/2π⌋ (what the bake's stratified rays were binned by before),
+// checked against atan2 in double on 200 000 random directions (a direction within 1e-6 rad of an
+// octant edge may fall on either side; none is expected at this count, and the test counts them
+// rather than skipping), plus the axes and the diagonals exactly.
+TEST(ProbeLookup, VisBinColumnIsTheAtanOctant) {
+  auto atanBin = [](const glm::dvec3& d) {
+    const double u = std::clamp((1.0 - d.z) * 0.5, 0.0, 1.0);
+    double phi = std::atan2(d.y, d.x);
+    if (phi < 0.0) phi += 2.0 * math::kPi;
+    const int i = std::min(int(u * 8.0), 7), j = std::min(int(phi / (2.0 * math::kPi) * 8.0), 7);
+    return i * 8 + j;
+  };
+  std::uint64_t state = 0x853c49e6748fea9bull;
+  auto next = [&] {
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    return double(state >> 11) * 0x1.0p-53;
+  };
+  int edge = 0;
+  for (int k = 0; k < 200000; ++k) {
+    const double z = 2.0 * next() - 1.0, phi = 2.0 * math::kPi * next(), r = std::sqrt(1.0 - z * z);
+    const glm::vec3 d(float(r * std::cos(phi)), float(r * std::sin(phi)), float(z));
+    const glm::dvec3 dd(d);
+    const double phiF = std::fmod(std::atan2(dd.y, dd.x) + 2.0 * math::kPi, 2.0 * math::kPi);
+    const double toEdge = std::abs(phiF / (math::kPi / 4.0) - std::round(phiF / (math::kPi / 4.0))) * (math::kPi / 4.0);
+    if (toEdge < 1e-6) {
+      ++edge;
+      continue;
+    }
+    ASSERT_EQ(visBin(d), atanBin(dd)) << d.x << " " << d.y << " " << d.z;
+  }
+  EXPECT_LE(edge, 2);
+  // Axes and diagonals: the column whose edge φ they start (φ = 0, π/4, …, 7π/4 → 0 … 7).
+  const float h = std::sqrt(0.5f);
+  const glm::vec3 edges[8] = {{1, 0, 0}, {h, h, 0}, {0, 1, 0}, {-h, h, 0}, {-1, 0, 0}, {-h, -h, 0}, {0, -1, 0}, {h, -h, 0}};
+  for (int j = 0; j < 8; ++j) EXPECT_EQ(visBin(edges[j]), 4 * 8 + j) << j;
+  EXPECT_EQ(visBin(glm::vec3(0, 0, 1)), 0);       // x = y = 0: column 0 (atan2(0, 0) = 0)
+  EXPECT_EQ(visBin(glm::vec3(0, 0, -1)), 7 * 8);  // u = 1 clamps to row 7
 }
