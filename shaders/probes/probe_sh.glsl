@@ -1,6 +1,7 @@
 // The baked volume's radiance SH at a receiver, read as the probes pass reads it (texelFetch from
 // the probe images, DESIGN.md: no SSBOs); shared by probes/probes.frag and the SL shadow on the
-// probes' light (sl/probe_shadow.frag), so both see the same L at a pixel.
+// probes' light (sl/probe_shadow.frag), so both see the same L at a pixel (up to fp16 rounding
+// where probes.frag reads its uniform block, below).
 //
 // The includer declares, before including this file:
 //   const int kCoeffs (order²: 4 or 9, a specialization constant);
@@ -22,18 +23,35 @@ ivec2 probeTexel(int probe, int slot, int slotsPerProbe) {
   return ivec2(slot + slotsPerProbe * (probe % pc.countOrder.x), probe / pc.countOrder.x);
 }
 
-// Probe p's SH texel t. An includer that defines PROBE_SH_UBO also declares `const bool kShInUbo`
-// and `uniform ProbeShBlock { vec4 probeShUbo[]; }` (texel t of p at [kTexels·p + t], the image's
-// floats, engine/gi/probes/node.cpp): a uniform block is cheaper on llvmpipe when the volume fits.
-vec4 probeShTexel(int probe, int t) {
+// Probe p's SH texel t in the image.
+vec4 probeShTexel(int probe, int t) { return texelFetch(probeSh, probeTexel(probe, t, kTexels), 0); }
+
 #ifdef PROBE_SH_UBO
-  if (kShInUbo) return probeShUbo[kTexels * probe + t];
+// An includer that defines PROBE_SH_UBO also declares `const bool kShInUbo` and
+// `uniform ProbeShBlock { uvec4 probeShUbo[]; }`: the image's values as halves when the volume
+// fits the block (engine/gi/probes/node.cpp shHalfTexelWords): probe p's 3·kCoeffs + 1 values
+// (L_0.rgb, L_1.rgb, …, valid) as packHalf2x16 pairs, low half first, 8 halves a texel, texel t at
+// [kHalfTexels·p + t]. Order 3: 4 texels a probe instead of the image's 7: on llvmpipe an indexed
+// uniform array is a per-lane load per scalar, the dominant cost of the pass (README "What costs
+// what on lavapipe"). fp16 rounds each coefficient by at most 2⁻¹¹ relative (test
+// ProbeGpu.ShFromTheUniformBlockIsTheImagePathWithinHalfRounding).
+const int kHalfTexels = (3 * kCoeffs + 1 + 7) / 8;
+const int kValidHalf = 3 * kCoeffs;  // the valid flag's half
 #endif
-  return texelFetch(probeSh, probeTexel(probe, t, kTexels), 0);
+
+bool probeValid(int probe) {
+#ifdef PROBE_SH_UBO
+  if (kShInUbo) {
+    // The whole texel, as probeRadianceSh loads it: the compiler shares one load between the two.
+    uvec4 u = probeShUbo[kHalfTexels * probe + kValidHalf / 8];
+    return unpackHalf2x16(u[(kValidHalf % 8) / 2])[kValidHalf % 2] != 0.0;
+  }
+#endif
+  return probeShTexel(probe, kTexels - 1)[(3 * kCoeffs) % 4] != 0.0;
 }
 
 #define PROBE_DATA_PARAM
-#define PROBE_VALID(i) (probeShTexel(i, kTexels - 1)[(3 * kCoeffs) % 4] != 0.0)
+#define PROBE_VALID(i) probeValid(i)
 #define PROBE_MOMENTS(i, b) texelFetch(probeMoments, probeTexel(i, b, PROBE_VIS_BINS), 0).rg
 #include "probes/probe_weights.glsl"
 
@@ -47,10 +65,22 @@ void probeRadianceSh(vec3 x, vec3 n, vec3 v, out vec3 L[9]) {
   for (int i = 0; i < 9; ++i) L[i] = vec3(0.0);
   // No test of weight[k] == 0: a branch is not skipped on llvmpipe, and 0·L adds nothing.
   for (int k = 0; k < 8; ++k) {
-    float f[28];  // kTexels · 4 ≤ 28
-    for (int t = 0; t < kTexels; ++t) {
-      vec4 v = probeShTexel(probe[k], t);
-      f[4 * t] = v.x, f[4 * t + 1] = v.y, f[4 * t + 2] = v.z, f[4 * t + 3] = v.w;
+    float f[32];  // kTexels · 4 ≤ 28, kHalfTexels · 8 ≤ 32
+#ifdef PROBE_SH_UBO
+    if (kShInUbo) {  // a specialization constant: the other path is compiled out
+      for (int t = 0; t < kHalfTexels; ++t) {
+        uvec4 u = probeShUbo[kHalfTexels * probe[k] + t];
+        vec2 h0 = unpackHalf2x16(u.x), h1 = unpackHalf2x16(u.y), h2 = unpackHalf2x16(u.z), h3 = unpackHalf2x16(u.w);
+        f[8 * t] = h0.x, f[8 * t + 1] = h0.y, f[8 * t + 2] = h1.x, f[8 * t + 3] = h1.y;
+        f[8 * t + 4] = h2.x, f[8 * t + 5] = h2.y, f[8 * t + 6] = h3.x, f[8 * t + 7] = h3.y;
+      }
+    } else
+#endif
+    {
+      for (int t = 0; t < kTexels; ++t) {
+        vec4 v = probeShTexel(probe[k], t);
+        f[4 * t] = v.x, f[4 * t + 1] = v.y, f[4 * t + 2] = v.z, f[4 * t + 3] = v.w;
+      }
     }
     for (int i = 0; i < kCoeffs; ++i) L[i] += weight[k] * vec3(f[3 * i], f[3 * i + 1], f[3 * i + 2]);
   }

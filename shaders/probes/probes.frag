@@ -12,8 +12,9 @@
 #include "sh.glsl"
 
 layout(constant_id = 0) const int kCoeffs = 9;  // order²: 4 or 9
-// The SH texels from the uniform block below instead of the image when the volume fits it (node.cpp
-// kShUboBytes): the same floats, fetched cheaper (README "What costs what on lavapipe").
+// The SH from the uniform block below instead of the image when the volume fits it (node.cpp
+// kShUboBytes): the same values as halves, fetched cheaper (probe_sh.glsl, README "What costs what
+// on lavapipe").
 layout(constant_id = 1) const bool kShInUbo = false;
 
 layout(set = 0, binding = 0) uniform FrameUbo { Camera camera; };
@@ -23,7 +24,7 @@ layout(set = 1, binding = 2) uniform sampler2D gDepth;
 // The probe images' layout: probes/probe_sh.glsl.
 layout(set = 1, binding = 3) uniform sampler2D probeSh;       // RGBA32F
 layout(set = 1, binding = 4) uniform sampler2D probeMoments;  // RG32F
-layout(std140, set = 1, binding = 5) uniform ProbeShBlock { vec4 probeShUbo[4096]; };  // texel t of p: [kTexels·p + t]
+layout(std140, set = 1, binding = 5) uniform ProbeShBlock { uvec4 probeShUbo[4096]; };  // halves, texel t of p: [kHalfTexels·p + t]
 layout(set = 1, binding = 6) uniform sampler2D aoTerm;  // "ao.term" (1 = unoccluded) when bias.w = 1
 
 layout(push_constant) uniform Push {

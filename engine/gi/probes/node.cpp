@@ -1,5 +1,9 @@
 #include "engine/gi/probes/node.hpp"
 
+#include <cmath>
+
+#include <glm/gtc/packing.hpp>
+
 #include "engine/core/error.hpp"
 #include "engine/gpu/commands.hpp"
 #include "engine/render/passes/rendering.hpp"
@@ -43,9 +47,33 @@ std::vector<float> shTexelFloats(const ProbeVolume& v) {
   return floats;
 }
 
-// probes.frag's ProbeShBlock: 4096 vec4 = 64 KiB, lavapipe's maxUniformBufferRange (the Vulkan
-// minimum is 16 KiB; a device below 64 KiB keeps the image path). Order 3: 585 probes (9³ = 729, a
-// 0.125 m grid over cornell-1, takes the image path); order 2: 1365.
+// The uniform block's texels per probe: shTexelFloats' 3·coeffs + 1 values as halves, 8 a texel
+// (probe_sh.glsl kHalfTexels): order 3: 4, order 2: 2.
+std::uint32_t shHalfTexels(const ProbeVolume& v) { return std::uint32_t(3 * v.coeffs() + 1 + 7) / 8; }
+
+// The largest finite half; a volume with a larger |value| keeps the image path.
+constexpr float kHalfMax = 65504.0f;
+
+// probe_sh.glsl's ProbeShBlock: shTexelFloats' values per probe, rounded to halves (nearest) and
+// packed two a word as GLSL's packHalf2x16 (low half first), 4 words a texel, probe p's texel t at
+// word 4·(t + shHalfTexels·p). Empty when a value is past kHalfMax.
+std::vector<std::uint32_t> shHalfTexelWords(const ProbeVolume& v) {
+  const std::size_t probes = v.grid.probeCount(), values = std::size_t(3 * v.coeffs() + 1);
+  const std::size_t floatStride = 4 * shTexels(v), wordStride = 4 * shHalfTexels(v);
+  const std::vector<float> floats = shTexelFloats(v);
+  std::vector<std::uint32_t> words(probes * wordStride, 0u);
+  for (std::size_t p = 0; p < probes; ++p)
+    for (std::size_t h = 0; h < values; h += 2) {
+      const float a = floats[p * floatStride + h], b = h + 1 < values ? floats[p * floatStride + h + 1] : 0.0f;
+      if (!(std::abs(a) <= kHalfMax && std::abs(b) <= kHalfMax)) return {};
+      words[p * wordStride + h / 2] = glm::packHalf2x16(glm::vec2(a, b));
+    }
+  return words;
+}
+
+// probes.frag's ProbeShBlock: 4096 uvec4 = 64 KiB, lavapipe's maxUniformBufferRange (the Vulkan
+// minimum is 16 KiB; a device below 64 KiB keeps the image path). Order 3: 1024 probes (a 0.125 m
+// grid over cornell-1, 9³ = 729, fits); order 2: 2048.
 constexpr VkDeviceSize kShUboBytes = 4096 * 16;
 
 }  // namespace
@@ -87,12 +115,12 @@ ProbeNode::ProbeNode(gpu::Context& ctx, const render::Pipelines& pipelines, Prob
                   {6, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}},
                  "probes") {
   {
-    const std::vector<float> floats = shTexelFloats(volume_);
-    const VkDeviceSize bytes = floats.size() * sizeof(float);
-    shInUbo_ = shInUbo && bytes <= kShUboBytes && kShUboBytes <= ctx.limits().maxUniformBufferRange;
+    const std::vector<std::uint32_t> words = shHalfTexelWords(volume_);
+    const VkDeviceSize bytes = words.size() * sizeof(std::uint32_t);
+    shInUbo_ = shInUbo && !words.empty() && bytes <= kShUboBytes && kShUboBytes <= ctx.limits().maxUniformBufferRange;
     shUbo_ = gpu::Buffer(ctx, {kShUboBytes, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                                gpu::MemoryUsage::GpuOnly, "probes.sh.ubo"});
-    if (shInUbo_) gpu::upload(ctx, shUbo_, {reinterpret_cast<const std::uint8_t*>(floats.data()), std::size_t(bytes)});
+    if (shInUbo_) gpu::upload(ctx, shUbo_, {reinterpret_cast<const std::uint8_t*>(words.data()), std::size_t(bytes)});
   }
   layout_ = gpu::PipelineLayout(ctx, {pipelines.frameLayout.handle(), setLayout_.handle()},
                                 {{VK_SHADER_STAGE_ALL, 0, sizeof(ProbePush)}}, "probes");

@@ -47,9 +47,10 @@ class ProbeNode final : public TechniqueRuntime {
  private:
   ProbeVolume volume_;
   std::unique_ptr<gpu::Image> sh_, moments_;
-  // The same SH texels as sh_ in a uniform block when they fit kShUboBytes (probes.frag kShInUbo):
-  // llvmpipe gathers a uniform-array vec4 per lane for less than a texelFetch (README "What costs
-  // what on lavapipe"). Always kShUboBytes long, so the block the shader declares is always bound.
+  // sh_'s values as halves in a uniform block when they fit kShUboBytes (probes.frag kShInUbo,
+  // layout in probe_sh.glsl): llvmpipe gathers a uniform-array texel per lane for less than a
+  // texelFetch, and halves take 4 texels a probe at order 3 instead of 7 (README "What costs what
+  // on lavapipe"). Always kShUboBytes long, so the block the shader declares is always bound.
   gpu::Buffer shUbo_;
   bool shInUbo_ = false;
   gpu::DescriptorSetLayout setLayout_;

@@ -86,10 +86,13 @@ TEST(ProbeGpu, PassEqualsCpuApiAtEveryPixel) {
 }
 
 // Issue 15: probes.frag reads the probes' SH from a uniform block when the volume fits 64 KiB
-// (cheaper on llvmpipe than a texelFetch per texel) and from the image otherwise. The two paths
-// read the same floats, so the pass's image is the same bit for bit; and a volume past the block
-// (order 3: more than 585 probes) takes the image path.
-TEST(ProbeGpu, ShFromTheUniformBlockEqualsTheImagePathBitForBit) {
+// (cheaper on llvmpipe than a texelFetch per texel), as halves (4 texels a probe at order 3, not
+// 7), and from the image's floats otherwise. Each coefficient is rounded by at most 2⁻¹¹ relative,
+// and the RGBA16F target rounds both images by 2⁻¹¹ again, so a channel may move by the rounding of
+// its SH terms (which can partly cancel, hence the absolute floor: 2⁻¹¹ of the image's largest
+// value) plus two target roundings: |a − b| ≤ 3·2⁻¹¹·max(a, b) + 2⁻¹¹·max. Measured: printed.
+// A volume past the block (order 3: more than 1024 probes) takes the image path.
+TEST(ProbeGpu, ShFromTheUniformBlockIsTheImagePathWithinHalfRounding) {
   gpu::Context& ctx = gpu::testkit::sharedContext();
   const fs::path levelPath = fs::path(BOUNCE_SOURCE_DIR) / "content/levels/cornell-1.json";
   game::Session session(ctx, game::loadLevelWithEffects(levelPath, std::vector<std::string>{"probes"}));
@@ -112,19 +115,40 @@ TEST(ProbeGpu, ShFromTheUniformBlockEqualsTheImagePathBitForBit) {
   };
   const std::vector<float> a = render(ubo), b = render(image);
   ASSERT_EQ(a.size(), b.size());
-  std::size_t lit = 0, equal = 0;
-  for (std::size_t i = 0; i < a.size(); ++i) lit += a[i] > 0.0f, equal += a[i] == b[i];
-  std::printf("probes, SH from the uniform block vs the image: %zu of %zu channel values equal, %zu lit\n", equal,
-              a.size(), lit);
+  constexpr double kHalfUlp = 1.0 / 2048.0;  // 2⁻¹¹: fp16's unit roundoff
+  double top = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i) top = std::max(top, double(std::abs(b[i])));
+  std::size_t lit = 0, equal = 0, outside = 0;
+  double worst = 0.0;  // the largest |a − b| / max(a, b) over channels above 1 % of the top
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    lit += a[i] > 0.0f, equal += a[i] == b[i];
+    const double big = std::max(std::abs(double(a[i])), std::abs(double(b[i]))), diff = std::abs(double(a[i]) - b[i]);
+    outside += diff > 3.0 * kHalfUlp * big + kHalfUlp * top;
+    if (big > 0.01 * top) worst = std::max(worst, diff / big);
+  }
+  std::printf("probes, SH halves from the uniform block vs the image's floats: %zu of %zu channel values equal, "
+              "%zu lit, largest relative difference %.2e (above 1 %% of the top value %.3g)\n",
+              equal, a.size(), lit, worst, top);
   EXPECT_GT(lit, a.size() / 2);
-  EXPECT_EQ(equal, a.size());
+  EXPECT_GT(top, 0.0);
+  EXPECT_EQ(outside, 0u);
+  EXPECT_LT(equal, a.size());  // the block really holds halves: some channel moved
 
-  // 9³ probes at order 3: 729 × 7 texels × 16 B = 81648 B, past the 64 KiB block.
+  // 11³ probes at order 3: 1331 × 4 texels × 16 B = 85184 B, past the 64 KiB block; 9³ fits.
   gi::probes::ProbeVolume big = baked.volume;
+  for (int perAxis : {9, 11}) {
+    big.grid.count = glm::ivec3(perAxis);
+    const std::size_t n = big.grid.probeCount();
+    big.sh.assign(n * std::size_t(big.coeffs()), glm::vec3(0.1f));
+    big.moments.assign(n * std::size_t(gi::probes::kVisBins), glm::vec2(1.0f, 1.0f));
+    big.valid.assign(n, 1u);
+    EXPECT_EQ(gi::probes::ProbeNode(ctx, session.renderer().pipelines(), big).shInUbo(), perAxis == 9) << perAxis;
+  }
+  // A value past the largest half (65504) keeps the image path.
   big.grid.count = glm::ivec3(9);
-  const std::size_t n = big.grid.probeCount();
-  big.sh.assign(n * std::size_t(big.coeffs()), glm::vec3(0.1f));
-  big.moments.assign(n * std::size_t(gi::probes::kVisBins), glm::vec2(1.0f, 1.0f));
-  big.valid.assign(n, 1u);
+  big.sh.assign(big.grid.probeCount() * std::size_t(big.coeffs()), glm::vec3(0.1f));
+  big.moments.assign(big.grid.probeCount() * std::size_t(gi::probes::kVisBins), glm::vec2(1.0f, 1.0f));
+  big.valid.assign(big.grid.probeCount(), 1u);
+  big.sh[5] = glm::vec3(1e5f, 0.0f, 0.0f);
   EXPECT_FALSE(gi::probes::ProbeNode(ctx, session.renderer().pipelines(), big).shInUbo());
 }
