@@ -24,6 +24,11 @@
 #include "dnrt/dnrt.glsl"
 
 layout(constant_id = 0) const bool kSh9 = false;
+// A batch of exactly one object (node.cpp): record 0, no loops. The loops' per-pixel index makes
+// every record field a per-lane load, and a loop body costs about twice the same code straight
+// (README "DNRT": "one object in straight-line code, no loop"); with the index a constant the
+// record is read as uniforms, as the box draw's flat varyings are. Same sums, same image.
+layout(constant_id = 1) const bool kSingle = false;
 
 layout(set = 0, binding = 0) uniform FrameUbo { Camera camera; };
 layout(set = 1, binding = 0) uniform sampler2D gAlbedo;
@@ -48,6 +53,37 @@ layout(push_constant) uniform Push {
 
 layout(location = 0) out vec4 outRadiance;
 
+// Object i reaches the receiver r (world position, w = 1) with normal nr: dnrt.frag's discards
+// (s(r) > 0, r not at the centre, (n_o·n_r)₊ > 0, not the object's own pixel).
+bool dnrtClusterReaches(int i, vec4 r, vec3 nr, uint entity) {
+  vec3 q = vec3(dot(objects[i].worldToQ[0], r), dot(objects[i].worldToQ[1], r), dot(objects[i].worldToQ[2], r));
+  float s = dnrtFalloff(q, objects[i].extents.x, objects[i].extents.y);
+  vec3 toO = objects[i].centreWorld.xyz - r.xyz;
+  float len = length(toO);
+  uint self = objects[i].ids.x;
+  return s > 0.0 && len > 1e-6 * objects[i].centreWorld.w && max(dot(toO / len, nr), 0.0) > 0.0 &&
+         !(self != 0u && entity == self);
+}
+
+// Object i's term without ρ_r: (n_o·n_r)₊ s(r) (a + Σ_slot dot(k_slot, texel_slot)) (Eq. 16).
+vec3 dnrtClusterTerm(int i, vec4 r, vec3 nr) {
+  vec3 q = vec3(dot(objects[i].worldToQ[0], r), dot(objects[i].worldToQ[1], r), dot(objects[i].worldToQ[2], r));
+  vec4 ext = objects[i].extents;
+  float s = dnrtFalloff(q, ext.x, ext.y);
+  vec3 toO = objects[i].centreWorld.xyz - r.xyz;
+  float lamb = max(dot(toO / length(toO), nr), 0.0);
+  vec3 uvw = (dnrtGrid(q, ext.x, ext.w) + objects[i].atlas.xyz) * pc.invAtlasSize.xyz;
+  vec3 sum = objects[i].a.rgb + vec3(dot(objects[i].k[0], texture(atlas0, uvw)),
+                                     dot(objects[i].k[1], texture(atlas1, uvw)),
+                                     dot(objects[i].k[2], texture(atlas2, uvw)));
+  if (kSh9) {
+    sum += vec3(dot(objects[i].k[3], texture(atlas3, uvw)), dot(objects[i].k[4], texture(atlas4, uvw)),
+                dot(objects[i].k[5], texture(atlas5, uvw)));
+    sum += objects[i].k[6].rgb * texture(atlas6, uvw).rgb;
+  }
+  return (lamb * s) * sum;
+}
+
 void main() {
   ivec2 pixel = ivec2(gl_FragCoord.xy);
   uint mask = tileMasks[pc.tileBase + uint(pixel.y >> kDnrtClusterTileShift) * pc.tilesX +
@@ -59,43 +95,30 @@ void main() {
   vec3 nr = texelFetch(gNormal, pixel, 0).xyz;
   uint entity = texelFetch(gEntity, pixel, 0).r;
 
+  if (kSingle) {  // a specialization constant: the loops below are compiled out, and vice versa
+    if (!dnrtClusterReaches(0, r, nr, entity)) discard;
+    vec3 albedo = texelFetch(gAlbedo, pixel, 0).rgb;
+    outRadiance = vec4(albedo * dnrtClusterTerm(0, r, nr), 0.0);
+    return;
+  }
+
   // 1. The tile's objects that reach r: dnrt.frag's discards, as a bit each.
   uint live = 0u;
   uint m = mask;
   do {
     int i = max(findLSB(m), 0);
-    vec3 q = vec3(dot(objects[i].worldToQ[0], r), dot(objects[i].worldToQ[1], r), dot(objects[i].worldToQ[2], r));
-    float s = dnrtFalloff(q, objects[i].extents.x, objects[i].extents.y);
-    vec3 toO = objects[i].centreWorld.xyz - r.xyz;
-    float len = length(toO);
-    uint self = objects[i].ids.x;
-    bool reaches = s > 0.0 && len > 1e-6 * objects[i].centreWorld.w && max(dot(toO / len, nr), 0.0) > 0.0 &&
-                   !(self != 0u && entity == self);
-    if (reaches && m != 0u) live |= 1u << uint(i);
+    if (dnrtClusterReaches(i, r, nr, entity) && m != 0u) live |= 1u << uint(i);
     m &= m - 1u;
   } while (m != 0u);
   if (live == 0u) discard;
 
-  // 2. Their terms: (n_o·n_r)₊ s(r) (a + Σ_slot dot(k_slot, texel_slot)), summed, times ρ_r once.
+  // 2. Their terms, summed, times ρ_r once.
   vec3 total = vec3(0.0);
   m = live;
   do {
     int i = max(findLSB(m), 0);
-    vec3 q = vec3(dot(objects[i].worldToQ[0], r), dot(objects[i].worldToQ[1], r), dot(objects[i].worldToQ[2], r));
-    vec4 ext = objects[i].extents;
-    float s = dnrtFalloff(q, ext.x, ext.y);
-    vec3 toO = objects[i].centreWorld.xyz - r.xyz;
-    float lamb = max(dot(toO / length(toO), nr), 0.0);
-    vec3 uvw = (dnrtGrid(q, ext.x, ext.w) + objects[i].atlas.xyz) * pc.invAtlasSize.xyz;
-    vec3 sum = objects[i].a.rgb + vec3(dot(objects[i].k[0], texture(atlas0, uvw)),
-                                       dot(objects[i].k[1], texture(atlas1, uvw)),
-                                       dot(objects[i].k[2], texture(atlas2, uvw)));
-    if (kSh9) {
-      sum += vec3(dot(objects[i].k[3], texture(atlas3, uvw)), dot(objects[i].k[4], texture(atlas4, uvw)),
-                  dot(objects[i].k[5], texture(atlas5, uvw)));
-      sum += objects[i].k[6].rgb * texture(atlas6, uvw).rgb;
-    }
-    if (m != 0u) total += (lamb * s) * sum;
+    vec3 term = dnrtClusterTerm(i, r, nr);
+    if (m != 0u) total += term;
     m &= m - 1u;
   } while (m != 0u);
   vec3 albedo = texelFetch(gAlbedo, pixel, 0).rgb;

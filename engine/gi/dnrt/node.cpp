@@ -134,16 +134,16 @@ const gpu::Pipeline& Node::pipeline(const Variant& v) {
   return p;
 }
 
-const gpu::Pipeline& Node::clusteredPipeline(bool sh9) {
-  gpu::Pipeline& p = clustered_[sh9 ? 1 : 0];
+const gpu::Pipeline& Node::clusteredPipeline(bool sh9, bool single) {
+  gpu::Pipeline& p = clustered_[(sh9 ? 1 : 0) + (single ? 2 : 0)];
   if (p.handle()) return p;
   gpu::GraphicsPipelineDesc d;
   d.vertex = &fullscreenVert_;
   d.fragment = &clusterFrag_;
   d.colorFormats = {kHdrFormat};
   d.blend = gpu::Blend::Additive;
-  d.specialization = {sh9 ? 1u : 0u};  // clustered.frag id 0
-  d.name = std::string("dnrt.clustered") + (sh9 ? ".sh9" : ".sh4");
+  d.specialization = {sh9 ? 1u : 0u, single ? 1u : 0u};  // clustered.frag kSh9, kSingle
+  d.name = std::string("dnrt.clustered") + (sh9 ? ".sh9" : ".sh4") + (single ? ".single" : "");
   p = gpu::createGraphicsPipeline(ctx_, clusterPipelineLayout_, d);
   return p;
 }
@@ -369,9 +369,11 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
           const glm::vec4 invAtlas(1.0f / glm::vec3(atlas_.layout.size), 0.0f);
           for (std::size_t b = 0; b < batches; ++b) {
             bool sh9 = false;
-            for (std::size_t k = b * kClusterBatch; k < std::min(cluster.size(), (b + 1) * kClusterBatch); ++k)
+            const std::size_t end = std::min(cluster.size(), (b + 1) * kClusterBatch);
+            for (std::size_t k = b * kClusterBatch; k < end; ++k)
               sh9 = sh9 || objects[cluster[k].object].data.extents.z > 4.5f;
-            const gpu::Pipeline& p = clusteredPipeline(sh9);
+            // One object in the batch: record 0 as uniforms, no loops (clustered.frag kSingle).
+            const gpu::Pipeline& p = clusteredPipeline(sh9, end - b * kClusterBatch == 1);
             p.bind(cmd);
             p.bindSet(cmd, 0, pc->frameSet);
             p.bindSet(cmd, 1, clusterInputs);

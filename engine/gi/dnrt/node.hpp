@@ -100,7 +100,7 @@ class Node {
   };
   // The atlas holding `objects`' fields (grown if needed); brick index per object, -1 = no room.
   std::vector<int> atlasFor(const std::vector<const FieldTextures*>& textures);
-  const gpu::Pipeline& clusteredPipeline(bool sh9);
+  const gpu::Pipeline& clusteredPipeline(bool sh9, bool single);
 
   gpu::Context& ctx_;
   gpu::DescriptorSetLayout inputLayout_, fieldLayout_;
@@ -113,7 +113,7 @@ class Node {
   gpu::DescriptorSetLayout clusterLayout_;
   gpu::PipelineLayout clusterPipelineLayout_;
   gpu::ShaderModule fullscreenVert_, clusterFrag_;
-  std::array<gpu::Pipeline, 2> clustered_;  // index: sh9
+  std::array<gpu::Pipeline, 4> clustered_;  // index: sh9 + 2·single (clustered.frag kSh9, kSingle)
   Atlas atlas_;
   std::vector<gpu::Buffer> tileBuffers_, clusterObjectBuffers_;  // per frame slot: masks, DnrtClusterObject[]
 };

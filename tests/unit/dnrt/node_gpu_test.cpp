@@ -319,7 +319,7 @@ TEST(DnrtGpu, TenObjectsOverOnePixelAddUpToTenTimesOne) {
 }
 
 // Issue 15's clustered mode against the per-object box draws: box A (4 SH) and box B (9 SH) of
-// two-boxes.json, so the atlas mixes 3- and 7-slot fields; then 34 objects, two batches of the
+// two-boxes.json, so the atlas mixes 3- and 7-slot fields; each alone (the one-object pipeline); then 34 objects, two batches of the
 // clustered draw (32 + 2). The images agree within kClusteredTolerance per channel value:
 // - fp16: the box draws blend once per object (each rounding the running sum, relative 2^-11),
 //   the clustered draw once per batch;
@@ -352,16 +352,23 @@ TEST(DnrtGpu, ClusteredModeDrawsThePerObjectImage) {
   session.renderer().setNode("dnrt", {});
   const std::vector<float> base = renderOnce(session, ctx).rgb;
 
+  // Box A alone and box B alone (a one-object batch: clustered.frag's kSingle pipeline, record 0 as
+  // uniforms, no loops), then both, then 17 copies of both.
+  std::vector<std::vector<NodeObject>> sets = {{all[0]}, {all[1]}};
   for (const int copies : {1, 17}) {
-    std::vector<NodeObject> objects;
-    float filterStep = 0.0f;  // Σ_objects Σ_slots |k| / 255
+    sets.emplace_back();
     for (int k = 0; k < copies; ++k)
       for (const NodeObject& o : all) {
-        objects.push_back(o);
-        objects.back().name = o.name + "-" + std::to_string(k);
-        const DnrtShaderObject f = fold(o.data);
-        for (const glm::vec4& kt : f.k) filterStep += (std::abs(kt.x) + std::abs(kt.y) + std::abs(kt.z) + std::abs(kt.w)) / 255.0f;
+        sets.back().push_back(o);
+        sets.back().back().name = o.name + "-" + std::to_string(k);
       }
+  }
+  for (const std::vector<NodeObject>& objects : sets) {
+    float filterStep = 0.0f;  // Σ_objects Σ_slots |k| / 255
+    for (const NodeObject& o : objects) {
+      const DnrtShaderObject f = fold(o.data);
+      for (const glm::vec4& kt : f.k) filterStep += (std::abs(kt.x) + std::abs(kt.y) + std::abs(kt.z) + std::abs(kt.w)) / 255.0f;
+    }
     const Frame box = renderWith(objects, std::nullopt), clustered = renderWith(objects, Mode::Clustered);
     EXPECT_EQ(clustered.passes, box.passes) << "the same passes, culled the same";
     ASSERT_EQ(box.rgb.size(), clustered.rgb.size());
