@@ -50,9 +50,27 @@ bool probeValid(int probe) {
   return probeShTexel(probe, kTexels - 1)[(3 * kCoeffs) % 4] != 0.0;
 }
 
+// Probe i's visibility moments in bin b: (mean, mean square) of the hit distance (m, m²). An
+// includer that defines PROBE_SH_UBO also declares `const bool kMomentsInUbo` and
+// `uniform ProbeMomentsBlock { uvec4 probeMomentsUbo[]; }`: when the volume fits it
+// (engine/gi/probes/node.cpp momentHalfWords), bin b of probe i is word 64·i + b, packHalf2x16 of
+// (mean, standard deviation) — σ, not the mean square, so a half keeps 2⁻¹¹ of it where the mean
+// square minus the squared mean would cancel. One uniform word per lane instead of an RG32F
+// texelFetch: about a fifth of the pass on llvmpipe (README "What costs what on lavapipe").
+vec2 probeMomentsAt(int probe, int bin, int bins) {  // bins: PROBE_VIS_BINS, declared below
+#ifdef PROBE_SH_UBO
+  if (kMomentsInUbo) {
+    int w = bins * probe + bin;
+    vec2 h = unpackHalf2x16(probeMomentsUbo[w / 4][w % 4]);
+    return vec2(h.x, h.y * h.y + h.x * h.x);
+  }
+#endif
+  return texelFetch(probeMoments, probeTexel(probe, bin, bins), 0).rg;
+}
+
 #define PROBE_DATA_PARAM
 #define PROBE_VALID(i) probeValid(i)
-#define PROBE_MOMENTS(i, b) texelFetch(probeMoments, probeTexel(i, b, PROBE_VIS_BINS), 0).rg
+#define PROBE_MOMENTS(i, b) probeMomentsAt(i, b, PROBE_VIS_BINS)
 #include "probes/probe_weights.glsl"
 
 // L = Σ_k w_k L^k at surface point x with unit normal n, v the unit vector to the eye (the lookup

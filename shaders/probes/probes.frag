@@ -16,6 +16,9 @@ layout(constant_id = 0) const int kCoeffs = 9;  // order²: 4 or 9
 // kShUboBytes): the same values as halves, fetched cheaper (probe_sh.glsl, README "What costs what
 // on lavapipe").
 layout(constant_id = 1) const bool kShInUbo = false;
+// The visibility moments from the second uniform block below when they fit it (node.cpp
+// kMomentsUboBytes): (mean, σ) halves, one word a bin (probe_sh.glsl probeMomentsAt).
+layout(constant_id = 2) const bool kMomentsInUbo = false;
 
 layout(set = 0, binding = 0) uniform FrameUbo { Camera camera; };
 layout(set = 1, binding = 0) uniform sampler2D gAlbedo;
@@ -25,7 +28,8 @@ layout(set = 1, binding = 2) uniform sampler2D gDepth;
 layout(set = 1, binding = 3) uniform sampler2D probeSh;       // RGBA32F
 layout(set = 1, binding = 4) uniform sampler2D probeMoments;  // RG32F
 layout(std140, set = 1, binding = 5) uniform ProbeShBlock { uvec4 probeShUbo[4096]; };  // halves, texel t of p: [kHalfTexels·p + t]
-layout(set = 1, binding = 6) uniform sampler2D aoTerm;  // "ao.term" (1 = unoccluded) when bias.w = 1
+layout(set = 1, binding = 6) uniform sampler2D aoTerm;
+layout(std140, set = 1, binding = 7) uniform ProbeMomentsBlock { uvec4 probeMomentsUbo[4096]; };  // word 64·p + bin  // "ao.term" (1 = unoccluded) when bias.w = 1
 
 layout(push_constant) uniform Push {
   vec4 originSpacing;  // xyz: probe (0,0,0) position, w: spacing (m)

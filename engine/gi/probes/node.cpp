@@ -1,5 +1,6 @@
 #include "engine/gi/probes/node.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include <glm/gtc/packing.hpp>
@@ -71,10 +72,26 @@ std::vector<std::uint32_t> shHalfTexelWords(const ProbeVolume& v) {
   return words;
 }
 
+// probe_sh.glsl's ProbeMomentsBlock: bin b of probe p at word kVisBins·p + b, packHalf2x16 of
+// (mean, σ) with σ = sqrt(max(mean square − mean², 0)) (m). Empty when a value is past kHalfMax.
+std::vector<std::uint32_t> momentHalfWords(const ProbeVolume& v) {
+  std::vector<std::uint32_t> words(v.moments.size(), 0u);
+  for (std::size_t i = 0; i < v.moments.size(); ++i) {
+    const double mean = v.moments[i].x, variance = double(v.moments[i].y) - mean * mean;
+    const float sigma = float(std::sqrt(std::max(variance, 0.0)));
+    if (!(std::abs(v.moments[i].x) <= kHalfMax && sigma <= kHalfMax)) return {};
+    words[i] = glm::packHalf2x16(glm::vec2(v.moments[i].x, sigma));
+  }
+  return words;
+}
+
 // probes.frag's ProbeShBlock: 4096 uvec4 = 64 KiB, lavapipe's maxUniformBufferRange (the Vulkan
 // minimum is 16 KiB; a device below 64 KiB keeps the image path). Order 3: 1024 probes (a 0.125 m
 // grid over cornell-1, 9³ = 729, fits); order 2: 2048.
 constexpr VkDeviceSize kShUboBytes = 4096 * 16;
+// probes.frag's ProbeMomentsBlock, the same 64 KiB: 256 B a probe, so up to 256 probes (cornell-1's
+// 0.25 m volume, 6³ = 216, fits; the 0.125 m one, 9³, keeps the image).
+constexpr VkDeviceSize kMomentsUboBytes = 4096 * 16;
 
 }  // namespace
 
@@ -112,7 +129,8 @@ ProbeNode::ProbeNode(gpu::Context& ctx, const render::Pipelines& pipelines, Prob
                   {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                   {4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                   {5, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
-                  {6, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}},
+                  {6, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+                  {7, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER}},
                  "probes") {
   {
     const std::vector<std::uint32_t> words = shHalfTexelWords(volume_);
@@ -121,6 +139,16 @@ ProbeNode::ProbeNode(gpu::Context& ctx, const render::Pipelines& pipelines, Prob
     shUbo_ = gpu::Buffer(ctx, {kShUboBytes, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                                gpu::MemoryUsage::GpuOnly, "probes.sh.ubo"});
     if (shInUbo_) gpu::upload(ctx, shUbo_, {reinterpret_cast<const std::uint8_t*>(words.data()), std::size_t(bytes)});
+  }
+  {
+    const std::vector<std::uint32_t> words = momentHalfWords(volume_);
+    const VkDeviceSize bytes = words.size() * sizeof(std::uint32_t);
+    momentsInUbo_ = shInUbo_ && !words.empty() && bytes <= kMomentsUboBytes &&
+                    kMomentsUboBytes <= ctx.limits().maxUniformBufferRange;
+    momentsUbo_ = gpu::Buffer(ctx, {kMomentsUboBytes, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                    gpu::MemoryUsage::GpuOnly, "probes.moments.ubo"});
+    if (momentsInUbo_)
+      gpu::upload(ctx, momentsUbo_, {reinterpret_cast<const std::uint8_t*>(words.data()), std::size_t(bytes)});
   }
   layout_ = gpu::PipelineLayout(ctx, {pipelines.frameLayout.handle(), setLayout_.handle()},
                                 {{VK_SHADER_STAGE_ALL, 0, sizeof(ProbePush)}}, "probes");
@@ -131,7 +159,8 @@ ProbeNode::ProbeNode(gpu::Context& ctx, const render::Pipelines& pipelines, Prob
   d.fragment = &frag;
   d.colorFormats = {VK_FORMAT_R16G16B16A16_SFLOAT};
   d.blend = gpu::Blend::Additive;
-  d.specialization = {std::uint32_t(volume_.coeffs()), shInUbo_ ? 1u : 0u};  // probes.frag kCoeffs, kShInUbo
+  d.specialization = {std::uint32_t(volume_.coeffs()), shInUbo_ ? 1u : 0u,
+                      momentsInUbo_ ? 1u : 0u};  // probes.frag kCoeffs, kShInUbo, kMomentsInUbo
   d.name = "probes";
   pipeline_ = gpu::createGraphicsPipeline(ctx, layout_, d);
 }
@@ -165,6 +194,7 @@ void ProbeNode::addPasses(rg::RenderGraph& graph, const render::PassContext* pc)
             .sampledImage(3, sh_->view(), point)
             .sampledImage(4, moments_->view(), point)
             .buffer(5, shUbo_, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 0, kShUboBytes)
+            .buffer(7, momentsUbo_, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 0, kMomentsUboBytes)
             .sampledImage(6, view(withAo ? d.ao : d.g.albedo), point)
             .update(*pc->gpu, set);
         gpu::Image& target = pc->backend->image(res.texture(d.hdr));

@@ -35,6 +35,7 @@ class ProbeNode final : public TechniqueRuntime {
   // kShInUbo), false: always from the image (tests compare the two paths).
   ProbeNode(gpu::Context& ctx, const render::Pipelines& pipelines, ProbeVolume volume, bool shInUbo = true);
   bool shInUbo() const { return shInUbo_; }
+  bool momentsInUbo() const { return momentsInUbo_; }
   // Reads the G-buffer from the blackboard ("gbuffer.albedo", "gbuffer.normal", "gbuffer.depth"),
   // blends into "lighting.hdr" and publishes the new version under the same key.
   void addPasses(rg::RenderGraph& graph, const render::PassContext* pc);
@@ -53,6 +54,10 @@ class ProbeNode final : public TechniqueRuntime {
   // on lavapipe"). Always kShUboBytes long, so the block the shader declares is always bound.
   gpu::Buffer shUbo_;
   bool shInUbo_ = false;
+  // The visibility moments as (mean, σ) halves in a second block when they fit (and the SH block
+  // is used: the same `shInUbo` switch): one uniform word per probe instead of an RG32F texelFetch.
+  gpu::Buffer momentsUbo_;
+  bool momentsInUbo_ = false;
   gpu::DescriptorSetLayout setLayout_;
   gpu::PipelineLayout layout_;
   gpu::Pipeline pipeline_;
