@@ -26,7 +26,7 @@ int probeVisBin(vec3 d) {
   float u = clamp((1.0f - d.z) * 0.5f, 0.0f, 1.0f);
   int i = min(int(u * float(PROBE_VIS_RES)), PROBE_VIS_RES - 1);
   // j = ⌊8·φ/2π⌋ for φ = atan2(y, x) in [0, 2π): with 8 columns a column is an octant of the
-  // xy-plane, found from signs and |x| vs |y| without the atan (about a tenth of the probes pass
+  // xy-plane, found from signs and |x| vs |y| without the atan (about a sixth of the probes pass
   // on llvmpipe, README "What costs what on lavapipe"). Same column as ⌊8·atan2/2π⌋ except where
   // float rounding sits on an octant edge (y = 0, y = ±x, x = 0; measure zero); x = y = 0 (φ := 0)
   // is column 0 as atan2(0, 0) = 0 gave. The lower half-plane (φ ≥ π: y < 0, or y = 0 and x < 0) is
