@@ -44,14 +44,18 @@ void main() {
   vec4 r = vec4(worldFromDepth(camera.invViewProj, (vec2(pixel) + 0.5) * camera.resolution.zw, depth), 1.0);
   vec3 q = vec3(dot(toQ[0], r), dot(toQ[1], r), dot(toQ[2], r));
   // Eq. 10's radial weights (rtf.glsl rtfTaps, evaluate.cpp lookup()): the slice coordinate
-  // t = (|q| − inner)/Δr clamped to the first and last sphere's slice centres (inside the innermost
-  // sphere: its value), times the fade over one spacing beyond the outermost.
+  // clamped to the first and last sphere's slice centres (inside the innermost sphere: its value),
+  // times the fade over one spacing beyond the outermost.
   float len = length(q);
   float fade = clamp(1.0 - (len - radial.w) * radial.y, 0.0, 1.0);
   if (fade <= 0.0) discard;  // beyond the fade: the field is zero
   // The object's own surface: its transfer already holds its self-interreflection (Eq. 8).
   if (texelFetch(gEntity, pixel, 0).r == self) discard;
+  // Between spheres s0 and s0 + 1 the weight is linear in 1/|q|² (rtfRadialWeight; evaluate.cpp
+  // radialWeight says why), handed to the sampler as the slice coordinate's fraction.
   float t = clamp((len - radial.x) * radial.y, 0.0, radial.z);
+  float s0 = min(floor(t), radial.z - 1.0), ra = radial.x + s0 / radial.y;
+  t = s0 + rtfRadialWeight(ra, ra + 1.0 / radial.y, len);
   // Bilinear within the face by clamped coordinates (rtfFace): the sampler's.
   int f;
   vec2 st;
