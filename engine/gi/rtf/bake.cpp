@@ -196,30 +196,6 @@ std::vector<glm::vec3> vertexTransfer(const ref::SceneDesc& object, std::span<co
   return total;
 }
 
-// Departure from the paper (which does not say what a sample inside the object holds): a sample
-// inside the object takes the ITF and OOF of the first sample outside it on the same ray from o
-// (same face texel, the next sphere outward that is outside). No receiver lies inside the object,
-// but receivers between its surface and the first outside sphere interpolate (Eq. 10) between an
-// inside sample and an outside one; with the inside sample's physical value (M = 0, V = 0: all
-// light blocked, none arriving) the blocked light there was over-estimated by up to the receiver's
-// whole indirect light and the interreflected light pulled to 0 (README Results "RTF": on
-// cornell-rtf, the 5 % of indirect-only pixels with the strongest blocked term, 37 % of the
-// error, blocked 0.185 against the black-box reference's 0.141). Taking the outside value holds the
-// field constant from the first outside sphere inward, which under-estimates the near field's
-// solid angle instead (an object's field grows toward its surface). Samples with no outside sample
-// on their ray (outer radius inside the object) keep M = 0, V = 0.
-void fillInsideSamples(std::span<const char> inside, std::size_t perSphere, std::size_t D, std::vector<float>& itf,
-                       std::vector<float>& oof) {
-  for (std::size_t sample = 0; sample < inside.size(); ++sample) {
-    if (!inside[sample]) continue;
-    std::size_t from = sample + perSphere;
-    while (from < inside.size() && inside[from]) from += perSphere;
-    if (from >= inside.size()) continue;
-    std::copy_n(itf.begin() + std::ptrdiff_t(from * D), D, itf.begin() + std::ptrdiff_t(sample * D));
-    std::copy_n(oof.begin() + std::ptrdiff_t(from * kShCount), kShCount, oof.begin() + std::ptrdiff_t(sample * kShCount));
-  }
-}
-
 BakeResult bake(const ref::SceneDesc& object, const FieldSettings& s) {
   checkSettings(s);
   const auto start = std::chrono::steady_clock::now();
@@ -322,7 +298,6 @@ BakeResult bake(const ref::SceneDesc& object, const FieldSettings& s) {
   });
   progress.finish();
   result.stats.insideSamples = std::size_t(std::count(inside.begin(), inside.end(), 1));
-  fillInsideSamples(inside, std::size_t(perSphere), D, result.itf, f.oof);
 
   CpcaSettings cs;
   cs.clusters = s.clusters;
@@ -340,7 +315,7 @@ BakeResult bake(const ref::SceneDesc& object, const FieldSettings& s) {
 
 std::string cacheKey(const ref::SceneDesc& object, const FieldSettings& s) {
   Hasher h;
-  h.str("rtf-field-v5");  // baker and file format version: bump when either changes (v2: cube-map projection directions; v3: warm-started CPCA; v4: CPCA on lines, k-means++ seeds, float products; v5: inside samples take the first outside sample's values)
+  h.str("rtf-field-v4");  // baker and file format version: bump when either changes (v2: cube-map projection directions; v3: warm-started CPCA; v4: CPCA on lines, k-means++ seeds, float products)
   h.pod(s.proxies).pod(s.spheres).pod(s.faceSize).pod(s.innerRadius).pod(s.outerRadius).pod(s.raysPerAxis);
   h.pod(s.vertexRaysPerAxis).pod(s.selfBounces).pod(s.clusters).pod(s.components);
   ref::hashGeometry(h, object);

@@ -15,8 +15,7 @@
 //     directions ω of one cube map (face size raysPerAxis; the paper's 6×64×64, §4) weighted by
 //     their exact solid angles Δω: M^{ij}_{q,k} = Σ_{rays hitting p} Δω y_i(ω) t_{p,k}^j, and the
 //     OOF V_q^i = Σ_{rays that miss} Δω y_i(ω). A sample inside the object (most hits are back
-//     faces) takes the M and V of the first sample outside it on the same ray from o (ours,
-//     fillInsideSamples: receivers near the surface interpolate towards it; M = 0, V = 0 when none);
+//     faces) gets M = 0 and V = 0 (all light is blocked there);
 //  4. CPCA of the ITF vectors (Eq. 9, cpca.hpp), its Frobenius error and compression ratio.
 // Deterministic: vertex v draws from Pcg32::fromIndex(v); the field's directions are fixed.
 #include <filesystem>
@@ -58,12 +57,6 @@ std::vector<glm::vec3> vertexTransfer(const ref::SceneDesc& object, std::span<co
                                       float radius, const FieldSettings& settings);
 
 BakeResult bake(const ref::SceneDesc& object, const FieldSettings& settings);
-
-// Step 3's inside samples (flags per sample, sphere-major: sample + perSphere is the same direction
-// one sphere outward): each takes the ITF row (D floats) and OOF (16) of the first outside sample
-// on its ray; left as they are when there is none.
-void fillInsideSamples(std::span<const char> inside, std::size_t perSphere, std::size_t D, std::vector<float>& itf,
-                       std::vector<float>& oof);
 
 // Cache key: every mesh, material and texture byte of `object` plus the settings and format version.
 std::string cacheKey(const ref::SceneDesc& object, const FieldSettings& settings);
