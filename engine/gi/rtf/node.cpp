@@ -52,11 +52,12 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
     XiPass* xi;
     std::vector<glm::vec3> proxies;
     std::vector<glm::vec4> blocked;
+    std::vector<glm::vec4> scale;
   };
   std::vector<Light> lights;
   std::vector<std::string> names;
   for (NodeObject& o : objects) {
-    lights.push_back({o.xi, std::move(o.proxyLight), {std::begin(o.record.blocked), std::end(o.record.blocked)}});
+    lights.push_back({o.xi, std::move(o.proxyLight), {std::begin(o.record.blocked), std::end(o.record.blocked)}, std::move(o.blockedScale)});
     names.push_back(o.name);
   }
   graph.addPass<BounceData>(
@@ -67,6 +68,7 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
         for (std::size_t i = 0; i < lights.size(); ++i) {
           lights[i].xi->setProxyLight(lights[i].proxies);
           lights[i].xi->setBlockedLight(lights[i].blocked);
+          lights[i].xi->setBlockedScale(lights[i].scale);
           if (ts) ts->begin(cmd, "rtf.bounce/" + names[i]);
           lights[i].xi->record(cmd);
           if (ts) ts->end(cmd);

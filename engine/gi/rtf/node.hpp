@@ -29,6 +29,7 @@ struct NodeObject {
   std::vector<glm::vec3> proxyLight;  // m·16 RGB, object frame: this frame's bouncing step
   RtfObjectGpu record{};              // packObject()
   std::string name;                   // timestamp scopes "rtf/<name>", "rtf.bounce/<name>"
+  std::vector<glm::vec4> blockedScale;  // per sample (XiPass::setBlockedScale); empty: the light at o
 };
 
 class Node {
