@@ -27,7 +27,7 @@ Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t fra
   d.fragment = &frag;
   d.colorFormats = {kHdrFormat};
   d.blend = gpu::Blend::Additive;
-  d.cull = VK_CULL_MODE_FRONT_BIT;  // back faces of the box: each covered pixel once, camera inside or out
+  d.cull = VK_CULL_MODE_NONE;  // rtf.vert's camera-facing octagon (or full-screen triangle): each covered pixel once
   // One pipeline per SH count (rtf.frag's kSh9): llvmpipe runs an untaken branch in full.
   d.name = "rtf";
   d.specialization = {1u};
@@ -128,7 +128,7 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
           if (want != bound) want->bind(cmd), bound = want;
           bound->bindSet(cmd, 2, set);
           if (ts) ts->begin(cmd, "rtf/" + objects[i].name);
-          vkCmdDraw(cmd, 36, 1, 0, 0);
+          vkCmdDraw(cmd, 18, 1, 0, 0);  // rtf.vert: the octagon's fan
           if (ts) ts->end(cmd);
         }
         ctx_.cmdEndRendering(cmd);

@@ -35,7 +35,7 @@ namespace bounce::gi::rtf {
 struct RtfObjectGpu {
   glm::vec4 toQ[3];        // rows: q = toQ · (p, 1): the field's local offset from o in units of η
   glm::vec4 toLocal[3];    // rows: world → object-frame rotation (normals)
-  glm::vec4 centreWorld;   // xyz: o in the world; w: half-size (m) of the drawn box, (outer + Δr)·η
+  glm::vec4 centreWorld;   // xyz: o in the world; w: the field's radius R = (outer + Δr)·η (m), the sphere rtf.vert covers
   glm::vec4 grid;          // spheres, face size, inner, outer (η)
   glm::uvec4 ids;          // x: entity index + 1 (its own pixels skip the field); y: SH count 4 or 9 (the pipeline)
   // blocked[j·9 + i].rgb = Â_{l(i)}/π · T_ij, T the product matrix of the indirect radiance L
