@@ -10,8 +10,11 @@
 //  - one bounce count for the scene: the largest `bounces` of the participants (Algorithm 1 bounces
 //    light between all objects at once, so a per-object count has no meaning);
 //  - the shading step's blocked light (Eq. 10's occlusion of the incident light, the OOF) is the
-//    INDIRECT light only (probes / background), taken at the object's centre: the real lights'
-//    direct light is already removed by the shadow maps, which draw every dynamic object;
+//    INDIRECT light only (probes / background): the real lights' direct light is already removed
+//    by the shadow maps, which draw every dynamic object. Its directional shape is the light's at
+//    the object's centre (the record's product matrix), its level per channel the light's at each
+//    field sample (blockedScale below), which the lookup carries to the receiver; shade() takes the
+//    whole light at the receiver, so the two agree where the light is the same everywhere;
 //  - the GPU pass adds each object's term on its own (additive blending); Algorithm 1 at a receiver
 //    multiplies the objects' visibilities (V_{<i}). The two agree for one object (the GPU test) and
 //    to first order in (1 − V) where objects' fields overlap.
