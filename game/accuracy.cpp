@@ -379,6 +379,16 @@ AccuracyReport runAccuracy(const AccuracyOptions& options) {
     const std::string name = slug(row.technique) + "-" + slug(row.setting);
     result.heatMap = options.out / ("heatmap-" + name + ".png");
     writePfm(options.out / ("image-" + name + ".pfm"), techWith);
+    // The parts of the object-effect error, for the decompositions in README Results (RTF): the
+    // row's render of the level without its dynamic entities, and the references it was scored by.
+    writePfm(options.out / ("image-" + name + "-static.pfm"), techWithout);
+    const std::string refName = "reference-" + slug(referenceKind(row.setting));
+    if (!std::filesystem::exists(options.out / (refName + ".pfm"))) {
+      writePfm(options.out / (refName + ".pfm"), refWith);
+      writePfm(options.out / (refName + "-static.pfm"), refWithout);
+      writePfm(options.out / "reference-direct-mask-with.pfm", reference(true, 0));
+      writePfm(options.out / "reference-direct-mask-static.pfm", reference(false, 0));
+    }
     const ref::Comparison comparison = ref::comparisonImage(refWith, techWith, panel);
     result.heatMapScale = comparison.scale;
     writePng(result.heatMap, comparison.image);

@@ -16,7 +16,10 @@
 //
 // Files in `out`: accuracy.csv, accuracy.png (tools/plot_accuracy.py, when /usr/bin/python3 has
 // matplotlib), heatmap-<technique>-<setting>.png per row ("reference | technique | error",
-// engine/ref/image_heatmap.hpp) with the technique's linear image image-<technique>-<setting>.pfm,
+// engine/ref/image_heatmap.hpp) with the technique's linear image image-<technique>-<setting>.pfm
+// and its render of the level without dynamic entities (…-static.pfm), the references once per kind
+// (reference-<kind>.pfm, reference-<kind>-static.pfm; the direct-only pair the indirect-only mask
+// is made from, reference-direct-mask-with|static.pfm),
 // heatmaps.csv (which the chart script reads to title the heat maps). The level without dynamic
 // entities, which the reference tracer reads, goes to <cache>/levels, not `out`.
 #include <cstdint>

@@ -4,7 +4,8 @@
 // normal n and albedo ρ, what engine/gi/rtf/evaluate.cpp shade() computes for one object:
 //   ρ/π · E_n(ξ(q))  −  ρ/π · E_n((u − V(q)) ⊙ L)
 // ξ(q) the trilinear lookup of the object's ξ image (its interreflected light arriving at q), V(q)
-// its OOF, u the SH of V ≡ 1, L the indirect light at o (the record's product matrix), all in the
+// its OOF, u the SH of V ≡ 1, L the indirect light (the record's product matrix: its shape at o,
+// scaled per sample to its level there by the ξ pass, update.hpp blockedScale), all in the
 // object's frame (the normal is rotated there instead of 16 coefficients into the world), and
 // E_n(L) = Σ Â_l L_lm Y_lm(n) with Â_3 = 0, so only bands 0..2 matter. Both terms are folded per
 // sample by the ξ pass into X_i (i < 9, xi.comp), stored in 8 bits as 7 RGBA texels (DNRT's
@@ -44,14 +45,18 @@ void main() {
   vec4 r = vec4(worldFromDepth(camera.invViewProj, (vec2(pixel) + 0.5) * camera.resolution.zw, depth), 1.0);
   vec3 q = vec3(dot(toQ[0], r), dot(toQ[1], r), dot(toQ[2], r));
   // Eq. 10's radial weights (rtf.glsl rtfTaps, evaluate.cpp lookup()): the slice coordinate
-  // t = (|q| − inner)/Δr clamped to the first and last sphere's slice centres (inside the innermost
-  // sphere: its value), times the fade over one spacing beyond the outermost.
+  // clamped to the first and last sphere's slice centres (inside the innermost sphere: its value),
+  // times the fade over one spacing beyond the outermost.
   float len = length(q);
   float fade = clamp(1.0 - (len - radial.w) * radial.y, 0.0, 1.0);
   if (fade <= 0.0) discard;  // beyond the fade: the field is zero
   // The object's own surface: its transfer already holds its self-interreflection (Eq. 8).
   if (texelFetch(gEntity, pixel, 0).r == self) discard;
+  // Between spheres s0 and s0 + 1 the weight is linear in 1/|q|² (rtfRadialWeight; evaluate.cpp
+  // radialWeight says why), handed to the sampler as the slice coordinate's fraction.
   float t = clamp((len - radial.x) * radial.y, 0.0, radial.z);
+  float s0 = min(floor(t), radial.z - 1.0), ra = radial.x + s0 / radial.y;
+  t = s0 + rtfRadialWeight(ra, ra + 1.0 / radial.y, len);
   // Bilinear within the face by clamped coordinates (rtfFace): the sampler's.
   int f;
   vec2 st;

@@ -19,6 +19,13 @@ const float kRtfUnitVisibility = 3.5449077;  // 4π·Y_00 = 2√π: the SH of V 
 
 float rtfSphereRadius(RtfGrid g, int s) { return g.innerRadius + (g.outerRadius - g.innerRadius) * float(s) / float(g.spheres - 1); }
 
+// Between spheres ra < rb, the weight of rb at |q| = r: linear in 1/r² (evaluate.cpp radialWeight,
+// where the departure from Eq. 10's linear weight is explained).
+float rtfRadialWeight(float ra, float rb, float r) {
+  float r2 = max(r * r, ra * ra), a2 = ra * ra, b2 = rb * rb;
+  return clamp((r2 - a2) * b2 / (r2 * (b2 - a2)), 0.0, 1.0);
+}
+
 // Cube face and clamped continuous texel coordinates of direction d (sh::cubeTexelDirection's inverse).
 void rtfFace(vec3 d, int size, out int face, out vec2 f) {
   vec3 a = abs(d);
@@ -61,7 +68,7 @@ void rtfTaps(RtfGrid g, vec3 q, out vec2 uv, out int s0, out int s1, out float w
     float t = (r - g.innerRadius) / dr;
     s0 = min(int(floor(t)), g.spheres - 2);
     s1 = s0 + 1;
-    t1 = clamp(t - float(s0), 0.0, 1.0);
+    t1 = rtfRadialWeight(rtfSphereRadius(g, s0), rtfSphereRadius(g, s1), r);
   }
   w0 = (1.0 - t1) * fade;
   w1 = t1 * fade;

@@ -1,8 +1,15 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
-// RTF shading (engine/gi/rtf/node.hpp): one object's box, centre o, half-size (outer + Δr)·η —
-// where its field is non-zero — from gl_VertexIndex (36 vertices, outward CCW, as dnrt.vert's box);
-// the pipeline culls FRONT faces without a depth test, so each covered pixel runs once.
+// RTF shading (engine/gi/rtf/node.hpp): what covers the pixels whose receivers can lie in one
+// object's field, the sphere of radius R = (outer + Δr)·η around o (beyond it the field is zero).
+// llvmpipe runs the fragment shader in full for every covered pixel, its early `discard`s included
+// (DESIGN.md "What costs what"), so coverage is the cost: instead of the sphere's bounding box (its
+// projection up to 2.2× the sphere's silhouette disc), a camera-facing octagon through o that
+// circumscribes the silhouette cone — half-angle α, sin α = R/d at eye distance d — and covers
+// exactly the pixels whose rays meet the sphere plus the octagon's corners (1.055× the disc). It is
+// drawn without depth test or culling from gl_VertexIndex (18 vertices: a fan of 6 triangles, so
+// each covered pixel runs once); with the eye inside the sphere, or close to it (d < 1.05 R, where
+// the octagon grows without bound), one full-screen triangle instead.
 // The object's record and its X ranges are read here, once per vertex, and reach rtf.frag as flat
 // varyings with the grid's constants folded: flat varyings cost llvmpipe's fragment shader less than
 // uniform-block reads (DESIGN.md "What costs what in a fragment shader"; dnrt.vert does the same).
@@ -20,9 +27,7 @@ layout(location = 7) flat out vec4 outFace;    // n_r, 1/(6 n_r), 1/n_r, 1/(7 ·
 layout(location = 8) flat out vec4 outRange[7];
 layout(location = 15) flat out uint outSelf;
 
-const int kFaces[6][4] = int[6][4](int[4](1, 3, 7, 5), int[4](0, 4, 6, 2), int[4](2, 6, 7, 3),
-                                   int[4](0, 1, 5, 4), int[4](4, 5, 7, 6), int[4](0, 2, 3, 1));
-const int kQuad[6] = int[6](0, 1, 2, 0, 2, 3);
+const int kCorners = 8;  // the octagon: 6 fan triangles, 18 vertices (node.cpp's draw)
 
 void main() {
   outToQ = ob.toQ;
@@ -32,7 +37,22 @@ void main() {
   outFace = vec4(n, 1.0 / (6.0 * n), 1.0 / n, 1.0 / (7.0 * spheres));
   outRange = range;
   outSelf = ob.ids.x;
-  int corner = kFaces[gl_VertexIndex / 6][kQuad[gl_VertexIndex % 6]];
-  vec3 p = vec3(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1) * 2.0 - 1.0;
-  gl_Position = camera.viewProj * vec4(ob.centreWorld.xyz + ob.centreWorld.w * p, 1.0);
+  vec3 o = ob.centreWorld.xyz, toO = o - camera.position.xyz;
+  float R = ob.centreWorld.w, d = length(toO);
+  if (d < 1.05 * R) {
+    // One triangle over the whole viewport (clip space), the others degenerate.
+    int v = gl_VertexIndex;
+    gl_Position = v < 3 ? vec4(v == 1 ? 3.0 : -1.0, v == 2 ? 3.0 : -1.0, 0.5, 1.0) : vec4(0.0, 0.0, 0.5, 1.0);
+    return;
+  }
+  vec3 view = toO / d;
+  vec3 u = normalize(cross(view, abs(view.y) < 0.9 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0)));
+  vec3 w = cross(view, u);
+  // The silhouette cone meets the plane through o normal to `view` in a circle of radius d·tan α;
+  // the octagon around it has circumradius that / cos(π/8).
+  float radius = R * d / sqrt(d * d - R * R) / cos(3.14159265 / float(kCorners));
+  int tri = gl_VertexIndex / 3, k = gl_VertexIndex % 3;
+  int corner = k == 0 ? 0 : tri + k;
+  float a = 6.28318531 * float(corner) / float(kCorners);
+  gl_Position = camera.viewProj * vec4(o + radius * (cos(a) * u + sin(a) * w), 1.0);
 }

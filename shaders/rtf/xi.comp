@@ -40,6 +40,9 @@ layout(std430, binding = 6) readonly buffer Oof { float oof[]; };
 layout(rgba8, binding = 7) uniform writeonly image3D net;
 layout(std430, binding = 8) buffer Range { uint range[28]; };  // float bits of max |X| per slot; 0 before stage 1
 layout(std430, binding = 9) buffer Net { vec4 netValue[]; };    // X per (sample, i < 9), rgb
+// The indirect light at the sample against the light at o, per channel (update.hpp blockedScale):
+// the blocked term is the light at the receiver, not at o (ours: a scale of T', see XiPass).
+layout(std430, binding = 10) readonly buffer BlockedScale { vec4 blockedScale[]; };
 
 // Slot (texel k · 4 + component) of channel c's coefficient i (Table 2 order above).
 uint rtfNetSlot(uint c, uint i) { return i < 8u ? ((i / 4u) * 3u + c) * 4u + i % 4u : 24u + c; }
@@ -106,10 +109,12 @@ void main() {
       float a = (i == 0u ? 3.14159265358979324 : (i < 4u ? 2.09439510239319549 : 0.78539816339744831)) * kInvPi;
       vec3 X = a * x;
       uint T = pc.proxies * 16u;
+      vec3 blocked = vec3(0.0);
       for (uint j = 0u; j < 16u; ++j) {
         float notV = (j == 0u ? 3.5449077018110318 : 0.0) - oof[r * 16u + j];  // u_0 = 2√π
-        X -= notV * light[T + j * 9u + i].rgb;
+        blocked += notV * light[T + j * 9u + i].rgb;
       }
+      X -= blockedScale[r].rgb * blocked;
       netValue[r * 9u + i] = vec4(X, 0.0);
       for (uint c = 0u; c < 3u; ++c) atomicMax(range[rtfNetSlot(c, i)], floatBitsToUint(abs(X[c])));
     }

@@ -76,6 +76,11 @@ ShScalar rotate(const ShScalar& c, const glm::mat3& rotation) {
   return out;
 }
 
+float radialWeight(float ra, float rb, float r) {
+  const float r2 = std::max(r * r, ra * ra), a2 = ra * ra, b2 = rb * rb;
+  return glm::clamp((r2 - a2) * b2 / (r2 * (b2 - a2)), 0.0f, 1.0f);
+}
+
 Lookup lookup(const FieldSettings& s, glm::vec3 q) {
   Lookup l;
   const float r = glm::length(q);
@@ -92,7 +97,7 @@ Lookup lookup(const FieldSettings& s, glm::vec3 q) {
     const float t = (r - s.innerRadius) / dr;
     s0 = std::min(int(std::floor(t)), s.spheres - 2);
     s1 = s0 + 1;
-    w1 = glm::clamp(t - float(s0), 0.0f, 1.0f);
+    w1 = radialWeight(sphereRadius(s, s0), sphereRadius(s, s1), r);
   }
   int face = 0;
   float fx = 0.0f, fy = 0.0f;

@@ -12,7 +12,12 @@
 // Field lookup (Eq. 10): the 8 samples around q — 4 on each of the two spheres bracketing |q| —
 // with trilinear weights: bilinear between the texel centres of the cube-map face that q's
 // direction falls on (clamped to that face's outer texel centres, no filtering across faces:
-// what a 2D-array texture with clamp-to-edge does), linear in the radius between the spheres.
+// what a 2D-array texture with clamp-to-edge does), and between the spheres linear in 1/|q|²
+// (radialWeight; departure from Eq. 10's linear-in-|q| weight: what a field carries — the light
+// an object sends to q and the light it blocks there — goes with the solid angle it covers, ~1/|q|²
+// away from it, which a chord in |q| over-estimates between two spheres (a sphere of radius 0.9
+// seen from 1.25 between spheres at 1 and 1.5: +24 % linear in |q|, +7 % linear in 1/|q|²; on
+// cornell-rtf README Results "RTF"). Exact at the spheres, so continuous.
 // Inside the innermost sphere the innermost sphere's value is used. Beyond the outermost sphere
 // r_N the field fades linearly to zero at r_N + Δr (Δr the sphere spacing), as if a sphere of
 // zeros lay there: continuous at r_N, zero from r_N + Δr on. The OOF fades to "unoccluded"
@@ -51,6 +56,10 @@ struct Lookup {
   std::array<float, 8> weight{};
 };
 Lookup lookup(const FieldSettings& settings, glm::vec3 q);
+// The weight of the outer sphere (radius rb) against the inner (ra) for a point at |q| = r in
+// [ra, rb]: linear in 1/r², (1/ra² − 1/r²)/(1/ra² − 1/rb²), clamped to [0, 1]. rtf.frag and
+// rtf.glsl rtfTaps compute the same.
+float radialWeight(float ra, float rb, float r);
 
 // Eq. 12 eigen cache: u_{h,e} = Σ_k E_{he,k} L_k for every cluster h and e = 0 (mean) … n_e,
 // [(h·(n_e+1) + e)·16 + i]. proxyLight: m·16 RGB, the proxies' incident radiance in the LOCAL frame.

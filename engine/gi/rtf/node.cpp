@@ -27,7 +27,7 @@ Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t fra
   d.fragment = &frag;
   d.colorFormats = {kHdrFormat};
   d.blend = gpu::Blend::Additive;
-  d.cull = VK_CULL_MODE_FRONT_BIT;  // back faces of the box: each covered pixel once, camera inside or out
+  d.cull = VK_CULL_MODE_NONE;  // rtf.vert's camera-facing octagon (or full-screen triangle): each covered pixel once
   // One pipeline per SH count (rtf.frag's kSh9): llvmpipe runs an untaken branch in full.
   d.name = "rtf";
   d.specialization = {1u};
@@ -52,11 +52,12 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
     XiPass* xi;
     std::vector<glm::vec3> proxies;
     std::vector<glm::vec4> blocked;
+    std::vector<glm::vec4> scale;
   };
   std::vector<Light> lights;
   std::vector<std::string> names;
   for (NodeObject& o : objects) {
-    lights.push_back({o.xi, std::move(o.proxyLight), {std::begin(o.record.blocked), std::end(o.record.blocked)}});
+    lights.push_back({o.xi, std::move(o.proxyLight), {std::begin(o.record.blocked), std::end(o.record.blocked)}, std::move(o.blockedScale)});
     names.push_back(o.name);
   }
   graph.addPass<BounceData>(
@@ -67,6 +68,7 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
         for (std::size_t i = 0; i < lights.size(); ++i) {
           lights[i].xi->setProxyLight(lights[i].proxies);
           lights[i].xi->setBlockedLight(lights[i].blocked);
+          lights[i].xi->setBlockedScale(lights[i].scale);
           if (ts) ts->begin(cmd, "rtf.bounce/" + names[i]);
           lights[i].xi->record(cmd);
           if (ts) ts->end(cmd);
@@ -126,7 +128,7 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
           if (want != bound) want->bind(cmd), bound = want;
           bound->bindSet(cmd, 2, set);
           if (ts) ts->begin(cmd, "rtf/" + objects[i].name);
-          vkCmdDraw(cmd, 36, 1, 0, 0);
+          vkCmdDraw(cmd, 18, 1, 0, 0);  // rtf.vert: the octagon's fan
           if (ts) ts->end(cmd);
         }
         ctx_.cmdEndRendering(cmd);

@@ -4,8 +4,8 @@
 //                Eq. 11–12 from the proxies' light of the frame's bouncing step (xi_pass.hpp), into
 //                the object's ξ image;
 //  "rtf"         deferred shading, additive into "lighting.hdr": per object (scope "rtf/<name>") its
-//                box of half-size (outer + Δr)·η is rasterised (back faces, no depth test, as DNRT's
-//                box mode) and every covered receiver pixel gets ρ/π·E_n of the Eq. 10 lookup of ξ
+//                field's sphere of radius (outer + Δr)·η is covered by a camera-facing octagon
+//                (rtf.vert: no depth test, no culling) and every covered receiver pixel gets ρ/π·E_n of the Eq. 10 lookup of ξ
 //                (the interreflected light) minus ρ/π·E_n((1 − V) ⊙ L) (the indirect light the
 //                object's OOF blocks), shaders/rtf/rtf.frag. The object's own pixels skip its field.
 // Reads "gbuffer.albedo", "gbuffer.normal", "gbuffer.depth", "gbuffer.entity"; puts back "lighting.hdr".
@@ -29,6 +29,7 @@ struct NodeObject {
   std::vector<glm::vec3> proxyLight;  // m·16 RGB, object frame: this frame's bouncing step
   RtfObjectGpu record{};              // packObject()
   std::string name;                   // timestamp scopes "rtf/<name>", "rtf.bounce/<name>"
+  std::vector<glm::vec4> blockedScale;  // per sample (XiPass::setBlockedScale); empty: the light at o
 };
 
 class Node {

@@ -205,6 +205,7 @@ SessionRuntime::SessionRuntime(SessionContext& sc, const std::filesystem::path& 
   incident::SessionLight& light = incident::sessionLight(sc);
   update_->setIndirect(&light.indirect());
   update_->setLightVisibility(&light.lightVisibility());
+  update_->setStaticScene(&light.lightVisibility().bvh());
   for (const Participant& p : update_->participants()) xi_.push_back(std::make_unique<XiPass>(sc.ctx, p.field));
   node_ = std::make_unique<Node>(sc.ctx, sc.renderer.pipelines(), sc.renderer.frames().framesInFlight());
 }
@@ -215,7 +216,8 @@ render::Renderer::GraphNode SessionRuntime::node() {
     std::vector<NodeObject> objects;
     for (std::size_t o = 0; o < f.participant.size(); ++o) {
       const std::size_t i = f.participant[o];
-      objects.push_back({xi_[i].get(), std::move(f.proxyLight[o]), f.records[o], update_->participants()[i].name});
+      objects.push_back({xi_[i].get(), std::move(f.proxyLight[o]), f.records[o], update_->participants()[i].name,
+                         std::move(f.blockedScale[o])});
     }
     node_->addTo(graph, pc, std::move(objects));
   };

@@ -4,6 +4,7 @@
 // per pixel (the product matrix of the indirect light, the q mapping) into the records.
 
 #include <algorithm>
+#include <limits>
 
 #include "engine/core/error.hpp"
 #include "engine/math/sampling.hpp"
@@ -43,6 +44,36 @@ RtfObjectGpu packObject(const Field& f, const glm::mat4& world, const ShRgb& ind
   return o;
 }
 
+std::vector<glm::vec4> blockedScale(const Field& f, const glm::mat4& world, const incident::IndirectSource& indirect,
+                                    const ref::SceneBvh* staticScene) {
+  const Placement pl = place(f, world);
+  const glm::vec3 at = indirect.radianceSH(pl.centreWorld)[0];
+  const FieldSettings& s = f.settings;
+  const int per = samplesPerSphere(s), n2 = s.faceSize * s.faceSize;
+  std::vector<glm::vec4> out(sampleCount(s), glm::vec4(1.0f));
+  for (int rest = 0; rest < per; ++rest) {  // each ray from o, outward
+    const int face = rest / n2, x = rest % n2 % s.faceSize, y = rest % n2 / s.faceSize;
+    const glm::vec3 dir = pl.localToWorldRotation * glm::vec3(sh::cubeTexelDirection(face, x, y, s.faceSize));
+    float hidden = std::numeric_limits<float>::infinity();  // distance along the ray to static geometry
+    if (staticScene) {
+      ref::Hit hit;
+      if (staticScene->intersect(pl.centreWorld, dir, 0.0f, pl.radiusWorld * s.outerRadius * 1.001f, hit))
+        hidden = glm::length(hit.position - pl.centreWorld);
+    }
+    glm::vec4 last(1.0f);
+    for (int sphere = 0; sphere < s.spheres; ++sphere) {
+      const std::size_t r = std::size_t(sphere * per + rest);
+      const float dist = pl.radiusWorld * sphereRadius(s, sphere);
+      if (dist < hidden) {
+        const glm::vec3 l = indirect.radianceSH(pl.centreWorld + dist * dir)[0];
+        for (int c = 0; c < 3; ++c) last[c] = at[c] > 1e-6f ? std::max(0.0f, l[c] / at[c]) : 1.0f;
+      }
+      out[r] = last;
+    }
+  }
+  return out;
+}
+
 Update::Update(ecs::Registry& registry, std::vector<Participant> participants)
     : registry_(registry), participants_(std::move(participants)) {}
 
@@ -76,6 +107,7 @@ FrameObjects Update::frame(std::span<const render::LightGpu> lights) {
       const Placement pl = place(*objects[o].field, objects[o].world);
       out.records.push_back(packObject(*objects[o].field, objects[o].world, sourceRadiance(indirect, pl.centreWorld),
                                        participants_[out.participant[o]].entity.index(), participants_[out.participant[o]].sh));
+      out.blockedScale.push_back(blockedScale(*objects[o].field, objects[o].world, indirect, staticScene_));
     }
   }
   bounceMs_.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());

@@ -10,8 +10,11 @@
 //  - one bounce count for the scene: the largest `bounces` of the participants (Algorithm 1 bounces
 //    light between all objects at once, so a per-object count has no meaning);
 //  - the shading step's blocked light (Eq. 10's occlusion of the incident light, the OOF) is the
-//    INDIRECT light only (probes / background), taken at the object's centre: the real lights'
-//    direct light is already removed by the shadow maps, which draw every dynamic object;
+//    INDIRECT light only (probes / background): the real lights' direct light is already removed
+//    by the shadow maps, which draw every dynamic object. Its directional shape is the light's at
+//    the object's centre (the record's product matrix), its level per channel the light's at each
+//    field sample (blockedScale below), which the lookup carries to the receiver; shade() takes the
+//    whole light at the receiver, so the two agree where the light is the same everywhere;
 //  - the GPU pass adds each object's term on its own (additive blending); Algorithm 1 at a receiver
 //    multiplies the objects' visibilities (V_{<i}). The two agree for one object (the GPU test) and
 //    to first order in (1 − V) where objects' fields overlap.
@@ -35,7 +38,7 @@ namespace bounce::gi::rtf {
 struct RtfObjectGpu {
   glm::vec4 toQ[3];        // rows: q = toQ · (p, 1): the field's local offset from o in units of η
   glm::vec4 toLocal[3];    // rows: world → object-frame rotation (normals)
-  glm::vec4 centreWorld;   // xyz: o in the world; w: half-size (m) of the drawn box, (outer + Δr)·η
+  glm::vec4 centreWorld;   // xyz: o in the world; w: the field's radius R = (outer + Δr)·η (m), the sphere rtf.vert covers
   glm::vec4 grid;          // spheres, face size, inner, outer (η)
   glm::uvec4 ids;          // x: entity index + 1 (its own pixels skip the field); y: SH count 4 or 9 (the pipeline)
   // blocked[j·9 + i].rgb = Â_{l(i)}/π · T_ij, T the product matrix of the indirect radiance L
@@ -52,6 +55,20 @@ static_assert(sizeof(RtfObjectGpu) <= kRtfObjectStride);
 // entity `entity` (index; its own pixels skip the field), shaded with `shCount` (4 or 9) SH.
 RtfObjectGpu packObject(const Field& field, const glm::mat4& world, const ShRgb& indirect, std::uint32_t entity,
                         int shCount = 9);
+
+// The shading step's blocked light at the receiver instead of at o (ours; the departure is the
+// scale): Eq. 10 blocks the indirect light L(r) at the receiver r, (u − V(q)) ⊙ L(r); the record's
+// product matrix T' holds L(o). Per field sample q (world position p_q), the ξ pass scales T'·(u − V)
+// by s_c(q) = L_00,c(p_q) / L_00,c(o) per channel (l = 0: the mean radiance; the directional shape
+// of L stays o's), so Eq. 10's lookup interpolates the scaled term to the receiver; with light the
+// same everywhere s = 1 and nothing changes. Why: the light at o was 11–75 % brighter than at the
+// receivers in front of cornell-rtf's boxes, where RTF blocked 30 % more than the black-box
+// reference (README Results "RTF"). s is 1 where L_00(o) ≤ 1e-6, and ≥ 0. With `staticScene`, a
+// sample that static geometry hides from o (under a floor, inside a wall: no receiver lies there,
+// and the probes' light there is not a receiver's) takes the s of the last sample before it on its
+// ray from o, so receivers on that surface interpolate between values in front of it.
+std::vector<glm::vec4> blockedScale(const Field& field, const glm::mat4& world, const incident::IndirectSource& indirect,
+                                    const ref::SceneBvh* staticScene = nullptr);
 
 // The incident-light service as the bouncing step's source: indirect + lights at a point (radius 0).
 class LitSource final : public incident::IndirectSource {
@@ -79,6 +96,7 @@ struct FrameObjects {
   std::vector<std::size_t> participant;            // index into Update::participants()
   std::vector<std::vector<glm::vec3>> proxyLight;  // m·16 RGB per object, object frame (for the ξ pass)
   std::vector<RtfObjectGpu> records;
+  std::vector<std::vector<glm::vec4>> blockedScale;  // per object: blockedScale() of its field, or empty
   std::vector<double> bounceEnergy;                // BounceResult::bounceEnergy
   int bounces = 0;
 };
@@ -89,6 +107,8 @@ class Update {
   // Not owned. Null indirect: none; null visibility: every light unoccluded.
   void setIndirect(const incident::IndirectSource* indirect) { service_.setIndirect(indirect); }
   void setLightVisibility(const incident::Visibility* visibility) { service_.setVisibility(visibility); }
+  // The level's static geometry for blockedScale (not owned; null: every sample counts).
+  void setStaticScene(const ref::SceneBvh* bvh) { staticScene_ = bvh; }
   const std::vector<Participant>& participants() const { return participants_; }
   int bounces() const;
 
@@ -100,6 +120,7 @@ class Update {
   ecs::Registry& registry_;
   std::vector<Participant> participants_;
   incident::Service service_;
+  const ref::SceneBvh* staticScene_ = nullptr;
   std::vector<double> bounceMs_;
 };
 

@@ -34,7 +34,8 @@ XiPass::XiPass(gpu::Context& ctx, const Field& f)
                   {6, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                   {7, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
                   {8, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                  {9, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}},
+                  {9, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                  {10, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}},
                  "rtf.xi"),
       layout_(ctx, {setLayout_.handle()}, {{VK_SHADER_STAGE_ALL, 0, sizeof(Push)}}, "rtf.xi"),
       descriptors_(ctx) {
@@ -71,6 +72,7 @@ XiPass::XiPass(gpu::Context& ctx, const Field& f)
                              gpu::MemoryUsage::GpuOnly, "rtf.net-range"});
   netValue_ = gpu::Buffer(ctx, {sampleCount(s) * 9 * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::GpuOnly, "rtf.net-value"});
   oofBuffer_ = storage(ctx, f.oof, "rtf.oof-buffer");
+  scaleBuffer_ = storage(ctx, std::vector<glm::vec4>(sampleCount(s), glm::vec4(1.0f)), "rtf.blocked-scale");
   gpu::ImageDesc o = d;
   o.layers = std::uint32_t(s.spheres * 4);
   o.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
@@ -102,6 +104,7 @@ XiPass::XiPass(gpu::Context& ctx, const Field& f)
       .storageImage(7, net_.view())
       .buffer(8, range_)
       .buffer(9, netValue_)
+      .buffer(10, scaleBuffer_)
       .update(ctx, set_);
   blocked_.assign(kShCount * 9, glm::vec4(0.0f));
   std::vector<glm::vec3> zero(std::size_t(s.proxies) * kShCount, glm::vec3(0.0f));
@@ -119,6 +122,11 @@ void XiPass::setBlockedLight(std::span<const glm::vec4> blocked) {
   blocked_.assign(blocked.begin(), blocked.end());
 }
 
+void XiPass::setBlockedScale(std::span<const glm::vec4> scale) {
+  if (!scale.empty() && scale.size() != sampleCount(settings_)) throw InternalError("rtf::XiPass: blocked scale is not one per sample");
+  scale_.assign(scale.begin(), scale.end());
+}
+
 void XiPass::record(VkCommandBuffer cmd) {
   // The previous frame's reads (X in fragment shaders, its ranges in vertex shaders, light and eigen here) finish before this
   // frame's writes (write-after-read: an execution dependency suffices).
@@ -128,6 +136,16 @@ void XiPass::record(VkCommandBuffer cmd) {
   std::vector<glm::vec4> data = pending_;
   data.insert(data.end(), blocked_.begin(), blocked_.end());
   vkCmdUpdateBuffer(cmd, light_.handle(), 0, data.size() * sizeof(glm::vec4), data.data());
+  if (!scale_.empty() || !scaleIsOnes_) {
+    // vkCmdUpdateBuffer takes at most 64 KiB a call (in the command stream, so frames in flight keep theirs).
+    const std::vector<glm::vec4> ones(scale_.empty() ? sampleCount(settings_) : 0, glm::vec4(1.0f));
+    const std::vector<glm::vec4>& s = scale_.empty() ? ones : scale_;
+    constexpr std::size_t kChunk = 65536 / sizeof(glm::vec4);
+    for (std::size_t at = 0; at < s.size(); at += kChunk)
+      vkCmdUpdateBuffer(cmd, scaleBuffer_.handle(), at * sizeof(glm::vec4), std::min(kChunk, s.size() - at) * sizeof(glm::vec4),
+                        s.data() + at);
+    scaleIsOnes_ = scale_.empty();
+  }
   vkCmdFillBuffer(cmd, range_.handle(), 0, VK_WHOLE_SIZE, 0u);  // atomicMax starts from +0.0
   VkMemoryBarrier uploaded{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_TRANSFER_WRITE_BIT,
                            VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT};  // the atomics read and write

@@ -29,6 +29,10 @@ class XiPass {
   // T'_ij = blocked[j·9 + i].rgb (update.hpp RtfObjectGpu::blocked), 144 entries; zero until set.
   // Written with the light by the next record().
   void setBlockedLight(std::span<const glm::vec4> blocked);
+  // Per sample (field.hpp's order), rgb: the factor of the blocked light at that sample — the
+  // indirect light there against the light at o the product matrix T' holds (update.hpp
+  // blockedScale). Empty: 1 everywhere (the light at o). Written by the next record().
+  void setBlockedScale(std::span<const glm::vec4> scale);
   // X for i < 9 in 8 bits (xi.comp): RGBA8 UNORM 3D, texel (face·n_r + x, y, k·spheres + sphere) for
   // texel k < kNetTexels in DNRT's Table 2 order; slot k·4 + c holds t = X/(2m) + ½ with m =
   // netRange()'s slot (float max |X| this frame), so X = m(2t − 1). GENERAL layout after record().
@@ -53,6 +57,9 @@ class XiPass {
   gpu::Buffer basis_, alpha_, cluster_, light_, eigen_;
   std::vector<glm::vec4> pending_;  // the light record() writes: m·16 proxy light, then 144 of T'
   std::vector<glm::vec4> blocked_;
+  std::vector<glm::vec4> scale_;  // N, or empty: ones
+  bool scaleIsOnes_ = true;       // what the GPU buffer holds now
+  gpu::Buffer scaleBuffer_;
   gpu::Image xi_, oof_, net_;
   gpu::Buffer oofBuffer_;  // the OOF again as floats, for xi.comp's X
   gpu::Buffer range_, netValue_;  // X's per-slot range and X itself before the encoding

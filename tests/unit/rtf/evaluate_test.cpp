@@ -43,6 +43,28 @@ TEST(RtfEvaluate, LookupAtASampleIsThatSample) {
     }
 }
 
+TEST(RtfEvaluate, BetweenSpheresAFieldGoingAsOneOverRSquaredIsExact) {
+  // radialWeight: linear in 1/|q|², so a field f = c/|q|² (the solid angle of a small object far
+  // away) is looked up exactly between two spheres; the weights are 0 and 1 at the spheres.
+  const FieldSettings fs = testing::smallSettings();
+  const glm::vec3 dir = glm::normalize(glm::vec3(0.3f, -0.5f, 0.8f));
+  for (int sphere = 0; sphere + 1 < fs.spheres; ++sphere) {
+    const float ra = sphereRadius(fs, sphere), rb = sphereRadius(fs, sphere + 1);
+    EXPECT_EQ(radialWeight(ra, rb, ra), 0.0f);
+    EXPECT_NEAR(radialWeight(ra, rb, rb), 1.0f, 1e-6f);
+    for (float a : {0.1f, 0.25f, 0.5f, 0.75f, 0.9f}) {
+      const float r = ra + a * (rb - ra), w = radialWeight(ra, rb, r);
+      EXPECT_NEAR((1.0f - w) / (ra * ra) + w / (rb * rb), 1.0f / (r * r), 1e-5f / (r * r)) << sphere << " " << a;
+      // lookup() hands that weight to the outer sphere's 4 samples.
+      const Lookup l = lookup(fs, r * dir);
+      float outer = 0.0f;
+      for (int c = 0; c < 8; ++c)
+        if (int(l.sample[std::size_t(c)]) / samplesPerSphere(fs) == sphere + 1) outer += l.weight[std::size_t(c)];
+      EXPECT_NEAR(outer, w, 1e-5f) << sphere << " " << a;
+    }
+  }
+}
+
 TEST(RtfEvaluate, InnermostBetweenAndBeyondOutermostFadeContinuously) {
   const FieldSettings fs = testing::smallSettings();
   const float r0 = sphereRadius(fs, 0), rN = sphereRadius(fs, fs.spheres - 1);

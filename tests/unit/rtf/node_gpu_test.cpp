@@ -168,6 +168,105 @@ TEST(RtfGpu, ShaderMatchesCpuShadingOnTheFloor) {
   s.session.renderer().frames().waitIdle();
 }
 
+// The blocked light at the receiver (update.hpp blockedScale): under a sky whose level varies,
+// L(p) = c(p)·sky, shade() blocks c(r)/c(o) · Σ_s w_s B_s at a receiver r (B_s: sample s's blocked
+// term with the light at o, w_s Eq. 10's weights), the GPU Σ_s w_s s_s B_s with s_s = c(p_s)/c(o) at
+// each sample's world position. The image = that sum computed here within the bounds above (fp16,
+// float sums, the 8-bit X of the scaled field), and = shade() within what interpolating the level
+// between samples can differ by: max_s |s_s − c(r)/c(o)| · Σ_s w_s |B_s|.
+TEST(RtfGpu, BlockedLightAtTheReceiverFollowsTheLightsLevel) {
+  gpu::Context& ctx = gpu::testkit::sharedContext();
+  Scene s(ctx);
+  ASSERT_FALSE(s.box.isNull());
+  const Placement pl = place(s.field, s.world);
+  struct Ramp final : incident::IndirectSource {
+    Sky sky;
+    glm::vec3 o;
+    float level(glm::vec3 p) const { return 1.0f + 1.5f * (p.x - o.x) - 1.0f * (p.z - o.z); }
+    incident::RadianceSH radianceSH(glm::vec3 p) const override {
+      incident::RadianceSH sh = sky.sh;
+      for (auto& c : sh) c *= level(p);
+      return sh;
+    }
+  } ramp;
+  ramp.o = pl.centreWorld;
+  const std::vector<Object> objects = {{&s.field, s.world}};
+  const BounceResult bounced = bounce(objects, ramp, 1);
+  XiPass xi(ctx, s.field);
+  Node node(ctx, s.session.renderer().pipelines(), gpu::FrameRing::kDefaultFramesInFlight);
+  const RtfObjectGpu record = packObject(s.field, s.world, sourceRadiance(ramp, pl.centreWorld), s.box.index());
+  const std::vector<glm::vec4> scale = blockedScale(s.field, s.world, ramp);
+  s.session.renderer().setNode("rtf", [&](rg::RenderGraph& graph, render::PassContext& pc) {
+    node.addTo(graph, pc, {NodeObject{&xi, bounced.proxyLight[0], record, "box", scale}});
+  });
+  constexpr std::uint32_t kW = 96, kH = 96;
+  const std::vector<float> rgb = renderHdr(s.session, ctx, kW, kH);
+
+  // Per sample: the blocked part of X (ξ = 0) and X with it scaled, as the ξ pass folds them.
+  const FieldSettings& fs = s.field.settings;
+  const std::vector<glm::vec3> zeroXi(sampleCount(fs) * kShCount, glm::vec3(0.0f));
+  const std::vector<glm::vec3> blockedX = testing::netValues(s.field, zeroXi, record.blocked);
+  const std::vector<glm::vec3> X = testing::netValues(s.field, bounced.xi[0], record.blocked);
+  std::vector<glm::vec3> scaledX(X.size());
+  for (std::size_t k = 0; k < X.size(); ++k) {
+    const glm::vec3 xiPart = X[k] - blockedX[k];
+    scaledX[k] = xiPart + glm::vec3(scale[k / 9]) * blockedX[k];
+  }
+  const std::array<float, 28> range = testing::netRanges(scaledX);
+  const rtest::FloorScene floor = rtest::readFloorScene(s.session.level());
+  const glm::vec3 nLocal(glm::dot(glm::vec3(record.toLocal[0]), glm::vec3(0, 1, 0)), glm::dot(glm::vec3(record.toLocal[1]), glm::vec3(0, 1, 0)),
+                         glm::dot(glm::vec3(record.toLocal[2]), glm::vec3(0, 1, 0)));
+  const auto y = sh::evalBasis<float>(3, nLocal);
+  const float dr = (fs.outerRadius - fs.innerRadius) / float(fs.spheres - 1);
+  float worstGpu = 0.0f, worstShade = 0.0f, largestBlocked = 0.0f, levelSpread = 0.0f;
+  int compared = 0;
+  for (std::uint32_t py = 0; py < kH; ++py)
+    for (std::uint32_t px = 0; px < kW; ++px) {
+      const auto p = rtest::floorPoint(floor, kW, kH, px, py);
+      if (!p) continue;
+      if (glm::length(glm::vec2(p->x - 0.05f, p->z + 0.03f)) < 0.15f) continue;  // the box hides it
+      const glm::vec4 pw(*p, 1.0f);
+      const glm::vec3 q(glm::dot(record.toQ[0], pw), glm::dot(record.toQ[1], pw), glm::dot(record.toQ[2], pw));
+      const Lookup l = lookup(fs, q);
+      const float fade = std::clamp(1.0f - (glm::length(q) - fs.outerRadius) / dr, 0.0f, 1.0f);
+      if (fade <= 0.0f) continue;
+      const Shading sh = shade(objects, bounced, ramp, *p, glm::vec3(0, 1, 0), floor.albedo, -1);
+      const float cr = ramp.level(*p) / ramp.level(pl.centreWorld);
+      // What the GPU computes (before 8 bits and fp16), and how far interpolating the level can take it from shade().
+      glm::vec3 model = sh.interreflected, spreadBound(0.0f);
+      float maxDiff = 0.0f;
+      for (int c = 0; c < 8; ++c) maxDiff = std::max(maxDiff, std::abs(scale[l.sample[std::size_t(c)]].x - cr));
+      for (int c = 0; c < 8; ++c) {
+        const std::size_t smp = l.sample[std::size_t(c)];
+        glm::vec3 b(0.0f);  // ρ Σ_i y_i X^b_i: the (negative) blocked light of sample smp at this normal
+        for (int i = 0; i < 9; ++i) b += y[std::size_t(i)] * blockedX[smp * 9 + std::size_t(i)];
+        b *= floor.albedo;
+        model += l.weight[std::size_t(c)] * glm::vec3(scale[smp]) * b;
+        spreadBound += l.weight[std::size_t(c)] * maxDiff * glm::abs(b);
+      }
+      const std::size_t i = (std::size_t(py) * kW + px) * 3;
+      const glm::vec3 got(rgb[i], rgb[i + 1], rgb[i + 2]);
+      largestBlocked = std::max(largestBlocked, glm::length(sh.blocked));
+      levelSpread = std::max(levelSpread, maxDiff);
+      for (int c = 0; c < 3; ++c) {
+        const float bound = 1e-3f * std::abs(model[c]) + 2e-4f * std::max(glm::length(model), 1e-2f) +
+                            testing::netBound(range, record.toLocal, glm::vec3(0, 1, 0), fade, floor.albedo[c], c) + 1e-6f;
+        worstGpu = std::max(worstGpu, std::abs(got[c] - model[c]) / bound);
+        worstShade = std::max(worstShade, std::abs(model[c] - sh.net()[c]) / (spreadBound[c] + 1e-4f * glm::length(sh.blocked) + 1e-6f));
+      }
+      ++compared;
+    }
+  std::printf("blocked at the receiver: %d floor pixels, largest blocked %.4f, level spread over a lookup up to %.3f; "
+              "GPU vs the scaled sum %.2f of its bound, the scaled sum vs shade() %.2f of the interpolation bound\n",
+              compared, largestBlocked, levelSpread, worstGpu, worstShade);
+  EXPECT_GT(compared, 3000);
+  EXPECT_GT(largestBlocked, 1e-3f);
+  EXPECT_GT(levelSpread, 0.05f);  // the level does vary across the field
+  EXPECT_LE(worstGpu, 1.0f);
+  EXPECT_LE(worstShade, 1.0f);
+  s.session.renderer().frames().waitIdle();
+}
+
 // "sh": 4 (its own pipeline, texels 0..2 of X): the image = shade() with bands 0–1 only, within
 // fp16 rounding and the 8-bit bound of those 4 coefficients; and band 2 matters here (the 9-SH
 // shade() differs from it by more than that bound on some pixels), so the variant is not the 9-SH one.

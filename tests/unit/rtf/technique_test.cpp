@@ -8,6 +8,8 @@
 #include <cstdlib>
 #include <filesystem>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include "engine/core/error.hpp"
 #include "engine/core/file.hpp"
 #include "engine/core/paths.hpp"
@@ -249,6 +251,108 @@ TEST(RtfUpdate, FrameIsTheBouncingStepAndPacksTheRecords) {
     EXPECT_GT(glm::length(s.blocked), 1e-3f);
     for (int c = 0; c < 3; ++c) EXPECT_NEAR(blocked[c], s.blocked[c], 1e-4f * std::max(1.0f, std::abs(s.blocked[c]))) << o << " " << c;
   }
+}
+
+}  // namespace
+}  // namespace bounce::gi::rtf
+
+namespace bounce::gi::rtf {
+namespace {
+
+// L_00 linear in the position (the other coefficients 0): what blockedScale reads.
+struct Ramp final : incident::IndirectSource {
+  incident::RadianceSH radianceSH(glm::vec3 p) const override {
+    incident::RadianceSH sh{};
+    sh[0] = glm::vec3(2.0f + 0.5f * p.x, 3.0f + 0.25f * p.y, 1.0f + 0.1f * p.z);
+    return sh;
+  }
+};
+
+struct BlockedScaleCase {
+  Field field;
+  glm::mat4 world;
+  glm::vec3 o;
+  float eta;
+  glm::mat3 rotation;
+  BlockedScaleCase() {
+    field.settings.spheres = 5;
+    field.settings.faceSize = 3;
+    field.settings.innerRadius = 0.5f;
+    field.settings.outerRadius = 4.0f;
+    field.centre = glm::vec3(0.1f, -0.2f, 0.3f);
+    field.radius = 1.5f;
+    // Scale 0.5, a rotation, then a translation: η = 0.75 m, o = world · centre.
+    world = glm::translate(glm::mat4(1.0f), glm::vec3(2.0f, 1.0f, -1.0f)) *
+            glm::rotate(glm::mat4(1.0f), 0.7f, glm::normalize(glm::vec3(1.0f, 2.0f, 0.5f))) * glm::scale(glm::mat4(1.0f), glm::vec3(0.5f));
+    o = glm::vec3(world * glm::vec4(field.centre, 1.0f));
+    eta = 0.75f;
+    rotation = glm::mat3(glm::rotate(glm::mat4(1.0f), 0.7f, glm::normalize(glm::vec3(1.0f, 2.0f, 0.5f))));
+  }
+  // Sample r's world position, from field.hpp's order, computed here on its own.
+  glm::vec3 sample(std::size_t r) const {
+    const FieldSettings& s = field.settings;
+    const int per = 6 * s.faceSize * s.faceSize, n2 = s.faceSize * s.faceSize;
+    const int sphere = int(r) / per, rest = int(r) % per, face = rest / n2;
+    const glm::vec3 d(sh::cubeTexelDirection(face, rest % n2 % s.faceSize, rest % n2 / s.faceSize, s.faceSize));
+    return o + rotation * (eta * sphereRadius(s, sphere) * d);
+  }
+};
+
+TEST(RtfUpdate, BlockedScaleIsOneUnderAUniformSkyAndTheLightRatioAtEachSample) {
+  const BlockedScaleCase c;
+  // Light the same everywhere: the blocked light at the receiver is the light at o, exactly.
+  const Sky sky;
+  for (const glm::vec4& s : blockedScale(c.field, c.world, sky)) EXPECT_EQ(glm::vec3(s), glm::vec3(1.0f));
+  // Light that varies: s = L_00(sample) / L_00(o) per channel, at the sample's world position.
+  const Ramp ramp;
+  const std::vector<glm::vec4> s = blockedScale(c.field, c.world, ramp);
+  ASSERT_EQ(s.size(), sampleCount(c.field.settings));
+  const glm::vec3 at = ramp.radianceSH(c.o)[0];
+  for (std::size_t r = 0; r < s.size(); ++r) {
+    const glm::vec3 want = ramp.radianceSH(c.sample(r))[0] / at;
+    for (int ch = 0; ch < 3; ++ch) EXPECT_NEAR(s[r][ch], want[ch], 1e-5f * want[ch]) << r << " " << ch;
+  }
+}
+
+TEST(RtfUpdate, BlockedScaleHoldsItsLastValueBehindStaticGeometry) {
+  // A floor quad 1.2 η below o (world y): samples below it are hidden from o and take the value of
+  // the last sample on their ray above it; samples above it are the plain ratio.
+  const BlockedScaleCase c;
+  const float floorY = c.o.y - 1.2f * c.eta;
+  ref::SceneDesc floor;
+  floor.materials.push_back(ref::RefMaterial{glm::vec3(0.5f)});
+  ref::RefMesh m;
+  m.material = 0;
+  const float h = 100.0f;
+  for (glm::vec3 p : {glm::vec3(-h, floorY, -h), glm::vec3(-h, floorY, h), glm::vec3(h, floorY, h), glm::vec3(h, floorY, -h)}) {
+    m.positions.push_back(p);
+    m.normals.push_back(glm::vec3(0.0f, 1.0f, 0.0f));
+  }
+  m.indices = {0, 1, 2, 0, 2, 3};
+  floor.meshes.push_back(m);
+  const ref::SceneBvh bvh(floor);
+  const Ramp ramp;
+  const std::vector<glm::vec4> s = blockedScale(c.field, c.world, ramp, &bvh);
+  const std::vector<glm::vec4> open = blockedScale(c.field, c.world, ramp);
+  const FieldSettings& fs = c.field.settings;
+  const std::size_t per = std::size_t(6 * fs.faceSize * fs.faceSize);
+  int hidden = 0, held = 0;
+  for (std::size_t ray = 0; ray < per; ++ray) {
+    glm::vec4 last(1.0f);
+    for (int sphere = 0; sphere < fs.spheres; ++sphere) {
+      const std::size_t r = std::size_t(sphere) * per + ray;
+      if (c.sample(r).y > floorY) {
+        EXPECT_EQ(s[r], open[r]) << r;
+        last = open[r];
+      } else {
+        ++hidden;
+        EXPECT_EQ(s[r], last) << r;
+        held += sphere > 0 && c.sample(r - per).y > floorY;
+      }
+    }
+  }
+  EXPECT_GT(hidden, 20);
+  EXPECT_GT(held, 5);  // rays that cross the floor between two spheres
 }
 
 }  // namespace

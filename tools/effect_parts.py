@@ -1,0 +1,67 @@
+#!/usr/bin/python3
+"""Where a technique's object-effect error comes from (README Results "RTF", issue 14).
+
+Reads a `bounce accuracy --out DIR` folder (image-<row>.pfm, image-<row>-static.pfm, reference-all*.pfm,
+reference-direct-mask-*.pfm) and prints, on the whole image and on the indirect-only pixels (the mask
+of game/accuracy.cpp indirectOnlyMask, recomputed here the same way), the reference effect's RMS and
+mean, the technique's, their error (rel. RMSE, = accuracy.csv's) and the signed mean of the error.
+With --parts A=DIR1 B=DIR2 the same row from other folders (e.g. renders with one term switched off) is
+split into parts: part = that folder's effect, so a term's share of the error can be read off.
+
+usage: tools/effect_parts.py DIR ROW [NAME=DIR2 ...]   (ROW e.g. rtf-bounces-2-ref-all)
+"""
+import sys
+import numpy as np
+
+
+def pfm(path):
+    with open(path, 'rb') as f:
+        kind = f.readline().strip()
+        w, h = map(int, f.readline().split())
+        scale = float(f.readline())
+        data = np.frombuffer(f.read(), dtype='<f4' if scale < 0 else '>f4')
+    ch = 3 if kind == b'PF' else 1
+    return data.reshape(h, w, ch)[::-1].astype(np.float64)
+
+
+def indirect_mask(a, b):
+    d = np.abs(a - b).max(axis=2)
+    m = np.maximum(a.max(axis=2), b.max(axis=2))
+    differs = d > 1e-4 * (1.0 + m)
+    grown = differs.copy()
+    h, w = differs.shape
+    for dy in (-1, 0, 1):
+        for dx in (-1, 0, 1):
+            s = np.zeros_like(differs)
+            s[max(dy, 0):h + min(dy, 0), max(dx, 0):w + min(dx, 0)] = differs[max(-dy, 0):h + min(-dy, 0), max(-dx, 0):w + min(-dx, 0)]
+            grown |= s
+    return ~grown
+
+
+def stats(name, et, er, mask):
+    et, er = et[mask], er[mask]
+    rms_r = np.sqrt((er ** 2).mean())
+    err = np.sqrt(((et - er) ** 2).mean())
+    print(f"  {name:28s} ref rms {rms_r:.5f} mean {er.mean():+.5f} | tech rms {np.sqrt((et**2).mean()):.5f} "
+          f"mean {et.mean():+.5f} | rel err {err / rms_r:.4f} signed mean err {(et - er).mean() / rms_r:+.4f} (of ref rms)")
+
+
+def main():
+    d, row = sys.argv[1], sys.argv[2]
+    ref = pfm(f"{d}/reference-all.pfm") - pfm(f"{d}/reference-all-static.pfm")
+    mask = indirect_mask(pfm(f"{d}/reference-direct-mask-with.pfm"), pfm(f"{d}/reference-direct-mask-static.pfm"))
+    whole = np.ones(mask.shape, bool)
+    tech = pfm(f"{d}/image-{row}.pfm") - pfm(f"{d}/image-{row}-static.pfm")
+    print(f"{row}: {mask.sum()} indirect-only pixels of {mask.size}")
+    for label, m in (("whole image", whole), ("indirect-only", mask)):
+        print(label)
+        stats("technique", tech, ref, m)
+        for arg in sys.argv[3:]:
+            name, d2 = arg.split('=', 1)
+            part = pfm(f"{d2}/image-{row}.pfm") - pfm(f"{d2}/image-{row}-static.pfm")
+            stats(name + " alone", part, ref, m)
+            stats("technique without " + name, tech - part, ref, m)
+
+
+if __name__ == '__main__':
+    main()
