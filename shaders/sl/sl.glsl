@@ -143,6 +143,7 @@ bool slRatioFormed[kSpheres];
 vec3 slAverage[kSpheres];
 uint slOrder[kSpheres];        // slots, closest first
 uint slSlotOf[kSpheres];       // the slot of SL i, for the live ones
+float slCaps[kPerObject ? kSpheres * 16u : 1u];  // per-object: the cap's projected indicator K over s², by slot
 
 // Eq. 23–24: Ṽ_i = ρ_n · [exp(B) − exp(B + G_i)] from the blockers' summed log B and i's own G_i,
 // with the Ratio form; adds L̃ Ṽ to e. `s`: i's slot.
@@ -209,23 +210,32 @@ vec3 slIrradianceAt(vec3 p, vec3 n, uvec4 candidates) {
     shEval16(dir, ydir);
     slRotateZonalY(slThetaRow(0, theta), ydir, lg);
     for (uint k = 0u; k < 16u; ++k) slLogs[s * 16u + k] = lg[k];
-    // The unoccluded cap's Ṽ: exact (1 − cap's closed-form ZH, sh_exp.hpp capVisibilityZonal) and
-    // as Eq. 23 sees it (exp(0) − exp(G_i)).
-    float t = cos(theta);
-    float p2 = 0.5 * (3.0 * t * t - 1.0), p3 = 0.5 * t * (5.0 * t * t - 3.0), p4 = (35.0 * t * t * t * t - 30.0 * t * t + 3.0) / 8.0;
-    vec4 z = vec4(kSlSqrt4Pi - sqrt(kSlPi) * (1.0 + t), -sqrt(3.0 * kSlPi) * (p2 - 1.0) / 3.0,
-                  -sqrt(5.0 * kSlPi) * (p3 - t) / 5.0, -sqrt(7.0 * kSlPi) * (p4 - p2) / 7.0);
+    // The unoccluded cap's Ṽ: exact (the cap's closed-form ZH, the complement of sh_exp.hpp
+    // capVisibilityZonal: z_l = √(4π/(2l+1)) ∫_cap Y_l0) and, per-sphere, as Eq. 23 sees it
+    // (exp(0) − exp(G_i)). Every z_l has the factor 1 − P_l's neighbour, ∝ sin²θ: written with
+    // s² = sin²θ factored out (1 − cos θ = s²/(1 + cos θ)) so small caps keep float precision.
+    float sn = min(1.0, r / d);
+    float s2 = sn * sn;
+    float t = sqrt(max(0.0, 1.0 - s2));
+    vec4 zs = vec4(sqrt(kSlPi) / (1.0 + t), 0.5 * sqrt(3.0 * kSlPi), 0.5 * sqrt(5.0 * kSlPi) * t,
+                   0.125 * sqrt(7.0 * kSlPi) * (5.0 * t * t - 1.0));
     float cap[16];
-    slRotateZonalY(z, ydir, cap);
+    slRotateZonalY(zs * s2, ydir, cap);
     float exactOpen = slIrradianceY(cap, yn);
-    // exp(0) is the OL table's first entry as a constant (slExp of zeros, without its arithmetic).
-    float open[16];
-    slExp(lg, open);
-    for (uint k = 0u; k < 16u; ++k) open[k] = (k == 0u ? texelFetch(slTables, ivec2(0, 2), 0).x * kSlSqrt4Pi : 0.0) - open[k];
-    float eq23Open = slIrradianceY(open, yn);
-    slRatioFormed[s] = eq23Open > kSlMinOpen;
-    slRatio[s] = slRatioFormed[s] ? exactOpen / eq23Open : 0.0;
     slExactOpen[s] = exactOpen;
+    if (kPerObject) {
+      // ⟨f⟩ over the cap = (f · K)/(√(4π) K_00) (evaluate.cpp capAverage), with K/s² kept.
+      slRotateZonalY(zs, ydir, cap);
+      for (uint k = 0u; k < 16u; ++k) slCaps[s * 16u + k] = cap[k];
+    } else {
+      // exp(0) is the OL table's first entry as a constant (slExp of zeros, without its arithmetic).
+      float open[16];
+      slExp(lg, open);
+      for (uint k = 0u; k < 16u; ++k) open[k] = (k == 0u ? texelFetch(slTables, ivec2(0, 2), 0).x * kSlSqrt4Pi : 0.0) - open[k];
+      float eq23Open = slIrradianceY(open, yn);
+      slRatioFormed[s] = eq23Open > kSlMinOpen;
+      slRatio[s] = slRatioFormed[s] ? exactOpen / eq23Open : 0.0;
+    }
     // Eq. 18: the weight rotated to the SL-local direction from its centre to p (§7.1).
     float wz[16];
     slRotateZonal(slThetaRow(1, theta), transpose(slRotation(i)) * (-dir), wz);
@@ -262,7 +272,49 @@ vec3 slIrradianceAt(vec3 p, vec3 n, uvec4 candidates) {
     }
     slOrder[b] = v;
   }
-  // One pass in that order. An SL's blockers are the SLs before it (per-sphere: the closer ones;
+  vec3 e = vec3(0.0);
+  if (kPerObject) {
+    // Per-object blocking, one exp per object (evaluate.hpp "Per-object blocking", which derives
+    // it): Ṽ_i = X_i · clamp(⟨exp(C_o)⟩_i, 0, 1) · exp(min(0, ⟨S_i⟩_i)), C_o the closer objects'
+    // summed logs, S_i the object's own closer SLs less those that intersect i. do…while, since
+    // llvmpipe runs a `for` body once more masked (README "What costs what on lavapipe"); a pixel
+    // with no live SL still runs one masked turn of each loop, with its sum guarded.
+    float closer[16] = zero;
+    uint a = 0u;
+    do {
+      uint object = rank[slOrder[min(a, max(count, 1u) - 1u)]];
+      float expCloser[16];
+      slExp(closer, expCloser);  // Eq. 21's exp of the closer objects, once for all of o's SLs
+      float own[16] = zero;
+      uvec4 visited = uvec4(0u);
+      do {
+        // Clamped: the masked turn of a pixel with no live SL reads unset slots.
+        uint s = min(slOrder[min(a, kSpheres - 1u)], kSpheres - 1u);
+        uint i = min(slLive[s], kSlMaxLights - 1u);
+        uvec4 skip = slIntersecting(i) & visited;
+        float blockers[16] = own;
+        for (uint w = 0u; w < 4u; ++w)
+          for (uint m = skip[w]; m != 0u; m &= m - 1u) {
+            uint t = slSlotOf[32u * w + uint(findLSB(m))];
+            for (uint k = 0u; k < kSlCoeffs; ++k) blockers[k] -= slLogs[t * 16u + k];
+          }
+        float capE = 0.0, capS = 0.0;
+        for (uint k = 0u; k < kSlCoeffs; ++k) {
+          capE += expCloser[k] * slCaps[s * 16u + k];
+          capS += blockers[k] * slCaps[s * 16u + k];
+        }
+        float area = max(kSlSqrt4Pi * slCaps[s * 16u], 1e-30);
+        float fraction = clamp(capE / area, 0.0, 1.0) * exp(min(0.0, capS / area));
+        if (a < count) e += slAverage[s] * (slExactOpen[s] * fraction);
+        for (uint k = 0u; k < 16u; ++k) own[k] += slLogs[s * 16u + k];
+        visited[i >> 5u] |= 1u << (i & 31u);
+        ++a;
+      } while (a < count && rank[slOrder[min(a, count - 1u)]] == object);
+      for (uint k = 0u; k < 16u; ++k) closer[k] += own[k];
+    } while (a < count);
+    return e;
+  }
+  // Per-sphere: one pass in that order. An SL's blockers are the SLs before it (per-sphere: the closer ones;
   // per-object: the closer objects' and its own object's closer ones) except those of its own object
   // that intersect it (§6.2). So they are the running sum of the logs visited so far minus the few
   // visited SLs that intersect it (slIntersecting: a mask built once per frame on the CPU): n + n·m
@@ -273,7 +325,6 @@ vec3 slIrradianceAt(vec3 p, vec3 n, uvec4 candidates) {
   // Exp reuse: when neither this SL nor its predecessor skips an intersecting SL, this SL's blockers
   // are the predecessor's plus its log — the predecessor's exp(B + G), the same floats summed the
   // same way — so Eq. 23 costs one exp, not two.
-  vec3 e = vec3(0.0);
   float run[16] = zero;      // Σ logs of the SLs visited so far
   float expPrev[16] = zero;  // the predecessor's exp(B + G)
   bool prevFull = false;
