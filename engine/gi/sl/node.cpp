@@ -17,12 +17,6 @@ constexpr std::uint32_t kFirstShadeBinding = 3;                // sl.frag: SL_BI
 constexpr std::uint32_t kTilesBinding = 6;                     // tiles.vert: SlTiles
 constexpr std::uint32_t kHalfBinding = 7;                      // upsample.frag: slHalf
 
-struct TilePush {  // tiles.vert
-  glm::vec2 invExtent;
-  std::uint32_t tileSize;
-  std::uint32_t pad;
-};
-
 std::vector<gpu::Binding> inputBindings() {
   std::vector<gpu::Binding> b = {{0, kSampled}, {1, kSampled}, {2, kSampled}};
   for (const gpu::Binding& s : ShadeData::bindings(kFirstShadeBinding)) b.push_back(s);
@@ -39,7 +33,7 @@ std::vector<gpu::Binding> upsampleBindings() {
 
 Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t framesInFlight,
            std::span<const SphereSet* const> sets, int order, Blocking blocking, float influence, Resolution resolution,
-           const probes::ProbeVolume* probes)
+           ProbeLight probes)
     : ctx_(ctx),
       order_(order),
       blocking_(blocking),
@@ -89,7 +83,7 @@ Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t fra
     silhouette_.push_back(set->spheres.empty() ? 1.0f : set->spheres.front().shadowScale);
   }
   if (probes && spheres_ > 0)
-    shadow_ = std::make_unique<ProbeShadowPass>(ctx, shared, *probes, order, blocking, spheres_, influence);
+    shadow_ = std::make_unique<ProbeShadowPass>(ctx, shared, probes, order, blocking, spheres_, influence, half);
 }
 
 void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::span<const PosedSphere> posed,
@@ -189,9 +183,14 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::s
       });
   if (!half) {
     bb.put("lighting.hdr", data.hdr);
-    if (shadow_) shadow_->addTo(graph, pc, *slot.shade, slot.intensity->intensity());
+    if (shadow_) shadow_->addTo(graph, pc, *slot.shade, slot.intensity->intensity(), {&slot.tiles, 0, tileCount});
     return;
   }
+  // The shadow on the probes' light joins E in "sl.half" (ao · ΔE, same tiles), so one upsample
+  // spreads both.
+  const rg::Handle<rg::Texture> halfE =
+      shadow_ ? shadow_->addTo(graph, pc, *slot.shade, slot.intensity->intensity(), {&slot.tiles, 0, tileCount}, data.hdr)
+              : data.hdr;
   struct UpData {
     render::DeferredInputs g;
     rg::Handle<rg::Texture> half, hdr;
@@ -200,7 +199,7 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::s
       "sl.upsample",
       [&](rg::Builder& b, UpData& d) {
         d.g = render::readDeferredInputs(b, bb);
-        d.half = b.read(data.hdr, rg::Usage::SampledFragment);
+        d.half = b.read(halfE, rg::Usage::SampledFragment);
         d.hdr = b.write(bb.get<rg::Texture>("lighting.hdr"), rg::Usage::ColorAttachment);
       },
       [this, pc, &slot, shadeTiles, upsampleTiles](const UpData& d, const rg::PassResources& res, rg::CommandContext& c) {
@@ -226,7 +225,6 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::s
         ctx_.cmdEndRendering(cmd);
       });
   bb.put("lighting.hdr", up.hdr);
-  if (shadow_) shadow_->addTo(graph, pc, *slot.shade, slot.intensity->intensity());
 }
 
 }  // namespace bounce::gi::sl

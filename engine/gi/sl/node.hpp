@@ -9,8 +9,9 @@
 //  at Resolution::Half, "sl" writes E at every second G-buffer pixel per axis into the transient
 //     "sl.half" (half size, RGBA16F) and "sl.upsample" (shaders/sl/upsample.frag) adds the
 //     depth- and normal-weighted upsample times ρ/π to "lighting.hdr".
-//  "sl.shadow" (fragment, pass 2's shadow on the probes' light): when a probe volume is given and
-//     the probes pass runs, the SLs' soft shadow on it (ProbeShadowPass), at full resolution.
+//  "sl.shadow" (fragment, pass 2's shadow on the probes' light): when the probes' light is given and
+//     the probes pass runs, the SLs' soft shadow on it (ProbeShadowPass), drawn as the same tiles;
+//     at Resolution::Half into "sl.half" before the upsample.
 // Each is timed under its own name by the graph. Pass 2 shades every SL of every object in one draw
 // (the blocking couples objects: an object's Ṽ needs the closer objects' logs), so there are no
 // per-object rows. Per frame slot the node owns its own pass-1 buffers, pass-2 sphere block and tile
@@ -36,11 +37,11 @@ enum class Resolution { Full, Half };
 class Node {
  public:
   // `sets` (not owned, must outlive the node) in participant order; `order` ≥ every set's order;
-  // `influence`: evaluate.hpp rule 0's F (0: off); `probes` (not owned, may be null: no "sl.shadow"):
-  // the probes' baked volume.
+  // `influence`: evaluate.hpp rule 0's F (0: off); `probes` (not owned, may be empty: no
+  // "sl.shadow"): the probes' baked volume and the probes node's device images of it.
   Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t framesInFlight,
        std::span<const SphereSet* const> sets, int order, Blocking blocking, float influence,
-       Resolution resolution = Resolution::Full, const probes::ProbeVolume* probes = nullptr);
+       Resolution resolution = Resolution::Full, ProbeLight probes = {});
   // This frame's SLs, concatenated over the sets: pose, object index, probes' SH at the centre.
   void addTo(rg::RenderGraph& graph, const render::PassContext& pc, std::span<const PosedSphere> posed,
              std::span<const std::uint32_t> objects, std::span<const incident::RadianceSH> indirect);
