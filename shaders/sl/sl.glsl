@@ -17,6 +17,9 @@
 //   uint slCount(); vec4 slSphere(uint i) (world centre, radius, metres); mat3 slRotation(uint i)
 //     (SL local → world); uint slObject(uint i); vec3 slIntensity(uint i, uint k) (L^c_k, pass 1);
 //     uint slObjectCount() (ids 0 … count − 1); vec4 slObjectCentre(uint o) (mean sphere centre, count);
+//   optionally SL_SINGLE_OBJECT (a bool constant): true where every SL that can reach the receiver
+//   belongs to one object (sl.frag's tiles of one object), so per-object blocking's exp of the
+//   closer objects is exp(0) and is not formed (llvmpipe runs every exp written, taken or not).
 // Includes sh.glsl and sl/gaunt.glsl (the SH square, generated from sh_product.hpp's tensor).
 #ifndef BOUNCE_SL_GLSL
 #define BOUNCE_SL_GLSL
@@ -24,6 +27,11 @@
 #include "sh.glsl"
 
 const uint kSlCoeffs = kOrder * kOrder;
+#ifdef SL_SINGLE_OBJECT
+const bool kSlSingleObject = SL_SINGLE_OBJECT;
+#else
+const bool kSlSingleObject = false;
+#endif
 const float kSlPi = 3.14159265358979324;
 const float kSlSqrt4Pi = 3.54490770181103205;
 const float kSlCullFraction = 0.5;  // evaluate.hpp kCullFraction
@@ -288,7 +296,14 @@ vec3 slIrradianceAt(vec3 p, vec3 n, uvec4 candidates) {
     do {
       uint object = rank[slOrder[min(a, max(count, 1u) - 1u)]];
       float expCloser[16];
-      slExp(closer, expCloser);  // Eq. 21's exp of the closer objects, once for all of o's SLs
+      if (kSlSingleObject) {
+        // No closer object: exp(0) as slExp forms it (the OL table's a at 0, no squarings), the
+        // same floats, so tiles of one object and of several meet without a seam.
+        for (uint k = 0u; k < 16u; ++k) expCloser[k] = 0.0;
+        expCloser[0] = slOl(0.0).x * kSlSqrt4Pi;
+      } else {
+        slExp(closer, expCloser);  // Eq. 21's exp of the closer objects, once for all of o's SLs
+      }
       float own[16] = zero;
       uvec4 visited = uvec4(0u);
       do {

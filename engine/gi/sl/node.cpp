@@ -1,6 +1,8 @@
 #include "engine/gi/sl/node.hpp"
 
+#include <algorithm>
 #include <cstring>
+#include <tuple>
 
 #include "engine/core/error.hpp"
 #include "engine/gi/sl/tiles.hpp"
@@ -60,9 +62,15 @@ Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t fra
   d.blend = half ? gpu::Blend::None : gpu::Blend::Additive;
   d.specialization = ShadeData::specialization(order, blocking, spheres_, influence);
   d.specialization.push_back(half ? 1u : 0u);  // sl.frag kHalf (constant_id 4)
+  d.specialization.push_back(0u);              // sl.frag kSingleObject (constant_id 5)
   d.name = std::string("sl.") + (blocking == Blocking::PerObject ? "per-object" : "per-sphere") + ".sh" +
            std::to_string(order * order) + (half ? ".half" : "");
   pipeline_ = gpu::createGraphicsPipeline(ctx, layout_, d);
+  if (blocking == Blocking::PerObject) {
+    d.specialization.back() = 1u;
+    d.name += ".single-object";
+    singleObject_ = gpu::createGraphicsPipeline(ctx, layout_, d);
+  }
   if (half) {
     upsampleInputs_ = gpu::DescriptorSetLayout(ctx, upsampleBindings(), "sl.upsample.inputs");
     upsampleLayout_ = gpu::PipelineLayout(ctx, {shared.frameLayout.handle(), upsampleInputs_.handle()},
@@ -112,6 +120,20 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::s
   const glm::uvec2 halfSize = (resolution + 1u) / 2u;
   std::vector<ShadeTile> tiles = binTiles(pc->world->camera.viewProj, half ? halfSize : resolution, shaded, influence_);
   const std::uint32_t shadeTiles = std::uint32_t(tiles.size());
+  // Per-object blocking: the tiles whose SLs all belong to one object first (singleObject_).
+  std::uint32_t singleTiles = 0;
+  if (blocking_ == Blocking::PerObject) {
+    const auto oneObject = [&](const ShadeTile& t) {
+      std::int64_t object = -1;
+      for (std::uint32_t i = 0; i < spheres_; ++i)
+        if (t.mask[i / kTileMaskBits] >> (i % kTileMaskBits) & 1u) {
+          if (object >= 0 && object != std::int64_t(shaded[i].object)) return false;
+          object = shaded[i].object;
+        }
+      return true;
+    };
+    singleTiles = std::uint32_t(std::stable_partition(tiles.begin(), tiles.end(), oneObject) - tiles.begin());
+  }
   if (half) {
     const std::vector<ShadeTile> full = binTiles(pc->world->camera.viewProj, resolution, shaded, influence_);
     tiles.insert(tiles.end(), full.begin(), full.end());
@@ -158,7 +180,7 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::s
                                rg::Usage::ColorAttachment)
                      : b.write(bb.get<rg::Texture>("lighting.hdr"), rg::Usage::ColorAttachment);
       },
-      [this, pc, &slot, tileCount](const Data& d, const rg::PassResources& res, rg::CommandContext& c) {
+      [this, pc, &slot, tileCount, singleTiles](const Data& d, const rg::PassResources& res, rg::CommandContext& c) {
         VkCommandBuffer cmd = pc->cmd(c);
         VkSampler point = pc->samplers->get({VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST});
         auto view = [&](rg::Handle<rg::Texture> h) { return pc->backend->image(res.texture(h)).view(); };
@@ -173,12 +195,19 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::s
         render::Attachment color{target.view(), resolution_ == Resolution::Full && res.keepsContents(d.hdr)};
         const VkExtent2D extent{target.desc().width, target.desc().height};
         render::beginRendering(ctx_, cmd, extent, {&color, 1}, nullptr);
-        pipeline_.bind(cmd);
-        pipeline_.bindSet(cmd, 0, pc->frameSet);
-        pipeline_.bindSet(cmd, 1, inputs);
-        pipeline_.push(cmd, TilePush{glm::vec2(1.0f / float(extent.width), 1.0f / float(extent.height)), kScreenTile, 0u});
-        // Two triangles per tile with any SL; the other tiles' pixels do no work.
-        if (tileCount > 0) vkCmdDraw(cmd, 6, tileCount, 0, 0);
+        // Two triangles per tile with any SL; the other tiles' pixels do no work. Per-object: the
+        // tiles of one object first, without the closer objects' exp.
+        const TilePush push{glm::vec2(1.0f / float(extent.width), 1.0f / float(extent.height)), kScreenTile, 0u};
+        for (const auto& [pipeline, first, count] :
+             {std::tuple<gpu::Pipeline*, std::uint32_t, std::uint32_t>{&singleObject_, 0u, singleTiles},
+              {&pipeline_, singleTiles, tileCount - singleTiles}}) {
+          if (count == 0) continue;
+          pipeline->bind(cmd);
+          pipeline->bindSet(cmd, 0, pc->frameSet);
+          pipeline->bindSet(cmd, 1, inputs);
+          pipeline->push(cmd, push);
+          vkCmdDraw(cmd, 6, count, 0, first);
+        }
         ctx_.cmdEndRendering(cmd);
       });
   if (!half) {

@@ -5,7 +5,8 @@
 //  "sl" (fragment, pass 2, §5.2): adds ρ/π · Σ L̃ Ṽ to "lighting.hdr" per G-buffer pixel
 //     (shaders/sl/sl.frag), reading "gbuffer.albedo", "gbuffer.normal", "gbuffer.depth" from the
 //     blackboard. Drawn as 16×16 tiles: only the tiles some SL's influence bound covers, each pixel
-//     visiting only its tile's SLs (tiles.hpp, shaders/sl/tiles.vert);
+//     visiting only its tile's SLs (tiles.hpp, shaders/sl/tiles.vert); with per-object blocking the
+//     tiles of one object's SLs are drawn first, by a pipeline without the closer objects' exp;
 //  at Resolution::Half, "sl" writes E at every second G-buffer pixel per axis into the transient
 //     "sl.half" (half size, RGBA16F) and "sl.upsample" (shaders/sl/upsample.frag) adds the
 //     depth- and normal-weighted upsample times ρ/π to "lighting.hdr".
@@ -66,6 +67,9 @@ class Node {
   gpu::PipelineLayout upsampleLayout_;
   gpu::ShaderModule vert_, frag_, upsampleFrag_;
   gpu::Pipeline pipeline_, upsample_;  // upsample_: at half resolution only
+  // Per-object blocking only: pass 2 for the tiles whose SLs all belong to one object (sl.frag
+  // kSingleObject: no exp of closer objects, which is exp(0) there); pipeline_ draws the others.
+  gpu::Pipeline singleObject_;
   std::unique_ptr<ProbeShadowPass> shadow_;
   std::vector<float> share_;  // per object (set): unionShare of its spheres, for "sl.shadow"
   std::vector<float> silhouette_;  // per object (set): its shadow scale (SlSphere::shadowScale)
