@@ -271,8 +271,50 @@ vec3 slIrradianceAt(vec3 p, vec3 n, uvec4 candidates) {
       rank[t] = r;
     }
   }
-  // Closest first (per-object: within each object, objects nearest first); insertion sort is
-  // stable, as evaluate.cpp's stable_sort.
+  vec3 e = vec3(0.0);
+  if (kPerObject) {
+    // Per-object blocking, one exp per object (evaluate.hpp "Per-object blocking", which derives
+    // it): Ṽ_i = X_i · clamp(⟨exp(C_o)⟩_i, 0, 1), C_o the closer objects' summed logs. No sort: an
+    // object's SLs need only the closer objects' sum, so each turn visits the live slots in slot
+    // order (the index is the loop counter, the same in all lanes: no per-lane gathers) and takes
+    // those of the turn's object; the next turn is the nearest object not yet visited. do…while,
+    // since llvmpipe runs a `for` body once more masked (README "What costs what on lavapipe");
+    // a pixel with no live SL runs one masked turn of each loop, its sums guarded.
+    float closer[16] = zero;
+    uint object = 0u, done = 0u;
+    for (uint t = 0u; t < count; ++t) object = t == 0u ? rank[t] : min(object, rank[t]);
+    do {
+      float expCloser[16];
+      if (kSlSingleObject) {
+        // No closer object: exp(0) as slExp forms it (the OL table's a at 0, no squarings), the
+        // same floats, so tiles of one object and of several meet without a seam.
+        for (uint k = 0u; k < 16u; ++k) expCloser[k] = 0.0;
+        expCloser[0] = slOl(0.0).x * kSlSqrt4Pi;
+      } else {
+        slExp(closer, expCloser);  // Eq. 21's exp of the closer objects, once for all of o's SLs
+      }
+      uint next = 0xffffffffu;
+      uint s = 0u;
+      do {
+        uint sc = min(s, kSpheres - 1u);
+        bool mine = s < count && rank[sc] == object;
+        if (s < count && rank[sc] > object) next = min(next, rank[sc]);
+        float capE = 0.0;
+        for (uint k = 0u; k < kSlCoeffs; ++k) capE += expCloser[k] * slCaps[sc * 16u + k];
+        float area = max(kSlSqrt4Pi * slCaps[sc * 16u], 1e-30);
+        float fraction = clamp(capE / area, 0.0, 1.0);
+        if (mine) {
+          e += slAverage[sc] * (slExactOpen[sc] * fraction);
+          for (uint k = 0u; k < kSlCoeffs; ++k) closer[k] += slLogs[sc * 16u + k];
+          ++done;
+        }
+        ++s;
+      } while (s < count);
+      object = next;
+    } while (done < count);
+    return e;
+  }
+  // Per-sphere: closest first; insertion sort is stable, as evaluate.cpp's stable_sort.
   for (uint a = 1u; a < count; ++a) {
     uint v = slOrder[a];
     uint b = a;
@@ -283,62 +325,11 @@ vec3 slIrradianceAt(vec3 p, vec3 n, uvec4 candidates) {
     }
     slOrder[b] = v;
   }
-  vec3 e = vec3(0.0);
-  if (kPerObject) {
-    // Per-object blocking, one exp per object (evaluate.hpp "Per-object blocking", which derives
-    // it): Ṽ_i = X_i · clamp(⟨exp(C_o)⟩_i, 0, 1) · exp(min(0, ⟨S_i⟩_i)), C_o the closer objects'
-    // summed logs, S_i the object's own closer SLs less those that intersect i. do…while, since
-    // llvmpipe runs a `for` body once more masked (README "What costs what on lavapipe"); a pixel
-    // with no live SL still runs one masked turn of each loop, with its sum guarded.
-    float closer[16] = zero;
-    uint a = 0u;
-    do {
-      uint object = rank[slOrder[min(a, max(count, 1u) - 1u)]];
-      float expCloser[16];
-      if (kSlSingleObject) {
-        // No closer object: exp(0) as slExp forms it (the OL table's a at 0, no squarings), the
-        // same floats, so tiles of one object and of several meet without a seam.
-        for (uint k = 0u; k < 16u; ++k) expCloser[k] = 0.0;
-        expCloser[0] = slOl(0.0).x * kSlSqrt4Pi;
-      } else {
-        slExp(closer, expCloser);  // Eq. 21's exp of the closer objects, once for all of o's SLs
-      }
-      float own[16] = zero;
-      uvec4 visited = uvec4(0u);
-      do {
-        // Clamped: the masked turn of a pixel with no live SL reads unset slots.
-        uint s = min(slOrder[min(a, kSpheres - 1u)], kSpheres - 1u);
-        uint i = min(slLive[s], kSlMaxLights - 1u);
-        uvec4 skip = slIntersecting(i) & visited;
-        float blockers[16] = own;
-        for (uint w = 0u; w < 4u; ++w)
-          for (uint m = skip[w]; m != 0u; m &= m - 1u) {
-            uint t = slSlotOf[32u * w + uint(findLSB(m))];
-            for (uint k = 0u; k < kSlCoeffs; ++k) blockers[k] -= slLogs[t * 16u + k];
-          }
-        float capE = 0.0, capS = 0.0;
-        for (uint k = 0u; k < kSlCoeffs; ++k) {
-          capE += expCloser[k] * slCaps[s * 16u + k];
-          capS += blockers[k] * slCaps[s * 16u + k];
-        }
-        float area = max(kSlSqrt4Pi * slCaps[s * 16u], 1e-30);
-        float fraction = clamp(capE / area, 0.0, 1.0) * exp(min(0.0, capS / area));
-        if (a < count) e += slAverage[s] * (slExactOpen[s] * fraction);
-        for (uint k = 0u; k < 16u; ++k) own[k] += slLogs[s * 16u + k];
-        visited[i >> 5u] |= 1u << (i & 31u);
-        ++a;
-      } while (a < count && rank[slOrder[min(a, count - 1u)]] == object);
-      for (uint k = 0u; k < 16u; ++k) closer[k] += own[k];
-    } while (a < count);
-    return e;
-  }
-  // Per-sphere: one pass in that order. An SL's blockers are the SLs before it (per-sphere: the closer ones;
-  // per-object: the closer objects' and its own object's closer ones) except those of its own object
-  // that intersect it (§6.2). So they are the running sum of the logs visited so far minus the few
+  // Per-sphere: one pass in that order. An SL's blockers are the SLs before it except those of its
+  // own object that intersect it (§6.2). So they are the running sum of the logs visited so far minus the few
   // visited SLs that intersect it (slIntersecting: a mask built once per frame on the CPU): n + n·m
   // vector additions for m intersections per SL, not n(n+1)/2 with a pair test each — §8.3's
-  // "O(mn) if results were re-used". Per-object and per-sphere blocking thereby cost the same here;
-  // they differ only in the order of the visit. (Floats: the sum is formed in another order than
+  // "O(mn) if results were re-used". (Floats: the sum is formed in another order than
   // evaluate.cpp's, a change at rounding level.)
   // Exp reuse: when neither this SL nor its predecessor skips an intersecting SL, this SL's blockers
   // are the predecessor's plus its log — the predecessor's exp(B + G), the same floats summed the

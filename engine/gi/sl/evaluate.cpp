@@ -248,15 +248,8 @@ Evaluation evaluate(std::span<const Light> lights, const glm::dvec3& p, const gl
       for (std::size_t a = 0; a < order_.size(); ++a) {
         const std::size_t i = order_[a];
         if (lights[i].object != id || prep[i].culled) continue;
-        std::vector<double> own(nc, 0.0);  // this object's closer SLs that do not intersect i
-        for (std::size_t b = 0; b < a; ++b) {
-          const std::size_t j = order_[b];
-          if (lights[j].object != id || prep[j].culled || intersects(lights[i], lights[j])) continue;
-          addTo(own, prep[j].log);
-        }
         const Prepared& q = prep[i];
-        const double fraction = std::clamp(capAverage(expCloser, q.cap), 0.0, 1.0) *
-                                std::exp(std::min(0.0, capAverage(own, q.cap)));
+        const double fraction = std::clamp(capAverage(expCloser, q.cap), 0.0, 1.0);
         out.terms[i].visibility = q.exactOpen * fraction;
         out.irradiance += out.terms[i].average * out.terms[i].visibility;
         addTo(objectSum, q.log);

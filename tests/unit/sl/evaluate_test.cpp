@@ -258,7 +258,7 @@ TEST(SlEvaluate, ScaleInvarianceAt1eMinus6And1e6) {
 // sphere of the farther one (non-intersecting convex objects, §7.2, Fig. 6) — up to per-object's
 // one-exp-per-object form (evaluate.hpp "Per-object blocking"): the nearest object's lights exactly
 // (no closer objects; their own blockers intersect them), the far object's through the cap average of
-// exp(C) and, for its one non-intersecting pair, the scalar exp of the cap-averaged log.
+// exp(C), without its one non-intersecting pair's blocking (lights 4 and 5: evaluate.hpp).
 // Bounds: measured 0.94 % on E, ≤ 1.6 % on a far light's Ṽ. Per-object's shadow (Ṽ alone − Ṽ) is
 // 25–27 % larger than per-sphere's here; both are far from the truth (a brute-force hemisphere
 // sampling: the near spheres hide lights 3 and 4 completely, Ṽ 0 against 0.086 / 0.067; light 5:
