@@ -245,11 +245,17 @@ vec3 slIrradianceAt(vec3 p, vec3 n, uvec4 candidates) {
       slRotateZonalY(zs, ydir, cap);
       for (uint k = 0u; k < 16u; ++k) slCaps[s * 16u + k] = cap[k];
     } else {
-      // exp(0) is the OL table's first entry as a constant (slExp of zeros, without its arithmetic).
-      float open[16];
-      slExp(lg, open);
-      for (uint k = 0u; k < 16u; ++k) open[k] = (k == 0u ? texelFetch(slTables, ivec2(0, 2), 0).x * kSlSqrt4Pi : 0.0) - open[k];
-      float eq23Open = slIrradianceY(open, yn);
+      // ρ_n · (exp(0) − exp(G_i)) with both exps in closed form: exp(0) is the OL table's first
+      // entry; one cap's log never reaches the hybrid's blend (‖f̂‖ ≤ 1.9 < 3,
+      // SlProbeShadow.OneCapsLogIsBelowTheHybridsBlend), so slExp would be its OL step alone:
+      // e^{G_0 Y_00} (a √(4π) δ_0 + b Ĝ) with ‖Ĝ‖ = ‖(z_1, z_2, z_3)‖ (a rotated ZH keeps each
+      // band's norm). Written out rather than through slExp, whose blend square and masked squaring
+      // llvmpipe runs even when they are not taken.
+      vec4 zl = slThetaRow(0, theta);
+      vec2 ab = slOl(sqrt(zl.y * zl.y + zl.z * zl.z + (kOrder > 3u ? zl.w * zl.w : 0.0)));
+      float dcLog = exp(min(lg[0] / kSlSqrt4Pi, kSlMaxExponent));
+      float eq23Open = SH_A0 * slOl(0.0).x -
+                       dcLog * (SH_A0 * ab.x + ab.y * (slIrradianceY(lg, yn) - SH_A0 * lg[0] * yn[0]));
       slRatioFormed[s] = eq23Open > kSlMinOpen;
       slRatio[s] = slRatioFormed[s] ? exactOpen / eq23Open : 0.0;
     }
