@@ -13,7 +13,7 @@
 //  "sl.shadow" (fragment, pass 2's shadow on the probes' light): when the probes' light is given and
 //     the probes pass runs, the SLs' soft shadow on it (ProbeShadowPass), drawn as the same tiles;
 //     at Resolution::Half into "sl.half" before the upsample.
-// Each is timed under its own name by the graph. Pass 2 shades every SL of every object in one draw
+// Each is timed under its own name by the graph. Pass 2 shades every SL of every object in one pass
 // (the blocking couples objects: an object's Ṽ needs the closer objects' logs), so there are no
 // per-object rows. Per frame slot the node owns its own pass-1 buffers, pass-2 sphere block and tile
 // list, so a frame in flight never sees the next one's data.
