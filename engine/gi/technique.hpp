@@ -28,6 +28,10 @@
 #include "engine/scene/effects.hpp"
 #include "engine/scene/level.hpp"
 
+namespace bounce::gpu {
+class Image;
+}
+
 namespace bounce::gi {
 
 namespace probes {
@@ -91,6 +95,11 @@ struct BakeJob {
 // point is ONE shared service). Filled by runtimes as they are created, in table order.
 struct Services {
   const probes::ProbeVolume* probeVolume = nullptr;  // the probes' baked volume, when they run
+  // That volume on the device, as the probes node uploaded it once (shaders/probes/probe_sh.glsl's
+  // two images: SH with the valid flag, visibility moments), for passes that read the probes' light
+  // the way the probes pass does (sl.shadow) — bound, not uploaded again.
+  const gpu::Image* probeSh = nullptr;
+  const gpu::Image* probeMoments = nullptr;
   // The incident-light service's session inputs (incident/session_light.hpp: the indirect source
   // and the static scene's light visibility), created by the first technique that asks through
   // incident::sessionLight(sc); shared_ptr so this header needs no complete type.

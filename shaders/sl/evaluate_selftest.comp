@@ -11,6 +11,8 @@ layout(constant_id = 0) const uint kOrder = 4u;
 layout(constant_id = 1) const bool kPerObject = false;
 layout(constant_id = 2) const uint kSpheres = 64u;
 layout(constant_id = 3) const float kInfluence = 0.0;
+layout(constant_id = 4) const bool kSingleObject = false;  // sl.frag's variant for one object's tiles
+#define SL_SINGLE_OBJECT kSingleObject
 
 #define SL_SET 0
 #define SL_BINDING 0

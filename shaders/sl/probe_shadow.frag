@@ -5,13 +5,18 @@
 // blending into RGBA16F, which keeps the negative sum: ΔE ≤ 0 takes light away), ΔE from
 // sl/probe_shadow.glsl with the probes' radiance SH read as the probes pass reads it
 // (probes/probe_sh.glsl), so the probes' ρ/π · ao · E_u plus this is ρ/π · ao · E_shadowed.
-// Background pixels (depth 1) receive nothing. Specialization constants: sl.glsl's (ids 0–3,
-// engine/gi/sl/shade.hpp) and the probes' SH count (id 4).
+// Background pixels (depth 1) receive nothing. Drawn as the SL pass's tiles (sl/shadow_tiles.vert):
+// a pixel visits only its tile's SLs; tiles no SL's influence reaches are not drawn (ΔE = 0 there).
+// Specialization constants: sl.glsl's (ids 0–3, engine/gi/sl/shade.hpp), the probes' SH count
+// (id 4) and kHalf (id 5): pixel j of the half-size "sl.half" takes G-buffer pixel 2j and adds
+// ao · ΔE there (no albedo; "sl.upsample" applies each full pixel's ρ/π, as for the SLs' own E; ao is
+// then taken at 2j, not per full pixel — ours, for the half cost).
 layout(constant_id = 0) const uint kOrder = 4u;
 layout(constant_id = 1) const bool kPerObject = false;
 layout(constant_id = 2) const uint kSpheres = 64u;
 layout(constant_id = 3) const float kInfluence = 0.0;
 layout(constant_id = 4) const int kCoeffs = 9;  // the probes' order²: 4 or 9
+layout(constant_id = 5) const bool kHalf = false;
 
 #include "frame.glsl"
 #include "sh.glsl"
@@ -30,18 +35,18 @@ layout(push_constant) uniform Push {
 } pc;
 #include "probes/probe_sh.glsl"
 #define SL_SET 1
-#define SL_BINDING 6
+#define SL_BINDING 7  // binding 6: the tiles (sl/tiles.glsl)
 #include "sl/sl_data.glsl"
 #include "sl/sl.glsl"
 #include "sl/probe_shadow.glsl"
 
-layout(location = 0) in vec2 inUv;
+layout(location = 0) flat in uvec4 inCandidates;
 layout(location = 0) out vec4 outRadiance;
 
 const float kInvPi = 0.31830988618379067;
 
 void main() {
-  ivec2 pixel = ivec2(gl_FragCoord.xy);
+  ivec2 pixel = kHalf ? min(2 * ivec2(gl_FragCoord.xy), ivec2(camera.resolution.xy) - 1) : ivec2(gl_FragCoord.xy);
   float depth = texelFetch(gDepth, pixel, 0).r;
   if (depth >= 1.0) {
     outRadiance = vec4(0.0);
@@ -53,5 +58,6 @@ void main() {
   vec3 L[9];
   probeRadianceSh(x, n, normalize(camera.position.xyz - x), L);
   float ao = pc.bias.w > 0.5 ? texelFetch(aoTerm, pixel, 0).r : 1.0;
-  outRadiance = vec4(albedo * kInvPi * ao * slProbeShadow(x, n, L), 0.0);
+  vec3 delta = ao * slProbeShadow(x, n, L, inCandidates);
+  outRadiance = vec4(kHalf ? delta : albedo * kInvPi * delta, 0.0);
 }

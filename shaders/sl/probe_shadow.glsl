@@ -13,7 +13,9 @@
 const float kSlShadowEpsilon = 1e-9;  // probe_shadow.hpp kShadowEpsilon (sr)
 const float kSlShadowMaxRatio = 4.0;  // probe_shadow.hpp kShadowMaxRatio
 
-vec3 slProbeShadow(vec3 p, vec3 n, in vec3 L[9]) {
+// Over the SLs whose bit is set in `candidates` (sl.glsl slIrradianceAt's convention: those left out
+// must be culled at p by the receiver rules, so they would add nothing).
+vec3 slProbeShadow(vec3 p, vec3 n, in vec3 L[9], uvec4 candidates) {
   uint count = min(slCount(), kSpheres);
   float sum[16];
   for (uint k = 0u; k < 16u; ++k) sum[k] = 0.0;
@@ -21,32 +23,35 @@ vec3 slProbeShadow(vec3 p, vec3 n, in vec3 L[9]) {
   // Â_l √((2l+1)/(4π)): ρ_n · (a ZH z rotated to d) = Σ_l Â_l √((2l+1)/(4π)) z_l P_l(n·d) (addition
   // theorem), so one blocker's A_j needs no 16-coefficient rotation.
   const vec4 lobeZonal = vec4(SH_A0 * 0.28209479177387814, SH_A1 * 0.48860251190291992, SH_A2 * 0.63078313050504001, 0.0);
-  for (uint i = 0u; i < count; ++i) {
-    vec4 sp = slSphere(i);
-    vec3 c = sp.xyz;
-    float r = sp.w;
-    bool kept = slAdjust(c, r, p, n);
-    float d = length(c - p);
-    if (!kept || !(d > 0.0)) continue;
-    vec3 dir = (c - p) / d;
-    float s = min(1.0, r / d);
-    vec4 z = slThetaRow(0, asin(s));
-    float lg[16];
-    slRotateZonal(z, dir, lg);
-    for (uint k = 0u; k < kSlCoeffs; ++k) sum[k] += lg[k];
-    // X_j: the cap's exact cosine-weighted solid angle; A_j: ρ_n · (1 − exp(G_j)) with the OL exp
-    // (one blocker's ‖f̂‖ ≤ 1.9 < kHybridBlendStart for every θ of the table: no blend, no squarings;
-    // SlProbeShadow.OneCapsLogIsBelowTheHybridsBlend checks it).
-    float cd = dot(n, dir);
-    float capX = slSilhouette(i) * kSlPi * s * s * max(0.0, cd);  // × the set's shadow scale (bounce_scale.hpp)
-    exact += capX;
-    sharedX += slShare(i) * capX;
-    float m = sqrt(z.y * z.y + z.z * z.z + (kOrder > 3u ? z.w * z.w : 0.0));
-    vec2 ab = slOl(m);
-    float p2 = 0.5 * (3.0 * cd * cd - 1.0);
-    float dotted = ab.x * SH_A0 + ab.y * (lobeZonal.y * z.y * cd + lobeZonal.z * z.z * p2);
-    approx += SH_A0 - exp(min(z.x / kSlSqrt4Pi, kSlMaxExponent)) * dotted;
-  }
+  for (uint w = 0u; w < 4u; ++w)
+    for (uint bits = candidates[w]; bits != 0u; bits &= bits - 1u) {
+      uint i = 32u * w + uint(findLSB(bits));
+      if (i >= count) continue;
+      vec4 sp = slSphere(i);
+      vec3 c = sp.xyz;
+      float r = sp.w;
+      bool kept = slAdjust(c, r, p, n);
+      float d = length(c - p);
+      if (!kept || !(d > 0.0)) continue;
+      vec3 dir = (c - p) / d;
+      float s = min(1.0, r / d);
+      vec4 z = slThetaRow(0, asin(s));
+      float lg[16];
+      slRotateZonal(z, dir, lg);
+      for (uint k = 0u; k < kSlCoeffs; ++k) sum[k] += lg[k];
+      // X_j: the cap's exact cosine-weighted solid angle; A_j: ρ_n · (1 − exp(G_j)) with the OL exp
+      // (one blocker's ‖f̂‖ ≤ 1.9 < kHybridBlendStart for every θ of the table: no blend, no squarings;
+      // SlProbeShadow.OneCapsLogIsBelowTheHybridsBlend checks it).
+      float cd = dot(n, dir);
+      float capX = slSilhouette(i) * kSlPi * s * s * max(0.0, cd);  // × the set's shadow scale (bounce_scale.hpp)
+      exact += capX;
+      sharedX += slShare(i) * capX;
+      float m = sqrt(z.y * z.y + z.z * z.z + (kOrder > 3u ? z.w * z.w : 0.0));
+      vec2 ab = slOl(m);
+      float p2 = 0.5 * (3.0 * cd * cd - 1.0);
+      float dotted = ab.x * SH_A0 + ab.y * (lobeZonal.y * z.y * cd + lobeZonal.z * z.z * p2);
+      approx += SH_A0 - exp(min(z.x / kSlSqrt4Pi, kSlMaxExponent)) * dotted;
+    }
   float v[16];
   slExp(sum, v);
   float y[9];
@@ -68,6 +73,17 @@ vec3 slProbeShadow(vec3 p, vec3 n, in vec3 L[9]) {
   float additive = sqrt(clamp((SH_A0 - vDotLobe + kSlShadowEpsilon) / approx, 0.0, 1.0));
   float ratio = clamp((additive * sharedX + (1.0 - additive) * exact) / approx, 1.0 / kSlShadowMaxRatio, kSlShadowMaxRatio);
   return clamp(-ratio * (unshadowed - shadowed), -max(unshadowed, vec3(0.0)), vec3(0.0));
+}
+
+// Over every SL (the self-test's receivers, which no tile list culls).
+vec3 slProbeShadow(vec3 p, vec3 n, in vec3 L[9]) {
+  uvec4 all = uvec4(0u);
+  uint count = min(slCount(), kSpheres);
+  for (uint w = 0u; w < 4u; ++w) {
+    uint bits = uint(clamp(int(count) - int(32u * w), 0, 32));
+    all[w] = bits == 32u ? 0xffffffffu : (1u << bits) - 1u;
+  }
+  return slProbeShadow(p, n, L, all);
 }
 
 #endif  // BOUNCE_SL_PROBE_SHADOW_GLSL

@@ -15,6 +15,8 @@ layout(constant_id = 1) const bool kPerObject = false;
 layout(constant_id = 2) const uint kSpheres = 64u;
 layout(constant_id = 3) const float kInfluence = 0.0;
 layout(constant_id = 4) const bool kHalf = false;
+layout(constant_id = 5) const bool kSingleObject = false;  // per-object: tiles whose SLs are one object's
+#define SL_SINGLE_OBJECT kSingleObject
 
 #include "frame.glsl"
 

@@ -17,6 +17,9 @@
 //   uint slCount(); vec4 slSphere(uint i) (world centre, radius, metres); mat3 slRotation(uint i)
 //     (SL local → world); uint slObject(uint i); vec3 slIntensity(uint i, uint k) (L^c_k, pass 1);
 //     uint slObjectCount() (ids 0 … count − 1); vec4 slObjectCentre(uint o) (mean sphere centre, count);
+//   optionally SL_SINGLE_OBJECT (a bool constant): true where every SL that can reach the receiver
+//   belongs to one object (sl.frag's tiles of one object), so per-object blocking's exp of the
+//   closer objects is exp(0) and is not formed (llvmpipe runs every exp written, taken or not).
 // Includes sh.glsl and sl/gaunt.glsl (the SH square, generated from sh_product.hpp's tensor).
 #ifndef BOUNCE_SL_GLSL
 #define BOUNCE_SL_GLSL
@@ -24,6 +27,11 @@
 #include "sh.glsl"
 
 const uint kSlCoeffs = kOrder * kOrder;
+#ifdef SL_SINGLE_OBJECT
+const bool kSlSingleObject = SL_SINGLE_OBJECT;
+#else
+const bool kSlSingleObject = false;
+#endif
 const float kSlPi = 3.14159265358979324;
 const float kSlSqrt4Pi = 3.54490770181103205;
 const float kSlCullFraction = 0.5;  // evaluate.hpp kCullFraction
@@ -143,6 +151,7 @@ bool slRatioFormed[kSpheres];
 vec3 slAverage[kSpheres];
 uint slOrder[kSpheres];        // slots, closest first
 uint slSlotOf[kSpheres];       // the slot of SL i, for the live ones
+float slCaps[kPerObject ? kSpheres * 16u : 1u];  // per-object: the cap's projected indicator K over s², by slot
 
 // Eq. 23–24: Ṽ_i = ρ_n · [exp(B) − exp(B + G_i)] from the blockers' summed log B and i's own G_i,
 // with the Ratio form; adds L̃ Ṽ to e. `s`: i's slot.
@@ -198,7 +207,6 @@ vec3 slIrradianceAt(vec3 p, vec3 n, uvec4 candidates) {
       }
     }
   for (uint s = 0u; s < count; ++s) {
-    uint i = slLive[s];
     vec3 c = adjusted[s].xyz;
     float r = adjusted[s].w;
     float d = slDist[s];
@@ -209,29 +217,49 @@ vec3 slIrradianceAt(vec3 p, vec3 n, uvec4 candidates) {
     shEval16(dir, ydir);
     slRotateZonalY(slThetaRow(0, theta), ydir, lg);
     for (uint k = 0u; k < 16u; ++k) slLogs[s * 16u + k] = lg[k];
-    // The unoccluded cap's Ṽ: exact (1 − cap's closed-form ZH, sh_exp.hpp capVisibilityZonal) and
-    // as Eq. 23 sees it (exp(0) − exp(G_i)).
-    float t = cos(theta);
-    float p2 = 0.5 * (3.0 * t * t - 1.0), p3 = 0.5 * t * (5.0 * t * t - 3.0), p4 = (35.0 * t * t * t * t - 30.0 * t * t + 3.0) / 8.0;
-    vec4 z = vec4(kSlSqrt4Pi - sqrt(kSlPi) * (1.0 + t), -sqrt(3.0 * kSlPi) * (p2 - 1.0) / 3.0,
-                  -sqrt(5.0 * kSlPi) * (p3 - t) / 5.0, -sqrt(7.0 * kSlPi) * (p4 - p2) / 7.0);
+    // The unoccluded cap's Ṽ: exact (the cap's closed-form ZH, the complement of sh_exp.hpp
+    // capVisibilityZonal: z_l = √(4π/(2l+1)) ∫_cap Y_l0) and, per-sphere, as Eq. 23 sees it
+    // (exp(0) − exp(G_i)). Every z_l has the factor 1 − P_l's neighbour, ∝ sin²θ: written with
+    // s² = sin²θ factored out (1 − cos θ = s²/(1 + cos θ)) so small caps keep float precision.
+    float sn = min(1.0, r / d);
+    float s2 = sn * sn;
+    float t = sqrt(max(0.0, 1.0 - s2));
+    vec4 zs = vec4(sqrt(kSlPi) / (1.0 + t), 0.5 * sqrt(3.0 * kSlPi), 0.5 * sqrt(5.0 * kSlPi) * t,
+                   0.125 * sqrt(7.0 * kSlPi) * (5.0 * t * t - 1.0));
     float cap[16];
-    slRotateZonalY(z, ydir, cap);
+    slRotateZonalY(zs * s2, ydir, cap);
     float exactOpen = slIrradianceY(cap, yn);
-    // exp(0) is the OL table's first entry as a constant (slExp of zeros, without its arithmetic).
-    float open[16];
-    slExp(lg, open);
-    for (uint k = 0u; k < 16u; ++k) open[k] = (k == 0u ? texelFetch(slTables, ivec2(0, 2), 0).x * kSlSqrt4Pi : 0.0) - open[k];
-    float eq23Open = slIrradianceY(open, yn);
-    slRatioFormed[s] = eq23Open > kSlMinOpen;
-    slRatio[s] = slRatioFormed[s] ? exactOpen / eq23Open : 0.0;
     slExactOpen[s] = exactOpen;
-    // Eq. 18: the weight rotated to the SL-local direction from its centre to p (§7.1).
+    // Eq. 18: the weight rotated to the SL-local direction from its centre to p (§7.1). Here, for
+    // the live SLs only, and not in the candidate loop above: there every candidate pays it (the
+    // branch is not skipped), and the reads at the tile's index are no cheaper — measured by the
+    // process's CPU time per frame (README "SL per-object blocking and sl.shadow cost"), per-object
+    // 0.774 s here against 1.185 s there.
+    uint i = slLive[s];
     float wz[16];
     slRotateZonal(slThetaRow(1, theta), transpose(slRotation(i)) * (-dir), wz);
     vec3 avg = vec3(0.0);
     for (uint k = 0u; k < kSlCoeffs; ++k) avg += wz[k] * slIntensity(i, k);
     slAverage[s] = avg;
+    if (kPerObject) {
+      // ⟨f⟩ over the cap = (f · K)/(√(4π) K_00) (evaluate.cpp capAverage), with K/s² kept.
+      slRotateZonalY(zs, ydir, cap);
+      for (uint k = 0u; k < 16u; ++k) slCaps[s * 16u + k] = cap[k];
+    } else {
+      // ρ_n · (exp(0) − exp(G_i)) with both exps in closed form: exp(0) is the OL table's first
+      // entry; one cap's log never reaches the hybrid's blend (‖f̂‖ ≤ 1.9 < 3,
+      // SlProbeShadow.OneCapsLogIsBelowTheHybridsBlend), so slExp would be its OL step alone:
+      // e^{G_0 Y_00} (a √(4π) δ_0 + b Ĝ) with ‖Ĝ‖ = ‖(z_1, z_2, z_3)‖ (a rotated ZH keeps each
+      // band's norm). Written out rather than through slExp, whose blend square and masked squaring
+      // llvmpipe runs even when they are not taken.
+      vec4 zl = slThetaRow(0, theta);
+      vec2 ab = slOl(sqrt(zl.y * zl.y + zl.z * zl.z + (kOrder > 3u ? zl.w * zl.w : 0.0)));
+      float dcLog = exp(min(lg[0] / kSlSqrt4Pi, kSlMaxExponent));
+      float eq23Open = SH_A0 * slOl(0.0).x -
+                       dcLog * (SH_A0 * ab.x + ab.y * (slIrradianceY(lg, yn) - SH_A0 * lg[0] * yn[0]));
+      slRatioFormed[s] = eq23Open > kSlMinOpen;
+      slRatio[s] = slRatioFormed[s] ? exactOpen / eq23Open : 0.0;
+    }
   }
   // Per-object blocking (§7.2) visits objects nearest first, by the distance from p to the mean of
   // their (unadjusted) sphere centres, ties by id (evaluate.cpp sorts (dist, id)): each object's rank.
@@ -250,8 +278,50 @@ vec3 slIrradianceAt(vec3 p, vec3 n, uvec4 candidates) {
       rank[t] = r;
     }
   }
-  // Closest first (per-object: within each object, objects nearest first); insertion sort is
-  // stable, as evaluate.cpp's stable_sort.
+  vec3 e = vec3(0.0);
+  if (kPerObject) {
+    // Per-object blocking, one exp per object (evaluate.hpp "Per-object blocking", which derives
+    // it): Ṽ_i = X_i · clamp(⟨exp(C_o)⟩_i, 0, 1), C_o the closer objects' summed logs. No sort: an
+    // object's SLs need only the closer objects' sum, so each turn visits the live slots in slot
+    // order (the index is the loop counter, the same in all lanes: no per-lane gathers) and takes
+    // those of the turn's object; the next turn is the nearest object not yet visited. do…while,
+    // since llvmpipe runs a `for` body once more masked (README "What costs what on lavapipe");
+    // a pixel with no live SL runs one masked turn of each loop, its sums guarded.
+    float closer[16] = zero;
+    uint object = 0u, done = 0u;
+    for (uint t = 0u; t < count; ++t) object = t == 0u ? rank[t] : min(object, rank[t]);
+    do {
+      float expCloser[16];
+      if (kSlSingleObject) {
+        // No closer object: exp(0) as slExp forms it (the OL table's a at 0, no squarings), the
+        // same floats, so tiles of one object and of several meet without a seam.
+        for (uint k = 0u; k < 16u; ++k) expCloser[k] = 0.0;
+        expCloser[0] = slOl(0.0).x * kSlSqrt4Pi;
+      } else {
+        slExp(closer, expCloser);  // Eq. 21's exp of the closer objects, once for all of o's SLs
+      }
+      uint next = 0xffffffffu;
+      uint s = 0u;
+      do {
+        uint sc = min(s, kSpheres - 1u);
+        bool mine = s < count && rank[sc] == object;
+        if (s < count && rank[sc] > object) next = min(next, rank[sc]);
+        float capE = 0.0;
+        for (uint k = 0u; k < kSlCoeffs; ++k) capE += expCloser[k] * slCaps[sc * 16u + k];
+        float area = max(kSlSqrt4Pi * slCaps[sc * 16u], 1e-30);
+        float fraction = clamp(capE / area, 0.0, 1.0);
+        if (mine) {
+          e += slAverage[sc] * (slExactOpen[sc] * fraction);
+          for (uint k = 0u; k < kSlCoeffs; ++k) closer[k] += slLogs[sc * 16u + k];
+          ++done;
+        }
+        ++s;
+      } while (s < count);
+      object = next;
+    } while (done < count);
+    return e;
+  }
+  // Per-sphere: closest first; insertion sort is stable, as evaluate.cpp's stable_sort.
   for (uint a = 1u; a < count; ++a) {
     uint v = slOrder[a];
     uint b = a;
@@ -262,18 +332,15 @@ vec3 slIrradianceAt(vec3 p, vec3 n, uvec4 candidates) {
     }
     slOrder[b] = v;
   }
-  // One pass in that order. An SL's blockers are the SLs before it (per-sphere: the closer ones;
-  // per-object: the closer objects' and its own object's closer ones) except those of its own object
-  // that intersect it (§6.2). So they are the running sum of the logs visited so far minus the few
+  // Per-sphere: one pass in that order. An SL's blockers are the SLs before it except those of its
+  // own object that intersect it (§6.2). So they are the running sum of the logs visited so far minus the few
   // visited SLs that intersect it (slIntersecting: a mask built once per frame on the CPU): n + n·m
   // vector additions for m intersections per SL, not n(n+1)/2 with a pair test each — §8.3's
-  // "O(mn) if results were re-used". Per-object and per-sphere blocking thereby cost the same here;
-  // they differ only in the order of the visit. (Floats: the sum is formed in another order than
+  // "O(mn) if results were re-used". (Floats: the sum is formed in another order than
   // evaluate.cpp's, a change at rounding level.)
   // Exp reuse: when neither this SL nor its predecessor skips an intersecting SL, this SL's blockers
   // are the predecessor's plus its log — the predecessor's exp(B + G), the same floats summed the
   // same way — so Eq. 23 costs one exp, not two.
-  vec3 e = vec3(0.0);
   float run[16] = zero;      // Σ logs of the SLs visited so far
   float expPrev[16] = zero;  // the predecessor's exp(B + G)
   bool prevFull = false;

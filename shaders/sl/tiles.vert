@@ -1,24 +1,5 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
-// SL pass 2, tiled (engine/gi/sl/tiles.hpp): one instance per 16×16-pixel screen tile that some SL's
-// influence bound covers, two triangles each. The tile's list of SLs (4 words of bits, SL i at bit
-// i % 32 of word i / 32) goes to the fragment shader as a flat varying: read once per vertex, not per
-// pixel (DESIGN.md: flat varyings are the cheapest per-pixel constants on llvmpipe). Tiles no SL
-// covers are not drawn, so their pixels do no work.
-// Tile records (std430): tiles[2t] = (tile x, tile y, 0, 0), tiles[2t + 1] = the 4 mask words.
-layout(std430, set = 1, binding = 6) readonly buffer SlTiles { uvec4 slTiles[]; };
-layout(push_constant) uniform Push {
-  vec2 invExtent;  // 1 / the target's pixels (the tiles are in the target's pixels)
-  uint tileSize;   // pixels per tile side (gi::kScreenTile)
-} pc;
-
-layout(location = 0) flat out uvec4 outCandidates;
-
-void main() {
-  uvec4 tile = slTiles[2 * gl_InstanceIndex];
-  // Vertices 0..5: (0,0) (1,0) (0,1), (1,0) (1,1) (0,1). Corners past the target's edge are clipped.
-  const uvec2 corners[6] = uvec2[6](uvec2(0, 0), uvec2(1, 0), uvec2(0, 1), uvec2(1, 0), uvec2(1, 1), uvec2(0, 1));
-  vec2 pixel = vec2((tile.xy + corners[gl_VertexIndex]) * pc.tileSize);
-  gl_Position = vec4(pixel * pc.invExtent * 2.0 - 1.0, 0.0, 1.0);
-  outCandidates = slTiles[2 * gl_InstanceIndex + 1];
-}
+// The SL tiles (sl/tiles.glsl) for "sl" and "sl.upsample": tiles.hpp TilePush at offset 0.
+#define SL_TILE_PUSH_OFFSET 0
+#include "sl/tiles.glsl"

@@ -44,6 +44,9 @@ class ProbeNode final : public TechniqueRuntime {
     return [this](rg::RenderGraph& graph, render::PassContext& pc) { addPasses(graph, &pc); };
   }
   const ProbeVolume& volume() const { return volume_; }
+  // The volume's device images (uploadSh, uploadMoments), for Services::probeSh / probeMoments.
+  const gpu::Image& shImage() const { return *sh_; }
+  const gpu::Image& momentsImage() const { return *moments_; }
 
  private:
   ProbeVolume volume_;

@@ -55,6 +55,8 @@ class ProbesTechnique final : public Technique {
     LoadResult baked = loadOrBake(sc.level, sc.cookCache, cacheFolder(), settingsFrom(sc.level));
     auto node = std::make_unique<ProbeNode>(sc.ctx, sc.renderer.pipelines(), std::move(baked.volume));
     sc.services.probeVolume = &node->volume();
+    sc.services.probeSh = &node->shImage();
+    sc.services.probeMoments = &node->momentsImage();
     return node;
   }
 

@@ -86,7 +86,16 @@ struct Prepared {
   std::vector<double> log;  // G_i, world space
   double exactOpen = 0.0;  // Ṽ of the unoccluded cap: exact projection / Eq. 23 (Ratio form)
   double eq23Open = 0.0;
+  std::vector<double> cap;  // K_i: the cap's indicator projected (sh::capVisibilityZonal's complement), world space
 };
+
+// ⟨f⟩ over light i's cap: ∫_cap f dω / |cap| = (f · K_i) / (√(4π) K_i,00) for a band-limited f
+// (per-object blocking's visible fraction, evaluate.hpp).
+double capAverage(const std::vector<double>& f, const std::vector<double>& cap) {
+  double dot = 0.0;
+  for (std::size_t k = 0; k < f.size(); ++k) dot += f[k] * cap[k];
+  return dot / std::max(std::sqrt(4.0 * kPi) * cap[0], 1e-30);
+}
 
 void addTo(std::vector<double>& a, const std::vector<double>& b) {
   for (std::size_t i = 0; i < a.size(); ++i) a[i] += b[i];
@@ -171,14 +180,14 @@ Evaluation evaluate(std::span<const Light> lights, const glm::dvec3& p, const gl
     const double theta = std::asin(std::min(1.0, a.sphere.radius / q.dist));
     out.terms[i].theta = theta;
     q.log = tables.logBlocker(theta, dir);
-    if (settings.visibility == VisibilityForm::Ratio) {
-      // Ṽ of the cap alone, exact (its ZH projection, visibility 1 − cap → cap = √(4π)δ_l0 − g_l) and
-      // as Eq. 23 sees it (1 − exp(G_i)).
-      auto z = sh::capVisibilityZonal(theta, order);
-      z[0] = std::sqrt(4.0 * kPi) - z[0];
-      for (int l = 1; l < order; ++l) z[l] = -z[l];
-      const auto cap = sh::rotateZonal<double>(z, dir);
-      q.exactOpen = sh::evalIrradiance<double, double>(std::span<const double>(cap), n);
+    // Ṽ of the cap alone, exact (its ZH projection, visibility 1 − cap → cap = √(4π)δ_l0 − g_l).
+    auto z = sh::capVisibilityZonal(theta, order);
+    z[0] = std::sqrt(4.0 * kPi) - z[0];
+    for (int l = 1; l < order; ++l) z[l] = -z[l];
+    q.cap = sh::rotateZonal<double>(z, dir);
+    q.exactOpen = sh::evalIrradiance<double, double>(std::span<const double>(q.cap), n);
+    if (settings.visibility == VisibilityForm::Ratio && settings.blocking == Blocking::PerSphere) {
+      // And as Eq. 23 sees it (1 − exp(G_i)).
       const std::vector<double> none(nc, 0.0);
       const auto v = eq23(none, q.log, settings.log);
       q.eq23Open = sh::evalIrradiance<double, double>(std::span<const double>(v), n);
@@ -221,7 +230,8 @@ Evaluation evaluate(std::span<const Light> lights, const glm::dvec3& p, const gl
       finish(i, blockers);
     }
   } else {
-    // Objects by the distance from p to the mean of their sphere centres.
+    // Per-object blocking (§7.2), one exp per object (evaluate.hpp "Per-object blocking"): objects by
+    // the distance from p to the mean of their sphere centres.
     std::map<int, std::pair<glm::dvec3, int>> centres;
     for (const Light& l : lights) {
       auto& c = centres[l.object];
@@ -233,18 +243,16 @@ Evaluation evaluate(std::span<const Light> lights, const glm::dvec3& p, const gl
     std::stable_sort(objects.begin(), objects.end());
     std::vector<double> closerObjects(nc, 0.0);
     for (const auto& [dist, id] : objects) {
+      const auto expCloser = sh::expHybrid(closerObjects, nullptr, settings.log);  // once per object
       std::vector<double> objectSum(nc, 0.0);
       for (std::size_t a = 0; a < order_.size(); ++a) {
         const std::size_t i = order_[a];
         if (lights[i].object != id || prep[i].culled) continue;
-        std::vector<double> blockers = closerObjects;
-        for (std::size_t b = 0; b < a; ++b) {
-          const std::size_t j = order_[b];
-          if (lights[j].object != id || prep[j].culled || intersects(lights[i], lights[j])) continue;
-          addTo(blockers, prep[j].log);
-        }
-        finish(i, blockers);
-        addTo(objectSum, prep[i].log);
+        const Prepared& q = prep[i];
+        const double fraction = std::clamp(capAverage(expCloser, q.cap), 0.0, 1.0);
+        out.terms[i].visibility = q.exactOpen * fraction;
+        out.irradiance += out.terms[i].average * out.terms[i].visibility;
+        addTo(objectSum, q.log);
       }
       addTo(closerObjects, objectSum);
     }

@@ -1,6 +1,8 @@
 #include "engine/gi/sl/node.hpp"
 
+#include <algorithm>
 #include <cstring>
+#include <tuple>
 
 #include "engine/core/error.hpp"
 #include "engine/gi/sl/tiles.hpp"
@@ -16,12 +18,6 @@ constexpr VkFormat kHdrFormat = VK_FORMAT_R16G16B16A16_SFLOAT;  // "lighting.hdr
 constexpr std::uint32_t kFirstShadeBinding = 3;                // sl.frag: SL_BINDING
 constexpr std::uint32_t kTilesBinding = 6;                     // tiles.vert: SlTiles
 constexpr std::uint32_t kHalfBinding = 7;                      // upsample.frag: slHalf
-
-struct TilePush {  // tiles.vert
-  glm::vec2 invExtent;
-  std::uint32_t tileSize;
-  std::uint32_t pad;
-};
 
 std::vector<gpu::Binding> inputBindings() {
   std::vector<gpu::Binding> b = {{0, kSampled}, {1, kSampled}, {2, kSampled}};
@@ -39,7 +35,7 @@ std::vector<gpu::Binding> upsampleBindings() {
 
 Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t framesInFlight,
            std::span<const SphereSet* const> sets, int order, Blocking blocking, float influence, Resolution resolution,
-           const probes::ProbeVolume* probes)
+           ProbeLight probes)
     : ctx_(ctx),
       order_(order),
       blocking_(blocking),
@@ -66,9 +62,15 @@ Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t fra
   d.blend = half ? gpu::Blend::None : gpu::Blend::Additive;
   d.specialization = ShadeData::specialization(order, blocking, spheres_, influence);
   d.specialization.push_back(half ? 1u : 0u);  // sl.frag kHalf (constant_id 4)
+  d.specialization.push_back(0u);              // sl.frag kSingleObject (constant_id 5)
   d.name = std::string("sl.") + (blocking == Blocking::PerObject ? "per-object" : "per-sphere") + ".sh" +
            std::to_string(order * order) + (half ? ".half" : "");
   pipeline_ = gpu::createGraphicsPipeline(ctx, layout_, d);
+  if (blocking == Blocking::PerObject) {
+    d.specialization.back() = 1u;
+    d.name += ".single-object";
+    singleObject_ = gpu::createGraphicsPipeline(ctx, layout_, d);
+  }
   if (half) {
     upsampleInputs_ = gpu::DescriptorSetLayout(ctx, upsampleBindings(), "sl.upsample.inputs");
     upsampleLayout_ = gpu::PipelineLayout(ctx, {shared.frameLayout.handle(), upsampleInputs_.handle()},
@@ -89,7 +91,7 @@ Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t fra
     silhouette_.push_back(set->spheres.empty() ? 1.0f : set->spheres.front().shadowScale);
   }
   if (probes && spheres_ > 0)
-    shadow_ = std::make_unique<ProbeShadowPass>(ctx, shared, *probes, order, blocking, spheres_, influence);
+    shadow_ = std::make_unique<ProbeShadowPass>(ctx, shared, probes, order, blocking, spheres_, influence, half);
 }
 
 void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::span<const PosedSphere> posed,
@@ -118,6 +120,20 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::s
   const glm::uvec2 halfSize = (resolution + 1u) / 2u;
   std::vector<ShadeTile> tiles = binTiles(pc->world->camera.viewProj, half ? halfSize : resolution, shaded, influence_);
   const std::uint32_t shadeTiles = std::uint32_t(tiles.size());
+  // Per-object blocking: the tiles whose SLs all belong to one object first (singleObject_).
+  std::uint32_t singleTiles = 0;
+  if (blocking_ == Blocking::PerObject) {
+    const auto oneObject = [&](const ShadeTile& t) {
+      std::int64_t object = -1;
+      for (std::uint32_t i = 0; i < spheres_; ++i)
+        if (t.mask[i / kTileMaskBits] >> (i % kTileMaskBits) & 1u) {
+          if (object >= 0 && object != std::int64_t(shaded[i].object)) return false;
+          object = shaded[i].object;
+        }
+      return true;
+    };
+    singleTiles = std::uint32_t(std::stable_partition(tiles.begin(), tiles.end(), oneObject) - tiles.begin());
+  }
   if (half) {
     const std::vector<ShadeTile> full = binTiles(pc->world->camera.viewProj, resolution, shaded, influence_);
     tiles.insert(tiles.end(), full.begin(), full.end());
@@ -164,7 +180,7 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::s
                                rg::Usage::ColorAttachment)
                      : b.write(bb.get<rg::Texture>("lighting.hdr"), rg::Usage::ColorAttachment);
       },
-      [this, pc, &slot, tileCount](const Data& d, const rg::PassResources& res, rg::CommandContext& c) {
+      [this, pc, &slot, tileCount, singleTiles](const Data& d, const rg::PassResources& res, rg::CommandContext& c) {
         VkCommandBuffer cmd = pc->cmd(c);
         VkSampler point = pc->samplers->get({VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST});
         auto view = [&](rg::Handle<rg::Texture> h) { return pc->backend->image(res.texture(h)).view(); };
@@ -179,19 +195,31 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::s
         render::Attachment color{target.view(), resolution_ == Resolution::Full && res.keepsContents(d.hdr)};
         const VkExtent2D extent{target.desc().width, target.desc().height};
         render::beginRendering(ctx_, cmd, extent, {&color, 1}, nullptr);
-        pipeline_.bind(cmd);
-        pipeline_.bindSet(cmd, 0, pc->frameSet);
-        pipeline_.bindSet(cmd, 1, inputs);
-        pipeline_.push(cmd, TilePush{glm::vec2(1.0f / float(extent.width), 1.0f / float(extent.height)), kScreenTile, 0u});
-        // Two triangles per tile with any SL; the other tiles' pixels do no work.
-        if (tileCount > 0) vkCmdDraw(cmd, 6, tileCount, 0, 0);
+        // Two triangles per tile with any SL; the other tiles' pixels do no work. Per-object: the
+        // tiles of one object first, without the closer objects' exp.
+        const TilePush push{glm::vec2(1.0f / float(extent.width), 1.0f / float(extent.height)), kScreenTile, 0u};
+        for (const auto& [pipeline, first, count] :
+             {std::tuple<gpu::Pipeline*, std::uint32_t, std::uint32_t>{&singleObject_, 0u, singleTiles},
+              {&pipeline_, singleTiles, tileCount - singleTiles}}) {
+          if (count == 0) continue;
+          pipeline->bind(cmd);
+          pipeline->bindSet(cmd, 0, pc->frameSet);
+          pipeline->bindSet(cmd, 1, inputs);
+          pipeline->push(cmd, push);
+          vkCmdDraw(cmd, 6, count, 0, first);
+        }
         ctx_.cmdEndRendering(cmd);
       });
   if (!half) {
     bb.put("lighting.hdr", data.hdr);
-    if (shadow_) shadow_->addTo(graph, pc, *slot.shade, slot.intensity->intensity());
+    if (shadow_) shadow_->addTo(graph, pc, *slot.shade, slot.intensity->intensity(), {&slot.tiles, 0, tileCount});
     return;
   }
+  // The shadow on the probes' light joins E in "sl.half" (ao · ΔE, same tiles), so one upsample
+  // spreads both.
+  const rg::Handle<rg::Texture> halfE =
+      shadow_ ? shadow_->addTo(graph, pc, *slot.shade, slot.intensity->intensity(), {&slot.tiles, 0, tileCount}, data.hdr)
+              : data.hdr;
   struct UpData {
     render::DeferredInputs g;
     rg::Handle<rg::Texture> half, hdr;
@@ -200,7 +228,7 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::s
       "sl.upsample",
       [&](rg::Builder& b, UpData& d) {
         d.g = render::readDeferredInputs(b, bb);
-        d.half = b.read(data.hdr, rg::Usage::SampledFragment);
+        d.half = b.read(halfE, rg::Usage::SampledFragment);
         d.hdr = b.write(bb.get<rg::Texture>("lighting.hdr"), rg::Usage::ColorAttachment);
       },
       [this, pc, &slot, shadeTiles, upsampleTiles](const UpData& d, const rg::PassResources& res, rg::CommandContext& c) {
@@ -226,7 +254,6 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::s
         ctx_.cmdEndRendering(cmd);
       });
   bb.put("lighting.hdr", up.hdr);
-  if (shadow_) shadow_->addTo(graph, pc, *slot.shade, slot.intensity->intensity());
 }
 
 }  // namespace bounce::gi::sl

@@ -5,13 +5,15 @@
 //  "sl" (fragment, pass 2, §5.2): adds ρ/π · Σ L̃ Ṽ to "lighting.hdr" per G-buffer pixel
 //     (shaders/sl/sl.frag), reading "gbuffer.albedo", "gbuffer.normal", "gbuffer.depth" from the
 //     blackboard. Drawn as 16×16 tiles: only the tiles some SL's influence bound covers, each pixel
-//     visiting only its tile's SLs (tiles.hpp, shaders/sl/tiles.vert);
+//     visiting only its tile's SLs (tiles.hpp, shaders/sl/tiles.vert); with per-object blocking the
+//     tiles of one object's SLs are drawn first, by a pipeline without the closer objects' exp;
 //  at Resolution::Half, "sl" writes E at every second G-buffer pixel per axis into the transient
 //     "sl.half" (half size, RGBA16F) and "sl.upsample" (shaders/sl/upsample.frag) adds the
 //     depth- and normal-weighted upsample times ρ/π to "lighting.hdr".
-//  "sl.shadow" (fragment, pass 2's shadow on the probes' light): when a probe volume is given and
-//     the probes pass runs, the SLs' soft shadow on it (ProbeShadowPass), at full resolution.
-// Each is timed under its own name by the graph. Pass 2 shades every SL of every object in one draw
+//  "sl.shadow" (fragment, pass 2's shadow on the probes' light): when the probes' light is given and
+//     the probes pass runs, the SLs' soft shadow on it (ProbeShadowPass), drawn as the same tiles;
+//     at Resolution::Half into "sl.half" before the upsample.
+// Each is timed under its own name by the graph. Pass 2 shades every SL of every object in one pass
 // (the blocking couples objects: an object's Ṽ needs the closer objects' logs), so there are no
 // per-object rows. Per frame slot the node owns its own pass-1 buffers, pass-2 sphere block and tile
 // list, so a frame in flight never sees the next one's data.
@@ -36,11 +38,11 @@ enum class Resolution { Full, Half };
 class Node {
  public:
   // `sets` (not owned, must outlive the node) in participant order; `order` ≥ every set's order;
-  // `influence`: evaluate.hpp rule 0's F (0: off); `probes` (not owned, may be null: no "sl.shadow"):
-  // the probes' baked volume.
+  // `influence`: evaluate.hpp rule 0's F (0: off); `probes` (not owned, may be empty: no
+  // "sl.shadow"): the probes' baked volume and the probes node's device images of it.
   Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t framesInFlight,
        std::span<const SphereSet* const> sets, int order, Blocking blocking, float influence,
-       Resolution resolution = Resolution::Full, const probes::ProbeVolume* probes = nullptr);
+       Resolution resolution = Resolution::Full, ProbeLight probes = {});
   // This frame's SLs, concatenated over the sets: pose, object index, probes' SH at the centre.
   void addTo(rg::RenderGraph& graph, const render::PassContext& pc, std::span<const PosedSphere> posed,
              std::span<const std::uint32_t> objects, std::span<const incident::RadianceSH> indirect);
@@ -65,6 +67,9 @@ class Node {
   gpu::PipelineLayout upsampleLayout_;
   gpu::ShaderModule vert_, frag_, upsampleFrag_;
   gpu::Pipeline pipeline_, upsample_;  // upsample_: at half resolution only
+  // Per-object blocking only: pass 2 for the tiles whose SLs all belong to one object (sl.frag
+  // kSingleObject: no exp of closer objects, which is exp(0) there); pipeline_ draws the others.
+  gpu::Pipeline singleObject_;
   std::unique_ptr<ProbeShadowPass> shadow_;
   std::vector<float> share_;  // per object (set): unionShare of its spheres, for "sl.shadow"
   std::vector<float> silhouette_;  // per object (set): its shadow scale (SlSphere::shadowScale)

@@ -1,13 +1,15 @@
 #pragma once
 // Pass "sl.shadow" (issue 13, pass 2's "dynamic objects' soft shadows on the probes' indirect
-// light"): a full-screen triangle adds ρ/π · ao · ΔE to "lighting.hdr" per G-buffer pixel
-// (shaders/sl/probe_shadow.frag; ΔE ≤ 0 from sl/probe_shadow.glsl, whose C++ reference is
-// sl::probeShadow). It runs when the probes pass runs in the same frame (their light is what it
-// shadows) and reads the SLs from the SL node's ShadeData, so the blockers are the same spheres,
-// receiver rules and influence as the SLs' own light. It owns a device copy of the probe volume
-// (probes::uploadSh/uploadMoments: the layout probes/probe_sh.glsl reads).
-#include <memory>
-
+// light"): adds ρ/π · ao · ΔE to "lighting.hdr" per G-buffer pixel (shaders/sl/probe_shadow.frag;
+// ΔE ≤ 0 from sl/probe_shadow.glsl, whose C++ reference is sl::probeShadow). It runs when the probes
+// pass runs in the same frame (their light is what it shadows) and reads the SLs from the SL node's
+// ShadeData, so the blockers are the same spheres, receiver rules and influence as the SLs' own light.
+// Drawn as the SL pass's tiles (tiles.hpp, shaders/sl/tiles.vert): a tile no SL's influence bound
+// reaches gets no shadow (every SL is culled there, so ΔE = 0), and each pixel visits only its
+// tile's SLs. At half resolution it follows pass 2: ao · ΔE at G-buffer pixel 2j is added into
+// "sl.half" before "sl.upsample", which applies each full pixel's ρ/π.
+// It binds the probes node's device images of the volume (gi::Services::probeSh / probeMoments:
+// the layout probes/probe_sh.glsl reads); before, it uploaded a copy of its own.
 #include "engine/gi/probes/probe_volume.hpp"
 #include "engine/gi/sl/shade.hpp"
 #include "engine/gpu/image.hpp"
@@ -16,19 +18,39 @@
 
 namespace bounce::gi::sl {
 
+// The probes' light as sl.shadow reads it: their volume and its device images (not owned).
+struct ProbeLight {
+  const probes::ProbeVolume* volume = nullptr;
+  const gpu::Image* sh = nullptr;
+  const gpu::Image* moments = nullptr;
+  explicit operator bool() const { return volume && sh && moments; }
+};
+
+// The tiles to draw: `count` ShadeTile records from `first` in `buffer` (tiles.hpp), in the target's
+// pixels.
+struct TileRange {
+  const gpu::Buffer* buffer = nullptr;
+  std::uint32_t first = 0;
+  std::uint32_t count = 0;
+};
+
 class ProbeShadowPass {
  public:
-  // `volume` (not owned) must outlive the pass; order, blocking, spheres and influence as the
-  // SL pass's pipeline (ShadeData::specialization).
-  ProbeShadowPass(gpu::Context& ctx, const render::Pipelines& shared, const probes::ProbeVolume& volume, int order,
-                  Blocking blocking, std::uint32_t spheres, float influence);
+  // `probes` (not owned) must outlive the pass; order, blocking, spheres and influence as the SL
+  // pass's pipeline (ShadeData::specialization); `half`: write ao · ΔE into "sl.half".
+  ProbeShadowPass(gpu::Context& ctx, const render::Pipelines& shared, ProbeLight probes, int order, Blocking blocking,
+                  std::uint32_t spheres, float influence, bool half);
   // Adds the pass when "probes" runs this frame; `shade` and `intensity` as the SL pass binds them.
-  void addTo(rg::RenderGraph& graph, const render::PassContext* pc, const ShadeData& shade, const gpu::Buffer& intensity);
+  // Full resolution: blends into "lighting.hdr" and publishes it; half: into `halfTarget` ("sl.half",
+  // which the SL pass cleared) and returns its new version. Returns `halfTarget` unchanged when it
+  // does not run.
+  rg::Handle<rg::Texture> addTo(rg::RenderGraph& graph, const render::PassContext* pc, const ShadeData& shade,
+                                const gpu::Buffer& intensity, TileRange tiles, rg::Handle<rg::Texture> halfTarget = {});
 
  private:
   gpu::Context& ctx_;
-  const probes::ProbeVolume& volume_;
-  std::unique_ptr<gpu::Image> sh_, moments_;
+  ProbeLight probes_;
+  bool half_ = false;
   gpu::DescriptorSetLayout inputLayout_;
   gpu::PipelineLayout layout_;
   gpu::Pipeline pipeline_;

@@ -311,7 +311,7 @@ void SessionRuntime::enableGpu(SessionContext& sc) {
   node_ = std::make_unique<Node>(sc.ctx, sc.renderer.pipelines(), sc.renderer.frames().framesInFlight(), sets, order,
                                  blocking, participants_.front().component.influence,
                                  participants_.front().component.half ? Resolution::Half : Resolution::Full,
-                                 sc.services.probeVolume);
+                                 ProbeLight{sc.services.probeVolume, sc.services.probeSh, sc.services.probeMoments});
 }
 
 render::Renderer::GraphNode SessionRuntime::node() {

@@ -25,6 +25,13 @@ struct ShadeTile {
 static_assert(sizeof(ShadeTile) == 32);
 static_assert(kMaxShadedSpheres <= 4 * kTileMaskBits, "a tile's mask holds 4 words");
 
+// tiles.vert's push constants (the passes that draw tiles: sl, sl.upsample, sl.shadow).
+struct TilePush {
+  glm::vec2 invExtent;     // 1 / the target's pixels
+  std::uint32_t tileSize;  // gi::kScreenTile
+  std::uint32_t pad = 0;
+};
+
 // The tiles of a `resolution` target (viewProj: the camera's, Vulkan clip space) with any SL, row by
 // row; `spheres` as pass 2 reads them, `influence` rule 0's F (0: off).
 std::vector<ShadeTile> binTiles(const glm::mat4& viewProj, glm::uvec2 resolution, std::span<const ShadedSphere> spheres,

@@ -237,3 +237,52 @@ TEST(SlSession, WithProbesItShadowsTheirLightButNeverBelowTheFrameWithoutThem) {
               "none below the frame without probes\n",
               kExtent.width, kExtent.height, darker, a.rgb.size());
 }
+
+// At "resolution": "half" the shadow on the probes' light follows pass 2: "sl.shadow" adds ao · ΔE at
+// the half-size receivers into "sl.half" after "sl" and before "sl.upsample", which spreads E + ΔE
+// with each full pixel's ρ/π. The shadow still exists (values darker than probes alone), never
+// below the frame without probes, and the SL term (shadow and bounce together, the frame minus
+// probes alone) stays close to the full-resolution one (differences printed).
+TEST(SlSession, ShadowOnTheProbesFollowsHalfResolutionIntoTheUpsample) {
+  const auto frame = [](std::vector<std::string> effects, bool half) {
+    scene::Level level = game::loadLevelWithEffects(kCharacters, effects);
+    for (scene::EntityDesc& e : level.entities)
+      if (e.sl) e.sl->half = half;
+    game::Session s(gpu::testkit::sharedContext(), level);
+    return oneFrame(s);
+  };
+  const Frame h = frame({"direct", "shadows", "probes", "sl"}, true);
+  const Frame f = frame({"direct", "shadows", "probes", "sl"}, false);
+  const Frame b = frame({"direct", "shadows", "probes"}, false);
+  const Frame c = frame({"direct", "shadows"}, false);
+  for (const char* name : {"sl.intensity", "sl", "sl.shadow", "sl.upsample"})
+    ASSERT_EQ(std::count(h.passes.begin(), h.passes.end(), name), 1) << name;
+  const auto at = [&](const std::string& name) { return std::find(h.passes.begin(), h.passes.end(), name) - h.passes.begin(); };
+  EXPECT_LT(at("sl"), at("sl.shadow"));
+  EXPECT_LT(at("sl.shadow"), at("sl.upsample"));
+  EXPECT_LT(at("probes"), at("sl.upsample"));
+
+  ASSERT_EQ(h.rgb.size(), b.rgb.size());
+  constexpr float kStep = 1.5f / 255.0f;  // 8-bit output: one step of rounding either way
+  int darker = 0, darkerFull = 0, belowNoProbes = 0;
+  double diff2 = 0.0, term2 = 0.0, halfSum = 0.0, fullSum = 0.0;
+  for (std::size_t i = 0; i < h.rgb.size(); ++i) {
+    darker += h.rgb[i] < b.rgb[i] - kStep;
+    darkerFull += f.rgb[i] < b.rgb[i] - kStep;
+    belowNoProbes += h.rgb[i] < c.rgb[i] - kStep;
+    const double th = double(h.rgb[i]) - b.rgb[i], tf = double(f.rgb[i]) - b.rgb[i];
+    halfSum += std::abs(th);
+    fullSum += std::abs(tf);
+    diff2 += (th - tf) * (th - tf);
+    term2 += tf * tf;
+  }
+  EXPECT_GT(darker, 0);
+  EXPECT_EQ(belowNoProbes, 0);
+  ASSERT_GT(term2, 0.0);
+  const double relAbs = std::abs(halfSum - fullSum) / fullSum, relRmse = std::sqrt(diff2 / term2);
+  std::printf("sl.shadow half vs full at %ux%u: %d vs %d channel values darker than probes alone; |SL term| summed "
+              "%.4f vs %.4f (%.1f %% apart), rel RMSE of the SL term %.3f\n",
+              kExtent.width, kExtent.height, darker, darkerFull, halfSum, fullSum, 100.0 * relAbs, relRmse);
+  EXPECT_LT(relAbs, 0.15);
+  EXPECT_LT(relRmse, 0.7);
+}

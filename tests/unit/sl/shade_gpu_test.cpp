@@ -89,7 +89,7 @@ Scene column(int order) {
 }
 
 std::vector<glm::vec3> runShader(gpu::Context& ctx, const Scene& s, std::span<const Receiver> receivers, int order,
-                                 Blocking blocking, float influence = 0.0f) {
+                                 Blocking blocking, float influence = 0.0f, bool singleObject = false) {
   ShadeData data(ctx, order);
   data.setSpheres(s.shaded);
   gpu::Buffer intensity(ctx, {kIntensityBlockBytes, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::MemoryUsage::Upload, "sl.test.intensity"});
@@ -107,9 +107,11 @@ std::vector<glm::vec3> runShader(gpu::Context& ctx, const Scene& s, std::span<co
   b.push_back({4, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
   gpu::DescriptorSetLayout layout(ctx, b, "sl.test");
   gpu::PipelineLayout pipelineLayout(ctx, {layout.handle()}, {}, "sl.test");
+  gpu::SpecConstants spec = ShadeData::specialization(order, blocking, std::uint32_t(s.shaded.size()), influence);
+  spec.push_back(singleObject ? 1u : 0u);  // evaluate_selftest.comp kSingleObject
   gpu::Pipeline pipeline =
       gpu::createComputePipeline(ctx, pipelineLayout, gpu::ShaderModule(ctx, "sl/evaluate_selftest.comp.spv"), "sl.test",
-                                 nullptr, ShadeData::specialization(order, blocking, std::uint32_t(s.shaded.size()), influence));
+                                 nullptr, spec);
   gpu::SamplerCache samplers(ctx);
   gpu::SamplerDesc nearest;
   nearest.filter = VK_FILTER_NEAREST;
@@ -234,6 +236,29 @@ TEST(SlShadeGpu, GlslEqualsEvaluateForOrdersAndBlockings) {
       std::printf("order %d %s: worst |GPU - C++| / scale = %.3g\n", order,
                   blocking == Blocking::PerObject ? "per-object" : "per-sphere", worst);
     }
+}
+
+// Per-object blocking draws the tiles whose SLs are all one object's with sl.frag's kSingleObject
+// variant, which writes exp(0) instead of forming the closer objects' exp: on one object's SLs (the
+// chain of twoObjects, receivers on the plane, inside, on and crossing its spheres) it gives the
+// general variant's floats exactly, so the two kinds of tile meet without a seam.
+TEST(SlShadeGpu, SingleObjectVariantGivesTheSameFloatsOnOneObject) {
+  gpu::Context& ctx = gpu::testkit::sharedContext();
+  for (int order : {3, 4}) {
+    Scene s = twoObjects(order);
+    s.lights.resize(4);  // object 0 only
+    s.shaded.resize(4);
+    s.intensity.resize(4 * 16);
+    const std::vector<Receiver> r = planeAndHardReceivers(s);
+    const auto general = runShader(ctx, s, r, order, Blocking::PerObject);
+    const auto single = runShader(ctx, s, r, order, Blocking::PerObject, 0.0f, true);
+    int lit = 0;
+    for (std::size_t i = 0; i < r.size(); ++i) {
+      EXPECT_EQ(general[i], single[i]) << "order " << order << " receiver " << i;
+      lit += general[i].x > 1e-3f;
+    }
+    EXPECT_GT(lit, int(r.size()) / 2);
+  }
 }
 
 // One sphere of radius R slides down through a receiver's tangent plane and on through the receiver
