@@ -325,6 +325,7 @@ AccuracyReport runAccuracy(const AccuracyOptions& options) {
   };
   std::map<std::string, Rendered> rendered;
   std::optional<ref::PixelMask> indirectMask;  // from the direct-only references, on first use
+  std::set<std::string> effectImagesDone;      // --effect-images: reference kinds and the mask written
   for (const auto& row : rows) {
     const std::string key = renderKey(row);
     if (!rendered.count(key)) {
@@ -379,6 +380,19 @@ AccuracyReport runAccuracy(const AccuracyOptions& options) {
     const std::string name = slug(row.technique) + "-" + slug(row.setting);
     result.heatMap = options.out / ("heatmap-" + name + ".png");
     writePfm(options.out / ("image-" + name + ".pfm"), techWith);
+    if (options.effectImages) {
+      writePfm(options.out / ("without-" + name + ".pfm"), techWithout);
+      const std::string kind = referenceKind(row.setting);
+      if (effectImagesDone.insert(kind).second) {
+        writePfm(options.out / ("reference-" + kind + "-with.pfm"), refWith);
+        writePfm(options.out / ("reference-" + kind + "-without.pfm"), refWithout);
+      }
+      if (effectImagesDone.insert("mask").second) {
+        ImageRGB mask(techWith.width, techWith.height);
+        for (std::size_t i = 0; i < mask.pixels.size(); ++i) mask.pixels[i] = glm::vec3(indirectMask->testIndex(i) ? 1.0f : 0.0f);
+        writePfm(options.out / "mask-indirect-only.pfm", mask);
+      }
+    }
     const ref::Comparison comparison = ref::comparisonImage(refWith, techWith, panel);
     result.heatMapScale = comparison.scale;
     writePng(result.heatMap, comparison.image);

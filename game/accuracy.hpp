@@ -48,6 +48,11 @@ struct AccuracyOptions {
   std::filesystem::path cookCache;
   bool progress = true;  // progress bars (they are quiet in CI and off a terminal anyway)
   bool chart = true;     // run tools/plot_accuracy.py
+  // --effect-images: also write what the object-effect errors compare, as linear PFMs in `out`:
+  // per row "without-<row>.pfm" (the technique without the dynamic entities; "image-<row>.pfm" is
+  // the one with them), per reference kind "reference-<kind>-with.pfm" / "-without.pfm", and
+  // "mask-indirect-only.pfm" (1 on the pixels indirect_effect_rel_rmse counts, else 0).
+  bool effectImages = false;
   std::optional<std::vector<AccuracyRow>> rows;  // empty: accuracyRows()
 };
 
