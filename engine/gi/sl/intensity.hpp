@@ -18,9 +18,11 @@
 // 2's sl.shadow evaluates, same exp, tables, receiver rules, union share and shadow scale), over
 // every SL of the frame; the receiver rules shrink or cull the sample's own SL and the neighbours
 // that contain it, so what blocks is the rest of its object and the other objects. The real lights
-// need no spheres: their shadow maps hold every object's real mesh. DEPARTURES: (1) the probes are sampled once per SL, at its posed centre,
-// on the CPU (an SL is small next to the probe spacing, and 64 lookups a frame are cheaper than one
-// per sample on the device); (2) visibility is the lighting pass's shadow-map lookup (shadow.glsl),
+// need no spheres: their shadow maps hold every object's real mesh.
+// DEPARTURES: (1) the probes are sampled once per SL, at its posed centre, on the CPU (an SL is
+// small next to the probe spacing, and 64 lookups a frame are cheaper than one per sample on the
+// device; measured: moving that point by ±1 radius changes the characters level's indirect-only
+// error by ≤ 0.004, README "SL accuracy"); (2) visibility is the lighting pass's shadow-map lookup (shadow.glsl),
 // so an SL's own object shadows its back-facing samples as the renderer shades them; the C++
 // reference has no shadow map and takes every light as visible (the GPU test runs unshadowed).
 #include <cstdint>
