@@ -325,6 +325,7 @@ AccuracyReport runAccuracy(const AccuracyOptions& options) {
   };
   std::map<std::string, Rendered> rendered;
   std::optional<ref::PixelMask> indirectMask;  // from the direct-only references, on first use
+  std::set<std::string> effectImagesDone;      // --effect-images: reference kinds and the mask written
   for (const auto& row : rows) {
     const std::string key = renderKey(row);
     if (!rendered.count(key)) {
@@ -379,15 +380,18 @@ AccuracyReport runAccuracy(const AccuracyOptions& options) {
     const std::string name = slug(row.technique) + "-" + slug(row.setting);
     result.heatMap = options.out / ("heatmap-" + name + ".png");
     writePfm(options.out / ("image-" + name + ".pfm"), techWith);
-    // The parts of the object-effect error, for the decompositions in README Results (RTF): the
-    // row's render of the level without its dynamic entities, and the references it was scored by.
-    writePfm(options.out / ("image-" + name + "-static.pfm"), techWithout);
-    const std::string refName = "reference-" + slug(referenceKind(row.setting));
-    if (!std::filesystem::exists(options.out / (refName + ".pfm"))) {
-      writePfm(options.out / (refName + ".pfm"), refWith);
-      writePfm(options.out / (refName + "-static.pfm"), refWithout);
-      writePfm(options.out / "reference-direct-mask-with.pfm", reference(true, 0));
-      writePfm(options.out / "reference-direct-mask-static.pfm", reference(false, 0));
+    if (options.effectImages) {
+      writePfm(options.out / ("without-" + name + ".pfm"), techWithout);
+      const std::string kind = referenceKind(row.setting);
+      if (effectImagesDone.insert(kind).second) {
+        writePfm(options.out / ("reference-" + kind + "-with.pfm"), refWith);
+        writePfm(options.out / ("reference-" + kind + "-without.pfm"), refWithout);
+      }
+      if (effectImagesDone.insert("mask").second) {
+        ImageRGB mask(techWith.width, techWith.height);
+        for (std::size_t i = 0; i < mask.pixels.size(); ++i) mask.pixels[i] = glm::vec3(indirectMask->testIndex(i) ? 1.0f : 0.0f);
+        writePfm(options.out / "mask-indirect-only.pfm", mask);
+      }
     }
     const ref::Comparison comparison = ref::comparisonImage(refWith, techWith, panel);
     result.heatMapScale = comparison.scale;

@@ -17,9 +17,7 @@
 // Files in `out`: accuracy.csv, accuracy.png (tools/plot_accuracy.py, when /usr/bin/python3 has
 // matplotlib), heatmap-<technique>-<setting>.png per row ("reference | technique | error",
 // engine/ref/image_heatmap.hpp) with the technique's linear image image-<technique>-<setting>.pfm
-// and its render of the level without dynamic entities (…-static.pfm), the references once per kind
-// (reference-<kind>.pfm, reference-<kind>-static.pfm; the direct-only pair the indirect-only mask
-// is made from, reference-direct-mask-with|static.pfm),
+// (with --effect-images also the images the object-effect errors compare: AccuracyOptions::effectImages),
 // heatmaps.csv (which the chart script reads to title the heat maps). The level without dynamic
 // entities, which the reference tracer reads, goes to <cache>/levels, not `out`.
 #include <cstdint>
@@ -51,6 +49,11 @@ struct AccuracyOptions {
   std::filesystem::path cookCache;
   bool progress = true;  // progress bars (they are quiet in CI and off a terminal anyway)
   bool chart = true;     // run tools/plot_accuracy.py
+  // --effect-images: also write what the object-effect errors compare, as linear PFMs in `out`:
+  // per row "without-<row>.pfm" (the technique without the dynamic entities; "image-<row>.pfm" is
+  // the one with them), per reference kind "reference-<kind>-with.pfm" / "-without.pfm", and
+  // "mask-indirect-only.pfm" (1 on the pixels indirect_effect_rel_rmse counts, else 0).
+  bool effectImages = false;
   std::optional<std::vector<AccuracyRow>> rows;  // empty: accuracyRows()
 };
 

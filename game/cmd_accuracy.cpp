@@ -31,6 +31,7 @@ int runAccuracy(const cli::Args& args) {
       throwInputError("bounce accuracy", "--frame", "'" + v + "' is not a valid frame", "a non-negative integer");
   }
   o.device = args.str("--device");
+  o.effectImages = args.has("--effect-images");
   if (const auto techniques = args.list("--rows")) {
     for (const auto& t : *techniques)
       if (!scene::effectFromName(t))

@@ -1,9 +1,9 @@
 #!/usr/bin/python3
 """Where a technique's object-effect error comes from (README Results "RTF", issue 14).
 
-Reads a `bounce accuracy --out DIR` folder (image-<row>.pfm, image-<row>-static.pfm, reference-all*.pfm,
-reference-direct-mask-*.pfm) and prints, on the whole image and on the indirect-only pixels (the mask
-of game/accuracy.cpp indirectOnlyMask, recomputed here the same way), the reference effect's RMS and
+Reads a `bounce accuracy --effect-images --out DIR` folder (image-<row>.pfm, without-<row>.pfm,
+reference-<kind>-with|without.pfm, mask-indirect-only.pfm) and prints, on the whole image and on the
+indirect-only pixels (the mask bounce accuracy wrote), the reference effect's RMS and
 mean, the technique's, their error (rel. RMSE, = accuracy.csv's) and the signed mean of the error.
 With --parts A=DIR1 B=DIR2 the same row from other folders (e.g. renders with one term switched off) is
 split into parts: part = that folder's effect, so a term's share of the error can be read off.
@@ -24,20 +24,6 @@ def pfm(path):
     return data.reshape(h, w, ch)[::-1].astype(np.float64)
 
 
-def indirect_mask(a, b):
-    d = np.abs(a - b).max(axis=2)
-    m = np.maximum(a.max(axis=2), b.max(axis=2))
-    differs = d > 1e-4 * (1.0 + m)
-    grown = differs.copy()
-    h, w = differs.shape
-    for dy in (-1, 0, 1):
-        for dx in (-1, 0, 1):
-            s = np.zeros_like(differs)
-            s[max(dy, 0):h + min(dy, 0), max(dx, 0):w + min(dx, 0)] = differs[max(-dy, 0):h + min(-dy, 0), max(-dx, 0):w + min(-dx, 0)]
-            grown |= s
-    return ~grown
-
-
 def stats(name, et, er, mask):
     et, er = et[mask], er[mask]
     rms_r = np.sqrt((er ** 2).mean())
@@ -48,17 +34,18 @@ def stats(name, et, er, mask):
 
 def main():
     d, row = sys.argv[1], sys.argv[2]
-    ref = pfm(f"{d}/reference-all.pfm") - pfm(f"{d}/reference-all-static.pfm")
-    mask = indirect_mask(pfm(f"{d}/reference-direct-mask-with.pfm"), pfm(f"{d}/reference-direct-mask-static.pfm"))
+    kind = row.rsplit('ref-', 1)[1] if 'ref-' in row else 'all'  # the row's reference kind (its ref= setting)
+    ref = pfm(f"{d}/reference-{kind}-with.pfm") - pfm(f"{d}/reference-{kind}-without.pfm")
+    mask = pfm(f"{d}/mask-indirect-only.pfm")[:, :, 0] > 0.5
     whole = np.ones(mask.shape, bool)
-    tech = pfm(f"{d}/image-{row}.pfm") - pfm(f"{d}/image-{row}-static.pfm")
+    tech = pfm(f"{d}/image-{row}.pfm") - pfm(f"{d}/without-{row}.pfm")
     print(f"{row}: {mask.sum()} indirect-only pixels of {mask.size}")
     for label, m in (("whole image", whole), ("indirect-only", mask)):
         print(label)
         stats("technique", tech, ref, m)
         for arg in sys.argv[3:]:
             name, d2 = arg.split('=', 1)
-            part = pfm(f"{d2}/image-{row}.pfm") - pfm(f"{d2}/image-{row}-static.pfm")
+            part = pfm(f"{d2}/image-{row}.pfm") - pfm(f"{d2}/without-{row}.pfm")
             stats(name + " alone", part, ref, m)
             stats("technique without " + name, tech - part, ref, m)
 

@@ -9,8 +9,13 @@
 //     Eq. 11): the light arriving there — the level's real lights projected into order-3 radiance
 //     SH by incident.glsl (radius 0: a point receiver), each times its shadow-map visibility
 //     (shadow.glsl), plus the probes' indirect radiance SH (sampled at the SL's centre on the CPU)
-//     — cosine-convolved at the normal (sh.glsl shIrradiance9), clamped ≥ 0 and divided by π:
-//     W/(m²·sr) per channel;
+//     — cosine-convolved at the normal (sh.glsl shIrradiance9) — with that indirect light blocked
+//     by the SLs (§5.1: "SLs act as blockers and environment lighting as light source", Eq. 3 and
+//     6, when pc.blockers is set): ΔE of sl/probe_shadow.glsl, the same function (and exp, tables,
+//     receiver rules) pass 2's sl.shadow uses, over every SL of the frame after the receiver rules
+//     (the sample's own SL and the neighbours that contain it are shrunk or culled there); the
+//     lights need no spheres, their shadow maps hold every object's real mesh. Clamped ≥ 0 and
+//     divided by π: W/(m²·sr) per channel;
 //  3. Eq. 10: L_S = Σ_j L_pj Y'_j with Y'_j the baked basis sums (already × 4π/N), summed over the
 //     workgroup in shared memory;
 //  4. Eq. 11: L^c = L_S ∗ c_S, the SH product with the SL's albedo SH per channel, through the
@@ -24,15 +29,21 @@
 // sample count; indirect: 9 vec4, rgb = radiance SH at the posed centre); albedo = vec4[sphere·16 + k]
 // (rgb: c_S,k); gaunt = Gaunt[], Gaunt = 16 ((i, j, k) and C_ijk, sorted by (k, i, j)); lights and
 // shadow matrices as the lighting pass has them (std140 UBOs of kMaxLights / kMaxShadowLayers);
-// out = vec4[sphere·16 + k] (rgb: L^c_k, the SL's local frame; unused k ≥ order² are 0).
+// out = vec4[sphere·16 + k] (rgb: L^c_k, the SL's local frame; unused k ≥ order² are 0);
+// bindings 8–10: sl_data.glsl (the frame's SLs as blockers, engine/gi/sl/shade.hpp ShadeData; its
+// intensity block is not read here).
 // SSBOs are fine here: a compute pass (DESIGN's machine facts keep them out of fragment shaders).
 #extension GL_GOOGLE_include_directive : require
 #include "incident.glsl"
 
 layout(local_size_x = 64) in;
 
-// SH order of the basis sums, the albedo and the result: 3 or 4 (one pipeline per order).
+// SH order of the basis sums, the albedo and the result: 3 or 4 (one pipeline per order); ids 1–3:
+// sl.glsl's (ShadeData::specialization: blocking is unused here, array size, influence).
 layout(constant_id = 0) const uint kOrder = 4u;
+layout(constant_id = 1) const bool kPerObject = false;
+layout(constant_id = 2) const uint kSpheres = 64u;
+layout(constant_id = 3) const float kInfluence = 0.0;
 const uint kCoeffs = kOrder * kOrder;
 
 struct Sample {
@@ -63,12 +74,17 @@ layout(std140, binding = 5) uniform ShadowMatrices { mat4 shadowMatrices[kMaxSha
 layout(binding = 6) uniform sampler2DArrayShadow shadowAtlas;
 #include "shadow.glsl"
 layout(std430, binding = 7) writeonly buffer Intensity { vec4 intensity[]; };
+#define SL_SET 0
+#define SL_BINDING 8
+#include "sl/sl_data.glsl"
+#include "sl/sl.glsl"
+#include "sl/probe_shadow.glsl"
 
 layout(push_constant) uniform Push {
   uint lightCount;
   uint shadowsOn;   // 0: every light unoccluded (the level does not name `shadows`)
   uint gaunts;      // entries in gaunt[]
-  uint pad;
+  uint blockers;    // 1: the SLs (bindings 8–10) block the indirect light at the samples (§5.1)
 } pc;
 
 shared vec3 partial[64 * 16];
@@ -97,7 +113,13 @@ void main() {
       }
       if (v > 0.0) incidentAddLight(lights[i], p, 0.0, v, sh);
     }
-    vec3 L = max(shIrradiance9(sh, n), vec3(0.0)) * (1.0 / 3.14159265358979324);  // L_p, Eq. 3
+    vec3 blocked = vec3(0.0);  // ΔE ≤ 0 of the indirect light (Eq. 3 and 6)
+    if (pc.blockers != 0u) {
+      vec3 ind[9];
+      for (int k = 0; k < 9; ++k) ind[k] = s.indirect[k].rgb;
+      blocked = slProbeShadow(p, n, ind);
+    }
+    vec3 L = max(shIrradiance9(sh, n) + blocked, vec3(0.0)) * (1.0 / 3.14159265358979324);  // L_p, Eq. 3
     for (uint k = 0u; k < kCoeffs; ++k) acc[k] += L * smp.basis[k / 4u][k % 4u];   // Eq. 10
   }
   for (uint k = 0u; k < 16u; ++k) partial[lid * 16u + k] = acc[k];

@@ -10,6 +10,7 @@
 #include "engine/core/progress.hpp"
 #include "engine/gi/sl/bounce_scale.hpp"
 #include "engine/gi/sl/evaluate.hpp"
+#include "engine/gi/sl/sphere_fit.hpp"
 #include "engine/math/sampling.hpp"
 #include "engine/math/sh_eval.hpp"
 
@@ -52,90 +53,7 @@ std::vector<glm::dvec3> surfacePoints(const Triangles& t, int count, std::uint64
   return out;
 }
 
-// Minimal-ish enclosing sphere: Ritter's bound, then shrink-towards-farthest passes that keep every
-// point inside (the result always encloses).
-Sphere enclosing(const std::vector<glm::dvec3>& pts) {
-  if (pts.empty()) return {};
-  glm::dvec3 x = pts[0];
-  auto farthest = [&](const glm::dvec3& from) {
-    std::size_t best = 0;
-    double bd = -1.0;
-    for (std::size_t i = 0; i < pts.size(); ++i)
-      if (const double d = glm::length(pts[i] - from); d > bd) bd = d, best = i;
-    return pts[best];
-  };
-  const glm::dvec3 y = farthest(x), z = farthest(y);
-  glm::dvec3 c = 0.5 * (y + z);
-  double r = 0.5 * glm::length(z - y);
-  for (const auto& p : pts)
-    if (const double d = glm::length(p - c); d > r) {
-      const double nr = 0.5 * (r + d);
-      c += (d - nr) / d * (p - c);
-      r = nr;
-    }
-  // Bădoiu–Clarkson style refinement: step the centre towards the farthest point with a shrinking
-  // step, keep the best enclosing radius.
-  glm::dvec3 cc = c;
-  for (int it = 1; it <= 200; ++it) {
-    const glm::dvec3 f = farthest(cc);
-    cc += (f - cc) / double(it + 1);
-    double rr = 0.0;
-    for (const auto& p : pts) rr = std::max(rr, glm::length(p - cc));
-    if (rr < r) r = rr, c = cc;
-  }
-  return {c, r * (1.0 + 1e-6) + 1e-12};
-}
-
-double eq2(const glm::dvec3& p, const Sphere& s) {  // Eq. 2
-  return s.radius > 0.0 ? glm::length(p - s.centre) / s.radius : std::numeric_limits<double>::infinity();
-}
-
-std::size_t nearestSphere(const glm::dvec3& p, const std::vector<Sphere>& spheres) {
-  std::size_t best = 0;
-  double bd = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0; i < spheres.size(); ++i)
-    if (const double d = eq2(p, spheres[i]); d < bd) bd = d, best = i;
-  return best;
-}
-
-std::vector<Sphere> fitSpheres(const std::vector<glm::dvec3>& pts, int k, int iterations) {
-  // Farthest-point seeds from the first point: deterministic and spread over the surface.
-  std::vector<glm::dvec3> seeds = {pts[0]};
-  std::vector<double> dist(pts.size(), std::numeric_limits<double>::infinity());
-  while (int(seeds.size()) < k) {
-    std::size_t best = 0;
-    for (std::size_t i = 0; i < pts.size(); ++i) {
-      dist[i] = std::min(dist[i], glm::length(pts[i] - seeds.back()));
-      if (dist[i] > dist[best]) best = i;
-    }
-    seeds.push_back(pts[best]);
-  }
-  std::vector<Sphere> spheres(seeds.size());
-  for (std::size_t i = 0; i < seeds.size(); ++i) spheres[i] = {seeds[i], 1.0};  // equal radii: Euclidean first pass
-  std::vector<Sphere> best;
-  double bestVolume = std::numeric_limits<double>::infinity();
-  for (int it = 0; it <= iterations; ++it) {
-    std::vector<std::vector<glm::dvec3>> clusters(spheres.size());
-    for (const auto& p : pts) clusters[nearestSphere(p, spheres)].push_back(p);
-    // An empty cluster takes the point worst served by its sphere (largest Eq. 2 distance).
-    for (auto& cl : clusters)
-      if (cl.empty()) {
-        std::size_t worst = 0;
-        double wd = -1.0;
-        for (std::size_t i = 0; i < pts.size(); ++i)
-          if (const double d = eq2(pts[i], spheres[nearestSphere(pts[i], spheres)]); d > wd) wd = d, worst = i;
-        cl.push_back(pts[worst]);
-      }
-    double volume = 0.0;
-    for (std::size_t i = 0; i < spheres.size(); ++i) {
-      spheres[i] = enclosing(clusters[i]);
-      volume += spheres[i].radius * spheres[i].radius * spheres[i].radius;
-    }
-    // Every point lies in its cluster's sphere, so every iterate bounds all `pts`.
-    if (volume < bestVolume) bestVolume = volume, best = spheres;
-  }
-  return best;
-}
+using fit::nearestSphere;
 
 // All hits along o + t d (t > 0), nearest first.
 std::vector<ref::Hit> allHits(const ref::SceneBvh& bvh, const glm::dvec3& o, const glm::dvec3& d, double scale) {
@@ -200,21 +118,13 @@ SphereSet bake(const ref::SceneDesc& object, const BakeSettings& settings, const
 
   // 1. Sphere set.
   const auto pts = surfacePoints(tris, settings.surfaceSamples, 0x51u);
-  std::vector<Sphere> spheres = fitSpheres(pts, std::min<int>(settings.spheres, int(pts.size())), settings.iterations);
-  // The clusters bound their sample points only; make the set bound the SURFACE (§4.1's bounding
-  // property, "no holes"): each triangle goes to the sphere nearest its centroid by Eq. 2, which
-  // grows (Ritter's step, centre moving towards the point) until it holds the three corners — a
-  // sphere holding a triangle's corners holds the triangle; Ritter's grown sphere contains the old
-  // one, so earlier triangles stay inside. Large triangles grow spheres: the
-  // overshoot reports it (the paper tessellates finely, §7.4).
-  for (std::size_t t = 0; t < tris.a.size(); ++t) {
-    Sphere& sp = spheres[nearestSphere((tris.a[t] + tris.b[t] + tris.c[t]) / 3.0, spheres)];
-    for (const glm::dvec3& p : {tris.a[t], tris.b[t], tris.c[t]})
-      if (const double d = glm::length(p - sp.centre); d > sp.radius) {
-        const double nr = 0.5 * (sp.radius + d);
-        sp.centre += (d - nr) / d * (p - sp.centre);
-        sp.radius = nr * (1.0 + 1e-7);
-      }
+  std::vector<Sphere> spheres = fit::cluster(pts, std::min<int>(settings.spheres, int(pts.size())), settings.iterations);
+  // §4.1's bounding property ("no holes") on the SURFACE (sphere_fit.hpp). minEdge: 1/256 of the
+  // points' bounding-box diagonal — the most a sphere grows for one uncovered piece.
+  {
+    glm::dvec3 plo(std::numeric_limits<double>::infinity()), phi(-std::numeric_limits<double>::infinity());
+    for (const auto& p : pts) plo = glm::min(plo, p), phi = glm::max(phi, p);
+    fit::coverTriangles(spheres, tris.a, tris.b, tris.c, glm::length(phi - plo) / 256.0);
   }
   SphereSet set;
   set.settings = settings;

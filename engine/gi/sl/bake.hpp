@@ -2,18 +2,13 @@
 // SL precompute for one mesh (paper §4), CPU, deterministic, parallel over spheres, with a progress
 // bar.
 //
-// 1. Sphere set (§4.1). The paper uses variational sphere sets (Wang et al. 2006: Lloyd clustering
-//    minimising outside volume). Ours is a simpler Lloyd variant of the same idea: cluster
-//    `surfaceSamples` area-uniform surface points with the paper's own distance d(p, S) = |p − x|/r
-//    (Eq. 2), replace each cluster's sphere by the cluster's minimal enclosing sphere (Ritter's
-//    bound, then shrunk while it still encloses), repeat `iterations` times, keep the iteration with
-//    the least Σ r³ (the union's volume bound). Why not a greedy medial-axis cover: it needs a
-//    robust medial axis of arbitrary (often non-manifold) game meshes; surface clustering only
-//    needs the triangles, bounds every sample by construction (coverage error is measured on a
-//    second, independent point set) and uses Eq. 2, the same segmentation §4.2 samples with.
-//    Reported: coverage error (fraction of an independent set of 2·surfaceSamples surface points
-//    outside every sphere) and volume overshoot ((V(∪) − V(mesh))/V(mesh); V(∪) by Monte Carlo on a
-//    jittered grid, V(mesh) by the divergence theorem, meaningful for closed meshes).
+// 1. Sphere set (§4.1): engine/gi/sl/sphere_fit.hpp (Lloyd clusters of surface points with Eq. 2,
+//    then every triangle subdivided until each piece lies in a sphere). Why not a greedy
+//    medial-axis cover: it needs a robust medial axis of arbitrary (often non-manifold) game meshes;
+//    surface clustering only needs the triangles and uses Eq. 2, the same segmentation §4.2 samples
+//    with. Reported: coverage error (fraction of an independent set of 2·surfaceSamples surface
+//    points outside every sphere) and volume overshoot ((V(∪) − V(mesh))/V(mesh); V(∪) by Monte
+//    Carlo on a jittered grid, V(mesh) by the divergence theorem, meaningful for closed meshes).
 // 2. Surface samples (§4.2): rays from each centre along `directions` Fibonacci directions (the
 //    paper: geodesic-sphere vertices, 92 of them; a Fibonacci lattice is as even and takes any
 //    count); the farthest back-face hit in the sphere's Eq. 2 segment, else (no back-face hit at all:

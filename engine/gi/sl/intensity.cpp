@@ -20,23 +20,28 @@ WorldSample worldSample(const SurfaceSample& sample, const SlSphere& rest, const
 }
 
 glm::vec3 sampleReflection(const SurfaceSample& sample, const SlSphere& rest, const PosedSphere& posed,
-                           std::span<const render::LightGpu> lights, const incident::RadianceSH& indirect) {
+                           std::span<const render::LightGpu> lights, const incident::RadianceSH& indirect,
+                           const SampleBlockers& blockers) {
   const WorldSample w = worldSample(sample, rest, posed);
   incident::RadianceSH sh = indirect;
   for (const render::LightGpu& light : lights) incident::addLight(light, w.position, 0.0f, 1.0f, sh);
   const incident::RadianceSH e = incident::irradianceSH(sh);
   // E(n) = Σ c_j Y_j(n) (irradianceSH's convention), then Eq. 3's white Lambertian: / π.
-  const glm::vec3 E = sh::evalSum<glm::vec3, float>(std::span<const glm::vec3>(e), w.normal);
+  glm::vec3 E = sh::evalSum<glm::vec3, float>(std::span<const glm::vec3>(e), w.normal);
+  if (!blockers.lights.empty()) {  // §5.1: the indirect light blocked by the SLs (probe_shadow.hpp's ΔE ≤ 0)
+    std::vector<glm::dvec3> radiance(indirect.begin(), indirect.end());
+    E += glm::vec3(probeShadow(blockers.lights, glm::dvec3(w.position), glm::dvec3(w.normal), radiance, blockers.settings).delta);
+  }
   return glm::max(E, glm::vec3(0.0f)) / float(math::kPi);
 }
 
 std::vector<glm::dvec3> intensityReference(const SlSphere& rest, int order, const PosedSphere& posed,
                                            std::span<const render::LightGpu> lights,
-                                           const incident::RadianceSH& indirect) {
+                                           const incident::RadianceSH& indirect, const SampleBlockers& blockers) {
   std::vector<glm::dvec3> radiance;
   std::vector<std::vector<float>> basis;
   for (const SurfaceSample& s : rest.samples) {
-    radiance.push_back(glm::dvec3(sampleReflection(s, rest, posed, lights, indirect)));
+    radiance.push_back(glm::dvec3(sampleReflection(s, rest, posed, lights, indirect, blockers)));
     basis.push_back(s.basis);
   }
   // Eq. 11 with the set's bounce scale folded into c_S (bounce_scale.hpp), as IntensityPass uploads it.
@@ -75,21 +80,25 @@ gpu::Buffer deviceBuffer(gpu::Context& ctx, const std::vector<T>& data, VkBuffer
 
 }  // namespace
 
-IntensityPass::IntensityPass(gpu::Context& ctx, std::span<const SphereSet* const> sets, int order)
+namespace {
+constexpr std::uint32_t kBlockerBinding = 8;  // intensity.comp's SL_BINDING
+std::vector<gpu::Binding> passBindings() {
+  std::vector<gpu::Binding> b = {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},        {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                                 {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},        {3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                                 {4, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},        {5, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
+                                 {6, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}, {7, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}};
+  for (const gpu::Binding& x : ShadeData::bindings(kBlockerBinding)) b.push_back(x);
+  return b;
+}
+}  // namespace
+
+IntensityPass::IntensityPass(gpu::Context& ctx, std::span<const SphereSet* const> sets, int order, float influence)
     : ctx_(ctx),
       order_(order),
-      setLayout_(ctx,
-                 {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                  {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                  {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                  {3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                  {4, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
-                  {5, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
-                  {6, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-                  {7, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}},
-                 "sl.intensity"),
+      setLayout_(ctx, passBindings(), "sl.intensity"),
       layout_(ctx, {setLayout_.handle()}, {{VK_SHADER_STAGE_ALL, 0, sizeof(Push)}}, "sl.intensity"),
-      descriptors_(ctx, "sl.intensity") {
+      descriptors_(ctx, "sl.intensity"),
+      samplers_(ctx) {
   if (order != 3 && order != 4) throw InternalError("sl::IntensityPass: order must be 3 or 4");
   const std::size_t nc = std::size_t(order) * std::size_t(order);
   std::vector<SampleGpu> samples;
@@ -134,8 +143,11 @@ IntensityPass::IntensityPass(gpu::Context& ctx, std::span<const SphereSet* const
   std::memset(shadowMatrices_.mapped(), 0, shadowMatrices_.size());
   std::memset(spheresBuf_.mapped(), 0, spheresBuf_.size());
 
+  unreadIntensity_ = gpu::Buffer(ctx, {kIntensityBlockBytes, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::MemoryUsage::GpuOnly,
+                                       "sl.intensity.unread"});
+  noBlockers_ = std::make_unique<ShadeData>(ctx, order);
   pipeline_ = gpu::createComputePipeline(ctx, layout_, gpu::ShaderModule(ctx, "sl/intensity.comp.spv"), "sl.intensity",
-                                         nullptr, {std::uint32_t(order)});
+                                         nullptr, ShadeData::specialization(order, Blocking::PerSphere, spheres_, influence));
   set_ = descriptors_.allocate(setLayout_);
   gpu::DescriptorWriter()
       .buffer(0, samples_)
@@ -146,6 +158,14 @@ IntensityPass::IntensityPass(gpu::Context& ctx, std::span<const SphereSet* const
       .buffer(5, shadowMatrices_, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER)
       .buffer(7, intensity_)
       .update(ctx, set_);
+  setBlockers(*noBlockers_, samplers_.get({VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST}), false);
+}
+
+void IntensityPass::setBlockers(const ShadeData& blockers, VkSampler nearest, bool on) {
+  gpu::DescriptorWriter w;
+  blockers.write(w, kBlockerBinding, unreadIntensity_, nearest);
+  w.update(ctx_, set_);
+  push_.blockers = on && blockers.count() > 0 ? 1u : 0u;
 }
 
 void IntensityPass::setSpheres(std::span<const PosedSphere> posed, std::span<const incident::RadianceSH> indirect) {

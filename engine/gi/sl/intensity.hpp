@@ -13,18 +13,28 @@
 // the spheres are fatter than the mesh and their overlaps add, measured 2–4× the mesh's light).
 // with E(n) the irradiance from the order-3 radiance SH of the light arriving at p: the level's real
 // lights through incident.glsl (radius 0: a point receiver) each times its visibility, plus the
-// probes' indirect light. DEPARTURES: (1) the probes are sampled once per SL, at its posed centre,
-// on the CPU (an SL is small next to the probe spacing, and 64 lookups a frame are cheaper than one
-// per sample on the device); (2) visibility is the lighting pass's shadow-map lookup (shadow.glsl),
+// probes' indirect light blocked by the SLs (§5.1: "SLs act as blockers and environment lighting as
+// light source", Eq. 3 and 6): E += ΔE of probe_shadow.hpp (sl::probeShadow, the same function pass
+// 2's sl.shadow evaluates, same exp, tables, receiver rules, union share and shadow scale), over
+// every SL of the frame; the receiver rules shrink or cull the sample's own SL and the neighbours
+// that contain it, so what blocks is the rest of its object and the other objects. The real lights
+// need no spheres: their shadow maps hold every object's real mesh.
+// DEPARTURES: (1) the probes are sampled once per SL, at its posed centre, on the CPU (an SL is
+// small next to the probe spacing, and 64 lookups a frame are cheaper than one per sample on the
+// device; measured: moving that point by ±1 radius changes the characters level's indirect-only
+// error by ≤ 0.004, README "SL accuracy"); (2) visibility is the lighting pass's shadow-map lookup (shadow.glsl),
 // so an SL's own object shadows its back-facing samples as the renderer shades them; the C++
 // reference has no shadow map and takes every light as visible (the GPU test runs unshadowed).
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
 
 #include <glm/glm.hpp>
 
 #include "engine/gi/incident/incident.hpp"
+#include "engine/gi/sl/probe_shadow.hpp"
+#include "engine/gi/sl/shade.hpp"
 #include "engine/gi/sl/sphere_set.hpp"
 #include "engine/gi/sl/update.hpp"
 #include "engine/gpu/buffer.hpp"
@@ -41,15 +51,23 @@ struct WorldSample {
 };
 WorldSample worldSample(const SurfaceSample& sample, const SlSphere& rest, const PosedSphere& posed);
 
+// The SLs that block the indirect light at the samples (the header), and probeShadow's settings.
+// Empty `lights`: nothing blocks.
+struct SampleBlockers {
+  std::span<const Light> lights;  // world spheres and object ids (intensity unused)
+  ShadowSettings settings;
+};
+
 // L_pj (the header), every light unoccluded: the C++ reference of intensity.comp's steps 1–2.
 glm::vec3 sampleReflection(const SurfaceSample& sample, const SlSphere& rest, const PosedSphere& posed,
-                           std::span<const render::LightGpu> lights, const incident::RadianceSH& indirect);
+                           std::span<const render::LightGpu> lights, const incident::RadianceSH& indirect,
+                           const SampleBlockers& blockers = {});
 
 // The whole pass 1 of one SL in C++ (double sums): sampleReflection per sample, then Eq. 10–11
 // (intensityFromSamples). Returns order² RGB coefficients in the SL's local frame.
 std::vector<glm::dvec3> intensityReference(const SlSphere& rest, int order, const PosedSphere& posed,
                                            std::span<const render::LightGpu> lights,
-                                           const incident::RadianceSH& indirect);
+                                           const incident::RadianceSH& indirect, const SampleBlockers& blockers = {});
 
 // Pass 1 on the device for every SL of every participating set (concatenated in the order given;
 // SL index = running index over the sets' spheres). The samples, albedo SH and Gaunt tensor are
@@ -60,8 +78,9 @@ class IntensityPass {
  public:
   // `order` (3 or 4) is the result's; sets baked at order 3 take part in an order-4 pass with their
   // band-3 basis sums and albedo zero. Throws InternalError for a set of a higher order or more SLs
-  // than pass 2's blocks hold (kMaxShadedSpheres).
-  IntensityPass(gpu::Context& ctx, std::span<const SphereSet* const> sets, int order);
+  // than pass 2's blocks hold (kMaxShadedSpheres). `influence`: evaluate.hpp rule 0's F for the
+  // blockers (pass 2's, 0: off).
+  IntensityPass(gpu::Context& ctx, std::span<const SphereSet* const> sets, int order, float influence = 0.0f);
   std::uint32_t sphereCount() const { return spheres_; }
   int order() const { return order_; }
   // posed[i], indirect[i]: SL i's pose and the probes' radiance SH at its posed centre (host-visible:
@@ -77,6 +96,10 @@ class IntensityPass {
   // shadowsOn = false every light is unoccluded (the atlas is still bound: a dummy will do). Same
   // rule as bindLights.
   void setShadowAtlas(VkImageView atlas, VkSampler compareSampler, VkImageLayout layout, bool shadowsOn);
+  // The SLs that block the indirect light at the samples (the header): pass 2's data for this frame
+  // (ShadeData, same SL order as setSpheres) and a nearest sampler for its tables. Without a call,
+  // or with on = false, nothing blocks. Same rule as bindLights.
+  void setBlockers(const ShadeData& blockers, VkSampler nearest, bool on = true);
   // One dispatch (a workgroup per SL) and a barrier making intensity() visible to later compute
   // and fragment shader reads.
   void record(VkCommandBuffer cmd);
@@ -84,7 +107,7 @@ class IntensityPass {
 
  private:
   struct Push {
-    std::uint32_t lightCount = 0, shadowsOn = 0, gaunts = 0, pad = 0;
+    std::uint32_t lightCount = 0, shadowsOn = 0, gaunts = 0, blockers = 0;
   };
   gpu::Context& ctx_;
   int order_ = 4;
@@ -99,6 +122,9 @@ class IntensityPass {
   gpu::DescriptorAllocator descriptors_;
   VkDescriptorSet set_ = VK_NULL_HANDLE;
   bool atlasBound_ = false;
+  gpu::Buffer unreadIntensity_;  // sl_data.glsl's intensity block (not read by pass 1: no aliasing of intensity_)
+  gpu::SamplerCache samplers_;
+  std::unique_ptr<ShadeData> noBlockers_;  // bound until setBlockers (lavapipe: no unwritten descriptors)
 };
 
 }  // namespace bounce::gi::sl

@@ -46,7 +46,7 @@ Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t fra
               {VkPushConstantRange{VK_SHADER_STAGE_ALL, 0, sizeof(TilePush)}}, "sl") {
   for (std::uint32_t i = 0; i < std::max<std::uint32_t>(framesInFlight, 1); ++i) {
     Slot s;
-    s.intensity = std::make_unique<IntensityPass>(ctx, sets, order);
+    s.intensity = std::make_unique<IntensityPass>(ctx, sets, order, influence);
     s.shade = std::make_unique<ShadeData>(ctx, order);
     slots_.push_back(std::move(s));
   }
@@ -164,6 +164,8 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::s
         slot.intensity->bindLights(*pc->lights, pc->lightCount, *pc->shadowMatrices);
         slot.intensity->setShadowAtlas(pc->frameView(atlas, VK_IMAGE_VIEW_TYPE_2D_ARRAY, 0, atlas.desc().layers), compare,
                                        VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, d.atlas.has_value());
+        // §5.1: this frame's SLs block the indirect light at the samples (intensity.hpp).
+        slot.intensity->setBlockers(*slot.shade, pc->samplers->get({VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST}));
         slot.intensity->record(cmd);
       });
 

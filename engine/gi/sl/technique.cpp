@@ -215,7 +215,7 @@ ObjectInput objectInput(ecs::Registry& registry, ecs::Entity entity, const ref::
 
 std::string cacheKey(const ObjectInput& in, const BakeSettings& s) {
   Hasher h;
-  h.str("sl-sphere-set-v2");  // baker and BSLSPSET format version: bump when either changes
+  h.str("sl-sphere-set-v3");  // baker and BSLSPSET format version: bump when either changes (v3: the subdivided surface cover of sphere_fit.hpp)
   h.pod(s.spheres).pod(s.order).pod(s.directions).pod(s.samplesPerAxis).pod(s.surfaceSamples).pod(s.iterations);
   const ref::SceneDesc& object = in.object;
   ref::hashGeometry(h, object);

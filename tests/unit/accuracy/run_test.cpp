@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "engine/core/image.hpp"
+#include "engine/ref/metrics.hpp"
 #include "engine/gpu/testing.hpp"
 #include "game/accuracy.hpp"
 
@@ -61,6 +62,7 @@ class AccuracyRun : public ::testing::Test {
     o.cookCache = std::filesystem::path(BOUNCE_TEST_OUT) / "accuracy" / "cooked";
     o.progress = false;
     o.rows = testRows();
+    o.effectImages = true;
     report_ = new AccuracyReport(runAccuracy(o));
   }
   static void TearDownTestSuite() {
@@ -149,6 +151,41 @@ TEST_F(AccuracyRun, ChartIsAValidPng) {
   const ImageSrgb8 chart = readPng(*report_->chart);
   EXPECT_GT(chart.width, 100);
   EXPECT_GT(chart.height, 100);
+}
+
+}  // namespace
+}  // namespace bounce::game
+
+namespace bounce::game {
+namespace {
+
+// --effect-images: the written PFMs are exactly what the errors compared — the object-effect error
+// and the indirect-only one recomputed from them equal every row's reported numbers (float images
+// stored as float: the same sums, to rounding of the double accumulation order, 1e-9).
+TEST_F(AccuracyRun, EffectImagesReproduceEveryRowsObjectEffectErrors) {
+  const std::filesystem::path out = report_->csv.parent_path();
+  const ImageRGB maskImage = readPfm(out / "mask-indirect-only.pfm");
+  ref::PixelMask mask(maskImage.width, maskImage.height);
+  for (int y = 0; y < maskImage.height; ++y)
+    for (int x = 0; x < maskImage.width; ++x) mask.set(x, y, maskImage.pixels[std::size_t(y) * maskImage.width + x].x > 0.5f);
+  ASSERT_GT(mask.count(), 0u);
+  int checked = 0;
+  for (const AccuracyResult& r : report_->rows) {
+    const std::string stem = r.heatMap.stem().string();  // "heatmap-<row>"
+    const std::string name = stem.substr(std::string("heatmap-").size());
+    const std::string kind = referenceKind(r.row.setting);
+    const ImageRGB with = readPfm(out / ("image-" + name + ".pfm")), without = readPfm(out / ("without-" + name + ".pfm"));
+    const ImageRGB refWith = readPfm(out / ("reference-" + kind + "-with.pfm"));
+    const ImageRGB refWithout = readPfm(out / ("reference-" + kind + "-without.pfm"));
+    const ref::ObjectEffectError all = ref::objectEffectError(with, without, refWith, refWithout);
+    const ref::ObjectEffectError indirect = ref::objectEffectError(with, without, refWith, refWithout, &mask);
+    if (std::isfinite(r.effectRelRmse)) EXPECT_NEAR(all.relativeError, r.effectRelRmse, 1e-9 * (1.0 + r.effectRelRmse)) << name;
+    if (std::isfinite(r.indirectEffectRelRmse))
+      EXPECT_NEAR(indirect.relativeError, r.indirectEffectRelRmse, 1e-9 * (1.0 + r.indirectEffectRelRmse)) << name;
+    ++checked;
+  }
+  EXPECT_EQ(checked, int(report_->rows.size()));
+  EXPECT_GT(checked, 10);
 }
 
 }  // namespace

@@ -2,10 +2,13 @@
 // (engine/gi/sl/intensity.hpp: sampleReflection per sample, then Eq. 10–11 in double): a baked
 // two-tone sphere's SLs, each posed with its own rotation, translation and scale, lit by a point, a
 // spot and a directional light plus per-SL indirect SH, at SH orders 3 and 4; and the shadow path:
-// a shadow atlas that occludes everything leaves exactly the indirect light's share.
+// a shadow atlas that occludes everything leaves exactly the indirect light's share; and §5.1's
+// blockers: a sample facing one big sphere loses the cap's closed form of its indirect light, and
+// the device's blocked samples equal the C++ reference (sl::probeShadow, the function pass 2 uses).
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -115,10 +118,11 @@ std::vector<glm::vec4> runPass(gpu::Context& ctx, IntensityPass& pass) {
 }
 
 void expectMatches(const std::vector<glm::vec4>& got, const SphereSet& set, const Frame& f,
-                   std::span<const render::LightGpu> lights, int order) {
+                   std::span<const render::LightGpu> lights, int order, const SampleBlockers& blockers = {},
+                   double tolerance = kTolerance) {
   const std::size_t nc = std::size_t(order) * std::size_t(order);
   for (std::size_t i = 0; i < set.spheres.size(); ++i) {
-    const auto want = intensityReference(set.spheres[i], order, f.posed[i], lights, f.indirect[i]);
+    const auto want = intensityReference(set.spheres[i], order, f.posed[i], lights, f.indirect[i], blockers);
     ASSERT_EQ(want.size(), nc);
     double scale = 0.0;
     for (const glm::dvec3& w : want) scale = std::max({scale, std::abs(w.r), std::abs(w.g), std::abs(w.b)});
@@ -130,7 +134,7 @@ void expectMatches(const std::vector<glm::vec4>& got, const SphereSet& set, cons
           EXPECT_EQ(g, 0.0) << "SL " << i << " coefficient " << k << " beyond order " << order;
           continue;
         }
-        EXPECT_NEAR(g, want[k][c], kTolerance * scale) << "SL " << i << " coefficient " << k << " channel " << c;
+        EXPECT_NEAR(g, want[k][c], tolerance * scale) << "SL " << i << " coefficient " << k << " channel " << c;
       }
   }
 }
@@ -212,4 +216,114 @@ TEST(SlIntensityGpu, ShadowAtlasVisibilityMultipliesTheLights) {
   Atlas open(ctx, 1.0f);
   pass.setShadowAtlas(open.image.view(), open.sampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, true);
   expectMatches(runPass(ctx, pass), set, f, lights, 4);
+}
+
+// §5.1 at one sample point (C++ reference): p on the top of its own SL (normal +z) under uniform
+// indirect radiance L, one sphere of another object at angular radius θ (sin θ up to 0.95) whose
+// centre is β from n, wholly above the tangent plane.
+// probe_shadow.hpp's Ratio form makes one cap's loss exact: L_p = L (1 − sin²θ cos β) (the cosine-
+// weighted solid angle of the cap over π). The sample's own SL touches p from below and is culled by
+// the receiver rules, so it takes nothing. Float E on the way (sampleReflection): kCapTolerance.
+TEST(SlIntensity, ASampleFacingABigBlockerLosesTheCapsClosedForm) {
+  constexpr double kCapTolerance = 1e-4;  // of L
+  SlSphere rest;
+  rest.centre = glm::vec3(0.0f, 0.0f, -0.5f);
+  rest.radius = 0.5f;
+  SurfaceSample sample;
+  sample.position = glm::vec3(0.0f);
+  sample.normal = glm::vec3(0.0f, 0.0f, 1.0f);
+  PosedSphere posed;
+  posed.centre = rest.centre;
+  posed.radius = rest.radius;
+  const float L = 0.7f;
+  gi::incident::RadianceSH uniform{};
+  uniform[0] = glm::vec3(L * float(std::sqrt(4.0 * math::kPi)));  // radiance = c00 Y00
+  EXPECT_NEAR(sampleReflection(sample, rest, posed, {}, uniform).x, L, kCapTolerance * L);
+  int cases = 0;
+  for (const double beta : {0.0, 0.5, 1.0})
+    for (const double sinTheta : {0.5, 0.8, 0.95}) {
+      // The closed form holds for a cap wholly above the tangent plane (β + θ ≤ π/2); a crossing
+      // sphere is shrunk above the plane by the receiver rules (evaluate.hpp rule 2).
+      if (beta + std::asin(sinTheta) > 0.5 * math::kPi) continue;
+      ++cases;
+      const double d = 1.0;
+      std::vector<Light> blockers(2);
+      blockers[0].sphere = {glm::dvec3(posed.centre), double(posed.radius)};  // its own SL (object 0)
+      blockers[0].object = 0;
+      blockers[1].sphere = {d * glm::dvec3(std::sin(beta), 0.0, std::cos(beta)), d * sinTheta};
+      blockers[1].object = 1;
+      SampleBlockers b{blockers, ShadowSettings{}};
+      const double want = L * (1.0 - sinTheta * sinTheta * std::cos(beta));
+      const glm::vec3 got = sampleReflection(sample, rest, posed, {}, uniform, b);
+      EXPECT_NEAR(got.x, want, kCapTolerance * L) << "beta " << beta << " sin theta " << sinTheta;
+      EXPECT_NEAR(got.z, want, kCapTolerance * L);
+    }
+  EXPECT_EQ(cases, 6);
+}
+
+// The device's blocked samples (intensity.comp with sl/probe_shadow.glsl over ShadeData) equal the
+// C++ reference (sampleReflection with sl::probeShadow) at orders 3 and 4: two objects side by side,
+// every SL of both a blocker (their own SL and containing neighbours culled by the receiver rules),
+// union shares and shadow scales per object as the node sets them. Tolerance: sl.shadow's GLSL vs
+// C++ bound (5e-4 of E_u, SlProbeShadowGpu) on ΔE, of the largest coefficient here. The blockers
+// move the result by far more than that (checked), so the comparison tests the blocking.
+TEST(SlIntensityGpu, BlockedIndirectLightEqualsTheCppReference) {
+  constexpr double kBlockedTolerance = 5e-4;
+  gpu::Context& ctx = gpu::testkit::sharedContext();
+  gpu::SamplerCache samplers(ctx);
+  const VkSampler nearest = samplers.get({VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST});
+  const std::vector<render::LightGpu> lights = threeLights();
+  for (int order : {3, 4}) {
+    SCOPED_TRACE("order " + std::to_string(order));
+    const SphereSet a = bakedSet(order), b = bakedSet(order);
+    const SphereSet* sets[] = {&a, &b};
+    IntensityPass pass(ctx, sets, order);
+    Atlas atlas(ctx, 1.0f);
+    pass.setShadowAtlas(atlas.image.view(), atlas.sampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, false);
+    Frame fa = randomFrame(a, 21), fb = randomFrame(b, 22);
+    for (PosedSphere& p : fb.posed) p.centre += glm::vec3(1.1f, 0.0f, 0.0f);  // b beside a
+    Frame all = fa;
+    all.posed.insert(all.posed.end(), fb.posed.begin(), fb.posed.end());
+    all.indirect.insert(all.indirect.end(), fb.indirect.begin(), fb.indirect.end());
+    pass.setSpheres(all.posed, all.indirect);
+    pass.setLights(lights, {});
+    const float share[2] = {0.8f, 0.6f}, silhouette[2] = {0.7f, 0.9f};
+    std::vector<ShadedSphere> shaded;
+    std::vector<Light> blockers;
+    for (std::size_t i = 0; i < all.posed.size(); ++i) {
+      const std::uint32_t object = i < a.spheres.size() ? 0u : 1u;
+      shaded.push_back({all.posed[i].centre, all.posed[i].radius, all.posed[i].rotation, object, share[object], silhouette[object]});
+      Light l;
+      l.sphere = {glm::dvec3(all.posed[i].centre), double(all.posed[i].radius)};
+      l.rotation = glm::dmat3(all.posed[i].rotation);
+      l.object = int(object);
+      blockers.push_back(l);
+    }
+    ShadeData shade(ctx, order);
+    shade.setSpheres(shaded);
+    pass.setBlockers(shade, nearest);
+    ShadowSettings settings;
+    settings.order = order;
+    settings.objectShare = {share[0], share[1]};
+    settings.objectSilhouette = {silhouette[0], silhouette[1]};
+    const SampleBlockers with{blockers, settings};
+    // Not vacuous: the blocked reference differs from the unblocked one by ≫ the tolerance.
+    const auto open = intensityReference(a.spheres[0], order, fa.posed[0], lights, fa.indirect[0]);
+    const auto shut = intensityReference(a.spheres[0], order, fa.posed[0], lights, fa.indirect[0], with);
+    double moved = 0.0, scale = 0.0;
+    for (std::size_t k = 0; k < open.size(); ++k)
+      moved = std::max(moved, glm::length(open[k] - shut[k])), scale = std::max(scale, glm::length(open[k]));
+    std::printf("order %d: blockers move SL 0's intensity by %.4f of its largest coefficient\n", order, moved / scale);
+    EXPECT_GT(moved, 20.0 * kBlockedTolerance * scale);
+    const std::vector<glm::vec4> got = runPass(ctx, pass);
+    const std::size_t na = a.spheres.size() * 16;
+    expectMatches(std::vector<glm::vec4>(got.begin(), got.begin() + std::ptrdiff_t(na)), a, fa, lights, order, with,
+                  kBlockedTolerance);
+    expectMatches(std::vector<glm::vec4>(got.begin() + std::ptrdiff_t(na), got.end()), b, fb, lights, order, with,
+                  kBlockedTolerance);
+    // Blockers off again: the unblocked reference.
+    pass.setBlockers(shade, nearest, false);
+    const std::vector<glm::vec4> unblocked = runPass(ctx, pass);
+    expectMatches(std::vector<glm::vec4>(unblocked.begin(), unblocked.begin() + std::ptrdiff_t(na)), a, fa, lights, order);
+  }
 }
