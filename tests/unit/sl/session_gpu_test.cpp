@@ -181,10 +181,10 @@ TEST(SlSession, EntitiesThatDisagreeOnBlockingOrInfluenceAreBadInput) {
     std::string expected;
     if (blocking) {
       second->sl->perObject = !first->sl->perObject;
-      expected = kCharacters.string() + ": " + second->pointer + "/sl/blocking: \"per-object\" differs from entity \"" +
-                 first->id + "\"'s \"per-sphere\" (expected one blocking for every sl entity of a level: pass 2 shades "
+      expected = kCharacters.string() + ": " + second->pointer + "/sl/blocking: \"per-sphere\" differs from entity \"" +
+                 first->id + "\"'s \"per-object\" (expected one blocking for every sl entity of a level: pass 2 shades "
                  "them in one draw)";
-      ASSERT_FALSE(first->sl->perObject) << "the characters level uses per-sphere blocking";
+      ASSERT_TRUE(first->sl->perObject) << "the characters level uses per-object blocking";
     } else {
       second->sl->influence = 24.0f;
       expected = kCharacters.string() + ": " + second->pointer + "/sl/influence: 24 differs from entity \"" + first->id +
