@@ -167,8 +167,9 @@ void slFinish(uint s, in float blockers[16], bool haveExpB, inout float expB[16]
               in float yn[16], inout vec3 e) {
   float with[16];
   for (uint k = 0u; k < 16u; ++k) with[k] = blockers[k] + slLogs[s * 16u + k];
-  // A loop of 0 or 1 turns, not an if: llvmpipe leaves a loop no lane is in, but runs both sides of
-  // a branch (README "What costs what on lavapipe").
+  // A loop of 0 or 1 turns, not an if. On llvmpipe it saves nothing: a loop's first body always
+  // runs, masked when no lane needs it (README "Loop bodies III"), so every slot pays two slExps
+  // there; a GPU that skips an empty loop pays one where the exp is reused.
   for (uint t = haveExpB ? 1u : 0u; t < 1u; ++t) slExp(blockers, expB);
   slExp(with, expWith);
   float v[16];
