@@ -87,18 +87,28 @@ void main() {
     uint he = t / 16u, i = t % 16u;
     uint D = pc.proxies * 768u;
     vec3 u = vec3(0.0);
-    for (uint k = 0u; k < pc.proxies; ++k)
-      for (uint j = 0u; j < 16u; ++j) {
-        uint e = he * D + ((k * 16u + i) * 16u + j) * 3u;
-        u += vec3(basis[e], basis[e + 1u], basis[e + 2u]) * light[k * 16u + j].rgb;
-      }
+    // do…while with a guarded body: llvmpipe runs a `for` body once more with every lane masked
+    // (README "Loop bodies III"): 2 bodies of 16 multiply-adds for one proxy, not 1.
+    uint k = 0u;
+    do {
+      if (k < pc.proxies)
+        for (uint j = 0u; j < 16u; ++j) {
+          uint e = he * D + ((k * 16u + i) * 16u + j) * 3u;
+          u += vec3(basis[e], basis[e + 1u], basis[e + 2u]) * light[k * 16u + j].rgb;
+        }
+      ++k;
+    } while (k < pc.proxies);
     eigen[t] = vec4(u, 0.0);
   } else {
     if (t >= pc.samples * 16u) return;
     uint r = t / 16u, i = t % 16u;
     uint base = cluster[r] * (pc.components + 1u) * 16u;
     vec3 x = eigen[base + i].rgb;
-    for (uint e = 1u; e <= pc.components; ++e) x += alpha[r * pc.components + e - 1u] * eigen[base + e * 16u + i].rgb;
+    uint e = 1u;
+    do {  // do…while, guarded, as stage 0's loop
+      if (e <= pc.components) x += alpha[r * pc.components + e - 1u] * eigen[base + e * 16u + i].rgb;
+      ++e;
+    } while (e <= pc.components);
     uint n2 = pc.faceSize * pc.faceSize, per = 6u * n2;
     uint sphere = r / per, rest = r % per, face = rest / n2;
     uint px = rest % pc.faceSize, py = (rest % n2) / pc.faceSize;

@@ -45,13 +45,20 @@ void main() {
   if (i >= pc.vertexCount) return;
   const SkinVertex v = src[i];
   vec3 p = v.positionU.xyz, n = v.normalV.xyz;
-  for (uint t = 0u; t < pc.targetCount; ++t) {
-    const float w = morphWeights[pc.weightBase + t];
-    if (w == 0.0) continue;
-    const uint d = 2u * (t * pc.vertexCount + i);
-    p += w * deltas[d].xyz;
-    n += w * deltas[d + 1u].xyz;
-  }
+  // do…while with a guarded body: llvmpipe runs a `for` body once more with every lane masked
+  // (README "Loop bodies III"), so n targets cost n bodies, not n + 1.
+  uint t = 0u;
+  do {
+    if (t < pc.targetCount) {
+      const float w = morphWeights[pc.weightBase + t];
+      if (w != 0.0) {
+        const uint d = 2u * (t * pc.vertexCount + i);
+        p += w * deltas[d].xyz;
+        n += w * deltas[d + 1u].xyz;
+      }
+    }
+    ++t;
+  } while (t < pc.targetCount);
   if (pc.skinned != 0u) {
     mat4 s = mat4(0.0);
     for (int k = 0; k < 4; ++k) {

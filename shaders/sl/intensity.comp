@@ -98,30 +98,40 @@ void main() {
 
   vec3 acc[16];
   for (uint k = 0u; k < 16u; ++k) acc[k] = vec3(0.0);
-  for (uint t = lid; t < s.range.y; t += 64u) {
-    Sample smp = samples[s.range.x + t];
-    vec3 p = s.posed.xyz + rot * ((smp.position.xyz - s.rest.xyz) * scale);
-    vec3 n = normalize(rot * smp.normal.xyz);
-    vec3 sh[9];
-    for (int k = 0; k < 9; ++k) sh[k] = s.indirect[k].rgb;
-    for (uint i = 0u; i < pc.lightCount; ++i) {
-      float v = 1.0;
-      if (pc.shadowsOn != 0u) {
-        uint type = uint(lights[i].positionType.w + 0.5);
-        float dist = type == kLightDirectional ? 0.0 : length(lights[i].positionType.xyz - p);
-        v = shadowVisibility(lights[i], p, n, dist);
+  // The sample, light and Gaunt loops are `do … while` with guarded bodies: llvmpipe runs a `for`
+  // body once more with every lane masked (README "Loop bodies III").
+  uint t = lid;
+  do {
+    if (t < s.range.y) {
+      Sample smp = samples[s.range.x + t];
+      vec3 p = s.posed.xyz + rot * ((smp.position.xyz - s.rest.xyz) * scale);
+      vec3 n = normalize(rot * smp.normal.xyz);
+      vec3 sh[9];
+      for (int k = 0; k < 9; ++k) sh[k] = s.indirect[k].rgb;
+      uint i = 0u;
+      do {
+        if (i < pc.lightCount) {
+          float v = 1.0;
+          if (pc.shadowsOn != 0u) {
+            uint type = uint(lights[i].positionType.w + 0.5);
+            float dist = type == kLightDirectional ? 0.0 : length(lights[i].positionType.xyz - p);
+            v = shadowVisibility(lights[i], p, n, dist);
+          }
+          if (v > 0.0) incidentAddLight(lights[i], p, 0.0, v, sh);
+        }
+        ++i;
+      } while (i < pc.lightCount);
+      vec3 blocked = vec3(0.0);  // ΔE ≤ 0 of the indirect light (Eq. 3 and 6)
+      if (pc.blockers != 0u) {
+        vec3 ind[9];
+        for (int k = 0; k < 9; ++k) ind[k] = s.indirect[k].rgb;
+        blocked = slProbeShadow(p, n, ind);
       }
-      if (v > 0.0) incidentAddLight(lights[i], p, 0.0, v, sh);
+      vec3 L = max(shIrradiance9(sh, n) + blocked, vec3(0.0)) * (1.0 / 3.14159265358979324);  // L_p, Eq. 3
+      for (uint k = 0u; k < kCoeffs; ++k) acc[k] += L * smp.basis[k / 4u][k % 4u];   // Eq. 10
     }
-    vec3 blocked = vec3(0.0);  // ΔE ≤ 0 of the indirect light (Eq. 3 and 6)
-    if (pc.blockers != 0u) {
-      vec3 ind[9];
-      for (int k = 0; k < 9; ++k) ind[k] = s.indirect[k].rgb;
-      blocked = slProbeShadow(p, n, ind);
-    }
-    vec3 L = max(shIrradiance9(sh, n) + blocked, vec3(0.0)) * (1.0 / 3.14159265358979324);  // L_p, Eq. 3
-    for (uint k = 0u; k < kCoeffs; ++k) acc[k] += L * smp.basis[k / 4u][k % 4u];   // Eq. 10
-  }
+    t += 64u;
+  } while (t < s.range.y);
   for (uint k = 0u; k < 16u; ++k) partial[lid * 16u + k] = acc[k];
   barrier();
   for (uint stride = 32u; stride > 0u; stride >>= 1u) {
@@ -132,11 +142,16 @@ void main() {
   // Eq. 11: one output coefficient per invocation, c_k = Σ C_ijk L_S,i c_S,j (sh::product's order).
   if (lid < 16u) {
     vec3 c = vec3(0.0);
-    if (lid < kCoeffs)
-      for (uint e = 0u; e < pc.gaunts; ++e) {
-        Gaunt g = gaunt[e];
-        if (g.k == lid && g.i < kCoeffs && g.j < kCoeffs) c += g.value * partial[g.i] * albedo[sl * 16u + g.j].rgb;
-      }
+    if (lid < kCoeffs) {
+      uint e = 0u;
+      do {
+        if (e < pc.gaunts) {
+          Gaunt g = gaunt[e];
+          if (g.k == lid && g.i < kCoeffs && g.j < kCoeffs) c += g.value * partial[g.i] * albedo[sl * 16u + g.j].rgb;
+        }
+        ++e;
+      } while (e < pc.gaunts);
+    }
     intensity[sl * 16u + lid] = vec4(c, 0.0);
   }
 }

@@ -9,6 +9,7 @@
 // Needs sl.glsl (and what it needs) included first.
 #ifndef BOUNCE_SL_PROBE_SHADOW_GLSL
 #define BOUNCE_SL_PROBE_SHADOW_GLSL
+#include "mask.glsl"
 
 const float kSlShadowEpsilon = 1e-9;  // probe_shadow.hpp kShadowEpsilon (sr)
 const float kSlShadowMaxRatio = 4.0;  // probe_shadow.hpp kShadowMaxRatio
@@ -23,35 +24,38 @@ vec3 slProbeShadow(vec3 p, vec3 n, in vec3 L[9], uvec4 candidates) {
   // Â_l √((2l+1)/(4π)): ρ_n · (a ZH z rotated to d) = Σ_l Â_l √((2l+1)/(4π)) z_l P_l(n·d) (addition
   // theorem), so one blocker's A_j needs no 16-coefficient rotation.
   const vec4 lobeZonal = vec4(SH_A0 * 0.28209479177387814, SH_A1 * 0.48860251190291992, SH_A2 * 0.63078313050504001, 0.0);
-  for (uint w = 0u; w < 4u; ++w)
-    for (uint bits = candidates[w]; bits != 0u; bits &= bits - 1u) {
-      uint i = 32u * w + uint(findLSB(bits));
-      if (i >= count) continue;
+  // One do…while over the set (mask.glsl): max(n, 1) bodies, not n + 4 (README "Loop bodies III").
+  uvec4 rest = candidates;
+  do {
+    uint i = maskPop(rest);
+    if (i < count) {
       vec4 sp = slSphere(i);
       vec3 c = sp.xyz;
       float r = sp.w;
       bool kept = slAdjust(c, r, p, n);
       float d = length(c - p);
-      if (!kept || !(d > 0.0)) continue;
-      vec3 dir = (c - p) / d;
-      float s = min(1.0, r / d);
-      vec4 z = slThetaRow(0, asin(s));
-      float lg[16];
-      slRotateZonal(z, dir, lg);
-      for (uint k = 0u; k < kSlCoeffs; ++k) sum[k] += lg[k];
-      // X_j: the cap's exact cosine-weighted solid angle; A_j: ρ_n · (1 − exp(G_j)) with the OL exp
-      // (one blocker's ‖f̂‖ ≤ 1.9 < kHybridBlendStart for every θ of the table: no blend, no squarings;
-      // SlProbeShadow.OneCapsLogIsBelowTheHybridsBlend checks it).
-      float cd = dot(n, dir);
-      float capX = slSilhouette(i) * kSlPi * s * s * max(0.0, cd);  // × the set's shadow scale (bounce_scale.hpp)
-      exact += capX;
-      sharedX += slShare(i) * capX;
-      float m = sqrt(z.y * z.y + z.z * z.z + (kOrder > 3u ? z.w * z.w : 0.0));
-      vec2 ab = slOl(m);
-      float p2 = 0.5 * (3.0 * cd * cd - 1.0);
-      float dotted = ab.x * SH_A0 + ab.y * (lobeZonal.y * z.y * cd + lobeZonal.z * z.z * p2);
-      approx += SH_A0 - exp(min(z.x / kSlSqrt4Pi, kSlMaxExponent)) * dotted;
+      if (kept && d > 0.0) {
+        vec3 dir = (c - p) / d;
+        float s = min(1.0, r / d);
+        vec4 z = slThetaRow(0, asin(s));
+        float lg[16];
+        slRotateZonal(z, dir, lg);
+        for (uint k = 0u; k < kSlCoeffs; ++k) sum[k] += lg[k];
+        // X_j: the cap's exact cosine-weighted solid angle; A_j: ρ_n · (1 − exp(G_j)) with the OL exp
+        // (one blocker's ‖f̂‖ ≤ 1.9 < kHybridBlendStart for every θ of the table: no blend, no squarings;
+        // SlProbeShadow.OneCapsLogIsBelowTheHybridsBlend checks it).
+        float cd = dot(n, dir);
+        float capX = slSilhouette(i) * kSlPi * s * s * max(0.0, cd);  // × the set's shadow scale (bounce_scale.hpp)
+        exact += capX;
+        sharedX += slShare(i) * capX;
+        float m = sqrt(z.y * z.y + z.z * z.z + (kOrder > 3u ? z.w * z.w : 0.0));
+        vec2 ab = slOl(m);
+        float p2 = 0.5 * (3.0 * cd * cd - 1.0);
+        float dotted = ab.x * SH_A0 + ab.y * (lobeZonal.y * z.y * cd + lobeZonal.z * z.z * p2);
+        approx += SH_A0 - exp(min(z.x / kSlSqrt4Pi, kSlMaxExponent)) * dotted;
+      }
     }
+  } while (rest != uvec4(0u));
   float v[16];
   slExp(sum, v);
   float y[9];

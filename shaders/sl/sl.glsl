@@ -25,6 +25,7 @@
 #define BOUNCE_SL_GLSL
 
 #include "sh.glsl"
+#include "mask.glsl"
 
 const uint kSlCoeffs = kOrder * kOrder;
 #ifdef SL_SINGLE_OBJECT
@@ -131,11 +132,16 @@ void slExp(in float f[16], out float g[16]) {
     slSquare(q, q2);
     for (uint i = 0u; i < 16u; ++i) g[i] = (1.0 - blend) * g[i] + blend * q2[i];
   }
-  for (int s = 0; s < k; ++s) {
-    float h[16];
-    slSquare(g, h);
-    g = h;
-  }
+  // k squarings, do…while: a `for` runs its body once more, masked (README "Loop bodies III").
+  int s = 0;
+  do {
+    if (s < k) {
+      float h[16];
+      slSquare(g, h);
+      g = h;
+    }
+    ++s;
+  } while (s < k);
   float dc = exp(min(f[0] / kSlSqrt4Pi, kSlMaxExponent));
   for (uint i = 0u; i < 16u; ++i) g[i] *= dc;
 }
@@ -161,8 +167,9 @@ void slFinish(uint s, in float blockers[16], bool haveExpB, inout float expB[16]
               in float yn[16], inout vec3 e) {
   float with[16];
   for (uint k = 0u; k < 16u; ++k) with[k] = blockers[k] + slLogs[s * 16u + k];
-  // A loop of 0 or 1 turns, not an if: llvmpipe leaves a loop no lane is in, but runs both sides of
-  // a branch (README "What costs what on lavapipe").
+  // A loop of 0 or 1 turns, not an if. On llvmpipe it saves nothing: a loop's first body always
+  // runs, masked when no lane needs it (README "Loop bodies III"), so every slot pays two slExps
+  // there; a GPU that skips an empty loop pays one where the exp is reused.
   for (uint t = haveExpB ? 1u : 0u; t < 1u; ++t) slExp(blockers, expB);
   slExp(with, expWith);
   float v[16];
@@ -188,10 +195,13 @@ vec3 slIrradianceAt(vec3 p, vec3 n, uvec4 candidates) {
   shEval16(n, yn);
   vec4 adjusted[kSpheres];
   uint count = 0u;
-  for (uint w = 0u; w < 4u; ++w)
-    for (uint m = candidates[w]; m != 0u; m &= m - 1u) {
-      uint i = 32u * w + uint(findLSB(m));
-      if (i >= min(slCount(), kSpheres)) continue;
+  // Every loop over candidates or live slots below is `do … while` with its body guarded: a `for`
+  // runs one more body with every lane masked (README "Loop bodies III"); this one walks the four
+  // words as one set (mask.glsl: max(n, 1) bodies, not n + 4).
+  uvec4 rest = candidates;
+  do {
+    uint i = maskPop(rest);
+    if (i < min(slCount(), kSpheres)) {
       vec4 sp = slSphere(i);
       vec3 c = sp.xyz;
       float r = sp.w;
@@ -206,77 +216,94 @@ vec3 slIrradianceAt(vec3 p, vec3 n, uvec4 candidates) {
         ++count;
       }
     }
-  for (uint s = 0u; s < count; ++s) {
-    vec3 c = adjusted[s].xyz;
-    float r = adjusted[s].w;
-    float d = slDist[s];
-    vec3 dir = (c - p) / d;
-    float theta = asin(min(1.0, r / d));
-    float lg[16];
-    float ydir[16];
-    shEval16(dir, ydir);
-    slRotateZonalY(slThetaRow(0, theta), ydir, lg);
-    for (uint k = 0u; k < 16u; ++k) slLogs[s * 16u + k] = lg[k];
-    // The unoccluded cap's Ṽ: exact (the cap's closed-form ZH, the complement of sh_exp.hpp
-    // capVisibilityZonal: z_l = √(4π/(2l+1)) ∫_cap Y_l0) and, per-sphere, as Eq. 23 sees it
-    // (exp(0) − exp(G_i)). Every z_l has the factor 1 − P_l's neighbour, ∝ sin²θ: written with
-    // s² = sin²θ factored out (1 − cos θ = s²/(1 + cos θ)) so small caps keep float precision.
-    float sn = min(1.0, r / d);
-    float s2 = sn * sn;
-    float t = sqrt(max(0.0, 1.0 - s2));
-    vec4 zs = vec4(sqrt(kSlPi) / (1.0 + t), 0.5 * sqrt(3.0 * kSlPi), 0.5 * sqrt(5.0 * kSlPi) * t,
-                   0.125 * sqrt(7.0 * kSlPi) * (5.0 * t * t - 1.0));
-    float cap[16];
-    slRotateZonalY(zs * s2, ydir, cap);
-    float exactOpen = slIrradianceY(cap, yn);
-    slExactOpen[s] = exactOpen;
-    // Eq. 18: the weight rotated to the SL-local direction from its centre to p (§7.1). Here, for
-    // the live SLs only, and not in the candidate loop above: there every candidate pays it (the
-    // branch is not skipped), and the reads at the tile's index are no cheaper — measured by the
-    // process's CPU time per frame (README "SL per-object blocking and sl.shadow cost"), per-object
-    // 0.774 s here against 1.185 s there.
-    uint i = slLive[s];
-    float wz[16];
-    slRotateZonal(slThetaRow(1, theta), transpose(slRotation(i)) * (-dir), wz);
-    vec3 avg = vec3(0.0);
-    for (uint k = 0u; k < kSlCoeffs; ++k) avg += wz[k] * slIntensity(i, k);
-    slAverage[s] = avg;
-    if (kPerObject) {
-      // ⟨f⟩ over the cap = (f · K)/(√(4π) K_00) (evaluate.cpp capAverage), with K/s² kept.
-      slRotateZonalY(zs, ydir, cap);
-      for (uint k = 0u; k < 16u; ++k) slCaps[s * 16u + k] = cap[k];
-    } else {
-      // ρ_n · (exp(0) − exp(G_i)) with both exps in closed form: exp(0) is the OL table's first
-      // entry; one cap's log never reaches the hybrid's blend (‖f̂‖ ≤ 1.9 < 3,
-      // SlProbeShadow.OneCapsLogIsBelowTheHybridsBlend), so slExp would be its OL step alone:
-      // e^{G_0 Y_00} (a √(4π) δ_0 + b Ĝ) with ‖Ĝ‖ = ‖(z_1, z_2, z_3)‖ (a rotated ZH keeps each
-      // band's norm). Written out rather than through slExp, whose blend square and masked squaring
-      // llvmpipe runs even when they are not taken.
-      vec4 zl = slThetaRow(0, theta);
-      vec2 ab = slOl(sqrt(zl.y * zl.y + zl.z * zl.z + (kOrder > 3u ? zl.w * zl.w : 0.0)));
-      float dcLog = exp(min(lg[0] / kSlSqrt4Pi, kSlMaxExponent));
-      float eq23Open = SH_A0 * slOl(0.0).x -
-                       dcLog * (SH_A0 * ab.x + ab.y * (slIrradianceY(lg, yn) - SH_A0 * lg[0] * yn[0]));
-      slRatioFormed[s] = eq23Open > kSlMinOpen;
-      slRatio[s] = slRatioFormed[s] ? exactOpen / eq23Open : 0.0;
+  } while (rest != uvec4(0u));
+  uint s = 0u;
+  do {
+    if (s < count) {
+      vec3 c = adjusted[s].xyz;
+      float r = adjusted[s].w;
+      float d = slDist[s];
+      vec3 dir = (c - p) / d;
+      float theta = asin(min(1.0, r / d));
+      float lg[16];
+      float ydir[16];
+      shEval16(dir, ydir);
+      slRotateZonalY(slThetaRow(0, theta), ydir, lg);
+      for (uint k = 0u; k < 16u; ++k) slLogs[s * 16u + k] = lg[k];
+      // The unoccluded cap's Ṽ: exact (the cap's closed-form ZH, the complement of sh_exp.hpp
+      // capVisibilityZonal: z_l = √(4π/(2l+1)) ∫_cap Y_l0) and, per-sphere, as Eq. 23 sees it
+      // (exp(0) − exp(G_i)). Every z_l has the factor 1 − P_l's neighbour, ∝ sin²θ: written with
+      // s² = sin²θ factored out (1 − cos θ = s²/(1 + cos θ)) so small caps keep float precision.
+      float sn = min(1.0, r / d);
+      float s2 = sn * sn;
+      float t = sqrt(max(0.0, 1.0 - s2));
+      vec4 zs = vec4(sqrt(kSlPi) / (1.0 + t), 0.5 * sqrt(3.0 * kSlPi), 0.5 * sqrt(5.0 * kSlPi) * t,
+                     0.125 * sqrt(7.0 * kSlPi) * (5.0 * t * t - 1.0));
+      float cap[16];
+      slRotateZonalY(zs * s2, ydir, cap);
+      float exactOpen = slIrradianceY(cap, yn);
+      slExactOpen[s] = exactOpen;
+      // Eq. 18: the weight rotated to the SL-local direction from its centre to p (§7.1). Here, for
+      // the live SLs only, and not in the candidate loop above: there every candidate pays it (the
+      // branch is not skipped), and the reads at the tile's index are no cheaper — measured by the
+      // process's CPU time per frame (README "SL per-object blocking and sl.shadow cost"), per-object
+      // 0.774 s here against 1.185 s there.
+      uint i = slLive[s];
+      float wz[16];
+      slRotateZonal(slThetaRow(1, theta), transpose(slRotation(i)) * (-dir), wz);
+      vec3 avg = vec3(0.0);
+      for (uint k = 0u; k < kSlCoeffs; ++k) avg += wz[k] * slIntensity(i, k);
+      slAverage[s] = avg;
+      if (kPerObject) {
+        // ⟨f⟩ over the cap = (f · K)/(√(4π) K_00) (evaluate.cpp capAverage), with K/s² kept.
+        slRotateZonalY(zs, ydir, cap);
+        for (uint k = 0u; k < 16u; ++k) slCaps[s * 16u + k] = cap[k];
+      } else {
+        // ρ_n · (exp(0) − exp(G_i)) with both exps in closed form: exp(0) is the OL table's first
+        // entry; one cap's log never reaches the hybrid's blend (‖f̂‖ ≤ 1.9 < 3,
+        // SlProbeShadow.OneCapsLogIsBelowTheHybridsBlend), so slExp would be its OL step alone:
+        // e^{G_0 Y_00} (a √(4π) δ_0 + b Ĝ) with ‖Ĝ‖ = ‖(z_1, z_2, z_3)‖ (a rotated ZH keeps each
+        // band's norm). Written out rather than through slExp, whose blend square and masked squaring
+        // llvmpipe runs even when they are not taken.
+        vec4 zl = slThetaRow(0, theta);
+        vec2 ab = slOl(sqrt(zl.y * zl.y + zl.z * zl.z + (kOrder > 3u ? zl.w * zl.w : 0.0)));
+        float dcLog = exp(min(lg[0] / kSlSqrt4Pi, kSlMaxExponent));
+        float eq23Open = SH_A0 * slOl(0.0).x -
+                         dcLog * (SH_A0 * ab.x + ab.y * (slIrradianceY(lg, yn) - SH_A0 * lg[0] * yn[0]));
+        slRatioFormed[s] = eq23Open > kSlMinOpen;
+        slRatio[s] = slRatioFormed[s] ? exactOpen / eq23Open : 0.0;
+      }
     }
-  }
+    ++s;
+  } while (s < count);
   // Per-object blocking (§7.2) visits objects nearest first, by the distance from p to the mean of
   // their (unadjusted) sphere centres, ties by id (evaluate.cpp sorts (dist, id)): each object's rank.
   uint rank[kSpheres];
-  for (uint t = 0u; t < count; ++t) rank[t] = 0u;
+  uint t = 0u;
+  do {
+    if (t < count) rank[t] = 0u;
+    ++t;
+  } while (t < count);
   if (kPerObject) {
-    for (uint t = 0u; t < count; ++t) {
-      uint id = slObject(slLive[t]);
-      float d = length(slObjectCentre(id).xyz - p);
-      uint r = 0u;
-      for (uint o = 0u; o < slObjectCount(); ++o) {
-        vec4 oc = slObjectCentre(o);
-        float od = length(oc.xyz - p);
-        if (oc.w >= 0.5 && (od < d || (od == d && o < id))) ++r;
+    t = 0u;
+    do {
+      if (t < count) {
+        uint id = slObject(slLive[t]);
+        float d = length(slObjectCentre(id).xyz - p);
+        uint r = 0u;
+        uint o = 0u;
+        do {
+          if (o < slObjectCount()) {
+            vec4 oc = slObjectCentre(o);
+            float od = length(oc.xyz - p);
+            if (oc.w >= 0.5 && (od < d || (od == d && o < id))) ++r;
+          }
+          ++o;
+        } while (o < slObjectCount());
+        rank[t] = r;
       }
-      rank[t] = r;
-    }
+      ++t;
+    } while (t < count);
   }
   vec3 e = vec3(0.0);
   if (kPerObject) {
@@ -289,7 +316,11 @@ vec3 slIrradianceAt(vec3 p, vec3 n, uvec4 candidates) {
     // a pixel with no live SL runs one masked turn of each loop, its sums guarded.
     float closer[16] = zero;
     uint object = 0u, done = 0u;
-    for (uint t = 0u; t < count; ++t) object = t == 0u ? rank[t] : min(object, rank[t]);
+    t = 0u;
+    do {
+      if (t < count) object = t == 0u ? rank[t] : min(object, rank[t]);
+      ++t;
+    } while (t < count);
     do {
       float expCloser[16];
       if (kSlSingleObject) {
@@ -345,24 +376,31 @@ vec3 slIrradianceAt(vec3 p, vec3 n, uvec4 candidates) {
   float expPrev[16] = zero;  // the predecessor's exp(B + G)
   bool prevFull = false;
   uvec4 visited = uvec4(0u);  // SL i at bit i % 32 of word i / 32
-  for (uint a = 0u; a < count; ++a) {
-    uint s = slOrder[a];
-    uint i = slLive[s];
-    uvec4 skip = slIntersecting(i) & visited;
-    float blockers[16] = run;
-    for (uint w = 0u; w < 4u; ++w)
-      for (uint m = skip[w]; m != 0u; m &= m - 1u) {
-        uint t = slSlotOf[32u * w + uint(findLSB(m))];
-        for (uint k = 0u; k < kSlCoeffs; ++k) blockers[k] -= slLogs[t * 16u + k];
-      }
-    bool full = skip == uvec4(0u);
-    float expWith[16];
-    slFinish(s, blockers, full && prevFull, expPrev, expWith, yn, e);
-    expPrev = expWith;
-    prevFull = full;
-    for (uint k = 0u; k < 16u; ++k) run[k] += slLogs[s * 16u + k];
-    visited[i >> 5u] |= 1u << (i & 31u);
-  }
+  uint a = 0u;
+  do {
+    if (a < count) {
+      uint s = slOrder[a];
+      uint i = slLive[s];
+      uvec4 skip = slIntersecting(i) & visited;
+      float blockers[16] = run;
+      uvec4 left = skip;
+      do {
+        uint j = maskPop(left);
+        if (j < kMaskEmpty) {
+          uint t = slSlotOf[j];
+          for (uint k = 0u; k < kSlCoeffs; ++k) blockers[k] -= slLogs[t * 16u + k];
+        }
+      } while (left != uvec4(0u));
+      bool full = skip == uvec4(0u);
+      float expWith[16];
+      slFinish(s, blockers, full && prevFull, expPrev, expWith, yn, e);
+      expPrev = expWith;
+      prevFull = full;
+      for (uint k = 0u; k < 16u; ++k) run[k] += slLogs[s * 16u + k];
+      visited[i >> 5u] |= 1u << (i & 31u);
+    }
+    ++a;
+  } while (a < count);
   return e;
 }
 

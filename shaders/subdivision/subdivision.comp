@@ -29,16 +29,22 @@ void main() {
   if (v >= pc.vertexCount) return;
   const uvec4 row = rows[v];
   vec3 s = vec3(0.0), du = vec3(0.0), dv = vec3(0.0), n = vec3(0.0);
-  for (uint k = row.x; k < row.x + row.y; ++k) {
-    const uvec4 e = weights[k];
-    const uint o = (pc.srcBase + e.x) * 8u;
-    const vec3 p = vec3(posed[o + 0], posed[o + 1], posed[o + 2]);
-    const float w = uintBitsToFloat(e.y);
-    s += w * p;
-    du += uintBitsToFloat(e.z) * p;
-    dv += uintBitsToFloat(e.w) * p;
-    n += w * vec3(posed[o + 3], posed[o + 4], posed[o + 5]);
-  }
+  // do…while with a guarded body: llvmpipe runs a `for` body once more with every lane masked
+  // (README "Loop bodies III"), so a row of n weights costs n bodies, not n + 1.
+  uint k = row.x;
+  do {
+    if (k < row.x + row.y) {
+      const uvec4 e = weights[k];
+      const uint o = (pc.srcBase + e.x) * 8u;
+      const vec3 p = vec3(posed[o + 0], posed[o + 1], posed[o + 2]);
+      const float w = uintBitsToFloat(e.y);
+      s += w * p;
+      du += uintBitsToFloat(e.z) * p;
+      dv += uintBitsToFloat(e.w) * p;
+      n += w * vec3(posed[o + 3], posed[o + 4], posed[o + 5]);
+    }
+    ++k;
+  } while (k < row.x + row.y);
   const vec3 c = cross(du, dv);
   const float len = length(c);
   if (len > kParallelTangents * length(du) * length(dv) && !isinf(len) && !isnan(len)) {
