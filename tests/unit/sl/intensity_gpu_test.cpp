@@ -226,6 +226,34 @@ TEST(SlIntensityGpu, ShadowAtlasVisibilityMultipliesTheLights) {
   expectMatches(runPass(ctx, pass), set, f, lights, 4);
 }
 
+// The fp16-pair layout of pass 1's output (intensity_words.hpp): word 8c + m holds channel c of
+// coefficients 2m (low 16 bits) and 2m + 1; every value within half's rounding, 2⁻¹¹ relative, over
+// magnitudes 1e-3 … 6e4 and both signs; beyond half's range clamped to ±65504; missing
+// coefficients 0. (The shaders' side of the layout: SlIntensityGpu.* unpack pass 1's words with
+// unpackIntensity, SlShadeGpu.* feed pass 2 packIntensity's.)
+TEST(SlIntensity, HalfPairsKeepEveryCoefficientWithinHalfRounding) {
+  std::vector<glm::vec3> coeffs;
+  for (int k = 0; k < 16; ++k) {
+    const float mag = std::pow(10.0f, -3.0f + 7.7f * float(k) / 15.0f) * 1.2345f;  // 1.2e-3 … 6.2e4
+    coeffs.emplace_back(mag, -0.5f * mag, k % 2 ? mag * 0.1f : -mag);
+  }
+  const auto words = packIntensity(coeffs);
+  const auto back = unpackIntensity(words);
+  for (std::size_t k = 0; k < 16; ++k)
+    for (int c = 0; c < 3; ++c)
+      EXPECT_NEAR(back[k][c], coeffs[k][c], kIntensityHalfRelative * std::abs(coeffs[k][c])) << k << " " << c;
+  // Layout: channel g (c = 1) of coefficients 6 and 7 sits in word 8 + 3, 6 in the low half.
+  EXPECT_EQ(words[11], glm::packHalf2x16(glm::vec2(coeffs[6].g, coeffs[7].g)));
+  EXPECT_EQ(words[11] & 0xffffu, glm::packHalf2x16(glm::vec2(coeffs[6].g, 0.0f)));
+  // Order 3 (9 coefficients): the last pair's second half and pairs 5–7 are 0; out of range clamps.
+  std::vector<glm::vec3> nine(coeffs.begin(), coeffs.begin() + 9);
+  nine[0] = glm::vec3(1e6f, -1e6f, 0.0f);
+  const auto b9 = unpackIntensity(packIntensity(nine));
+  EXPECT_EQ(b9[0], glm::vec3(kIntensityHalfMax, -kIntensityHalfMax, 0.0f));
+  for (std::size_t k = 9; k < 16; ++k) EXPECT_EQ(b9[k], glm::vec3(0.0f)) << k;
+  EXPECT_NEAR(b9[8].r, nine[8].r, kIntensityHalfRelative * nine[8].r);
+}
+
 // §5.1 at one sample point (C++ reference): p on the top of its own SL (normal +z) under uniform
 // indirect radiance L, one sphere of another object at angular radius θ (sin θ up to 0.95) whose
 // centre is β from n, wholly above the tangent plane.
