@@ -29,7 +29,9 @@
 // sample count; indirect: 9 vec4, rgb = radiance SH at the posed centre); albedo = vec4[sphere·16 + k]
 // (rgb: c_S,k); gaunt = Gaunt[], Gaunt = 16 ((i, j, k) and C_ijk, sorted by (k, i, j)); lights and
 // shadow matrices as the lighting pass has them (std140 UBOs of kMaxLights / kMaxShadowLayers);
-// out = vec4[sphere·16 + k] (rgb: L^c_k, the SL's local frame; unused k ≥ order² are 0);
+// out = uint[sphere·24 + w], fp16 pairs (engine/gi/sl/intensity_words.hpp: word 8c + m =
+// packHalf2x16(L^c_2m[c], L^c_2m+1[c]), channel c, the SL's local frame; unused k ≥ order² are 0;
+// clamped to ±65504, half's range), pass 2's uniform block: half the per-lane reads of rgb floats;
 // bindings 8–10: sl_data.glsl (the frame's SLs as blockers, engine/gi/sl/shade.hpp ShadeData; its
 // intensity block is not read here).
 // SSBOs are fine here: a compute pass (DESIGN's machine facts keep them out of fragment shaders).
@@ -73,7 +75,7 @@ layout(std140, binding = 4) uniform Lights { Light lights[kMaxLights]; };
 layout(std140, binding = 5) uniform ShadowMatrices { mat4 shadowMatrices[kMaxShadowLayers]; };
 layout(binding = 6) uniform sampler2DArrayShadow shadowAtlas;
 #include "shadow.glsl"
-layout(std430, binding = 7) writeonly buffer Intensity { vec4 intensity[]; };
+layout(std430, binding = 7) writeonly buffer Intensity { uint intensity[]; };
 #define SL_SET 0
 #define SL_BINDING 8
 #include "sl/sl_data.glsl"
@@ -88,6 +90,7 @@ layout(push_constant) uniform Push {
 } pc;
 
 shared vec3 partial[64 * 16];
+shared vec3 result[16];  // L^c_k before packing (Eq. 11's output)
 
 void main() {
   uint sl = gl_WorkGroupID.x;
@@ -152,6 +155,12 @@ void main() {
         ++e;
       } while (e < pc.gaunts);
     }
-    intensity[sl * 16u + lid] = vec4(c, 0.0);
+    result[lid] = clamp(c, vec3(-65504.0), vec3(65504.0));  // intensity_words.hpp kIntensityHalfMax
+  }
+  barrier();
+  // Pack: invocation w < 24 writes word w = 8c + m, channel c of coefficients 2m and 2m + 1.
+  if (lid < 24u) {
+    uint c = lid / 8u, m = lid % 8u;
+    intensity[sl * 24u + lid] = packHalf2x16(vec2(result[2u * m][c], result[2u * m + 1u][c]));
   }
 }

@@ -15,7 +15,8 @@
 //     (evaluate.hpp averageRadianceTable) at θ_i, row 2 texel i < 128: the optimal-linear (a, b)
 //     at ‖f̂‖ = i/127 · 4 (ExpTables::olTable);
 //   uint slCount(); vec4 slSphere(uint i) (world centre, radius, metres); mat3 slRotation(uint i)
-//     (SL local → world); uint slObject(uint i); vec3 slIntensity(uint i, uint k) (L^c_k, pass 1);
+//     (SL local → world); uint slObject(uint i); vec2 slIntensityPair(uint i, uint c, uint m)
+//     (channel c of L^c_2m, L^c_2m+1, pass 1, fp16);
 //     uint slObjectCount() (ids 0 … count − 1); vec4 slObjectCentre(uint o) (mean sphere centre, count);
 //   optionally SL_SINGLE_OBJECT (a bool constant): true where every SL that can reach the receiver
 //   belongs to one object (sl.frag's tiles of one object), so per-object blocking's exp of the
@@ -251,8 +252,12 @@ vec3 slIrradianceAt(vec3 p, vec3 n, uvec4 candidates) {
       uint i = slLive[s];
       float wz[16];
       slRotateZonal(slThetaRow(1, theta), transpose(slRotation(i)) * (-dir), wz);
+      // Σ_k wz_k L^c_k over the fp16 pairs (at order 3 the last pair's second coefficient is 0).
       vec3 avg = vec3(0.0);
-      for (uint k = 0u; k < kSlCoeffs; ++k) avg += wz[k] * slIntensity(i, k);
+      for (uint m = 0u; m < (kSlCoeffs + 1u) / 2u; ++m) {
+        vec2 r = slIntensityPair(i, 0u, m), g = slIntensityPair(i, 1u, m), b = slIntensityPair(i, 2u, m);
+        avg += wz[2u * m] * vec3(r.x, g.x, b.x) + wz[2u * m + 1u] * vec3(r.y, g.y, b.y);
+      }
       slAverage[s] = avg;
       if (kPerObject) {
         // ⟨f⟩ over the cap = (f · K)/(√(4π) K_00) (evaluate.cpp capAverage), with K/s² kept.

@@ -12,15 +12,17 @@
 //                   intersects[i]: bit j % 32 of word j / 32 set when SLs i and j belong to one
 //                   object and overlap (evaluate.cpp's intersects(), in double on the CPU: they
 //                   ignore each other as blockers, §6.2);
-//   SL_BINDING + 2: SlIntensity (std140): intensity[16i + k].rgb = L^c_k (pass 1's output buffer);
+//   SL_BINDING + 2: SlIntensity (std140): pass 1's output buffer, L^c of SL i as fp16 pairs in
+//                   words 24i … 24i + 23 (engine/gi/sl/intensity_words.hpp: word 8c + m holds
+//                   channel c of coefficients 2m, 2m + 1) — half the per-lane gathers of rgb floats;
 #ifndef BOUNCE_SL_DATA_GLSL
 #define BOUNCE_SL_DATA_GLSL
 
-const uint kSlMaxLights = 128u;  // shade.hpp kMaxShadedSpheres: 128 · 16 vec4 = 32 KiB of intensity
+const uint kSlMaxLights = 128u;  // shade.hpp kMaxShadedSpheres: 128 · 6 uvec4 = 12 KiB of intensity
 
 layout(set = SL_SET, binding = SL_BINDING) uniform sampler2D slTables;
 layout(std140, set = SL_SET, binding = SL_BINDING + 1) uniform SlSpheres { uvec4 slHeader; vec4 slSpheres[kSlMaxLights * 4u]; vec4 slObjects[kSlMaxLights]; uvec4 slIntersectMasks[kSlMaxLights]; };
-layout(std140, set = SL_SET, binding = SL_BINDING + 2) uniform SlIntensity { vec4 slIntensities[kSlMaxLights * 16u]; };
+layout(std140, set = SL_SET, binding = SL_BINDING + 2) uniform SlIntensity { uvec4 slIntensityWords[kSlMaxLights * 6u]; };
 
 uint slCount() { return slHeader.x; }
 vec4 slSphere(uint i) { return slSpheres[4u * i]; }
@@ -31,6 +33,7 @@ float slShare(uint i) { return slSpheres[4u * i + 2u].w; }
 float slSilhouette(uint i) { return slSpheres[4u * i + 3u].w; }
 vec4 slObjectCentre(uint o) { return slObjects[o]; }
 uvec4 slIntersecting(uint i) { return slIntersectMasks[i]; }
-vec3 slIntensity(uint i, uint k) { return slIntensities[16u * i + k].rgb; }
+// Channel c of L^c_2m and L^c_2m+1 of SL i (m a loop counter: the component index folds to a constant).
+vec2 slIntensityPair(uint i, uint c, uint m) { return unpackHalf2x16(slIntensityWords[6u * i + 2u * c + m / 4u][m % 4u]); }
 
 #endif  // BOUNCE_SL_DATA_GLSL

@@ -135,7 +135,7 @@ IntensityPass::IntensityPass(gpu::Context& ctx, std::span<const SphereSet* const
                                       gpu::MemoryUsage::Upload, "sl.shadowMatrices"});
   // Pass 2 reads L^c as a uniform block (DESIGN: no SSBOs in fragment shaders on llvmpipe).
   if (spheres_ > kMaxShadedSpheres) throw InternalError("sl::IntensityPass: more SLs than pass 2's uniform blocks hold");
-  intensity_ = gpu::Buffer(ctx, {std::max<std::size_t>(std::size_t(spheres_) * 16 * sizeof(glm::vec4), kIntensityBlockBytes),
+  intensity_ = gpu::Buffer(ctx, {std::max<std::size_t>(std::size_t(spheres_) * kIntensityWordsPerSl * 4, kIntensityBlockBytes),
                                  VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT |
                                      VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                                  gpu::MemoryUsage::GpuOnly, "sl.intensity"});

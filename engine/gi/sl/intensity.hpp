@@ -72,8 +72,8 @@ std::vector<glm::dvec3> intensityReference(const SlSphere& rest, int order, cons
 // Pass 1 on the device for every SL of every participating set (concatenated in the order given;
 // SL index = running index over the sets' spheres). The samples, albedo SH and Gaunt tensor are
 // uploaded once; setSpheres() writes the poses and indirect light, setLights()/bindLights() the lights (read at the
-// next record()). The result stays in intensity(): vec4 per (SL·16 + k), rgb = L^c_k in the SL's
-// local frame, usable as a storage or uniform buffer by pass 2.
+// next record()). The result stays in intensity(): kIntensityWordsPerSl fp16-pair words per SL
+// (intensity_words.hpp: L^c_k in the SL's local frame), usable as a storage or uniform buffer by pass 2.
 class IntensityPass {
  public:
   // `order` (3 or 4) is the result's; sets baked at order 3 take part in an order-4 pass with their

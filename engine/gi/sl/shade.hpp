@@ -14,6 +14,7 @@
 #include <glm/glm.hpp>
 
 #include "engine/gi/sl/evaluate.hpp"
+#include "engine/gi/sl/intensity_words.hpp"
 #include "engine/gpu/buffer.hpp"
 #include "engine/gpu/descriptors.hpp"
 #include "engine/gpu/image.hpp"
@@ -21,11 +22,12 @@
 
 namespace bounce::gi::sl {
 
-// sl_data.glsl's capacity: the SLs one pass shades (the intensity block is 128·16 vec4 = 32 KiB,
-// half of the smallest maxUniformBufferRange Vulkan allows).
+// sl_data.glsl's capacity: the SLs one pass shades (the spheres block is 128·4 vec4 and more, the
+// intensity block 128 · 24 words = 12 KiB, both within the smallest maxUniformBufferRange Vulkan allows).
 inline constexpr std::uint32_t kMaxShadedSpheres = 128;
-// Bytes of the intensity uniform block: IntensityPass allocates at least this.
-inline constexpr std::size_t kIntensityBlockBytes = std::size_t(kMaxShadedSpheres) * 16 * 16;
+// Bytes of the intensity uniform block (fp16 pairs, intensity_words.hpp): IntensityPass allocates at
+// least this.
+inline constexpr std::size_t kIntensityBlockBytes = std::size_t(kMaxShadedSpheres) * kIntensityWordsPerSl * 4;
 
 // One SL as pass 2 reads it.
 struct ShadedSphere {

@@ -15,6 +15,7 @@
 
 #include "engine/gi/sl/bake.hpp"
 #include "engine/gi/sl/intensity.hpp"
+#include "engine/gi/sl/intensity_words.hpp"
 #include "engine/gpu/commands.hpp"
 #include "engine/gpu/image.hpp"
 #include "engine/gpu/testing.hpp"
@@ -109,11 +110,15 @@ struct Atlas {
   }
 };
 
+// The pass's fp16 pairs (intensity_words.hpp) unpacked: vec4 per (SL·16 + k), rgb = L^c_k.
 std::vector<glm::vec4> runPass(gpu::Context& ctx, IntensityPass& pass) {
   gpu::submitAndWait(ctx, [&](VkCommandBuffer cmd) { pass.record(cmd); });
   const auto bytes = gpu::readback(ctx, pass.intensity());
-  std::vector<glm::vec4> out(bytes.size() / sizeof(glm::vec4));
-  std::memcpy(out.data(), bytes.data(), out.size() * sizeof(glm::vec4));
+  std::vector<std::uint32_t> words(bytes.size() / 4);
+  std::memcpy(words.data(), bytes.data(), words.size() * 4);
+  std::vector<glm::vec4> out;
+  for (std::size_t i = 0; i + kIntensityWordsPerSl <= words.size(); i += kIntensityWordsPerSl)
+    for (const glm::vec3& v : unpackIntensity(std::span(words).subspan(i, kIntensityWordsPerSl))) out.emplace_back(v, 0.0f);
   return out;
 }
 
@@ -134,7 +139,10 @@ void expectMatches(const std::vector<glm::vec4>& got, const SphereSet& set, cons
           EXPECT_EQ(g, 0.0) << "SL " << i << " coefficient " << k << " beyond order " << order;
           continue;
         }
-        EXPECT_NEAR(g, want[k][c], tolerance * scale) << "SL " << i << " coefficient " << k << " channel " << c;
+        // The float pass's bound plus the fp16 store's rounding (≤ 2⁻¹¹ of the value; 2⁻²⁵ absolute
+        // below half's normal range).
+        const double bound = tolerance * scale + kIntensityHalfRelative * std::abs(want[k][c]) + 0x1p-25;
+        EXPECT_NEAR(g, want[k][c], bound) << "SL " << i << " coefficient " << k << " channel " << c;
       }
   }
 }
@@ -216,6 +224,34 @@ TEST(SlIntensityGpu, ShadowAtlasVisibilityMultipliesTheLights) {
   Atlas open(ctx, 1.0f);
   pass.setShadowAtlas(open.image.view(), open.sampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, true);
   expectMatches(runPass(ctx, pass), set, f, lights, 4);
+}
+
+// The fp16-pair layout of pass 1's output (intensity_words.hpp): word 8c + m holds channel c of
+// coefficients 2m (low 16 bits) and 2m + 1; every value within half's rounding, 2⁻¹¹ relative, over
+// magnitudes 1e-3 … 6e4 and both signs; beyond half's range clamped to ±65504; missing
+// coefficients 0. (The shaders' side of the layout: SlIntensityGpu.* unpack pass 1's words with
+// unpackIntensity, SlShadeGpu.* feed pass 2 packIntensity's.)
+TEST(SlIntensity, HalfPairsKeepEveryCoefficientWithinHalfRounding) {
+  std::vector<glm::vec3> coeffs;
+  for (int k = 0; k < 16; ++k) {
+    const float mag = std::pow(10.0f, -3.0f + 7.7f * float(k) / 15.0f) * 1.2345f;  // 1.2e-3 … 6.2e4
+    coeffs.emplace_back(mag, -0.5f * mag, k % 2 ? mag * 0.1f : -mag);
+  }
+  const auto words = packIntensity(coeffs);
+  const auto back = unpackIntensity(words);
+  for (std::size_t k = 0; k < 16; ++k)
+    for (int c = 0; c < 3; ++c)
+      EXPECT_NEAR(back[k][c], coeffs[k][c], kIntensityHalfRelative * std::abs(coeffs[k][c])) << k << " " << c;
+  // Layout: channel g (c = 1) of coefficients 6 and 7 sits in word 8 + 3, 6 in the low half.
+  EXPECT_EQ(words[11], glm::packHalf2x16(glm::vec2(coeffs[6].g, coeffs[7].g)));
+  EXPECT_EQ(words[11] & 0xffffu, glm::packHalf2x16(glm::vec2(coeffs[6].g, 0.0f)));
+  // Order 3 (9 coefficients): the last pair's second half and pairs 5–7 are 0; out of range clamps.
+  std::vector<glm::vec3> nine(coeffs.begin(), coeffs.begin() + 9);
+  nine[0] = glm::vec3(1e6f, -1e6f, 0.0f);
+  const auto b9 = unpackIntensity(packIntensity(nine));
+  EXPECT_EQ(b9[0], glm::vec3(kIntensityHalfMax, -kIntensityHalfMax, 0.0f));
+  for (std::size_t k = 9; k < 16; ++k) EXPECT_EQ(b9[k], glm::vec3(0.0f)) << k;
+  EXPECT_NEAR(b9[8].r, nine[8].r, kIntensityHalfRelative * nine[8].r);
 }
 
 // §5.1 at one sample point (C++ reference): p on the top of its own SL (normal +z) under uniform

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 
@@ -40,7 +41,7 @@ struct Receiver {
 struct Scene {
   std::vector<Light> lights;  // sl::evaluate's
   std::vector<ShadedSphere> shaded;
-  std::vector<glm::vec4> intensity;  // 16 per SL
+  std::vector<glm::vec3> intensity;  // 16 per SL, fp16-exact (the pass reads them as fp16 pairs)
 };
 
 void addLight(Scene& s, glm::vec3 c, float r, int object, math::Pcg32& rng, int order) {
@@ -51,10 +52,16 @@ void addLight(Scene& s, glm::vec3 c, float r, int object, math::Pcg32& rng, int 
   l.rotation = glm::dmat3(rot);
   l.object = object;
   ShadedSphere g{c, r, rot, std::uint32_t(object)};
+  std::array<glm::vec3, 16> raw{};
   for (int k = 0; k < 16; ++k) {
-    glm::vec3 v = k == 0 ? glm::vec3(1.5f) + rng.nextFloat3() : (rng.nextFloat3() - 0.5f) * 0.8f;
-    if (k < order * order) l.intensity.push_back(glm::dvec3(v));
-    s.intensity.push_back(k < order * order ? glm::vec4(v, 0.0f) : glm::vec4(0.0f));
+    const glm::vec3 v = k == 0 ? glm::vec3(1.5f) + rng.nextFloat3() : (rng.nextFloat3() - 0.5f) * 0.8f;
+    if (k < order * order) raw[std::size_t(k)] = v;
+  }
+  // Rounded to fp16 as pass 1 stores them, so the reference sees the values the shader reads.
+  const auto stored = unpackIntensity(packIntensity(raw));
+  for (int k = 0; k < 16; ++k) {
+    if (k < order * order) l.intensity.push_back(glm::dvec3(stored[std::size_t(k)]));
+    s.intensity.push_back(stored[std::size_t(k)]);
   }
   s.lights.push_back(l);
   s.shaded.push_back(g);
@@ -94,7 +101,10 @@ std::vector<glm::vec3> runShader(gpu::Context& ctx, const Scene& s, std::span<co
   data.setSpheres(s.shaded);
   gpu::Buffer intensity(ctx, {kIntensityBlockBytes, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::MemoryUsage::Upload, "sl.test.intensity"});
   std::memset(intensity.mapped(), 0, intensity.size());
-  std::memcpy(intensity.mapped(), s.intensity.data(), s.intensity.size() * sizeof(glm::vec4));
+  for (std::size_t i = 0; i * 16 < s.intensity.size(); ++i) {
+    const auto words = packIntensity(std::span(s.intensity).subspan(i * 16, 16));
+    std::memcpy(intensity.mapped() + i * sizeof words, words.data(), sizeof words);
+  }
   std::vector<std::uint8_t> in(16 + receivers.size_bytes(), 0);
   const std::uint32_t count = std::uint32_t(receivers.size());
   std::memcpy(in.data(), &count, 4);
