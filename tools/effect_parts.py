@@ -13,15 +13,7 @@ usage: tools/effect_parts.py DIR ROW [NAME=DIR2 ...]   (ROW e.g. rtf-bounces-2-r
 import sys
 import numpy as np
 
-
-def pfm(path):
-    with open(path, 'rb') as f:
-        kind = f.readline().strip()
-        w, h = map(int, f.readline().split())
-        scale = float(f.readline())
-        data = np.frombuffer(f.read(), dtype='<f4' if scale < 0 else '>f4')
-    ch = 3 if kind == b'PF' else 1
-    return data.reshape(h, w, ch)[::-1].astype(np.float64)
+from effect_noise import read_pfm as pfm  # one PFM reader for the tools (this folder is on sys.path)
 
 
 def stats(name, et, er, mask):
