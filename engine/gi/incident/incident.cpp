@@ -23,21 +23,6 @@ using Light = render::LightGpu;
 static_assert(kLightDirectional == uint(render::LightType::Directional) && kLightPoint == uint(render::LightType::Point) &&
               kLightSpot == uint(render::LightType::Spot));
 
-ref::RefLight refLight(const Light& l) {
-  ref::RefLight r;
-  const auto type = render::LightType(std::uint32_t(l.positionType.w + 0.5f));
-  r.type = type == render::LightType::Directional ? ref::RefLightType::Directional
-           : type == render::LightType::Spot      ? ref::RefLightType::Spot
-                                                  : ref::RefLightType::Point;
-  r.position = glm::vec3(l.positionType);
-  r.direction = glm::vec3(l.directionRange);
-  r.radiance = glm::vec3(l.radiance);
-  r.range = l.directionRange.w;
-  r.cosOuter = l.cone.x;
-  r.cosInner = l.cone.y;
-  return r;
-}
-
 // GLSL parameter qualifiers: `inout vec3 sh[9]` / `out float y[9]` decay to pointers, so writes
 // reach the caller as they do in GLSL.
 #define in
@@ -65,6 +50,21 @@ glm::vec3 lightIrradiance(const render::LightGpu& light, glm::vec3 p, glm::vec3&
   return glsl::incidentIrradiance(light, p, toLight, dist);
 }
 
+ref::RefLight refLight(const render::LightGpu& l) {
+  ref::RefLight r;
+  const auto type = render::LightType(std::uint32_t(l.positionType.w + 0.5f));
+  r.type = type == render::LightType::Directional ? ref::RefLightType::Directional
+           : type == render::LightType::Spot      ? ref::RefLightType::Spot
+                                                  : ref::RefLightType::Point;
+  r.position = glm::vec3(l.positionType);
+  r.direction = glm::vec3(l.directionRange);
+  r.radiance = glm::vec3(l.radiance);
+  r.range = l.directionRange.w;
+  r.cosOuter = l.cone.x;
+  r.cosInner = l.cone.y;
+  return r;
+}
+
 namespace {
 
 // Ray origins' disc: p plus 8 points at 0.7·radius around it, in the plane facing the light, at
@@ -79,7 +79,7 @@ constexpr float kShorten = 1e-4f;
 SceneVisibility::SceneVisibility(ref::SceneDesc scene) : bvh_(std::move(scene)) {}
 
 float SceneVisibility::visible(const render::LightGpu& light, glm::vec3 p, float radius) const {
-  const ref::RefLight l = glsl::refLight(light);
+  const ref::RefLight l = refLight(light);
   const bool directional = l.type == ref::RefLightType::Directional;
   glm::vec3 toLight = directional ? -l.direction : l.position - p;
   const float len = glm::length(toLight);

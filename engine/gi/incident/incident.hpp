@@ -42,6 +42,10 @@ void addLight(const render::LightGpu& light, glm::vec3 p, float radius, float vi
 // path tracer compiles the same file). Writes the unit direction towards the light and the distance
 // (1e30 for directional). The techniques' CPU face (VLM's phase-1 mirror uses it too).
 glm::vec3 lightIrradiance(const render::LightGpu& light, glm::vec3 p, glm::vec3& toLight, float& dist);
+
+// The path tracer's description of the same light (engine/ref): type, position, direction,
+// radiance, range window and spot cone copied member by member.
+ref::RefLight refLight(const render::LightGpu& light);
 // A uniform cap of half-angle α (cosAlpha = cos α) about unit direction toLight carrying
 // irradiance-weight e = ∫_cap L dω (W/m² per channel): s_l-scaled delta (incidentAddCap).
 void addCap(glm::vec3 toLight, float cosAlpha, glm::vec3 e, RadianceSH& sh);

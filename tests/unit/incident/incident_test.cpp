@@ -8,6 +8,7 @@
 
 #include "engine/gi/incident/incident.hpp"
 #include "engine/math/sampling.hpp"
+#include "tests/support/box_mesh.hpp"
 #include "engine/math/sh.hpp"
 #include "engine/math/sh_exp.hpp"
 
@@ -194,23 +195,7 @@ TEST(Incident, LightAtOrInsideTheReceiverStaysFiniteAndBounded) {
   for (const auto& c : onLight) EXPECT_TRUE(std::isfinite(c.r));
 }
 
-// A closed axis-aligned box [lo, hi] of 12 triangles with outward normals (flat shading).
-ref::SceneDesc boxScene(glm::vec3 lo, glm::vec3 hi) {
-  ref::SceneDesc s;
-  s.materials.push_back({});
-  ref::RefMesh m;
-  const glm::vec3 c[8] = {{lo.x, lo.y, lo.z}, {hi.x, lo.y, lo.z}, {lo.x, hi.y, lo.z}, {hi.x, hi.y, lo.z},
-                          {lo.x, lo.y, hi.z}, {hi.x, lo.y, hi.z}, {lo.x, hi.y, hi.z}, {hi.x, hi.y, hi.z}};
-  const int faces[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
-  for (const auto& f : faces) {
-    const auto base = std::uint32_t(m.positions.size());
-    const glm::vec3 n = glm::normalize(glm::cross(c[f[1]] - c[f[0]], c[f[2]] - c[f[0]]));
-    for (int k = 0; k < 4; ++k) m.positions.push_back(c[f[k]]), m.normals.push_back(n);
-    for (const std::uint32_t k : {0u, 1u, 2u, 0u, 2u, 3u}) m.indices.push_back(base + k);
-  }
-  s.meshes.push_back(std::move(m));
-  return s;
-}
+ref::SceneDesc boxScene(glm::vec3 lo, glm::vec3 hi) { return bounce::testing::boxMesh(lo, hi); }
 
 // Shadowed = zero: a slab between the receiver and the lamp blocks every ray (the service adds
 // nothing); no slab: fully visible; a slab covering half the disc of ray origins: a fraction
@@ -309,16 +294,7 @@ TEST(Incident, PathTracerAndTechniquesShareLightsGlslsIrradianceBitForBit) {
       l.directionRange = glm::vec4(glm::normalize(glm::vec3(0.2f, -1.0f, 0.1f)), range);
       l.radiance = glm::vec4(4.0f, 8.0f, 12.0f, 0.0f);
       l.cone = glm::vec4(0.8f, 0.95f, 0.0f, 0.0f);
-      ref::RefLight r;
-      r.type = type == render::LightType::Point ? ref::RefLightType::Point
-               : type == render::LightType::Spot ? ref::RefLightType::Spot
-                                                 : ref::RefLightType::Directional;
-      r.position = glm::vec3(l.positionType);
-      r.direction = glm::vec3(l.directionRange);
-      r.radiance = glm::vec3(l.radiance);
-      r.range = range;
-      r.cosOuter = l.cone.x;
-      r.cosInner = l.cone.y;
+      const ref::RefLight r = refLight(l);  // the member-by-member copy the techniques use
       for (const glm::vec3& p : receivers) {
         glm::vec3 toA, toB;
         float distA = 0.0f, distB = 0.0f;
