@@ -16,6 +16,7 @@
 #include "engine/core/paths.hpp"
 #include "engine/core/progress.hpp"
 #include "engine/gpu/presenter_offscreen.hpp"
+#include "engine/ref/effect_noise.hpp"
 #include "engine/ref/image_heatmap.hpp"
 #include "engine/ref/metrics.hpp"
 #include "engine/ref/reference.hpp"
@@ -113,6 +114,23 @@ TechniqueRender renderTechnique(gpu::Context& ctx, gpu::OffscreenPresenter& pres
   return out;
 }
 
+// The noise floors of one reference kind (engine/ref/effect_noise.hpp) from its full and
+// first-half references, with and without the dynamic objects, onto every row of that kind.
+void setEffectNoise(AccuracyReport& report, const std::string& kind, std::uint32_t spp, const ImageRGB& fullWith,
+                    const ImageRGB& fullWithout, const ImageRGB& halfWith, const ImageRGB& halfWithout,
+                    const ref::PixelMask* indirectMask) {
+  const ref::EffectNoise whole = ref::effectNoise(fullWith, fullWithout, halfWith, halfWithout);
+  const ref::EffectNoise indirect = ref::effectNoise(fullWith, fullWithout, halfWith, halfWithout, indirectMask);
+  report.effectFloors.push_back({kind, spp, whole.floor, indirect.floor});
+  for (auto& r : report.rows) {
+    if (referenceKind(r.row.setting) != kind) continue;
+    r.effectNoiseFloor = whole.floor;
+    r.effectRelRmseCorrected = ref::noiseCorrectedError(r.effectRelRmse, whole.floor);
+    r.indirectNoiseFloor = indirect.floor;
+    r.indirectEffectRelRmseCorrected = ref::noiseCorrectedError(r.indirectEffectRelRmse, indirect.floor);
+  }
+}
+
 }  // namespace
 
 ref::PixelMask indirectOnlyMask(const ImageRGB& with, const ImageRGB& without) {
@@ -155,13 +173,16 @@ std::string formatAccuracyCsv(const std::vector<AccuracyResult>& results) {
   for (const auto& r : results) {
     // %.6g keeps small errors readable; NaN prints as "nan", which the plot script skips.
     std::snprintf(numbers, sizeof numbers, "%.6g,%.6g,%.6g,", r.gpuMs, r.relRmse, r.effectRelRmse);
-    std::string indirect;
-    if (std::isfinite(r.indirectEffectRelRmse)) {
-      char v[32];
-      std::snprintf(v, sizeof v, "%.6g", r.indirectEffectRelRmse);
-      indirect = v;
-    }
-    out += csvField(r.row.technique) + "," + csvField(r.row.setting) + "," + numbers + indirect + "\n";
+    // The optional columns: empty where NaN.
+    auto field = [](double v) {
+      if (!std::isfinite(v)) return std::string();
+      char text[32];
+      std::snprintf(text, sizeof text, "%.6g", v);
+      return std::string(text);
+    };
+    out += csvField(r.row.technique) + "," + csvField(r.row.setting) + "," + numbers + field(r.indirectEffectRelRmse) +
+           "," + field(r.effectNoiseFloor) + "," + field(r.effectRelRmseCorrected) + "," + field(r.indirectNoiseFloor) +
+           "," + field(r.indirectEffectRelRmseCorrected) + "\n";
   }
   return out;
 }
@@ -169,12 +190,15 @@ std::string formatAccuracyCsv(const std::vector<AccuracyResult>& results) {
 std::string formatAccuracyTable(const std::vector<AccuracyResult>& results) {
   std::string out;
   char line[256];
-  std::snprintf(line, sizeof line, "%-10s %-56s %9s %9s %16s %14s %6s\n", "technique", "setting", "gpu ms", "rel rmse",
-                "effect rel rmse", "indirect-only", "pareto");
+  // "corrected": the indirect-only error against the converged effect (the reference's noise
+  // taken out, AccuracyResult::indirectEffectRelRmseCorrected).
+  std::snprintf(line, sizeof line, "%-10s %-56s %9s %9s %16s %14s %10s %6s\n", "technique", "setting", "gpu ms", "rel rmse",
+                "effect rel rmse", "indirect-only", "corrected", "pareto");
   out += line;
   for (const auto& r : results) {
-    std::snprintf(line, sizeof line, "%-10s %-56s %9.4f %9.4f %16.4f %14.4f %6s\n", r.row.technique.c_str(),
-                  r.row.setting.c_str(), r.gpuMs, r.relRmse, r.effectRelRmse, r.indirectEffectRelRmse, r.pareto ? "*" : "");
+    std::snprintf(line, sizeof line, "%-10s %-56s %9.4f %9.4f %16.4f %14.4f %10.4f %6s\n", r.row.technique.c_str(),
+                  r.row.setting.c_str(), r.gpuMs, r.relRmse, r.effectRelRmse, r.indirectEffectRelRmse,
+                  r.indirectEffectRelRmseCorrected, r.pareto ? "*" : "");
     out += line;
   }
   // The front per reference, cheapest first: the rows worth their cost.
@@ -278,8 +302,10 @@ std::vector<AccuracyReference> accuracyReferences(const AccuracyOptions& options
     const std::uint32_t spp = b == 0 ? 1u : options.spp;  // bounces 0 is exact with one sample (header comment)
     out.push_back({kind, referenceRequest(options, options.level, bounces, spp)});
     out.push_back({kind + "-static", referenceRequest(options, staticPath, bounces, spp)});
-    if (b != 0 && options.spp >= 2)  // the noise estimate's half-sample reference (step 4)
+    if (b != 0 && options.spp >= 2) {  // the noise estimates' half-sample references (step 4)
       out.push_back({kind + "-half", referenceRequest(options, options.level, bounces, options.spp / 2)});
+      out.push_back({kind + "-static-half", referenceRequest(options, staticPath, bounces, options.spp / 2)});
+    }
   }
   return out;
 }
@@ -417,10 +443,18 @@ AccuracyReport runAccuracy(const AccuracyOptions& options) {
     const ref::ReferenceRequest half = referenceRequest(options, options.level, r.row.referenceBounces, options.spp / 2);
     const ImageRGB first = toImageRgb(ref::renderReference(half).image);
     const ImageRGB& full = reference(true, r.row.referenceBounces);
+    const ImageRGB firstWithout =
+        toImageRgb(ref::renderReference(referenceRequest(options, staticPath, r.row.referenceBounces, options.spp / 2)).image);
+    const std::string kind = referenceKind(r.row.setting);
+    setEffectNoise(report, kind, options.spp, full, reference(false, r.row.referenceBounces), first, firstWithout,
+                   &*indirectMask);
+    if (options.effectImages) {
+      writePfm(options.out / ("reference-" + kind + "-half-with.pfm"), first);
+      writePfm(options.out / ("reference-" + kind + "-half-without.pfm"), firstWithout);
+    }
     ImageRGB second = full;
     for (std::size_t i = 0; i < second.pixels.size(); ++i) second.pixels[i] = 2.0f * full.pixels[i] - first.pixels[i];
     const double noise = ref::relativeRmse(first, second) / 2.0;
-    const std::string kind = referenceKind(r.row.setting);
     report.referenceNoise.emplace_back(kind, noise);
     double best = std::numeric_limits<double>::infinity();
     for (const auto& o : report.rows)
@@ -435,6 +469,14 @@ AccuracyReport runAccuracy(const AccuracyOptions& options) {
       report.warnings.push_back(text);
     }
   }
+
+  // The exact bounces-0 reference has no noise: floor 0, the errors are their own corrected form.
+  for (auto& r : report.rows)
+    if (r.row.referenceBounces == 0u) {
+      r.effectNoiseFloor = r.indirectNoiseFloor = 0.0;
+      r.effectRelRmseCorrected = ref::noiseCorrectedError(r.effectRelRmse, 0.0);
+      r.indirectEffectRelRmseCorrected = ref::noiseCorrectedError(r.indirectEffectRelRmse, 0.0);
+    }
 
   // 5. The CSV and the chart.
   report.csv = options.out / "accuracy.csv";

@@ -22,6 +22,7 @@
 // entities, which the reference tracer reads, goes to <cache>/levels, not `out`.
 #include <cstdint>
 #include <filesystem>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -52,7 +53,9 @@ struct AccuracyOptions {
   // --effect-images: also write what the object-effect errors compare, as linear PFMs in `out`:
   // per row "without-<row>.pfm" (the technique without the dynamic entities; "image-<row>.pfm" is
   // the one with them), per reference kind "reference-<kind>-with.pfm" / "-without.pfm", and
-  // "mask-indirect-only.pfm" (1 on the pixels indirect_effect_rel_rmse counts, else 0).
+  // "mask-indirect-only.pfm" (1 on the pixels indirect_effect_rel_rmse counts, else 0), and per
+// reference kind with a noise estimate "reference-<kind>-half-with.pfm" / "-half-without.pfm" (the
+// first half of the same samples; tools/effect_noise.py reads the folder).
   bool effectImages = false;
   std::optional<std::vector<AccuracyRow>> rows;  // empty: accuracyRows()
 };
@@ -68,6 +71,18 @@ struct AccuracyResult {
   // model; a technique that leaves it out scores 1 there. NaN when the reference effect there is
   // zero. CSV column indirect_effect_rel_rmse (empty when NaN).
   double indirectEffectRelRmse = 0.0;
+  // The reference's own noise in the two effects above and the errors corrected for it
+  // (engine/ref/effect_noise.hpp, which derives them): *NoiseFloor = what a technique equal to the
+  // converged effect scores against this reference (its rms noise over its effect's rms; 0 against
+  // the exact bounces-0 reference), *Corrected = sqrt(max(0, e² − f²)/(1 − f²)), the error against
+  // the converged effect (1 = effect missing, as before the correction). NaN where the error is
+  // NaN, the reference has one sample per pixel and bounces, or f ≥ 1. CSV columns
+  // effect_noise_floor, effect_rel_rmse_corrected, indirect_noise_floor,
+  // indirect_effect_rel_rmse_corrected (empty when NaN).
+  double effectNoiseFloor = std::numeric_limits<double>::quiet_NaN();
+  double effectRelRmseCorrected = std::numeric_limits<double>::quiet_NaN();
+  double indirectNoiseFloor = std::numeric_limits<double>::quiet_NaN();
+  double indirectEffectRelRmseCorrected = std::numeric_limits<double>::quiet_NaN();
   std::filesystem::path heatMap;
   double heatMapScale = 0.0;  // the error the heat map's top colour stands for
   // On the Pareto front of the rows scored against the same reference: no such row is both
@@ -86,6 +101,14 @@ struct AccuracyReport {
   // estimated relative RMSE, relRmse(A, B) / 2 with A the first and B the second half of its
   // samples (A − B has twice the full image's noise amplitude).
   std::vector<std::pair<std::string, double>> referenceNoise;
+  // Per reference kind with a noise estimate: the noise floors of the object effect (whole image)
+  // and of the indirect-only effect (AccuracyResult::effectNoiseFloor / indirectNoiseFloor).
+  struct EffectFloor {
+    std::string kind;
+    std::uint32_t spp = 0;
+    double effect = 0.0, indirect = 0.0;  // NaN where the reference shows no effect
+  };
+  std::vector<EffectFloor> effectFloors;
   std::filesystem::path csv;
   std::optional<std::filesystem::path> chart;  // empty when no chart was drawn (see notes)
 };
@@ -103,7 +126,8 @@ ref::ReferenceRequest referenceRequest(const AccuracyOptions& options, const std
 
 // One path-traced reference runAccuracy(options) compares with, named for `bounce bake --only
 // reference:PART`: PART is the reference kind ("direct", "1bounce", "all"), "-static" for the level
-// without its dynamic objects, "-half" for the half-sample one the noise estimate uses.
+// without its dynamic objects, "-half" / "-static-half" for the half-sample ones the noise
+// estimates use (the first half of the same samples: effect_noise.hpp).
 struct AccuracyReference {
   std::string part;
   ref::ReferenceRequest request;
@@ -125,8 +149,11 @@ AccuracyReport runAccuracy(const AccuracyOptions& options);
 // indirect_effect_rel_rmse (issue 15): AccuracyResult::indirectEffectRelRmse, empty where a row has
 // none (the reference's effect on the indirect-only pixels is zero, e.g. against the direct-only
 // reference).
+// The four noise columns after it (AccuracyResult::effectNoiseFloor …) come last so that readers
+// of the first six keep working.
 inline constexpr const char* kAccuracyCsvHeader =
-    "technique,setting,gpu_ms,rel_rmse,effect_rel_rmse,indirect_effect_rel_rmse";
+    "technique,setting,gpu_ms,rel_rmse,effect_rel_rmse,indirect_effect_rel_rmse,"
+    "effect_noise_floor,effect_rel_rmse_corrected,indirect_noise_floor,indirect_effect_rel_rmse_corrected";
 std::string formatAccuracyCsv(const std::vector<AccuracyResult>& results);
 // A fixed-width table of the same numbers for the terminal.
 std::string formatAccuracyTable(const std::vector<AccuracyResult>& results);

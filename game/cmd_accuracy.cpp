@@ -60,6 +60,10 @@ int runAccuracy(const cli::Args& args) {
     std::printf("note: skipped %d %s row%s%s\n", what.first, technique.c_str(), what.first == 1 ? "" : "s", what.second.c_str());
   for (const auto& [kind, noise] : report.referenceNoise)
     std::printf("reference ref=%s: estimated noise (rel. RMSE) %.4f\n", kind.c_str(), noise);
+  for (const auto& f : report.effectFloors)
+    std::printf("reference ref=%s (%u spp): noise floor (what a technique equal to the converged effect scores) "
+                "%.4f for the object effect, %.4f for the indirect-only effect\n",
+                f.kind.c_str(), f.spp, f.effect, f.indirect);
   for (const auto& warning : report.warnings) std::printf("warning: %s\n", warning.c_str());
   std::printf("wrote %s\n", report.csv.c_str());
   if (report.chart) std::printf("wrote %s\n", report.chart->c_str());

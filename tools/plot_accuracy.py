@@ -27,7 +27,9 @@ import math
 import os
 import sys
 
-HEADER = ["technique", "setting", "gpu_ms", "rel_rmse", "effect_rel_rmse", "indirect_effect_rel_rmse"]
+# The chart reads the first six; the noise columns after them (game/accuracy.hpp) are checked by name only.
+HEADER = ["technique", "setting", "gpu_ms", "rel_rmse", "effect_rel_rmse", "indirect_effect_rel_rmse",
+          "effect_noise_floor", "effect_rel_rmse_corrected", "indirect_noise_floor", "indirect_effect_rel_rmse_corrected"]
 HEATMAP_HEADER = ["file", "technique", "setting", "scale"]
 LOG_X_SPAN = 10.0  # max/min GPU ms above which a log axis keeps the cheap rows apart
 REF_ORDER = ["direct", "1bounce", "all"]

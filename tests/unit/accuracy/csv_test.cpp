@@ -29,11 +29,18 @@ TEST(AccuracyCsv, ExactHeaderThenOneLinePerResult) {
   results[0].indirectEffectRelRmse = 0.75;
   results[1].effectRelRmse = std::numeric_limits<double>::quiet_NaN();
   results[1].indirectEffectRelRmse = std::numeric_limits<double>::quiet_NaN();  // none: an empty field
+  results[0].effectNoiseFloor = 0.0;  // the noise columns: empty where NaN (row 1 has none)
+  results[0].effectRelRmseCorrected = 0.5;
+  results[0].indirectNoiseFloor = 0.6;
+  results[0].indirectEffectRelRmseCorrected = 0.5625;
   const auto l = lines(formatAccuracyCsv(results));
   ASSERT_EQ(l.size(), 3u);
-  EXPECT_EQ(l[0], "technique,setting,gpu_ms,rel_rmse,effect_rel_rmse,indirect_effect_rel_rmse");
-  EXPECT_EQ(l[1], "direct,ref=direct,0.25,0.03125,0.5,0.75");
-  EXPECT_EQ(l[2], "probes,\"a,b\",0,0,nan,");
+  // The first six columns keep their names and order (scripts read them); the noise columns follow.
+  EXPECT_EQ(l[0],
+            "technique,setting,gpu_ms,rel_rmse,effect_rel_rmse,indirect_effect_rel_rmse,"
+            "effect_noise_floor,effect_rel_rmse_corrected,indirect_noise_floor,indirect_effect_rel_rmse_corrected");
+  EXPECT_EQ(l[1], "direct,ref=direct,0.25,0.03125,0.5,0.75,0,0.5,0.6,0.5625");
+  EXPECT_EQ(l[2], "probes,\"a,b\",0,0,nan,,,,,");
   EXPECT_EQ(lines(formatAccuracyCsv({})), std::vector<std::string>{kAccuracyCsvHeader});
 }
 

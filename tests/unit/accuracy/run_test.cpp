@@ -2,12 +2,15 @@
 // technique against both references, heat maps and the chart.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <set>
 #include <sstream>
 
 #include "engine/core/image.hpp"
+#include "engine/ref/effect_noise.hpp"
 #include "engine/ref/metrics.hpp"
 #include "engine/gpu/testing.hpp"
 #include "game/accuracy.hpp"
@@ -83,7 +86,9 @@ TEST_F(AccuracyRun, CsvHasTheExactHeaderAndOneLinePerConfigurationRun) {
   std::vector<std::string> lines;
   for (std::string l; std::getline(in, l);) lines.push_back(l);
   ASSERT_FALSE(lines.empty());
-  EXPECT_EQ(lines[0], "technique,setting,gpu_ms,rel_rmse,effect_rel_rmse,indirect_effect_rel_rmse");
+  EXPECT_EQ(lines[0],
+            "technique,setting,gpu_ms,rel_rmse,effect_rel_rmse,indirect_effect_rel_rmse,"
+            "effect_noise_floor,effect_rel_rmse_corrected,indirect_noise_floor,indirect_effect_rel_rmse_corrected");
   EXPECT_EQ(lines.size(), 1 + report_->rows.size());
   // Every configuration either ran or was skipped with a note; both direct rows run today.
   std::size_t skipped = 0;
@@ -186,6 +191,62 @@ TEST_F(AccuracyRun, EffectImagesReproduceEveryRowsObjectEffectErrors) {
   }
   EXPECT_EQ(checked, int(report_->rows.size()));
   EXPECT_GT(checked, 10);
+}
+
+// The noise floors: recomputed from the written full and first-half references (effect_noise.hpp)
+// they equal every row's columns; each traced reference kind has one, strictly between 0 and 1 at
+// 16 spp (the prop's effect is visible, and not all noise); the exact bounces-0 reference has
+// floor 0 and its errors are their own corrected form.
+TEST_F(AccuracyRun, NoiseFloorsComeFromTheHalfReferencesAndCorrectEveryRow) {
+  const std::filesystem::path out = report_->csv.parent_path();
+  const ImageRGB maskImage = readPfm(out / "mask-indirect-only.pfm");
+  ref::PixelMask mask(maskImage.width, maskImage.height);
+  for (int y = 0; y < maskImage.height; ++y)
+    for (int x = 0; x < maskImage.width; ++x) mask.set(x, y, maskImage.pixels[std::size_t(y) * maskImage.width + x].x > 0.5f);
+  std::set<std::string> kinds;
+  for (const auto& f : report_->effectFloors) {
+    EXPECT_TRUE(kinds.insert(f.kind).second) << "one floor per reference kind: " << f.kind;
+    EXPECT_EQ(f.spp, kSpp);
+    EXPECT_GT(f.effect, 0.0) << f.kind;
+    EXPECT_LT(f.effect, 1.0) << f.kind;
+    EXPECT_GT(f.indirect, 0.0) << f.kind;
+    EXPECT_LT(f.indirect, 1.0) << f.kind;
+    std::printf("ref=%s %u spp: noise floor %.4f (object effect), %.4f (indirect-only)\n", f.kind.c_str(), f.spp, f.effect,
+                f.indirect);
+    const auto read = [&](const std::string& part) { return readPfm(out / ("reference-" + f.kind + "-" + part + ".pfm")); };
+    const ImageRGB fullWith = read("with"), fullWithout = read("without"), halfWith = read("half-with"),
+                   halfWithout = read("half-without");
+    EXPECT_NEAR(ref::effectNoise(fullWith, fullWithout, halfWith, halfWithout).floor, f.effect, 1e-9) << f.kind;
+    EXPECT_NEAR(ref::effectNoise(fullWith, fullWithout, halfWith, halfWithout, &mask).floor, f.indirect, 1e-9) << f.kind;
+  }
+  EXPECT_EQ(kinds, (std::set<std::string>{"all", "1bounce"}));
+  for (const AccuracyResult& r : report_->rows) {
+    const std::string kind = referenceKind(r.row.setting);
+    const std::string name = r.row.technique + " " + r.row.setting;
+    if (kind == "direct") {
+      EXPECT_EQ(r.effectNoiseFloor, 0.0) << name;
+      EXPECT_EQ(r.indirectNoiseFloor, 0.0) << name;
+      if (std::isfinite(r.effectRelRmse)) { EXPECT_EQ(r.effectRelRmseCorrected, r.effectRelRmse) << name; }
+      continue;
+    }
+    const auto f = std::find_if(report_->effectFloors.begin(), report_->effectFloors.end(),
+                                [&](const auto& e) { return e.kind == kind; });
+    ASSERT_NE(f, report_->effectFloors.end()) << name;
+    EXPECT_EQ(r.effectNoiseFloor, f->effect) << name;
+    EXPECT_EQ(r.indirectNoiseFloor, f->indirect) << name;
+    EXPECT_EQ(r.effectRelRmseCorrected, ref::noiseCorrectedError(r.effectRelRmse, f->effect)) << name;
+    if (std::isfinite(r.indirectEffectRelRmse)) {
+      EXPECT_EQ(r.indirectEffectRelRmseCorrected, ref::noiseCorrectedError(r.indirectEffectRelRmse, f->indirect)) << name;
+      // e*² − e² = f²(e² − 1)/(1 − f²): the correction lowers errors below 1 ("effect missing") and
+      // raises those above it (the noise had diluted them), and leaves 1 where it is.
+      const double e = r.indirectEffectRelRmse, corrected = r.indirectEffectRelRmseCorrected;
+      if (e <= 1.0) {
+        EXPECT_LE(corrected, e + 1e-12) << name;
+      } else {
+        EXPECT_GE(corrected, e - 1e-12) << name;
+      }
+    }
+  }
 }
 
 }  // namespace

@@ -276,7 +276,7 @@ TEST_F(BakeCli, ReferencesAreJobsWithOnlyReference) {
     if (l.find("\"what\": \"reference direct\"") != std::string::npos) directKey = key;
   }
   EXPECT_EQ(whats, (std::set<std::string>{"direct", "direct-static", "1bounce", "1bounce-static", "1bounce-half", "all",
-                                          "all-static", "all-half"}));
+                                          "all-static", "all-half", "1bounce-static-half", "all-static-half"}));
   ASSERT_EQ(directKey.size(), 16u);
   EXPECT_TRUE(!fs::exists(root / "reference") || fs::is_empty(root / "reference")) << "planning traces nothing";
 
