@@ -19,7 +19,7 @@
 // SH radiance in place of the traced one (the light RTF's blocked term is made of).
 // field.pfm: R = min over objects of |r − o|/R_fade (R_fade = (outer + Δr)·η: < 1 inside a field).
 //
-// usage: rtf_parts LEVEL WIDTH HEIGHT DIRS_PER_AXIS OUT_DIR [FRAME]
+// usage: rtf_parts LEVEL WIDTH HEIGHT DIRS_PER_AXIS OUT_DIR [FRAME [REACH]]   (REACH: scene::Rtf::reach)
 //   writes OUT_DIR/{ref-interreflected,ref-blocked,ref-room,blocked-probes,rtf-interreflected,
 //   rtf-blocked,field}.pfm (outgoing radiance, rows top to bottom as bounce accuracy's images).
 // A diagnostic, not a test: run by hand, numbers read with tools/rtf_parts.py.
@@ -100,13 +100,14 @@ render::LightGpu lightGpu(const ref::RefLight& l) {  // GpuScene's makeLight fro
 
 int main(int argc, char** argv) {
   if (argc < 6) {
-    std::fprintf(stderr, "usage: rtf_parts LEVEL WIDTH HEIGHT DIRS_PER_AXIS OUT_DIR [FRAME]\n");
+    std::fprintf(stderr, "usage: rtf_parts LEVEL WIDTH HEIGHT DIRS_PER_AXIS OUT_DIR [FRAME [REACH]]\n");
     return 2;
   }
   const std::filesystem::path levelPath = argv[1], out = argv[5];
   const std::uint32_t W = std::uint32_t(std::atoi(argv[2])), H = std::uint32_t(std::atoi(argv[3]));
   const int spa = std::atoi(argv[4]);
   const std::uint32_t frame = argc > 6 ? std::uint32_t(std::atoi(argv[6])) : 0u;
+  const float reachFactor = argc > 7 ? float(std::atof(argv[7])) : 0.0f;  // scene::Rtf::reach for every object
   const double time = double(frame) * ref::kLevelFrameDt;
   const std::filesystem::path cooked = cacheDir("cooked");
   std::filesystem::create_directories(out);
@@ -142,11 +143,11 @@ int main(int argc, char** argv) {
     fields.push_back(gi::rtf::bakeCached(gi::dnrt::objectScene(with.registry, e, with.assets), s, gi::rtf::cacheFolder()));
   }
   for (std::size_t i = 0; i < rtfEntities.size(); ++i) {
-    objects.push_back({&fields[i], with.registry.get<scene::WorldTransform>(rtfEntities[i]).matrix});
-    const gi::rtf::Placement pl = gi::rtf::place(fields[i], objects.back().world);
     const auto& s = fields[i].settings;
+    objects.push_back({&fields[i], with.registry.get<scene::WorldTransform>(rtfEntities[i]).matrix, reachFactor * s.outerRadius});
+    const gi::rtf::Placement pl = gi::rtf::place(fields[i], objects.back().world);
     const float dr = (s.outerRadius - s.innerRadius) / float(s.spheres - 1);
-    reach.push_back({pl.centreWorld, (s.outerRadius + dr) * pl.radiusWorld});
+    reach.push_back({pl.centreWorld, (s.outerRadius + dr) * pl.radiusWorld});  // field.pfm: the shipped fade's end
   }
   const gi::rtf::LitSource lit(service, lights);
   const gi::rtf::BounceResult bounced = gi::rtf::bounce(objects, lit, 2);
