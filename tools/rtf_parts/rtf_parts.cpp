@@ -13,13 +13,13 @@
 // (ρ/π ∫ L cos dω = ρ·E[L] for cosine-weighted directions), plus the change of r's direct light
 // (shadows), which the indirect-only mask of `bounce accuracy` leaves out. RTF models the first two:
 //   rtf-interreflected, rtf-blocked = gi::rtf::shade() of the level's rtf objects (bounces 2, 9 SH)
-//   with the proxies lit as the session lights them (probes + the lamp through static geometry),
+//   (with TAIL: scene::Rtf::tail for every object) with the proxies lit as the session lights them (probes + the lamp through static geometry),
 //   the blocked light = the probes' light at r (what shade() takes).
 // and blocked-probes = ρ·E[L_probes(r, ω)·1(ω hits an object)]: the blocked term with the probes'
 // SH radiance in place of the traced one (the light RTF's blocked term is made of).
 // field.pfm: R = min over objects of |r − o|/R_fade (R_fade = (outer + Δr)·η: < 1 inside a field).
 //
-// usage: rtf_parts LEVEL WIDTH HEIGHT DIRS_PER_AXIS OUT_DIR [FRAME [REACH]]   (REACH: scene::Rtf::reach)
+// usage: rtf_parts LEVEL WIDTH HEIGHT DIRS_PER_AXIS OUT_DIR [FRAME [TAIL]]   (TAIL: scene::Rtf::tail τ for every object)
 //   writes OUT_DIR/{ref-interreflected,ref-blocked,ref-room,blocked-probes,rtf-interreflected,
 //   rtf-blocked,field}.pfm (outgoing radiance, rows top to bottom as bounce accuracy's images).
 // A diagnostic, not a test: run by hand, numbers read with tools/rtf_parts.py.
@@ -100,14 +100,14 @@ render::LightGpu lightGpu(const ref::RefLight& l) {  // GpuScene's makeLight fro
 
 int main(int argc, char** argv) {
   if (argc < 6) {
-    std::fprintf(stderr, "usage: rtf_parts LEVEL WIDTH HEIGHT DIRS_PER_AXIS OUT_DIR [FRAME [REACH]]\n");
+    std::fprintf(stderr, "usage: rtf_parts LEVEL WIDTH HEIGHT DIRS_PER_AXIS OUT_DIR [FRAME [TAIL]]\n");
     return 2;
   }
   const std::filesystem::path levelPath = argv[1], out = argv[5];
   const std::uint32_t W = std::uint32_t(std::atoi(argv[2])), H = std::uint32_t(std::atoi(argv[3]));
   const int spa = std::atoi(argv[4]);
   const std::uint32_t frame = argc > 6 ? std::uint32_t(std::atoi(argv[6])) : 0u;
-  const float reachFactor = argc > 7 ? float(std::atof(argv[7])) : 0.0f;  // scene::Rtf::reach for every object
+  const float tail = argc > 7 ? float(std::atof(argv[7])) : 0.0f;  // scene::Rtf::tail τ for every object
   const double time = double(frame) * ref::kLevelFrameDt;
   const std::filesystem::path cooked = cacheDir("cooked");
   std::filesystem::create_directories(out);
@@ -144,7 +144,9 @@ int main(int argc, char** argv) {
   }
   for (std::size_t i = 0; i < rtfEntities.size(); ++i) {
     const auto& s = fields[i].settings;
-    objects.push_back({&fields[i], with.registry.get<scene::WorldTransform>(rtfEntities[i]).matrix, reachFactor * s.outerRadius});
+    objects.push_back({&fields[i], with.registry.get<scene::WorldTransform>(rtfEntities[i]).matrix, gi::rtf::tailReach(fields[i], tail)});
+    std::fprintf(stderr, "rtf_parts: object %zu: outermost sphere %.2f eta, tail %.3f: reach %.2f eta\n", i, s.outerRadius, tail,
+                 objects.back().reach);
     const gi::rtf::Placement pl = gi::rtf::place(fields[i], objects.back().world);
     const float dr = (s.outerRadius - s.innerRadius) / float(s.spheres - 1);
     reach.push_back({pl.centreWorld, (s.outerRadius + dr) * pl.radiusWorld});  // field.pfm: the shipped fade's end
