@@ -210,6 +210,12 @@ struct Rtf {
   // Run time: the SH coefficients a receiver's irradiance takes from the field, 9 (bands 0–2 of the
   // clamped cosine: all it has, Â_3 = 0) or 4 (bands 0–1, as DNRT's "sh": 4; 3 fetches, not 7).
   int sh = 9;
+  // Run time: where the field ends. 0: it fades to zero one sphere spacing beyond the outermost
+  // sphere. τ > 0: beyond it the field goes on as (r_N/|q|)² — the solid angle of the object — until
+  // the object covers less than τ·π sr seen from q (τ bounds the share of a facing receiver's
+  // irradiance it can block or add; from the field's OOF at r_N, gi::rtf::tailReach), then fades
+  // over one spacing. Costs shading pixels only (no more samples).
+  float tail = 0.0f;
   friend bool operator==(const Rtf&, const Rtf&) = default;
 };
 

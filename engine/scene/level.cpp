@@ -212,10 +212,10 @@ void parseSl(const json::Node& node, EntityDesc& d, const ParseContext&) {
 
 // "rtf": {"proxies": 1..64, "bounces": 1..4, "spheres": 2..64, "face": 1..64, "rays": 1..256,
 //         "vertex_rays": 1..256, "clusters": 1..4096, "components": 0..256, "inner": η, "outer": η,
-//         "sh": 4|9} — every key optional (defaults in components.hpp Rtf); 0 < inner < outer ≤ 100.
+//         "sh": 4|9, "tail": [0, 1)} — every key optional (defaults in components.hpp Rtf); 0 < inner < outer ≤ 100.
 void parseRtf(const json::Node& node, EntityDesc& d, const ParseContext&) {
   const auto o = node.object({"proxies", "bounces", "spheres", "face", "rays", "vertex_rays", "clusters", "components",
-                              "inner", "outer", "sh"});
+                              "inner", "outer", "sh", "tail"});
   Rtf c;
   if (auto v = o.optional("proxies")) c.proxies = int(v->integer(1, 64));
   if (auto v = o.optional("bounces")) c.bounces = int(v->integer(1, 4));
@@ -231,6 +231,7 @@ void parseRtf(const json::Node& node, EntityDesc& d, const ParseContext&) {
     c.sh = int(v->integer(0, 16));
     if (c.sh != 4 && c.sh != 9) v->fail("SH count " + std::to_string(c.sh), "4 or 9");
   }
+  if (auto v = o.optional("tail")) c.tail = v->real(json::Range::closedOpen(0.0, 1.0));
   if (!(c.outer > c.inner))
     (o.has("outer") ? o.node().child("outer") : o.node().child("inner"))
         .fail("outer radius " + json::formatNumber(c.outer) + " is not above inner " + json::formatNumber(c.inner),

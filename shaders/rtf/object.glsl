@@ -3,8 +3,8 @@
 struct RtfObject {
   vec4 toQ[3];        // rows: q = toQ · (p, 1), the field's offset from o in units of η
   vec4 toLocal[3];    // rows: world → object-frame rotation
-  vec4 centreWorld;   // xyz: o; w: the field's radius (outer + Δr)·η (m), the sphere rtf.vert covers
+  vec4 centreWorld;   // xyz: o; w: the field's radius (outer + Δr)·η, or reach·η with a tail (m), the sphere rtf.vert covers
   vec4 grid;          // spheres, face size, inner, outer (η)
-  uvec4 ids;          // x: entity + 1
+  uvec4 ids;          // x: entity + 1; y: SH count; z: the tail's reach (η, float bits; 0: none)
   vec4 blocked[144];  // [j·9 + i].rgb = Â_l(i)/π · T_ij: folded into X by the ξ pass (xi.comp), not read here
 };

@@ -35,6 +35,7 @@ layout(location = 6) flat in vec4 radial;  // inner (η), 1/Δr, spheres − 1, 
 layout(location = 7) flat in vec4 face;    // n_r, 1/(6 n_r), 1/n_r, 1/(7 · spheres)
 layout(location = 8) flat in vec4 inRange[7];
 layout(location = 15) flat in uint self;
+layout(location = 16) flat in float reach;  // the tail's end (η), 0: none (evaluate.cpp tailFade)
 
 layout(location = 0) out vec4 outRadiance;
 
@@ -46,9 +47,11 @@ void main() {
   vec3 q = vec3(dot(toQ[0], r), dot(toQ[1], r), dot(toQ[2], r));
   // Eq. 10's radial weights (rtf.glsl rtfTaps, evaluate.cpp lookup()): the slice coordinate
   // clamped to the first and last sphere's slice centres (inside the innermost sphere: its value),
-  // times the fade over one spacing beyond the outermost.
+  // times the fade beyond the outermost sphere r_N (evaluate.cpp tailFade): over one spacing, or
+  // with a tail (r_N/|q|)² (the object's solid angle) and over the last spacing before `reach`.
   float len = length(q);
-  float fade = clamp(1.0 - (len - radial.w) * radial.y, 0.0, 1.0);
+  float fade = reach > 0.0 ? (len <= radial.w ? 1.0 : (radial.w * radial.w) / (len * len) * clamp((reach - len) * radial.y, 0.0, 1.0))
+                           : clamp(1.0 - (len - radial.w) * radial.y, 0.0, 1.0);
   if (fade <= 0.0) discard;  // beyond the fade: the field is zero
   // The object's own surface: its transfer already holds its self-interreflection (Eq. 8).
   if (texelFetch(gEntity, pixel, 0).r == self) discard;

@@ -1,7 +1,8 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 // RTF shading (engine/gi/rtf/node.hpp): what covers the pixels whose receivers can lie in one
-// object's field, the sphere of radius R = (outer + Δr)·η around o (beyond it the field is zero).
+// object's field, the sphere of radius R = (outer + Δr)·η around o — or reach·η with a 1/|q|² tail
+// (scene::Rtf::tail) — beyond which the field is zero.
 // llvmpipe runs the fragment shader in full for every covered pixel, its early `discard`s included
 // (DESIGN.md "What costs what"), so coverage is the cost: instead of the sphere's bounding box (its
 // projection up to 2.2× the sphere's silhouette disc), a camera-facing octagon through o that
@@ -26,6 +27,7 @@ layout(location = 6) flat out vec4 outRadial;  // inner (η), 1/Δr, spheres −
 layout(location = 7) flat out vec4 outFace;    // n_r, 1/(6 n_r), 1/n_r, 1/(7 · spheres)
 layout(location = 8) flat out vec4 outRange[7];
 layout(location = 15) flat out uint outSelf;
+layout(location = 16) flat out float outReach;  // the tail's end (η; 0: the one-spacing fade), ids.z
 
 const int kCorners = 8;  // the octagon: 6 fan triangles, 18 vertices (node.cpp's draw)
 
@@ -37,6 +39,7 @@ void main() {
   outFace = vec4(n, 1.0 / (6.0 * n), 1.0 / n, 1.0 / (7.0 * spheres));
   outRange = range;
   outSelf = ob.ids.x;
+  outReach = uintBitsToFloat(ob.ids.z);
   vec3 o = ob.centreWorld.xyz, toO = o - camera.position.xyz;
   float R = ob.centreWorld.w, d = length(toO);
   if (d < 1.05 * R) {

@@ -81,7 +81,27 @@ float radialWeight(float ra, float rb, float r) {
   return glm::clamp((r2 - a2) * b2 / (r2 * (b2 - a2)), 0.0f, 1.0f);
 }
 
-Lookup lookup(const FieldSettings& s, glm::vec3 q) {
+float tailFade(const FieldSettings& s, float r, float reach) {
+  const float rN = sphereRadius(s, s.spheres - 1), dr = (s.outerRadius - s.innerRadius) / float(s.spheres - 1);
+  if (r <= rN) return 1.0f;
+  if (!(reach > rN + dr)) return std::max(0.0f, 1.0f - (r - rN) / dr);
+  return (rN / r) * (rN / r) * glm::clamp((reach - r) / dr, 0.0f, 1.0f);
+}
+
+float tailReach(const Field& f, float tail) {
+  const FieldSettings& s = f.settings;
+  if (!(tail > 0.0f)) return 0.0f;
+  const int per = samplesPerSphere(s);
+  const std::size_t first = std::size_t(s.spheres - 1) * std::size_t(per);
+  double omega = 0.0;
+  for (int i = 0; i < per; ++i) omega += 4.0 * math::kPi - double(f.oof[(first + std::size_t(i)) * kShCount]) / sh::constants::kY00;
+  omega = std::max(0.0, omega / double(per));
+  const float rN = sphereRadius(s, s.spheres - 1), dr = (s.outerRadius - s.innerRadius) / float(s.spheres - 1);
+  const float reach = rN * float(std::sqrt(omega / (double(tail) * math::kPi)));
+  return reach > rN + dr ? reach : 0.0f;
+}
+
+Lookup lookup(const FieldSettings& s, glm::vec3 q, float reach) {
   Lookup l;
   const float r = glm::length(q);
   const float r0 = sphereRadius(s, 0), rN = sphereRadius(s, s.spheres - 1);
@@ -92,7 +112,7 @@ Lookup lookup(const FieldSettings& s, glm::vec3 q) {
     s0 = s1 = 0;
   } else if (r >= rN) {
     s0 = s1 = s.spheres - 1;
-    fade = std::max(0.0f, 1.0f - (r - rN) / dr);
+    fade = tailFade(s, r, reach);
   } else {
     const float t = (r - s.innerRadius) / dr;
     s0 = std::min(int(std::floor(t)), s.spheres - 2);
@@ -157,8 +177,8 @@ std::vector<glm::vec3> xiCache(const Field& f, std::span<const glm::vec3> L) {
   return xi;
 }
 
-ShRgb interreflection(const Field& f, std::span<const glm::vec3> xi, glm::vec3 q) {
-  const Lookup l = lookup(f.settings, q);
+ShRgb interreflection(const Field& f, std::span<const glm::vec3> xi, glm::vec3 q, float reach) {
+  const Lookup l = lookup(f.settings, q, reach);
   ShRgb out{};
   for (int c = 0; c < 8; ++c) {
     if (l.weight[std::size_t(c)] == 0.0f) continue;
@@ -168,8 +188,8 @@ ShRgb interreflection(const Field& f, std::span<const glm::vec3> xi, glm::vec3 q
   return out;
 }
 
-ShScalar occlusion(const Field& f, glm::vec3 q) {
-  const Lookup l = lookup(f.settings, q);
+ShScalar occlusion(const Field& f, glm::vec3 q, float reach) {
+  const Lookup l = lookup(f.settings, q, reach);
   ShScalar out{};
   float total = 0.0f;
   for (int c = 0; c < 8; ++c) {
@@ -208,12 +228,12 @@ Incident incidentRadiance(std::span<const Object> objects, std::span<const std::
     const Placement& p = placed[i];
     const glm::vec3 qLocal = (glm::vec3(p.worldToLocal * glm::vec4(q, 1.0f)) - f.centre) / f.radius;
     if (i < xi.size() && xi[i] != nullptr) {
-      const ShRgb I = rotate(interreflection(f, *xi[i], qLocal), p.localToWorldRotation);
+      const ShRgb I = rotate(interreflection(f, *xi[i], qLocal, objects[i].reach), p.localToWorldRotation);
       std::vector<glm::vec3> Vrgb(Vv.begin(), Vv.end());
       const auto lit = sh::product<glm::vec3>(std::span<const glm::vec3>(Vrgb), std::span<const glm::vec3>(I), kShOrder);
       for (int k = 0; k < kShCount; ++k) in.radiance[std::size_t(k)] += lit[std::size_t(k)];
     }
-    const ShScalar O = rotate(occlusion(f, qLocal), p.localToWorldRotation);
+    const ShScalar O = rotate(occlusion(f, qLocal, objects[i].reach), p.localToWorldRotation);
     Vv = sh::product<float>(std::span<const float>(Vv), std::span<const float>(O), kShOrder);
   }
   if (source != nullptr) {

@@ -55,7 +55,18 @@ struct Lookup {
   std::array<std::uint32_t, 8> sample{};
   std::array<float, 8> weight{};
 };
-Lookup lookup(const FieldSettings& settings, glm::vec3 q);
+// `reach` (units of η, run time: scene::Rtf::reach × the outermost radius): 0 keeps the fade above;
+// beyond r_N + Δr the field instead goes on as (r_N/|q|)² — what a field carries falls off as the solid
+// angle of the object (radialWeight's comment) — and fades linearly to zero over the last Δr before
+// `reach` (continuous at r_N and at `reach`).
+Lookup lookup(const FieldSettings& settings, glm::vec3 q, float reach = 0.0f);
+// The radial factor beyond the outermost sphere r_N (1 inside it): lookup()'s fade, rtf.frag's.
+float tailFade(const FieldSettings& settings, float r, float reach);
+// The reach (η) of scene::Rtf::tail τ: the object's solid angle seen from the outermost sphere,
+// Ω_N = the mean over its samples of ∫(1 − V) = 4π − V_00/Y_00 (the OOF), falls as (r_N/r)², so it
+// drops below τ·π at r = r_N·√(Ω_N/(τπ)); the tail's linear fade ends there. 0 (no tail: the
+// one-spacing fade) when τ ≤ 0 or that radius is within r_N + Δr.
+float tailReach(const Field& field, float tail);
 // The weight of the outer sphere (radius rb) against the inner (ra) for a point at |q| = r in
 // [ra, rb]: linear in 1/r², (1/ra² − 1/r²)/(1/ra² − 1/rb²), clamped to [0, 1]. rtf.frag and
 // rtf.glsl rtfTaps compute the same.
@@ -67,14 +78,15 @@ std::vector<glm::vec3> eigenCache(const Field& field, std::span<const glm::vec3>
 // Eq. 11 ξ cache: ξ_r = u_{h(r),0} + Σ_e α_e(r) u_{h(r),e}, [sample·16 + i], local frame.
 std::vector<glm::vec3> xiCache(const Field& field, std::span<const glm::vec3> proxyLight);
 // ξ at q (local, units of η) by Eq. 10: the object's interreflected radiance arriving at q.
-ShRgb interreflection(const Field& field, std::span<const glm::vec3> xi, glm::vec3 q);
+ShRgb interreflection(const Field& field, std::span<const glm::vec3> xi, glm::vec3 q, float reach = 0.0f);
 // The OOF at q (local, units of η), faded to V = 1 beyond the field.
-ShScalar occlusion(const Field& field, glm::vec3 q);
+ShScalar occlusion(const Field& field, glm::vec3 q, float reach = 0.0f);
 
 // One object of the scene: its field placed by `world` (rotation, uniform scale, translation).
 struct Object {
   const Field* field = nullptr;
   glm::mat4 world{1.0f};
+  float reach = 0.0f;  // lookup()'s: 0 the one-spacing fade, else where the (r_N/|q|)² tail ends (η)
 };
 
 struct BounceResult {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <tuple>
 #include <utility>
 
 #include "engine/anim/skinning.hpp"
@@ -131,16 +132,20 @@ class RtfTechnique final : public Technique {
   // cheaper "sh": 4 costs in accuracy), applied to every `rtf` entity; the bake settings stay the
   // level's. Its effect_rel_rmse is the number that matters (the static part is the probes').
   void accuracyRows(std::vector<AccuracyRow>& rows) const override {
-    for (const std::pair<int, int>& row : {std::pair{1, 9}, std::pair{2, 9}, std::pair{2, 4}}) {
-      const int bounces = row.first, sh = row.second;
+    // A fourth row: 2 bounces, 9 SH and the 1/|q|² tail to τ = kAccuracyTail (scene::Rtf::tail).
+    constexpr float kAccuracyTail = 0.01f;
+    for (const std::tuple<int, int, float>& row : {std::tuple{1, 9, 0.0f}, std::tuple{2, 9, 0.0f}, std::tuple{2, 4, 0.0f},
+                                                   std::tuple{2, 9, kAccuracyTail}}) {
+      const auto [bounces, sh, tail] = row;
       AccuracyRow r;
       r.technique = "rtf";
-      r.setting = (sh == 4 ? "sh=4;" : "") + std::string("bounces=") + std::to_string(bounces) + ";ref=all";
+      r.setting = (sh == 4 ? "sh=4;" : "") + std::string(tail > 0.0f ? "tail=0.01;" : "") + "bounces=" +
+                  std::to_string(bounces) + ";ref=all";
       r.effects = {"direct", "shadows", "probes", "rtf"};
       r.passes = {"shadow", "lighting", "probes", "rtf.bounce", "rtf"};
-      r.configure = [bounces, sh](scene::Level& level) {
+      r.configure = [bounces, sh, tail](scene::Level& level) {
         for (auto& e : level.entities)
-          if (e.rtf) e.rtf->bounces = bounces, e.rtf->sh = sh;
+          if (e.rtf) e.rtf->bounces = bounces, e.rtf->sh = sh, e.rtf->tail = tail;
       };
       rows.push_back(std::move(r));
     }
@@ -196,6 +201,7 @@ SessionRuntime::SessionRuntime(SessionContext& sc, const std::filesystem::path& 
         },
         [](const Field& f, const std::filesystem::path& path) { save(f, path); }, &cached);
     baked_ += cached ? 0 : 1;
+    p.reach = tailReach(p.field, c.tail);
     participants.push_back(std::move(p));
   }
   update_ = std::make_unique<Update>(sc.registry, std::move(participants));

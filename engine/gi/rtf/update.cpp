@@ -4,6 +4,7 @@
 // per pixel (the product matrix of the indirect light, the q mapping) into the records.
 
 #include <algorithm>
+#include <bit>
 #include <limits>
 
 #include "engine/core/error.hpp"
@@ -13,7 +14,8 @@
 
 namespace bounce::gi::rtf {
 
-RtfObjectGpu packObject(const Field& f, const glm::mat4& world, const ShRgb& indirect, std::uint32_t entity, int shCount) {
+RtfObjectGpu packObject(const Field& f, const glm::mat4& world, const ShRgb& indirect, std::uint32_t entity, int shCount,
+                        float reach) {
   if (shCount != 4 && shCount != 9) throw InternalError("rtf::packObject: SH count " + std::to_string(shCount) + " (4 or 9)");
   const Placement p = place(f, world);
   RtfObjectGpu o{};
@@ -27,9 +29,10 @@ RtfObjectGpu packObject(const Field& f, const glm::mat4& world, const ShRgb& ind
   for (int r = 0; r < 3; ++r) o.toLocal[r] = glm::vec4(toLocal[0][r], toLocal[1][r], toLocal[2][r], 0.0f);
   const FieldSettings& s = f.settings;
   const float dr = (s.outerRadius - s.innerRadius) / float(s.spheres - 1);
-  o.centreWorld = glm::vec4(p.centreWorld, (s.outerRadius + dr) * p.radiusWorld);
+  const bool tail = reach > s.outerRadius + dr;  // lookup(): otherwise the one-spacing fade
+  o.centreWorld = glm::vec4(p.centreWorld, (tail ? reach : s.outerRadius + dr) * p.radiusWorld);
   o.grid = glm::vec4(float(s.spheres), float(s.faceSize), s.innerRadius, s.outerRadius);
-  o.ids = glm::uvec4(entity + 1u, std::uint32_t(shCount), 0u, 0u);
+  o.ids = glm::uvec4(entity + 1u, std::uint32_t(shCount), std::bit_cast<std::uint32_t>(tail ? reach : 0.0f), 0u);
   // T per channel in the object frame (Eq. 10's occlusion, shade() in evaluate.cpp).
   const ShRgb L = rotate(indirect, toLocal);
   for (int c = 0; c < 3; ++c) {
@@ -94,7 +97,7 @@ FrameObjects Update::frame(std::span<const render::LightGpu> lights) {
     const auto* placed = registry_.tryGet<scene::WorldTransform>(p.entity);
     if (!placed) continue;
     out.participant.push_back(i);
-    objects.push_back({&p.field, placed->matrix});
+    objects.push_back({&p.field, placed->matrix, p.reach});
   }
   if (!objects.empty()) {
     const LitSource source(service_, lights);
@@ -106,7 +109,8 @@ FrameObjects Update::frame(std::span<const render::LightGpu> lights) {
     for (std::size_t o = 0; o < objects.size(); ++o) {
       const Placement pl = place(*objects[o].field, objects[o].world);
       out.records.push_back(packObject(*objects[o].field, objects[o].world, sourceRadiance(indirect, pl.centreWorld),
-                                       participants_[out.participant[o]].entity.index(), participants_[out.participant[o]].sh));
+                                       participants_[out.participant[o]].entity.index(), participants_[out.participant[o]].sh,
+                                       objects[o].reach));
       out.blockedScale.push_back(blockedScale(*objects[o].field, objects[o].world, indirect, staticScene_));
     }
   }

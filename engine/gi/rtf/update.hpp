@@ -38,9 +38,9 @@ namespace bounce::gi::rtf {
 struct RtfObjectGpu {
   glm::vec4 toQ[3];        // rows: q = toQ · (p, 1): the field's local offset from o in units of η
   glm::vec4 toLocal[3];    // rows: world → object-frame rotation (normals)
-  glm::vec4 centreWorld;   // xyz: o in the world; w: the field's radius R = (outer + Δr)·η (m), the sphere rtf.vert covers
+  glm::vec4 centreWorld;   // xyz: o in the world; w: the field's radius R = (outer + Δr)·η, or its reach·η with a tail (m), the sphere rtf.vert covers
   glm::vec4 grid;          // spheres, face size, inner, outer (η)
-  glm::uvec4 ids;          // x: entity index + 1 (its own pixels skip the field); y: SH count 4 or 9 (the pipeline)
+  glm::uvec4 ids;          // x: entity index + 1 (its own pixels skip the field); y: SH count 4 or 9 (the pipeline); z: the reach (η, float bits; 0: no tail)
   // blocked[j·9 + i].rgb = Â_{l(i)}/π · T_ij, T the product matrix of the indirect radiance L
   // (object frame, at o): ((u − V) ⊙ L)_i = Σ_j T_ij (u − V)_j (sh_product.hpp productMatrix). Only
   // i < 9: the clamped cosine has Â_3 = 0. The ξ pass folds it into its per-sample X
@@ -52,9 +52,10 @@ inline constexpr std::size_t kRtfObjectStride = 2560;  // a multiple of every mi
 static_assert(sizeof(RtfObjectGpu) <= kRtfObjectStride);
 
 // The record of a field placed by `world` with indirect radiance `indirect` (world frame, at o),
-// entity `entity` (index; its own pixels skip the field), shaded with `shCount` (4 or 9) SH.
+// entity `entity` (index; its own pixels skip the field), shaded with `shCount` (4 or 9) SH, with
+// lookup()'s `reach` (η; 0: the one-spacing fade).
 RtfObjectGpu packObject(const Field& field, const glm::mat4& world, const ShRgb& indirect, std::uint32_t entity,
-                        int shCount = 9);
+                        int shCount = 9, float reach = 0.0f);
 
 // The shading step's blocked light at the receiver instead of at o (ours; the departure is the
 // scale): Eq. 10 blocks the indirect light L(r) at the receiver r, (u − V(q)) ⊙ L(r); the record's
@@ -88,6 +89,7 @@ struct Participant {
   Field field;
   int bounces = 2;
   int sh = 9;  // receiver SH count (scene::Rtf::sh): the record's ids.y
+  float reach = 0.0f;  // tailReach(field, scene::Rtf::tail), η: the record's ids.z and Object::reach
 };
 
 // One frame's objects after the bouncing step, in participant order (objects without a world

@@ -92,6 +92,42 @@ TEST(RtfEvaluate, InnermostBetweenAndBeyondOutermostFadeContinuously) {
   EXPECT_LT(occlusion(f, rN * dir)[0], 2.0f * std::sqrt(float(kPi)));
 }
 
+// scene::Rtf::tail: beyond the outermost sphere the field goes on as (r_N/|q|)² to its reach, fading
+// to zero over the last spacing (continuous at r_N and at the reach); a reach within r_N + Δr is the
+// one-spacing fade. The reach comes from the OOF: the solid angle Ω_N the object covers seen from
+// r_N, falling as (r_N/r)², drops to τ·π there.
+TEST(RtfEvaluate, TailGoesAsOneOverRSquaredToItsReachAndFadesThere) {
+  const FieldSettings fs = testing::smallSettings();
+  const float rN = sphereRadius(fs, fs.spheres - 1), dr = sphereRadius(fs, 1) - sphereRadius(fs, 0);
+  const float reach = 3.0f * rN;
+  const glm::vec3 dir = glm::normalize(glm::vec3(0.3f, -0.5f, 0.8f));
+  for (float r : {0.0f, 1.0f, 2.0f, rN}) EXPECT_NEAR(weightSum(lookup(fs, r * dir, reach)), 1.0f, 1e-6f) << r;
+  EXPECT_NEAR(weightSum(lookup(fs, rN * (1.0f + 1e-5f) * dir, reach)), 1.0f, 1e-4f);  // continuous at r_N
+  for (float r : {1.25f * rN, 1.5f * rN, 2.0f * rN, reach - dr})
+    EXPECT_NEAR(weightSum(lookup(fs, r * dir, reach)), (rN / r) * (rN / r), 1e-6f) << r;
+  const float mid = reach - 0.5f * dr;
+  EXPECT_NEAR(weightSum(lookup(fs, mid * dir, reach)), 0.5f * (rN / mid) * (rN / mid), 1e-5f);
+  EXPECT_NEAR(weightSum(lookup(fs, reach * dir, reach)), 0.0f, 1e-6f);
+  EXPECT_EQ(weightSum(lookup(fs, 1.01f * reach * dir, reach)), 0.0f);
+  // A reach within one spacing of r_N: the shipped fade, exactly.
+  for (float r : {rN + 0.25f * dr, rN + 0.5f * dr, rN + 2.0f * dr})
+    EXPECT_EQ(weightSum(lookup(fs, r * dir, rN + dr)), weightSum(lookup(fs, r * dir))) << r;
+  // The OOF carries the tail too: the occluded part (u − V) scales by the same factor.
+  const Field& f = sphereBake().field;
+  const float u = 2.0f * std::sqrt(float(kPi));
+  const float at = u - occlusion(f, rN * dir, reach)[0], far = u - occlusion(f, 2.0f * rN * dir, reach)[0];
+  EXPECT_GT(at, 0.0f);
+  EXPECT_NEAR(far, 0.25f * at, 1e-5f);
+  // The reach from τ: the unit sphere (η = 1) covers Ω = 2π(1 − √(1 − 1/r²)) seen from r.
+  const double omegaN = 2.0 * kPi * (1.0 - std::sqrt(1.0 - 1.0 / double(rN * rN)));
+  for (float tau : {0.001f, 0.003f, 0.01f}) {
+    const double want = rN * std::sqrt(omegaN / (double(tau) * kPi));
+    EXPECT_NEAR(tailReach(f, tau), want, 0.05 * want) << tau;  // the OOF's cube-map projection of a 0.2 sr disc
+  }
+  EXPECT_EQ(tailReach(f, 0.0f), 0.0f);
+  EXPECT_EQ(tailReach(f, 0.05f), 0.0f);  // Ω_N/(0.05π) < ((r_N + Δr)/r_N)²: no tail
+}
+
 TEST(RtfEvaluate, CachesEqualTheUncompressedProduct) {
   // Eq. 11–12 through the CPCA basis = Σ_k M̂_{q,k} L_k with M̂ the CPCA reconstruction.
   const BakeResult& b = sphereBake();

@@ -325,6 +325,72 @@ TEST(RtfGpu, FourShShadingMatchesCpuShadingWithBandsZeroAndOne) {
   s.session.renderer().frames().waitIdle();
 }
 
+// scene::Rtf::tail on the GPU: with a reach beyond r_N + Δr, rtf.vert covers the reach's sphere and
+// rtf.frag's fade is tailFade() — (r_N/|q|)² to the reach, linear over its last spacing — so the
+// image = shade() with the object's reach (Object::reach) within the bounds of the first test, on
+// floor pixels in the tail (|q| past r_N + Δr, where the shipped fade is zero) and exactly zero beyond it.
+TEST(RtfGpu, TailShadingMatchesCpuShadingPastTheOutermostSphere) {
+  gpu::Context& ctx = gpu::testkit::sharedContext();
+  Scene s(ctx);
+  ASSERT_FALSE(s.box.isNull());
+  const Sky sky;
+  const FieldSettings& fs = s.field.settings;
+  const float dr = (fs.outerRadius - fs.innerRadius) / float(fs.spheres - 1);
+  const float reach = fs.outerRadius + 3.0f * dr;
+  const std::vector<Object> objects = {{&s.field, s.world, reach}};
+  const BounceResult bounced = bounce(objects, sky, 1);
+  XiPass xi(ctx, s.field);
+  Node node(ctx, s.session.renderer().pipelines(), gpu::FrameRing::kDefaultFramesInFlight);
+  const Placement pl = place(s.field, s.world);
+  const RtfObjectGpu record = packObject(s.field, s.world, sourceRadiance(sky, pl.centreWorld), s.box.index(), 9, reach);
+  EXPECT_FLOAT_EQ(record.centreWorld.w, reach * pl.radiusWorld);
+  s.session.renderer().setNode("rtf", [&](rg::RenderGraph& graph, render::PassContext& pc) {
+    node.addTo(graph, pc, {NodeObject{&xi, bounced.proxyLight[0], record, "box"}});
+  });
+  constexpr std::uint32_t kW = 96, kH = 96;
+  const std::vector<float> rgb = renderHdr(s.session, ctx, kW, kH);
+  const rtest::FloorScene floor = rtest::readFloorScene(s.session.level());
+  constexpr float kHalfRel = 1e-3f, kSumRel = 1e-4f;
+  const std::array<float, 28> range = testing::netRanges(testing::netValues(s.field, bounced.xi[0], record.blocked));
+  float largest = 0.0f;
+  for (std::uint32_t y = 0; y < kH; ++y)
+    for (std::uint32_t x = 0; x < kW; ++x)
+      if (const auto p = rtest::floorPoint(floor, kW, kH, x, y))
+        largest = std::max(largest, glm::length(shade(objects, bounced, sky, *p, glm::vec3(0, 1, 0), floor.albedo, -1).net()));
+  float worst = 0.0f, largestTail = 0.0f;
+  int compared = 0, tail = 0, beyond = 0, beyondNonZero = 0;
+  for (std::uint32_t y = 0; y < kH; ++y)
+    for (std::uint32_t x = 0; x < kW; ++x) {
+      const auto p = rtest::floorPoint(floor, kW, kH, x, y);
+      if (!p || glm::length(glm::vec2(p->x - 0.05f, p->z + 0.03f)) < 0.15f) continue;
+      const glm::vec3 want = shade(objects, bounced, sky, *p, glm::vec3(0, 1, 0), floor.albedo, -1).net();
+      const glm::vec4 pw(*p, 1.0f);
+      const float qLen = glm::length(glm::vec3(glm::dot(record.toQ[0], pw), glm::dot(record.toQ[1], pw), glm::dot(record.toQ[2], pw)));
+      const std::size_t i = (std::size_t(y) * kW + x) * 3;
+      if (qLen >= reach) {
+        ++beyond;
+        beyondNonZero += rgb[i] != 0.0f || rgb[i + 1] != 0.0f || rgb[i + 2] != 0.0f;
+        continue;
+      }
+      if (qLen > fs.outerRadius + dr) ++tail, largestTail = std::max(largestTail, glm::length(want));
+      const float fade = tailFade(fs, qLen, reach);
+      for (int c = 0; c < 3; ++c) {
+        const float bound = kHalfRel * std::abs(want[c]) + kSumRel * largest +
+                            testing::netBound(range, record.toLocal, glm::vec3(0, 1, 0), fade, floor.albedo[c], c) + 1e-6f;
+        worst = std::max(worst, std::abs(rgb[i + std::size_t(c)] - want[c]) / bound);
+      }
+      ++compared;
+    }
+  std::printf("rtf tail shader vs shade(): %d floor pixels (%d in the tail past r_N + dr, largest |net| there %.2g; %d beyond "
+              "the reach), worst %.2f of its bound\n", compared, tail, largestTail, beyond, worst);
+  EXPECT_GT(tail, 300);
+  EXPECT_GT(largestTail, 1e-2f * largest);
+  EXPECT_GT(beyond, 50);
+  EXPECT_EQ(beyondNonZero, 0);
+  EXPECT_LE(worst, 1.0f);
+  s.session.renderer().frames().waitIdle();
+}
+
 // The session path: naming rtf builds the runtime (field from the cache), every frame runs the
 // bouncing step for the frame's lights and both passes; the image is shade() with the lamp as the
 // proxies' source (unoccluded: nothing static lies between the box and the lamp) and no indirect

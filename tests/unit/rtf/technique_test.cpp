@@ -68,13 +68,14 @@ TEST(RtfComponent, ParsesWithDefaults) {
   const fs::path path = writeLevel("rtf-ok", R"({"id": "a", "dynamic": true, )" + mesh() +
                                                  R"(, "rtf": {"proxies": 12, "bounces": 3, "spheres": 6, "face": 4, "rays": 16,
                                                    "vertex_rays": 6, "clusters": 5, "components": 0, "inner": 0.25, "outer": 6,
-                                                   "sh": 4}},
+                                                   "sh": 4, "tail": 0.02}},
                                                  {"id": "b", "dynamic": true, )" + mesh() + R"(, "rtf": {}})");
   const scene::Level level = scene::loadLevel(path);
   ASSERT_EQ(level.entities.size(), 2u);
-  EXPECT_EQ(level.entities[0].rtf, (scene::Rtf{12, 3, 6, 4, 16, 6, 5, 0, 0.25f, 6.0f, 4}));
+  EXPECT_EQ(level.entities[0].rtf, (scene::Rtf{12, 3, 6, 4, 16, 6, 5, 0, 0.25f, 6.0f, 4, 0.02f}));
   EXPECT_EQ(level.entities[1].rtf, scene::Rtf{});
   EXPECT_EQ(level.entities[1].rtf->sh, 9);
+  EXPECT_EQ(level.entities[1].rtf->tail, 0.0f);  // no tail: the one-spacing fade
   const FieldSettings s = settingsFrom(*level.entities[0].rtf);
   EXPECT_EQ(s.proxies, 12);
   EXPECT_EQ(s.spheres, 6);
@@ -103,6 +104,10 @@ TEST(RtfComponent, BadInputIsOneLine) {
   EXPECT_EQ(loadError("rtf-inner", dyn + R"(, "rtf": {"inner": 5}})"),
             "FILE: /entities/0/rtf/inner: outer radius 4 is not above inner 5 (expected outer > inner (defaults 0.5 and 4))");
   EXPECT_EQ(loadError("rtf-sh", dyn + R"(, "rtf": {"sh": 5}})"), "FILE: /entities/0/rtf/sh: SH count 5 (expected 4 or 9)");
+  EXPECT_EQ(loadError("rtf-tail", dyn + R"(, "rtf": {"tail": 1}})"),
+            "FILE: /entities/0/rtf/tail: 1 is out of range (expected a number in [0, 1))");
+  EXPECT_EQ(loadError("rtf-tail-neg", dyn + R"(, "rtf": {"tail": -0.1}})"),
+            "FILE: /entities/0/rtf/tail: -0.1 is out of range (expected a number in [0, 1))");
   EXPECT_EQ(loadError("rtf-key", dyn + R"(, "rtf": {"proxy": 8}})").rfind("FILE: /entities/0/rtf/proxy: unknown key", 0), 0u);
   EXPECT_EQ(loadError("rtf-static", R"({"id": "a", )" + mesh() + R"(, "rtf": {}})"),
             "FILE: /entities/0/rtf: a radiance transfer field on a static entity (expected \"dynamic\": true or a motion)");

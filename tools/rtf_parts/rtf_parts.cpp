@@ -1,0 +1,218 @@
+// rtf_parts: what the dynamic objects' effect at a receiver is made of, by brute force against
+// the reference path tracer, next to RTF's two terms from the CPU shading step (issue 14; README
+// Results "RTF", "Where cornell-5's effect is missing").
+//
+// For every pixel of the level's camera at WxH whose first hit r is NOT a dynamic object (a receiver),
+// N cosine-weighted directions ω about r's shading normal, each traced with the reference's light
+// transport (ref::tracePathFrom, unlimited bounces) in the level WITH its dynamic objects (L_with)
+// and WITHOUT them (L_without). The outgoing radiance the objects change at r splits exactly into
+//   interreflected = ρ·E[L_with(ω)   · 1(ω hits an object first)]    the light the objects send to r
+//   blocked        = ρ·E[L_without(ω)· 1(ω hits an object first)]    the room's light they hide from r
+//   room           = ρ·E[(L_with − L_without)(ω) · 1(ω misses them)] everything else: the room's own
+//                    bounces of what the objects add and take away (their shadows on the floor, …)
+// (ρ/π ∫ L cos dω = ρ·E[L] for cosine-weighted directions), plus the change of r's direct light
+// (shadows), which the indirect-only mask of `bounce accuracy` leaves out. RTF models the first two:
+//   rtf-interreflected, rtf-blocked = gi::rtf::shade() of the level's rtf objects (bounces 2, 9 SH)
+//   (with TAIL: scene::Rtf::tail for every object) with the proxies lit as the session lights them (probes + the lamp through static geometry),
+//   the blocked light = the probes' light at r (what shade() takes).
+// and blocked-probes = ρ·E[L_probes(r, ω)·1(ω hits an object)]: the blocked term with the probes'
+// SH radiance in place of the traced one (the light RTF's blocked term is made of).
+// field.pfm: R = min over objects of |r − o|/R_fade (R_fade = (outer + Δr)·η: < 1 inside a field).
+//
+// usage: rtf_parts LEVEL WIDTH HEIGHT DIRS_PER_AXIS OUT_DIR [FRAME [TAIL]]   (TAIL: scene::Rtf::tail τ for every object)
+//   writes OUT_DIR/{ref-interreflected,ref-blocked,ref-room,blocked-probes,rtf-interreflected,
+//   rtf-blocked,field}.pfm (outgoing radiance, rows top to bottom as bounce accuracy's images).
+// A diagnostic, not a test: run by hand, numbers read with tools/rtf_parts.py.
+#include <array>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "engine/anim/animator.hpp"
+#include "engine/core/parallel.hpp"
+#include "engine/core/paths.hpp"
+#include "engine/gi/dnrt/bake.hpp"
+#include "engine/gi/dnrt/object_scene.hpp"
+#include "engine/gi/incident/session_light.hpp"
+#include "engine/gi/probes/bake.hpp"
+#include "engine/gi/rtf/bake.hpp"
+#include "engine/gi/rtf/evaluate.hpp"
+#include "engine/gi/rtf/technique.hpp"
+#include "engine/gi/rtf/update.hpp"
+#include "engine/gpu/image_io.hpp"
+#include "engine/math/sampling.hpp"
+#include "engine/math/sh.hpp"
+#include "engine/ref/reference.hpp"
+#include "engine/ref/reference_scene.hpp"
+#include "engine/ref/tracer.hpp"
+#include "engine/render/gpu_types.hpp"
+#include "engine/scene/level.hpp"
+#include "engine/scene/systems.hpp"
+#include "game/accuracy_level.hpp"
+
+using namespace bounce;
+
+namespace {
+
+struct Posed {
+  ecs::Registry registry;
+  ref::ReferenceAssets assets;
+  ref::SceneDesc desc;
+};
+
+// The level at `time` as the reference poses it (ref::renderReference, step 2).
+void pose(const scene::Level& level, double time, const std::filesystem::path& cooked, Posed& p) {
+  scene::instantiate(level, p.registry);
+  scene::motionSystem(p.registry, time);
+  anim::attachAnimators(p.registry, cooked);
+  anim::animationSystem(p.registry, time);
+  scene::transformSystem(p.registry);
+  p.assets.load(p.registry, cooked);
+  p.desc = ref::extractScene(p.registry, level, p.assets);
+}
+
+glm::vec3 albedoAt(const ref::SceneDesc& scene, const ref::Hit& hit) {
+  const ref::RefMaterial& mat = scene.materials[hit.material];
+  glm::vec3 a = mat.albedo;
+  if (mat.albedoTexture >= 0) a *= scene.textures[std::size_t(mat.albedoTexture)].sample(hit.uv);
+  return glm::clamp(a, 0.0f, 1.0f);
+}
+
+glm::vec3 offset(glm::vec3 p, glm::vec3 ng, glm::vec3 dir) {  // tracer.cpp offsetOrigin
+  const float scale = std::max({1.0f, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
+  return p + (glm::dot(dir, ng) >= 0.0f ? 1e-4f : -1e-4f) * scale * ng;
+}
+
+render::LightGpu lightGpu(const ref::RefLight& l) {  // GpuScene's makeLight from the tracer's light
+  render::LightGpu g{};
+  g.positionType = glm::vec4(l.position, float(l.type == ref::RefLightType::Directional ? 0 : l.type == ref::RefLightType::Point ? 1 : 2));
+  g.directionRange = glm::vec4(l.direction, l.range);
+  g.radiance = glm::vec4(l.radiance, 0.0f);
+  g.cone = glm::vec4(l.cosOuter, l.cosInner, 0.0f, 0.0f);
+  g.shadow = glm::vec4(-1.0f, 0.0f, 0.0f, 0.0f);
+  return g;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 6) {
+    std::fprintf(stderr, "usage: rtf_parts LEVEL WIDTH HEIGHT DIRS_PER_AXIS OUT_DIR [FRAME [TAIL]]\n");
+    return 2;
+  }
+  const std::filesystem::path levelPath = argv[1], out = argv[5];
+  const std::uint32_t W = std::uint32_t(std::atoi(argv[2])), H = std::uint32_t(std::atoi(argv[3]));
+  const int spa = std::atoi(argv[4]);
+  const std::uint32_t frame = argc > 6 ? std::uint32_t(std::atoi(argv[6])) : 0u;
+  const float tail = argc > 7 ? float(std::atof(argv[7])) : 0.0f;  // scene::Rtf::tail τ for every object
+  const double time = double(frame) * ref::kLevelFrameDt;
+  const std::filesystem::path cooked = cacheDir("cooked");
+  std::filesystem::create_directories(out);
+
+  const scene::Level level = scene::loadLevel(levelPath);
+  const std::set<std::string> dynamic = game::dynamicEntityIds(level);
+  scene::Level propsLevel = level;  // the dynamic objects alone (and the camera): which rays hit one
+  propsLevel.entities.clear();
+  for (const auto& e : level.entities)
+    if (dynamic.count(e.id) || e.camera) propsLevel.entities.push_back(e);
+  Posed with, without, props;
+  pose(level, time, cooked, with);
+  pose(game::withoutDynamicEntities(level), time, cooked, without);
+  pose(propsLevel, time, cooked, props);
+  const ref::SceneBvh bvhWith(with.desc), bvhWithout(without.desc), bvhProps(props.desc);
+
+  // RTF: the fields (cached by the level's bake), the bouncing step as the session runs it.
+  gi::probes::LoadResult probeVolume = gi::probes::loadOrBake(level, cooked, cacheDir("probes"), gi::probes::settingsFrom(level));
+  gi::incident::SessionLight light(level, cooked, &probeVolume.volume);
+  gi::incident::Service service;
+  service.setIndirect(&light.indirect());
+  service.setVisibility(&light.lightVisibility());
+  std::vector<render::LightGpu> lights;
+  for (const ref::RefLight& l : with.desc.lights) lights.push_back(lightGpu(l));
+  std::vector<gi::rtf::Field> fields;
+  std::vector<gi::rtf::Object> objects;
+  struct Reach { glm::vec3 centre; float radius; };
+  std::vector<Reach> reach;
+  std::vector<ecs::Entity> rtfEntities;
+  with.registry.view<scene::Rtf>().each([&](ecs::Entity e, scene::Rtf&) { rtfEntities.push_back(e); });
+  for (ecs::Entity e : rtfEntities) {
+    const gi::rtf::FieldSettings s = gi::rtf::settingsFrom(with.registry.get<scene::Rtf>(e));
+    fields.push_back(gi::rtf::bakeCached(gi::dnrt::objectScene(with.registry, e, with.assets), s, gi::rtf::cacheFolder()));
+  }
+  for (std::size_t i = 0; i < rtfEntities.size(); ++i) {
+    const auto& s = fields[i].settings;
+    objects.push_back({&fields[i], with.registry.get<scene::WorldTransform>(rtfEntities[i]).matrix, gi::rtf::tailReach(fields[i], tail)});
+    std::fprintf(stderr, "rtf_parts: object %zu: outermost sphere %.2f eta, tail %.3f: reach %.2f eta\n", i, s.outerRadius, tail,
+                 objects.back().reach);
+    const gi::rtf::Placement pl = gi::rtf::place(fields[i], objects.back().world);
+    const float dr = (s.outerRadius - s.innerRadius) / float(s.spheres - 1);
+    reach.push_back({pl.centreWorld, (s.outerRadius + dr) * pl.radiusWorld});  // field.pfm: the shipped fade's end
+  }
+  const gi::rtf::LitSource lit(service, lights);
+  const gi::rtf::BounceResult bounced = gi::rtf::bounce(objects, lit, 2);
+  std::fprintf(stderr, "rtf_parts: %zu rtf objects, %zu lights, %ux%u, %d² directions per pixel\n", objects.size(),
+               lights.size(), W, H, spa);
+
+  enum { kInter, kBlocked, kRoom, kBlockedProbes, kRtfInter, kRtfBlocked, kField, kParts };
+  const char* names[kParts] = {"ref-interreflected", "ref-blocked", "ref-room", "blocked-probes", "rtf-interreflected",
+                               "rtf-blocked", "field"};
+  std::vector<gpu::FloatImage> images(kParts);
+  for (auto& im : images) im.width = W, im.height = H, im.rgb.assign(std::size_t(W) * H * 3, 0.0f);
+  parallelFor(0, std::size_t(W) * H, [&](std::size_t pixel) {
+    const std::uint32_t x = std::uint32_t(pixel % W), y = std::uint32_t(pixel / W);
+    const ref::CameraRay cam = ref::cameraRay(with.desc.camera, W, H, x, y);
+    ref::Hit hit, propHit;
+    if (!bvhWith.intersect(cam.origin, cam.direction, cam.tMin, cam.tMax, hit)) return;
+    if (bvhProps.intersect(cam.origin, cam.direction, cam.tMin, cam.tMax, propHit) && propHit.t <= hit.t * (1.0f + 1e-5f))
+      return;  // the pixel sees an object: not a receiver
+    const glm::vec3 rho = albedoAt(with.desc, hit);
+    glm::vec3 n = hit.shadingNormal, ng = hit.geometricNormal;
+    if (glm::dot(n, cam.direction) > 0.0f) n = -n;
+    if (glm::dot(ng, cam.direction) > 0.0f) ng = -ng;
+    const auto probeSh = light.indirect().radianceSH(hit.position);
+    math::Pcg32 rng = math::Pcg32::fromIndex(pixel);
+    glm::dvec3 sum[4] = {};
+    std::uint64_t rays = 0;
+    const auto dirs = math::stratified2D(spa, rng);
+    for (const glm::dvec2& u : dirs) {
+      const glm::vec3 w = glm::vec3(math::cosineHemisphere(u, glm::dvec3(n)));
+      if (glm::dot(w, ng) <= 0.0f) continue;  // below the surface: no light (the tracer's rule)
+      const glm::vec3 o = offset(hit.position, ng, w);
+      ref::Hit first, ph;
+      bool any = false;
+      const glm::dvec3 lw = ref::tracePathFrom(bvhWith, o, w, 0.0f, 1e30f, ref::kUnlimitedBounces, rng, rays, &first, &any);
+      const glm::dvec3 lo = ref::tracePathFrom(bvhWithout, o, w, 0.0f, 1e30f, ref::kUnlimitedBounces, rng, rays);
+      const bool onProp = any && bvhProps.intersect(o, w, 0.0f, 1e30f, ph) && ph.t <= first.t * (1.0f + 1e-5f) + 1e-6f;
+      if (onProp) {
+        sum[0] += lw, sum[1] += lo;
+        const auto yb = sh::evalBasis<double>(3, glm::dvec3(w));
+        glm::dvec3 lp(0.0);
+        for (int i = 0; i < 9; ++i) lp += glm::dvec3(probeSh[std::size_t(i)]) * yb[std::size_t(i)];
+        sum[3] += lp;
+      } else {
+        sum[2] += lw - lo;
+      }
+    }
+    const double inv = 1.0 / double(dirs.size());
+    auto put = [&](int part, glm::vec3 v) {
+      float* px = images[std::size_t(part)].rgb.data() + pixel * 3;
+      px[0] = v.x, px[1] = v.y, px[2] = v.z;
+    };
+    put(kInter, rho * glm::vec3(sum[0] * inv));
+    put(kBlocked, rho * glm::vec3(sum[1] * inv));
+    put(kRoom, rho * glm::vec3(sum[2] * inv));
+    put(kBlockedProbes, rho * glm::vec3(sum[3] * inv));
+    const gi::rtf::Shading sh = gi::rtf::shade(objects, bounced, light.indirect(), hit.position, n, rho, -1, 9);
+    put(kRtfInter, sh.interreflected);
+    put(kRtfBlocked, sh.blocked);
+    float nearest = 1e30f;
+    for (const Reach& r : reach) nearest = std::min(nearest, glm::length(hit.position - r.centre) / r.radius);
+    put(kField, glm::vec3(nearest));
+  }, 16);
+  for (int i = 0; i < kParts; ++i) gpu::writePfm(out / (std::string(names[i]) + ".pfm"), images[std::size_t(i)]);
+  std::fprintf(stderr, "rtf_parts: wrote %s\n", out.c_str());
+  return 0;
+}
