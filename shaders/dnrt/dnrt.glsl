@@ -24,7 +24,8 @@ struct DnrtObject {
 };
 
 // The clustered draw's per-object record (engine/gi/dnrt/gpu_object.hpp: DnrtClusterObject, std140):
-// DnrtObject without the box matrix, plus the atlas texel coordinate of grid vertex (0, 0, 0).
+// DnrtObject without the box matrix, plus the texel coordinate of grid vertex (0, 0, 0) in the combined
+// atlas (combine.comp; k and a are applied there, clustered.frag reads neither).
 struct DnrtClusterObject {
   vec4 worldToQ[3];
   vec4 centreWorld;
