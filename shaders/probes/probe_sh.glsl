@@ -42,9 +42,9 @@ bool probeValid(int probe) {
 #ifdef PROBE_SH_UBO
   if (kShInUbo) {
     // The block's valid bits after the last probe's texels (engine/gi/probes/node.cpp
-    // shHalfTexelWords): one word a lane. The texel holding the valid half was four per-lane loads
-    // (probeWeights runs before probeRadianceSh's loads, so they were never shared): ~0.1 of the
-    // pass (README "DNRT and probes cost, session 8").
+    // shHalfTexelWords): one word a lane. Reading the texel holding the valid half cost ~0.25 of
+    // the lighting pass, this ~0.1 (probeWeights runs before probeRadianceSh's loads of that texel,
+    // so they were never shared; README "DNRT and probes cost, session 8").
     int bits = kHalfTexels * pc.countOrder.x * pc.countOrder.y * pc.countOrder.z + probe / 32;
     return ((probeShUbo[bits].x >> uint(probe % 32)) & 1u) != 0u;
   }

@@ -59,8 +59,8 @@ constexpr float kHalfMax = 65504.0f;
 // packed two a word as GLSL's packHalf2x16 (low half first), 4 words a texel, probe p's texel t at
 // word 4·(t + shHalfTexels·p). Then, after the last probe's texels, the valid flags as bits:
 // probe p's is bit p % 32 of the first word of texel shHalfTexels·probes + p / 32 (probeValid reads
-// that one word, where the texel holding the valid half took four per-lane loads: ~0.1 of the pass
-// on llvmpipe, README "DNRT and probes cost, session 8"). Empty when a value is past kHalfMax.
+// that one word; reading the texel holding the valid half cost ~0.25 of the lighting pass on
+// llvmpipe, this ~0.1: README "DNRT and probes cost, session 8"). Empty when a value is past kHalfMax.
 std::vector<std::uint32_t> shHalfTexelWords(const ProbeVolume& v) {
   const std::size_t probes = v.grid.probeCount(), values = std::size_t(3 * v.coeffs() + 1);
   const std::size_t floatStride = 4 * shTexels(v), wordStride = 4 * shHalfTexels(v);
