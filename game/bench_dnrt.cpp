@@ -86,7 +86,7 @@ void bakeMissing(const scene::Level& level, DnrtBenchRow& row) {
 void fillTimes(const std::vector<PassStats>& stats, DnrtBenchRow& row, int dnrtEntities) {
   row.frameMs = row.dnrtMs = row.ssaoMs = row.hbaoMs = kNaN;
   row.cubeMs = 0.0;
-  double perObject = 0.0;
+  double perObject = 0.0, combineMs = 0.0;
   for (const PassStats& s : stats) {
     if (s.pass == "frame") row.frameMs = s.medianMs;
     if (s.depth != 0 && s.pass == "dnrt" && !s.object.empty()) perObject += s.medianMs, ++row.objects;
@@ -95,9 +95,11 @@ void fillTimes(const std::vector<PassStats>& stats, DnrtBenchRow& row, int dnrtE
       continue;
     }
     if (s.pass == "dnrt") row.dnrtMs = s.medianMs;
+    if (s.pass == "dnrt.combine") combineMs = s.medianMs;
     if (s.pass == "ssao") row.ssaoMs = s.medianMs;
     if (s.pass == "hbao") row.hbaoMs = s.medianMs;
   }
+  row.dnrtMs += combineMs;  // the draws' Σ_j c_j M_j per grid vertex (combine.comp) is part of DNRT's cost
   row.perObjectMs = row.objects > 0 ? perObject / row.objects : kNaN;
   if (row.objects == 0) row.objects = dnrtEntities;  // clustered: one draw for all, no scope per object
 }

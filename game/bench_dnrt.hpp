@@ -46,7 +46,7 @@ struct DnrtBenchRow {
   std::string setting;  // Table 8: "all" or "clustered"; variants: "basic" or the changed setting ("sh=9", …)
   int objects = 0;      // DNRT objects timed (per-object scopes seen; clustered: the level's dnrt entities)
   double frameMs = 0.0;
-  double dnrtMs = 0.0;       // the "dnrt" pass (every object's draw inside it)
+  double dnrtMs = 0.0;       // the "dnrt" pass (every object's draw inside it) + "dnrt.combine"
   double perObjectMs = 0.0;  // mean of the per-object "dnrt/<object>" medians (NaN when clustered)
   double cubeMs = 0.0;       // the intrusion maps: sum of the "dnrt.cube/<object>" passes (0 when off)
   double ssaoMs = 0.0, hbaoMs = 0.0;

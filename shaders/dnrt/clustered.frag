@@ -6,8 +6,8 @@
 //
 // Why two loops: llvmpipe runs both sides of a branch under a mask but leaves a loop as soon as no
 // lane of the 8 is still in it. The first loop is cheap (the affine map, s(r), (n_o·n_r)₊ and the
-// own-pixel test) and keeps only the objects that reach r; the second, with the three (seven)
-// atlas fetches, then runs as often as the most-reached pixel of the 8 needs, not once per object
+// own-pixel test) and keeps only the objects that reach r; the second, with the one tap of the
+// combined atlas, then runs as often as the most-reached pixel of the 8 needs, not once per object
 // whose screen rectangle merely covers the tile.
 // Why do-while: llvmpipe tests "is any lane still in the loop" only at the end of an iteration; a
 // `break` just masks lanes off. A `for (m = mask; m != 0u; …)` loop tests m at the top, so after
@@ -19,16 +19,16 @@
 // lanes of a group after their own last object), so max(findLSB(m), 0) keeps the record index in
 // range and the guard keeps such a pass from adding object 0 (or, with findLSB's −1, bit 31).
 // Per-object records are a uniform array indexed per pixel (no flat varyings here: one draw serves
-// every object); the fields share one 3D atlas per slot (no descriptor indexing on lavapipe).
+// every object); Σ_j c_j M_j comes from one combined RGBA16F atlas, a brick per object written this
+// frame by combine.comp (no descriptor indexing on lavapipe; one trilinear tap for 4 or 9 SH).
 #include "frame.glsl"
 #include "dnrt/dnrt.glsl"
 
-layout(constant_id = 0) const bool kSh9 = false;
 // A batch of exactly one object (node.cpp): record 0, no loops. The loops' per-pixel index makes
 // every record field a per-lane load, and a loop body costs about twice the same code straight
 // (README "DNRT": "one object in straight-line code, no loop"); with the index a constant the
 // record is read as uniforms, as the box draw's flat varyings are. Same sums, same image.
-layout(constant_id = 1) const bool kSingle = false;
+layout(constant_id = 0) const bool kSingle = false;
 
 layout(set = 0, binding = 0) uniform FrameUbo { Camera camera; };
 layout(set = 1, binding = 0) uniform sampler2D gAlbedo;
@@ -37,16 +37,10 @@ layout(set = 1, binding = 2) uniform sampler2D gDepth;
 layout(std430, set = 1, binding = 3) readonly buffer Tiles { uint tileMasks[]; };
 layout(set = 1, binding = 4) uniform usampler2D gEntity;
 layout(std140, set = 2, binding = 0) uniform Objects { DnrtClusterObject objects[kDnrtClusterBatch]; };
-// The field atlas, Table 2's slots (cluster.hpp); a 3-slot atlas binds slot 0 in 3..6 (kSh9 false).
-layout(set = 2, binding = 1) uniform sampler3D atlas0;
-layout(set = 2, binding = 2) uniform sampler3D atlas1;
-layout(set = 2, binding = 3) uniform sampler3D atlas2;
-layout(set = 2, binding = 4) uniform sampler3D atlas3;
-layout(set = 2, binding = 5) uniform sampler3D atlas4;
-layout(set = 2, binding = 6) uniform sampler3D atlas5;
-layout(set = 2, binding = 7) uniform sampler3D atlas6;
+// rgb: Σ_j c_j M_j per channel; object i's padded brick starts at objects[i].atlas (combine.comp).
+layout(set = 2, binding = 1) uniform sampler3D combined;
 layout(push_constant) uniform Push {
-  vec4 invAtlasSize;  // xyz: 1 / the atlas's texels per axis
+  vec4 invAtlasSize;  // xyz: 1 / the combined atlas's texels per axis
   uint tileBase;      // this batch's first mask in Tiles
   uint tilesX;
 } pc;
@@ -65,7 +59,7 @@ bool dnrtClusterReaches(int i, vec4 r, vec3 nr, uint entity) {
          !(self != 0u && entity == self);
 }
 
-// Object i's term without ρ_r: (n_o·n_r)₊ s(r) (a + Σ_slot dot(k_slot, texel_slot)) (Eq. 16).
+// Object i's term without ρ_r: (n_o·n_r)₊ s(r) Σ_j c_j M_j(r) (Eq. 16), the sum one trilinear tap.
 vec3 dnrtClusterTerm(int i, vec4 r, vec3 nr) {
   vec3 q = vec3(dot(objects[i].worldToQ[0], r), dot(objects[i].worldToQ[1], r), dot(objects[i].worldToQ[2], r));
   vec4 ext = objects[i].extents;
@@ -73,15 +67,7 @@ vec3 dnrtClusterTerm(int i, vec4 r, vec3 nr) {
   vec3 toO = objects[i].centreWorld.xyz - r.xyz;
   float lamb = max(dot(toO / length(toO), nr), 0.0);
   vec3 uvw = (dnrtGrid(q, ext.x, ext.w) + objects[i].atlas.xyz) * pc.invAtlasSize.xyz;
-  vec3 sum = objects[i].a.rgb + vec3(dot(objects[i].k[0], texture(atlas0, uvw)),
-                                     dot(objects[i].k[1], texture(atlas1, uvw)),
-                                     dot(objects[i].k[2], texture(atlas2, uvw)));
-  if (kSh9) {
-    sum += vec3(dot(objects[i].k[3], texture(atlas3, uvw)), dot(objects[i].k[4], texture(atlas4, uvw)),
-                dot(objects[i].k[5], texture(atlas5, uvw)));
-    sum += objects[i].k[6].rgb * texture(atlas6, uvw).rgb;
-  }
-  return (lamb * s) * sum;
+  return (lamb * s) * texture(combined, uvw).rgb;
 }
 
 void main() {

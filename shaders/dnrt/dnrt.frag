@@ -2,37 +2,28 @@
 #extension GL_GOOGLE_include_directive : require
 // DNRT: adds one object's L_DNRT (dnrt.glsl) to "lighting.hdr" with additive blending.
 // Variants are specialization constants, one pipeline each (llvmpipe runs an untaken branch in
-// full): kSh9 reads the 9-SH slots 3..6, kIntrusion tests the intrusion map (§5.2.3).
+// full): kIntrusion tests the intrusion map (§5.2.3). Σ_j c_j M_j comes from this frame's combined
+// volume (combine.comp), one trilinear tap for 4 SH and 9 SH alike.
 #include "frame.glsl"
 #include "dnrt/dnrt.glsl"
 #include "dnrt/intrusion.glsl"
 
-layout(constant_id = 0) const bool kSh9 = false;
-layout(constant_id = 1) const bool kIntrusion = false;
+layout(constant_id = 0) const bool kIntrusion = false;
 
 layout(set = 0, binding = 0) uniform FrameUbo { Camera camera; };
 layout(set = 1, binding = 0) uniform sampler2D gAlbedo;
 layout(set = 1, binding = 1) uniform sampler2D gNormal;
 layout(set = 1, binding = 2) uniform sampler2D gDepth;
 layout(set = 1, binding = 4) uniform usampler2D gEntity;
-// Table 2: 0..2 (m_0..m_3) of R, G, B; 3..5 (m_4..m_7) of R, G, B; 6 (m_8.rgb). 4-SH fields bind
-// texture 0 in slots 3..6 (never read: kSh9 is false for them).
-layout(set = 2, binding = 0) uniform sampler3D field0;
-layout(set = 2, binding = 1) uniform sampler3D field1;
-layout(set = 2, binding = 2) uniform sampler3D field2;
-layout(set = 2, binding = 3) uniform sampler3D field3;
-layout(set = 2, binding = 4) uniform sampler3D field4;
-layout(set = 2, binding = 5) uniform sampler3D field5;
-layout(set = 2, binding = 6) uniform sampler3D field6;
+// rgb: Σ_j c_j M_j per channel at each grid vertex, this frame (combine.comp; the field's N³).
+layout(set = 2, binding = 0) uniform sampler3D combined;
 // Intrusion map (intrusion.glsl); a 1×1 "nothing near" map for objects without intrusion.
-layout(set = 2, binding = 7) uniform sampler2DArray intrusion;
+layout(set = 2, binding = 1) uniform sampler2DArray intrusion;
 
 layout(location = 0) flat in vec4 worldToQ[3];
 layout(location = 3) flat in vec4 centreWorld;
 layout(location = 4) flat in vec4 extents;
-layout(location = 5) flat in vec4 k[7];
-layout(location = 12) flat in vec4 a;
-layout(location = 13) flat in uint self;
+layout(location = 5) flat in uint self;
 
 layout(location = 0) out vec4 outRadiance;
 
@@ -59,14 +50,8 @@ void main() {
   // The object's own surface: its field holds filled (interior) values there, not a transfer.
   if (self != 0u && texelFetch(gEntity, pixel, 0).r == self) discard;
   vec3 uvw = dnrtUvw(q, extents.x, extents.w);
-  // Three dot products for 4 SH (§5.1.2): channel k's m_0..3 against c_0..3 of channel k, the
-  // decode folded into k and a (dnrt.glsl).
-  vec3 sum = a.rgb + vec3(dot(k[0], texture(field0, uvw)), dot(k[1], texture(field1, uvw)),
-                          dot(k[2], texture(field2, uvw)));
-  if (kSh9) {
-    sum += vec3(dot(k[3], texture(field3, uvw)), dot(k[4], texture(field4, uvw)), dot(k[5], texture(field5, uvw)));
-    sum += k[6].rgb * texture(field6, uvw).rgb;
-  }
+  // Σ_j c_j M_j(r) (§5.1.2's dot products, done per grid vertex by combine.comp), trilinear.
+  vec3 sum = texture(combined, uvw).rgb;
   vec3 albedo = texelFetch(gAlbedo, pixel, 0).rgb;
   outRadiance = vec4(albedo * (lamb * s) * sum, 0.0);
 }

@@ -4,14 +4,15 @@
 // (Eq. 16's "+" after (n_o·n_r) is the clamp subscript of a product, as Eq. 9 and Listing 2 show).
 // M_j: trilinear 3D-texture fetch at r's offset from o in units of R, clamped to the inner cube
 // (CLAMP_TO_EDGE does it, as Listing 2 notes), decoded lo + (hi − lo)·unorm per slot (Table 2);
-// the decode and the c_j product are folded into Σ_j c_j M_j = a + Σ_slot dot(k_slot, unorm_slot).
+// the decode and the c_j product are folded into Σ_j c_j M_j = a + Σ_slot dot(k_slot, unorm_slot),
+// which combine.comp evaluates per grid vertex each frame, so the draws filter the sum in one tap.
 // s(r): §5.2.2 fall-off over the outer shell, 1 at the inner cube and 0 at the outer one.
 #ifndef BOUNCE_DNRT_GLSL
 #define BOUNCE_DNRT_GLSL
 
 // engine/gi/dnrt/gpu_object.hpp: DnrtShaderObject (std430), folded from the per-object record on
 // the CPU (fold()) so a pixel does the least arithmetic. Read once per vertex in dnrt.vert and handed
-// to the fragment shader as flat varyings: llvmpipe reads every SSBO scalar per lane with a bounds
+// to the fragment shader as flat varyings (k and a: once per grid vertex in combine.comp): llvmpipe reads every SSBO scalar per lane with a bounds
 // check, so a per-pixel copy of the record cost ~60 % of the pass (README "What costs what").
 struct DnrtObject {
   mat4 boxToWorld;    // unit cube [-1, 1]³ → the world-space outer cube (box raster mode)
@@ -24,7 +25,8 @@ struct DnrtObject {
 };
 
 // The clustered draw's per-object record (engine/gi/dnrt/gpu_object.hpp: DnrtClusterObject, std140):
-// DnrtObject without the box matrix, plus the atlas texel coordinate of grid vertex (0, 0, 0).
+// DnrtObject without the box matrix, plus the texel coordinate of grid vertex (0, 0, 0) in the combined
+// atlas (combine.comp; k and a are applied there, clustered.frag reads neither).
 struct DnrtClusterObject {
   vec4 worldToQ[3];
   vec4 centreWorld;

@@ -5,11 +5,11 @@
 // has no depth test, so every covered pixel runs once, camera inside the cube or not.
 // kFullScreen (the paper's mode): one full-screen triangle per object instead.
 // Either way the object's record is read here, once per vertex, and reaches dnrt.frag as flat
-// varyings (dnrt.glsl explains why).
+// varyings (dnrt.glsl explains why); its k and a are applied per grid vertex by combine.comp.
 #include "frame.glsl"
 #include "dnrt/dnrt.glsl"
 
-layout(constant_id = 2) const bool kFullScreen = false;
+layout(constant_id = 1) const bool kFullScreen = false;
 
 layout(set = 0, binding = 0) uniform FrameUbo { Camera camera; };
 layout(std430, set = 1, binding = 3) readonly buffer Objects { DnrtObject objects[]; };
@@ -18,9 +18,7 @@ layout(push_constant) uniform Push { uint object; } pc;
 layout(location = 0) flat out vec4 outWorldToQ[3];
 layout(location = 3) flat out vec4 outCentreWorld;
 layout(location = 4) flat out vec4 outExtents;
-layout(location = 5) flat out vec4 outK[7];
-layout(location = 12) flat out vec4 outA;
-layout(location = 13) flat out uint outSelf;
+layout(location = 5) flat out uint outSelf;
 
 const int kFaces[6][4] = int[6][4](int[4](1, 3, 7, 5), int[4](0, 4, 6, 2), int[4](2, 6, 7, 3),
                                    int[4](0, 1, 5, 4), int[4](4, 5, 7, 6), int[4](0, 2, 3, 1));
@@ -31,8 +29,6 @@ void main() {
   outWorldToQ = ob.worldToQ;
   outCentreWorld = ob.centreWorld;
   outExtents = ob.extents;
-  outK = ob.k;
-  outA = ob.a;
   outSelf = ob.ids.x;
   if (kFullScreen) {
     vec2 uv = vec2((gl_VertexIndex << 1) & 2, gl_VertexIndex & 2);

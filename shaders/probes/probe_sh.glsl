@@ -36,15 +36,17 @@ vec4 probeShTexel(int probe, int t) { return texelFetch(probeSh, probeTexel(prob
 // what on lavapipe"). fp16 rounds each coefficient by at most 2⁻¹¹ relative (test
 // ProbeGpu.ShFromTheUniformBlockIsTheImagePathWithinHalfRounding).
 const int kHalfTexels = (3 * kCoeffs + 1 + 7) / 8;
-const int kValidHalf = 3 * kCoeffs;  // the valid flag's half
 #endif
 
 bool probeValid(int probe) {
 #ifdef PROBE_SH_UBO
   if (kShInUbo) {
-    // The whole texel, as probeRadianceSh loads it: the compiler shares one load between the two.
-    uvec4 u = probeShUbo[kHalfTexels * probe + kValidHalf / 8];
-    return unpackHalf2x16(u[(kValidHalf % 8) / 2])[kValidHalf % 2] != 0.0;
+    // The block's valid bits after the last probe's texels (engine/gi/probes/node.cpp
+    // shHalfTexelWords): one word a lane. Reading the texel holding the valid half cost ~0.25 of
+    // the lighting pass, this ~0.1 (probeWeights runs before probeRadianceSh's loads of that texel,
+    // so they were never shared; README "DNRT and probes cost, session 8").
+    int bits = kHalfTexels * pc.countOrder.x * pc.countOrder.y * pc.countOrder.z + probe / 32;
+    return ((probeShUbo[bits].x >> uint(probe % 32)) & 1u) != 0u;
   }
 #endif
   return probeShTexel(probe, kTexels - 1)[(3 * kCoeffs) % 4] != 0.0;

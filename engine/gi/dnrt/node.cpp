@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cstring>
+#include <functional>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -19,10 +20,16 @@ namespace {
 constexpr VkDescriptorType kSampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
 constexpr VkDescriptorType kStorage = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
 constexpr VkDescriptorType kUniform = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+constexpr VkDescriptorType kStorageImage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
 constexpr VkFormat kHdrFormat = VK_FORMAT_R16G16B16A16_SFLOAT;  // "lighting.hdr" (renderer.cpp)
 
 struct Push {
   std::uint32_t object = 0;
+};
+
+struct CombinePush {  // combine.comp's Push
+  std::uint32_t object = 0;
+  std::int32_t srcZ = 0, dstZ = 0, size = 0;
 };
 
 struct ClusterPush {  // clustered.frag's Push
@@ -73,21 +80,29 @@ VkImageView FieldTextures::view(int slot) const {
 Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t framesInFlight)
     : ctx_(ctx),
       inputLayout_(ctx, {{0, kSampled}, {1, kSampled}, {2, kSampled}, {3, kStorage}, {4, kSampled}}, "dnrt.inputs"),
-      fieldLayout_(ctx, {{0, kSampled}, {1, kSampled}, {2, kSampled}, {3, kSampled}, {4, kSampled}, {5, kSampled},
-                         {6, kSampled}, {7, kSampled}},
-                   "dnrt.field"),
+      fieldLayout_(ctx, {{0, kSampled}, {1, kSampled}}, "dnrt.field"),  // combined volume, intrusion map
       layout_(ctx, {shared.frameLayout.handle(), inputLayout_.handle(), fieldLayout_.handle()},
               {VkPushConstantRange{VK_SHADER_STAGE_ALL, 0, sizeof(Push)}}, "dnrt"),
       cubeLayout_(ctx, {shared.frameLayout.handle()}, {VkPushConstantRange{VK_SHADER_STAGE_ALL, 0, sizeof(CubePush)}},
                   "dnrt.cube"),
       objectBuffers_(framesInFlight),
-      clusterLayout_(ctx, {{0, kUniform}, {1, kSampled}, {2, kSampled}, {3, kSampled}, {4, kSampled}, {5, kSampled},
-                           {6, kSampled}, {7, kSampled}},
-                     "dnrt.cluster"),
+      clusterLayout_(ctx, {{0, kUniform}, {1, kSampled}}, "dnrt.cluster"),  // records, combined atlas
       clusterPipelineLayout_(ctx, {shared.frameLayout.handle(), inputLayout_.handle(), clusterLayout_.handle()},
                              {VkPushConstantRange{VK_SHADER_STAGE_ALL, 0, sizeof(ClusterPush)}}, "dnrt.clustered"),
       tileBuffers_(framesInFlight),
-      clusterObjectBuffers_(framesInFlight) {
+      clusterObjectBuffers_(framesInFlight),
+      combineLayout_(ctx, {{0, kStorage}, {1, kSampled}, {2, kSampled}, {3, kSampled}, {4, kSampled}, {5, kSampled},
+                           {6, kSampled}, {7, kSampled}, {8, kStorageImage}},
+                     "dnrt.combine"),
+      combinePipelineLayout_(ctx, {combineLayout_.handle()},
+                             {VkPushConstantRange{VK_SHADER_STAGE_ALL, 0, sizeof(CombinePush)}},
+                             "dnrt.combine") {
+  {
+    gpu::ShaderModule combine(ctx, "dnrt/combine.comp.spv");
+    for (std::uint32_t sh9 = 0; sh9 < 2; ++sh9)
+      combine_[sh9] = gpu::createComputePipeline(ctx, combinePipelineLayout_, combine,
+                                                 sh9 ? "dnrt.combine.sh9" : "dnrt.combine.sh4", nullptr, {sh9});
+  }
   fullscreenVert_ = gpu::ShaderModule(ctx, "passes/fullscreen.vert.spv");
   clusterFrag_ = gpu::ShaderModule(ctx, "dnrt/clustered.frag.spv");
   vert_ = gpu::ShaderModule(ctx, "dnrt/dnrt.vert.spv");
@@ -117,7 +132,7 @@ Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t fra
 }
 
 const gpu::Pipeline& Node::pipeline(const Variant& v) {
-  const int key = (v.sh9 ? 1 : 0) | (v.intrusion ? 2 : 0) | (v.fullScreen ? 4 : 0);
+  const int key = (v.intrusion ? 1 : 0) | (v.fullScreen ? 2 : 0);
   gpu::Pipeline& p = variants_[std::size_t(key)];
   if (p.handle()) return p;
   gpu::GraphicsPipelineDesc d;
@@ -127,25 +142,38 @@ const gpu::Pipeline& Node::pipeline(const Variant& v) {
   d.blend = gpu::Blend::Additive;
   // Box: back faces of the cube, each covered pixel once, inside or out. Full screen: one triangle.
   d.cull = v.fullScreen ? VK_CULL_MODE_NONE : VK_CULL_MODE_FRONT_BIT;
-  d.specialization = {v.sh9 ? 1u : 0u, v.intrusion ? 1u : 0u, v.fullScreen ? 1u : 0u};  // dnrt.frag/.vert ids 0..2
-  d.name = std::string("dnrt.") + (v.fullScreen ? "fullscreen" : "box") + (v.sh9 ? ".sh9" : ".sh4") +
-           (v.intrusion ? ".intrusion" : "");
+  d.specialization = {v.intrusion ? 1u : 0u, v.fullScreen ? 1u : 0u};  // dnrt.frag id 0, dnrt.vert id 1
+  d.name = std::string("dnrt.") + (v.fullScreen ? "fullscreen" : "box") + (v.intrusion ? ".intrusion" : "");
   p = gpu::createGraphicsPipeline(ctx_, layout_, d);
   return p;
 }
 
-const gpu::Pipeline& Node::clusteredPipeline(bool sh9, bool single) {
-  gpu::Pipeline& p = clustered_[(sh9 ? 1 : 0) + (single ? 2 : 0)];
+const gpu::Pipeline& Node::clusteredPipeline(bool single) {
+  gpu::Pipeline& p = clustered_[single ? 1 : 0];
   if (p.handle()) return p;
   gpu::GraphicsPipelineDesc d;
   d.vertex = &fullscreenVert_;
   d.fragment = &clusterFrag_;
   d.colorFormats = {kHdrFormat};
   d.blend = gpu::Blend::Additive;
-  d.specialization = {sh9 ? 1u : 0u, single ? 1u : 0u};  // clustered.frag kSh9, kSingle
-  d.name = std::string("dnrt.clustered") + (sh9 ? ".sh9" : ".sh4") + (single ? ".single" : "");
+  d.specialization = {single ? 1u : 0u};  // clustered.frag kSingle
+  d.name = std::string("dnrt.clustered") + (single ? ".single" : "");
   p = gpu::createGraphicsPipeline(ctx_, clusterPipelineLayout_, d);
   return p;
+}
+
+gpu::Buffer& Node::objectBuffer(std::uint32_t slot, const std::vector<NodeObject>& objects) {
+  // This slot's object records (the ring waited for the slot's fence before the frame began). The
+  // combine pass and the draw pass both call this in one frame; the second writes the same bytes.
+  gpu::Buffer& buffer = objectBuffers_[slot % objectBuffers_.size()];
+  const VkDeviceSize bytes = objects.size() * sizeof(DnrtShaderObject);
+  if (!buffer || buffer.size() < bytes)
+    buffer = gpu::Buffer(ctx_, {bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::Upload, "dnrt.objects"});
+  for (std::size_t i = 0; i < objects.size(); ++i) {
+    const DnrtShaderObject folded = fold(objects[i].data);
+    std::memcpy(buffer.mapped() + i * sizeof(DnrtShaderObject), &folded, sizeof(DnrtShaderObject));
+  }
+  return buffer;
 }
 
 std::vector<int> Node::atlasFor(const std::vector<const FieldTextures*>& textures) {
@@ -196,8 +224,10 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
   // The clustered draw's objects (object index, atlas brick); intrusion and no room: drawn alone.
   struct ClusterItem {
     std::size_t object = 0;
-    int brick = 0;
+    int brick = 0;       // the field's brick in the RGBA8 atlas
+    std::uint32_t z = 0;  // the object's own brick in this frame's combined atlas (combine.comp)
   };
+  glm::uvec3 combinedSize(0u);
   std::vector<ClusterItem> cluster;
   std::vector<bool> clustered(objects.size(), false);
   {
@@ -209,11 +239,13 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
         textures.push_back(objects[i].textures);
       }
     const std::vector<int> bricks = asked.empty() ? std::vector<int>{} : atlasFor(textures);
-    for (std::size_t k = 0; k < asked.size(); ++k)
-      if (bricks[k] >= 0) {
-        cluster.push_back({asked[k], bricks[k]});
-        clustered[asked[k]] = true;
-      }
+    for (std::size_t k = 0; k < asked.size(); ++k) {
+      const auto side = std::uint32_t(objects[asked[k]].data.extents.w) + 2u;  // a padded brick (cluster.hpp)
+      if (bricks[k] < 0 || combinedSize.z + side > ctx_.limits().maxImageDimension3D) continue;  // drawn alone
+      cluster.push_back({asked[k], bricks[k], combinedSize.z});
+      clustered[asked[k]] = true;
+      combinedSize = glm::uvec3(std::max(combinedSize.x, side), std::max(combinedSize.y, side), combinedSize.z + side);
+    }
   }
   // Intrusion maps first, one pass per object that asks (timed as "dnrt.cube/<name>").
   std::vector<std::optional<rg::Handle<rg::Texture>>> maps(objects.size());
@@ -267,10 +299,77 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
     maps[i] = cube.map;
   }
 
+  // This frame's Σ_j c_j M_j per grid vertex (combine.comp), RGBA16F: a volume per drawn object,
+  // and one atlas with a brick per clustered object. The draws then take one trilinear tap instead
+  // of 3 (4 SH) or 7 (9 SH).
+  struct CombineData {
+    std::vector<std::optional<rg::Handle<rg::Texture>>> volumes;
+    std::optional<rg::Handle<rg::Texture>> atlas;
+  };
+  std::vector<std::optional<rg::Handle<rg::Texture>>> volumes(objects.size());
+  std::optional<rg::Handle<rg::Texture>> combinedAtlas;
+  {
+    const auto& combine = graph.addPass<CombineData>(
+        "dnrt.combine",
+        [&](rg::Builder& b, CombineData& d) {
+          if (!cluster.empty())
+            d.atlas = b.write(b.create<rg::Texture>("dnrt.combined.atlas",
+                                                    rg::TextureDesc{combinedSize.x, combinedSize.y, combinedSize.z, 1,
+                                                                    1, rg::Format::RGBA16F, false}),
+                              rg::Usage::StorageWrite);
+          d.volumes.resize(objects.size());
+          for (std::size_t i = 0; i < objects.size(); ++i) {
+            if (clustered[i]) continue;
+            const auto n = std::uint32_t(objects[i].data.extents.w);
+            d.volumes[i] = b.write(b.create<rg::Texture>("dnrt.combined." + objects[i].name,
+                                                         rg::TextureDesc{n, n, n, 1, 1, rg::Format::RGBA16F, false}),
+                                   rg::Usage::StorageWrite);
+          }
+        },
+        [this, pc, objects, cluster](const CombineData& d, const rg::PassResources& res, rg::CommandContext& c) {
+          VkCommandBuffer cmd = pc->cmd(c);
+          gpu::Buffer& buffer = objectBuffer(pc->frame().slot, objects);
+          VkSampler point = pc->samplers->get({VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST});
+          // Object i's vertices [0, size)³ from its slots at layer srcZ into `target` at layer dstZ.
+          const auto dispatch = [&](std::size_t i, const std::function<VkImageView(int)>& slot, VkImageView target,
+                                    std::int32_t srcZ, std::int32_t dstZ, std::int32_t size) {
+            const gpu::Pipeline& p = combine_[objects[i].data.extents.z > 4.5f ? 1 : 0];
+            p.bind(cmd);
+            VkDescriptorSet set = pc->frame().descriptors->allocate(combineLayout_);
+            gpu::DescriptorWriter w;
+            w.buffer(0, buffer);
+            for (int s = 0; s < 7; ++s) w.sampledImage(std::uint32_t(s + 1), slot(s), point);
+            w.storageImage(8, target);
+            w.update(ctx_, set);
+            p.bindSet(cmd, 0, set);
+            p.push(cmd, CombinePush{std::uint32_t(i), srcZ, dstZ, size});
+            const auto groups = std::uint32_t(size + 3) / 4;  // local size 4³
+            vkCmdDispatch(cmd, groups, groups, groups);
+          };
+          for (std::size_t i = 0; i < objects.size(); ++i)
+            if (d.volumes[i])
+              dispatch(i, [&](int s) { return objects[i].textures->view(s); },
+                       pc->backend->image(res.texture(*d.volumes[i])).view(), 0, 0,
+                       std::int32_t(objects[i].data.extents.w));
+          if (d.atlas) {
+            const VkImageView target = pc->backend->image(res.texture(*d.atlas)).view();
+            const auto atlasSlot = [&](int s) {
+              return atlas_.slots[std::size_t(s) < atlas_.slots.size() ? std::size_t(s) : 0]->view();
+            };
+            for (const ClusterItem& item : cluster)
+              dispatch(item.object, atlasSlot, target, std::int32_t(atlas_.layout.z0[std::size_t(item.brick)]),
+                       std::int32_t(item.z), std::int32_t(objects[item.object].data.extents.w) + 2);
+          }
+        });
+    volumes = combine.volumes;
+    combinedAtlas = combine.atlas;
+  }
+
   struct Data {
     render::DeferredInputs g;  // with entity
     rg::Handle<rg::Texture> hdr;
-    std::vector<std::optional<rg::Handle<rg::Texture>>> maps;
+    std::vector<std::optional<rg::Handle<rg::Texture>>> maps, volumes;
+    std::optional<rg::Handle<rg::Texture>> atlas;
   };
   const auto& data = graph.addPass<Data>(
       "dnrt",
@@ -278,20 +377,15 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
         d.g = render::readDeferredInputs(b, bb, /*withEntity=*/true);
         d.hdr = b.write(bb.get<rg::Texture>("lighting.hdr"), rg::Usage::ColorAttachment);
         for (const auto& m : maps) d.maps.push_back(m ? std::optional(b.read(*m, rg::Usage::SampledFragment)) : std::nullopt);
+        for (const auto& v : volumes)
+          d.volumes.push_back(v ? std::optional(b.read(*v, rg::Usage::SampledFragment)) : std::nullopt);
+        if (combinedAtlas) d.atlas = b.read(*combinedAtlas, rg::Usage::SampledFragment);
       },
       [this, pc, objects = std::move(objects), cluster = std::move(cluster), clustered = std::move(clustered),
        modeOf = [mode = settings.mode](const NodeObject& o) { return mode.value_or(o.mode); }](
           const Data& d, const rg::PassResources& res, rg::CommandContext& c) {
         VkCommandBuffer cmd = pc->cmd(c);
-        // This slot's object records (the ring waited for the slot's fence before the frame began).
-        gpu::Buffer& buffer = objectBuffers_[pc->frame().slot % objectBuffers_.size()];
-        const VkDeviceSize bytes = objects.size() * sizeof(DnrtShaderObject);
-        if (!buffer || buffer.size() < bytes)
-          buffer = gpu::Buffer(ctx_, {bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::Upload, "dnrt.objects"});
-        for (std::size_t i = 0; i < objects.size(); ++i) {
-          const DnrtShaderObject folded = fold(objects[i].data);
-          std::memcpy(buffer.mapped() + i * sizeof(DnrtShaderObject), &folded, sizeof(DnrtShaderObject));
-        }
+        gpu::Buffer& buffer = objectBuffer(pc->frame().slot, objects);
 
         VkSampler point = pc->samplers->get({VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST});
         VkSampler linear = pc->samplers->get({VK_FILTER_LINEAR, VK_SAMPLER_MIPMAP_MODE_NEAREST});
@@ -314,7 +408,7 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
         for (std::size_t i = 0; i < objects.size(); ++i) {
           if (clustered[i]) continue;
           const bool full = modeOf(objects[i]) == Mode::FullScreen;
-          const gpu::Pipeline& p = pipeline({objects[i].data.extents.z > 4.5f, objects[i].intrusion, full});
+          const gpu::Pipeline& p = pipeline({objects[i].intrusion, full});
           if (bound != &p) {  // bind on a change of variant (per object: SH count, intrusion, "mode")
             p.bind(cmd);
             p.bindSet(cmd, 0, pc->frameSet);
@@ -323,9 +417,9 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
           }
           VkDescriptorSet fieldSet = pc->frame().descriptors->allocate(fieldLayout_);
           gpu::DescriptorWriter w;
-          for (int s = 0; s < 7; ++s) w.sampledImage(std::uint32_t(s), objects[i].textures->view(s), linear);
+          w.sampledImage(0, view(*d.volumes[i]), linear);
           gpu::Image& map = d.maps[i] ? pc->backend->image(res.texture(*d.maps[i])) : *noIntrusion_;
-          w.sampledImage(7, pc->frameView(map, VK_IMAGE_VIEW_TYPE_2D_ARRAY, 0, 6), point);
+          w.sampledImage(1, pc->frameView(map, VK_IMAGE_VIEW_TYPE_2D_ARRAY, 0, 6), point);
           w.update(ctx_, fieldSet);
           p.bindSet(cmd, 2, fieldSet);
           p.push(cmd, Push{std::uint32_t(i)});
@@ -354,8 +448,7 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
                                          "dnrt.cluster-objects"});
           std::memset(records.mapped(), 0, recordBytes);
           for (std::size_t k = 0; k < cluster.size(); ++k) {
-            const DnrtClusterObject rec = clusterObject(fold(objects[cluster[k].object].data),
-                                                        atlas_.layout.z0[std::size_t(cluster[k].brick)]);
+            const DnrtClusterObject rec = clusterObject(fold(objects[cluster[k].object].data), cluster[k].z);
             std::memcpy(records.mapped() + k * sizeof(DnrtClusterObject), &rec, sizeof rec);
           }
           VkDescriptorSet clusterInputs = pc->frame().descriptors->allocate(inputLayout_);
@@ -366,23 +459,21 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
               .buffer(3, tiles)
               .sampledImage(4, view(d.g.entity), point)
               .update(ctx_, clusterInputs);
-          const glm::vec4 invAtlas(1.0f / glm::vec3(atlas_.layout.size), 0.0f);
+          const glm::vec4 invAtlas(1.0f / glm::vec3(pc->backend->image(res.texture(*d.atlas)).desc().width,
+                                                    pc->backend->image(res.texture(*d.atlas)).desc().height,
+                                                    pc->backend->image(res.texture(*d.atlas)).desc().depth),
+                                   0.0f);
           for (std::size_t b = 0; b < batches; ++b) {
-            bool sh9 = false;
             const std::size_t end = std::min(cluster.size(), (b + 1) * kClusterBatch);
-            for (std::size_t k = b * kClusterBatch; k < end; ++k)
-              sh9 = sh9 || objects[cluster[k].object].data.extents.z > 4.5f;
             // One object in the batch: record 0 as uniforms, no loops (clustered.frag kSingle).
-            const gpu::Pipeline& p = clusteredPipeline(sh9, end - b * kClusterBatch == 1);
+            const gpu::Pipeline& p = clusteredPipeline(end - b * kClusterBatch == 1);
             p.bind(cmd);
             p.bindSet(cmd, 0, pc->frameSet);
             p.bindSet(cmd, 1, clusterInputs);
             VkDescriptorSet set = pc->frame().descriptors->allocate(clusterLayout_);
             gpu::DescriptorWriter w;
             w.buffer(0, records, kUniform, b * kClusterBatchBytes, kClusterBatchBytes);
-            for (int s = 0; s < 7; ++s)
-              w.sampledImage(std::uint32_t(s + 1), atlas_.slots[std::size_t(s) < atlas_.slots.size() ? std::size_t(s) : 0]->view(),
-                             linear);
+            w.sampledImage(1, view(*d.atlas), linear);
             w.update(ctx_, set);
             p.bindSet(cmd, 2, set);
             p.push(cmd, ClusterPush{invAtlas, std::uint32_t(b * grid.count()), grid.tilesX});

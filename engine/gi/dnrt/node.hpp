@@ -85,8 +85,9 @@ class Node {
 
  private:
   // A shader variant: specialization constants of dnrt.vert/.frag (one pipeline each, made on first use).
+  // No SH-count variant: the draw reads this frame's combined volume (combine.comp) for 4 and 9 SH.
   struct Variant {
-    bool sh9 = false, intrusion = false, fullScreen = false;
+    bool intrusion = false, fullScreen = false;
   };
   const gpu::Pipeline& pipeline(const Variant& v);
 
@@ -100,22 +101,28 @@ class Node {
   };
   // The atlas holding `objects`' fields (grown if needed); brick index per object, -1 = no room.
   std::vector<int> atlasFor(const std::vector<const FieldTextures*>& textures);
-  const gpu::Pipeline& clusteredPipeline(bool sh9, bool single);
+  const gpu::Pipeline& clusteredPipeline(bool single);
+  // This frame slot's buffer of folded records (DnrtShaderObject per object), written now.
+  gpu::Buffer& objectBuffer(std::uint32_t slot, const std::vector<NodeObject>& objects);
 
   gpu::Context& ctx_;
   gpu::DescriptorSetLayout inputLayout_, fieldLayout_;
   gpu::PipelineLayout layout_, cubeLayout_;
   gpu::ShaderModule vert_, frag_;
-  std::array<gpu::Pipeline, 8> variants_;  // index: sh9 | intrusion << 1 | fullScreen << 2
+  std::array<gpu::Pipeline, 4> variants_;  // index: intrusion | fullScreen << 1
   gpu::Pipeline cube_;
   std::unique_ptr<gpu::Image> noIntrusion_;  // 1×1×6 R32F "nothing nearer than 1e30 m"
   std::vector<gpu::Buffer> objectBuffers_;  // per frame slot, DnrtObjectGpu[]
   gpu::DescriptorSetLayout clusterLayout_;
   gpu::PipelineLayout clusterPipelineLayout_;
   gpu::ShaderModule fullscreenVert_, clusterFrag_;
-  std::array<gpu::Pipeline, 4> clustered_;  // index: sh9 + 2·single (clustered.frag kSh9, kSingle)
+  std::array<gpu::Pipeline, 2> clustered_;  // index: single (clustered.frag kSingle)
   Atlas atlas_;
   std::vector<gpu::Buffer> tileBuffers_, clusterObjectBuffers_;  // per frame slot: masks, DnrtClusterObject[]
+  // combine.comp: Σ_j c_j M_j per grid vertex for the box and full-screen draws (index: sh9).
+  gpu::DescriptorSetLayout combineLayout_;
+  gpu::PipelineLayout combinePipelineLayout_;
+  std::array<gpu::Pipeline, 2> combine_;
 };
 
 }  // namespace bounce::gi::dnrt

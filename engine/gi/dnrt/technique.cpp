@@ -150,7 +150,7 @@ class DnrtTechnique final : public Technique {
                         ";intrusion=" + (intrusion ? "on" : "off") +
                         ";anti_radiance=" + (improved ? "improved" : "paper") + ";ref=all";
             r.effects = {"direct", "shadows", "probes", "dnrt"};
-            r.passes = {"shadow", "lighting", "probes", "dnrt"};
+            r.passes = {"shadow", "lighting", "probes", "dnrt.combine", "dnrt"};  // combine: Σ c_j M_j per vertex
             r.optionalPasses = {"dnrt.cube"};  // the intrusion maps (one outermost pass per object)
             r.configure = [=](scene::Level& level) {
               for (auto& e : level.entities)
@@ -165,7 +165,7 @@ class DnrtTechnique final : public Technique {
           }
   }
 
-  std::vector<std::string> passes() const override { return {"dnrt.cube", "dnrt"}; }
+  std::vector<std::string> passes() const override { return {"dnrt.cube", "dnrt.combine", "dnrt"}; }
 };
 
 }  // namespace

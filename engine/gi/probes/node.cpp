@@ -57,12 +57,17 @@ constexpr float kHalfMax = 65504.0f;
 
 // probe_sh.glsl's ProbeShBlock: shTexelFloats' values per probe, rounded to halves (nearest) and
 // packed two a word as GLSL's packHalf2x16 (low half first), 4 words a texel, probe p's texel t at
-// word 4·(t + shHalfTexels·p). Empty when a value is past kHalfMax.
+// word 4·(t + shHalfTexels·p). Then, after the last probe's texels, the valid flags as bits:
+// probe p's is bit p % 32 of the first word of texel shHalfTexels·probes + p / 32 (probeValid reads
+// that one word; reading the texel holding the valid half cost ~0.25 of the lighting pass on
+// llvmpipe, this ~0.1: README "DNRT and probes cost, session 8"). Empty when a value is past kHalfMax.
 std::vector<std::uint32_t> shHalfTexelWords(const ProbeVolume& v) {
   const std::size_t probes = v.grid.probeCount(), values = std::size_t(3 * v.coeffs() + 1);
   const std::size_t floatStride = 4 * shTexels(v), wordStride = 4 * shHalfTexels(v);
   const std::vector<float> floats = shTexelFloats(v);
-  std::vector<std::uint32_t> words(probes * wordStride, 0u);
+  std::vector<std::uint32_t> words(probes * wordStride + 4 * ((probes + 31) / 32), 0u);
+  for (std::size_t p = 0; p < probes; ++p)
+    if (v.valid[p] != 0) words[probes * wordStride + 4 * (p / 32)] |= 1u << (p % 32);
   for (std::size_t p = 0; p < probes; ++p)
     for (std::size_t h = 0; h < values; h += 2) {
       const float a = floats[p * floatStride + h], b = h + 1 < values ? floats[p * floatStride + h + 1] : 0.0f;
@@ -86,8 +91,8 @@ std::vector<std::uint32_t> momentHalfWords(const ProbeVolume& v) {
 }
 
 // probes.frag's ProbeShBlock: 4096 uvec4 = 64 KiB, lavapipe's maxUniformBufferRange (the Vulkan
-// minimum is 16 KiB; a device below 64 KiB keeps the image path). Order 3: 1024 probes (a 0.125 m
-// grid over cornell-1, 9³ = 729, fits); order 2: 2048.
+// minimum is 16 KiB; a device below 64 KiB keeps the image path). Order 3: 1016 probes with their
+// valid bits (a 0.125 m grid over cornell-1, 9³ = 729, fits); order 2: 2032.
 constexpr VkDeviceSize kShUboBytes = 4096 * 16;
 // probes.frag's ProbeMomentsBlock, the same 64 KiB: 256 B a probe, so up to 256 probes (cornell-1's
 // 0.25 m volume, 6³ = 216, fits; the 0.125 m one, 9³, keeps the image).

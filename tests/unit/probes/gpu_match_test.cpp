@@ -119,7 +119,13 @@ TEST(ProbeGpu, ShFromTheUniformBlockIsTheImagePathWithinHalfRounding) {
   order2.sh.clear();
   for (std::size_t p = 0; p < baked.volume.grid.probeCount(); ++p)
     for (std::size_t i = 0; i < 4; ++i) order2.sh.push_back(baked.volume.sh[p * 9 + i]);
-  const gi::probes::ProbeVolume* volumes[] = {&baked.volume, &order2};
+  // And order 3 with every third probe invalid (cornell-1 has none): the block's valid bits
+  // (node.cpp shHalfTexelWords, one bit a probe after the SH texels, 7 words for 216 probes) must
+  // drop the same probes as the image's valid floats.
+  gi::probes::ProbeVolume holes = baked.volume;
+  for (std::size_t p = 1; p < holes.valid.size(); p += 3) holes.valid[p] = 0u;
+  const gi::probes::ProbeVolume* volumes[] = {&baked.volume, &order2, &holes};
+  std::vector<float> allValid;
   for (const gi::probes::ProbeVolume* volume : volumes) {
     gi::probes::ProbeNode ubo(ctx, session.renderer().pipelines(), *volume);
     gi::probes::ProbeNode image(ctx, session.renderer().pipelines(), *volume, false);
@@ -147,6 +153,13 @@ TEST(ProbeGpu, ShFromTheUniformBlockIsTheImagePathWithinHalfRounding) {
     EXPECT_GT(top, 0.0);
     EXPECT_EQ(outside, 0u) << "order " << volume->order;
     EXPECT_LT(equal, a.size());  // the blocks really hold halves: some channel moved
+    if (volume == &baked.volume) allValid = a;
+    if (volume == &holes) {  // the flags matter here: a third of the probes left out moves most pixels
+      std::size_t moved = 0;
+      for (std::size_t i = 0; i < a.size(); ++i) moved += std::abs(a[i] - allValid[i]) > 0.01f * std::abs(allValid[i]);
+      std::printf("probes with every third one invalid: %zu of %zu channel values move by > 1 %%\n", moved, a.size());
+      EXPECT_GT(moved, a.size() / 4);
+    }
   }
 
   // 11³ probes at order 3: 1331 × 4 texels × 16 B = 85184 B, past the 64 KiB block; 9³ fits.
@@ -160,6 +173,16 @@ TEST(ProbeGpu, ShFromTheUniformBlockIsTheImagePathWithinHalfRounding) {
     const gi::probes::ProbeNode node(ctx, session.renderer().pipelines(), big);
     EXPECT_EQ(node.shInUbo(), perAxis == 9) << perAxis;
     EXPECT_FALSE(node.momentsInUbo()) << perAxis << ": 64 bins × 4 B a probe, 256 probes at most";
+  }
+  // With the valid bits (a texel per 32 probes after the SH texels): 1016 probes fit at order 3
+  // (4064 + 32 texels), 1017 do not (4068 + 32 > 4096).
+  for (const glm::ivec3 count : {glm::ivec3(8, 127, 1), glm::ivec3(9, 113, 1)}) {
+    big.grid.count = count;
+    const std::size_t n = big.grid.probeCount();
+    big.sh.assign(n * std::size_t(big.coeffs()), glm::vec3(0.1f));
+    big.moments.assign(n * std::size_t(gi::probes::kVisBins), glm::vec2(1.0f, 1.0f));
+    big.valid.assign(n, 1u);
+    EXPECT_EQ(gi::probes::ProbeNode(ctx, session.renderer().pipelines(), big).shInUbo(), n == 1016u) << n;
   }
   // A value past the largest half (65504) keeps the image path.
   big.grid.count = glm::ivec3(9);

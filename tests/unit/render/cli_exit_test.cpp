@@ -101,9 +101,11 @@ TEST_F(Cli, ProfileCsvHasHeaderAndOneRowPerPassPlusFrame) {
     EXPECT_GE(std::stod(median), 0.0) << row;
     EXPECT_GE(std::stod(p95), std::stod(median)) << row;
   }
-  // cornell-1 names direct, shadows, probes and dnrt; its one prop carries a DNRT field.
-  EXPECT_EQ(passes, (std::vector<std::string>{"shadow", "gbuffer", "lighting", "probes", "dnrt", "dnrt", "tonemap", "frame"}));
-  EXPECT_EQ(objects, (std::vector<std::string>{"", "", "", "", "", "prop-textured-box", "", ""}));
+  // cornell-1 names direct, shadows, probes and dnrt; its one prop carries a DNRT field (dnrt.combine
+  // sums its transfer per grid vertex before the draw).
+  EXPECT_EQ(passes, (std::vector<std::string>{"shadow", "gbuffer", "lighting", "probes", "dnrt.combine", "dnrt", "dnrt",
+                                              "tonemap", "frame"}));
+  EXPECT_EQ(objects, (std::vector<std::string>{"", "", "", "", "", "", "prop-textured-box", "", ""}));
 }
 
 // The Cornell VLM level: both phases give the dynamic VLM on the moving prop its own row

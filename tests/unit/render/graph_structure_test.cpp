@@ -81,12 +81,12 @@ TEST(RendererGraph, CullingOffRunsEveryPass) {
   s.debugView = render::DebugView::Albedo;
   s.culling = false;
   const Result debug = renderOnce(std::nullopt, s);  // direct, shadows, probes, dnrt
-  EXPECT_EQ(debug.executed, (Passes{"shadow", "gbuffer", "lighting", "probes", "dnrt", "debug-view"}));
+  EXPECT_EQ(debug.executed, (Passes{"shadow", "gbuffer", "lighting", "probes", "dnrt.combine", "dnrt", "debug-view"}));
   EXPECT_FALSE(passCulled(debug.dot, "lighting"));
 
   s.debugView = render::DebugView::None;
   const Result lit = renderOnce(std::nullopt, s);
-  EXPECT_EQ(lit.executed, (Passes{"shadow", "gbuffer", "lighting", "probes", "dnrt", "tonemap"}));
+  EXPECT_EQ(lit.executed, (Passes{"shadow", "gbuffer", "lighting", "probes", "dnrt.combine", "dnrt", "tonemap"}));
   // Nothing culled; the legend at the end shows what a culled (dashed) pass would look like.
   EXPECT_EQ(lit.dot.substr(0, lit.dot.find("subgraph cluster_legend")).find("dashed"), std::string::npos) << "nothing culled";
 }
@@ -104,10 +104,11 @@ TEST(RendererGraph, TransientImagesArePooledAcrossFrames) {
   };
   run(0, int(slots));
   const std::size_t afterEverySlot = session.renderer().backend().createdImages();
-  // Transients per frame: five G-buffer targets (albedo, normal, emissive, entity, depth) and the
-  // shadow atlas; all are alive together during lighting, so none can share memory in a frame,
+  // Transients per frame: five G-buffer targets (albedo, normal, emissive, entity, depth), the
+  // shadow atlas and the prop's DNRT combined volume (dnrt.combine → dnrt, while the G-buffer is
+  // still read); all are alive together at the dnrt pass, so none can share memory in a frame,
   // and each frame slot owns its own pool.
-  constexpr std::size_t kTransientsPerFrame = 6;
+  constexpr std::size_t kTransientsPerFrame = 7;
   EXPECT_EQ(afterEverySlot, kTransientsPerFrame * slots);
   run(int(slots), 10 - int(slots));
   EXPECT_EQ(session.renderer().backend().createdImages(), afterEverySlot) << "10 frames created more images than "
@@ -126,7 +127,7 @@ TEST(RendererGraph, GiNodesExistOnlyForNamedEffects) {
     EXPECT_EQ(plain.ao(gi::ao::Kind::Ssao), nullptr);
   }
   const Result all = renderOnce(std::vector<std::string>{"direct", "shadows", "ssao", "probes", "dnrt"}, {});
-  EXPECT_EQ(all.executed, (Passes{"shadow", "gbuffer", "lighting", "ssao", "probes", "dnrt", "tonemap"}));
+  EXPECT_EQ(all.executed, (Passes{"shadow", "gbuffer", "lighting", "ssao", "probes", "dnrt.combine", "dnrt", "tonemap"}));
   const Result probesOnly = renderOnce(std::vector<std::string>{"direct", "probes"}, {});
   EXPECT_EQ(probesOnly.executed, (Passes{"gbuffer", "lighting", "probes", "tonemap"}));
   EXPECT_FALSE(hasPass(probesOnly.dot, "dnrt"));

@@ -1,0 +1,52 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+// DNRT, box and full-screen draws: Σ_j c_j M_j (Eq. 16's sum, per RGB channel) at every grid vertex
+// of one object's field, once per frame, into an RGBA16F volume the draw then reads with ONE
+// trilinear tap (dnrt.frag) instead of one tap per Table 2 slot (3 for 4 SH, 7 for 9 SH).
+// Exact by linearity: trilinear filtering is a weighted sum of the 8 vertices and Σ_j c_j M_j is
+// affine in the texels, so filtering the per-vertex sums equals summing the filtered slots (up to
+// fp16 rounding of the sums, 2⁻¹¹ relative, and now float filter weights where llvmpipe filters
+// UNORM8 with 8-bit ones). Why: on llvmpipe the three RGBA8 trilinear taps were ~0.09 of SSAO out
+// of the pass's ~0.21, the largest item (README "DNRT and probes cost, session 8"); this pass
+// touches N³ = 32 768 vertices, the draw ~900 000 pixels.
+// Per vertex as dnrt.frag did per pixel: a + Σ_slot dot(k_slot, unorm texel_slot) (dnrt.glsl).
+// The clustered draw (clustered.frag) reads one brick per object of a combined atlas the same way:
+// a dispatch per object over its field's padded atlas brick (cluster.hpp), written to the object's
+// own brick (objects share a field's brick in the RGBA8 atlas, not their c_j).
+#include "dnrt/dnrt.glsl"
+
+layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
+
+layout(constant_id = 0) const bool kSh9 = false;
+
+layout(std430, set = 0, binding = 0) readonly buffer Objects { DnrtObject objects[]; };
+// Table 2's slots (dnrt.frag's order); a 4-SH field binds slot 0 in 3..6 (never read).
+layout(set = 0, binding = 1) uniform sampler3D field0;
+layout(set = 0, binding = 2) uniform sampler3D field1;
+layout(set = 0, binding = 3) uniform sampler3D field2;
+layout(set = 0, binding = 4) uniform sampler3D field3;
+layout(set = 0, binding = 5) uniform sampler3D field4;
+layout(set = 0, binding = 6) uniform sampler3D field5;
+layout(set = 0, binding = 7) uniform sampler3D field6;
+layout(set = 0, binding = 8, rgba16f) uniform writeonly image3D combined;
+layout(push_constant) uniform Push {
+  uint object;  // record in Objects
+  int srcZ;     // first z layer of the vertices in the slot textures (an atlas brick's z0, else 0)
+  int dstZ;     // first z layer written in `combined`
+  int size;     // vertices per axis: N (a field's own textures) or N + 2 (a padded atlas brick)
+} pc;
+
+void main() {
+  ivec3 v = ivec3(gl_GlobalInvocationID);
+  if (any(greaterThanEqual(v, ivec3(pc.size)))) return;
+  ivec3 src = ivec3(v.xy, v.z + pc.srcZ);
+  vec4 k[7] = objects[pc.object].k;
+  vec3 sum = objects[pc.object].a.rgb + vec3(dot(k[0], texelFetch(field0, src, 0)),
+                                            dot(k[1], texelFetch(field1, src, 0)), dot(k[2], texelFetch(field2, src, 0)));
+  if (kSh9) {
+    sum += vec3(dot(k[3], texelFetch(field3, src, 0)), dot(k[4], texelFetch(field4, src, 0)),
+                dot(k[5], texelFetch(field5, src, 0)));
+    sum += k[6].rgb * texelFetch(field6, src, 0).rgb;
+  }
+  imageStore(combined, ivec3(v.xy, v.z + pc.dstZ), vec4(sum, 0.0));
+}
