@@ -35,7 +35,7 @@ std::vector<gpu::Binding> upsampleBindings() {
 
 Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t framesInFlight,
            std::span<const SphereSet* const> sets, int order, Blocking blocking, float influence, Resolution resolution,
-           ProbeLight probes)
+           ProbeLight probes, bool localLights)
     : ctx_(ctx),
       order_(order),
       blocking_(blocking),
@@ -92,6 +92,8 @@ Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t fra
   }
   if (probes && spheres_ > 0)
     shadow_ = std::make_unique<ProbeShadowPass>(ctx, shared, probes, order, blocking, spheres_, influence, half);
+  if (localLights && spheres_ > 0)
+    local_ = std::make_unique<LocalLightPass>(ctx, shared, order, blocking, spheres_, influence);
 }
 
 void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::span<const PosedSphere> posed,
@@ -215,6 +217,7 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::s
   if (!half) {
     bb.put("lighting.hdr", data.hdr);
     if (shadow_) shadow_->addTo(graph, pc, *slot.shade, slot.intensity->intensity(), {&slot.tiles, 0, tileCount});
+    if (local_) local_->addTo(graph, pc, *slot.shade, slot.intensity->intensity(), {&slot.tiles, 0, tileCount});
     return;
   }
   // The shadow on the probes' light joins E in "sl.half" (ao · ΔE, same tiles), so one upsample
@@ -256,6 +259,7 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::s
         ctx_.cmdEndRendering(cmd);
       });
   bb.put("lighting.hdr", up.hdr);
+  if (local_) local_->addTo(graph, pc, *slot.shade, slot.intensity->intensity(), {&slot.tiles, shadeTiles, upsampleTiles});
 }
 
 }  // namespace bounce::gi::sl
