@@ -178,6 +178,7 @@ class SlTechnique final : public Technique {
                 e.sl->spheres = spheres;
                 e.sl->order = order;
                 e.sl->perObject = perObject;
+                e.sl->localLights = false;  // the rows below have it on
               }
           };
           rows.push_back(std::move(r));
