@@ -3,7 +3,8 @@
 // form (whose header derives it), float instead of double: the SLs after the receiver rules
 // (sl.glsl slAdjust), each blocker's covered fraction o_j of the light's cap (two spherical caps'
 // intersection), log v = Σ_j w_j log(1 − o_j), w_j the closer-than-the-light and not-intersecting-it
-// fades. Needs sl.glsl (and what it needs) included first.
+// fades, the cap shrunk by the set's shadow scale and the log weighted by the object's union share.
+// Needs sl.glsl (and what it needs) included first.
 #ifndef BOUNCE_SL_LOCAL_LIGHT_GLSL
 #define BOUNCE_SL_LOCAL_LIGHT_GLSL
 #include "mask.glsl"
@@ -57,7 +58,11 @@ float slLocalVisibility(vec3 p, vec3 n, vec3 x, float R, uvec4 candidates) {
       if (kept && d > 0.0 && r > 0.0) {
         // local_light.cpp localBlockerWeight.
         float w = clamp((dx - d) / r, 0.0, 1.0) * clamp((length(c - x) - r - max(R, 0.0)) / r, 0.0, 1.0);
-        float b = asin(min(1.0, r / d));
+        // The cap shrunk to the set's shadow scale of its solid angle, the log weighted by the
+        // object's union share (local_light.hpp "Fat and overlapping spheres").
+        float sinB = min(1.0, r / d);
+        float b = 2.0 * asin(sqrt(0.5 * slSilhouette(i) * sinB * sinB / (1.0 + sqrt(max(0.0, 1.0 - sinB * sinB)))));
+        w *= slShare(i);
         float angle = atan(length(cross(toC, toLight)), dot(toC, toLight));  // accurate near 0, unlike acos
         if (w > 0.0) logV += w * log(max(1.0 - slCapOverlap(a, b, angle), kSlLocalMinVisible));
       }

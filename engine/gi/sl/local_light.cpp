@@ -37,7 +37,8 @@ double capOverlapFraction(double a, double b, double c) {
 }
 
 double localLightVisibility(std::span<const Sphere> spheres, const LocalLight& light, const glm::dvec3& p,
-                            const glm::dvec3& n, int order, double influence, LocalForm form, sh::LogKind kind) {
+                            const glm::dvec3& n, int order, double influence, LocalForm form, sh::LogKind kind,
+                            std::span<const double> share, std::span<const double> shadowScale) {
   const glm::dvec3 toLight = light.position - p;
   const double dx = glm::length(toLight);
   if (!(dx > 0.0)) return 1.0;
@@ -47,7 +48,8 @@ double localLightVisibility(std::span<const Sphere> spheres, const LocalLight& l
   std::vector<double> sum(nc, 0.0);
   double logV = 0.0;  // Cap form
   bool any = false;
-  for (const Sphere& s : spheres) {
+  for (std::size_t i = 0; i < spheres.size(); ++i) {
+    const Sphere& s = spheres[i];
     const Adjusted adj = adjustForReceiver(s, p, n, influence);
     const double d = glm::length(adj.sphere.centre - p);
     if (adj.culled || !(d > 0.0)) continue;
@@ -56,7 +58,12 @@ double localLightVisibility(std::span<const Sphere> spheres, const LocalLight& l
     const double b = std::asin(std::min(1.0, adj.sphere.radius / d));
     if (form == LocalForm::Cap) {
       const double c = std::acos(std::clamp(glm::dot(adj.sphere.centre - p, toLight) / (d * dx), -1.0, 1.0));
-      logV += w * std::log(std::max(1.0 - capOverlapFraction(a, b, c), kMinVisible));
+      // The cap shrunk to the set's shadow scale of its solid angle (1 − cos b' = s (1 − cos b)).
+      const double scale = i < shadowScale.size() ? shadowScale[i] : 1.0;
+      const double sinB = std::min(1.0, adj.sphere.radius / d), oneMinusCos = scale * sinB * sinB / (1.0 + std::sqrt(1.0 - sinB * sinB));
+      const double bs = 2.0 * std::asin(std::sqrt(0.5 * oneMinusCos));
+      const double u = i < share.size() ? share[i] : 1.0;
+      logV += u * w * std::log(std::max(1.0 - capOverlapFraction(a, bs, c), kMinVisible));
       continue;
     }
     const auto g = tables.logBlocker(b, (adj.sphere.centre - p) / d);

@@ -21,6 +21,12 @@
 //    blocker (and for R = 0: then o_j is 0 or 1, a hard shadow), the product of the blockers'
 //    fractions for several (their overlaps on the light's cap counted as independent, as Eq. 6's
 //    product of visibilities is when the caps are averaged separately).
+// Fat and overlapping spheres (ours, as sl.shadow does, probe_shadow.hpp / bounce_scale.hpp): the
+// sphere set bounds the mesh (its union's solid angle is ~2× the mesh's), so in the Cap form each
+// blocker's cap is shrunk to s_j times its solid angle (s_j its set's shadow scale,
+// SlSphere::shadowScale: Ω_mesh / Ω_union measured at bake), 1 − cos b' = s_j (1 − cos b), and its
+// log is weighted by its object's union share u_j (unionShare: an object's overlapping caps on the
+// light count once, not multiplied). Both 1 when not given.
 // Which SLs block (w_j; ours where the paper is silent, continuous in every position):
 //   - closer than the light (Eq. 20's order by centre distance, d_j < d_x): w fades from 1 at
 //     d_j ≤ d_x − r_j to 0 at d_j ≥ d_x, so a sphere passing the light's distance does not pop;
@@ -50,7 +56,8 @@ struct LocalLight {
 // 1 when no sphere blocks or p is at the light's centre.
 double localLightVisibility(std::span<const Sphere> spheres, const LocalLight& light, const glm::dvec3& p,
                             const glm::dvec3& n, int order, double influence = 0.0,
-                            LocalForm form = LocalForm::Cap, sh::LogKind kind = sh::LogKind::Windowed);
+                            LocalForm form = LocalForm::Cap, sh::LogKind kind = sh::LogKind::Windowed,
+                            std::span<const double> share = {}, std::span<const double> shadowScale = {});
 
 // The fraction of a cap of angular radius a that a cap of angular radius b covers, their centres c
 // apart (radians): the intersection area of two spherical caps over 2π(1 − cos a); for a → 0 the

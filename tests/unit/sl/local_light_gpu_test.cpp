@@ -21,7 +21,7 @@ namespace {
 
 // fp32 against double: the lens's three acos take arguments near ±1 where a float's rounding becomes
 // ~√ε in angle, and below 0.02 rad the GLSL takes the planar lens (local_light.glsl kSlLocalPlanar).
-// Measured worst: 9.9e-3 (R 0.4, spherical lens), 3.5e-3 (R 0.02, planar), 5e-13 (point) of the
+// Measured worst: 6.8e-3 (R 0.4, spherical lens), 2.5e-3 (R 0.02, planar), 1e-11 (point) of the
 // light. A receiver on a point light's hard edge may flip (v 0 or 1): counted, must be few.
 constexpr double kLocalTolerance = 1.5e-2;
 
@@ -78,9 +78,15 @@ TEST(SlLocalLightGpu, GlslEqualsTheReferenceForLargeSmallAndPointLights) {
   // Two objects above the floor z = 0: a chain of overlapping spheres and a cluster.
   const std::vector<Sphere> spheres{{{-0.3, 0.0, 0.6}, 0.25}, {{-0.1, 0.1, 0.75}, 0.2}, {{0.1, 0.15, 0.9}, 0.18},
                                     {{0.5, -0.6, 0.4}, 0.2},  {{0.7, -0.5, 0.45}, 0.15}, {{0.55, -0.3, 0.7}, 0.12}};
+  // Union shares and shadow scales per object, as a baked set gives them (fp32-exact values).
   std::vector<ShadedSphere> shaded;
-  for (std::size_t i = 0; i < spheres.size(); ++i)
-    shaded.push_back({glm::vec3(spheres[i].centre), float(spheres[i].radius), glm::mat3(1.0f), i < 3 ? 0u : 1u});
+  std::vector<double> share, scale;
+  for (std::size_t i = 0; i < spheres.size(); ++i) {
+    shaded.push_back({glm::vec3(spheres[i].centre), float(spheres[i].radius), glm::mat3(1.0f), i < 3 ? 0u : 1u,
+                      i < 3 ? 0.75f : 0.875f, i < 3 ? 0.5f : 0.625f});
+    share.push_back(shaded.back().share);
+    scale.push_back(shaded.back().silhouette);
+  }
   for (const float radius : {0.4f, 0.02f, 0.0f}) {
     const glm::vec4 light(0.1f, -0.1f, 2.5f, radius);
     std::vector<Receiver> r;
@@ -98,7 +104,8 @@ TEST(SlLocalLightGpu, GlslEqualsTheReferenceForLargeSmallAndPointLights) {
     for (std::size_t i = 0; i < r.size(); ++i) {
       ASSERT_TRUE(std::isfinite(gpu[i]) && gpu[i] >= 0.0f && gpu[i] <= 1.0f) << i;
       const double ref = localLightVisibility(spheres, {glm::dvec3(glm::vec3(light)), double(light.w)},
-                                              glm::dvec3(glm::vec3(r[i].p)), glm::dvec3(glm::vec3(r[i].n)), 4);
+                                              glm::dvec3(glm::vec3(r[i].p)), glm::dvec3(glm::vec3(r[i].n)), 4, 0.0,
+                                              LocalForm::Cap, sh::LogKind::Windowed, share, scale);
       const double e = std::abs(double(gpu[i]) - ref);
       if (radius == 0.0f && e > 0.5)
         ++flips;  // a point light's hard edge through this receiver: float and double disagree on the side

@@ -155,3 +155,21 @@ TEST(SlLocalLight, MovingBlockersChangeVisibilityContinuously) {
   std::printf("worst step per 1e-4 R: %.2e\n", worst);
   EXPECT_LT(worst, kStep);
 }
+
+// The shadow scale shrinks a blocker's cap to that share of its solid angle, and the union share
+// weights its log: two coincident spheres with share ½ block like one.
+TEST(SlLocalLight, ShadowScaleShrinksTheCapAndUnionShareCountsOverlapsOnce) {
+  const LocalLight light{{0.0, 0.0, 3.0}, 0.3};
+  const glm::dvec3 p(0.05, 0.0, 0.0), up(0, 0, 1);
+  const std::vector<Sphere> one{{{0.0, 0.0, 1.0}, 0.3}}, two{{{0.0, 0.0, 1.0}, 0.3}, {{0.0, 0.0, 1.0}, 0.3}};
+  const double v1 = localLightVisibility(one, light, p, up, 4);
+  const std::vector<double> half{0.5, 0.5};
+  EXPECT_NEAR(localLightVisibility(two, light, p, up, 4, 0.0, LocalForm::Cap, sh::LogKind::Windowed, half), v1, 1e-12);
+  // Scale 0.25 of the solid angle = a sphere of about half the angular radius: against the brute force.
+  const std::vector<double> quarter{0.25};
+  const double dist = glm::length(one[0].centre - p), b = std::asin(0.3 / dist);
+  const double bs = std::acos(1.0 - 0.25 * (1.0 - std::cos(b)));
+  const std::vector<Sphere> smaller{{one[0].centre, dist * std::sin(bs)}};
+  EXPECT_NEAR(localLightVisibility(one, light, p, up, 4, 0.0, LocalForm::Cap, sh::LogKind::Windowed, {}, quarter),
+              bruteForce(smaller, light, p), kCapTolerance);
+}
