@@ -71,4 +71,15 @@ float slLocalVisibility(vec3 p, vec3 n, vec3 x, float R, uvec4 candidates) {
   return exp(logV);
 }
 
+// Over every SL (pass 1's samples and the self-test's receivers, which no tile list culls).
+float slLocalVisibility(vec3 p, vec3 n, vec3 x, float R) {
+  uvec4 all = uvec4(0u);
+  uint count = min(slCount(), kSpheres);
+  for (uint w = 0u; w < 4u; ++w) {
+    uint bits = uint(clamp(int(count) - int(32u * w), 0, 32));
+    all[w] = bits == 32u ? 0xffffffffu : (1u << bits) - 1u;
+  }
+  return slLocalVisibility(p, n, x, R, all);
+}
+
 #endif  // BOUNCE_SL_LOCAL_LIGHT_GLSL

@@ -167,7 +167,10 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::s
         slot.intensity->setShadowAtlas(pc->frameView(atlas, VK_IMAGE_VIEW_TYPE_2D_ARRAY, 0, atlas.desc().layers), compare,
                                        VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, d.atlas.has_value());
         // §5.1: this frame's SLs block the indirect light at the samples (intensity.hpp).
-        slot.intensity->setBlockers(*slot.shade, pc->samplers->get({VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST}));
+        // §7.3 local lights: their shadow maps no longer hold the SL objects, so the SLs block them at
+        // the samples too ("In the first pass, we do the same calculation for local light sources").
+        slot.intensity->setBlockers(*slot.shade, pc->samplers->get({VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST}),
+                                    true, local_ != nullptr);
         slot.intensity->record(cmd);
       });
 
