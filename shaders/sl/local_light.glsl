@@ -37,18 +37,24 @@ float slCapOverlap(float a, float b, float c) {
 }
 
 // Over the SLs whose bit is set in `candidates` (sl.glsl slIrradianceAt's convention); light at x,
-// radius R (metres).
+// radius R (metres). Two loops, as sl.glsl's: llvmpipe runs both sides of a branch but leaves a loop
+// once none of its 8 lanes is in it (DESIGN.md), so the first, cheap loop keeps only the blockers
+// whose cap meets the light's (c < a + b ⇔ cos c > cos(a + b), a, b ≤ π/2: dot products), and the
+// trig runs in the second over those alone — most candidates are not between a pixel and the light.
 float slLocalVisibility(vec3 p, vec3 n, vec3 x, float R, uvec4 candidates) {
   vec3 toLight = x - p;
   float dx = length(toLight);
   if (!(dx > 0.0)) return 1.0;
-  float a = asin(min(1.0, max(R, 0.0) / dx));
-  float logV = 0.0;
-  uint count = min(slCount(), kSpheres);
+  float sinA = min(1.0, max(R, 0.0) / dx);
+  float cosA = sqrt(max(0.0, 1.0 - sinA * sinA));
+  // Per kept blocker: (1 − cos b')/2 of its shrunk cap, cos c, sin c, its log's weight u·w.
+  vec4 live[kSpheres];
+  uint count = 0u;
+  uint total = min(slCount(), kSpheres);
   uvec4 rest = candidates;
   do {
     uint i = maskPop(rest);
-    if (i < count) {
+    if (i < total) {
       vec4 sp = slSphere(i);
       vec3 c = sp.xyz;
       float r = sp.w;
@@ -58,16 +64,32 @@ float slLocalVisibility(vec3 p, vec3 n, vec3 x, float R, uvec4 candidates) {
       if (kept && d > 0.0 && r > 0.0) {
         // local_light.cpp localBlockerWeight.
         float w = clamp((dx - d) / r, 0.0, 1.0) * clamp((length(c - x) - r - max(R, 0.0)) / r, 0.0, 1.0);
-        // The cap shrunk to the set's shadow scale of its solid angle, the log weighted by the
-        // object's union share (local_light.hpp "Fat and overlapping spheres").
         float sinB = min(1.0, r / d);
-        float b = 2.0 * asin(sqrt(0.5 * slSilhouette(i) * sinB * sinB / (1.0 + sqrt(max(0.0, 1.0 - sinB * sinB)))));
-        w *= slShare(i);
-        float angle = atan(length(cross(toC, toLight)), dot(toC, toLight));  // accurate near 0, unlike acos
-        if (w > 0.0) logV += w * log(max(1.0 - slCapOverlap(a, b, angle), kSlLocalMinVisible));
+        float cosB = sqrt(max(0.0, 1.0 - sinB * sinB));
+        float cosC = dot(toC, toLight) / (d * dx);
+        if (w > 0.0 && cosC > cosA * cosB - sinA * sinB) {
+          // The cap shrunk to the set's shadow scale of its solid angle (1 − cos b' = s (1 − cos b),
+          // with 1 − cos b = sin²b/(1 + cos b) for small caps), the log weighted by the object's
+          // union share (local_light.hpp "Fat and overlapping spheres").
+          live[count] = vec4(0.5 * slSilhouette(i) * sinB * sinB / (1.0 + cosB), cosC,
+                             length(cross(toC, toLight)) / (d * dx), slShare(i) * w);
+          ++count;
+        }
       }
     }
   } while (rest != uvec4(0u));
+  float a = asin(sinA);
+  float logV = 0.0;
+  uint k = 0u;
+  do {
+    if (k < count) {
+      vec4 e = live[k];
+      float b = 2.0 * asin(sqrt(e.x));
+      float angle = atan(e.z, e.y);  // accurate near 0, unlike acos
+      logV += e.w * log(max(1.0 - slCapOverlap(a, b, angle), kSlLocalMinVisible));
+    }
+    ++k;
+  } while (k < count);
   return exp(logV);
 }
 
