@@ -129,6 +129,7 @@ SceneDesc extractScene(ecs::Registry& registry, const scene::Level& level, const
                                                                      : RefLightType::Directional;
         out.lights.push_back(makeLight(type, L.color, L.intensity, L.range.value_or(0.0f), L.innerConeRad,
                                        L.outerConeRad, world.matrix));
+        if (type != RefLightType::Directional) out.lights.back().radius = L.radius;
       });
 
   // Camera: the active camera's world transform with its scale removed, as GpuScene::extract.

@@ -61,6 +61,9 @@ struct RefLight {
   float range = 0.0f;     // metres, 0 = unbounded
   float cosOuter = 0.0f;  // spot cone: cos(outer angle), cos(inner angle)
   float cosInner = 1.0f;
+  // scene::Light::radius (metres; point and spot): the light's sphere, whose visible fraction the
+  // shadow rays estimate (tracer.cpp); 0 = a point.
+  float radius = 0.0f;
 };
 
 // The active camera: `world` is its world matrix with unit axes (scale removed, as

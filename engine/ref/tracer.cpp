@@ -103,8 +103,26 @@ glm::dvec3 tracePathFrom(const SceneBvh& bvh, glm::vec3 origin, glm::vec3 dir, f
         // A light behind the geometric surface does not reach it, whatever the shading normal says.
         if (cosTheta <= 0.0f || glm::dot(ng, toLight) <= 0.0f || e == glm::vec3(0.0f)) continue;
         ++rays;
-        const float reach = light.type == RefLightType::Directional ? dist : dist * (1.0f - kShadowShorten);
-        if (bvh.occluded(offsetOrigin(hit.position, ng, toLight), toLight, 0.0f, reach)) continue;
+        float reach = light.type == RefLightType::Directional ? dist : dist * (1.0f - kShadowShorten);
+        glm::vec3 aim = toLight;
+        if (light.radius > 0.0f && light.type != RefLightType::Directional && dist > light.radius) {
+          // A sphere light (scene::Light::radius; SL local lights, engine/gi/sl/local_light.hpp): the
+          // centre's unshadowed E cos θ times the visible fraction of the sphere's cap, estimated by
+          // one shadow ray at a direction uniform in the cap's solid angle, stopping at the sphere.
+          // No random numbers are drawn for point lights, so their references are unchanged.
+          const glm::dvec2 u = rng.next2D();
+          const double sinA = double(light.radius) / double(dist), cosA = std::sqrt(std::max(0.0, 1.0 - sinA * sinA));
+          const double c = 1.0 - u.x * (1.0 - cosA), s = std::sqrt(std::max(0.0, 1.0 - c * c));
+          const double phi = 2.0 * math::kPi * u.y;
+          const glm::dvec3 w(toLight);
+          const glm::dvec3 t = glm::normalize(std::abs(w.x) < 0.9 ? glm::cross(w, glm::dvec3(1, 0, 0)) : glm::cross(w, glm::dvec3(0, 1, 0)));
+          aim = glm::vec3(c * w + s * (std::cos(phi) * t + std::sin(phi) * glm::cross(w, t)));
+          // Near intersection with the sphere along aim: t = d c − √(R² − d² s²) (d = dist, c·s the aim's angle).
+          const double d = double(dist), h2 = std::max(0.0, double(light.radius) * light.radius - d * d * s * s);
+          reach = float((d * c - std::sqrt(h2)) * (1.0 - double(kShadowShorten)));
+          if (glm::dot(ng, aim) <= 0.0f) continue;  // this part of the sphere is below the surface
+        }
+        if (bvh.occluded(offsetOrigin(hit.position, ng, aim), aim, 0.0f, reach)) continue;
         irradiance += glm::dvec3(e) * double(cosTheta);
       }
       radiance += throughput * glm::dvec3(albedo) * kInvPi * irradiance;

@@ -19,12 +19,12 @@ namespace bounce::render {
 namespace {
 
 LightGpu makeLight(LightType type, glm::vec3 color, float intensity, float range, float inner, float outer,
-                   bool shadows, const glm::mat4& world) {
+                   bool shadows, const glm::mat4& world, float radius = 0.0f) {
   LightGpu l{};
   l.positionType = glm::vec4(glm::vec3(world[3]), static_cast<float>(type));
   const glm::vec3 dir = glm::normalize(glm::vec3(world * glm::vec4(0, 0, -1, 0)));
   l.directionRange = glm::vec4(dir, range);
-  l.radiance = glm::vec4(color * intensity, 0.0f);
+  l.radiance = glm::vec4(color * intensity, radius);  // w: scene::Light::radius (SL local lights)
   l.cone = glm::vec4(std::cos(outer), std::cos(inner), 0.0f, 0.0f);
   l.shadow = glm::vec4(shadows ? 0.0f : -1.0f, 0.0f, 0.0f, 0.0f);
   return l;
@@ -253,6 +253,8 @@ void GpuScene::extract(ecs::Registry& registry, const scene::Level& level, const
         const auto* over = registry.tryGet<scene::MaterialOverride>(e);
         const bool dynamic = registry.has<scene::Dynamic>(e);
         const anim::Pose* pose = registry.tryGet<anim::Pose>(e);
+        const auto* sl = registry.tryGet<scene::Sl>(e);
+        const bool slLocal = sl && sl->localLights && w.has("sl");  // DrawItem::slLocal
         const glm::mat4 skinFrame = pose ? anim::skinFrame(a.cpu, ref, world.matrix, *pose) : world.matrix;
         scene::forEachInstancedNode(a.cpu, ref, world.matrix, [&](int n, const glm::mat4& nodeWorld) {
           glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());  // this node's
@@ -366,6 +368,7 @@ void GpuScene::extract(ecs::Registry& registry, const scene::Level& level, const
             inst.ids = glm::uvec4(e.index(), 0, 0, 0);
             w.draws.push_back({&gpuMesh, p, static_cast<std::uint32_t>(w.instances.size()),
                                a.materialSets[prim.material], e.index(), dynamic, posedBase});
+            w.draws.back().slLocal = slLocal;
             if (posedBase != DrawItem::kNotPosed) posedBounds.emplace_back(w.draws.size() - 1, std::make_pair(lo, hi));
             w.instances.push_back(inst);
           }
@@ -379,7 +382,7 @@ void GpuScene::extract(ecs::Registry& registry, const scene::Level& level, const
                          : L.type == scene::LightType::Spot ? LightType::Spot
                                                             : LightType::Directional;
         w.lights.push_back(makeLight(type, L.color, L.intensity, L.range.value_or(0.0f), L.innerConeRad,
-                                     L.outerConeRad, L.shadows, world.matrix));
+                                     L.outerConeRad, L.shadows, world.matrix, L.radius));
       });
   if (!w.has("shadows"))
     for (auto& l : w.lights) l.shadow.x = -1.0f;

@@ -32,6 +32,10 @@ struct DrawItem {
   // passes (nothing reads their output). Always true for static draws.
   bool inView = true;
   bool inShadow = true;
+  // An SL object with "local_lights" (scene::Sl::localLights, issue 13 §7.3): its shadow on point and
+  // spot lights comes from the SL pass "sl.local" alone, so it is left out of their shadow layers
+  // (directional lights keep it) — the hard shadow must not count twice.
+  bool slLocal = false;
 };
 
 // One deformed instance for the skinning compute pass: morph mesh->skinVertices by its

@@ -82,6 +82,10 @@ struct Light {
   float innerConeRad = 0.0f;       // spot only
   float outerConeRad = 0.7853982f; // spot only; 45 degrees (glTF default)
   bool shadows = true;
+  // "radius": the light as a sphere of this radius (metres, ≥ 0; 0 = a point, the default). Only
+  // the SL local lights (Sl::localLights, issue 13 §7.3) and the path-traced reference (its shadow
+  // rays aim at the sphere) use it; the shadow maps treat every light as a point.
+  float radius = 0.0f;
   friend bool operator==(const Light&, const Light&) = default;
 };
 
@@ -188,6 +192,11 @@ struct Sl {
   // "resolution": "full" (false, the default) or "half" (true): pass 2 shades every second pixel per
   // axis and an edge-aware upsample fills the rest (engine/gi/sl/node.hpp Resolution). Run time only.
   bool half = false;
+  // "local_lights": the level's point and spot lights become SLs of their own radius (Light::radius)
+  // in pass 2 (§7.3): this object's shadow on them is the SLs' SH-exponentiated visibility of the
+  // light's sphere ("sl.local", engine/gi/sl/local_light.hpp) instead of the shadow map's (its draws
+  // leave those lights' shadow layers). Run time only. Default false.
+  bool localLights = false;
   friend bool operator==(const Sl&, const Sl&) = default;
 };
 

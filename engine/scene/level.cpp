@@ -104,7 +104,8 @@ void parseCamera(const json::Node& node, EntityDesc& d, const ParseContext&) {
 }
 
 void parseLight(const json::Node& node, EntityDesc& d, const ParseContext&) {
-  const auto o = node.object({"type", "color", "intensity", "range", "inner_cone_deg", "outer_cone_deg", "shadows"});
+  const auto o = node.object({"type", "color", "intensity", "range", "inner_cone_deg", "outer_cone_deg", "shadows",
+                                 "radius"});
   Light l;
   const auto type = o.required("type", "one of: point, spot, directional");
   const std::string t = type.string();
@@ -120,6 +121,10 @@ void parseLight(const json::Node& node, EntityDesc& d, const ParseContext&) {
   if (auto i = o.optional("intensity")) l.intensity = i->real(json::Range::atLeast(0));
   if (auto r = o.optional("range")) l.range = r->real(json::Range::greaterThan(0));
   if (auto s = o.optional("shadows")) l.shadows = s->boolean();
+  if (auto r = o.optional("radius")) {
+    if (l.type == LightType::Directional) r->fail("a directional light has no position", "no radius");
+    l.radius = r->real(json::Range::closed(0.0, 100.0));
+  }
   for (const char* cone : {"inner_cone_deg", "outer_cone_deg"})
     if (l.type != LightType::Spot && o.has(cone)) o.node().child(cone).fail("only spot lights have cones", "no such key");
   double inner = 0.0, outer = 45.0;
@@ -181,7 +186,7 @@ void parseDnrt(const json::Node& node, EntityDesc& d, const ParseContext&) {
 //        "resolution": "full"|"half"} — every key optional (defaults 16, 4, per-sphere, 12, full). The sphere limit is gi::sl::kMaxSpheres
 //        (one uint64 mask).
 void parseSl(const json::Node& node, EntityDesc& d, const ParseContext&) {
-  const auto o = node.object({"spheres", "order", "blocking", "influence", "resolution"});
+  const auto o = node.object({"spheres", "order", "blocking", "influence", "resolution", "local_lights"});
   Sl c;
   if (auto v = o.optional("spheres")) c.spheres = int(v->integer(1, 64));
   if (auto v = o.optional("order")) {
@@ -207,6 +212,7 @@ void parseSl(const json::Node& node, EntityDesc& d, const ParseContext&) {
     if (m != "full" && m != "half") v->fail("unknown resolution " + json::inQuotes(m), "full or half");
     c.half = m == "half";
   }
+  if (auto v = o.optional("local_lights")) c.localLights = v->boolean();
   d.sl = c;
 }
 

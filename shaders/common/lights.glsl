@@ -27,7 +27,7 @@ const uint kMaxShadowLayers = 192u;
 struct Light {
   vec4 positionType;    // xyz world position (point, spot), w type
   vec4 directionRange;  // xyz unit direction the light travels (directional, spot), w range (0 = none)
-  vec4 radiance;        // rgb colour × intensity, w unused
+  vec4 radiance;        // rgb colour × intensity, w radius (metres; scene::Light::radius, SL local lights)
   vec4 cone;            // x cos(outer cone), y cos(inner cone) (spot)
   vec4 shadow;          // x first atlas layer (< 0: no shadow), y texel size per metre of distance,
                         // z texel size constant (metres; directional), w depth bias (NDC units)

@@ -14,8 +14,10 @@
 //     6, when pc.blockers is set): ΔE of sl/probe_shadow.glsl, the same function (and exp, tables,
 //     receiver rules) pass 2's sl.shadow uses, over every SL of the frame after the receiver rules
 //     (the sample's own SL and the neighbours that contain it are shrunk or culled there); the
-//     lights need no spheres, their shadow maps hold every object's real mesh. Clamped ≥ 0 and
-//     divided by π: W/(m²·sr) per channel;
+//     lights need no spheres, their shadow maps hold every object's real mesh — except with §7.3
+//     local lights (pc.blockers bit 1): the point and spot lights' maps then leave the SL objects
+//     out and the SLs block those lights here (sl/local_light.glsl: "the same calculation for
+//     local light sources" as pass 2). Clamped ≥ 0 and divided by π: W/(m²·sr) per channel;
 //  3. Eq. 10: L_S = Σ_j L_pj Y'_j with Y'_j the baked basis sums (already × 4π/N), summed over the
 //     workgroup in shared memory;
 //  4. Eq. 11: L^c = L_S ∗ c_S, the SH product with the SL's albedo SH per channel, through the
@@ -81,12 +83,14 @@ layout(std430, binding = 7) writeonly buffer Intensity { uint intensity[]; };
 #include "sl/sl_data.glsl"
 #include "sl/sl.glsl"
 #include "sl/probe_shadow.glsl"
+#include "sl/local_light.glsl"
 
 layout(push_constant) uniform Push {
   uint lightCount;
   uint shadowsOn;   // 0: every light unoccluded (the level does not name `shadows`)
   uint gaunts;      // entries in gaunt[]
-  uint blockers;    // 1: the SLs (bindings 8–10) block the indirect light at the samples (§5.1)
+  uint blockers;    // bit 0: the SLs (bindings 8–10) block the indirect light at the samples (§5.1);
+                    // bit 1: and the point and spot lights (§7.3 local lights, sl/local_light.glsl)
 } pc;
 
 shared vec3 partial[64 * 16];
@@ -120,12 +124,14 @@ void main() {
             float dist = type == kLightDirectional ? 0.0 : length(lights[i].positionType.xyz - p);
             v = shadowVisibility(lights[i], p, n, dist);
           }
+          if ((pc.blockers & 2u) != 0u && uint(lights[i].positionType.w + 0.5) != kLightDirectional)
+            v *= slLocalVisibility(p, n, lights[i].positionType.xyz, lights[i].radiance.w);
           if (v > 0.0) incidentAddLight(lights[i], p, 0.0, v, sh);
         }
         ++i;
       } while (i < pc.lightCount);
       vec3 blocked = vec3(0.0);  // ΔE ≤ 0 of the indirect light (Eq. 3 and 6)
-      if (pc.blockers != 0u) {
+      if ((pc.blockers & 1u) != 0u) {
         vec3 ind[9];
         for (int k = 0; k < 9; ++k) ind[k] = s.indirect[k].rgb;
         blocked = slProbeShadow(p, n, ind);

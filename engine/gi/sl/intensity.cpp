@@ -5,6 +5,7 @@
 
 #include "engine/core/error.hpp"
 #include "engine/gi/sl/evaluate.hpp"
+#include "engine/gi/sl/local_light.hpp"
 #include "engine/gi/sl/shade.hpp"
 #include "engine/gpu/commands.hpp"
 #include "engine/math/sampling.hpp"
@@ -24,7 +25,23 @@ glm::vec3 sampleReflection(const SurfaceSample& sample, const SlSphere& rest, co
                            const SampleBlockers& blockers) {
   const WorldSample w = worldSample(sample, rest, posed);
   incident::RadianceSH sh = indirect;
-  for (const render::LightGpu& light : lights) incident::addLight(light, w.position, 0.0f, 1.0f, sh);
+  std::vector<Sphere> spheres;
+  std::vector<double> share, scale;
+  if (blockers.localLights)
+    for (const Light& l : blockers.lights) {
+      const auto object = std::size_t(l.object);
+      spheres.push_back(l.sphere);
+      share.push_back(object < blockers.settings.objectShare.size() ? blockers.settings.objectShare[object] : 1.0);
+      scale.push_back(object < blockers.settings.objectSilhouette.size() ? blockers.settings.objectSilhouette[object] : 1.0);
+    }
+  for (const render::LightGpu& light : lights) {
+    float v = 1.0f;
+    if (blockers.localLights && std::uint32_t(light.positionType.w + 0.5f) != std::uint32_t(render::LightType::Directional))
+      v = float(localLightVisibility(spheres, {glm::dvec3(glm::vec3(light.positionType)), double(light.radiance.w)},
+                                     glm::dvec3(w.position), glm::dvec3(w.normal), blockers.settings.order,
+                                     blockers.settings.influence, LocalForm::Cap, blockers.settings.log, share, scale));
+    incident::addLight(light, w.position, 0.0f, v, sh);
+  }
   const incident::RadianceSH e = incident::irradianceSH(sh);
   // E(n) = Σ c_j Y_j(n) (irradianceSH's convention), then Eq. 3's white Lambertian: / π.
   glm::vec3 E = sh::evalSum<glm::vec3, float>(std::span<const glm::vec3>(e), w.normal);
@@ -161,11 +178,12 @@ IntensityPass::IntensityPass(gpu::Context& ctx, std::span<const SphereSet* const
   setBlockers(*noBlockers_, samplers_.get({VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST}), false);
 }
 
-void IntensityPass::setBlockers(const ShadeData& blockers, VkSampler nearest, bool on) {
+void IntensityPass::setBlockers(const ShadeData& blockers, VkSampler nearest, bool on, bool localLights) {
   gpu::DescriptorWriter w;
   blockers.write(w, kBlockerBinding, unreadIntensity_, nearest);
   w.update(ctx_, set_);
-  push_.blockers = on && blockers.count() > 0 ? 1u : 0u;
+  // intensity.comp pc.blockers: bit 0 the indirect light, bit 1 the point and spot lights (§7.3).
+  push_.blockers = (on && blockers.count() > 0 ? 1u : 0u) | (localLights && blockers.count() > 0 ? 2u : 0u);
 }
 
 void IntensityPass::setSpheres(std::span<const PosedSphere> posed, std::span<const incident::RadianceSH> indirect) {

@@ -56,6 +56,10 @@ WorldSample worldSample(const SurfaceSample& sample, const SlSphere& rest, const
 struct SampleBlockers {
   std::span<const Light> lights;  // world spheres and object ids (intensity unused)
   ShadowSettings settings;
+  // §7.3 local lights ("sl": {"local_lights": true}): the same SLs also block the point and spot
+  // lights at the samples, by sl::localLightVisibility (Cap form, each sphere's object share and
+  // shadow scale from `settings`) — their shadow maps no longer hold the SL objects.
+  bool localLights = false;
 };
 
 // L_pj (the header), every light unoccluded: the C++ reference of intensity.comp's steps 1–2.
@@ -99,7 +103,7 @@ class IntensityPass {
   // The SLs that block the indirect light at the samples (the header): pass 2's data for this frame
   // (ShadeData, same SL order as setSpheres) and a nearest sampler for its tables. Without a call,
   // or with on = false, nothing blocks. Same rule as bindLights.
-  void setBlockers(const ShadeData& blockers, VkSampler nearest, bool on = true);
+  void setBlockers(const ShadeData& blockers, VkSampler nearest, bool on = true, bool localLights = false);
   // One dispatch (a workgroup per SL) and a barrier making intensity() visible to later compute
   // and fragment shader reads.
   void record(VkCommandBuffer cmd);

@@ -35,7 +35,7 @@ std::vector<gpu::Binding> upsampleBindings() {
 
 Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t framesInFlight,
            std::span<const SphereSet* const> sets, int order, Blocking blocking, float influence, Resolution resolution,
-           ProbeLight probes)
+           ProbeLight probes, bool localLights)
     : ctx_(ctx),
       order_(order),
       blocking_(blocking),
@@ -92,6 +92,8 @@ Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t fra
   }
   if (probes && spheres_ > 0)
     shadow_ = std::make_unique<ProbeShadowPass>(ctx, shared, probes, order, blocking, spheres_, influence, half);
+  if (localLights && spheres_ > 0)
+    local_ = std::make_unique<LocalLightPass>(ctx, shared, order, blocking, spheres_, influence);
 }
 
 void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::span<const PosedSphere> posed,
@@ -165,7 +167,10 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::s
         slot.intensity->setShadowAtlas(pc->frameView(atlas, VK_IMAGE_VIEW_TYPE_2D_ARRAY, 0, atlas.desc().layers), compare,
                                        VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, d.atlas.has_value());
         // §5.1: this frame's SLs block the indirect light at the samples (intensity.hpp).
-        slot.intensity->setBlockers(*slot.shade, pc->samplers->get({VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST}));
+        // §7.3 local lights: their shadow maps no longer hold the SL objects, so the SLs block them at
+        // the samples too ("In the first pass, we do the same calculation for local light sources").
+        slot.intensity->setBlockers(*slot.shade, pc->samplers->get({VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST}),
+                                    true, local_ != nullptr);
         slot.intensity->record(cmd);
       });
 
@@ -215,6 +220,7 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::s
   if (!half) {
     bb.put("lighting.hdr", data.hdr);
     if (shadow_) shadow_->addTo(graph, pc, *slot.shade, slot.intensity->intensity(), {&slot.tiles, 0, tileCount});
+    if (local_) local_->addTo(graph, pc, *slot.shade, slot.intensity->intensity(), {&slot.tiles, 0, tileCount});
     return;
   }
   // The shadow on the probes' light joins E in "sl.half" (ao · ΔE, same tiles), so one upsample
@@ -256,6 +262,7 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::s
         ctx_.cmdEndRendering(cmd);
       });
   bb.put("lighting.hdr", up.hdr);
+  if (local_) local_->addTo(graph, pc, *slot.shade, slot.intensity->intensity(), {&slot.tiles, shadeTiles, upsampleTiles});
 }
 
 }  // namespace bounce::gi::sl

@@ -10,6 +10,8 @@
 //  at Resolution::Half, "sl" writes E at every second G-buffer pixel per axis into the transient
 //     "sl.half" (half size, RGBA16F) and "sl.upsample" (shaders/sl/upsample.frag) adds the
 //     depth- and normal-weighted upsample times ρ/π to "lighting.hdr".
+//  "sl.local" (fragment, §7.3, when `localLights`): the SLs' soft shadows on the level's point and
+//     spot lights (LocalLightPass), drawn as the full-resolution tiles, last;
 //  "sl.shadow" (fragment, pass 2's shadow on the probes' light): when the probes' light is given and
 //     the probes pass runs, the SLs' soft shadow on it (ProbeShadowPass), drawn as the same tiles;
 //     at Resolution::Half into "sl.half" before the upsample.
@@ -24,6 +26,7 @@
 #include "engine/gi/incident/incident.hpp"
 #include "engine/gi/sl/evaluate.hpp"
 #include "engine/gi/sl/intensity.hpp"
+#include "engine/gi/sl/local_light_pass.hpp"
 #include "engine/gi/sl/probe_shadow_pass.hpp"
 #include "engine/gi/sl/shade.hpp"
 #include "engine/render/graph/render_graph.hpp"
@@ -42,7 +45,7 @@ class Node {
   // "sl.shadow"): the probes' baked volume and the probes node's device images of it.
   Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t framesInFlight,
        std::span<const SphereSet* const> sets, int order, Blocking blocking, float influence,
-       Resolution resolution = Resolution::Full, ProbeLight probes = {});
+       Resolution resolution = Resolution::Full, ProbeLight probes = {}, bool localLights = false);
   // This frame's SLs, concatenated over the sets: pose, object index, probes' SH at the centre.
   void addTo(rg::RenderGraph& graph, const render::PassContext& pc, std::span<const PosedSphere> posed,
              std::span<const std::uint32_t> objects, std::span<const incident::RadianceSH> indirect);
@@ -71,6 +74,7 @@ class Node {
   // kSingleObject: no exp of closer objects, which is exp(0) there); pipeline_ draws the others.
   gpu::Pipeline singleObject_;
   std::unique_ptr<ProbeShadowPass> shadow_;
+  std::unique_ptr<LocalLightPass> local_;  // "sl.local" (localLights): the lights' SL shadows
   std::vector<float> share_;  // per object (set): unionShare of its spheres, for "sl.shadow"
   std::vector<float> silhouette_;  // per object (set): its shadow scale (SlSphere::shadowScale)
 };

@@ -35,8 +35,8 @@ struct ShadedSphere {
   float radius = 0.0f;
   glm::mat3 rotation{1.0f};  // SL local → world
   std::uint32_t object = 0;  // SLs of one object may intersect (baked occlusion)
-  float share = 1.0f;        // its object's union share u_o (probe_shadow.hpp; "sl.shadow" only)
-  float silhouette = 1.0f;   // its set's shadow scale (SlSphere::shadowScale; "sl.shadow" only)
+  float share = 1.0f;        // its object's union share u_o (probe_shadow.hpp; "sl.shadow", "sl.local")
+  float silhouette = 1.0f;   // its set's shadow scale (SlSphere::shadowScale; "sl.shadow", "sl.local")
 };
 
 class ShadeData {

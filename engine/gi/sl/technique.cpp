@@ -150,6 +150,11 @@ class SlTechnique final : public Technique {
         throw InputError(sc.level.source.string() + ": " + e.pointer + "/sl/resolution: \"" + resolutionName(*e.sl) +
                          "\" differs from entity \"" + first->id + "\"'s \"" + resolutionName(*first->sl) +
                          "\" (expected one resolution for every sl entity of a level: pass 2 shades them in one draw)");
+      if (e.sl->localLights != first->sl->localLights)
+        throw InputError(sc.level.source.string() + ": " + e.pointer + "/sl/local_lights: " +
+                         (e.sl->localLights ? "true" : "false") + " differs from entity \"" + first->id + "\"'s " +
+                         (first->sl->localLights ? "true" : "false") +
+                         " (expected one setting for every sl entity of a level: \"sl.local\" shades them in one draw)");
     }
     auto runtime = std::make_unique<SessionRuntime>(sc.registry, sc.cookCache, cacheFolder());
     runtime->enableGpu(sc);
@@ -173,13 +178,35 @@ class SlTechnique final : public Technique {
                 e.sl->spheres = spheres;
                 e.sl->order = order;
                 e.sl->perObject = perObject;
+                e.sl->localLights = false;  // the rows below have it on
               }
           };
           rows.push_back(std::move(r));
         }
+    // §7.3 local lights (issue 13 item 4): the same with the level's point and spot lights as SLs —
+    // the objects' shadow on them from "sl.local" instead of the shadow map.
+    for (const int spheres : {16, 32})
+      for (const bool perObject : {false, true}) {
+        AccuracyRow r;
+        r.technique = "sl";
+        r.setting = "spheres=" + std::to_string(spheres) + ";order=4;blocking=" +
+                    (perObject ? "per-object" : "per-sphere") + ";local_lights=on;ref=all";
+        r.effects = {"direct", "shadows", "probes", "sl"};
+        r.passes = {"shadow", "lighting", "probes", "sl.intensity", "sl", "sl.shadow", "sl.local"};
+        r.configure = [=](scene::Level& level) {
+          for (auto& e : level.entities)
+            if (e.sl) {
+              e.sl->spheres = spheres;
+              e.sl->order = 4;
+              e.sl->perObject = perObject;
+              e.sl->localLights = true;
+            }
+        };
+        rows.push_back(std::move(r));
+      }
   }
   // "sl.shadow" runs only beside "probes" (its light is what it shadows).
-  std::vector<std::string> passes() const override { return {"sl.intensity", "sl", "sl.shadow"}; }
+  std::vector<std::string> passes() const override { return {"sl.intensity", "sl", "sl.shadow", "sl.local"}; }
 };
 
 }  // namespace
@@ -311,7 +338,8 @@ void SessionRuntime::enableGpu(SessionContext& sc) {
   node_ = std::make_unique<Node>(sc.ctx, sc.renderer.pipelines(), sc.renderer.frames().framesInFlight(), sets, order,
                                  blocking, participants_.front().component.influence,
                                  participants_.front().component.half ? Resolution::Half : Resolution::Full,
-                                 ProbeLight{sc.services.probeVolume, sc.services.probeSh, sc.services.probeMoments});
+                                 ProbeLight{sc.services.probeVolume, sc.services.probeSh, sc.services.probeMoments},
+                                 participants_.front().component.localLights);
 }
 
 render::Renderer::GraphNode SessionRuntime::node() {

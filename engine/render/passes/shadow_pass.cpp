@@ -26,8 +26,11 @@ const ShadowAtlas& addShadowPass(rg::RenderGraph& graph, const PassContext* pc, 
           p.bind(cmd);
           p.bindSet(cmd, 0, pc->frameSet);
           vkCmdSetDepthBias(cmd, kShadowDepthBiasConstant, 0.0f, kShadowDepthBiasSlope);
+          const auto& light = pc->world->lights[pc->world->shadowLayers[layer].light];
+          const bool localLayer = std::uint32_t(light.positionType.w + 0.5f) != std::uint32_t(LightType::Directional);
           for (const DrawItem& draw : pc->world->draws) {
             if (draw.posed() && !draw.inShadow) continue;  // in no shadow layer: its vertices were not posed
+            if (draw.slLocal && localLayer) continue;       // its shadow on this light is "sl.local"'s
             const auto& prim = draw.mesh->primitives[draw.primitive];
             pc->bindGeometry(cmd, draw);
             struct {

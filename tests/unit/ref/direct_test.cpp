@@ -158,5 +158,64 @@ TEST(Direct, OccluderUmbraIsExactlyBlack) {
   EXPECT_GT(lit, 100);
 }
 
+// A light with a radius (scene::Light::radius, SL local lights) is a sphere: the centre's E cos θ
+// times the visible fraction of its cap (one shadow ray per sample at a direction uniform in the
+// cap). Under a square occluder: against that fraction by dense sampling of the cap (128² strata, ray
+// vs the square), within 4 σ of the Bernoulli mean at 256 spp (σ ≤ 0.5/16) plus the strata's error;
+// fully lit pixels are exactly the point light's closed form (no ray blocked: estimator constant).
+TEST(Direct, SphereLightPenumbraMatchesItsVisibleCapFraction) {
+  RefLight light;
+  light.type = RefLightType::Point;
+  light.position = {0.0f, 1.0f, 0.0f};
+  light.radiance = glm::vec3(1.0f);
+  light.radius = 0.1f;
+  SceneDesc s = plane(light);
+  s.meshes.push_back(test::quad({-0.1f, 0.5f, -0.1f}, {0, 0, 0.2f}, {0.2f, 0, 0}, 0));
+  s.camera = test::lookAt({0.9f, 2.0f, 0.3f}, {0, 0, 0}, {0, 1, 0}, 50.0f);
+  SceneBvh bvh(std::move(s));
+  constexpr std::uint32_t kSpp = 256;
+  const gpu::FloatImage img = trace(bvh, test::settings(kSize, kSpp, 0));
+  const auto fraction = [&](const glm::dvec3& p) {
+    const glm::dvec3 q(light.position);
+    const double dist = glm::length(q - p), cosA = std::sqrt(1.0 - 0.01 / (dist * dist));
+    const glm::dvec3 w = (q - p) / dist;
+    const glm::dvec3 t = glm::normalize(glm::cross(w, glm::dvec3(1, 0, 0))), b = glm::cross(w, t);
+    constexpr int kN = 128;
+    int seen = 0;
+    for (int i = 0; i < kN; ++i)
+      for (int j = 0; j < kN; ++j) {
+        const double c = 1.0 - (1.0 - cosA) * (i + 0.5) / kN, sn = std::sqrt(1.0 - c * c), phi = 2.0 * math::kPi * (j + 0.5) / kN;
+        const glm::dvec3 d = c * w + sn * (std::cos(phi) * t + std::sin(phi) * b);
+        const glm::dvec3 o = p + (0.5 - p.y) / d.y * d;
+        seen += std::max(std::abs(o.x), std::abs(o.z)) < 0.1 ? 0 : 1;
+      }
+    return double(seen) / double(kN * kN);
+  };
+  int penumbra = 0, lit = 0, umbra = 0;
+  for (std::uint32_t y = 0; y < kSize; ++y)
+    for (std::uint32_t x = 0; x < kSize; ++x) {
+      const CameraRay r = cameraRay(bvh.scene().camera, kSize, kSize, x, y);
+      const double tOcc = (0.5 - double(r.origin.y)) / double(r.direction.y);
+      const glm::dvec3 o = glm::dvec3(r.origin) + tOcc * glm::dvec3(r.direction);
+      if (tOcc > 0.0 && std::max(std::abs(o.x), std::abs(o.z)) < 0.11) continue;  // sees the occluder
+      glm::dvec3 p;
+      ASSERT_TRUE(test::hitFloor(bvh.scene().camera, kSize, x, y, p));
+      const double f = fraction(p);
+      const glm::dvec3 full = lambertPoint(p, glm::dvec3(light.position), glm::dvec3(1.0));
+      const std::string where = "pixel " + std::to_string(x) + "," + std::to_string(y);
+      if (f == 1.0) {
+        expectNear(pixel(img, x, y), full, full.x, where);
+        ++lit;
+      } else {
+        EXPECT_NEAR(pixel(img, x, y).x / full.x, f, 4.0 * 0.5 / std::sqrt(double(kSpp)) + 0.01) << where;
+        penumbra += f > 0.0 ? 1 : 0;
+        umbra += f == 0.0 ? 1 : 0;
+      }
+    }
+  EXPECT_GT(penumbra, 20);
+  EXPECT_GT(lit, 100);
+  std::printf("sphere light: %d penumbra, %d umbra, %d lit pixels\n", penumbra, umbra, lit);
+}
+
 }  // namespace
 }  // namespace bounce::ref

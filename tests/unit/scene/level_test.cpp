@@ -133,7 +133,7 @@ TEST(LevelErrors, UnknownKey) {
             "material, camera, light, motion, animation, dnrt, sl, rtf, vlm, vlm_tag)");
   EXPECT_EQ(loadError("unknown-key-nested", levelJson(R"({"id": "a", "light": {"type": "point", "power": 1}})")),
             "FILE: /entities/0/light/power: unknown key \"power\" (expected one of: type, color, intensity, range, "
-            "inner_cone_deg, outer_cone_deg, shadows)");
+            "inner_cone_deg, outer_cone_deg, shadows, radius)");
 }
 
 TEST(LevelErrors, WrongType) {

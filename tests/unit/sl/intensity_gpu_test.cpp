@@ -363,3 +363,73 @@ TEST(SlIntensityGpu, BlockedIndirectLightEqualsTheCppReference) {
     expectMatches(std::vector<glm::vec4>(unblocked.begin(), unblocked.begin() + std::ptrdiff_t(na)), a, fa, lights, order);
   }
 }
+
+// §7.3 local lights in pass 1: with pc.blockers bit 1 the SLs also block the point and spot lights
+// at the samples (sl/local_light.glsl over ShadeData), equal to the C++ reference (sampleReflection
+// with sl::localLightVisibility) within kLocalTolerance of the largest coefficient: the GLSL's
+// visible fraction is within 1.5e-2 of the C++ (SlLocalLightGpu), of lights that are part of the
+// sum. Two objects side by side, lights of radius 0.2 m; the blocking moves the result (checked).
+TEST(SlIntensityGpu, LocalLightsBlockedBySlsEqualTheCppReference) {
+  constexpr double kLocalTolerance = 1e-2;
+  gpu::Context& ctx = gpu::testkit::sharedContext();
+  gpu::SamplerCache samplers(ctx);
+  const VkSampler nearest = samplers.get({VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST});
+  std::vector<render::LightGpu> lights = threeLights();
+  lights[0].radiance.w = lights[1].radiance.w = 0.2f;
+  const int order = 4;
+  const SphereSet a = bakedSet(order), b = bakedSet(order);
+  const SphereSet* sets[] = {&a, &b};
+  IntensityPass pass(ctx, sets, order);
+  Atlas atlas(ctx, 1.0f);
+  pass.setShadowAtlas(atlas.image.view(), atlas.sampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, false);
+  Frame fa = randomFrame(a, 31), fb = randomFrame(b, 32);
+  for (PosedSphere& p : fb.posed) p.centre += glm::vec3(0.9f, 0.3f, 0.2f);  // b between a and light 0
+  Frame all = fa;
+  all.posed.insert(all.posed.end(), fb.posed.begin(), fb.posed.end());
+  all.indirect.insert(all.indirect.end(), fb.indirect.begin(), fb.indirect.end());
+  pass.setSpheres(all.posed, all.indirect);
+  pass.setLights(lights, {});
+  const float share[2] = {0.8f, 0.6f}, silhouette[2] = {0.7f, 0.9f};
+  std::vector<ShadedSphere> shaded;
+  std::vector<Light> blockers;
+  for (std::size_t i = 0; i < all.posed.size(); ++i) {
+    const std::uint32_t object = i < a.spheres.size() ? 0u : 1u;
+    shaded.push_back({all.posed[i].centre, all.posed[i].radius, all.posed[i].rotation, object, share[object], silhouette[object]});
+    Light l;
+    l.sphere = {glm::dvec3(all.posed[i].centre), double(all.posed[i].radius)};
+    l.rotation = glm::dmat3(all.posed[i].rotation);
+    l.object = int(object);
+    blockers.push_back(l);
+  }
+  ShadeData shade(ctx, order);
+  shade.setSpheres(shaded);
+  pass.setBlockers(shade, nearest, false, true);  // the lights only, not the indirect light
+  ShadowSettings settings;
+  settings.order = order;
+  settings.objectShare = {share[0], share[1]};
+  settings.objectSilhouette = {silhouette[0], silhouette[1]};
+  SampleBlockers local{blockers, settings};
+  local.localLights = true;
+  // Only the local lights blocked: the reference applies probeShadow whenever blockers are listed,
+  // so the indirect light is zero on both sides (then its ΔE is 0) and the lights alone compare.
+  double moved = 0.0, scale = 0.0;
+  for (std::size_t i = 0; i < a.spheres.size(); ++i) {
+    const auto open = intensityReference(a.spheres[i], order, fa.posed[i], lights, {}, {});
+    const auto shut = intensityReference(a.spheres[i], order, fa.posed[i], lights, {}, local);
+    for (std::size_t k = 0; k < open.size(); ++k)
+      moved = std::max(moved, glm::length(open[k] - shut[k])), scale = std::max(scale, glm::length(open[k]));
+  }
+  std::printf("local lights move object a's intensity by %.4f of its largest coefficient\n", moved / scale);
+  EXPECT_GT(moved, 3.0 * kLocalTolerance * scale);  // measured 0.043 of the largest coefficient
+  // Zero indirect light on the device too, so both sides are the lights alone.
+  for (auto& sh : all.indirect) sh = {};
+  for (auto& sh : fa.indirect) sh = {};
+  for (auto& sh : fb.indirect) sh = {};
+  pass.setSpheres(all.posed, all.indirect);
+  const std::vector<glm::vec4> got = runPass(ctx, pass);
+  const std::size_t na = a.spheres.size() * 16;
+  expectMatches(std::vector<glm::vec4>(got.begin(), got.begin() + std::ptrdiff_t(na)), a, fa, lights, order, local,
+                kLocalTolerance);
+  expectMatches(std::vector<glm::vec4>(got.begin() + std::ptrdiff_t(na), got.end()), b, fb, lights, order, local,
+                kLocalTolerance);
+}

@@ -286,3 +286,61 @@ TEST(SlSession, ShadowOnTheProbesFollowsHalfResolutionIntoTheUpsample) {
   EXPECT_LT(relAbs, 0.15);
   EXPECT_LT(relRmse, 0.7);
 }
+
+// "local_lights" (§7.3): the level's point light as an SL of radius 0.3 m. Its shadow map is off
+// here (the light casts none), so the frame with local lights is the frame without plus "sl.local"
+// alone, which only takes light away (−ρ/π E v_map (1 − v) ≤ 0): no pixel brighter, some darker —
+// the characters' soft shadows on the floor.
+TEST(SlSession, LocalLightsAddOnePassThatOnlyTakesLightAway) {
+  const auto level = [](bool local) {
+    scene::Level l = game::loadLevelWithEffects(kCharacters, std::vector<std::string>{"direct", "shadows", "sl"});
+    for (auto& e : l.entities) {
+      if (e.light) {
+        e.light->shadows = false;
+        e.light->radius = 0.3f;
+      }
+      if (e.sl) e.sl->localLights = local;
+    }
+    return l;
+  };
+  game::Session off(gpu::testkit::sharedContext(), level(false));
+  game::Session on(gpu::testkit::sharedContext(), level(true));
+  const Frame a = oneFrame(on), b = oneFrame(off);
+  ASSERT_EQ(std::count(a.passes.begin(), a.passes.end(), "sl.local"), 1);
+  EXPECT_EQ(std::count(b.passes.begin(), b.passes.end(), "sl.local"), 0);
+  const auto at = [&](const std::string& name) { return std::find(a.passes.begin(), a.passes.end(), name) - a.passes.begin(); };
+  EXPECT_LT(at("sl"), at("sl.local"));
+  std::vector<std::string> rest;
+  for (const std::string& p : a.passes)
+    if (p != "sl.local") rest.push_back(p);
+  EXPECT_EQ(rest, b.passes);
+  ASSERT_EQ(a.rgb.size(), b.rgb.size());
+  int darker = 0, brighter = 0;
+  for (std::size_t i = 0; i < a.rgb.size(); ++i) {
+    darker += a.rgb[i] < b.rgb[i] - 1.5f / 255.0f;
+    brighter += a.rgb[i] > b.rgb[i] + 1.5f / 255.0f;
+  }
+  EXPECT_EQ(brighter, 0);
+  EXPECT_GT(darker, 0);
+  std::printf("local lights on the characters level at %ux%u: %d of %zu channel values darker, none brighter\n",
+              kExtent.width, kExtent.height, darker, a.rgb.size());
+}
+
+// Entities must agree on "local_lights" ("sl.local" shades every SL in one draw): one line, exit 2.
+TEST(SlSession, EntitiesThatDisagreeOnLocalLightsAreBadInput) {
+  scene::Level l = game::loadLevelWithEffects(kCharacters, std::vector<std::string>{"direct", "sl"});
+  bool first = true;
+  for (auto& e : l.entities)
+    if (e.sl) {
+      e.sl->localLights = first;
+      first = false;
+    }
+  try {
+    game::Session s(gpu::testkit::sharedContext(), std::move(l));
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("/sl/local_lights: false differs from entity"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("(expected one setting for every sl entity of a level"), std::string::npos) << msg;
+  }
+}

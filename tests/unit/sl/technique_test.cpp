@@ -62,6 +62,7 @@ TEST(SlComponent, ParsesWithDefaults) {
   ASSERT_EQ(level.entities.size(), 2u);
   EXPECT_EQ(level.entities[0].sl, (scene::Sl{32, 3, true, 0.0f, true}));
   EXPECT_EQ(level.entities[1].sl, (scene::Sl{16, 4, false, 12.0f, false}));
+  EXPECT_FALSE(level.entities[0].sl->localLights);
   EXPECT_EQ(settingsFrom(*level.entities[0].sl).spheres, 32);
   EXPECT_EQ(settingsFrom(*level.entities[0].sl).order, 3);
 }
@@ -78,6 +79,12 @@ TEST(SlComponent, BadInputIsOneLine) {
             "FILE: /entities/0/sl/influence: influence 2.5 (expected 0 (off) or 3..1000 sphere radii)");
   EXPECT_EQ(loadError("sl-resolution", dyn + R"(, "sl": {"resolution": "quarter"}})"),
             "FILE: /entities/0/sl/resolution: unknown resolution \"quarter\" (expected full or half)");
+  EXPECT_EQ(loadError("sl-local", dyn + R"(, "sl": {"local_lights": 1}})"),
+            "FILE: /entities/0/sl/local_lights: wrong type: integer (expected true or false)");
+  EXPECT_EQ(loadError("light-radius", R"({"id": "l", "light": {"type": "point", "radius": -1}})"),
+            "FILE: /entities/0/light/radius: -1 is out of range (expected a number in [0, 100])");
+  EXPECT_EQ(loadError("light-radius-sun", R"({"id": "l", "light": {"type": "directional", "radius": 1}})"),
+            "FILE: /entities/0/light/radius: a directional light has no position (expected no radius)");
   EXPECT_EQ(loadError("sl-key", dyn + R"(, "sl": {"sphere": 8}})").rfind("FILE: /entities/0/sl/sphere: unknown key", 0), 0u);
   EXPECT_EQ(loadError("sl-static", R"({"id": "a", )" + mesh() + R"(, "sl": {}})"),
             "FILE: /entities/0/sl: spherical lights on a static entity (expected \"dynamic\": true or a motion)");
@@ -284,5 +291,22 @@ TEST(SlUpdate, SkinnedCharacterSpheresFollowTheirVertices) {
   }
 }
 
+}  // namespace
+}  // namespace bounce::gi::sl
+
+namespace bounce::gi::sl {
+namespace {
+// "local_lights" on the sl component and "radius" on a light (§7.3 local lights).
+TEST(SlComponent, ParsesLocalLightsAndLightRadius) {
+  const fs::path path = writeLevel("sl-local-ok", R"({"id": "a", "dynamic": true, )" + mesh() +
+                                                      R"(, "sl": {"local_lights": true}},
+                                                     {"id": "l", "light": {"type": "spot", "radius": 0.25}},
+                                                     {"id": "m", "light": {"type": "point"}})");
+  const scene::Level level = scene::loadLevel(path);
+  ASSERT_EQ(level.entities.size(), 3u);
+  EXPECT_TRUE(level.entities[0].sl->localLights);
+  EXPECT_FLOAT_EQ(level.entities[1].light->radius, 0.25f);
+  EXPECT_FLOAT_EQ(level.entities[2].light->radius, 0.0f);
+}
 }  // namespace
 }  // namespace bounce::gi::sl
