@@ -184,9 +184,12 @@ TEST_F(AccuracyRun, EffectImagesReproduceEveryRowsObjectEffectErrors) {
     const ImageRGB refWithout = readPfm(out / ("reference-" + kind + "-without.pfm"));
     const ref::ObjectEffectError all = ref::objectEffectError(with, without, refWith, refWithout);
     const ref::ObjectEffectError indirect = ref::objectEffectError(with, without, refWith, refWithout, &mask);
-    if (std::isfinite(r.effectRelRmse)) EXPECT_NEAR(all.relativeError, r.effectRelRmse, 1e-9 * (1.0 + r.effectRelRmse)) << name;
-    if (std::isfinite(r.indirectEffectRelRmse))
+    if (std::isfinite(r.effectRelRmse)) {
+      EXPECT_NEAR(all.relativeError, r.effectRelRmse, 1e-9 * (1.0 + r.effectRelRmse)) << name;
+    }
+    if (std::isfinite(r.indirectEffectRelRmse)) {
       EXPECT_NEAR(indirect.relativeError, r.indirectEffectRelRmse, 1e-9 * (1.0 + r.indirectEffectRelRmse)) << name;
+    }
     ++checked;
   }
   EXPECT_EQ(checked, int(report_->rows.size()));
