@@ -42,7 +42,7 @@ std::vector<ShadeTile> binTiles(const glm::mat4& viewProj, glm::uvec2 resolution
     // Second test, per listed (tile, SL): the ball itself against the tile's frustum. The cube's
     // screen hull is up to √3 wider than the ball's silhouette, and every SL a tile lists costs each
     // of its pixels a candidate-walk body with a per-lane read of the sphere (README "SL cost,
-    // session 8": the walk was a third of `sl`'s time), so the ball's own bound pays.
+    // session 8": the walk was about a third of the frame's CPU time there), so the ball's bound pays.
     std::vector<glm::vec4> columns(2 * std::size_t(grid.tilesX)), rows(2 * std::size_t(grid.tilesY));
     for (std::uint32_t tx = 0; tx < grid.tilesX; ++tx) {
       const float a = float(tx * kScreenTile) / float(resolution.x) * 2.0f - 1.0f;
