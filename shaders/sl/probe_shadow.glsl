@@ -24,7 +24,16 @@ vec3 slProbeShadow(vec3 p, vec3 n, in vec3 L[9], uvec4 candidates) {
   // Â_l √((2l+1)/(4π)): ρ_n · (a ZH z rotated to d) = Σ_l Â_l √((2l+1)/(4π)) z_l P_l(n·d) (addition
   // theorem), so one blocker's A_j needs no 16-coefficient rotation.
   const vec4 lobeZonal = vec4(SH_A0 * 0.28209479177387814, SH_A1 * 0.48860251190291992, SH_A2 * 0.63078313050504001, 0.0);
-  // One do…while over the set (mask.glsl): max(n, 1) bodies, not n + 4 (README "Loop bodies III").
+  // Two loops, as sl.glsl's slIrradianceAt: the walk applies the receiver rules to every candidate
+  // and keeps those that reach p (llvmpipe runs an untaken branch in full, so work inside the walk
+  // is paid per candidate); the second loop, with the rotation, the exp and the per-lane reads, runs
+  // as often as the 8 pixels' longest live list (README "SL cost, session 8"). The same terms in
+  // the same order. One do…while over the set (mask.glsl): max(n, 1) bodies, not n + 4 (README
+  // "Loop bodies III").
+  vec4 live[kSpheres];   // adjusted centre, radius
+  uint liveIndex[kSpheres];
+  float liveDist[kSpheres];
+  uint alive = 0u;
   uvec4 rest = candidates;
   do {
     uint i = maskPop(rest);
@@ -35,6 +44,21 @@ vec3 slProbeShadow(vec3 p, vec3 n, in vec3 L[9], uvec4 candidates) {
       bool kept = slAdjust(c, r, p, n);
       float d = length(c - p);
       if (kept && d > 0.0) {
+        live[alive] = vec4(c, r);
+        liveIndex[alive] = i;
+        liveDist[alive] = d;
+        ++alive;
+      }
+    }
+  } while (rest != uvec4(0u));
+  uint t = 0u;
+  do {
+    if (t < alive) {
+      vec3 c = live[t].xyz;
+      float r = live[t].w;
+      float d = liveDist[t];
+      uint i = liveIndex[t];
+      {
         vec3 dir = (c - p) / d;
         float s = min(1.0, r / d);
         vec4 z = slThetaRow(0, asin(s));
@@ -55,7 +79,8 @@ vec3 slProbeShadow(vec3 p, vec3 n, in vec3 L[9], uvec4 candidates) {
         approx += SH_A0 - exp(min(z.x / kSlSqrt4Pi, kSlMaxExponent)) * dotted;
       }
     }
-  } while (rest != uvec4(0u));
+    ++t;
+  } while (t < alive);
   float v[16];
   slExp(sum, v);
   float y[9];

@@ -158,6 +158,7 @@ bool slRatioFormed[kSpheres];
 vec3 slAverage[kSpheres];
 uint slOrder[kSpheres];        // slots, closest first
 uint slSlotOf[kSpheres];       // the slot of SL i, for the live ones
+uint slObjOf[kSpheres];        // per-object: the slot's object
 float slCaps[kPerObject ? kSpheres * 16u : 1u];  // per-object: the cap's projected indicator K over s², by slot
 
 // Eq. 23–24: Ṽ_i = ρ_n · [exp(B) − exp(B + G_i)] from the blockers' summed log B and i's own G_i,
@@ -240,9 +241,10 @@ vec3 slIrradianceAt(vec3 p, vec3 n, uvec4 candidates) {
       float t = sqrt(max(0.0, 1.0 - s2));
       vec4 zs = vec4(sqrt(kSlPi) / (1.0 + t), 0.5 * sqrt(3.0 * kSlPi), 0.5 * sqrt(5.0 * kSlPi) * t,
                      0.125 * sqrt(7.0 * kSlPi) * (5.0 * t * t - 1.0));
+      // K/s² rotated once: the exact Ṽ is s² times its irradiance, per-object keeps it as the cap.
       float cap[16];
-      slRotateZonalY(zs * s2, ydir, cap);
-      float exactOpen = slIrradianceY(cap, yn);
+      slRotateZonalY(zs, ydir, cap);
+      float exactOpen = s2 * slIrradianceY(cap, yn);
       slExactOpen[s] = exactOpen;
       // Eq. 18: the weight rotated to the SL-local direction from its centre to p (§7.1). Here, for
       // the live SLs only, and not in the candidate loop above: there every candidate pays it (the
@@ -250,6 +252,7 @@ vec3 slIrradianceAt(vec3 p, vec3 n, uvec4 candidates) {
       // process's CPU time per frame (README "SL per-object blocking and sl.shadow cost"), per-object
       // 0.774 s here against 1.185 s there.
       uint i = slLive[s];
+      if (kPerObject) slObjOf[s] = slObject(i);
       float wz[16];
       slRotateZonal(slThetaRow(1, theta), transpose(slRotation(i)) * (-dir), wz);
       // Σ_k wz_k L^c_k over the fp16 pairs (at order 3 the last pair's second coefficient is 0).
@@ -261,7 +264,6 @@ vec3 slIrradianceAt(vec3 p, vec3 n, uvec4 candidates) {
       slAverage[s] = avg;
       if (kPerObject) {
         // ⟨f⟩ over the cap = (f · K)/(√(4π) K_00) (evaluate.cpp capAverage), with K/s² kept.
-        slRotateZonalY(zs, ydir, cap);
         for (uint k = 0u; k < 16u; ++k) slCaps[s * 16u + k] = cap[k];
       } else {
         // ρ_n · (exp(0) − exp(G_i)) with both exps in closed form: exp(0) is the OL table's first
@@ -290,23 +292,33 @@ vec3 slIrradianceAt(vec3 p, vec3 n, uvec4 candidates) {
     ++t;
   } while (t < count);
   if (kPerObject) {
-    t = 0u;
+    // Each object's rank once per pixel, then looked up per live SL: the object loops' index is a
+    // loop counter (one read for the 8 lanes), where ranking per live SL read its object's centre
+    // per lane and ran the object loop once per live SL. Objects ≤ SLs ≤ kSpheres (every object
+    // has ≥ 8 spheres), so objects² bodies per pixel (4 for two characters).
+    uint objRank[kSpheres];
+    uint objects = min(slObjectCount(), kSpheres);
+    uint id = 0u;
     do {
-      if (t < count) {
-        uint id = slObject(slLive[t]);
+      if (id < objects) {
         float d = length(slObjectCentre(id).xyz - p);
         uint r = 0u;
         uint o = 0u;
         do {
-          if (o < slObjectCount()) {
+          if (o < objects) {
             vec4 oc = slObjectCentre(o);
             float od = length(oc.xyz - p);
             if (oc.w >= 0.5 && (od < d || (od == d && o < id))) ++r;
           }
           ++o;
-        } while (o < slObjectCount());
-        rank[t] = r;
+        } while (o < objects);
+        objRank[id] = r;
       }
+      ++id;
+    } while (id < objects);
+    t = 0u;
+    do {
+      if (t < count) rank[t] = objRank[min(slObjOf[t], kSpheres - 1u)];
       ++t;
     } while (t < count);
   }

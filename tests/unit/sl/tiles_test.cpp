@@ -26,18 +26,21 @@ const ShadeTile* find(const std::vector<ShadeTile>& tiles, std::uint32_t tx, std
   return nullptr;
 }
 
-TEST(SlTiles, ListsTheTilesAnInfluenceCubeMeetsWithItsBitAndNoOthers) {
+TEST(SlTiles, ListsTheTilesAnInfluenceBallMeetsWithItsBitAndNoOthers) {
   const glm::uvec2 res(160, 160);
   std::vector<ShadedSphere> spheres(41);
   for (ShadedSphere& s : spheres) s = {glm::vec3(40.0f, 0.0f, -10.0f), 0.25f};  // beside the frustum
   spheres[0].centre = glm::vec3(0.0f, 0.0f, -10.0f);   // word 0, bit 0
   spheres[40].centre = glm::vec3(0.0f, 0.0f, -10.0f);  // word 1, bit 8
-  const float F = 12.0f;  // cube half-size F·r = 3: the near face at depth 7 spans 80 ± 80·3/7 pixels
+  // Ball radius F·r = 3 at distance 10: its silhouette spans 80 ± 80·tan(asin 0.3) = 80 ± 25.2 pixels,
+  // tiles 3..6. The cube around it (half-size 3, near face at depth 7: 80 ± 80·3/7, tiles 2..7) would
+  // list 36 tiles; the ball test against each tile's frustum keeps 16.
+  const float F = 12.0f;
   const std::vector<ShadeTile> tiles = binTiles(viewProj(res), res, spheres, F);
-  ASSERT_EQ(tiles.size(), 36u) << "tiles 2..7 × 2..7: pixels 45.7 … 114.3";
+  ASSERT_EQ(tiles.size(), 16u) << "tiles 3..6 × 3..6: pixels 54.8 … 105.2";
   for (std::size_t k = 0; k < tiles.size(); ++k) {
     const ShadeTile& t = tiles[k];
-    EXPECT_EQ(t.tile, glm::uvec4(2 + k % 6, 2 + k / 6, 0, 0)) << "row by row";
+    EXPECT_EQ(t.tile, glm::uvec4(3 + k % 4, 3 + k / 4, 0, 0)) << "row by row";
     EXPECT_EQ(t.mask, glm::uvec4(1u, 1u << 8, 0u, 0u));
   }
 }
