@@ -136,7 +136,9 @@ class RtfTechnique final : public Technique {
     constexpr float kAccuracyTail = 0.01f;
     for (const std::tuple<int, int, float>& row : {std::tuple{1, 9, 0.0f}, std::tuple{2, 9, 0.0f}, std::tuple{2, 4, 0.0f},
                                                    std::tuple{2, 9, kAccuracyTail}}) {
-      const auto [bounces, sh, tail] = row;
+      // Named copies, not a structured binding: clang 14 cannot capture bindings in the lambda below.
+      const int bounces = std::get<0>(row), sh = std::get<1>(row);
+      const float tail = std::get<2>(row);
       AccuracyRow r;
       r.technique = "rtf";
       r.setting = (sh == 4 ? "sh=4;" : "") + std::string(tail > 0.0f ? "tail=0.01;" : "") + "bounces=" +
