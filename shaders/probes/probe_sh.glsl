@@ -1,6 +1,6 @@
 // The baked volume's radiance SH at a receiver, read as the probes pass reads it (texelFetch from
 // the probe images, DESIGN.md: no SSBOs); shared by probes/probes.frag and the SL shadow on the
-// probes' light (sl/probe_shadow.frag), so both see the same L at a pixel (up to fp16 rounding
+// probes' light (sl/probe_shadow.frag), so both see the same L at a pixel (up to the packing
 // where probes.frag reads its uniform block, below).
 //
 // The includer declares, before including this file:
@@ -28,24 +28,26 @@ vec4 probeShTexel(int probe, int t) { return texelFetch(probeSh, probeTexel(prob
 
 #ifdef PROBE_SH_UBO
 // An includer that defines PROBE_SH_UBO also declares `const bool kShInUbo` and
-// `uniform ProbeShBlock { uvec4 probeShUbo[]; }`: the image's values as halves when the volume
-// fits the block (engine/gi/probes/node.cpp shHalfTexelWords): probe p's 3·kCoeffs + 1 values
-// (L_0.rgb, L_1.rgb, …, valid) as packHalf2x16 pairs, low half first, 8 halves a texel, texel t at
-// [kHalfTexels·p + t]. Order 3: 4 texels a probe instead of the image's 7: on llvmpipe an indexed
-// uniform array is a per-lane load per scalar, the dominant cost of the pass (README "What costs
-// what on lavapipe"). fp16 rounds each coefficient by at most 2⁻¹¹ relative (test
-// ProbeGpu.ShFromTheUniformBlockIsTheImagePathWithinHalfRounding).
-const int kHalfTexels = (3 * kCoeffs + 1 + 7) / 8;
+// `uniform ProbeShBlock { uvec4 probeShUbo[]; }`: the image's values packed when the volume fits
+// the block (engine/gi/probes/node.cpp shPackedWords): probe p's word j at texel kPackedTexels·p +
+// j / 4, component j % 4: word 0 = halves (L_0.r, L_0.g), word 1 = halves (L_0.b, s), words 2… =
+// the 3·(kCoeffs − 1) values L_i.c / (s·L_0.c) (i ≥ 1) as snorm bytes, 4 a word, low byte first.
+// 8 words a probe at order 3 (5 at order 2) instead of 16 halves: on llvmpipe an indexed uniform
+// array is a per-lane load per scalar, the dominant cost of the pass (README "DNRT and probes cost,
+// session 8"). Each L_i.c moves by at most ½·s·|L_0.c|/127 (E by node.cpp
+// packedShIrradianceError; test ProbeGpu.ShFromTheUniformBlockIsTheImagePathWithinItsRounding).
+const int kPackedTexels = 2;
+const int kPackedWords = 2 + (3 * (kCoeffs - 1) + 3) / 4;
 #endif
 
 bool probeValid(int probe) {
 #ifdef PROBE_SH_UBO
   if (kShInUbo) {
     // The block's valid bits after the last probe's texels (engine/gi/probes/node.cpp
-    // shHalfTexelWords): one word a lane. Reading the texel holding the valid half cost ~0.25 of
+    // shPackedWords): one word a lane. Reading the texel holding the valid half cost ~0.25 of
     // the lighting pass, this ~0.1 (probeWeights runs before probeRadianceSh's loads of that texel,
     // so they were never shared; README "DNRT and probes cost, session 8").
-    int bits = kHalfTexels * pc.countOrder.x * pc.countOrder.y * pc.countOrder.z + probe / 32;
+    int bits = kPackedTexels * pc.countOrder.x * pc.countOrder.y * pc.countOrder.z + probe / 32;
     return ((probeShUbo[bits].x >> uint(probe % 32)) & 1u) != 0u;
   }
 #endif
@@ -85,24 +87,30 @@ void probeRadianceSh(vec3 x, vec3 n, vec3 v, out vec3 L[9]) {
   for (int i = 0; i < 9; ++i) L[i] = vec3(0.0);
   // No test of weight[k] == 0: a branch is not skipped on llvmpipe, and 0·L adds nothing.
   for (int k = 0; k < 8; ++k) {
-    float f[32];  // kTexels · 4 ≤ 28, kHalfTexels · 8 ≤ 32
 #ifdef PROBE_SH_UBO
     if (kShInUbo) {  // a specialization constant: the other path is compiled out
-      for (int t = 0; t < kHalfTexels; ++t) {
-        uvec4 u = probeShUbo[kHalfTexels * probe[k] + t];
-        vec2 h0 = unpackHalf2x16(u.x), h1 = unpackHalf2x16(u.y), h2 = unpackHalf2x16(u.z), h3 = unpackHalf2x16(u.w);
-        f[8 * t] = h0.x, f[8 * t + 1] = h0.y, f[8 * t + 2] = h1.x, f[8 * t + 3] = h1.y;
-        f[8 * t + 4] = h2.x, f[8 * t + 5] = h2.y, f[8 * t + 6] = h3.x, f[8 * t + 7] = h3.y;
+      uint w[8];     // only the kPackedWords used words are loaded (constant components once unrolled)
+      for (int j = 0; j < kPackedWords; ++j) w[j] = probeShUbo[kPackedTexels * probe[k] + j / 4][j % 4];
+      vec2 rg = unpackHalf2x16(w[0]), bs = unpackHalf2x16(w[1]);
+      vec3 l0 = vec3(rg, bs.x);
+      L[0] += weight[k] * l0;
+      vec3 scale = (weight[k] * bs.y) * l0;  // L_i = scale ⊙ fraction_i, weighted
+      float f[24];                            // 3 · (kCoeffs − 1) ≤ 24
+      for (int j = 2; j < kPackedWords; ++j) {
+        vec4 q = unpackSnorm4x8(w[j]);
+        f[4 * j - 8] = q.x, f[4 * j - 7] = q.y, f[4 * j - 6] = q.z, f[4 * j - 5] = q.w;
       }
+      for (int i = 1; i < kCoeffs; ++i) L[i] += scale * vec3(f[3 * i - 3], f[3 * i - 2], f[3 * i - 1]);
     } else
 #endif
     {
+      float f[28];  // kTexels · 4 ≤ 28
       for (int t = 0; t < kTexels; ++t) {
         vec4 v = probeShTexel(probe[k], t);
         f[4 * t] = v.x, f[4 * t + 1] = v.y, f[4 * t + 2] = v.z, f[4 * t + 3] = v.w;
       }
+      for (int i = 0; i < kCoeffs; ++i) L[i] += weight[k] * vec3(f[3 * i], f[3 * i + 1], f[3 * i + 2]);
     }
-    for (int i = 0; i < kCoeffs; ++i) L[i] += weight[k] * vec3(f[3 * i], f[3 * i + 1], f[3 * i + 2]);
   }
 }
 

@@ -13,7 +13,7 @@
 
 layout(constant_id = 0) const int kCoeffs = 9;  // order²: 4 or 9
 // The SH from the uniform block below instead of the image when the volume fits it (node.cpp
-// kShUboBytes): the same values as halves, fetched cheaper (probe_sh.glsl, README "What costs what
+// kShUboBytes): L_0 as halves, L_1, L_2 as 8-bit fractions of it, fetched cheaper (probe_sh.glsl, README "What costs what
 // on lavapipe").
 layout(constant_id = 1) const bool kShInUbo = false;
 // The visibility moments from the second uniform block below when they fit it (node.cpp
@@ -27,7 +27,7 @@ layout(set = 1, binding = 2) uniform sampler2D gDepth;
 // The probe images' layout: probes/probe_sh.glsl.
 layout(set = 1, binding = 3) uniform sampler2D probeSh;       // RGBA32F
 layout(set = 1, binding = 4) uniform sampler2D probeMoments;  // RG32F
-layout(std140, set = 1, binding = 5) uniform ProbeShBlock { uvec4 probeShUbo[4096]; };  // halves, texel t of p: [kHalfTexels·p + t]
+layout(std140, set = 1, binding = 5) uniform ProbeShBlock { uvec4 probeShUbo[4096]; };  // packed SH, word j of p: [kPackedTexels·p + j / 4][j % 4]
 layout(set = 1, binding = 6) uniform sampler2D aoTerm;
 layout(std140, set = 1, binding = 7) uniform ProbeMomentsBlock { uvec4 probeMomentsUbo[4096]; };  // word 64·p + bin  // "ao.term" (1 = unoccluded) when bias.w = 1
 

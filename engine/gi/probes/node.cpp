@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <glm/gtc/packing.hpp>
 
@@ -48,32 +49,67 @@ std::vector<float> shTexelFloats(const ProbeVolume& v) {
   return floats;
 }
 
-// The uniform block's texels per probe: shTexelFloats' 3·coeffs + 1 values as halves, 8 a texel
-// (probe_sh.glsl kHalfTexels): order 3: 4, order 2: 2.
-std::uint32_t shHalfTexels(const ProbeVolume& v) { return std::uint32_t(3 * v.coeffs() + 1 + 7) / 8; }
+// The uniform block's texels per probe (probe_sh.glsl kPackedTexels): 8 words, of which order 3
+// uses 8 and order 2 uses 5 (shPackedWords).
+constexpr std::uint32_t kPackedTexels = 2;
 
 // The largest finite half; a volume with a larger |value| keeps the image path.
 constexpr float kHalfMax = 65504.0f;
 
-// probe_sh.glsl's ProbeShBlock: shTexelFloats' values per probe, rounded to halves (nearest) and
-// packed two a word as GLSL's packHalf2x16 (low half first), 4 words a texel, probe p's texel t at
-// word 4·(t + shHalfTexels·p). Then, after the last probe's texels, the valid flags as bits:
-// probe p's is bit p % 32 of the first word of texel shHalfTexels·probes + p / 32 (probeValid reads
-// that one word; reading the texel holding the valid half cost ~0.25 of the lighting pass on
-// llvmpipe, this ~0.1: README "DNRT and probes cost, session 8"). Empty when a value is past kHalfMax.
-std::vector<std::uint32_t> shHalfTexelWords(const ProbeVolume& v) {
-  const std::size_t probes = v.grid.probeCount(), values = std::size_t(3 * v.coeffs() + 1);
-  const std::size_t floatStride = 4 * shTexels(v), wordStride = 4 * shHalfTexels(v);
-  const std::vector<float> floats = shTexelFloats(v);
-  std::vector<std::uint32_t> words(probes * wordStride + 4 * ((probes + 31) / 32), 0u);
-  for (std::size_t p = 0; p < probes; ++p)
-    if (v.valid[p] != 0) words[probes * wordStride + 4 * (p / 32)] |= 1u << (p % 32);
-  for (std::size_t p = 0; p < probes; ++p)
-    for (std::size_t h = 0; h < values; h += 2) {
-      const float a = floats[p * floatStride + h], b = h + 1 < values ? floats[p * floatStride + h + 1] : 0.0f;
-      if (!(std::abs(a) <= kHalfMax && std::abs(b) <= kHalfMax)) return {};
-      words[p * wordStride + h / 2] = glm::packHalf2x16(glm::vec2(a, b));
+// The block's per-probe scale s (shPackedWords): max over i ≥ 1 and channels c of |L_i.c| / |L_0.c|
+// with L_0 as the shader reads it (halves); s·|L_0.c| ≥ |L_i.c| for every i, c. Rounded up to a half
+// so the shader's s is never below it. NaN when some L_0.c rounds to 0 under a non-zero L_i.c.
+float packedShScale(const ProbeVolume& v, std::size_t p) {
+  const std::size_t coeffs = std::size_t(v.coeffs());
+  const glm::vec3 l0 = glm::unpackHalf(glm::packHalf(v.sh[p * coeffs]));
+  float s = 0.0f;
+  for (std::size_t i = 1; i < coeffs; ++i)
+    for (int c = 0; c < 3; ++c) {
+      const float l = std::abs(v.sh[p * coeffs + i][c]);
+      if (l == 0.0f) continue;
+      if (l0[c] == 0.0f) return std::numeric_limits<float>::quiet_NaN();
+      s = std::max(s, l / std::abs(l0[c]));
     }
+  std::uint16_t h = glm::packHalf1x16(s);
+  if (glm::unpackHalf1x16(h) < s) ++h;  // s ≥ 0: the next half up
+  return glm::unpackHalf1x16(h);
+}
+
+// probe_sh.glsl's ProbeShBlock: per probe kPackedTexels texels (8 words), probe p's word j at
+// 4·kPackedTexels·p + j:
+//   word 0: packHalf2x16(L_0.r, L_0.g), word 1: packHalf2x16(L_0.b, s) (s: packedShScale);
+//   words 2…: the 3·(coeffs − 1) fractions L_i.c / (s·L_0.c) (i ≥ 1; value 3·(i − 1) + c), as
+//   packSnorm4x8 bytes (round(127·x)), 4 a word, low byte first: order 3: 6 words, order 2: 3.
+// 8 words a probe at order 3 instead of 16 as halves: on llvmpipe an indexed uniform array is a
+// per-lane load per scalar, and the SH loads were ~0.75 of the lighting pass (README "DNRT and
+// probes cost, session 8"). The error this costs is packedShIrradianceError's.
+// Then, after the last probe's texels, the valid flags as bits: probe p's is bit p % 32 of the
+// first word of texel kPackedTexels·probes + p / 32 (probeValid reads that one word; reading a
+// texel cost ~0.25 of the lighting pass, this ~0.1). Empty (the image path) when L_0 is past
+// kHalfMax or s is not a finite half (an L_0.c of 0 under a non-zero L_i.c; a baked volume has
+// none: its radiance is non-negative, so s ≤ √5, packedShIrradianceError).
+std::vector<std::uint32_t> shPackedWords(const ProbeVolume& v) {
+  const std::size_t probes = v.grid.probeCount(), coeffs = std::size_t(v.coeffs()), stride = 4 * kPackedTexels;
+  std::vector<std::uint32_t> words(probes * stride + 4 * ((probes + 31) / 32), 0u);
+  for (std::size_t p = 0; p < probes; ++p)
+    if (v.valid[p] != 0) words[probes * stride + 4 * (p / 32)] |= 1u << (p % 32);
+  for (std::size_t p = 0; p < probes; ++p) {
+    const glm::vec3 l0 = v.sh[p * coeffs];
+    const float s = packedShScale(v, p);
+    if (!(glm::all(glm::lessThanEqual(glm::abs(l0), glm::vec3(kHalfMax))) && s <= kHalfMax)) return {};
+    const glm::vec3 l0h = glm::unpackHalf(glm::packHalf(l0));
+    std::uint32_t* out = words.data() + p * stride;
+    out[0] = glm::packHalf2x16(glm::vec2(l0.x, l0.y));
+    out[1] = glm::packHalf2x16(glm::vec2(l0.z, s));
+    float f[24] = {};
+    for (std::size_t i = 1; i < coeffs; ++i)
+      for (int c = 0; c < 3; ++c) {
+        const float d = s * l0h[c];
+        f[3 * (i - 1) + std::size_t(c)] = d != 0.0f ? v.sh[p * coeffs + i][c] / d : 0.0f;
+      }
+    for (std::size_t w = 0; 4 * w < 3 * (coeffs - 1); ++w)
+      out[2 + w] = glm::packSnorm4x8(glm::vec4(f[4 * w], f[4 * w + 1], f[4 * w + 2], f[4 * w + 3]));
+  }
   return words;
 }
 
@@ -91,14 +127,41 @@ std::vector<std::uint32_t> momentHalfWords(const ProbeVolume& v) {
 }
 
 // probes.frag's ProbeShBlock: 4096 uvec4 = 64 KiB, lavapipe's maxUniformBufferRange (the Vulkan
-// minimum is 16 KiB; a device below 64 KiB keeps the image path). Order 3: 1016 probes with their
-// valid bits (a 0.125 m grid over cornell-1, 9³ = 729, fits); order 2: 2032.
+// minimum is 16 KiB; a device below 64 KiB keeps the image path). 2 texels a probe at either order
+// plus a texel per 32 probes' valid bits: 2016 probes (4032 + 63 texels; a 0.125 m grid over
+// cornell-1, 9³ = 729, fits).
 constexpr VkDeviceSize kShUboBytes = 4096 * 16;
 // probes.frag's ProbeMomentsBlock, the same 64 KiB: 256 B a probe, so up to 256 probes (cornell-1's
 // 0.25 m volume, 6³ = 216, fits; the 0.125 m one, 9³, keeps the image).
 constexpr VkDeviceSize kMomentsUboBytes = 4096 * 16;
 
 }  // namespace
+
+// The bound on |E_block(n) − E_image(n)| per channel that shPackedWords' 8-bit fractions add (the
+// L_0 halves round as before, 2⁻¹¹ relative). Each fraction rounds to the nearest of 255 steps of
+// s·|L_0.c|/127, so |δL_i.c| ≤ ½·s·|L_0.c|/127. E(n) = Σ_l Â_l Σ_m L_lm Y_lm(n) (sh.glsl
+// shIrradiance9; Ramamoorthi & Hanrahan 2001, Â_1 = 2π/3, Â_2 = π/4), and by Cauchy–Schwarz with the
+// addition theorem (Σ_m Y_lm(n)² = (2l+1)/4π) Σ_m |Y_lm(n)| ≤ (2l+1)/√(4π), so
+//   |δE_c| ≤ ½·s·|L_0.c|/127 · (3·Â_1 + 5·Â_2)/√(4π) = ½·s·|L_0.c|/127 · 1.625·√π  (order 3; order
+//   2: the l = 1 term alone, √π).
+// The pass mixes 8 probes with weights summing to 1, so the largest probe's bound bounds the pixel's
+// E; the pixel gets ρ/π·ao of it (ρ, ao ≤ 1). For a baked volume (radiance ≥ 0, windowed bands
+// scaled by ≤ 1) |L_lm| ≤ max|Y_lm|/Y_00 · L_00, i.e. s ≤ √5 (l = 2: Y_20's 0.6308 / 0.2821), so
+// |δE_c| ≤ 0.0286 of band 0's π·Y_00·L_0.c at worst. On cornell-1 (0.25 m, order 3) the bound is
+// 1.4 % of the probes image's largest value and the largest change measured 0.05 of the bound
+// (test ProbeGpu.ShFromTheUniformBlockIsTheImagePathWithinItsRounding).
+double packedShIrradianceError(const ProbeVolume& v) {
+  const std::size_t coeffs = std::size_t(v.coeffs());
+  const double k = 0.5 / 127.0 * (v.order == 3 ? 1.625 : 1.0) * std::sqrt(3.14159265358979323846);
+  double worst = 0.0;
+  for (std::size_t p = 0; p < v.grid.probeCount(); ++p) {
+    if (v.valid[p] == 0) continue;
+    const glm::vec3 l0 = glm::unpackHalf(glm::packHalf(v.sh[p * coeffs]));
+    const double s = packedShScale(v, p);
+    for (int c = 0; c < 3; ++c) worst = std::max(worst, k * s * std::abs(double(l0[c])));
+  }
+  return worst;
+}
 
 // SH texels (t + shTexels·x, row).
 std::unique_ptr<gpu::Image> uploadSh(gpu::Context& ctx, const ProbeVolume& v) {
@@ -138,7 +201,7 @@ ProbeNode::ProbeNode(gpu::Context& ctx, const render::Pipelines& pipelines, Prob
                   {7, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER}},
                  "probes") {
   {
-    const std::vector<std::uint32_t> words = shHalfTexelWords(volume_);
+    const std::vector<std::uint32_t> words = shPackedWords(volume_);
     const VkDeviceSize bytes = words.size() * sizeof(std::uint32_t);
     shInUbo_ = shInUbo && !words.empty() && bytes <= kShUboBytes && kShUboBytes <= ctx.limits().maxUniformBufferRange;
     shUbo_ = gpu::Buffer(ctx, {kShUboBytes, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,

@@ -28,6 +28,11 @@ struct ProbePush {
 };
 ProbePush probePush(const ProbeVolume& v, float flag);
 
+// The largest |E| change per channel (W/m², E as sh::evalIrradiance) that the uniform block's 8-bit
+// L_1/L_2 fractions of L_0 make at any receiver (node.cpp shPackedWords; derivation there): the
+// probes pass's output moves by at most ρ/π·ao times it plus the fp16 roundings.
+double packedShIrradianceError(const ProbeVolume& v);
+
 class ProbeNode final : public TechniqueRuntime {
  public:
   // `pipelines` gives the shared frame layout (set 0: camera).
@@ -51,10 +56,10 @@ class ProbeNode final : public TechniqueRuntime {
  private:
   ProbeVolume volume_;
   std::unique_ptr<gpu::Image> sh_, moments_;
-  // sh_'s values as halves in a uniform block when they fit kShUboBytes (probes.frag kShInUbo,
-  // layout in probe_sh.glsl): llvmpipe gathers a uniform-array texel per lane for less than a
-  // texelFetch, and halves take 4 texels a probe at order 3 instead of 7 (README "What costs what
-  // on lavapipe"). Always kShUboBytes long, so the block the shader declares is always bound.
+  // sh_'s values in a uniform block when they fit kShUboBytes (probes.frag kShInUbo, layout in
+  // node.cpp shPackedWords): llvmpipe gathers a uniform-array word per lane for less than a
+  // texelFetch, and L_0 as halves with L_1, L_2 as 8-bit fractions of it take 8 words a probe at
+  // order 3 instead of the image's 28 floats (README "What costs what on lavapipe"). Always kShUboBytes long, so the block the shader declares is always bound.
   gpu::Buffer shUbo_;
   bool shInUbo_ = false;
   // The visibility moments as (mean, σ) halves in a second block when they fit (and the SH block

@@ -86,16 +86,17 @@ TEST(ProbeGpu, PassEqualsCpuApiAtEveryPixel) {
 }
 
 // Issue 15: probes.frag reads the probes' SH from a uniform block when the volume fits 64 KiB
-// (cheaper on llvmpipe than a texelFetch per texel), as halves (4 texels a probe at order 3, not
-// 7), and from the image's floats otherwise. Each coefficient is rounded by at most 2⁻¹¹ relative,
-// and the RGBA16F target rounds both images by 2⁻¹¹ again, so a channel may move by the rounding of
-// its SH terms (which can partly cancel, hence the absolute floor: 2⁻¹¹ of the image's largest
-// value) plus two target roundings: |a − b| ≤ 3·2⁻¹¹·max(a, b) + 2⁻¹¹·max. The visibility moments
-// come from a second block as (mean, σ) halves when they fit (256 probes; cornell-1's 216 do): they
-// move the Chebyshev weights by a like relative amount, inside the same bound (measured: printed;
-// 9.8e-4 with or without them, the moments alone move cornell-1's captures by rel RMSE 2.4e-5).
-// A volume past the block (order 3: more than 1024 probes) takes the image path.
-TEST(ProbeGpu, ShFromTheUniformBlockIsTheImagePathWithinHalfRounding) {
+// (cheaper on llvmpipe than a texelFetch per texel), packed (node.cpp shPackedWords: L_0 as halves,
+// L_1, L_2 as 8-bit fractions of s·L_0; 8 words a probe at order 3, not the image's 28 floats), and
+// from the image's floats otherwise. L_0 rounds by at most 2⁻¹¹ relative, and the RGBA16F target
+// rounds both images by 2⁻¹¹ again, so a channel may move by that (which can partly cancel, hence
+// the absolute floor: 2⁻¹¹ of the image's largest value) plus two target roundings, plus the 8-bit
+// fractions' bound on E (gi::probes::packedShIrradianceError, derived in node.cpp) times ρ/π ≤ 1/π:
+// |a − b| ≤ 3·2⁻¹¹·max(a, b) + 2⁻¹¹·max + E_q/π. The visibility moments come from a second block as
+// (mean, σ) halves when they fit (256 probes; cornell-1's 216 do): they move the Chebyshev weights
+// by about 2⁻¹¹ relative, inside the same bound (alone they move cornell-1's captures by rel RMSE
+// 2.4e-5). A volume past the block (more than 2016 probes) takes the image path.
+TEST(ProbeGpu, ShFromTheUniformBlockIsTheImagePathWithinItsRounding) {
   gpu::Context& ctx = gpu::testkit::sharedContext();
   const fs::path levelPath = fs::path(BOUNCE_SOURCE_DIR) / "content/levels/cornell-1.json";
   game::Session session(ctx, game::loadLevelWithEffects(levelPath, std::vector<std::string>{"probes"}));
@@ -112,15 +113,14 @@ TEST(ProbeGpu, ShFromTheUniformBlockIsTheImagePathWithinHalfRounding) {
     session.render(presenter, settings);
     return session.renderer().readHdr();
   };
-  // Order 3 as baked, and order 2 (the first 4 coefficients of each probe: 13 halves, 2 texels a
-  // probe, the valid flag in texel 1's third word).
+  // Order 3 as baked, and order 2 (the first 4 coefficients of each probe: 5 of the 8 words).
   gi::probes::ProbeVolume order2 = baked.volume;
   order2.order = 2;
   order2.sh.clear();
   for (std::size_t p = 0; p < baked.volume.grid.probeCount(); ++p)
     for (std::size_t i = 0; i < 4; ++i) order2.sh.push_back(baked.volume.sh[p * 9 + i]);
   // And order 3 with every third probe invalid (cornell-1 has none): the block's valid bits
-  // (node.cpp shHalfTexelWords, one bit a probe after the SH texels, 7 words for 216 probes) must
+  // (node.cpp shPackedWords, one bit a probe after the SH texels, 7 words for 216 probes) must
   // drop the same probes as the image's valid floats.
   gi::probes::ProbeVolume holes = baked.volume;
   for (std::size_t p = 1; p < holes.valid.size(); p += 3) holes.valid[p] = 0u;
@@ -136,23 +136,31 @@ TEST(ProbeGpu, ShFromTheUniformBlockIsTheImagePathWithinHalfRounding) {
     const std::vector<float> a = render(ubo), b = render(image);
     ASSERT_EQ(a.size(), b.size());
     constexpr double kHalfUlp = 1.0 / 2048.0;  // 2⁻¹¹: fp16's unit roundoff
+    const double quantised = gi::probes::packedShIrradianceError(*volume) / 3.14159265358979;  // ρ/π·E_q, ρ ≤ 1
     double top = 0.0;
     for (std::size_t i = 0; i < a.size(); ++i) top = std::max(top, double(std::abs(b[i])));
-    std::size_t lit = 0, equal = 0, outside = 0;
-    double worst = 0.0;  // the largest |a − b| / max(a, b) over channels above 1 % of the top
+    std::size_t lit = 0, equal = 0, outside = 0, pastHalves = 0;
+    double worst = 0.0;    // the largest |a − b| / max(a, b) over channels above 1 % of the top
+    double largest = 0.0;  // the largest |a − b| beyond the fp16 part of the bound, as a fraction of E_q/π
     for (std::size_t i = 0; i < a.size(); ++i) {
       lit += a[i] > 0.0f, equal += a[i] == b[i];
       const double big = std::max(std::abs(double(a[i])), std::abs(double(b[i]))), diff = std::abs(double(a[i]) - b[i]);
-      outside += diff > 3.0 * kHalfUlp * big + kHalfUlp * top;
+      const double halves = 3.0 * kHalfUlp * big + kHalfUlp * top;
+      outside += diff > halves + quantised;
+      pastHalves += diff > halves;
+      largest = std::max(largest, (diff - halves) / quantised);
       if (big > 0.01 * top) worst = std::max(worst, diff / big);
     }
-    std::printf("probes order %d, halves from the uniform blocks vs the images' floats: %zu of %zu channel values "
-                "equal, %zu lit, largest relative difference %.2e (above 1 %% of the top value %.3g)\n",
-                volume->order, equal, a.size(), lit, worst, top);
+    std::printf("probes order %d, the uniform blocks' packed SH vs the images' floats: %zu of %zu channel values "
+                "equal, %zu lit, largest relative difference %.2e (above 1 %% of the top value %.3g); 8-bit bound "
+                "E_q/pi = %.3g (%.2e of the top), %zu values past the fp16 part, the largest at %.3f of E_q/pi\n",
+                volume->order, equal, a.size(), lit, worst, top, quantised, quantised / top, pastHalves, largest);
     EXPECT_GT(lit, a.size() / 2);
     EXPECT_GT(top, 0.0);
     EXPECT_EQ(outside, 0u) << "order " << volume->order;
-    EXPECT_LT(equal, a.size());  // the blocks really hold halves: some channel moved
+    EXPECT_LT(equal, a.size());  // the blocks really hold the packed values: some channel moved
+    EXPECT_GT(quantised, 0.0);
+    EXPECT_LT(quantised, 0.03 * top);  // the derivation's bound is not vacuous on this image
     if (volume == &baked.volume) allValid = a;
     if (volume == &holes) {  // the flags matter here: a third of the probes left out moves most pixels
       std::size_t moved = 0;
@@ -162,33 +170,44 @@ TEST(ProbeGpu, ShFromTheUniformBlockIsTheImagePathWithinHalfRounding) {
     }
   }
 
-  // 11³ probes at order 3: 1331 × 4 texels × 16 B = 85184 B, past the 64 KiB block; 9³ fits.
+  // 2 texels a probe at either order: 12³ = 1728 probes fit (3456 + 54 texels), 13³ = 2197 do not.
   gi::probes::ProbeVolume big = baked.volume;
-  for (int perAxis : {9, 11}) {
+  for (int perAxis : {12, 13}) {
     big.grid.count = glm::ivec3(perAxis);
     const std::size_t n = big.grid.probeCount();
     big.sh.assign(n * std::size_t(big.coeffs()), glm::vec3(0.1f));
     big.moments.assign(n * std::size_t(gi::probes::kVisBins), glm::vec2(1.0f, 1.0f));
     big.valid.assign(n, 1u);
     const gi::probes::ProbeNode node(ctx, session.renderer().pipelines(), big);
-    EXPECT_EQ(node.shInUbo(), perAxis == 9) << perAxis;
+    EXPECT_EQ(node.shInUbo(), perAxis == 12) << perAxis;
     EXPECT_FALSE(node.momentsInUbo()) << perAxis << ": 64 bins × 4 B a probe, 256 probes at most";
   }
-  // With the valid bits (a texel per 32 probes after the SH texels): 1016 probes fit at order 3
-  // (4064 + 32 texels), 1017 do not (4068 + 32 > 4096).
-  for (const glm::ivec3 count : {glm::ivec3(8, 127, 1), glm::ivec3(9, 113, 1)}) {
-    big.grid.count = count;
-    const std::size_t n = big.grid.probeCount();
-    big.sh.assign(n * std::size_t(big.coeffs()), glm::vec3(0.1f));
-    big.moments.assign(n * std::size_t(gi::probes::kVisBins), glm::vec2(1.0f, 1.0f));
-    big.valid.assign(n, 1u);
-    EXPECT_EQ(gi::probes::ProbeNode(ctx, session.renderer().pipelines(), big).shInUbo(), n == 1016u) << n;
-  }
+  // With the valid bits (a texel per 32 probes after the SH texels): 2016 probes fit at either order
+  // (4032 + 63 texels), 2017 do not (4034 + 64 > 4096).
+  for (const int order : {2, 3})
+    for (const glm::ivec3 count : {glm::ivec3(16, 126, 1), glm::ivec3(1, 2017, 1)}) {
+      big.order = order;
+      big.grid.count = count;
+      const std::size_t n = big.grid.probeCount();
+      big.sh.assign(n * std::size_t(big.coeffs()), glm::vec3(0.1f));
+      big.moments.assign(n * std::size_t(gi::probes::kVisBins), glm::vec2(1.0f, 1.0f));
+      big.valid.assign(n, 1u);
+      EXPECT_EQ(gi::probes::ProbeNode(ctx, session.renderer().pipelines(), big).shInUbo(), n == 2016u) << n;
+    }
+  big.order = 3;
   // A value past the largest half (65504) keeps the image path.
   big.grid.count = glm::ivec3(9);
   big.sh.assign(big.grid.probeCount() * std::size_t(big.coeffs()), glm::vec3(0.1f));
   big.moments.assign(big.grid.probeCount() * std::size_t(gi::probes::kVisBins), glm::vec2(1.0f, 1.0f));
   big.valid.assign(big.grid.probeCount(), 1u);
-  big.sh[5] = glm::vec3(1e5f, 0.0f, 0.0f);
+  big.sh[9] = glm::vec3(1e5f, 0.1f, 0.1f);  // probe 1's L_0
   EXPECT_FALSE(gi::probes::ProbeNode(ctx, session.renderer().pipelines(), big).shInUbo());
+  // So does an L_0 channel of 0 under a non-zero L_i (no finite fraction; a baked volume, its
+  // radiance ≥ 0, has none), and a fraction past the largest half (s = |L_i| / |L_0|).
+  big.sh[9] = glm::vec3(0.0f, 0.1f, 0.1f);
+  EXPECT_FALSE(gi::probes::ProbeNode(ctx, session.renderer().pipelines(), big).shInUbo());
+  big.sh[9] = glm::vec3(1e-3f, 0.1f, 0.1f), big.sh[10] = glm::vec3(1e3f, 0.0f, 0.0f);
+  EXPECT_FALSE(gi::probes::ProbeNode(ctx, session.renderer().pipelines(), big).shInUbo());
+  big.sh[10] = glm::vec3(10.0f, 0.0f, 0.0f);  // s = 10⁴: finite, the block path
+  EXPECT_TRUE(gi::probes::ProbeNode(ctx, session.renderer().pipelines(), big).shInUbo());
 }
