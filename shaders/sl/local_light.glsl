@@ -55,13 +55,13 @@ float slLocalVisibility(vec3 p, vec3 n, vec3 x, float R, uvec4 candidates) {
   do {
     uint i = maskPop(rest);
     if (i < total) {
-      vec4 sp = slSphere(i);
-      vec3 c = sp.xyz;
-      float r = sp.w;
-      bool kept = slAdjust(c, r, p, n);
+      vec4 cr;
+      float d;
+      bool seen = slSeenFrom(i, p, n, cr, d);
+      vec3 c = cr.xyz;
+      float r = cr.w;
       vec3 toC = c - p;
-      float d = length(toC);
-      if (kept && d > 0.0 && r > 0.0) {
+      if (seen && r > 0.0) {
         // local_light.cpp localBlockerWeight.
         float w = clamp((dx - d) / r, 0.0, 1.0) * clamp((length(c - x) - r - max(R, 0.0)) / r, 0.0, 1.0);
         float sinB = min(1.0, r / d);

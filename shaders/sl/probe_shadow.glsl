@@ -38,13 +38,10 @@ vec3 slProbeShadow(vec3 p, vec3 n, in vec3 L[9], uvec4 candidates) {
   do {
     uint i = maskPop(rest);
     if (i < count) {
-      vec4 sp = slSphere(i);
-      vec3 c = sp.xyz;
-      float r = sp.w;
-      bool kept = slAdjust(c, r, p, n);
-      float d = length(c - p);
-      if (kept && d > 0.0) {
-        live[alive] = vec4(c, r);
+      vec4 cr;
+      float d;
+      if (slSeenFrom(i, p, n, cr, d)) {
+        live[alive] = cr;
         liveIndex[alive] = i;
         liveDist[alive] = d;
         ++alive;

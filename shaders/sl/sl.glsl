@@ -66,6 +66,19 @@ bool slAdjust(inout vec3 c, inout float r, vec3 p, vec3 n) {
   return r > 0.0;
 }
 
+// SL i as receiver p (normal n) sees it, the opening of every candidate walk (sl, sl.shadow,
+// sl.local): its centre and radius after the receiver rules in cr, its distance in d; false when a
+// rule culls it or its centre sits at p.
+bool slSeenFrom(uint i, vec3 p, vec3 n, out vec4 cr, out float d) {
+  vec4 sp = slSphere(i);
+  vec3 c = sp.xyz;
+  float r = sp.w;
+  bool kept = slAdjust(c, r, p, n);
+  cr = vec4(c, r);
+  d = length(c - p);
+  return kept && d > 0.0;
+}
+
 // Linear interpolation in a 256-entry θ row of slTables (θ clamped to [0, π/2]).
 vec4 slThetaRow(int row, float theta) {
   float x = clamp(theta, 0.0, 0.5 * kSlPi) / (0.5 * kSlPi) * float(kSlThetaEntries - 1);
@@ -204,15 +217,12 @@ vec3 slIrradianceAt(vec3 p, vec3 n, uvec4 candidates) {
   do {
     uint i = maskPop(rest);
     if (i < min(slCount(), kSpheres)) {
-      vec4 sp = slSphere(i);
-      vec3 c = sp.xyz;
-      float r = sp.w;
-      bool kept = slAdjust(c, r, p, n);
-      float d = length(c - p);
-      if (kept && d > 0.0) {
+      vec4 cr;
+      float d;
+      if (slSeenFrom(i, p, n, cr, d)) {
         slLive[count] = i;
         slDist[count] = d;
-        adjusted[count] = vec4(c, r);
+        adjusted[count] = cr;
         slOrder[count] = count;
         slSlotOf[i] = count;
         ++count;
