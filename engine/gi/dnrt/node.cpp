@@ -391,10 +391,8 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
         VkSampler linear = pc->samplers->get({VK_FILTER_LINEAR, VK_SAMPLER_MIPMAP_MODE_NEAREST});
         auto view = [&](rg::Handle<rg::Texture> h) { return pc->backend->image(res.texture(h)).view(); };
         VkDescriptorSet inputs = pc->frame().descriptors->allocate(inputLayout_);
-        gpu::DescriptorWriter()
-            .sampledImage(0, view(d.g.albedo), point)
-            .sampledImage(1, view(d.g.normal), point)
-            .sampledImage(2, view(d.g.depth), point)
+        gpu::DescriptorWriter writer;
+        render::writeDeferredInputs(writer, d.g, *pc, res, point)
             .buffer(3, buffer)
             .sampledImage(4, view(d.g.entity), point)
             .update(ctx_, inputs);
@@ -452,10 +450,8 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
             std::memcpy(records.mapped() + k * sizeof(DnrtClusterObject), &rec, sizeof rec);
           }
           VkDescriptorSet clusterInputs = pc->frame().descriptors->allocate(inputLayout_);
-          gpu::DescriptorWriter()
-              .sampledImage(0, view(d.g.albedo), point)
-              .sampledImage(1, view(d.g.normal), point)
-              .sampledImage(2, view(d.g.depth), point)
+          gpu::DescriptorWriter writer;
+          render::writeDeferredInputs(writer, d.g, *pc, res, point)
               .buffer(3, tiles)
               .sampledImage(4, view(d.g.entity), point)
               .update(ctx_, clusterInputs);

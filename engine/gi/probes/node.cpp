@@ -255,10 +255,8 @@ void ProbeNode::addPasses(rg::RenderGraph& graph, const render::PassContext* pc)
         VkSampler point = pc->samplers->get({VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST});
         auto view = [&](rg::Handle<rg::Texture> h) { return pc->backend->image(res.texture(h)).view(); };
         VkDescriptorSet set = pc->frame().descriptors->allocate(setLayout_);
-        gpu::DescriptorWriter()
-            .sampledImage(0, view(d.g.albedo), point)
-            .sampledImage(1, view(d.g.normal), point)
-            .sampledImage(2, view(d.g.depth), point)
+        gpu::DescriptorWriter writer;
+        render::writeDeferredInputs(writer, d.g, *pc, res, point)
             .sampledImage(3, sh_->view(), point)
             .sampledImage(4, moments_->view(), point)
             .buffer(5, shUbo_, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 0, kShUboBytes)

@@ -68,13 +68,10 @@ void LocalLightPass::addTo(rg::RenderGraph& graph, const render::PassContext* pc
         // The lighting pass's compare sampler (shadow.glsl: LESS_OR_EQUAL, linear = 2×2 PCF).
         VkSampler compare = pc->samplers->get({VK_FILTER_LINEAR, VK_SAMPLER_MIPMAP_MODE_NEAREST,
                                                VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, 1.0f, true});
-        auto view = [&](rg::Handle<rg::Texture> h) { return pc->backend->image(res.texture(h)).view(); };
         gpu::Image& atlas = d.atlas ? pc->backend->image(res.texture(*d.atlas)) : *pc->dummyShadowAtlas;
         VkDescriptorSet inputs = pc->frame().descriptors->allocate(inputLayout_);
         gpu::DescriptorWriter w;
-        w.sampledImage(0, view(d.g.albedo), point)
-            .sampledImage(1, view(d.g.normal), point)
-            .sampledImage(2, view(d.g.depth), point)
+        render::writeDeferredInputs(w, d.g, *pc, res, point)
             .sampledImage(3, pc->frameView(atlas, VK_IMAGE_VIEW_TYPE_2D_ARRAY, 0, atlas.desc().layers), compare,
                           VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
             .buffer(4, *pc->shadowMatrices, kUniform, 0, render::kMaxShadowLayers * sizeof(glm::mat4))

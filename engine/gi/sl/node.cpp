@@ -190,10 +190,9 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::s
       [this, pc, &slot, tileCount, singleTiles](const Data& d, const rg::PassResources& res, rg::CommandContext& c) {
         VkCommandBuffer cmd = pc->cmd(c);
         VkSampler point = pc->samplers->get({VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST});
-        auto view = [&](rg::Handle<rg::Texture> h) { return pc->backend->image(res.texture(h)).view(); };
         VkDescriptorSet inputs = pc->frame().descriptors->allocate(inputLayout_);
         gpu::DescriptorWriter w;
-        w.sampledImage(0, view(d.g.albedo), point).sampledImage(1, view(d.g.normal), point).sampledImage(2, view(d.g.depth), point);
+        render::writeDeferredInputs(w, d.g, *pc, res, point);
         slot.shade->write(w, kFirstShadeBinding, slot.intensity->intensity(), point);
         w.buffer(kTilesBinding, slot.tiles);
         w.update(ctx_, inputs);
@@ -245,7 +244,7 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::s
         auto view = [&](rg::Handle<rg::Texture> h) { return pc->backend->image(res.texture(h)).view(); };
         VkDescriptorSet inputs = pc->frame().descriptors->allocate(upsampleInputs_);
         gpu::DescriptorWriter w;
-        w.sampledImage(0, view(d.g.albedo), point).sampledImage(1, view(d.g.normal), point).sampledImage(2, view(d.g.depth), point);
+        render::writeDeferredInputs(w, d.g, *pc, res, point);
         w.buffer(kTilesBinding, slot.tiles);
         w.sampledImage(kHalfBinding, view(d.half), point);
         w.update(ctx_, inputs);

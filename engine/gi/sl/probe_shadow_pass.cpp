@@ -67,9 +67,7 @@ rg::Handle<rg::Texture> ProbeShadowPass::addTo(rg::RenderGraph& graph, const ren
         auto view = [&](rg::Handle<rg::Texture> h) { return pc->backend->image(res.texture(h)).view(); };
         VkDescriptorSet inputs = pc->frame().descriptors->allocate(inputLayout_);
         gpu::DescriptorWriter w;
-        w.sampledImage(0, view(d.g.albedo), point)
-            .sampledImage(1, view(d.g.normal), point)
-            .sampledImage(2, view(d.g.depth), point)
+        render::writeDeferredInputs(w, d.g, *pc, res, point)
             .sampledImage(3, probes_.sh->view(), point)
             .sampledImage(4, probes_.moments->view(), point)
             .sampledImage(5, view(withAo ? d.ao : d.g.albedo), point);

@@ -197,10 +197,8 @@ void Runtime::addTo(rg::RenderGraph& graph, render::PassContext& pc) {
         VkSampler point = ctx->samplers->get({VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST});
         auto view = [&](rg::Handle<rg::Texture> h) { return ctx->backend->image(res.texture(h)).view(); };
         VkDescriptorSet set = ctx->frame().descriptors->allocate(shadeLayout_);
-        gpu::DescriptorWriter()
-            .sampledImage(0, view(d.g.albedo), point)
-            .sampledImage(1, view(d.g.normal), point)
-            .sampledImage(2, view(d.g.depth), point)
+        gpu::DescriptorWriter writer;
+        render::writeDeferredInputs(writer, d.g, *ctx, res, point)
             .sampledImage(3, view(d.g.entity), point)
             .buffer(4, buf.lights)
             .sampledImage(5, view(d.radiance), point)

@@ -1,6 +1,7 @@
 #pragma once
 // G-buffer pass: rasterises every draw of the RenderWorld into albedo, normal, emissive, entity id
 // and depth (layout in shaders/common/gbuffer.glsl). Publishes "gbuffer.*" on the blackboard.
+#include "engine/gpu/descriptors.hpp"
 #include "engine/render/graph/render_graph.hpp"
 #include "engine/render/pass_context.hpp"
 
@@ -20,5 +21,9 @@ struct DeferredInputs {
   rg::Handle<rg::Texture> albedo, normal, depth, entity;  // entity: invalid unless asked for
 };
 DeferredInputs readDeferredInputs(rg::Builder& b, rg::Blackboard& bb, bool withEntity = false);
+// Writes albedo, normal and depth at bindings 0, 1, 2 with the point sampler `point`, the opening of
+// every deferred GI pass's descriptor set (the bindings after them are the pass's own).
+gpu::DescriptorWriter& writeDeferredInputs(gpu::DescriptorWriter& w, const DeferredInputs& g, const PassContext& pc,
+                                           const rg::PassResources& res, VkSampler point);
 
 }  // namespace bounce::render
