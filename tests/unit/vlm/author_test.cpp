@@ -33,8 +33,10 @@ fs::path outDir() {
 fs::path cookCache() { return outDir() / "cooked"; }
 
 // A glTF of two unit quads (2 triangles each): node 0 "vlm-lamp" with extras.bounce_vlm {tag 4,
-// color [1, .5, .5], intensity 2}, node 1 "real" without extras. Written by vlm-make's writer.
-fs::path twoNodeAsset() {
+// color [1, .5, .5], intensity 2}, node 1 "real" without extras. Written by vlm-make's writer, to a
+// file of the test's own (`name`): ctest runs the tests of this binary in parallel processes, and
+// one shared file was read by one test while another was rewriting it.
+fs::path twoNodeAsset(const std::string& name) {
   MakeResult r;
   for (const char* name : {"lamp", "real"}) {
     MadeMesh m;
@@ -46,7 +48,7 @@ fs::path twoNodeAsset() {
     m.indices = {0, 2, 1, 1, 2, 3};
     r.meshes.push_back(m);
   }
-  const fs::path file = outDir() / "two-node.gltf";
+  const fs::path file = outDir() / (name + "-two-node.gltf");
   writeVlmGltf(r, file);
   nlohmann::json doc = nlohmann::json::parse(readFileText(file));
   doc["nodes"][0]["extras"]["bounce_vlm"]["color"] = {1, 0.5, 0.5};
@@ -88,7 +90,7 @@ void expectVec(glm::vec3 got, glm::vec3 want) {
 }
 
 TEST(VlmAuthoring, NodeExtrasMakeAPlainMeshAVlm) {
-  const std::string asset = twoNodeAsset().generic_string();
+  const std::string asset = twoNodeAsset("extras").generic_string();
   const auto l = load(writeLevel("extras", wall() + R"(, {"id": "lights", "mesh": {"asset": ")" + asset + R"("}})"));
   ASSERT_EQ(l->vlms.size(), 1u);
   const VlmMesh& m = l->vlms[0];
@@ -107,7 +109,7 @@ TEST(VlmAuthoring, NodeExtrasMakeAPlainMeshAVlm) {
 }
 
 TEST(VlmAuthoring, TheVlmComponentOverridesTheExtrasItGives) {
-  const std::string asset = twoNodeAsset().generic_string();
+  const std::string asset = twoNodeAsset("component").generic_string();
   const auto l = load(writeLevel("component", R"({"id": "lights", "mesh": {"asset": ")" + asset +
                                                   R"("}, "vlm": {"tag": 9, "intensity": 3}})"));
   ASSERT_EQ(l->vlms.size(), 1u);
