@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -57,7 +58,13 @@ class AccuracyRun : public ::testing::Test {
     // cornell-1's box (split into one entity per wall), lamp and DNRT/SL prop, plus Virtual Light
     // Meshes: the one shipped level in which every technique's rows run.
     o.level = std::filesystem::path(BOUNCE_SOURCE_DIR) / "content/levels/cornell-vlm.json";
-    o.out = std::filesystem::path(BOUNCE_TEST_OUT) / "accuracy" / "run";
+    // One folder per process: ctest runs each TEST as its own process (--gtest_filter=AccuracyRun.X),
+    // two at a time, and each reruns this setup; with one folder a test could read back the other
+    // process's images. No test is current here, so the folder is named after the filter.
+    std::string filter = GTEST_FLAG_GET(filter);
+    for (char& c : filter)
+      if (!std::isalnum(static_cast<unsigned char>(c)) && c != '.') c = '_';
+    o.out = std::filesystem::path(BOUNCE_TEST_OUT) / "accuracy" / "run" / filter;
     o.spp = kSpp;
     o.width = o.height = kSize;
     o.measuredFrames = 2;

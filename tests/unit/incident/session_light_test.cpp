@@ -17,8 +17,10 @@ using namespace bounce::gi;
 
 namespace {
 
+// Under this build's test output, not testing::TempDir() (/tmp/, shared by every build and user on the
+// machine: two ctest runs at once removed each other's folder).
 std::filesystem::path freshDir(const char* name) {
-  const std::filesystem::path d = std::filesystem::path(testing::TempDir()) / name;
+  const std::filesystem::path d = std::filesystem::path(BOUNCE_TEST_OUT) / "incident" / name;
   std::filesystem::remove_all(d);
   std::filesystem::create_directories(d);
   return d;

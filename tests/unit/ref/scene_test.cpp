@@ -177,7 +177,7 @@ TEST(ReferenceCache, FrameBeyondTheCaptureScriptIsAnInputError) {
   ReferenceRequest r;
   r.input = std::filesystem::path(BOUNCE_SOURCE_DIR) / "content/captures/cornell-1.json";
   r.frame = 61;  // the script simulates frames 0..60
-  r.cacheDir = outDir() / "reference-cache";
+  r.cacheDir = outDir() / "reference-cache-frame";  // not SecondRunIsServedFromTheCache's, which it clears
   r.cookCache = outDir() / "cooked";
   r.progress = false;
   try {
