@@ -46,19 +46,27 @@ void normalise(std::vector<double>& share) {
 
 }  // namespace
 
+Sphere parentSphere(std::span<const Sphere> children) {
+  if (children.empty()) throw InternalError("sl::parentSphere: no children");
+  glm::dvec3 c(0.0);
+  for (const Sphere& s : children) c += s.centre;
+  c /= double(children.size());
+  double r = 0.0;
+  for (const Sphere& s : children) r = std::max(r, glm::length(s.centre - c) + s.radius);
+  return {c, r};
+}
+
 Light parentOf(std::span<const Light> children) {
   if (children.empty()) throw InternalError("sl::parentOf: no children");
   Light parent;
   parent.object = children.front().object;
-  glm::dvec3 c(0.0);
+  std::vector<Sphere> spheres;
   for (const Light& l : children) {
     if (l.object != parent.object) throw InternalError("sl::parentOf: children of different objects");
-    c += l.sphere.centre;
+    spheres.push_back(l.sphere);
   }
-  c /= double(children.size());
-  double r = 0.0;
-  for (const Light& l : children) r = std::max(r, glm::length(l.sphere.centre - c) + l.sphere.radius);
-  parent.sphere = {c, r};
+  parent.sphere = parentSphere(spheres);
+  const double r = parent.sphere.radius;
   parent.rotation = glm::dmat3(1.0);
   const std::size_t nc = children.front().intensity.size();
   parent.intensity.assign(nc, glm::dvec3(0.0));

@@ -44,6 +44,11 @@ namespace bounce::gi::sl {
 // Below this parent term (W/m², per channel) Eq. 25 is not formed and t = 1.
 inline constexpr double kMinParentTerm = 1e-12;
 
+// The parent's sphere (the header's bounding sphere: centre the children's mean centre, radius the
+// largest |c_j − c_P| + r_j). Non-empty; else InternalError. Shared by parentOf and the per-frame
+// parents of pass 2 (update.hpp parentSpheres).
+Sphere parentSphere(std::span<const Sphere> children);
+
 // The parent SL of one object's children (all with the same `object`, non-empty; else InternalError).
 Light parentOf(std::span<const Light> children);
 

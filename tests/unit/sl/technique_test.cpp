@@ -14,7 +14,9 @@
 #include "engine/core/error.hpp"
 #include "engine/core/file.hpp"
 #include "engine/core/paths.hpp"
+#include "engine/gi/sl/hierarchy.hpp"
 #include "engine/gi/sl/technique.hpp"
+#include "engine/gi/sl/update.hpp"
 #include "engine/ref/reference_scene.hpp"
 #include "engine/scene/level.hpp"
 #include "engine/scene/systems.hpp"
@@ -194,6 +196,43 @@ TEST(SlUpdate, ClosestRotation) {
   const glm::dmat3 q = closestRotation(stretched);
   for (int c = 0; c < 3; ++c) EXPECT_LT(glm::length(q[c] - r[c]), 1e-12) << c;
   EXPECT_EQ(closestRotation(glm::dmat3(0.0)), glm::dmat3(1.0));  // singular: identity, no NaN
+}
+
+// §7.3's parents per frame (update.hpp parentSpheres): per object, hierarchy.hpp parentOf's sphere of its
+// posed SLs (the C++ reference's own), identity rotation, every child inside; objects interleaved in
+// SL order, and an id with no SL gets radius 0.
+TEST(SlUpdate, ParentSpheresAreParentOfsSpherePerObject) {
+  std::vector<PosedSphere> posed;
+  std::vector<std::uint32_t> objects;
+  for (int i = 0; i < 9; ++i) {
+    PosedSphere p;
+    p.centre = glm::vec3(0.3f * float(i % 3), -0.2f * float(i), 1.0f + 0.1f * float(i * i % 5));
+    p.radius = 0.05f + 0.02f * float(i);
+    p.rotation = glm::mat3(glm::rotate(glm::mat4(1.0f), 0.4f * float(i), glm::vec3(0, 1, 0)));
+    posed.push_back(p);
+    objects.push_back(i % 3 == 1 ? 2u : 0u);  // objects 0 and 2; id 1 has none
+  }
+  const std::vector<PosedSphere> parents = parentSpheres(posed, objects);
+  ASSERT_EQ(parents.size(), 3u);
+  EXPECT_EQ(parents[1].radius, 0.0f);
+  for (std::uint32_t o : {0u, 2u}) {
+    std::vector<Light> kids;
+    for (std::size_t i = 0; i < posed.size(); ++i)
+      if (objects[i] == o) {
+        Light l;
+        l.object = int(o);
+        l.sphere = {glm::dvec3(posed[i].centre), double(posed[i].radius)};
+        l.intensity.assign(16, glm::dvec3(0.0));
+        kids.push_back(l);
+      }
+    const Light want = parentOf(kids);
+    EXPECT_LT(glm::length(glm::dvec3(parents[o].centre) - want.sphere.centre), 1e-6) << o;
+    EXPECT_NEAR(parents[o].radius, want.sphere.radius, 1e-6) << o;
+    EXPECT_EQ(parents[o].rotation, glm::mat3(1.0f));
+    for (const Light& k : kids)
+      EXPECT_LE(glm::length(k.sphere.centre - glm::dvec3(parents[o].centre)) + k.sphere.radius,
+                double(parents[o].radius) * (1.0 + 1e-6));
+  }
 }
 
 // The fox of characters.json, running: every SL follows its covered vertices. Each covered vertex's
