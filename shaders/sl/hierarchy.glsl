@@ -15,7 +15,8 @@
 // goes through rule 0 at its own influence ball F·r_P like every SL (pass 2's tiles list it only
 // there, so far tiles still end); the reference leaves it uncut. Within F/2 · r_P of its centre the
 // two agree.
-// The includer defines SL_OBJECT_TERMS (= kSlHierObjects) before including sl.glsl, then this file.
+// The tile pass's includer defines SL_OBJECT_TERMS (= kSlHierObjects) before including sl.glsl (for
+// slParentRatio); pass 2 does not (its walk keeps no per-object sums).
 #ifndef BOUNCE_SL_HIERARCHY_GLSL
 #define BOUNCE_SL_HIERARCHY_GLSL
 
@@ -42,6 +43,7 @@ vec3 slParentTerm(uint o, vec3 p, vec3 n) {
   return slAverageRadiance(i, asin(sn), dir) * open;
 }
 
+#ifdef SL_OBJECT_TERMS
 // Eq. 25 at (x_C, n_C), per object and channel, after slIrradianceAt(x_C, n_C, …) over every SL
 // (uncut) filled slObjectTerms: t_o = Σ_{j∈o} L̃_j Ṽ_j / (L̃_P Ṽ_P); 1 where the parent's term is
 // below kSlMinParentTerm.
@@ -51,6 +53,7 @@ vec3 slParentRatio(uint o, vec3 xC, vec3 nC) {
   return vec3(den.r > kSlMinParentTerm ? num.r / den.r : 1.0, den.g > kSlMinParentTerm ? num.g / den.g : 1.0,
               den.b > kSlMinParentTerm ? num.b / den.b : 1.0);
 }
+#endif
 
 // m_o(p) for every object (departure 1 above): the area-weighted share of o's children that rule 0
 // has cut at p. One loop over every SL at the loop counter's index (the same read in all lanes).

@@ -83,6 +83,8 @@ TEST(SlComponent, BadInputIsOneLine) {
             "FILE: /entities/0/sl/resolution: unknown resolution \"quarter\" (expected full or half)");
   EXPECT_EQ(loadError("sl-local", dyn + R"(, "sl": {"local_lights": 1}})"),
             "FILE: /entities/0/sl/local_lights: wrong type: integer (expected true or false)");
+  EXPECT_EQ(loadError("sl-hierarchy", dyn + R"(, "sl": {"hierarchy": "on"}})"),
+            "FILE: /entities/0/sl/hierarchy: wrong type: string (expected true or false)");
   EXPECT_EQ(loadError("light-radius", R"({"id": "l", "light": {"type": "point", "radius": -1}})"),
             "FILE: /entities/0/light/radius: -1 is out of range (expected a number in [0, 100])");
   EXPECT_EQ(loadError("light-radius-sun", R"({"id": "l", "light": {"type": "directional", "radius": 1}})"),
@@ -346,6 +348,16 @@ TEST(SlComponent, ParsesLocalLightsAndLightRadius) {
   EXPECT_TRUE(level.entities[0].sl->localLights);
   EXPECT_FLOAT_EQ(level.entities[1].light->radius, 0.25f);
   EXPECT_FLOAT_EQ(level.entities[2].light->radius, 0.0f);
+}
+
+TEST(SlComponent, ParsesHierarchy) {
+  const fs::path path = writeLevel("sl-hierarchy-ok", R"({"id": "a", "dynamic": true, )" + mesh() +
+                                                          R"(, "sl": {"hierarchy": true}},
+                                                         {"id": "b", "dynamic": true, )" + mesh() + R"(, "sl": {}})");
+  const scene::Level level = scene::loadLevel(path);
+  ASSERT_EQ(level.entities.size(), 2u);
+  EXPECT_TRUE(level.entities[0].sl->hierarchy);
+  EXPECT_FALSE(level.entities[1].sl->hierarchy);  // off by default
 }
 }  // namespace
 }  // namespace bounce::gi::sl
