@@ -22,6 +22,7 @@
 
 const uint kSlHierObjects = 4u;  // objects a hierarchy serves (engine/gi/sl/node.hpp kMaxHierarchyObjects)
 const float kSlMinParentTerm = 1e-12;  // hierarchy.hpp kMinParentTerm: below it t = 1
+const float kSlMaxParentRatio = 4.0;   // hierarchy.hpp kMaxParentRatio: t and τ clamped to [0, 4]
 
 uint slParentCount() { return slHeader.z; }
 uint slParentIndex(uint o) { return slCount() + o; }
@@ -50,8 +51,9 @@ vec3 slParentTerm(uint o, vec3 p, vec3 n) {
 vec3 slParentRatio(uint o, vec3 xC, vec3 nC) {
   vec3 den = slParentTerm(o, xC, nC);
   vec3 num = slObjectTerms[min(o, kSlHierObjects - 1u)];
-  return vec3(den.r > kSlMinParentTerm ? num.r / den.r : 1.0, den.g > kSlMinParentTerm ? num.g / den.g : 1.0,
-              den.b > kSlMinParentTerm ? num.b / den.b : 1.0);
+  vec3 t = vec3(den.r > kSlMinParentTerm ? num.r / den.r : 1.0, den.g > kSlMinParentTerm ? num.g / den.g : 1.0,
+                den.b > kSlMinParentTerm ? num.b / den.b : 1.0);
+  return clamp(t, vec3(0.0), vec3(kSlMaxParentRatio));
 }
 #endif
 

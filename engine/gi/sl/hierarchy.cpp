@@ -101,7 +101,8 @@ std::vector<Parent> clusterParents(std::span<const Light> lights, const glm::dve
     normalise(p.share);
     const Light one[1] = {p.light};
     const glm::dvec3 den = evaluate(one, xC, nC, flat).irradiance;  // L̃_P Ṽ_P, alone
-    for (int ch = 0; ch < 3; ++ch) p.ratio[ch] = den[ch] > kMinParentTerm ? num[ch] / den[ch] : 1.0;  // Eq. 25
+    for (int ch = 0; ch < 3; ++ch)
+      p.ratio[ch] = std::clamp(den[ch] > kMinParentTerm ? num[ch] / den[ch] : 1.0, 0.0, kMaxParentRatio);  // Eq. 25
     out.push_back(std::move(p));
   }
   return out;
@@ -144,7 +145,8 @@ std::vector<ShadowParent> clusterShadowParents(std::span<const Light> lights, co
     const glm::dvec3 num = probeShadow(kids, xC, nC, radianceC, flat).delta;
     const Light one[1] = {sp.light};
     const glm::dvec3 den = probeShadow(one, xC, nC, radianceC, flat).delta;
-    for (int ch = 0; ch < 3; ++ch) sp.ratio[ch] = std::abs(den[ch]) > kMinParentTerm ? num[ch] / den[ch] : 1.0;
+    for (int ch = 0; ch < 3; ++ch)
+      sp.ratio[ch] = std::clamp(std::abs(den[ch]) > kMinParentTerm ? num[ch] / den[ch] : 1.0, 0.0, kMaxParentRatio);
     out.push_back(std::move(sp));
   }
   return out;

@@ -114,7 +114,7 @@ Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t fra
     silhouette_.push_back(set->spheres.empty() ? 1.0f : set->spheres.front().shadowScale);
   }
   if (probes && spheres_ > 0)
-    shadow_ = std::make_unique<ProbeShadowPass>(ctx, shared, probes, order, blocking, spheres_, influence, half);
+    shadow_ = std::make_unique<ProbeShadowPass>(ctx, shared, probes, order, blocking, spheres_, influence, half, hierarchy);
   if (localLights && spheres_ > 0)
     local_ = std::make_unique<LocalLightPass>(ctx, shared, order, blocking, spheres_, influence);
   if (hierarchy) {
@@ -185,8 +185,11 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::s
   const std::uint32_t tileCount = shadeTiles;
   const std::uint32_t upsampleTiles = std::uint32_t(tiles.size()) - shadeTiles;
   const VkDeviceSize ratioBytes = std::max<VkDeviceSize>(tileCount, 1) * kRatioBytesPerTile;
-  if (hierarchy_ && recording && (!slot.ratios || slot.ratios.size() < ratioBytes))
+  if (hierarchy_ && recording && (!slot.ratios || slot.ratios.size() < ratioBytes)) {
     slot.ratios = gpu::Buffer(ctx_, {ratioBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::GpuOnly, "sl.ratios"});
+    slot.shadowRatios = gpu::Buffer(ctx_, {ratioBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::GpuOnly, "sl.shadow.ratios"});
+  }
+  const gpu::Buffer* shadowRatios = hierarchy_ ? &slot.shadowRatios : nullptr;
 
   auto& bb = graph.blackboard();
   struct IntensityData {
@@ -296,14 +299,15 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::s
       });
   if (!half) {
     bb.put("lighting.hdr", data.hdr);
-    if (shadow_) shadow_->addTo(graph, pc, *slot.shade, slot.intensity->intensity(), {&slot.tiles, 0, tileCount});
+    if (shadow_) shadow_->addTo(graph, pc, *slot.shade, slot.intensity->intensity(), {&slot.tiles, 0, tileCount}, {}, shadowRatios);
     if (local_) local_->addTo(graph, pc, *slot.shade, slot.intensity->intensity(), {&slot.tiles, 0, tileCount});
     return;
   }
   // The shadow on the probes' light joins E in "sl.half" (ao · ΔE, same tiles), so one upsample
   // spreads both.
   const rg::Handle<rg::Texture> halfE =
-      shadow_ ? shadow_->addTo(graph, pc, *slot.shade, slot.intensity->intensity(), {&slot.tiles, 0, tileCount}, data.hdr)
+      shadow_ ? shadow_->addTo(graph, pc, *slot.shade, slot.intensity->intensity(), {&slot.tiles, 0, tileCount}, data.hdr,
+                               shadowRatios)
               : data.hdr;
   struct UpData {
     render::DeferredInputs g;

@@ -64,6 +64,7 @@ class Node {
     std::unique_ptr<ShadeData> shade;
     gpu::Buffer tiles;  // this frame's drawn tiles (tiles.hpp ShadeTile), host-visible
     gpu::Buffer ratios;  // hierarchy: Eq. 25's t, 4 vec4 per drawn tile of "sl" (device-local)
+    gpu::Buffer shadowRatios;  // hierarchy: "sl.shadow"'s τ, the same layout
   };
   gpu::Context& ctx_;
   int order_;

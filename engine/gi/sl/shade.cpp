@@ -72,6 +72,13 @@ void ShadeData::setSpheres(std::span<const ShadedSphere> spheres, std::span<cons
     v[1 + 4 * i] = glm::vec4(parents[o].centre, parents[o].radius);
     for (int c = 0; c < 3; ++c) v[2 + 4 * i + std::size_t(c)] = glm::vec4(glm::mat3(1.0f)[c], 1.0f);
     v[2 + 4 * i].w = float(o);
+    // The object's union share and shadow scale ("sl.shadow"), as probeShadow's settings give them.
+    for (const ShadedSphere& s : spheres)
+      if (s.object == o) {
+        v[3 + 4 * i].w = s.share;
+        v[4 + 4 * i].w = s.silhouette;
+        break;
+      }
   }
   // Pairs of one object that overlap (evaluate.cpp's intersects(), in double): pass 2 subtracts
   // them from the running blocker sum instead of testing every pair per pixel.

@@ -227,7 +227,9 @@ class SlTechnique final : public Technique {
         std::snprintf(f, sizeof f, "%g", double(influence));
         r.setting = std::string("spheres=level;order=4;influence=") + f + ";hierarchy=" + (hierarchy ? "on" : "off") + ";ref=all";
         r.effects = {"direct", "shadows", "probes", "sl"};
-        r.passes = {"shadow", "lighting", "probes", "sl.intensity", "sl.hierarchy", "sl", "sl.shadow"};
+        r.passes = {"shadow", "lighting", "probes", "sl.intensity", "sl", "sl.shadow"};
+        // A row runs only where its passes ran; the hierarchy's tile passes only run with it on.
+        if (hierarchy) r.passes.insert(r.passes.end(), {"sl.hierarchy", "sl.shadow.hierarchy"});
         r.configure = [=](scene::Level& level) {
           for (auto& e : level.entities)
             if (e.sl) {
@@ -241,7 +243,7 @@ class SlTechnique final : public Technique {
       }
   }
   // "sl.shadow" runs only beside "probes" (its light is what it shadows).
-  std::vector<std::string> passes() const override { return {"sl.intensity", "sl.hierarchy", "sl", "sl.shadow", "sl.local"}; }
+  std::vector<std::string> passes() const override { return {"sl.intensity", "sl.hierarchy", "sl", "sl.shadow.hierarchy", "sl.shadow", "sl.local"}; }
 };
 
 }  // namespace

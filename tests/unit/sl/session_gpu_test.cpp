@@ -362,6 +362,32 @@ TEST(SlSession, HierarchyAddsOnePassAndOnlyLightBeyondTheCut) {
               kExtent.width, kExtent.height, brighter, a.rgb.size());
 }
 
+// With the probes and the hierarchy: "sl.shadow.hierarchy" (τ per tile) runs right before "sl.shadow",
+// and the clamp ΔE ≥ −E_u still holds with the parents' shadow added: no value darker than the frame
+// without probes.
+TEST(SlSession, HierarchyShadowRunsBeforeSlShadowAndKeepsItsClamp) {
+  const auto frame = [](std::vector<std::string> effects, bool hierarchy) {
+    scene::Level l = game::loadLevelWithEffects(kCharacters, effects);
+    for (auto& e : l.entities)
+      if (e.sl) {
+        e.sl->influence = 4.0f;
+        e.sl->hierarchy = hierarchy;
+      }
+    game::Session s(gpu::testkit::sharedContext(), std::move(l));
+    return oneFrame(s);
+  };
+  const Frame a = frame({"direct", "shadows", "probes", "sl"}, true);
+  const Frame c = frame({"direct", "shadows"}, true);
+  for (const char* name : {"sl.intensity", "sl.hierarchy", "sl", "sl.shadow.hierarchy", "sl.shadow"})
+    ASSERT_EQ(std::count(a.passes.begin(), a.passes.end(), name), 1) << name;
+  const auto at = [&](const std::string& name) { return std::find(a.passes.begin(), a.passes.end(), name) - a.passes.begin(); };
+  EXPECT_EQ(at("sl.shadow.hierarchy") + 1, at("sl.shadow"));
+  ASSERT_EQ(a.rgb.size(), c.rgb.size());
+  int belowNoProbes = 0;
+  for (std::size_t i = 0; i < a.rgb.size(); ++i) belowNoProbes += a.rgb[i] < c.rgb[i] - 1.5f / 255.0f;
+  EXPECT_EQ(belowNoProbes, 0);
+}
+
 // Entities must agree on "local_lights" ("sl.local" shades every SL in one draw): one line, exit 2.
 TEST(SlSession, EntitiesThatDisagreeOnLocalLightsAreBadInput) {
   scene::Level l = game::loadLevelWithEffects(kCharacters, std::vector<std::string>{"direct", "sl"});
