@@ -388,6 +388,32 @@ TEST(SlSession, HierarchyShadowRunsBeforeSlShadowAndKeepsItsClamp) {
   EXPECT_EQ(belowNoProbes, 0);
 }
 
+// The hierarchy at half resolution: both tile passes run on the half-size tiles (G-buffer pixel 2j),
+// "sl.upsample" after them; the frame is finite and differs from the same frame without the hierarchy.
+TEST(SlSession, HierarchyRunsAtHalfResolution) {
+  const auto frame = [](bool hierarchy) {
+    scene::Level l = game::loadLevelWithEffects(kCharacters, std::vector<std::string>{"direct", "shadows", "probes", "sl"});
+    for (auto& e : l.entities)
+      if (e.sl) {
+        e.sl->influence = 4.0f;
+        e.sl->half = true;
+        e.sl->hierarchy = hierarchy;
+      }
+    game::Session s(gpu::testkit::sharedContext(), std::move(l));
+    return oneFrame(s);
+  };
+  const Frame a = frame(true), b = frame(false);
+  for (const char* name : {"sl.hierarchy", "sl", "sl.shadow.hierarchy", "sl.shadow", "sl.upsample"})
+    ASSERT_EQ(std::count(a.passes.begin(), a.passes.end(), name), 1) << name;
+  ASSERT_EQ(a.rgb.size(), b.rgb.size());
+  int differ = 0;
+  for (std::size_t i = 0; i < a.rgb.size(); ++i) {
+    ASSERT_TRUE(std::isfinite(a.rgb[i]));
+    differ += std::abs(a.rgb[i] - b.rgb[i]) > 1.5f / 255.0f;
+  }
+  EXPECT_GT(differ, 0);
+}
+
 // Entities must agree on "local_lights" ("sl.local" shades every SL in one draw): one line, exit 2.
 TEST(SlSession, EntitiesThatDisagreeOnLocalLightsAreBadInput) {
   scene::Level l = game::loadLevelWithEffects(kCharacters, std::vector<std::string>{"direct", "sl"});
