@@ -197,6 +197,10 @@ struct Sl {
   // light's sphere ("sl.local", engine/gi/sl/local_light.hpp) instead of the shadow map's (its draws
   // leave those lights' shadow layers). Run time only. Default false.
   bool localLights = false;
+  // "hierarchy": §7.3's two levels (engine/gi/sl/hierarchy.hpp, sl/hierarchy.glsl): one parent SL per
+  // object stands in for the share of its SLs that the influence cut removes, scaled per screen tile
+  // by Eq. 25's reflection ratio. Run time only. Default false (README "SL hierarchy on the GPU").
+  bool hierarchy = false;
   friend bool operator==(const Sl&, const Sl&) = default;
 };
 

@@ -16,8 +16,9 @@ const float kSlShadowMaxRatio = 4.0;  // probe_shadow.hpp kShadowMaxRatio
 
 // Over the SLs whose bit is set in `candidates` (sl.glsl slIrradianceAt's convention: those left out
 // must be culled at p by the receiver rules, so they would add nothing).
-vec3 slProbeShadow(vec3 p, vec3 n, in vec3 L[9], uvec4 candidates) {
-  uint count = min(slCount(), kSpheres);
+// `count`: SLs at indices ≥ count are skipped (slCount(), or past it for the §7.3 parents,
+// sl/hierarchy_shadow.glsl).
+vec3 slProbeShadow(vec3 p, vec3 n, in vec3 L[9], uvec4 candidates, uint count) {
   float sum[16];
   for (uint k = 0u; k < 16u; ++k) sum[k] = 0.0;
   float exact = kSlShadowEpsilon, sharedX = kSlShadowEpsilon, approx = kSlShadowEpsilon;
@@ -99,6 +100,10 @@ vec3 slProbeShadow(vec3 p, vec3 n, in vec3 L[9], uvec4 candidates) {
   float additive = sqrt(clamp((SH_A0 - vDotLobe + kSlShadowEpsilon) / approx, 0.0, 1.0));
   float ratio = clamp((additive * sharedX + (1.0 - additive) * exact) / approx, 1.0 / kSlShadowMaxRatio, kSlShadowMaxRatio);
   return clamp(-ratio * (unshadowed - shadowed), -max(unshadowed, vec3(0.0)), vec3(0.0));
+}
+
+vec3 slProbeShadow(vec3 p, vec3 n, in vec3 L[9], uvec4 candidates) {
+  return slProbeShadow(p, n, L, candidates, min(slCount(), kSpheres));
 }
 
 // Over every SL (the self-test's receivers, which no tile list culls).

@@ -160,6 +160,40 @@ void slExp(in float f[16], out float g[16]) {
   for (uint i = 0u; i < 16u; ++i) g[i] *= dc;
 }
 
+// The unoccluded cap's Ṽ of an SL of angular size sn = sin θ = r/d seen in direction ydir = Y(dir):
+// exact (the cap's closed-form ZH, the complement of sh_exp.hpp capVisibilityZonal: z_l = √(4π/(2l+1))
+// ∫_cap Y_l0). Every z_l has the factor 1 − P_l's neighbour, ∝ sin²θ: written with s² = sin²θ
+// factored out (1 − cos θ = s²/(1 + cos θ)) so small caps keep float precision. `cap` gets K/s²
+// rotated (per-object keeps it as the cap); returns the exact Ṽ = s² times its irradiance at yn = Y(n).
+float slOpenCap(float sn, in float ydir[16], in float yn[16], out float cap[16]) {
+  float s2 = sn * sn;
+  float t = sqrt(max(0.0, 1.0 - s2));
+  vec4 zs = vec4(sqrt(kSlPi) / (1.0 + t), 0.5 * sqrt(3.0 * kSlPi), 0.5 * sqrt(5.0 * kSlPi) * t,
+                 0.125 * sqrt(7.0 * kSlPi) * (5.0 * t * t - 1.0));
+  slRotateZonalY(zs, ydir, cap);
+  return s2 * slIrradianceY(cap, yn);
+}
+
+// Eq. 16–18: L̃ of SL i (angular radius θ, unit direction dir from the receiver to its centre), the
+// weight ZH rotated to the SL-local direction from its centre to p (§7.1), dotted with L^c over the
+// fp16 pairs (at order 3 the last pair's second coefficient is 0).
+vec3 slAverageRadiance(uint i, float theta, vec3 dir) {
+  float wz[16];
+  slRotateZonal(slThetaRow(1, theta), transpose(slRotation(i)) * (-dir), wz);
+  vec3 avg = vec3(0.0);
+  for (uint m = 0u; m < (kSlCoeffs + 1u) / 2u; ++m) {
+    vec2 r = slIntensityPair(i, 0u, m), g = slIntensityPair(i, 1u, m), b = slIntensityPair(i, 2u, m);
+    avg += wz[2u * m] * vec3(r.x, g.x, b.x) + wz[2u * m + 1u] * vec3(r.y, g.y, b.y);
+  }
+  return avg;
+}
+
+#ifdef SL_OBJECT_TERMS
+// The hierarchy's tile pass (sl/hierarchy.glsl): Σ L̃ Ṽ of each object's SLs in slIrradianceAt's last
+// call (objects ≥ SL_OBJECT_TERMS add to the last entry).
+vec3 slObjectTerms[SL_OBJECT_TERMS];
+#endif
+
 // Per-light state at this receiver, by slot s of the live list (evaluate.cpp's Prepared): only the
 // SLs that reach p after the receiver rules take a slot, so every later loop runs over them alone.
 uint slLive[kSpheres];         // the SL's index
@@ -192,6 +226,9 @@ void slFinish(uint s, in float blockers[16], bool haveExpB, inout float expB[16]
   float vis = slIrradianceY(v, yn);  // Eq. 24
   vis = slRatioFormed[s] ? vis * slRatio[s] : slExactOpen[s];
   e += slAverage[s] * vis;
+#ifdef SL_OBJECT_TERMS
+  slObjectTerms[min(slObject(slLive[s]), uint(SL_OBJECT_TERMS) - 1u)] += slAverage[s] * vis;
+#endif
 }
 
 // E(p) (Eq. 14), W/m² per channel for L^c in W/(m²·sr), from the SLs whose bit is set in `candidates`
@@ -208,6 +245,9 @@ vec3 slIrradianceAt(vec3 p, vec3 n, uvec4 candidates) {
   for (uint k = 0u; k < 16u; ++k) zero[k] = 0.0;
   float yn[16];
   shEval16(n, yn);
+#ifdef SL_OBJECT_TERMS
+  for (uint o = 0u; o < uint(SL_OBJECT_TERMS); ++o) slObjectTerms[o] = vec3(0.0);
+#endif
   vec4 adjusted[kSpheres];
   uint count = 0u;
   // Every loop over candidates or live slots below is `do … while` with its body guarded: a `for`
@@ -242,19 +282,9 @@ vec3 slIrradianceAt(vec3 p, vec3 n, uvec4 candidates) {
       shEval16(dir, ydir);
       slRotateZonalY(slThetaRow(0, theta), ydir, lg);
       for (uint k = 0u; k < 16u; ++k) slLogs[s * 16u + k] = lg[k];
-      // The unoccluded cap's Ṽ: exact (the cap's closed-form ZH, the complement of sh_exp.hpp
-      // capVisibilityZonal: z_l = √(4π/(2l+1)) ∫_cap Y_l0) and, per-sphere, as Eq. 23 sees it
-      // (exp(0) − exp(G_i)). Every z_l has the factor 1 − P_l's neighbour, ∝ sin²θ: written with
-      // s² = sin²θ factored out (1 − cos θ = s²/(1 + cos θ)) so small caps keep float precision.
-      float sn = min(1.0, r / d);
-      float s2 = sn * sn;
-      float t = sqrt(max(0.0, 1.0 - s2));
-      vec4 zs = vec4(sqrt(kSlPi) / (1.0 + t), 0.5 * sqrt(3.0 * kSlPi), 0.5 * sqrt(5.0 * kSlPi) * t,
-                     0.125 * sqrt(7.0 * kSlPi) * (5.0 * t * t - 1.0));
-      // K/s² rotated once: the exact Ṽ is s² times its irradiance, per-object keeps it as the cap.
+      // The unoccluded cap's Ṽ: exact (slOpenCap) and, per-sphere, as Eq. 23 sees it (exp(0) − exp(G_i)).
       float cap[16];
-      slRotateZonalY(zs, ydir, cap);
-      float exactOpen = s2 * slIrradianceY(cap, yn);
+      float exactOpen = slOpenCap(min(1.0, r / d), ydir, yn, cap);
       slExactOpen[s] = exactOpen;
       // Eq. 18: the weight rotated to the SL-local direction from its centre to p (§7.1). Here, for
       // the live SLs only, and not in the candidate loop above: there every candidate pays it (the
@@ -263,15 +293,7 @@ vec3 slIrradianceAt(vec3 p, vec3 n, uvec4 candidates) {
       // 0.774 s here against 1.185 s there.
       uint i = slLive[s];
       if (kPerObject) slObjOf[s] = slObject(i);
-      float wz[16];
-      slRotateZonal(slThetaRow(1, theta), transpose(slRotation(i)) * (-dir), wz);
-      // Σ_k wz_k L^c_k over the fp16 pairs (at order 3 the last pair's second coefficient is 0).
-      vec3 avg = vec3(0.0);
-      for (uint m = 0u; m < (kSlCoeffs + 1u) / 2u; ++m) {
-        vec2 r = slIntensityPair(i, 0u, m), g = slIntensityPair(i, 1u, m), b = slIntensityPair(i, 2u, m);
-        avg += wz[2u * m] * vec3(r.x, g.x, b.x) + wz[2u * m + 1u] * vec3(r.y, g.y, b.y);
-      }
-      slAverage[s] = avg;
+      slAverage[s] = slAverageRadiance(i, theta, dir);
       if (kPerObject) {
         // ⟨f⟩ over the cap = (f · K)/(√(4π) K_00) (evaluate.cpp capAverage), with K/s² kept.
         for (uint k = 0u; k < 16u; ++k) slCaps[s * 16u + k] = cap[k];
@@ -370,6 +392,9 @@ vec3 slIrradianceAt(vec3 p, vec3 n, uvec4 candidates) {
         float fraction = clamp(capE / area, 0.0, 1.0);
         if (mine) {
           e += slAverage[sc] * (slExactOpen[sc] * fraction);
+#ifdef SL_OBJECT_TERMS
+          slObjectTerms[min(slObjOf[sc], uint(SL_OBJECT_TERMS) - 1u)] += slAverage[sc] * (slExactOpen[sc] * fraction);
+#endif
           for (uint k = 0u; k < kSlCoeffs; ++k) closer[k] += slLogs[sc * 16u + k];
           ++done;
         }

@@ -9,6 +9,7 @@
 //                   scale (SlSphere::shadowScale); header.y = object ids in use (max + 1),
 //                   objects[o] = (mean of object o's sphere centres, its sphere count): per-object
 //                   blocking's order, the same for every pixel, so computed once on the CPU;
+//                   header.z = §7.3 parents (sl/hierarchy.glsl), object o's at SL index header.x + o;
 //                   intersects[i]: bit j % 32 of word j / 32 set when SLs i and j belong to one
 //                   object and overlap (evaluate.cpp's intersects(), in double on the CPU: they
 //                   ignore each other as blockers, §6.2);

@@ -13,6 +13,12 @@ layout(push_constant) uniform Push {
 } pc;
 
 layout(location = 0) flat out uvec4 outCandidates;
+#ifdef SL_TILE_RATIOS
+// §7.3 hierarchy (hierarchy_tiles.vert): the tile's Eq. 25 t per object, 4 vec4 per tile record
+// (shaders/sl/hierarchy_ratio.comp wrote them), to sl_hierarchy.frag as flat varyings.
+layout(std430, set = 1, binding = SL_TILE_RATIOS) readonly buffer SlRatios { vec4 slRatios[]; };
+layout(location = 1) flat out vec4 outRatios[4];
+#endif
 
 void main() {
   uvec4 tile = slTiles[2 * gl_InstanceIndex];
@@ -21,4 +27,7 @@ void main() {
   vec2 pixel = vec2((tile.xy + corners[gl_VertexIndex]) * pc.tileSize);
   gl_Position = vec4(pixel * pc.invExtent * 2.0 - 1.0, 0.0, 1.0);
   outCandidates = slTiles[2 * gl_InstanceIndex + 1];
+#ifdef SL_TILE_RATIOS
+  for (int o = 0; o < 4; ++o) outRatios[o] = slRatios[4 * gl_InstanceIndex + o];
+#endif
 }

@@ -46,19 +46,27 @@ void normalise(std::vector<double>& share) {
 
 }  // namespace
 
+Sphere parentSphere(std::span<const Sphere> children) {
+  if (children.empty()) throw InternalError("sl::parentSphere: no children");
+  glm::dvec3 c(0.0);
+  for (const Sphere& s : children) c += s.centre;
+  c /= double(children.size());
+  double r = 0.0;
+  for (const Sphere& s : children) r = std::max(r, glm::length(s.centre - c) + s.radius);
+  return {c, r};
+}
+
 Light parentOf(std::span<const Light> children) {
   if (children.empty()) throw InternalError("sl::parentOf: no children");
   Light parent;
   parent.object = children.front().object;
-  glm::dvec3 c(0.0);
+  std::vector<Sphere> spheres;
   for (const Light& l : children) {
     if (l.object != parent.object) throw InternalError("sl::parentOf: children of different objects");
-    c += l.sphere.centre;
+    spheres.push_back(l.sphere);
   }
-  c /= double(children.size());
-  double r = 0.0;
-  for (const Light& l : children) r = std::max(r, glm::length(l.sphere.centre - c) + l.sphere.radius);
-  parent.sphere = {c, r};
+  parent.sphere = parentSphere(spheres);
+  const double r = parent.sphere.radius;
   parent.rotation = glm::dmat3(1.0);
   const std::size_t nc = children.front().intensity.size();
   parent.intensity.assign(nc, glm::dvec3(0.0));
@@ -93,7 +101,8 @@ std::vector<Parent> clusterParents(std::span<const Light> lights, const glm::dve
     normalise(p.share);
     const Light one[1] = {p.light};
     const glm::dvec3 den = evaluate(one, xC, nC, flat).irradiance;  // L̃_P Ṽ_P, alone
-    for (int ch = 0; ch < 3; ++ch) p.ratio[ch] = den[ch] > kMinParentTerm ? num[ch] / den[ch] : 1.0;  // Eq. 25
+    for (int ch = 0; ch < 3; ++ch)
+      p.ratio[ch] = std::clamp(den[ch] > kMinParentTerm ? num[ch] / den[ch] : 1.0, 0.0, kMaxParentRatio);  // Eq. 25
     out.push_back(std::move(p));
   }
   return out;
@@ -136,7 +145,8 @@ std::vector<ShadowParent> clusterShadowParents(std::span<const Light> lights, co
     const glm::dvec3 num = probeShadow(kids, xC, nC, radianceC, flat).delta;
     const Light one[1] = {sp.light};
     const glm::dvec3 den = probeShadow(one, xC, nC, radianceC, flat).delta;
-    for (int ch = 0; ch < 3; ++ch) sp.ratio[ch] = std::abs(den[ch]) > kMinParentTerm ? num[ch] / den[ch] : 1.0;
+    for (int ch = 0; ch < 3; ++ch)
+      sp.ratio[ch] = std::clamp(std::abs(den[ch]) > kMinParentTerm ? num[ch] / den[ch] : 1.0, 0.0, kMaxParentRatio);
     out.push_back(std::move(sp));
   }
   return out;

@@ -43,6 +43,17 @@ namespace bounce::gi::sl {
 
 // Below this parent term (W/m², per channel) Eq. 25 is not formed and t = 1.
 inline constexpr double kMinParentTerm = 1e-12;
+// t and τ are clamped to [0, kMaxParentRatio] (ours, as probe_shadow.hpp clamps its ratio): at a
+// cluster centre where the receiver rules shrink the parent (a receiver inside or below the bounding
+// sphere) but not its smaller children, the ratio is a small denominator's, and it would scale the
+// parent over the whole tile — measured on cornell-1 (README "SL hierarchy on the GPU"): a bright
+// seam of tiles and a corrected error of 2.6 without the clamp.
+inline constexpr double kMaxParentRatio = 4.0;
+
+// The parent's sphere (the header's bounding sphere: centre the children's mean centre, radius the
+// largest |c_j − c_P| + r_j). Non-empty; else InternalError. Shared by parentOf and the per-frame
+// parents of pass 2 (update.hpp parentSpheres).
+Sphere parentSphere(std::span<const Sphere> children);
 
 // The parent SL of one object's children (all with the same `object`, non-empty; else InternalError).
 Light parentOf(std::span<const Light> children);

@@ -11,8 +11,14 @@
 #include "engine/math/sampling.hpp"
 #include "engine/math/sh.hpp"
 #include "engine/math/sh_product.hpp"
+#include "engine/math/sh_rotate.hpp"
 
 namespace bounce::gi::sl {
+
+namespace {
+// parent_intensity.comp's floats per child: (r_j / r_P)², then bands 1–3 of its SH rotation (9 + 25 + 49).
+constexpr std::size_t kParentChildFloats = 84;
+}  // namespace
 
 WorldSample worldSample(const SurfaceSample& sample, const SlSphere& rest, const PosedSphere& posed) {
   const float scale = rest.radius > 0.0f ? posed.radius / rest.radius : 1.0f;
@@ -109,7 +115,8 @@ std::vector<gpu::Binding> passBindings() {
 }
 }  // namespace
 
-IntensityPass::IntensityPass(gpu::Context& ctx, std::span<const SphereSet* const> sets, int order, float influence)
+IntensityPass::IntensityPass(gpu::Context& ctx, std::span<const SphereSet* const> sets, int order, float influence,
+                             bool parents)
     : ctx_(ctx),
       order_(order),
       setLayout_(ctx, passBindings(), "sl.intensity"),
@@ -122,6 +129,7 @@ IntensityPass::IntensityPass(gpu::Context& ctx, std::span<const SphereSet* const
   std::vector<glm::vec4> albedo;
   for (const SphereSet* set : sets) {
     if (set->settings.order > order) throw InternalError("sl::IntensityPass: a sphere set of a higher SH order");
+    if (parents) setRange_.emplace_back(std::uint32_t(rest_.size()), std::uint32_t(set->spheres.size()));
     for (const SlSphere& s : set->spheres) {
       rest_.emplace_back(s.centre, s.radius);
       range_.emplace_back(std::uint32_t(samples.size()), std::uint32_t(s.samples.size()));
@@ -151,7 +159,8 @@ IntensityPass::IntensityPass(gpu::Context& ctx, std::span<const SphereSet* const
   shadowMatrices_ = gpu::Buffer(ctx, {render::kMaxShadowLayers * sizeof(glm::mat4), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                                       gpu::MemoryUsage::Upload, "sl.shadowMatrices"});
   // Pass 2 reads L^c as a uniform block (DESIGN: no SSBOs in fragment shaders on llvmpipe).
-  if (spheres_ > kMaxShadedSpheres) throw InternalError("sl::IntensityPass: more SLs than pass 2's uniform blocks hold");
+  if (spheres_ + setRange_.size() > kMaxShadedSpheres)
+    throw InternalError("sl::IntensityPass: more SLs (and parents) than pass 2's uniform blocks hold");
   intensity_ = gpu::Buffer(ctx, {std::max<std::size_t>(std::size_t(spheres_) * kIntensityWordsPerSl * 4, kIntensityBlockBytes),
                                  VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT |
                                      VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
@@ -176,6 +185,26 @@ IntensityPass::IntensityPass(gpu::Context& ctx, std::span<const SphereSet* const
       .buffer(7, intensity_)
       .update(ctx, set_);
   setBlockers(*noBlockers_, samplers_.get({VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST}), false);
+  if (!setRange_.empty()) {
+    parentObjects_ = gpu::Buffer(ctx, {setRange_.size() * sizeof(glm::uvec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                       gpu::MemoryUsage::Upload, "sl.parents.objects"});
+    parentChildren_ = gpu::Buffer(ctx, {std::max<std::size_t>(spheres_, 1) * kParentChildFloats * sizeof(float),
+                                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::Upload, "sl.parents.children"});
+    std::memset(parentChildren_.mapped(), 0, parentChildren_.size());
+    auto* objects = reinterpret_cast<glm::uvec4*>(parentObjects_.mapped());
+    for (std::size_t o = 0; o < setRange_.size(); ++o)
+      objects[o] = glm::uvec4(setRange_[o].first, setRange_[o].second, spheres_ + std::uint32_t(o), 0u);
+    parentSetLayout_ = gpu::DescriptorSetLayout(ctx,
+                                                {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                                                 {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                                                 {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}},
+                                                "sl.parents");
+    parentLayout_ = gpu::PipelineLayout(ctx, {parentSetLayout_.handle()}, {}, "sl.parents");
+    parentPipeline_ = gpu::createComputePipeline(ctx, parentLayout_, gpu::ShaderModule(ctx, "sl/parent_intensity.comp.spv"),
+                                                 "sl.parents", nullptr, {std::uint32_t(order)});
+    parentSet_ = descriptors_.allocate(parentSetLayout_);
+    gpu::DescriptorWriter().buffer(0, intensity_).buffer(1, parentObjects_).buffer(2, parentChildren_).update(ctx, parentSet_);
+  }
 }
 
 void IntensityPass::setBlockers(const ShadeData& blockers, VkSampler nearest, bool on, bool localLights) {
@@ -199,6 +228,31 @@ void IntensityPass::setSpheres(std::span<const PosedSphere> posed, std::span<con
     g.range[1] = range_[i].second;
     for (int k = 0; k < 9; ++k) g.indirect[k] = glm::vec4(indirect[i][std::size_t(k)], 0.0f);
     std::memcpy(out + i, &g, sizeof g);
+  }
+  if (setRange_.empty()) return;
+  // §7.3 parents: their spheres (CPU, update.hpp) and per child parent_intensity.comp's weight
+  // (r_j / r_P)² and SH rotation (sh::Rotation, hierarchy.hpp parentOf's).
+  std::vector<std::uint32_t> objects(spheres_);
+  for (std::size_t o = 0; o < setRange_.size(); ++o)
+    for (std::uint32_t i = 0; i < setRange_[o].second; ++i) objects[setRange_[o].first + i] = std::uint32_t(o);
+  parentPosed_ = parentSpheres(posed, objects);
+  parentPosed_.resize(setRange_.size());  // a trailing set without SLs
+  auto* child = reinterpret_cast<float*>(parentChildren_.mapped());
+  for (std::uint32_t i = 0; i < spheres_; ++i) {
+    float* rec = child + std::size_t(i) * kParentChildFloats;
+    const float rp = parentPosed_[objects[i]].radius;
+    rec[0] = rp > 0.0f ? (posed[i].radius / rp) * (posed[i].radius / rp) : 0.0f;
+    // A mirroring pose (closestRotation of an improper transform, det −1) is −Q with Q proper:
+    // band l of −Q's SH rotation is (−1)^l that of Q (Y_lm(−ω) = (−1)^l Y_lm(ω)).
+    glm::mat3 r = posed[i].rotation;
+    const bool mirrored = glm::determinant(r) < 0.0f;
+    if (mirrored) r = -r;
+    const sh::Rotationf rot = sh::Rotationf::fromMatrix(r);
+    std::size_t at = 1;
+    for (int l = 1; l <= 3; ++l) {
+      const float sign = mirrored && (l % 2 == 1) ? -1.0f : 1.0f;
+      for (float m : rot.band(l)) rec[at++] = sign * m;
+    }
   }
 }
 
@@ -232,6 +286,15 @@ void IntensityPass::record(VkCommandBuffer cmd) {
   pipeline_.bindSet(cmd, 0, set_);
   pipeline_.push(cmd, push_);
   vkCmdDispatch(cmd, spheres_, 1, 1);
+  if (!setRange_.empty()) {
+    // The parents read every child's L^c: pass 1's writes first (§7.3, parent_intensity.comp).
+    VkMemoryBarrier children{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_SHADER_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT};
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &children, 0,
+                         nullptr, 0, nullptr);
+    parentPipeline_.bind(cmd);
+    parentPipeline_.bindSet(cmd, 0, parentSet_);
+    vkCmdDispatch(cmd, std::uint32_t(setRange_.size()), 1, 1);
+  }
   VkMemoryBarrier done{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_SHADER_WRITE_BIT,
                        VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_UNIFORM_READ_BIT};
   vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,

@@ -83,9 +83,15 @@ class IntensityPass {
   // `order` (3 or 4) is the result's; sets baked at order 3 take part in an order-4 pass with their
   // band-3 basis sums and albedo zero. Throws InternalError for a set of a higher order or more SLs
   // than pass 2's blocks hold (kMaxShadedSpheres). `influence`: evaluate.hpp rule 0's F for the
-  // blockers (pass 2's, 0: off).
-  IntensityPass(gpu::Context& ctx, std::span<const SphereSet* const> sets, int order, float influence = 0.0f);
+  // blockers (pass 2's, 0: off). `parents` (§7.3 hierarchy, hierarchy.hpp): one parent SL per set
+  // (object o = set o) after the children — its sphere from setSpheres (update.hpp parentSpheres),
+  // its intensity at SL index sphereCount() + o of intensity(), formed by a second dispatch at the
+  // end of record() (shaders/sl/parent_intensity.comp: hierarchy.hpp parentOf's sum on the device).
+  IntensityPass(gpu::Context& ctx, std::span<const SphereSet* const> sets, int order, float influence = 0.0f,
+                bool parents = false);
   std::uint32_t sphereCount() const { return spheres_; }
+  // The parents (one per set with `parents`, else none) as setSpheres posed them: world frame.
+  std::span<const PosedSphere> parents() const { return parentPosed_; }
   int order() const { return order_; }
   // posed[i], indirect[i]: SL i's pose and the probes' radiance SH at its posed centre (host-visible:
   // read at the next record()).
@@ -104,7 +110,7 @@ class IntensityPass {
   // (ShadeData, same SL order as setSpheres) and a nearest sampler for its tables. Without a call,
   // or with on = false, nothing blocks. Same rule as bindLights.
   void setBlockers(const ShadeData& blockers, VkSampler nearest, bool on = true, bool localLights = false);
-  // One dispatch (a workgroup per SL) and a barrier making intensity() visible to later compute
+  // One dispatch (a workgroup per SL), with `parents` a second (a workgroup per object), and a barrier making intensity() visible to later compute
   // and fragment shader reads.
   void record(VkCommandBuffer cmd);
   const gpu::Buffer& intensity() const { return intensity_; }
@@ -128,7 +134,16 @@ class IntensityPass {
   bool atlasBound_ = false;
   gpu::Buffer unreadIntensity_;  // sl_data.glsl's intensity block (not read by pass 1: no aliasing of intensity_)
   gpu::SamplerCache samplers_;
-  std::unique_ptr<ShadeData> noBlockers_;  // bound until setBlockers (lavapipe: no unwritten descriptors)
+  std::unique_ptr<ShadeData> noBlockers_;
+  // §7.3 parents (empty without `parents`): per set its SLs' first index and count; the posed
+  // parents; parent_intensity.comp's inputs (host-visible, written by setSpheres) and pipeline.
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> setRange_;
+  std::vector<PosedSphere> parentPosed_;
+  gpu::Buffer parentObjects_, parentChildren_;
+  gpu::DescriptorSetLayout parentSetLayout_;
+  gpu::PipelineLayout parentLayout_;
+  gpu::Pipeline parentPipeline_;
+  VkDescriptorSet parentSet_ = VK_NULL_HANDLE;  // bound until setBlockers (lavapipe: no unwritten descriptors)
 };
 
 }  // namespace bounce::gi::sl

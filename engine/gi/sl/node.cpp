@@ -18,13 +18,32 @@ constexpr VkFormat kHdrFormat = VK_FORMAT_R16G16B16A16_SFLOAT;  // "lighting.hdr
 constexpr std::uint32_t kFirstShadeBinding = 3;                // sl.frag: SL_BINDING
 constexpr std::uint32_t kTilesBinding = 6;                     // tiles.vert: SlTiles
 constexpr std::uint32_t kHalfBinding = 7;                      // upsample.frag: slHalf
+constexpr std::uint32_t kRatiosBinding = 8;                    // hierarchy_tiles.vert: SlRatios
 
-std::vector<gpu::Binding> inputBindings() {
+std::vector<gpu::Binding> inputBindings(bool hierarchy) {
   std::vector<gpu::Binding> b = {{0, kSampled}, {1, kSampled}, {2, kSampled}};
   for (const gpu::Binding& s : ShadeData::bindings(kFirstShadeBinding)) b.push_back(s);
   b.push_back({kTilesBinding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
+  if (hierarchy) b.push_back({kRatiosBinding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
   return b;
 }
+
+// hierarchy_ratio.comp's set 0 and push constants.
+std::vector<gpu::Binding> ratioBindings() {
+  std::vector<gpu::Binding> b = {{0, kSampled}, {1, kSampled}};
+  for (const gpu::Binding& s : ShadeData::bindings(3)) b.push_back(s);
+  b.push_back({6, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
+  b.push_back({7, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
+  return b;
+}
+struct RatioPush {
+  glm::mat4 invViewProj;
+  glm::vec4 screen;  // G-buffer width, height, 1/width, 1/height
+  std::uint32_t tileSize;
+  std::uint32_t tileCount;
+  std::uint32_t pad[2] = {0, 0};
+};
+constexpr VkDeviceSize kRatioBytesPerTile = 4 * sizeof(glm::vec4);  // sl/hierarchy.glsl kSlHierObjects vec4
 
 // upsample.frag's set 1 (every binding written: lavapipe reads a bound set's unwritten image
 // descriptors and crashes).
@@ -35,26 +54,30 @@ std::vector<gpu::Binding> upsampleBindings() {
 
 Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t framesInFlight,
            std::span<const SphereSet* const> sets, int order, Blocking blocking, float influence, Resolution resolution,
-           ProbeLight probes, bool localLights)
+           ProbeLight probes, bool localLights, bool hierarchy)
     : ctx_(ctx),
       order_(order),
       blocking_(blocking),
       influence_(influence),
       resolution_(resolution),
-      inputLayout_(ctx, inputBindings(), "sl.inputs"),
+      inputLayout_(ctx, inputBindings(hierarchy), "sl.inputs"),
       layout_(ctx, {shared.frameLayout.handle(), inputLayout_.handle()},
               {VkPushConstantRange{VK_SHADER_STAGE_ALL, 0, sizeof(TilePush)}}, "sl") {
+  hierarchy_ = hierarchy;
+  if (hierarchy && sets.size() > kMaxHierarchyObjects)
+    throw InternalError("sl::Node: more objects than the hierarchy serves (kMaxHierarchyObjects)");
   for (std::uint32_t i = 0; i < std::max<std::uint32_t>(framesInFlight, 1); ++i) {
     Slot s;
-    s.intensity = std::make_unique<IntensityPass>(ctx, sets, order, influence);
+    s.intensity = std::make_unique<IntensityPass>(ctx, sets, order, influence, hierarchy);
     s.shade = std::make_unique<ShadeData>(ctx, order);
     slots_.push_back(std::move(s));
   }
   spheres_ = slots_[0].intensity->sphereCount();
   vert_ = gpu::ShaderModule(ctx, "sl/tiles.vert.spv");
-  frag_ = gpu::ShaderModule(ctx, "sl/sl.frag.spv");
+  frag_ = gpu::ShaderModule(ctx, hierarchy ? "sl/sl_hierarchy.frag.spv" : "sl/sl.frag.spv");
+  if (hierarchy) hierarchyVert_ = gpu::ShaderModule(ctx, "sl/hierarchy_tiles.vert.spv");
   gpu::GraphicsPipelineDesc d;
-  d.vertex = &vert_;
+  d.vertex = hierarchy ? &hierarchyVert_ : &vert_;
   d.fragment = &frag_;
   const bool half = resolution == Resolution::Half;
   d.colorFormats = {kHdrFormat};
@@ -64,7 +87,7 @@ Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t fra
   d.specialization.push_back(half ? 1u : 0u);  // sl.frag kHalf (constant_id 4)
   d.specialization.push_back(0u);              // sl.frag kSingleObject (constant_id 5)
   d.name = std::string("sl.") + (blocking == Blocking::PerObject ? "per-object" : "per-sphere") + ".sh" +
-           std::to_string(order * order) + (half ? ".half" : "");
+           std::to_string(order * order) + (half ? ".half" : "") + (hierarchy ? ".hierarchy" : "");
   pipeline_ = gpu::createGraphicsPipeline(ctx, layout_, d);
   if (blocking == Blocking::PerObject) {
     d.specialization.back() = 1u;
@@ -91,9 +114,18 @@ Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t fra
     silhouette_.push_back(set->spheres.empty() ? 1.0f : set->spheres.front().shadowScale);
   }
   if (probes && spheres_ > 0)
-    shadow_ = std::make_unique<ProbeShadowPass>(ctx, shared, probes, order, blocking, spheres_, influence, half);
+    shadow_ = std::make_unique<ProbeShadowPass>(ctx, shared, probes, order, blocking, spheres_, influence, half, hierarchy);
   if (localLights && spheres_ > 0)
     local_ = std::make_unique<LocalLightPass>(ctx, shared, order, blocking, spheres_, influence);
+  if (hierarchy) {
+    ratioInputs_ = gpu::DescriptorSetLayout(ctx, ratioBindings(), "sl.hierarchy.inputs");
+    ratioLayout_ = gpu::PipelineLayout(ctx, {ratioInputs_.handle()}, {VkPushConstantRange{VK_SHADER_STAGE_ALL, 0, sizeof(RatioPush)}},
+                                       "sl.hierarchy");
+    gpu::SpecConstants spec = ShadeData::specialization(order, blocking, spheres_, 0.0f);  // Eq. 25: uncut
+    spec.push_back(half ? 1u : 0u);                                                        // kHalf
+    ratioPipeline_ = gpu::createComputePipeline(ctx, ratioLayout_, gpu::ShaderModule(ctx, "sl/hierarchy_ratio.comp.spv"),
+                                                "sl.hierarchy", nullptr, spec);
+  }
 }
 
 void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::span<const PosedSphere> posed,
@@ -110,17 +142,23 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::s
     shaded[i] = {posed[i].centre, posed[i].radius, posed[i].rotation, objects[i],
                  objects[i] < share_.size() ? share_[objects[i]] : 1.0f,
                  objects[i] < silhouette_.size() ? silhouette_[objects[i]] : 1.0f};
+  // §7.3: one parent per object, after the SLs in the blocks and in the tile masks (bit spheres_ + o),
+  // listed in the tiles of its own influence ball.
+  const std::vector<PosedSphere> parents = hierarchy_ ? parentSpheres(posed, objects) : std::vector<PosedSphere>{};
   if (recording) {
     // CPU writes of this slot's host-visible blocks: the ring waited for the slot's last frame.
     slot.intensity->setSpheres(posed, indirect);
-    slot.shade->setSpheres(shaded);
+    slot.shade->setSpheres(shaded, parents);
   }
+  std::vector<ShadedSphere> binned = shaded;
+  for (std::size_t o = 0; o < parents.size(); ++o)
+    binned.push_back({parents[o].centre, parents[o].radius, glm::mat3(1.0f), std::uint32_t(o)});
   // The tiles this frame's SLs may reach (tiles.hpp), in the target's pixels: at half resolution
   // the half-size target's tiles for pass 2, then the full-size ones for the upsample.
   const glm::uvec2 resolution(std::uint32_t(pc->world->camera.resolution.x), std::uint32_t(pc->world->camera.resolution.y));
   const bool half = resolution_ == Resolution::Half;
   const glm::uvec2 halfSize = (resolution + 1u) / 2u;
-  std::vector<ShadeTile> tiles = binTiles(pc->world->camera.viewProj, half ? halfSize : resolution, shaded, influence_);
+  std::vector<ShadeTile> tiles = binTiles(pc->world->camera.viewProj, half ? halfSize : resolution, binned, influence_);
   const std::uint32_t shadeTiles = std::uint32_t(tiles.size());
   // Per-object blocking: the tiles whose SLs all belong to one object first (singleObject_).
   std::uint32_t singleTiles = 0;
@@ -137,7 +175,7 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::s
     singleTiles = std::uint32_t(std::stable_partition(tiles.begin(), tiles.end(), oneObject) - tiles.begin());
   }
   if (half) {
-    const std::vector<ShadeTile> full = binTiles(pc->world->camera.viewProj, resolution, shaded, influence_);
+    const std::vector<ShadeTile> full = binTiles(pc->world->camera.viewProj, resolution, binned, influence_);
     tiles.insert(tiles.end(), full.begin(), full.end());
   }
   const VkDeviceSize tileBytes = std::max<std::size_t>(tiles.size(), 1) * sizeof(ShadeTile);
@@ -146,6 +184,12 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::s
   if (recording && !tiles.empty()) std::memcpy(slot.tiles.mapped(), tiles.data(), tiles.size() * sizeof(ShadeTile));
   const std::uint32_t tileCount = shadeTiles;
   const std::uint32_t upsampleTiles = std::uint32_t(tiles.size()) - shadeTiles;
+  const VkDeviceSize ratioBytes = std::max<VkDeviceSize>(tileCount, 1) * kRatioBytesPerTile;
+  if (hierarchy_ && recording && (!slot.ratios || slot.ratios.size() < ratioBytes)) {
+    slot.ratios = gpu::Buffer(ctx_, {ratioBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::GpuOnly, "sl.ratios"});
+    slot.shadowRatios = gpu::Buffer(ctx_, {ratioBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::GpuOnly, "sl.shadow.ratios"});
+  }
+  const gpu::Buffer* shadowRatios = hierarchy_ ? &slot.shadowRatios : nullptr;
 
   auto& bb = graph.blackboard();
   struct IntensityData {
@@ -174,6 +218,42 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::s
         slot.intensity->record(cmd);
       });
 
+  if (hierarchy_) {
+    // §7.3 Eq. 25 per drawn tile (hierarchy_ratio.comp), after pass 1's parents, before "sl".
+    struct RatioData {
+      rg::Handle<rg::Texture> normal, depth;
+    };
+    graph.addPass<RatioData>(
+        "sl.hierarchy",
+        [&](rg::Builder& b, RatioData& d) {
+          d.normal = b.read(bb.get<rg::Texture>("gbuffer.normal"), rg::Usage::SampledCompute);
+          d.depth = b.read(bb.get<rg::Texture>("gbuffer.depth"), rg::Usage::SampledCompute);
+          b.sideEffect();  // its buffer feeds "sl"
+        },
+        [this, pc, &slot, tileCount](const RatioData& d, const rg::PassResources& res, rg::CommandContext& c) {
+          if (tileCount == 0) return;
+          VkCommandBuffer cmd = pc->cmd(c);
+          VkSampler point = pc->samplers->get({VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST});
+          gpu::Image& depth = pc->backend->image(res.texture(d.depth));
+          VkDescriptorSet set = pc->frame().descriptors->allocate(ratioInputs_);
+          gpu::DescriptorWriter w;
+          w.sampledImage(0, pc->backend->image(res.texture(d.normal)).view(), point).sampledImage(1, depth.view(), point);
+          slot.shade->write(w, 3, slot.intensity->intensity(), point);
+          w.buffer(6, slot.tiles).buffer(7, slot.ratios);
+          w.update(ctx_, set);
+          const float width = float(depth.desc().width), height = float(depth.desc().height);
+          const RatioPush push{pc->world->camera.invViewProj, glm::vec4(width, height, 1.0f / width, 1.0f / height),
+                               kScreenTile, tileCount};
+          ratioPipeline_.bind(cmd);
+          ratioPipeline_.bindSet(cmd, 0, set);
+          ratioPipeline_.push(cmd, push);
+          vkCmdDispatch(cmd, (tileCount + 63) / 64, 1, 1);
+          VkMemoryBarrier done{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_SHADER_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT};
+          vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_VERTEX_SHADER_BIT, 0, 1, &done, 0,
+                               nullptr, 0, nullptr);
+        });
+  }
+
   struct Data {
     render::DeferredInputs g;
     rg::Handle<rg::Texture> hdr;
@@ -195,6 +275,7 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::s
         render::writeDeferredInputs(w, d.g, *pc, res, point);
         slot.shade->write(w, kFirstShadeBinding, slot.intensity->intensity(), point);
         w.buffer(kTilesBinding, slot.tiles);
+        if (hierarchy_) w.buffer(kRatiosBinding, slot.ratios);
         w.update(ctx_, inputs);
         gpu::Image& target = pc->backend->image(res.texture(d.hdr));
         // "sl.half" starts at zero (tiles no SL reaches are not drawn); "lighting.hdr" keeps its light.
@@ -218,14 +299,15 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::s
       });
   if (!half) {
     bb.put("lighting.hdr", data.hdr);
-    if (shadow_) shadow_->addTo(graph, pc, *slot.shade, slot.intensity->intensity(), {&slot.tiles, 0, tileCount});
+    if (shadow_) shadow_->addTo(graph, pc, *slot.shade, slot.intensity->intensity(), {&slot.tiles, 0, tileCount}, {}, shadowRatios);
     if (local_) local_->addTo(graph, pc, *slot.shade, slot.intensity->intensity(), {&slot.tiles, 0, tileCount});
     return;
   }
   // The shadow on the probes' light joins E in "sl.half" (ao · ΔE, same tiles), so one upsample
   // spreads both.
   const rg::Handle<rg::Texture> halfE =
-      shadow_ ? shadow_->addTo(graph, pc, *slot.shade, slot.intensity->intensity(), {&slot.tiles, 0, tileCount}, data.hdr)
+      shadow_ ? shadow_->addTo(graph, pc, *slot.shade, slot.intensity->intensity(), {&slot.tiles, 0, tileCount}, data.hdr,
+                               shadowRatios)
               : data.hdr;
   struct UpData {
     render::DeferredInputs g;

@@ -10,6 +10,11 @@
 //  at Resolution::Half, "sl" writes E at every second G-buffer pixel per axis into the transient
 //     "sl.half" (half size, RGBA16F) and "sl.upsample" (shaders/sl/upsample.frag) adds the
 //     depth- and normal-weighted upsample times ρ/π to "lighting.hdr".
+//  "sl.hierarchy" (compute, §7.3 Eq. 25, with `hierarchy`: one parent SL per set, hierarchy.hpp):
+//     per drawn tile of "sl" the ratio t per object at the tile's centre (hierarchy_ratio.comp), read
+//     by "sl" (sl_hierarchy.frag: Eq. 26's parent term) — the parents' spheres per frame on the CPU
+//     (update.hpp parentSpheres), their intensity at the end of "sl.intensity" (IntensityPass
+//     parents), their tiles by their own influence ball F·r_P;
 //  "sl.local" (fragment, §7.3, when `localLights`): the SLs' soft shadows on the level's point and
 //     spot lights (LocalLightPass), drawn as the full-resolution tiles, last;
 //  "sl.shadow" (fragment, pass 2's shadow on the probes' light): when the probes' light is given and
@@ -45,17 +50,21 @@ class Node {
   // "sl.shadow"): the probes' baked volume and the probes node's device images of it.
   Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t framesInFlight,
        std::span<const SphereSet* const> sets, int order, Blocking blocking, float influence,
-       Resolution resolution = Resolution::Full, ProbeLight probes = {}, bool localLights = false);
+       Resolution resolution = Resolution::Full, ProbeLight probes = {}, bool localLights = false,
+       bool hierarchy = false);
   // This frame's SLs, concatenated over the sets: pose, object index, probes' SH at the centre.
   void addTo(rg::RenderGraph& graph, const render::PassContext& pc, std::span<const PosedSphere> posed,
              std::span<const std::uint32_t> objects, std::span<const incident::RadianceSH> indirect);
   std::uint32_t sphereCount() const { return spheres_; }
+  bool hierarchy() const { return hierarchy_; }
 
  private:
   struct Slot {
     std::unique_ptr<IntensityPass> intensity;
     std::unique_ptr<ShadeData> shade;
     gpu::Buffer tiles;  // this frame's drawn tiles (tiles.hpp ShadeTile), host-visible
+    gpu::Buffer ratios;  // hierarchy: Eq. 25's t, 4 vec4 per drawn tile of "sl" (device-local)
+    gpu::Buffer shadowRatios;  // hierarchy: "sl.shadow"'s τ, the same layout
   };
   gpu::Context& ctx_;
   int order_;
@@ -68,7 +77,7 @@ class Node {
   gpu::PipelineLayout layout_;
   gpu::DescriptorSetLayout upsampleInputs_;  // at half resolution only
   gpu::PipelineLayout upsampleLayout_;
-  gpu::ShaderModule vert_, frag_, upsampleFrag_;
+  gpu::ShaderModule vert_, frag_, upsampleFrag_, hierarchyVert_;  // hierarchyVert_: "sl" with the hierarchy
   gpu::Pipeline pipeline_, upsample_;  // upsample_: at half resolution only
   // Per-object blocking only: pass 2 for the tiles whose SLs all belong to one object (sl.frag
   // kSingleObject: no exp of closer objects, which is exp(0) there); pipeline_ draws the others.
@@ -77,6 +86,14 @@ class Node {
   std::unique_ptr<LocalLightPass> local_;  // "sl.local" (localLights): the lights' SL shadows
   std::vector<float> share_;  // per object (set): unionShare of its spheres, for "sl.shadow"
   std::vector<float> silhouette_;  // per object (set): its shadow scale (SlSphere::shadowScale)
+  // §7.3 hierarchy (sl/hierarchy.glsl): the tile pass's layout and pipeline.
+  bool hierarchy_ = false;
+  gpu::DescriptorSetLayout ratioInputs_;
+  gpu::PipelineLayout ratioLayout_;
+  gpu::Pipeline ratioPipeline_;
 };
+
+// Objects (sets) one hierarchy serves: sl/hierarchy.glsl kSlHierObjects.
+inline constexpr std::uint32_t kMaxHierarchyObjects = 4;
 
 }  // namespace bounce::gi::sl

@@ -1,5 +1,6 @@
 #include "engine/gi/sl/probe_shadow_pass.hpp"
 
+#include "engine/core/error.hpp"
 #include "engine/gi/probes/node.hpp"
 #include "engine/gi/sl/tiles.hpp"
 #include "engine/render/passes/rendering.hpp"
@@ -12,26 +13,41 @@ constexpr VkDescriptorType kSampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
 constexpr VkFormat kHdrFormat = VK_FORMAT_R16G16B16A16_SFLOAT;  // "lighting.hdr" (renderer.cpp), "sl.half"
 constexpr std::uint32_t kTilesBinding = 6;                     // tiles.vert: SlTiles
 constexpr std::uint32_t kFirstShadeBinding = 7;                // probe_shadow.frag: SL_BINDING
+constexpr std::uint32_t kRatiosBinding = 10;                   // shadow_hierarchy_tiles.vert: SlRatios
 
-std::vector<gpu::Binding> inputBindings() {
+// probe_shadow_ratio.comp's set 1 and push block.
+std::vector<gpu::Binding> ratioBindings() {
+  std::vector<gpu::Binding> b = {{0, kSampled}, {1, kSampled}, {2, kSampled}, {3, kSampled},
+                                 {6, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}, {7, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}};
+  for (const gpu::Binding& s : ShadeData::bindings(8)) b.push_back(s);
+  return b;
+}
+struct RatioPush {
+  probes::ProbePush probe;
+  std::uint32_t tileSize = 0, tileCount = 0, pad0 = 0, pad1 = 0;
+};
+
+std::vector<gpu::Binding> inputBindings(bool hierarchy) {
   // G-buffer albedo, normal, depth; probe SH, moments; "ao.term"; the tiles.
   std::vector<gpu::Binding> b = {{0, kSampled}, {1, kSampled}, {2, kSampled}, {3, kSampled}, {4, kSampled}, {5, kSampled},
                                  {kTilesBinding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}};
   for (const gpu::Binding& s : ShadeData::bindings(kFirstShadeBinding)) b.push_back(s);
+  if (hierarchy) b.push_back({kRatiosBinding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
   return b;
 }
 }  // namespace
 
 ProbeShadowPass::ProbeShadowPass(gpu::Context& ctx, const render::Pipelines& shared, ProbeLight probes, int order,
-                                 Blocking blocking, std::uint32_t spheres, float influence, bool half)
+                                 Blocking blocking, std::uint32_t spheres, float influence, bool half, bool hierarchy)
     : ctx_(ctx),
       probes_(probes),
       half_(half),
-      inputLayout_(ctx, inputBindings(), "sl.shadow.inputs"),
+      inputLayout_(ctx, inputBindings(hierarchy), "sl.shadow.inputs"),
       layout_(ctx, {shared.frameLayout.handle(), inputLayout_.handle()},
               {{VK_SHADER_STAGE_ALL, 0, sizeof(probes::ProbePush) + sizeof(TilePush)}}, "sl.shadow") {
-  gpu::ShaderModule vert(ctx, "sl/shadow_tiles.vert.spv");
-  gpu::ShaderModule frag(ctx, "sl/probe_shadow.frag.spv");
+  hierarchy_ = hierarchy;
+  gpu::ShaderModule vert(ctx, hierarchy ? "sl/shadow_hierarchy_tiles.vert.spv" : "sl/shadow_tiles.vert.spv");
+  gpu::ShaderModule frag(ctx, hierarchy ? "sl/probe_shadow_hierarchy.frag.spv" : "sl/probe_shadow.frag.spv");
   gpu::GraphicsPipelineDesc d;
   d.vertex = &vert;
   d.fragment = &frag;
@@ -40,16 +56,66 @@ ProbeShadowPass::ProbeShadowPass(gpu::Context& ctx, const render::Pipelines& sha
   d.specialization = ShadeData::specialization(order, blocking, spheres, influence);
   d.specialization.push_back(std::uint32_t(probes.volume->coeffs()));  // probe_shadow.frag kCoeffs
   d.specialization.push_back(half ? 1u : 0u);                          // probe_shadow.frag kHalf
-  d.name = half ? "sl.shadow.half" : "sl.shadow";
+  d.name = std::string(half ? "sl.shadow.half" : "sl.shadow") + (hierarchy ? ".hierarchy" : "");
   pipeline_ = gpu::createGraphicsPipeline(ctx, layout_, d);
+  if (hierarchy) {
+    ratioInputs_ = gpu::DescriptorSetLayout(ctx, ratioBindings(), "sl.shadow.hierarchy.inputs");
+    ratioLayout_ = gpu::PipelineLayout(ctx, {shared.frameLayout.handle(), ratioInputs_.handle()},
+                                       {{VK_SHADER_STAGE_ALL, 0, sizeof(RatioPush)}}, "sl.shadow.hierarchy");
+    gpu::SpecConstants spec = ShadeData::specialization(order, blocking, spheres, 0.0f);  // τ: uncut
+    spec.push_back(std::uint32_t(probes.volume->coeffs()));
+    spec.push_back(half ? 1u : 0u);
+    ratioPipeline_ = gpu::createComputePipeline(ctx, ratioLayout_, gpu::ShaderModule(ctx, "sl/probe_shadow_ratio.comp.spv"),
+                                                "sl.shadow.hierarchy", nullptr, spec);
+  }
 }
 
 rg::Handle<rg::Texture> ProbeShadowPass::addTo(rg::RenderGraph& graph, const render::PassContext* pc,
                                                const ShadeData& shade, const gpu::Buffer& intensity, TileRange tiles,
-                                               rg::Handle<rg::Texture> halfTarget) {
+                                               rg::Handle<rg::Texture> halfTarget, const gpu::Buffer* ratios) {
   if (!pc->world->has("probes")) return halfTarget;  // no probe light this frame: nothing to shadow
   auto& bb = graph.blackboard();
   const bool withAo = bb.contains("ao.term");  // as the probes pass: its light was multiplied by it
+  // The tile pass writes tile t's τ at 4t; the vertex shader reads them at gl_InstanceIndex: both
+  // count from the buffer's start.
+  if (hierarchy_ && (!ratios || tiles.first != 0))
+    throw InternalError("sl::ProbeShadowPass: the hierarchy needs a ratio buffer and tiles from the buffer's start");
+  if (hierarchy_) {
+    struct RatioData {
+      rg::Handle<rg::Texture> normal, depth;
+    };
+    graph.addPass<RatioData>(
+        "sl.shadow.hierarchy",
+        [&](rg::Builder& b, RatioData& d) {
+          d.normal = b.read(bb.get<rg::Texture>("gbuffer.normal"), rg::Usage::SampledCompute);
+          d.depth = b.read(bb.get<rg::Texture>("gbuffer.depth"), rg::Usage::SampledCompute);
+          b.sideEffect();  // its buffer feeds "sl.shadow"
+        },
+        [this, pc, &shade, &intensity, tiles, ratios](const RatioData& d, const rg::PassResources& res, rg::CommandContext& c) {
+          if (tiles.count == 0) return;
+          VkCommandBuffer cmd = pc->cmd(c);
+          VkSampler point = pc->samplers->get({VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST});
+          auto view = [&](rg::Handle<rg::Texture> h) { return pc->backend->image(res.texture(h)).view(); };
+          VkDescriptorSet set = pc->frame().descriptors->allocate(ratioInputs_);
+          gpu::DescriptorWriter w;
+          w.sampledImage(0, view(d.normal), point)
+              .sampledImage(1, view(d.depth), point)
+              .sampledImage(2, probes_.sh->view(), point)
+              .sampledImage(3, probes_.moments->view(), point)
+              .buffer(6, *tiles.buffer)
+              .buffer(7, *ratios);
+          shade.write(w, 8, intensity, point);
+          w.update(ctx_, set);
+          ratioPipeline_.bind(cmd);
+          ratioPipeline_.bindSet(cmd, 0, pc->frameSet);
+          ratioPipeline_.bindSet(cmd, 1, set);
+          ratioPipeline_.push(cmd, RatioPush{probes::probePush(*probes_.volume, 0.0f), kScreenTile, tiles.count});
+          vkCmdDispatch(cmd, (tiles.count + 63) / 64, 1, 1);
+          VkMemoryBarrier done{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_SHADER_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT};
+          vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_VERTEX_SHADER_BIT, 0, 1, &done, 0,
+                               nullptr, 0, nullptr);
+        });
+  }
   struct Data {
     render::DeferredInputs g;
     rg::Handle<rg::Texture> target, ao;
@@ -61,7 +127,7 @@ rg::Handle<rg::Texture> ProbeShadowPass::addTo(rg::RenderGraph& graph, const ren
         d.target = b.write(half_ ? halfTarget : bb.get<rg::Texture>("lighting.hdr"), rg::Usage::ColorAttachment);
         if (withAo) d.ao = b.read(bb.get<rg::Texture>("ao.term"), rg::Usage::SampledFragment);
       },
-      [this, pc, withAo, &shade, &intensity, tiles](const Data& d, const rg::PassResources& res, rg::CommandContext& c) {
+      [this, pc, withAo, &shade, &intensity, tiles, ratios](const Data& d, const rg::PassResources& res, rg::CommandContext& c) {
         VkCommandBuffer cmd = pc->cmd(c);
         VkSampler point = pc->samplers->get({VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST});
         auto view = [&](rg::Handle<rg::Texture> h) { return pc->backend->image(res.texture(h)).view(); };
@@ -73,6 +139,7 @@ rg::Handle<rg::Texture> ProbeShadowPass::addTo(rg::RenderGraph& graph, const ren
             .sampledImage(5, view(withAo ? d.ao : d.g.albedo), point);
         w.buffer(kTilesBinding, *tiles.buffer);
         shade.write(w, kFirstShadeBinding, intensity, point);
+        if (hierarchy_) w.buffer(kRatiosBinding, *ratios);
         w.update(ctx_, inputs);
         gpu::Image& target = pc->backend->image(res.texture(d.target));
         render::Attachment color{target.view(), true};  // additive: keep what is there

@@ -39,13 +39,16 @@ class ProbeShadowPass {
   // `probes` (not owned) must outlive the pass; order, blocking, spheres and influence as the SL
   // pass's pipeline (ShadeData::specialization); `half`: write ao · ΔE into "sl.half".
   ProbeShadowPass(gpu::Context& ctx, const render::Pipelines& shared, ProbeLight probes, int order, Blocking blocking,
-                  std::uint32_t spheres, float influence, bool half);
+                  std::uint32_t spheres, float influence, bool half, bool hierarchy = false);
   // Adds the pass when "probes" runs this frame; `shade` and `intensity` as the SL pass binds them.
   // Full resolution: blends into "lighting.hdr" and publishes it; half: into `halfTarget` ("sl.half",
   // which the SL pass cleared) and returns its new version. Returns `halfTarget` unchanged when it
   // does not run.
+  // With `hierarchy` (§7.3, sl/hierarchy_shadow.glsl): "sl.shadow.hierarchy" first writes each drawn
+  // tile's τ into `ratios` (4 vec4 per tile, the frame slot's), which "sl.shadow" reads.
   rg::Handle<rg::Texture> addTo(rg::RenderGraph& graph, const render::PassContext* pc, const ShadeData& shade,
-                                const gpu::Buffer& intensity, TileRange tiles, rg::Handle<rg::Texture> halfTarget = {});
+                                const gpu::Buffer& intensity, TileRange tiles, rg::Handle<rg::Texture> halfTarget = {},
+                                const gpu::Buffer* ratios = nullptr);
 
  private:
   gpu::Context& ctx_;
@@ -54,6 +57,10 @@ class ProbeShadowPass {
   gpu::DescriptorSetLayout inputLayout_;
   gpu::PipelineLayout layout_;
   gpu::Pipeline pipeline_;
+  bool hierarchy_ = false;
+  gpu::DescriptorSetLayout ratioInputs_;
+  gpu::PipelineLayout ratioLayout_;
+  gpu::Pipeline ratioPipeline_;
 };
 
 }  // namespace bounce::gi::sl

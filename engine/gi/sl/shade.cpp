@@ -43,14 +43,15 @@ ShadeData::ShadeData(gpu::Context& ctx, int order) : ctx_(ctx), order_(order) {
   std::memset(spheres_.mapped(), 0, spheres_.size());
 }
 
-void ShadeData::setSpheres(std::span<const ShadedSphere> spheres) {
-  if (spheres.size() > kMaxShadedSpheres) throw InternalError("sl::ShadeData: more SLs than the uniform block holds");
+void ShadeData::setSpheres(std::span<const ShadedSphere> spheres, std::span<const PosedSphere> parents) {
+  if (spheres.size() + parents.size() > kMaxShadedSpheres)
+    throw InternalError("sl::ShadeData: more SLs (and parents) than the uniform block holds");
   std::vector<glm::vec4> v(1 + 6 * std::size_t(kMaxShadedSpheres), glm::vec4(0.0f));
   count_ = std::uint32_t(spheres.size());
   std::uint32_t objects = 0;
   for (const ShadedSphere& s : spheres) objects = std::max(objects, s.object + 1);
   if (objects > kMaxShadedSpheres) throw InternalError("sl::ShadeData: object index beyond the uniform block");
-  const std::uint32_t header[2] = {count_, objects};
+  const std::uint32_t header[3] = {count_, objects, std::uint32_t(parents.size())};
   std::memcpy(&v[0], header, sizeof header);
   // Per-object blocking's order (evaluate.cpp: the mean of each object's sphere centres), in double
   // as the reference sums it.
@@ -65,6 +66,19 @@ void ShadeData::setSpheres(std::span<const ShadedSphere> spheres) {
     v[2 + 4 * i].w = float(s.object);
     v[3 + 4 * i].w = s.share;
     v[4 + 4 * i].w = s.silhouette;
+  }
+  for (std::size_t o = 0; o < parents.size(); ++o) {
+    const std::size_t i = spheres.size() + o;
+    v[1 + 4 * i] = glm::vec4(parents[o].centre, parents[o].radius);
+    for (int c = 0; c < 3; ++c) v[2 + 4 * i + std::size_t(c)] = glm::vec4(glm::mat3(1.0f)[c], 1.0f);
+    v[2 + 4 * i].w = float(o);
+    // The object's union share and shadow scale ("sl.shadow"), as probeShadow's settings give them.
+    for (const ShadedSphere& s : spheres)
+      if (s.object == o) {
+        v[3 + 4 * i].w = s.share;
+        v[4 + 4 * i].w = s.silhouette;
+        break;
+      }
   }
   // Pairs of one object that overlap (evaluate.cpp's intersects(), in double): pass 2 subtracts
   // them from the running blocker sum instead of testing every pair per pixel.

@@ -15,6 +15,7 @@
 
 #include "engine/gi/sl/evaluate.hpp"
 #include "engine/gi/sl/intensity_words.hpp"
+#include "engine/gi/sl/update.hpp"
 #include "engine/gpu/buffer.hpp"
 #include "engine/gpu/descriptors.hpp"
 #include "engine/gpu/image.hpp"
@@ -44,7 +45,9 @@ class ShadeData {
   ShadeData(gpu::Context& ctx, int order);
   int order() const { return order_; }
   // This frame's SLs (host-visible: read at the next submitted use). At most kMaxShadedSpheres.
-  void setSpheres(std::span<const ShadedSphere> spheres);
+  // `parents` (§7.3 hierarchy, sl/hierarchy.glsl): object o's parent SL at index count() + o (header.z
+  // = their count), world frame; they take no part in the means or overlap masks.
+  void setSpheres(std::span<const ShadedSphere> spheres, std::span<const PosedSphere> parents = {});
   std::uint32_t count() const { return count_; }
   // Writes the three sl_data.glsl bindings first … first + 2 (intensity: pass 1's buffer, ≥
   // kIntensityBlockBytes).

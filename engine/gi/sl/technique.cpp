@@ -155,7 +155,19 @@ class SlTechnique final : public Technique {
                          (e.sl->localLights ? "true" : "false") + " differs from entity \"" + first->id + "\"'s " +
                          (first->sl->localLights ? "true" : "false") +
                          " (expected one setting for every sl entity of a level: \"sl.local\" shades them in one draw)");
+      if (e.sl->hierarchy != first->sl->hierarchy)
+        throw InputError(sc.level.source.string() + ": " + e.pointer + "/sl/hierarchy: " +
+                         (e.sl->hierarchy ? "true" : "false") + " differs from entity \"" + first->id + "\"'s " +
+                         (first->sl->hierarchy ? "true" : "false") +
+                         " (expected one setting for every sl entity of a level: pass 2 shades them in one draw)");
     }
+    // The hierarchy's per-tile ratios travel as kMaxHierarchyObjects flat varyings (node.hpp).
+    std::size_t objects = 0;
+    for (const scene::EntityDesc& e : sc.level.entities) objects += e.sl ? 1 : 0;
+    if (first && first->sl->hierarchy && objects > kMaxHierarchyObjects)
+      throw InputError(sc.level.source.string() + ": " + first->pointer + "/sl/hierarchy: true on " +
+                       std::to_string(objects) + " sl entities (expected at most " +
+                       std::to_string(kMaxHierarchyObjects) + " with the hierarchy: one tile ratio per object)");
     auto runtime = std::make_unique<SessionRuntime>(sc.registry, sc.cookCache, cacheFolder());
     runtime->enableGpu(sc);
     return runtime;
@@ -204,9 +216,34 @@ class SlTechnique final : public Technique {
         };
         rows.push_back(std::move(r));
       }
+    // §7.3 hierarchy (README "SL hierarchy on the GPU"): the level's own spheres and blocking, order 4,
+    // the influence cut F at 12 (the default), 6 and 4, without and with the parents standing in for
+    // what the cut removes — whether the children's cut can be tighter (cheaper) with the parents on.
+    for (const float influence : {12.0f, 6.0f, 4.0f})
+      for (const bool hierarchy : {false, true}) {
+        AccuracyRow r;
+        r.technique = "sl";
+        char f[16];
+        std::snprintf(f, sizeof f, "%g", double(influence));
+        r.setting = std::string("spheres=level;order=4;influence=") + f + ";hierarchy=" + (hierarchy ? "on" : "off") + ";ref=all";
+        r.effects = {"direct", "shadows", "probes", "sl"};
+        r.passes = {"shadow", "lighting", "probes", "sl.intensity", "sl", "sl.shadow"};
+        // A row runs only where its passes ran; the hierarchy's tile passes only run with it on.
+        if (hierarchy) r.passes.insert(r.passes.end(), {"sl.hierarchy", "sl.shadow.hierarchy"});
+        r.configure = [=](scene::Level& level) {
+          for (auto& e : level.entities)
+            if (e.sl) {
+              e.sl->order = 4;
+              e.sl->influence = influence;
+              e.sl->hierarchy = hierarchy;
+              e.sl->localLights = false;
+            }
+        };
+        rows.push_back(std::move(r));
+      }
   }
   // "sl.shadow" runs only beside "probes" (its light is what it shadows).
-  std::vector<std::string> passes() const override { return {"sl.intensity", "sl", "sl.shadow", "sl.local"}; }
+  std::vector<std::string> passes() const override { return {"sl.intensity", "sl.hierarchy", "sl", "sl.shadow.hierarchy", "sl.shadow", "sl.local"}; }
 };
 
 }  // namespace
@@ -339,7 +376,8 @@ void SessionRuntime::enableGpu(SessionContext& sc) {
                                  blocking, participants_.front().component.influence,
                                  participants_.front().component.half ? Resolution::Half : Resolution::Full,
                                  ProbeLight{sc.services.probeVolume, sc.services.probeSh, sc.services.probeMoments},
-                                 participants_.front().component.localLights);
+                                 participants_.front().component.localLights,
+                                 participants_.front().component.hierarchy);
 }
 
 render::Renderer::GraphNode SessionRuntime::node() {

@@ -7,6 +7,7 @@
 #include "engine/anim/instances.hpp"
 #include "engine/anim/skinning.hpp"
 #include "engine/core/error.hpp"
+#include "engine/gi/sl/hierarchy.hpp"
 #include "engine/scene/asset_instances.hpp"
 
 namespace bounce::gi::sl {
@@ -171,6 +172,23 @@ void SpherePoser::pose(const glm::mat4& entityWorld, const anim::Pose* pose, std
     out[s].radius = float(double(radii_[s]) * scale);
     out[s].rotation = glm::mat3(closestRotation(glm::dmat3(a)));
   }
+}
+
+std::vector<PosedSphere> parentSpheres(std::span<const PosedSphere> posed, std::span<const std::uint32_t> objects) {
+  if (posed.size() != objects.size()) throw InternalError("sl::parentSpheres: one object id per SL");
+  std::uint32_t count = 0;
+  for (std::uint32_t o : objects) count = std::max(count, o + 1);
+  std::vector<std::vector<Sphere>> children(count);
+  for (std::size_t i = 0; i < posed.size(); ++i)
+    children[objects[i]].push_back({glm::dvec3(posed[i].centre), double(posed[i].radius)});
+  std::vector<PosedSphere> out(count);
+  for (std::uint32_t o = 0; o < count; ++o) {
+    if (children[o].empty()) continue;
+    const Sphere s = parentSphere(children[o]);
+    out[o].centre = glm::vec3(s.centre);
+    out[o].radius = float(s.radius);
+  }
+  return out;
 }
 
 }  // namespace bounce::gi::sl

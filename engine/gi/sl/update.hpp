@@ -16,6 +16,7 @@
 // An SL that covers no vertex (possible with the Lloyd fit) uses every vertex of the object.
 // Morph targets do not move SLs (the paper's class: deformations small relative to each SL).
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -47,6 +48,12 @@ struct PosedSphere {
   float radius = 0.0f;
   glm::mat3 rotation{1.0f};  // SL local → world: rotates the intensity SH (weights, not samples)
 };
+
+// §7.3 (hierarchy.hpp, two levels): this frame's parent SL of every object, in object order —
+// hierarchy.hpp parentSphere of the object's posed SLs (objects[i]: SL i's object; ids 0 … max), world
+// frame (identity rotation); an id without SLs gets radius 0. CPU work, since the poses are on the
+// CPU; the parents' intensity needs pass 1's and is a reduction on the device (IntensityPass).
+std::vector<PosedSphere> parentSpheres(std::span<const PosedSphere> posed, std::span<const std::uint32_t> objects);
 
 // Closest rotation to m (polar decomposition, Higham's Newton iteration); identity when m is
 // singular. An improper m (mirroring transform) gives the closest orthogonal matrix, det −1.

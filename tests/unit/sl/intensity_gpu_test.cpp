@@ -14,6 +14,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "engine/gi/sl/bake.hpp"
+#include "engine/gi/sl/hierarchy.hpp"
 #include "engine/gi/sl/intensity.hpp"
 #include "engine/gi/sl/intensity_words.hpp"
 #include "engine/gpu/commands.hpp"
@@ -432,4 +433,77 @@ TEST(SlIntensityGpu, LocalLightsBlockedBySlsEqualTheCppReference) {
                 kLocalTolerance);
   expectMatches(std::vector<glm::vec4>(got.begin() + std::ptrdiff_t(na), got.end()), b, fb, lights, order, local,
                 kLocalTolerance);
+}
+
+// §7.3 hierarchy (hierarchy.hpp): the parents' intensity, formed on the device at the end of pass 1
+// (shaders/sl/parent_intensity.comp), equals hierarchy.hpp parentOf — the C++ reference's
+// Σ_j (r_j/r_P)² R_j L^c_j in double — over the device's own children (read back, so the bound is
+// the float sum's and the parent's fp16 store, not pass 1's). Two sets (objects), every child
+// rotated, one pose mirrored (det −1: band l of −Q is (−1)^l Q's, here against −Q's parentOf ×
+// (−1)^l); the children's words are unchanged by the second dispatch.
+TEST(SlIntensityGpu, ParentsAreParentOfOverTheDevicesChildren) {
+  gpu::Context& ctx = gpu::testkit::sharedContext();
+  const std::vector<render::LightGpu> lights = threeLights();
+  for (int order : {3, 4}) {
+    SCOPED_TRACE("order " + std::to_string(order));
+    const SphereSet a = bakedSet(order);
+    SphereSet b = bakedSet(order);
+    b.spheres.resize(3);
+    const SphereSet* sets[] = {&a, &b};
+    IntensityPass plain(ctx, sets, order);
+    IntensityPass pass(ctx, sets, order, 0.0f, true);
+    ASSERT_EQ(pass.sphereCount(), 8u);
+    Atlas atlas(ctx, 1.0f);
+    for (IntensityPass* p : {&plain, &pass})
+      p->setShadowAtlas(atlas.image.view(), atlas.sampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, false);
+    Frame fa = randomFrame(a, 31 + std::uint64_t(order)), fb = randomFrame(b, 41 + std::uint64_t(order));
+    fb.posed[1].rotation = -fb.posed[1].rotation;  // mirrored
+    Frame all = fa;
+    all.posed.insert(all.posed.end(), fb.posed.begin(), fb.posed.end());
+    all.indirect.insert(all.indirect.end(), fb.indirect.begin(), fb.indirect.end());
+    for (IntensityPass* p : {&plain, &pass}) {
+      p->setSpheres(all.posed, all.indirect);
+      p->setLights(lights, {});
+    }
+    const std::vector<glm::vec4> want0 = runPass(ctx, plain), got = runPass(ctx, pass);
+    for (std::size_t i = 0; i < 8 * 16; ++i) EXPECT_EQ(got[i], want0[i]) << "child word " << i;
+    ASSERT_EQ(pass.parents().size(), 2u);
+    const std::size_t nc = std::size_t(order) * std::size_t(order);
+    for (int o = 0; o < 2; ++o) {
+      std::vector<Light> kids;
+      const std::size_t first = o == 0 ? 0 : 5, count = o == 0 ? 5 : 3;
+      for (std::size_t i = first; i < first + count; ++i) {
+        Light l;
+        l.object = o;
+        l.sphere = {glm::dvec3(all.posed[i].centre), double(all.posed[i].radius)};
+        l.rotation = glm::dmat3(all.posed[i].rotation);
+        const bool mirrored = glm::determinant(l.rotation) < 0.0;
+        if (mirrored) l.rotation = -l.rotation;
+        for (std::size_t k = 0; k < nc; ++k) {
+          const int band = k < 1 ? 0 : (k < 4 ? 1 : (k < 9 ? 2 : 3));
+          l.intensity.push_back(glm::dvec3(glm::vec3(got[i * 16 + k])) * (mirrored && band % 2 == 1 ? -1.0 : 1.0));
+        }
+        kids.push_back(l);
+      }
+      const Light want = parentOf(kids);
+      const PosedSphere& parent = pass.parents()[std::size_t(o)];
+      EXPECT_LT(glm::length(glm::dvec3(parent.centre) - want.sphere.centre), 1e-6 * want.sphere.radius) << o;
+      EXPECT_NEAR(parent.radius, want.sphere.radius, 1e-6 * want.sphere.radius) << o;
+      double scale = 0.0;
+      for (const glm::dvec3& w : want.intensity) scale = std::max({scale, std::abs(w.r), std::abs(w.g), std::abs(w.b)});
+      ASSERT_GT(scale, 1e-3) << "parent " << o << " receives no light: the fixture tests nothing";
+      for (std::size_t k = 0; k < 16; ++k)
+        for (int c = 0; c < 3; ++c) {
+          const double g = got[(8 + std::size_t(o)) * 16 + k][c];
+          if (k >= nc) {
+            EXPECT_EQ(g, 0.0) << "parent " << o << " coefficient " << k;
+            continue;
+          }
+          // Float rotation sums of ≤ 7 terms per child (1e-6 of the largest coefficient is ~100× their
+          // rounding) plus the fp16 store.
+          EXPECT_NEAR(g, want.intensity[k][c], 1e-6 * scale + kIntensityHalfRelative * std::abs(want.intensity[k][c]) + 0x1p-25)
+              << "parent " << o << " coefficient " << k << " channel " << c;
+        }
+    }
+  }
 }

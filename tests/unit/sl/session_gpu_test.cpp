@@ -326,6 +326,94 @@ TEST(SlSession, LocalLightsAddOnePassThatOnlyTakesLightAway) {
               kExtent.width, kExtent.height, darker, a.rgb.size());
 }
 
+// "hierarchy" (§7.3) in a frame: "sl.hierarchy" runs between "sl.intensity" and "sl", nothing else
+// changes in the pass list, and with a tight cut (influence 4) the parents add the light the cut
+// removed: pixels only brighter (the parent term t ⊙ L̃_P Ṽ_P is ≥ 0 where its SH is), some brighter.
+TEST(SlSession, HierarchyAddsOnePassAndOnlyLightBeyondTheCut) {
+  const auto level = [](bool hierarchy) {
+    scene::Level l = game::loadLevelWithEffects(kCharacters, std::vector<std::string>{"direct", "sl"});
+    for (auto& e : l.entities)
+      if (e.sl) {
+        e.sl->influence = 4.0f;
+        e.sl->hierarchy = hierarchy;
+      }
+    return l;
+  };
+  game::Session off(gpu::testkit::sharedContext(), level(false));
+  game::Session on(gpu::testkit::sharedContext(), level(true));
+  const Frame a = oneFrame(on), b = oneFrame(off);
+  ASSERT_EQ(std::count(a.passes.begin(), a.passes.end(), "sl.hierarchy"), 1);
+  const auto at = [&](const std::string& name) { return std::find(a.passes.begin(), a.passes.end(), name) - a.passes.begin(); };
+  EXPECT_LT(at("sl.intensity"), at("sl.hierarchy"));
+  EXPECT_LT(at("sl.hierarchy"), at("sl"));
+  std::vector<std::string> rest;
+  for (const std::string& p : a.passes)
+    if (p != "sl.hierarchy") rest.push_back(p);
+  EXPECT_EQ(rest, b.passes);
+  ASSERT_EQ(a.rgb.size(), b.rgb.size());
+  int darker = 0, brighter = 0;
+  for (std::size_t i = 0; i < a.rgb.size(); ++i) {
+    darker += a.rgb[i] < b.rgb[i] - 1.5f / 255.0f;
+    brighter += a.rgb[i] > b.rgb[i] + 1.5f / 255.0f;
+  }
+  EXPECT_EQ(darker, 0);
+  EXPECT_GT(brighter, 0);
+  std::printf("hierarchy on the characters level at influence 4, %ux%u: %d of %zu channel values brighter, none darker\n",
+              kExtent.width, kExtent.height, brighter, a.rgb.size());
+}
+
+// With the probes and the hierarchy: "sl.shadow.hierarchy" (τ per tile) runs right before "sl.shadow",
+// and the clamp ΔE ≥ −E_u still holds with the parents' shadow added: no value darker than the frame
+// without probes.
+TEST(SlSession, HierarchyShadowRunsBeforeSlShadowAndKeepsItsClamp) {
+  const auto frame = [](std::vector<std::string> effects, bool hierarchy) {
+    scene::Level l = game::loadLevelWithEffects(kCharacters, effects);
+    for (auto& e : l.entities)
+      if (e.sl) {
+        e.sl->influence = 4.0f;
+        e.sl->hierarchy = hierarchy;
+      }
+    game::Session s(gpu::testkit::sharedContext(), std::move(l));
+    return oneFrame(s);
+  };
+  const Frame a = frame({"direct", "shadows", "probes", "sl"}, true);
+  const Frame c = frame({"direct", "shadows"}, true);
+  for (const char* name : {"sl.intensity", "sl.hierarchy", "sl", "sl.shadow.hierarchy", "sl.shadow"})
+    ASSERT_EQ(std::count(a.passes.begin(), a.passes.end(), name), 1) << name;
+  const auto at = [&](const std::string& name) { return std::find(a.passes.begin(), a.passes.end(), name) - a.passes.begin(); };
+  EXPECT_EQ(at("sl.shadow.hierarchy") + 1, at("sl.shadow"));
+  ASSERT_EQ(a.rgb.size(), c.rgb.size());
+  int belowNoProbes = 0;
+  for (std::size_t i = 0; i < a.rgb.size(); ++i) belowNoProbes += a.rgb[i] < c.rgb[i] - 1.5f / 255.0f;
+  EXPECT_EQ(belowNoProbes, 0);
+}
+
+// The hierarchy at half resolution: both tile passes run on the half-size tiles (G-buffer pixel 2j),
+// "sl.upsample" after them; the frame is finite and differs from the same frame without the hierarchy.
+TEST(SlSession, HierarchyRunsAtHalfResolution) {
+  const auto frame = [](bool hierarchy) {
+    scene::Level l = game::loadLevelWithEffects(kCharacters, std::vector<std::string>{"direct", "shadows", "probes", "sl"});
+    for (auto& e : l.entities)
+      if (e.sl) {
+        e.sl->influence = 4.0f;
+        e.sl->half = true;
+        e.sl->hierarchy = hierarchy;
+      }
+    game::Session s(gpu::testkit::sharedContext(), std::move(l));
+    return oneFrame(s);
+  };
+  const Frame a = frame(true), b = frame(false);
+  for (const char* name : {"sl.hierarchy", "sl", "sl.shadow.hierarchy", "sl.shadow", "sl.upsample"})
+    ASSERT_EQ(std::count(a.passes.begin(), a.passes.end(), name), 1) << name;
+  ASSERT_EQ(a.rgb.size(), b.rgb.size());
+  int differ = 0;
+  for (std::size_t i = 0; i < a.rgb.size(); ++i) {
+    ASSERT_TRUE(std::isfinite(a.rgb[i]));
+    differ += std::abs(a.rgb[i] - b.rgb[i]) > 1.5f / 255.0f;
+  }
+  EXPECT_GT(differ, 0);
+}
+
 // Entities must agree on "local_lights" ("sl.local" shades every SL in one draw): one line, exit 2.
 TEST(SlSession, EntitiesThatDisagreeOnLocalLightsAreBadInput) {
   scene::Level l = game::loadLevelWithEffects(kCharacters, std::vector<std::string>{"direct", "sl"});

@@ -14,7 +14,9 @@
 #include "engine/core/error.hpp"
 #include "engine/core/file.hpp"
 #include "engine/core/paths.hpp"
+#include "engine/gi/sl/hierarchy.hpp"
 #include "engine/gi/sl/technique.hpp"
+#include "engine/gi/sl/update.hpp"
 #include "engine/ref/reference_scene.hpp"
 #include "engine/scene/level.hpp"
 #include "engine/scene/systems.hpp"
@@ -81,6 +83,8 @@ TEST(SlComponent, BadInputIsOneLine) {
             "FILE: /entities/0/sl/resolution: unknown resolution \"quarter\" (expected full or half)");
   EXPECT_EQ(loadError("sl-local", dyn + R"(, "sl": {"local_lights": 1}})"),
             "FILE: /entities/0/sl/local_lights: wrong type: integer (expected true or false)");
+  EXPECT_EQ(loadError("sl-hierarchy", dyn + R"(, "sl": {"hierarchy": "on"}})"),
+            "FILE: /entities/0/sl/hierarchy: wrong type: string (expected true or false)");
   EXPECT_EQ(loadError("light-radius", R"({"id": "l", "light": {"type": "point", "radius": -1}})"),
             "FILE: /entities/0/light/radius: -1 is out of range (expected a number in [0, 100])");
   EXPECT_EQ(loadError("light-radius-sun", R"({"id": "l", "light": {"type": "directional", "radius": 1}})"),
@@ -196,6 +200,43 @@ TEST(SlUpdate, ClosestRotation) {
   EXPECT_EQ(closestRotation(glm::dmat3(0.0)), glm::dmat3(1.0));  // singular: identity, no NaN
 }
 
+// §7.3's parents per frame (update.hpp parentSpheres): per object, hierarchy.hpp parentOf's sphere of its
+// posed SLs (the C++ reference's own), identity rotation, every child inside; objects interleaved in
+// SL order, and an id with no SL gets radius 0.
+TEST(SlUpdate, ParentSpheresAreParentOfsSpherePerObject) {
+  std::vector<PosedSphere> posed;
+  std::vector<std::uint32_t> objects;
+  for (int i = 0; i < 9; ++i) {
+    PosedSphere p;
+    p.centre = glm::vec3(0.3f * float(i % 3), -0.2f * float(i), 1.0f + 0.1f * float(i * i % 5));
+    p.radius = 0.05f + 0.02f * float(i);
+    p.rotation = glm::mat3(glm::rotate(glm::mat4(1.0f), 0.4f * float(i), glm::vec3(0, 1, 0)));
+    posed.push_back(p);
+    objects.push_back(i % 3 == 1 ? 2u : 0u);  // objects 0 and 2; id 1 has none
+  }
+  const std::vector<PosedSphere> parents = parentSpheres(posed, objects);
+  ASSERT_EQ(parents.size(), 3u);
+  EXPECT_EQ(parents[1].radius, 0.0f);
+  for (std::uint32_t o : {0u, 2u}) {
+    std::vector<Light> kids;
+    for (std::size_t i = 0; i < posed.size(); ++i)
+      if (objects[i] == o) {
+        Light l;
+        l.object = int(o);
+        l.sphere = {glm::dvec3(posed[i].centre), double(posed[i].radius)};
+        l.intensity.assign(16, glm::dvec3(0.0));
+        kids.push_back(l);
+      }
+    const Light want = parentOf(kids);
+    EXPECT_LT(glm::length(glm::dvec3(parents[o].centre) - want.sphere.centre), 1e-6) << o;
+    EXPECT_NEAR(parents[o].radius, want.sphere.radius, 1e-6) << o;
+    EXPECT_EQ(parents[o].rotation, glm::mat3(1.0f));
+    for (const Light& k : kids)
+      EXPECT_LE(glm::length(k.sphere.centre - glm::dvec3(parents[o].centre)) + k.sphere.radius,
+                double(parents[o].radius) * (1.0 + 1e-6));
+  }
+}
+
 // The fox of characters.json, running: every SL follows its covered vertices. Each covered vertex's
 // posed position comes from ref::extractScene (the renderer's and tracer's own posing, a path
 // independent of SpherePoser's averages); it is compared with where the SL carries the vertex's
@@ -307,6 +348,16 @@ TEST(SlComponent, ParsesLocalLightsAndLightRadius) {
   EXPECT_TRUE(level.entities[0].sl->localLights);
   EXPECT_FLOAT_EQ(level.entities[1].light->radius, 0.25f);
   EXPECT_FLOAT_EQ(level.entities[2].light->radius, 0.0f);
+}
+
+TEST(SlComponent, ParsesHierarchy) {
+  const fs::path path = writeLevel("sl-hierarchy-ok", R"({"id": "a", "dynamic": true, )" + mesh() +
+                                                          R"(, "sl": {"hierarchy": true}},
+                                                         {"id": "b", "dynamic": true, )" + mesh() + R"(, "sl": {}})");
+  const scene::Level level = scene::loadLevel(path);
+  ASSERT_EQ(level.entities.size(), 2u);
+  EXPECT_TRUE(level.entities[0].sl->hierarchy);
+  EXPECT_FALSE(level.entities[1].sl->hierarchy);  // off by default
 }
 }  // namespace
 }  // namespace bounce::gi::sl
