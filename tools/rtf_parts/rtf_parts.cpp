@@ -163,6 +163,38 @@ int main(int argc, char** argv) {
   const gi::rtf::BounceResult bounced = gi::rtf::bounce(objects, lit, 2);
   std::fprintf(stderr, "rtf_parts: %zu rtf objects, %zu lights, %ux%u, %d² directions per pixel\n", objects.size(),
                lights.size(), W, H, spa);
+  // How far apart the objects stand: a sphere of radius η_B at distance d lit like A sends A about
+  // ρ_B (η_B/d)² of A's own irradiance, so Σ_B (η_B/d)² bounds the second bounce's share (× albedo).
+  for (std::size_t a = 0; a < objects.size(); ++a) {
+    const gi::rtf::Placement pa = gi::rtf::place(fields[a], objects[a].world);
+    double share = 0.0, nearest = 1e30;
+    for (std::size_t b = 0; b < objects.size(); ++b) {
+      if (b == a) continue;
+      const gi::rtf::Placement pb = gi::rtf::place(fields[b], objects[b].world);
+      const double d = glm::length(pa.centreWorld - pb.centreWorld);
+      share += double(pb.radiusWorld) * pb.radiusWorld / (d * d);
+      nearest = std::min(nearest, d / pa.radiusWorld);
+    }
+    std::fprintf(stderr, "rtf_parts: object %zu: nearest other object at %.2f eta, sum of (eta_B/d)^2 %.4f\n", a, nearest, share);
+  }
+  // Per object: the proxies' light of bounce 1 (2 bounces − 1 bounce) against bounce 0 (Σ |L_00| over proxies).
+  {
+    const gi::rtf::BounceResult one = gi::rtf::bounce(objects, lit, 1);
+    for (std::size_t a = 0; a < objects.size(); ++a) {
+      double e0 = 0.0, e1 = 0.0;
+      for (std::size_t p = 0; p < one.proxyLight[a].size(); p += gi::rtf::kShCount) {
+        const glm::vec3 l0 = one.proxyLight[a][p], l1 = bounced.proxyLight[a][p] - one.proxyLight[a][p];
+        e0 += double(l0.x + l0.y + l0.z), e1 += double(l1.x + l1.y + l1.z);
+      }
+      std::fprintf(stderr, "rtf_parts: object %zu (%s): proxies' L_00 bounce 0 %.4g, bounce 1 %.4g (%.3g of bounce 0)\n", a,
+                   with.registry.get<scene::Name>(rtfEntities[a]).id.c_str(), e0, e1, e1 / std::max(e0, 1e-30));
+    }
+  }
+  // Algorithm 1's energy per bounce (evaluate.hpp BounceResult::bounceEnergy): what a second
+  // inter-object bounce can add at all, against the first.
+  for (std::size_t b = 0; b < bounced.bounceEnergy.size(); ++b)
+    std::fprintf(stderr, "rtf_parts: bounce %zu energy %.6g (%.3g of bounce 0)\n", b, bounced.bounceEnergy[b],
+                 bounced.bounceEnergy[b] / std::max(bounced.bounceEnergy[0], 1e-30));
 
   // The GPU's per-sample level of the blocked light (update.hpp blockedScale, static geometry = the level without its props).
   std::vector<std::vector<glm::vec4>> scales;
