@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 
 #include "engine/core/error.hpp"
@@ -236,6 +237,16 @@ TEST(RtfBake, CachedBakeIsReusedAndACorruptCacheIsRebaked) {
   const Field c = bakeCached(s, fs, dir, &cached);
   EXPECT_FALSE(cached);
   EXPECT_EQ(serialize(c), serialize(a));  // deterministic bake
+  // A file of the format before fp16 storage (version 1) found at the key's path: re-baked as well
+  // (its own key, rtf-field-v4, already misses; this is the path for a file copied over).
+  auto old = serialize(a);
+  const std::uint32_t v1 = 1;
+  std::memcpy(old.data() + 8, &v1, 4);
+  writeFileAtomic(path, std::span<const std::uint8_t>(old));
+  const Field d = bakeCached(s, fs, dir, &cached);
+  EXPECT_FALSE(cached);
+  EXPECT_EQ(serialize(d), serialize(a));
+  EXPECT_EQ(load(path).itf.basis, a.itf.basis);  // the cache entry is version 2 again
   FieldSettings other = fs;
   other.proxies = 3;
   EXPECT_NE(cacheKey(s, fs), cacheKey(s, other));
