@@ -6,8 +6,10 @@
 //  stage 1, Eq. 11: ξ_{r,i} = u_{h(r),0,i} + Σ_e α_e(r) u_{h(r),e,i}, one invocation per
 //           (sample r, coefficient i), stored in the ξ image; with it X (below) and its range;
 //  stage 2: X encoded into the 8-bit image the shading step reads (below).
-// Data (std430, bytes): basis = float[n_c·(n_e+1)·D], D = m·16·16·3, element
-// ((k·16 + i)·16 + j)·3 + c of a component (field.hpp itfIndex); alpha = float[N·n_e];
+// Data (std430, bytes): basis = n_c·(n_e+1)·D halves, D = m·16·16·3, element
+// ((k·16 + i)·16 + j)·3 + c of a component (field.hpp itfIndex); alpha = N·n_e halves; both as the
+// field file stores them (cpca.hpp roundToHalf), two to a uint (packHalf2x16: element 2w in word w's
+// low half, xi_pass.cpp halfWords): half the bytes to upload and read of fp32 buffers, same values;
 // cluster = uint[N]; light = vec4[m·16] (rgb: L_{k,j}, proxies' light in the object's frame);
 // eigen = vec4[n_c·(n_e+1)·16] (rgb: u).
 // ξ image: rgba32f 2D array, layer = sphere·16 + i, texel (face·n_r + x, y) for sample
@@ -15,8 +17,8 @@
 // compute pass (DESIGN machine facts forbid them in fragment shaders, which read the image).
 layout(local_size_x = 64) in;
 
-layout(std430, binding = 0) readonly buffer Basis { float basis[]; };
-layout(std430, binding = 1) readonly buffer Alpha { float alpha[]; };
+layout(std430, binding = 0) readonly buffer Basis { uint basis[]; };  // packHalf2x16 words
+layout(std430, binding = 1) readonly buffer Alpha { uint alpha[]; };  // packHalf2x16 words
 layout(std430, binding = 2) readonly buffer Cluster { uint cluster[]; };
 layout(std430, binding = 3) readonly buffer Light { vec4 light[]; };
 layout(std430, binding = 4) buffer Eigen { vec4 eigen[]; };
@@ -43,6 +45,12 @@ layout(std430, binding = 9) buffer Net { vec4 netValue[]; };    // X per (sample
 // The indirect light at the sample against the light at o, per channel (update.hpp blockedScale):
 // the blocked term is the light at the receiver, not at o (ours: a scale of T', see XiPass).
 layout(std430, binding = 10) readonly buffer BlockedScale { vec4 blockedScale[]; };
+
+// α_e(r) at n = r·n_e + e − 1 (n_e may be odd: a row can start in a word's high half).
+float alphaAt(uint n) {
+  vec2 pair = unpackHalf2x16(alpha[n >> 1u]);
+  return (n & 1u) == 0u ? pair.x : pair.y;
+}
 
 // Slot (texel k · 4 + component) of channel c's coefficient i (Table 2 order above).
 uint rtfNetSlot(uint c, uint i) { return i < 8u ? ((i / 4u) * 3u + c) * 4u + i % 4u : 24u + c; }
@@ -92,9 +100,13 @@ void main() {
     uint k = 0u;
     do {
       if (k < pc.proxies)
-        for (uint j = 0u; j < 16u; ++j) {
-          uint e = he * D + ((k * 16u + i) * 16u + j) * 3u;
-          u += vec3(basis[e], basis[e + 1u], basis[e + 2u]) * light[k * 16u + j].rgb;
+        // E[i][j].rgb for j = 2jj, 2jj + 1: 6 halves in 3 words (the row of 48 halves starts at an
+        // even element: D and 48 are even).
+        for (uint jj = 0u; jj < 8u; ++jj) {
+          uint w = (he * D + (k * 16u + i) * 48u) / 2u + jj * 3u;
+          vec2 a = unpackHalf2x16(basis[w]), b = unpackHalf2x16(basis[w + 1u]), c = unpackHalf2x16(basis[w + 2u]);
+          u += vec3(a.x, a.y, b.x) * light[k * 16u + 2u * jj].rgb;
+          u += vec3(b.y, c.x, c.y) * light[k * 16u + 2u * jj + 1u].rgb;
         }
       ++k;
     } while (k < pc.proxies);
@@ -106,7 +118,7 @@ void main() {
     vec3 x = eigen[base + i].rgb;
     uint e = 1u;
     do {  // do…while, guarded, as stage 0's loop
-      if (e <= pc.components) x += alpha[r * pc.components + e - 1u] * eigen[base + e * 16u + i].rgb;
+      if (e <= pc.components) x += alphaAt(r * pc.components + e - 1u) * eigen[base + e * 16u + i].rgb;
       ++e;
     } while (e <= pc.components);
     uint n2 = pc.faceSize * pc.faceSize, per = 6u * n2;

@@ -1,6 +1,7 @@
 // rtf_cpca: the CPCA error–ratio curve of one prop's RTF with the bases and coefficients stored as
-// fp16 (issue 14, README Results "RTF", "Fourth pass": CPCA). A measurement, not the shipped format:
-// the field files and the ξ pass hold fp32 (`bounce bench rtf`'s ratio= counts floats).
+// fp16 (issue 14, README Results "RTF", "Fourth pass": CPCA). A measurement. Since session 9 the
+// field files hold the fp16 rounding (cpca.hpp roundToHalf; `bounce bench rtf`'s ratio= is the
+// stored ratio below), so the fp32 column comes from a compression of its own here.
 //
 // Bakes the level's dynamic object OBJECT (0-based, cornell-5's props as `bounce bench rtf` takes
 // them) at the given settings, keeps the uncompressed ITF X, and for each component count n_e
@@ -8,7 +9,7 @@
 //   norm   = ‖X − X̂‖_F / ‖X‖_F      (`frobenius=`: the paper's "Frobenius norm of the difference", relative)
 //   energy = norm²                   (relative squared error, what SHHS03 plots)
 //   ratio  = N·D floats / (basis + α + cluster id) floats — what the GPU holds (fp32)
-// then the same after rounding every basis entry and α to fp16 (glm::packHalf1x16) — the error
+// then the same after rounding every basis entry and α to fp16 (cpca.hpp roundToHalf) — the error
 // measured AFTER quantization — with stored_ratio = 4·N·D bytes / (2·(basis + α) + 4·N) bytes.
 //
 // Per-cluster component counts chosen by error (the LAST count in the list is the most any cluster
@@ -28,8 +29,6 @@
 #include <sstream>
 #include <string>
 #include <vector>
-
-#include <glm/gtc/packing.hpp>
 
 #include "engine/core/paths.hpp"
 #include "engine/gi/dnrt/object_scene.hpp"
@@ -101,19 +100,18 @@ int main(int argc, char** argv) {
   for (int ne : counts) {
     gi::rtf::CpcaSettings cs;
     cs.clusters = s.clusters, cs.components = ne;
-    gi::rtf::Cpca c = ne == s.components ? baked.field.itf : gi::rtf::compress(baked.itf, D, cs);
-    const gi::rtf::CpcaError e = gi::rtf::measure(c, baked.itf);
-    for (float& x : c.basis) x = glm::unpackHalf1x16(glm::packHalf1x16(x));
-    for (float& x : c.alpha) x = glm::unpackHalf1x16(glm::packHalf1x16(x));
+    const gi::rtf::Cpca full = gi::rtf::compress(baked.itf, D, cs);  // fp32 (baked.field.itf is rounded)
+    const gi::rtf::CpcaError e = gi::rtf::measure(full, baked.itf);
+    gi::rtf::Cpca c = full;
+    gi::rtf::roundToHalf(c);
     const gi::rtf::CpcaError h = gi::rtf::measure(c, baked.itf);
-    const double stored = 4.0 * double(N) * double(D) / (2.0 * double(c.basis.size() + c.alpha.size()) + 4.0 * double(N));
+    const double stored = h.stored;
     std::printf("clusters=%d components=%d fp32: ratio=%.1f norm=%.4f energy=%.5f | fp16: stored_ratio=%.1f norm=%.4f "
                 "energy=%.5f\n", c.clusters, ne, e.ratio, e.frobenius, e.frobenius * e.frobenius, stored, h.frobenius,
                 h.frobenius * h.frobenius);
     std::fflush(stdout);
     if (ne != counts.back() || ne < 1) continue;
     // Per-cluster counts by error (header comment), from this (fp32) compression.
-    gi::rtf::Cpca full = ne == s.components ? baked.field.itf : gi::rtf::compress(baked.itf, D, cs);
     double total = 0.0;
     for (float x : baked.itf) total += double(x) * double(x);
     const double residual = gi::rtf::measure(full, baked.itf).frobenius;

@@ -18,6 +18,12 @@
 // and blocked-probes = ρ·E[L_probes(r, ω)·1(ω hits an object)]: the blocked term with the probes'
 // SH radiance in place of the traced one (the light RTF's blocked term is made of).
 // field.pfm: R = min over objects of |r − o|/R_fade (R_fade = (outer + Δr)·η: < 1 inside a field).
+// The blocked term's light, four ways (issue 14, fifth pass; each object's term on its own and summed,
+// as the GPU pass adds them): ρ/π E_n(Σ_s w_s s_s (u − V_s) ⊙ L) with Eq. 10's lookup weights w_s and
+//   blocked-receiver  L = the probes' light at r, s = 1   (shade()'s light, per object)
+//   blocked-shape-o   L = the light at o scaled per channel by L_00(r)/L_00(o), s = 1   (o's shape, r's level)
+//   blocked-at-o      L = the light at o, s = 1   (the GPU before the third pass)
+//   blocked-gpu       L = the light at o, s_s = update.hpp blockedScale (the GPU pass as shipped)
 //
 // usage: rtf_parts LEVEL WIDTH HEIGHT DIRS_PER_AXIS OUT_DIR [FRAME [TAIL]]   (TAIL: scene::Rtf::tail τ for every object)
 //   writes OUT_DIR/{ref-interreflected,ref-blocked,ref-room,blocked-probes,rtf-interreflected,
@@ -45,6 +51,8 @@
 #include "engine/gpu/image_io.hpp"
 #include "engine/math/sampling.hpp"
 #include "engine/math/sh.hpp"
+#include "engine/math/sh_convolve.hpp"
+#include "engine/math/sh_eval.hpp"
 #include "engine/ref/reference.hpp"
 #include "engine/ref/reference_scene.hpp"
 #include "engine/ref/tracer.hpp"
@@ -155,10 +163,46 @@ int main(int argc, char** argv) {
   const gi::rtf::BounceResult bounced = gi::rtf::bounce(objects, lit, 2);
   std::fprintf(stderr, "rtf_parts: %zu rtf objects, %zu lights, %ux%u, %d² directions per pixel\n", objects.size(),
                lights.size(), W, H, spa);
+  // How far apart the objects stand: a sphere of radius η_B at distance d lit like A sends A about
+  // ρ_B (η_B/d)² of A's own irradiance, so Σ_B (η_B/d)² bounds the second bounce's share (× albedo).
+  for (std::size_t a = 0; a < objects.size(); ++a) {
+    const gi::rtf::Placement pa = gi::rtf::place(fields[a], objects[a].world);
+    double share = 0.0, nearest = 1e30;
+    for (std::size_t b = 0; b < objects.size(); ++b) {
+      if (b == a) continue;
+      const gi::rtf::Placement pb = gi::rtf::place(fields[b], objects[b].world);
+      const double d = glm::length(pa.centreWorld - pb.centreWorld);
+      share += double(pb.radiusWorld) * pb.radiusWorld / (d * d);
+      nearest = std::min(nearest, d / pa.radiusWorld);
+    }
+    std::fprintf(stderr, "rtf_parts: object %zu: nearest other object at %.2f eta, sum of (eta_B/d)^2 %.4f\n", a, nearest, share);
+  }
+  // Per object: the proxies' light of bounce 1 (2 bounces − 1 bounce) against bounce 0 (Σ |L_00| over proxies).
+  {
+    const gi::rtf::BounceResult one = gi::rtf::bounce(objects, lit, 1);
+    for (std::size_t a = 0; a < objects.size(); ++a) {
+      double e0 = 0.0, e1 = 0.0;
+      for (std::size_t p = 0; p < one.proxyLight[a].size(); p += gi::rtf::kShCount) {
+        const glm::vec3 l0 = one.proxyLight[a][p], l1 = bounced.proxyLight[a][p] - one.proxyLight[a][p];
+        e0 += double(l0.x + l0.y + l0.z), e1 += double(l1.x + l1.y + l1.z);
+      }
+      std::fprintf(stderr, "rtf_parts: object %zu (%s): proxies' L_00 bounce 0 %.4g, bounce 1 %.4g (%.3g of bounce 0)\n", a,
+                   with.registry.get<scene::Name>(rtfEntities[a]).id.c_str(), e0, e1, e1 / std::max(e0, 1e-30));
+    }
+  }
+  // Algorithm 1's energy per bounce (evaluate.hpp BounceResult::bounceEnergy): what a second
+  // inter-object bounce can add at all, against the first.
+  for (std::size_t b = 0; b < bounced.bounceEnergy.size(); ++b)
+    std::fprintf(stderr, "rtf_parts: bounce %zu energy %.6g (%.3g of bounce 0)\n", b, bounced.bounceEnergy[b],
+                 bounced.bounceEnergy[b] / std::max(bounced.bounceEnergy[0], 1e-30));
 
-  enum { kInter, kBlocked, kRoom, kBlockedProbes, kRtfInter, kRtfBlocked, kField, kParts };
+  // The GPU's per-sample level of the blocked light (update.hpp blockedScale, static geometry = the level without its props).
+  std::vector<std::vector<glm::vec4>> scales;
+  for (const gi::rtf::Object& o : objects) scales.push_back(gi::rtf::blockedScale(*o.field, o.world, light.indirect(), &bvhWithout));
+
+  enum { kInter, kBlocked, kRoom, kBlockedProbes, kRtfInter, kRtfBlocked, kField, kAtR, kShapeO, kAtO, kGpu, kParts };
   const char* names[kParts] = {"ref-interreflected", "ref-blocked", "ref-room", "blocked-probes", "rtf-interreflected",
-                               "rtf-blocked", "field"};
+                               "rtf-blocked", "field", "blocked-receiver", "blocked-shape-o", "blocked-at-o", "blocked-gpu"};
   std::vector<gpu::FloatImage> images(kParts);
   for (auto& im : images) im.width = W, im.height = H, im.rgb.assign(std::size_t(W) * H * 3, 0.0f);
   parallelFor(0, std::size_t(W) * H, [&](std::size_t pixel) {
@@ -211,6 +255,42 @@ int main(int argc, char** argv) {
     float nearest = 1e30f;
     for (const Reach& r : reach) nearest = std::min(nearest, glm::length(hit.position - r.centre) / r.radius);
     put(kField, glm::vec3(nearest));
+    // The blocked term four ways (header), each object's term on its own, in its frame.
+    const gi::rtf::ShRgb atR = gi::rtf::sourceRadiance(light.indirect(), hit.position);
+    glm::vec3 variant[4] = {};
+    for (std::size_t k = 0; k < objects.size(); ++k) {
+      const gi::rtf::Field& f = *objects[k].field;
+      const gi::rtf::Placement pl = gi::rtf::place(f, objects[k].world);
+      const glm::vec3 q = (glm::vec3(pl.worldToLocal * glm::vec4(hit.position, 1.0f)) - f.centre) / f.radius;
+      const gi::rtf::Lookup lk = gi::rtf::lookup(f.settings, q, objects[k].reach);
+      const glm::mat3 toLocal = glm::transpose(pl.localToWorldRotation);
+      const gi::rtf::ShRgb atO = gi::rtf::sourceRadiance(light.indirect(), pl.centreWorld);
+      const glm::vec3 level = glm::vec3(atR[0]) / glm::max(glm::vec3(atO[0]), glm::vec3(1e-12f));
+      gi::rtf::ShRgb lights[3] = {gi::rtf::rotate(atR, toLocal), gi::rtf::rotate(atO, toLocal), {}};
+      lights[2] = lights[1];
+      gi::rtf::ShRgb shapeO = lights[1];
+      for (auto& c : shapeO) c *= level;
+      const gi::rtf::ShRgb* useL[4] = {&lights[0], &shapeO, &lights[1], &lights[1]};
+      const glm::vec3 nl = toLocal * n;
+      for (int v = 0; v < 4; ++v) {
+        std::vector<glm::vec3> notV(gi::rtf::kShCount, glm::vec3(0.0f));
+        float total = 0.0f;
+        for (int t = 0; t < 8; ++t) {
+          const float w = lk.weight[std::size_t(t)];
+          if (w == 0.0f) continue;
+          total += w;
+          const std::size_t smp = lk.sample[std::size_t(t)];
+          const glm::vec3 sc = v == 3 ? glm::vec3(scales[k][smp]) : glm::vec3(1.0f);
+          for (int j = 0; j < gi::rtf::kShCount; ++j)
+            notV[std::size_t(j)] += w * sc * ((j == 0 ? 3.5449077f : 0.0f) - f.oof[smp * gi::rtf::kShCount + std::size_t(j)]);
+        }
+        if (total == 0.0f) continue;
+        const auto b = sh::product<glm::vec3>(std::span<const glm::vec3>(notV), std::span<const glm::vec3>(*useL[v]), gi::rtf::kShOrder);
+        const auto e = sh::convolveCosine<glm::vec3>(std::span<const glm::vec3>(b));
+        variant[v] += rho / float(math::kPi) * sh::evalSum<glm::vec3, float>(std::span<const glm::vec3>(e).first(9), glm::normalize(nl));
+      }
+    }
+    for (int v = 0; v < 4; ++v) put(kAtR + v, variant[v]);
   }, 16);
   for (int i = 0; i < kParts; ++i) gpu::writePfm(out / (std::string(names[i]) + ".pfm"), images[std::size_t(i)]);
   std::fprintf(stderr, "rtf_parts: wrote %s\n", out.c_str());

@@ -303,19 +303,20 @@ BakeResult bake(const ref::SceneDesc& object, const FieldSettings& s) {
   cs.clusters = s.clusters;
   cs.components = s.components;
   f.itf = compress(result.itf, D, cs);
+  roundToHalf(f.itf);  // what the field file holds; the error below is the stored field's
   const CpcaError e = measure(f.itf, result.itf);
   f.frobenius = e.frobenius;
   result.stats.frobenius = e.frobenius;
-  result.stats.ratio = e.ratio;
+  result.stats.ratio = e.stored;
   result.stats.rawMB = double(N * D) * 4.0 / 1e6;
-  result.stats.compressedMB = result.stats.rawMB / e.ratio;
+  result.stats.compressedMB = result.stats.rawMB / e.stored;
   result.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }
 
 std::string cacheKey(const ref::SceneDesc& object, const FieldSettings& s) {
   Hasher h;
-  h.str("rtf-field-v4");  // baker and file format version: bump when either changes (v2: cube-map projection directions; v3: warm-started CPCA; v4: CPCA on lines, k-means++ seeds, float products)
+  h.str("rtf-field-v5");  // baker and file format version: bump when either changes (v2: cube-map projection directions; v3: warm-started CPCA; v4: CPCA on lines, k-means++ seeds, float products; v5: fp16 basis and α, file version 2)
   h.pod(s.proxies).pod(s.spheres).pod(s.faceSize).pod(s.innerRadius).pod(s.outerRadius).pod(s.raysPerAxis);
   h.pod(s.vertexRaysPerAxis).pod(s.selfBounces).pod(s.clusters).pod(s.components);
   ref::hashGeometry(h, object);

@@ -16,7 +16,8 @@
 //     their exact solid angles Δω: M^{ij}_{q,k} = Σ_{rays hitting p} Δω y_i(ω) t_{p,k}^j, and the
 //     OOF V_q^i = Σ_{rays that miss} Δω y_i(ω). A sample inside the object (most hits are back
 //     faces) gets M = 0 and V = 0 (all light is blocked there);
-//  4. CPCA of the ITF vectors (Eq. 9, cpca.hpp), its Frobenius error and compression ratio.
+//  4. CPCA of the ITF vectors (Eq. 9, cpca.hpp), rounded to fp16 as the file stores it, its
+//     Frobenius error after the rounding and the stored compression ratio.
 // Deterministic: vertex v draws from Pcg32::fromIndex(v); the field's directions are fixed.
 #include <filesystem>
 #include <span>
@@ -39,9 +40,9 @@ std::vector<float> proxyWeights(glm::vec3 p, std::span<const glm::vec3> proxies,
 
 struct BakeStats {
   double frobenius = 0.0;       // CPCA error (relative Frobenius norm)
-  double ratio = 0.0;           // CPCA compression ratio (floats before / after)
+  double ratio = 0.0;           // CPCA compression ratio as stored: fp32 bytes before / bytes after (cpca.hpp storedRatio)
   double rawMB = 0.0;           // uncompressed ITF, float32, MB (10⁶ bytes)
-  double compressedMB = 0.0;    // CPCA basis + per-sample α + cluster id
+  double compressedMB = 0.0;    // CPCA basis and per-sample α (fp16) + cluster id (uint32), as stored
   double seconds = 0.0;
   std::size_t insideSamples = 0;
 };

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include <glm/gtc/packing.hpp>
+
 #include "engine/core/error.hpp"
 #include "engine/core/parallel.hpp"
 #include "engine/core/progress.hpp"
@@ -380,7 +382,34 @@ CpcaError measure(const Cpca& c, std::span<const float> data) {
   CpcaError e;
   e.frobenius = norm > 0.0 ? std::sqrt(err / norm) : std::sqrt(err);
   e.ratio = compressionRatio(c);
+  e.stored = storedRatio(c);
   return e;
+}
+
+namespace {
+constexpr float kHalfMax = 65504.0f;  // the largest finite half
+float toHalf(float x) { return glm::unpackHalf1x16(glm::packHalf1x16(x)); }
+}  // namespace
+
+void roundToHalf(Cpca& c) {
+  for (std::vector<float>* v : {&c.basis, &c.alpha})
+    for (float& x : *v) {
+      const float h = toHalf(x);
+      if (!(std::abs(h) <= kHalfMax)) throw InternalError("rtf::roundToHalf: a CPCA value beyond fp16's range (65504)");
+      x = h;
+    }
+}
+
+bool isHalf(const Cpca& c) {
+  for (const std::vector<float>* v : {&c.basis, &c.alpha})
+    for (float x : *v)
+      if (!(toHalf(x) == x)) return false;  // NaN too
+  return true;
+}
+
+double storedRatio(const Cpca& c) {
+  const double N = double(c.samples());
+  return 4.0 * N * double(c.dimension) / (2.0 * double(c.basis.size() + c.alpha.size()) + 4.0 * N);
 }
 
 double compressionRatio(const Cpca& c) {

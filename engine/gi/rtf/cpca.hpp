@@ -56,9 +56,24 @@ Cpca compress(std::span<const float> data, std::size_t dimension, const CpcaSett
 struct CpcaError {
   double frobenius = 0.0;  // ‖X − X̂‖_F / ‖X‖_F (the paper's error, relative), 0 for X = 0
   double ratio = 0.0;      // N·D floats before / floats after (basis + per-sample α and cluster id)
+  double stored = 0.0;     // storedRatio: fp32 bytes before / bytes of the field file's CPCA
 };
 CpcaError measure(const Cpca& cpca, std::span<const float> data);
 // The ratio of CpcaError alone (it needs no data).
 double compressionRatio(const Cpca& cpca);
+
+// fp16 storage (issue 14, README "CPCA error–ratio curve"): the field file and the ξ pass hold the
+// basis E_hj and the coefficients α as IEEE halves, the cluster ids as 32-bit words.
+// roundToHalf rounds every basis entry and α to the nearest half in place (glm::packHalf1x16:
+// round to nearest), so the Cpca in memory is exactly what the file holds and measure() after it
+// gives the error of the stored field. Per value the rounding moves v by at most 2⁻¹¹·|v| (11-bit
+// significand, |v| ≥ 2⁻¹⁴) or 2⁻²⁵ (subnormal halves). The basis vectors are unit (|E_hj,d| ≤ 1)
+// and the ITF is a transfer of light to light (O(1)), far inside the range.
+// Throws InternalError when some |value| would round past the largest half (65504).
+void roundToHalf(Cpca& cpca);
+// True when every basis entry and α is a half exactly (what serialize() requires).
+bool isHalf(const Cpca& cpca);
+// 4·N·D bytes (fp32 X) / (2·(basis + α) + 4·N) bytes: the field file's CPCA (halves, 32-bit ids).
+double storedRatio(const Cpca& cpca);
 
 }  // namespace bounce::gi::rtf

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <cstring>
 
+#include <glm/gtc/packing.hpp>
+
 #include "engine/core/binary_io.hpp"
 #include "engine/core/error.hpp"
 #include "engine/core/file.hpp"
@@ -12,7 +14,9 @@ namespace bounce::gi::rtf {
 
 namespace {
 constexpr char kMagic[8] = {'B', 'R', 'T', 'F', 'F', 'L', 'D', '\0'};
-constexpr std::uint32_t kVersion = 1;
+// v2: the CPCA basis and α as IEEE halves (v1: fp32). A v1 file fails the version check and is
+// re-baked through loadOrBake with its one warning (its cache key changed too: bake.cpp).
+constexpr std::uint32_t kVersion = 2;
 }  // namespace
 
 void checkSettings(const FieldSettings& s) {
@@ -43,6 +47,18 @@ bool allFinite(const std::vector<float>& v) {
   return true;
 }
 
+std::vector<std::uint16_t> halves(const std::vector<float>& v) {
+  std::vector<std::uint16_t> h(v.size());
+  for (std::size_t i = 0; i < v.size(); ++i) h[i] = glm::packHalf1x16(v[i]);
+  return h;
+}
+
+std::vector<float> floats(const std::vector<std::uint16_t>& h) {
+  std::vector<float> v(h.size());
+  for (std::size_t i = 0; i < h.size(); ++i) v[i] = glm::unpackHalf1x16(h[i]);  // exact; inf/NaN stay so (checked)
+  return v;
+}
+
 }  // namespace
 
 std::vector<std::uint8_t> serialize(const Field& f) {
@@ -51,6 +67,8 @@ std::vector<std::uint8_t> serialize(const Field& f) {
   if (f.proxies.size() != std::size_t(s.proxies) || f.itf.samples() != sampleCount(s) ||
       std::size_t(f.itf.dimension) != itfDimension(s) || f.oof.size() != sampleCount(s) * kShCount)
     throw InternalError("rtf::serialize: field does not match its settings");
+  // The file holds halves: a Cpca not rounded by roundToHalf would load as another field.
+  if (!isHalf(f.itf)) throw InternalError("rtf::serialize: CPCA basis or α not rounded to fp16 (rtf::roundToHalf)");
   BinaryWriter w;
   writeHeader(w, kMagic, kVersion);
   w.put(std::int32_t(s.proxies)), w.put(std::int32_t(s.spheres)), w.put(std::int32_t(s.faceSize));
@@ -60,9 +78,9 @@ std::vector<std::uint8_t> serialize(const Field& f) {
   w.put(f.centre), w.put(f.radius);
   w.putAll(f.proxies);
   w.put(std::int32_t(f.itf.clusters));  // ≤ settings.clusters (fewer when there are fewer samples)
-  w.putAll(f.itf.basis);
+  w.putAll(halves(f.itf.basis));
   w.putAll(f.itf.cluster);
-  w.putAll(f.itf.alpha);
+  w.putAll(halves(f.itf.alpha));
   w.putAll(f.oof);
   w.put(f.frobenius);
   w.put(hashBytes(w.bytes));  // a flipped bit anywhere makes the file invalid (re-baked, never trusted)
@@ -97,9 +115,9 @@ Field deserialize(std::span<const std::uint8_t> bytes, const std::string& file) 
   if (nc < 1 || nc > s.clusters || std::size_t(nc) > N)
     r.fail("cpca", "cluster count " + std::to_string(nc), "1.." + std::to_string(s.clusters));
   f.itf.dimension = int(D), f.itf.clusters = nc, f.itf.components = s.components;
-  f.itf.basis = r.getAll<float>(std::size_t(nc) * std::size_t(s.components + 1) * D, "cpca basis");
+  f.itf.basis = floats(r.getAll<std::uint16_t>(std::size_t(nc) * std::size_t(s.components + 1) * D, "cpca basis"));
   f.itf.cluster = r.getAll<std::uint32_t>(N, "cpca clusters");
-  f.itf.alpha = r.getAll<float>(N * std::size_t(s.components), "cpca coefficients");
+  f.itf.alpha = floats(r.getAll<std::uint16_t>(N * std::size_t(s.components), "cpca coefficients"));
   f.oof = r.getAll<float>(N * kShCount, "oof");
   f.frobenius = r.get<double>("frobenius");
   const std::size_t checked = r.position();

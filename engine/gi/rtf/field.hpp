@@ -19,9 +19,10 @@
 //  - the object occlusion field (OOF, Zhou et al. 2005): the SH projection (16 coefficients, not
 //    compressed) of the visibility V_q(ω) = 1 where the ray from q along ω misses the object.
 //
-// File: "BRTFFLD\0", version, settings, centre, radius, proxies, CPCA (basis, per-sample cluster id
-// and α), OOF, the CPCA error, then a 64-bit checksum of every byte before it. load validates
-// every count, index and float and throws InputError naming the file.
+// File (version 2): "BRTFFLD\0", version, settings, centre, radius, proxies, CPCA (basis as fp16,
+// per-sample cluster id as uint32, α as fp16: cpca.hpp roundToHalf), OOF (fp32), the CPCA error
+// measured after the fp16 rounding, then a 64-bit checksum of every byte before it. load validates
+// every count, index and value (an inf or NaN half included) and throws InputError naming the file.
 #include <cstdint>
 #include <filesystem>
 #include <span>
@@ -67,7 +68,7 @@ struct Field {
   std::vector<glm::vec3> proxies;  // χ_k, local frame, metres
   Cpca itf;                        // M_{q,k} of every sample, compressed
   std::vector<float> oof;          // oof[s·16 + i]
-  double frobenius = 0.0;          // CPCA error of itf against the uncompressed bake (relative)
+  double frobenius = 0.0;          // CPCA error of itf (fp16-rounded) against the uncompressed bake (relative)
 };
 
 std::vector<std::uint8_t> serialize(const Field& field);

@@ -3,6 +3,8 @@
 #include <cstring>
 #include <vector>
 
+#include <glm/gtc/packing.hpp>
+
 #include "engine/core/error.hpp"
 #include "engine/gpu/commands.hpp"
 
@@ -17,6 +19,19 @@ gpu::Buffer storage(gpu::Context& ctx, const std::vector<T>& data, const std::st
   if (!data.empty())
     gpu::upload(ctx, b, std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(data.data()), data.size() * sizeof(T)));
   return b;
+}
+
+// xi.comp's basis and α: the Cpca's values (halves already: cpca.hpp roundToHalf, so packing loses
+// nothing) two to a uint as GLSL's packHalf2x16 lays them out, element 2w in the low 16 bits of word
+// w; an odd count ends with a zero half.
+std::vector<std::uint32_t> halfWords(const std::vector<float>& v) {
+  std::vector<std::uint32_t> w((v.size() + 1) / 2, 0u);
+  for (std::size_t i = 0; i < v.size(); i += 2) {
+    const glm::vec2 pair(v[i], i + 1 < v.size() ? v[i + 1] : 0.0f);
+    w[i / 2] = glm::packHalf2x16(pair);
+    if (glm::unpackHalf2x16(w[i / 2]) != pair) throw InternalError("rtf::XiPass: CPCA not rounded to fp16 (rtf::roundToHalf)");
+  }
+  return w;
 }
 
 }  // namespace
@@ -42,8 +57,8 @@ XiPass::XiPass(gpu::Context& ctx, const Field& f)
   const FieldSettings& s = f.settings;
   push_ = {0, std::uint32_t(s.proxies), std::uint32_t(f.itf.clusters), std::uint32_t(f.itf.components),
            std::uint32_t(sampleCount(s)), std::uint32_t(s.faceSize)};
-  basis_ = storage(ctx, f.itf.basis, "rtf.basis");
-  alpha_ = storage(ctx, f.itf.alpha, "rtf.alpha");
+  basis_ = storage(ctx, halfWords(f.itf.basis), "rtf.basis");
+  alpha_ = storage(ctx, halfWords(f.itf.alpha), "rtf.alpha");
   cluster_ = storage(ctx, f.itf.cluster, "rtf.cluster");
   // Written by vkCmdUpdateBuffer in record(): ordered in the command stream, so a frame in flight
   // never sees the next frame's light (m·16·16 bytes ≤ 16 KiB < the command's 64 KiB limit).

@@ -7,6 +7,7 @@
 #include "engine/core/error.hpp"
 #include "engine/gi/rtf/cpca.hpp"
 #include "engine/math/sampling.hpp"
+#include "tests/unit/rtf/half_bound.hpp"
 
 namespace bounce::gi::rtf {
 namespace {
@@ -101,6 +102,62 @@ TEST(RtfCpca, IsDeterministic) {
   EXPECT_EQ(a.basis, b.basis);
   EXPECT_EQ(a.alpha, b.alpha);
   EXPECT_EQ(a.cluster, b.cluster);
+}
+
+// fp16 storage (cpca.hpp roundToHalf, what the field file holds): every reconstructed entry moves
+// by no more than half_bound.hpp's bound, derived from the half's 11-bit significand; the rounding
+// is idempotent; the stored ratio counts 2 bytes per basis entry and α and 4 per cluster id.
+TEST(RtfCpca, Fp16RoundingMovesEveryEntryWithinItsBound) {
+  const std::size_t D = 48;
+  const int clusters = 4, per = 50, rank = 3;
+  const auto x = lowRank(clusters, per, rank, D, 5);  // means up to 100, variations up to ~3
+  CpcaSettings s;
+  s.clusters = clusters;
+  s.components = rank;
+  const Cpca f = compress(x, D, s);
+  Cpca h = f;
+  roundToHalf(h);
+  EXPECT_FALSE(isHalf(f));
+  EXPECT_TRUE(isHalf(h));
+  Cpca again = h;
+  roundToHalf(again);
+  EXPECT_EQ(again.basis, h.basis);
+  EXPECT_EQ(again.alpha, h.alpha);
+  EXPECT_EQ(h.cluster, f.cluster);
+  std::vector<float> xf(D), xh(D);
+  double worst = 0.0;  // max |x̂_h − x̂_f| / bound
+  for (std::size_t r = 0; r < f.samples(); ++r) {
+    f.reconstruct(r, xf);
+    h.reconstruct(r, xh);
+    for (std::size_t d = 0; d < D; ++d) {
+      const double bf = testing::halfBound(f, r, d, false), bh = testing::halfBound(h, r, d, true);
+      ASSERT_LE(bf, bh);  // the bound from the rounded values (what a loaded file has) is the looser
+      worst = std::max(worst, std::abs(double(xh[d]) - double(xf[d])) / bf);
+    }
+  }
+  EXPECT_LE(worst, 1.0);
+  EXPECT_GT(worst, 0.25);  // measured 0.93: the bound is tight, not loose by orders
+  // Stored bytes: 4·N·D / (2·(n_c·(n_e+1)·D + N·n_e) + 4·N).
+  const double N = clusters * per;
+  const double expected = 4.0 * N * D / (2.0 * (clusters * (rank + 1) * double(D) + N * rank) + 4.0 * N);
+  EXPECT_DOUBLE_EQ(storedRatio(h), expected);
+  EXPECT_DOUBLE_EQ(measure(h, x).stored, expected);
+  EXPECT_DOUBLE_EQ(storedRatio(h), storedRatio(f));  // a count of bytes, not of the values
+}
+
+TEST(RtfCpca, Fp16RoundingRejectsValuesPastTheLargestHalf) {
+  const std::size_t D = 8;
+  const auto x = lowRank(1, 10, 1, D, 6);
+  CpcaSettings s;
+  s.clusters = 1;
+  s.components = 1;
+  Cpca c = compress(x, D, s);
+  c.basis[0] = 65519.0f;  // rounds down to 65504, the largest half (the spacing there is 32)
+  Cpca ok = c;
+  roundToHalf(ok);
+  EXPECT_EQ(ok.basis[0], 65504.0f);
+  c.alpha[3] = -65520.0f;  // rounds to −inf
+  EXPECT_THROW(roundToHalf(c), InternalError);
 }
 
 }  // namespace

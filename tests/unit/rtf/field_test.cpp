@@ -2,6 +2,7 @@
 // line naming the file (never a crash, never a silently wrong field).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
 #include <string>
 
@@ -32,12 +33,31 @@ std::string errorOf(const std::vector<std::uint8_t>& b) {
   return "";
 }
 
+// The bake rounds the CPCA to fp16 (cpca.hpp roundToHalf), so the file's halves reload as exactly
+// the field in memory; its error bound is tested in RtfCpca.Fp16Rounding* and RtfBake.
 TEST(RtfField, RoundTripIsExact) {
-  const auto bytes = serialize(baked());
+  const Field& f = baked();
+  const auto bytes = serialize(f);
   const Field g = deserialize(bytes, "obj.field");
   EXPECT_EQ(serialize(g), bytes);
+  EXPECT_EQ(g.itf.basis, f.itf.basis);
+  EXPECT_EQ(g.itf.alpha, f.itf.alpha);
+  EXPECT_EQ(g.itf.cluster, f.itf.cluster);
+  EXPECT_EQ(g.oof, f.oof);
+  EXPECT_EQ(g.frobenius, f.frobenius);
   EXPECT_EQ(g.proxies.size(), 2u);
   EXPECT_EQ(g.oof.size(), sampleCount(g.settings) * kShCount);
+  // Version 2's layout, byte for byte: header 12, settings 10·4, centre + radius 16, proxies 12·m,
+  // cluster count 4, basis 2·n_c·(n_e+1)·D, ids 4·N, α 2·N·n_e, OOF 4·16·N, error 8, checksum 8.
+  const std::size_t N = sampleCount(f.settings), D = itfDimension(f.settings), ne = std::size_t(f.itf.components);
+  EXPECT_EQ(bytes.size(), 12 + 40 + 16 + 12 * f.proxies.size() + 4 + 2 * std::size_t(f.itf.clusters) * (ne + 1) * D + 4 * N +
+                              2 * N * ne + 4 * kShCount * N + 8 + 8);
+}
+
+TEST(RtfField, ACpcaNotRoundedToFp16IsNotSaved) {
+  Field f = baked();
+  f.itf.basis[1] += 1e-4f * std::abs(f.itf.basis[1]) + 1e-7f;  // between two halves
+  EXPECT_THROW(serialize(f), InternalError);
 }
 
 TEST(RtfField, EveryTruncationIsRejected) {
@@ -70,7 +90,7 @@ TEST(RtfField, BadMagicVersionSettingsChecksumAndIndicesAreRejected) {
   // A cluster index past the cluster count, correctly checksummed.
   const Field& f = baked();
   const std::size_t N = sampleCount(f.settings);
-  const std::size_t clusterIds = bytes.size() - 8 - 8 - N * kShCount * 4 - N * std::size_t(f.settings.components) * 4 - N * 4;
+  const std::size_t clusterIds = bytes.size() - 8 - 8 - N * kShCount * 4 - N * std::size_t(f.settings.components) * 2 - N * 4;
   b = bytes;
   const std::uint32_t bad = 1000;
   std::memcpy(b.data() + clusterIds, &bad, 4);
@@ -82,6 +102,15 @@ TEST(RtfField, BadMagicVersionSettingsChecksumAndIndicesAreRejected) {
   std::memcpy(b.data() + bytes.size() - 8 - 8 - 4, &nan, 4);
   resign(b);
   EXPECT_NE(errorOf(b).find("non-finite"), std::string::npos);
+  // An infinite half (0x7c00) as the first basis entry, and a NaN half (0x7e00) as the last α.
+  const std::size_t basisStart = 12 + 40 + 16 + 12 * f.proxies.size() + 4;
+  for (const std::size_t at : {basisStart, clusterIds + 4 * N + 2 * N * std::size_t(f.settings.components) - 2}) {
+    b = bytes;
+    const std::uint16_t h = at == basisStart ? 0x7c00 : 0x7e00;
+    std::memcpy(b.data() + at, &h, 2);
+    resign(b);
+    EXPECT_NE(errorOf(b).find("non-finite"), std::string::npos) << at;
+  }
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <array>
 #include <cstdio>
 #include <cstring>
+#include <string>
 
 #include "engine/gi/rtf/evaluate.hpp"
 #include "engine/gi/rtf/xi_pass.hpp"
@@ -18,40 +19,47 @@
 namespace bounce::gi::rtf {
 namespace {
 
+// The pass reads the basis and α as packHalf2x16 words (xi_pass.cpp halfWords): n_e = 3 makes every
+// other sample's α row start in a word's high half (n_e = 4: rows start word-aligned).
 TEST(RtfXiGpu, ComputePassEqualsTheCpuCaches) {
   gpu::Context& ctx = gpu::testkit::sharedContext();
-  const BakeResult b = bake(testing::unitSphere(glm::vec3(0.8f, 0.6f, 0.4f), 8), testing::smallSettings());
-  const Field& f = b.field;
-  const FieldSettings& s = f.settings;
-  math::Pcg32 rng(5);
-  std::vector<glm::vec3> L(std::size_t(s.proxies) * kShCount);
-  for (auto& l : L) l = rng.nextFloat3() * 2.0f - 1.0f;
-  const std::vector<glm::vec3> want = xiCache(f, L);
-  // The scale of each ξ: the same sums with |terms|.
-  Field absField = f;
-  for (float& x : absField.itf.basis) x = std::abs(x);
-  for (float& x : absField.itf.alpha) x = std::abs(x);
-  std::vector<glm::vec3> absL(L.size());
-  for (std::size_t i = 0; i < L.size(); ++i) absL[i] = glm::abs(L[i]);
-  const std::vector<glm::vec3> scale = xiCache(absField, absL);
+  for (const int components : {4, 3}) {
+    SCOPED_TRACE("components " + std::to_string(components));
+    FieldSettings fs = testing::smallSettings();
+    fs.components = components;
+    const BakeResult b = bake(testing::unitSphere(glm::vec3(0.8f, 0.6f, 0.4f), 8), fs);
+    const Field& f = b.field;
+    const FieldSettings& s = f.settings;
+    math::Pcg32 rng(5);
+    std::vector<glm::vec3> L(std::size_t(s.proxies) * kShCount);
+    for (auto& l : L) l = rng.nextFloat3() * 2.0f - 1.0f;
+    const std::vector<glm::vec3> want = xiCache(f, L);
+    // The scale of each ξ: the same sums with |terms|.
+    Field absField = f;
+    for (float& x : absField.itf.basis) x = std::abs(x);
+    for (float& x : absField.itf.alpha) x = std::abs(x);
+    std::vector<glm::vec3> absL(L.size());
+    for (std::size_t i = 0; i < L.size(); ++i) absL[i] = glm::abs(L[i]);
+    const std::vector<glm::vec3> scale = xiCache(absField, absL);
 
-  XiPass pass(ctx, f);
-  pass.setProxyLight(L);
-  gpu::submitAndWait(ctx, [&](VkCommandBuffer cmd) { pass.record(cmd); });
-  const auto bytes = gpu::readback(ctx, pass.xi());
-  const std::size_t w = std::size_t(6 * s.faceSize), h = std::size_t(s.faceSize);
-  ASSERT_EQ(bytes.size(), std::size_t(s.spheres) * kShCount * w * h * 16);
-  std::vector<glm::vec4> texels(bytes.size() / 16);
-  std::memcpy(texels.data(), bytes.data(), bytes.size());
-  const int n2 = s.faceSize * s.faceSize, per = samplesPerSphere(s);
-  for (std::size_t r = 0; r < sampleCount(s); ++r) {
-    const int sphere = int(r) / per, rest = int(r) % per, face = rest / n2, y = rest % n2 / s.faceSize, x = rest % s.faceSize;
-    for (int i = 0; i < kShCount; ++i) {
-      const std::size_t layer = std::size_t(sphere * kShCount + i);
-      const glm::vec4 got = texels[(layer * h + std::size_t(y)) * w + std::size_t(face * s.faceSize + x)];
-      for (int c = 0; c < 3; ++c)
-        ASSERT_NEAR(got[c], want[r * kShCount + std::size_t(i)][c], 1e-5f * scale[r * kShCount + std::size_t(i)][c] + 1e-7f)
-            << "sample " << r << " coefficient " << i;
+    XiPass pass(ctx, f);
+    pass.setProxyLight(L);
+    gpu::submitAndWait(ctx, [&](VkCommandBuffer cmd) { pass.record(cmd); });
+    const auto bytes = gpu::readback(ctx, pass.xi());
+    const std::size_t w = std::size_t(6 * s.faceSize), h = std::size_t(s.faceSize);
+    ASSERT_EQ(bytes.size(), std::size_t(s.spheres) * kShCount * w * h * 16);
+    std::vector<glm::vec4> texels(bytes.size() / 16);
+    std::memcpy(texels.data(), bytes.data(), bytes.size());
+    const int n2 = s.faceSize * s.faceSize, per = samplesPerSphere(s);
+    for (std::size_t r = 0; r < sampleCount(s); ++r) {
+      const int sphere = int(r) / per, rest = int(r) % per, face = rest / n2, y = rest % n2 / s.faceSize, x = rest % s.faceSize;
+      for (int i = 0; i < kShCount; ++i) {
+        const std::size_t layer = std::size_t(sphere * kShCount + i);
+        const glm::vec4 got = texels[(layer * h + std::size_t(y)) * w + std::size_t(face * s.faceSize + x)];
+        for (int c = 0; c < 3; ++c)
+          ASSERT_NEAR(got[c], want[r * kShCount + std::size_t(i)][c], 1e-5f * scale[r * kShCount + std::size_t(i)][c] + 1e-7f)
+              << "sample " << r << " coefficient " << i;
+      }
     }
   }
 }
