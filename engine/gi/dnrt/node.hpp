@@ -123,6 +123,10 @@ class Node {
   gpu::DescriptorSetLayout combineLayout_;
   gpu::PipelineLayout combinePipelineLayout_;
   std::array<gpu::Pipeline, 2> combine_;
+  // tile_cull.comp: the clustered draw's tile masks cut by each tile's depth range (one dispatch a batch).
+  gpu::DescriptorSetLayout cullLayout_;
+  gpu::PipelineLayout cullPipelineLayout_;
+  gpu::Pipeline cull_;
 };
 
 }  // namespace bounce::gi::dnrt
