@@ -385,6 +385,7 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
     std::vector<std::optional<rg::Handle<rg::Texture>>> maps, volumes;
     std::optional<rg::Handle<rg::Texture>> atlas;
   };
+  const bool cullsTiles = !cluster.empty() && settings.tileCull;
   const auto& data = graph.addPass<Data>(
       "dnrt",
       [&](rg::Builder& b, Data& d) {
@@ -394,9 +395,10 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
         for (const auto& v : volumes)
           d.volumes.push_back(v ? std::optional(b.read(*v, rg::Usage::SampledFragment)) : std::nullopt);
         if (combinedAtlas) d.atlas = b.read(*combinedAtlas, rg::Usage::SampledFragment);
+        if (cullsTiles) b.read(d.g.depth, rg::Usage::SampledCompute);  // tile_cull.comp
       },
       [this, pc, objects = std::move(objects), cluster = std::move(cluster), clustered = std::move(clustered),
-       modeOf = [mode = settings.mode](const NodeObject& o) { return mode.value_or(o.mode); }](
+       tileCull = settings.tileCull, modeOf = [mode = settings.mode](const NodeObject& o) { return mode.value_or(o.mode); }](
           const Data& d, const rg::PassResources& res, rg::CommandContext& c) {
         VkCommandBuffer cmd = pc->cmd(c);
         gpu::Buffer& buffer = objectBuffer(pc->frame().slot, objects);
@@ -435,6 +437,8 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
           if (!tiles || tiles.size() < tileBytes)
             tiles = gpu::Buffer(ctx_, {tileBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::Upload, "dnrt.tiles"});
           std::memcpy(tiles.mapped(), masks.data(), tileBytes);
+          lastTileSlot_ = slot;
+          lastTileCount_ = masks.size();
           records = &clusterObjectBuffers_[slot];
           const VkDeviceSize recordBytes = batches * kClusterBatchBytes;
           if (!*records || records->size() < recordBytes)
@@ -451,8 +455,8 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
               .buffer(3, tiles)
               .sampledImage(4, view(d.g.entity), point)
               .update(ctx_, clusterInputs);
-          cull_.bind(cmd);
-          for (std::size_t b = 0; b < batches; ++b) {
+          if (tileCull) cull_.bind(cmd);
+          for (std::size_t b = 0; tileCull && b < batches; ++b) {
             VkDescriptorSet set = pc->frame().descriptors->allocate(cullLayout_);
             gpu::DescriptorWriter w;
             w.sampledImage(0, view(d.g.depth), point);
@@ -465,10 +469,12 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
             vkCmdDispatch(cmd, (grid.tilesX + 7) / 8, (grid.tilesY + 7) / 8, 1);  // local size 8×8, a tile each
           }
           // The masks written here are read by clustered.frag below.
-          VkMemoryBarrier written{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_SHADER_WRITE_BIT,
-                                  VK_ACCESS_SHADER_READ_BIT};
-          vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, 0, 1,
-                               &written, 0, nullptr, 0, nullptr);
+          if (tileCull) {
+            VkMemoryBarrier written{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_SHADER_WRITE_BIT,
+                                    VK_ACCESS_SHADER_READ_BIT};
+            vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, 0,
+                                 1, &written, 0, nullptr, 0, nullptr);
+          }
         }
 
         render::beginRendering(ctx_, cmd, extent, {&color, 1}, nullptr);
@@ -521,6 +527,12 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
         ctx_.cmdEndRendering(cmd);
       });
   bb.put("lighting.hdr", data.hdr);
+}
+
+std::vector<std::uint32_t> Node::lastTileMasks() const {
+  if (lastTileCount_ == 0) return {};
+  const auto* m = reinterpret_cast<const std::uint32_t*>(tileBuffers_[lastTileSlot_].mapped());
+  return std::vector<std::uint32_t>(m, m + lastTileCount_);
 }
 
 }  // namespace bounce::gi::dnrt
