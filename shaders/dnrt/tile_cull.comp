@@ -45,13 +45,16 @@ void main() {
   const ivec2 p0 = tile * (1 << kDnrtClusterTileShift);
   const ivec2 p1 = min(p0 + (1 << kDnrtClusterTileShift), size);
   float zMin = 1.0, zMax = 0.0;
-  for (int y = p0.y; y < p1.y; ++y)
-    for (int x = p0.x; x < p1.x; ++x) {
-      const float d = texelFetch(gDepth, ivec2(x, y), 0).r;
-      if (d < 1.0) {  // background pixels are discarded by clustered.frag and bound nothing
-        zMin = min(zMin, d);
-        zMax = max(zMax, d);
-      }
+  // 2×2 texels a fetch: textureGather at the corner they share (texels (x, y) … (x + 1, y + 1)); on a
+  // tile with an odd last row or column the clamp repeats an edge texel, which only widens the range.
+  for (int y = p0.y; y < p1.y; y += 2)
+    for (int x = p0.x; x < p1.x; x += 2) {
+      const vec4 d = textureGather(gDepth, vec2(x + 1, y + 1) * pc.invSize, 0);
+      // Background texels (depth 1) are discarded by clustered.frag and bound nothing.
+      const vec4 lo = mix(d, vec4(1.0), greaterThanEqual(d, vec4(1.0)));
+      const vec4 hi = mix(d, vec4(0.0), greaterThanEqual(d, vec4(1.0)));
+      zMin = min(zMin, min(min(lo.x, lo.y), min(lo.z, lo.w)));
+      zMax = max(zMax, max(max(hi.x, hi.y), max(hi.z, hi.w)));
     }
   uint kept = 0u;
   if (zMin <= zMax) {
