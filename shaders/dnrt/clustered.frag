@@ -48,7 +48,7 @@ layout(push_constant) uniform Push {
 layout(location = 0) out vec4 outRadiance;
 
 // Object i reaches the receiver r (world position, w = 1) with normal nr: dnrt.frag's discards
-// (s(r) > 0, r not at the centre, (n_o·n_r)₊ > 0, not the object's own pixel).
+// (s(r) > 0, r not at the centre, (n_o·n_r)₊ > 0, not the object's own pixel). kSingle's test.
 bool dnrtClusterReaches(int i, vec4 r, vec3 nr, uint entity) {
   vec3 q = vec3(dot(objects[i].worldToQ[0], r), dot(objects[i].worldToQ[1], r), dot(objects[i].worldToQ[2], r));
   float s = dnrtFalloff(q, objects[i].extents.x, objects[i].extents.y);
@@ -59,13 +59,35 @@ bool dnrtClusterReaches(int i, vec4 r, vec3 nr, uint entity) {
          !(self != 0u && entity == self);
 }
 
-// Object i's term without ρ_r: (n_o·n_r)₊ s(r) Σ_j c_j M_j(r) (Eq. 16), the sum one trilinear tap.
-vec3 dnrtClusterTerm(int i, vec4 r, vec3 nr) {
+// The loops' first test: a superset of dnrtClusterReaches without its divisions, square root and
+// two of its loads (inner, R), since in the loop each record field is a per-lane load (session 9,
+// README "DNRT and probes cost, session 9"). s(r) > 0 needs u = max|q| < outer (dnrtFalloff is 0
+// from there on). (n_o·n_r)₊ > 0 needs dot(toO/len, nr) > 0; dot(toO, nr) differs from len times
+// that by a few float roundings of Σ|toO_c||n_c| ≤ Σ|toO_c| (|n| = 1), far under the 10⁻⁵·Σ|toO_c|
+// allowed here, so no object the exact test keeps is dropped. The exact conditions are then the
+// guard of the second loop's sum (dnrtClusterTerm, the same arithmetic as dnrtClusterReaches), so
+// the objects summed, their order and the image are those of the exact test.
+bool dnrtClusterMayReach(int i, vec4 r, vec3 nr, uint entity) {
+  vec3 q = vec3(dot(objects[i].worldToQ[0], r), dot(objects[i].worldToQ[1], r), dot(objects[i].worldToQ[2], r));
+  vec3 a = abs(q);
+  vec3 toO = objects[i].centreWorld.xyz - r.xyz;
+  uint self = objects[i].ids.x;
+  return max(a.x, max(a.y, a.z)) < objects[i].extents.y &&
+         dot(toO, nr) > -1e-5 * (abs(toO.x) + abs(toO.y) + abs(toO.z)) && !(self != 0u && entity == self);
+}
+
+// Object i's term without ρ_r: (n_o·n_r)₊ s(r) Σ_j c_j M_j(r) (Eq. 16), the sum one trilinear tap;
+// `exact` is dnrtClusterReaches' s(r), centre and (n_o·n_r)₊ conditions on the same values (the
+// loops' own-pixel test is already exact).
+vec3 dnrtClusterTerm(int i, vec4 r, vec3 nr, out bool exact) {
   vec3 q = vec3(dot(objects[i].worldToQ[0], r), dot(objects[i].worldToQ[1], r), dot(objects[i].worldToQ[2], r));
   vec4 ext = objects[i].extents;
   float s = dnrtFalloff(q, ext.x, ext.y);
-  vec3 toO = objects[i].centreWorld.xyz - r.xyz;
-  float lamb = max(dot(toO / length(toO), nr), 0.0);
+  vec4 centre = objects[i].centreWorld;
+  vec3 toO = centre.xyz - r.xyz;
+  float len = length(toO);
+  float lamb = max(dot(toO / len, nr), 0.0);
+  exact = s > 0.0 && len > 1e-6 * centre.w && lamb > 0.0;
   vec3 uvw = (dnrtGrid(q, ext.x, ext.w) + objects[i].atlas.xyz) * pc.invAtlasSize.xyz;
   return (lamb * s) * texture(combined, uvw).rgb;
 }
@@ -84,27 +106,31 @@ void main() {
   if (kSingle) {  // a specialization constant: the loops below are compiled out, and vice versa
     if (!dnrtClusterReaches(0, r, nr, entity)) discard;
     vec3 albedo = texelFetch(gAlbedo, pixel, 0).rgb;
-    outRadiance = vec4(albedo * dnrtClusterTerm(0, r, nr), 0.0);
+    bool exact;
+    outRadiance = vec4(albedo * dnrtClusterTerm(0, r, nr, exact), 0.0);
     return;
   }
 
-  // 1. The tile's objects that reach r: dnrt.frag's discards, as a bit each.
+  // 1. The tile's objects that may reach r (dnrtClusterMayReach), as a bit each.
   uint live = 0u;
   uint m = mask;
   do {
     int i = max(findLSB(m), 0);
-    if (dnrtClusterReaches(i, r, nr, entity) && m != 0u) live |= 1u << uint(i);
+    if (dnrtClusterMayReach(i, r, nr, entity) && m != 0u) live |= 1u << uint(i);
     m &= m - 1u;
   } while (m != 0u);
   if (live == 0u) discard;
 
-  // 2. Their terms, summed, times ρ_r once.
+  // 2. The terms of those that do reach r (dnrt.frag's discards, exact), summed, times ρ_r once. A
+  // pixel whose may-reach objects all fail here adds 0 where the exact first test discarded it:
+  // the same value in the additive blend.
   vec3 total = vec3(0.0);
   m = live;
   do {
     int i = max(findLSB(m), 0);
-    vec3 term = dnrtClusterTerm(i, r, nr);
-    if (m != 0u) total += term;
+    bool exact;
+    vec3 term = dnrtClusterTerm(i, r, nr, exact);
+    if (m != 0u && exact) total += term;
     m &= m - 1u;
   } while (m != 0u);
   vec3 albedo = texelFetch(gAlbedo, pixel, 0).rgb;

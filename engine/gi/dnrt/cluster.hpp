@@ -7,7 +7,9 @@
 // - Tile lists: per frame, each object's outer cube is projected and the 16×16-pixel tiles its
 //   screen rectangle touches get the object's bit (one uint per tile and batch). Conservative: a
 //   cube reaching behind the eye covers every tile. The shader still tests s(r) > 0 per pixel, so a
-//   tile list is only a superset; it decides what a pixel visits, never what it adds.
+//   tile list is only a superset; it decides what a pixel visits, never what it adds. On the GPU,
+//   shaders/dnrt/tile_cull.comp then clears the objects whose outer cube misses the tile's depth
+//   range (node.cpp, NodeSettings::tileCull), still a superset.
 // - The field atlas: lavapipe (Mesa 22.3) has no descriptor indexing — not even
 //   shaderSampledImageArrayDynamicIndexing (vulkaninfo) — so a shader cannot pick one of N field
 //   textures by a per-pixel index. All fields therefore share one RGBA8 3D texture per slot

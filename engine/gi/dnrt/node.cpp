@@ -4,6 +4,7 @@
 #include <atomic>
 #include <cstring>
 #include <functional>
+#include <optional>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -37,6 +38,12 @@ struct ClusterPush {  // clustered.frag's Push
   std::uint32_t tileBase = 0, tilesX = 0, pad[2] = {0, 0};
 };
 constexpr VkDeviceSize kClusterBatchBytes = kClusterBatch * sizeof(DnrtClusterObject);  // 7680: 256-aligned
+
+struct CullPush {  // tile_cull.comp's Push
+  glm::mat4 invViewProj;
+  glm::vec2 invSize;
+  std::uint32_t tileBase = 0, tilesX = 0, tilesY = 0, pad = 0;
+};
 
 struct CubePush {
   glm::mat4 viewProj;
@@ -96,7 +103,14 @@ Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t fra
                      "dnrt.combine"),
       combinePipelineLayout_(ctx, {combineLayout_.handle()},
                              {VkPushConstantRange{VK_SHADER_STAGE_ALL, 0, sizeof(CombinePush)}},
-                             "dnrt.combine") {
+                             "dnrt.combine"),
+      cullLayout_(ctx, {{0, kSampled}, {1, kStorage}, {2, kUniform}}, "dnrt.cull"),  // depth, masks, records
+      cullPipelineLayout_(ctx, {cullLayout_.handle()}, {VkPushConstantRange{VK_SHADER_STAGE_ALL, 0, sizeof(CullPush)}},
+                          "dnrt.cull") {
+  {
+    gpu::ShaderModule cull(ctx, "dnrt/tile_cull.comp.spv");
+    cull_ = gpu::createComputePipeline(ctx, cullPipelineLayout_, cull, "dnrt.tile-cull");
+  }
   {
     gpu::ShaderModule combine(ctx, "dnrt/combine.comp.spv");
     for (std::uint32_t sh9 = 0; sh9 < 2; ++sh9)
@@ -371,6 +385,7 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
     std::vector<std::optional<rg::Handle<rg::Texture>>> maps, volumes;
     std::optional<rg::Handle<rg::Texture>> atlas;
   };
+  const bool cullsTiles = !cluster.empty() && settings.tileCull;
   const auto& data = graph.addPass<Data>(
       "dnrt",
       [&](rg::Builder& b, Data& d) {
@@ -380,9 +395,10 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
         for (const auto& v : volumes)
           d.volumes.push_back(v ? std::optional(b.read(*v, rg::Usage::SampledFragment)) : std::nullopt);
         if (combinedAtlas) d.atlas = b.read(*combinedAtlas, rg::Usage::SampledFragment);
+        if (cullsTiles) b.read(d.g.depth, rg::Usage::SampledCompute);  // tile_cull.comp
       },
       [this, pc, objects = std::move(objects), cluster = std::move(cluster), clustered = std::move(clustered),
-       modeOf = [mode = settings.mode](const NodeObject& o) { return mode.value_or(o.mode); }](
+       tileCull = settings.tileCull, modeOf = [mode = settings.mode](const NodeObject& o) { return mode.value_or(o.mode); }](
           const Data& d, const rg::PassResources& res, rg::CommandContext& c) {
         VkCommandBuffer cmd = pc->cmd(c);
         gpu::Buffer& buffer = objectBuffer(pc->frame().slot, objects);
@@ -400,6 +416,67 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
         gpu::Image& target = pc->backend->image(res.texture(d.hdr));
         render::Attachment color{target.view(), res.keepsContents(d.hdr)};
         const VkExtent2D extent{target.desc().width, target.desc().height};
+        // Clustered draws (cluster.hpp): this frame's tile masks and records, one draw per 32 objects
+        // below, the masks first cut by each tile's depth range (tile_cull.comp, one dispatch a batch;
+        // before the rendering begins, as a dispatch must be).
+        std::optional<TileGrid> clusterGrid;
+        std::size_t batches = 0;
+        gpu::Buffer* records = nullptr;
+        VkDescriptorSet clusterInputs = VK_NULL_HANDLE;
+        if (!cluster.empty()) {
+          std::vector<glm::mat4> boxes;
+          for (const ClusterItem& item : cluster) boxes.push_back(objects[item.object].data.boxToWorld);
+          const glm::uvec2 resolution(extent.width, extent.height);
+          clusterGrid = tileGrid(resolution);
+          const TileGrid& grid = *clusterGrid;
+          const std::vector<std::uint32_t> masks = binObjects(pc->world->camera.viewProj, resolution, boxes);
+          batches = (cluster.size() + kClusterBatch - 1) / kClusterBatch;
+          const std::size_t slot = pc->frame().slot % tileBuffers_.size();
+          gpu::Buffer& tiles = tileBuffers_[slot];
+          const VkDeviceSize tileBytes = masks.size() * sizeof(std::uint32_t);
+          if (!tiles || tiles.size() < tileBytes)
+            tiles = gpu::Buffer(ctx_, {tileBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::Upload, "dnrt.tiles"});
+          std::memcpy(tiles.mapped(), masks.data(), tileBytes);
+          lastTileSlot_ = slot;
+          lastTileCount_ = masks.size();
+          records = &clusterObjectBuffers_[slot];
+          const VkDeviceSize recordBytes = batches * kClusterBatchBytes;
+          if (!*records || records->size() < recordBytes)
+            *records = gpu::Buffer(ctx_, {recordBytes, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::MemoryUsage::Upload,
+                                          "dnrt.cluster-objects"});
+          std::memset(records->mapped(), 0, recordBytes);
+          for (std::size_t k = 0; k < cluster.size(); ++k) {
+            const DnrtClusterObject rec = clusterObject(fold(objects[cluster[k].object].data), cluster[k].z);
+            std::memcpy(records->mapped() + k * sizeof(DnrtClusterObject), &rec, sizeof rec);
+          }
+          clusterInputs = pc->frame().descriptors->allocate(inputLayout_);
+          gpu::DescriptorWriter writer;
+          render::writeDeferredInputs(writer, d.g, *pc, res, point)
+              .buffer(3, tiles)
+              .sampledImage(4, view(d.g.entity), point)
+              .update(ctx_, clusterInputs);
+          if (tileCull) cull_.bind(cmd);
+          for (std::size_t b = 0; tileCull && b < batches; ++b) {
+            VkDescriptorSet set = pc->frame().descriptors->allocate(cullLayout_);
+            gpu::DescriptorWriter w;
+            w.sampledImage(0, view(d.g.depth), point);
+            w.buffer(1, tiles);
+            w.buffer(2, *records, kUniform, b * kClusterBatchBytes, kClusterBatchBytes);
+            w.update(ctx_, set);
+            cull_.bindSet(cmd, 0, set);
+            cull_.push(cmd, CullPush{pc->world->camera.invViewProj, 1.0f / glm::vec2(resolution),
+                                     std::uint32_t(b * grid.count()), grid.tilesX, grid.tilesY});
+            vkCmdDispatch(cmd, (grid.tilesX + 7) / 8, (grid.tilesY + 7) / 8, 1);  // local size 8×8, a tile each
+          }
+          // The masks written here are read by clustered.frag below.
+          if (tileCull) {
+            VkMemoryBarrier written{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_SHADER_WRITE_BIT,
+                                    VK_ACCESS_SHADER_READ_BIT};
+            vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, 0,
+                                 1, &written, 0, nullptr, 0, nullptr);
+          }
+        }
+
         render::beginRendering(ctx_, cmd, extent, {&color, 1}, nullptr);
         gpu::TimestampPool* ts = pc->frame().timestamps.get();
         const gpu::Pipeline* bound = nullptr;
@@ -426,35 +503,6 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
           if (ts) ts->end(cmd);
         }
         if (!cluster.empty()) {
-          // Clustered draws (cluster.hpp): this frame's tile masks and records, one draw per 32 objects.
-          std::vector<glm::mat4> boxes;
-          for (const ClusterItem& item : cluster) boxes.push_back(objects[item.object].data.boxToWorld);
-          const glm::uvec2 resolution(extent.width, extent.height);
-          const TileGrid grid = tileGrid(resolution);
-          const std::vector<std::uint32_t> masks = binObjects(pc->world->camera.viewProj, resolution, boxes);
-          const std::size_t batches = (cluster.size() + kClusterBatch - 1) / kClusterBatch;
-          const std::size_t slot = pc->frame().slot % tileBuffers_.size();
-          gpu::Buffer& tiles = tileBuffers_[slot];
-          const VkDeviceSize tileBytes = masks.size() * sizeof(std::uint32_t);
-          if (!tiles || tiles.size() < tileBytes)
-            tiles = gpu::Buffer(ctx_, {tileBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::Upload, "dnrt.tiles"});
-          std::memcpy(tiles.mapped(), masks.data(), tileBytes);
-          gpu::Buffer& records = clusterObjectBuffers_[slot];
-          const VkDeviceSize recordBytes = batches * kClusterBatchBytes;
-          if (!records || records.size() < recordBytes)
-            records = gpu::Buffer(ctx_, {recordBytes, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::MemoryUsage::Upload,
-                                         "dnrt.cluster-objects"});
-          std::memset(records.mapped(), 0, recordBytes);
-          for (std::size_t k = 0; k < cluster.size(); ++k) {
-            const DnrtClusterObject rec = clusterObject(fold(objects[cluster[k].object].data), cluster[k].z);
-            std::memcpy(records.mapped() + k * sizeof(DnrtClusterObject), &rec, sizeof rec);
-          }
-          VkDescriptorSet clusterInputs = pc->frame().descriptors->allocate(inputLayout_);
-          gpu::DescriptorWriter writer;
-          render::writeDeferredInputs(writer, d.g, *pc, res, point)
-              .buffer(3, tiles)
-              .sampledImage(4, view(d.g.entity), point)
-              .update(ctx_, clusterInputs);
           const glm::vec4 invAtlas(1.0f / glm::vec3(pc->backend->image(res.texture(*d.atlas)).desc().width,
                                                     pc->backend->image(res.texture(*d.atlas)).desc().height,
                                                     pc->backend->image(res.texture(*d.atlas)).desc().depth),
@@ -468,17 +516,23 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
             p.bindSet(cmd, 1, clusterInputs);
             VkDescriptorSet set = pc->frame().descriptors->allocate(clusterLayout_);
             gpu::DescriptorWriter w;
-            w.buffer(0, records, kUniform, b * kClusterBatchBytes, kClusterBatchBytes);
+            w.buffer(0, *records, kUniform, b * kClusterBatchBytes, kClusterBatchBytes);
             w.sampledImage(1, view(*d.atlas), linear);
             w.update(ctx_, set);
             p.bindSet(cmd, 2, set);
-            p.push(cmd, ClusterPush{invAtlas, std::uint32_t(b * grid.count()), grid.tilesX});
+            p.push(cmd, ClusterPush{invAtlas, std::uint32_t(b * clusterGrid->count()), clusterGrid->tilesX});
             vkCmdDraw(cmd, 3, 1, 0, 0);
           }
         }
         ctx_.cmdEndRendering(cmd);
       });
   bb.put("lighting.hdr", data.hdr);
+}
+
+std::vector<std::uint32_t> Node::lastTileMasks() const {
+  if (lastTileCount_ == 0) return {};
+  const auto* m = reinterpret_cast<const std::uint32_t*>(tileBuffers_[lastTileSlot_].mapped());
+  return std::vector<std::uint32_t>(m, m + lastTileCount_);
 }
 
 }  // namespace bounce::gi::dnrt

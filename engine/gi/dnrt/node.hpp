@@ -68,6 +68,9 @@ struct NodeObject {
 struct NodeSettings {
   std::optional<Mode> mode;  // every object in this mode, whatever NodeObject::mode says (key M)
   std::uint32_t intrusionResolution = 128;  // texels per cube face
+  // Clustered mode: cut each tile's mask by its pixels' depth range on the GPU (tile_cull.comp)
+  // before the draw. Off: the CPU's screen-hull masks as they are (same image; tests compare them).
+  bool tileCull = true;
 };
 
 // View-projection of cube face `face` (0..5: +X, −X, +Y, −Y, +Z, −Z) seen from `origin`, 90° square,
@@ -82,6 +85,11 @@ class Node {
   // DESIGN.md asks) and puts the new "lighting.hdr" version on the blackboard.
   void addTo(rg::RenderGraph& graph, const render::PassContext& pc, std::vector<NodeObject> objects,
              NodeSettings settings = {});
+
+  // The tile masks the last clustered draw read (after tile_cull.comp when on; batch b's mask of tile
+  // (tx, ty) at b·tiles + ty·tilesX + tx, as binObjects), read back once its frame has completed.
+  // Empty before a clustered draw. For tests.
+  std::vector<std::uint32_t> lastTileMasks() const;
 
  private:
   // A shader variant: specialization constants of dnrt.vert/.frag (one pipeline each, made on first use).
@@ -123,6 +131,11 @@ class Node {
   gpu::DescriptorSetLayout combineLayout_;
   gpu::PipelineLayout combinePipelineLayout_;
   std::array<gpu::Pipeline, 2> combine_;
+  // tile_cull.comp: the clustered draw's tile masks cut by each tile's depth range (one dispatch a batch).
+  gpu::DescriptorSetLayout cullLayout_;
+  gpu::PipelineLayout cullPipelineLayout_;
+  gpu::Pipeline cull_;
+  std::size_t lastTileSlot_ = 0, lastTileCount_ = 0;  // lastTileMasks: the buffer and its masks
 };
 
 }  // namespace bounce::gi::dnrt

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -408,6 +409,65 @@ TEST(DnrtGpu, ClusteredModeDrawsThePerObjectImage) {
   }
 }
 
+
+// Clustered mode's tile cull (tile_cull.comp): each tile's CPU screen-hull mask cut by the depth range of
+// the tile's pixels. It may only narrow which objects a pixel visits, never what a pixel adds
+// (clustered.frag tests every pixel exactly), so the image is the uncut one bit for bit; the cut masks
+// are subsets of the CPU's, and on this level (camera above the floor, so each outer cube's screen hull
+// reaches beyond the cube's footprint on the floor) they are strictly smaller.
+TEST(DnrtGpu, TileCullKeepsTheClusteredImageAndOnlyClearsMaskBits) {
+  gpu::Context& ctx = gpu::testkit::sharedContext();
+  const fs::path levelPath = fs::path(BOUNCE_SOURCE_DIR) / "tests/data/dnrt/two-boxes.json";
+  game::Session session(ctx, game::loadLevelWithEffects(levelPath, std::nullopt));
+  session.update(0.0);
+  ref::ReferenceAssets assets;
+  assets.load(session.registry(), fs::path(BOUNCE_TEST_OUT) / "dnrt" / "cooked");
+  const auto frames = gpu::FrameRing::kDefaultFramesInFlight;
+  Runtime dnrt(ctx, session.renderer().pipelines(), session.registry(), assets,
+               fs::path(BOUNCE_TEST_OUT) / "dnrt" / "tile-cull-cache", frames, session.level().background);
+  session.renderer().setNode("dnrt", dnrt.node());
+  renderOnce(session, ctx);
+  const std::vector<NodeObject> all = dnrt.objectsFor(session.world());
+  ASSERT_EQ(all.size(), 2u);
+  Node node(ctx, session.renderer().pipelines(), frames);
+  const auto renderWith = [&](const std::vector<NodeObject>& objects, bool cull) {
+    session.renderer().setNode("dnrt", [&, objects, cull](rg::RenderGraph& graph, render::PassContext& pc) {
+      NodeSettings settings{Mode::Clustered};
+      settings.tileCull = cull;
+      node.addTo(graph, pc, objects, settings);
+    });
+    Frame f = renderOnce(session, ctx);  // waits for the frame: its tile masks are final
+    return std::make_pair(f, node.lastTileMasks());
+  };
+  // Both boxes (one batch, the loops), box A alone (kSingle) and 17 copies of both (two batches).
+  std::vector<std::vector<NodeObject>> sets = {all, {all[0]}, {}};
+  for (int k = 0; k < 17; ++k)
+    for (const NodeObject& o : all) {
+      sets.back().push_back(o);
+      sets.back().back().name = o.name + "-" + std::to_string(k);
+    }
+  for (const std::vector<NodeObject>& objects : sets) {
+    const auto [uncut, uncutMasks] = renderWith(objects, false);
+    const auto [cut, cutMasks] = renderWith(objects, true);
+    ASSERT_EQ(uncutMasks.size(), cutMasks.size());
+    ASSERT_FALSE(cutMasks.empty());
+    EXPECT_EQ(cut.passes, uncut.passes);
+    ASSERT_EQ(cut.rgb.size(), uncut.rgb.size());
+    std::size_t differing = 0;
+    for (std::size_t i = 0; i < cut.rgb.size(); ++i) differing += cut.rgb[i] != uncut.rgb[i] ? 1 : 0;
+    EXPECT_EQ(differing, 0u) << objects.size() << " objects: the cull changed the image";
+    int bitsBefore = 0, bitsAfter = 0, added = 0;
+    for (std::size_t t = 0; t < cutMasks.size(); ++t) {
+      bitsBefore += std::popcount(uncutMasks[t]);
+      bitsAfter += std::popcount(cutMasks[t]);
+      added += std::popcount(cutMasks[t] & ~uncutMasks[t]);
+    }
+    std::printf("tile cull, %zu objects: %d of %d tile-object bits kept\n", objects.size(), bitsAfter, bitsBefore);
+    EXPECT_EQ(added, 0) << "a cut mask sets a bit the CPU's screen hull did not";
+    EXPECT_GT(bitsAfter, 0);
+    EXPECT_LT(bitsAfter, bitsBefore) << "the depth ranges cut nothing";
+  }
+}
 
 // The c_j the runtime packs each frame (update.cpp) are the incident-light service's SH at the object's
 // bounding sphere, with the lights' part Hanning-windowed for a field baked with App. B.2's improved
