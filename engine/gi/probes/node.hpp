@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "engine/gi/probes/probe_volume.hpp"
+#include "engine/gi/probes/relight_pass.hpp"
 #include "engine/gi/technique.hpp"
 #include "engine/gpu/buffer.hpp"
 #include "engine/gpu/descriptors.hpp"
@@ -49,6 +50,12 @@ class ProbeNode final : public TechniqueRuntime {
     return [this](rg::RenderGraph& graph, render::PassContext& pc) { addPasses(graph, &pc); };
   }
   const ProbeVolume& volume() const { return volume_; }
+  // Level `"probes": {"relight": true}`: pass `probes.relight` (relight_pass.hpp) rewrites the
+  // uniform block each frame before this pass reads it. Needs the block path (shInUbo); false (and
+  // the baked probes stay) when the volume does not fit it. `staticScene` (not owned) must outlive
+  // the node: the static geometry V_static is traced against.
+  bool enableRelight(gpu::Context& ctx, RelightData data, const ref::SceneBvh& staticScene);
+  RelightPass* relight() { return relight_.get(); }
   // The volume's device images (uploadSh, uploadMoments), for Services::probeSh / probeMoments.
   const gpu::Image& shImage() const { return *sh_; }
   const gpu::Image& momentsImage() const { return *moments_; }
@@ -69,6 +76,10 @@ class ProbeNode final : public TechniqueRuntime {
   gpu::DescriptorSetLayout setLayout_;
   gpu::PipelineLayout layout_;
   gpu::Pipeline pipeline_;
+  // Pass "probes.relight" (defined in relight_pass.cpp): reads "shadow.atlas" when there is one.
+  void addRelightPass(rg::RenderGraph& graph, const render::PassContext* pc);
+  std::unique_ptr<RelightPass> relight_;
+  const ref::SceneBvh* relightScene_ = nullptr;
 };
 
 }  // namespace bounce::gi::probes

@@ -5,6 +5,9 @@
 #include "engine/core/paths.hpp"
 #include "engine/gi/probes/bake.hpp"
 #include "engine/gi/probes/node.hpp"
+#include "engine/gi/probes/relight.hpp"
+#include "engine/gi/incident/session_light.hpp"
+#include "engine/core/log.hpp"
 
 namespace bounce::gi::probes {
 namespace {
@@ -57,6 +60,18 @@ class ProbesTechnique final : public Technique {
     sc.services.probeVolume = &node->volume();
     sc.services.probeSh = &node->shImage();
     sc.services.probeMoments = &node->momentsImage();
+    if (sc.level.probes.relight) {
+      // The relight bake (cached under its own key next to the volume) and the static scene's BVH
+      // the session already builds for the incident-light service (V_static is traced against it).
+      // Techniques that read the probes on the CPU (DNRT's c_j through incident::ProbeSource) keep
+      // the baked SH.
+      const BakeInput input = prepare(sc.level, sc.cookCache, settingsFrom(sc.level));
+      RelightData data = loadOrBakeRelight(input, node->volume().grid, cacheFolder());
+      const ref::SceneBvh& bvh = incident::sessionLight(sc).lightVisibility().bvh();
+      if (!node->enableRelight(sc.ctx, std::move(data), bvh))
+        log::warn(sc.level.source.string() + ": /probes/relight: the volume does not fit the probes' uniform block; "
+                  "the baked probes are used");
+    }
     return node;
   }
 
