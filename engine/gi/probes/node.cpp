@@ -163,6 +163,8 @@ double packedShIrradianceError(const ProbeVolume& v) {
   return worst;
 }
 
+std::vector<std::uint32_t> packedShWords(const ProbeVolume& v) { return shPackedWords(v); }
+
 // SH texels (t + shTexels·x, row).
 std::unique_ptr<gpu::Image> uploadSh(gpu::Context& ctx, const ProbeVolume& v) {
   auto image = std::make_unique<gpu::Image>(ctx, probeImageDesc(ctx, v.grid, shTexels(v), VK_FORMAT_R32G32B32A32_SFLOAT, "probes.sh"));

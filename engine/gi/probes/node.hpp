@@ -33,6 +33,9 @@ ProbePush probePush(const ProbeVolume& v, float flag);
 // L_1/L_2 fractions of L_0 make at any receiver (node.cpp shPackedWords; derivation there): the
 // probes pass's output moves by at most ρ/π·ao times it plus the fp16 roundings.
 double packedShIrradianceError(const ProbeVolume& v);
+// The uniform block's words (node.cpp shPackedWords; empty when the volume does not fit halves): what
+// the probes pass reads, and what relight.comp's pack stage writes for baked + ΔSH (tests compare).
+std::vector<std::uint32_t> packedShWords(const ProbeVolume& v);
 
 class ProbeNode final : public TechniqueRuntime {
  public:

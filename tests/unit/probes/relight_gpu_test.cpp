@@ -1,0 +1,224 @@
+// Pass `probes.relight` (shaders/probes/relight.comp) on the device against its C++ reference
+// (engine/gi/probes/relight.cpp, which compiles the pass's own relight.glsl): a closed white box
+// (ρ = 0.5) under a point light, surfels and probes baked as a level's would be, V_now from the
+// pass's test buffer instead of a shadow atlas (so the shadow is exactly the one the test sets).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "engine/gi/probes/node.hpp"
+#include "engine/gi/probes/relight.hpp"
+#include "engine/gi/probes/relight_pass.hpp"
+#include "engine/gpu/commands.hpp"
+#include "engine/gpu/image.hpp"
+#include "engine/gpu/testing.hpp"
+#include "tests/unit/ref/test_scenes.hpp"
+
+using namespace bounce;
+using namespace bounce::gi::probes;
+
+namespace {
+
+constexpr float kRho = 0.5f;
+// Float sums of 256 rays in another order than the reference's: 1e-5 of the largest |ΔSH|.
+constexpr float kRelTol = 1e-5f;
+// An increment's flux may exceed ρ × the last by the lookup's error (the surfel's ΔE comes from 8
+// interpolated order-3 probes, not from the surfels themselves): 2 %.
+constexpr double kProjectionSlack = 1.02;
+
+struct Fixture {
+  gpu::Context& ctx = gpu::testkit::sharedContext();
+  ProbeVolume volume;
+  RelightData data;
+  render::LightGpu light{};
+  std::vector<float> vStatic;
+  gpu::Buffer packed, lights, matrices;
+  gpu::Image atlas;
+  gpu::SamplerCache samplers{ctx};
+  VkSampler compare = VK_NULL_HANDLE;
+  gpu::DescriptorAllocator descriptors{ctx, "relight.test"};
+  std::unique_ptr<ref::SceneBvh> bvh;
+
+  Fixture() {
+    ref::SceneDesc s;
+    s.meshes = ref::test::insideOfCube(0.5f, 0);
+    s.materials = {{glm::vec3(kRho), -1, glm::vec3(0.0f), -1}};
+    bvh = std::make_unique<ref::SceneBvh>(std::move(s));
+    const ProbeGrid grid = gridOverBounds(glm::vec3(-0.5f), glm::vec3(0.5f), 0.25f);
+    ProbeSettings settings;
+    settings.rays = 256;
+    settings.bounces = 1;
+    volume = bakeProbes(*bvh, grid, settings, nullptr, "");
+    data = bakeRelight(*bvh, grid, settings, 1024, "");
+    light.positionType = glm::vec4(0.0f, 0.4f, 0.0f, 1.0f);  // point
+    light.radiance = glm::vec4(0.2f, 0.2f, 0.2f, 0.0f);
+    light.shadow = glm::vec4(-1.0f, 0.0f, 0.0f, 0.0f);
+    vStatic = staticVisibility(*bvh, data.surfels, {&light, 1});
+    const std::vector<std::uint32_t> words = packedShWords(volume);
+    packed = gpu::Buffer(ctx, {64 * 1024, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
+                                              VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                               gpu::MemoryUsage::GpuOnly, "relight.test.packed"});
+    gpu::upload(ctx, packed, {reinterpret_cast<const std::uint8_t*>(words.data()), words.size() * 4});
+    lights = gpu::Buffer(ctx, {render::kMaxLights * sizeof(render::LightGpu), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+                               gpu::MemoryUsage::Upload, "relight.test.lights"});
+    std::memset(lights.mapped(), 0, lights.size());
+    std::memcpy(lights.mapped(), &light, sizeof light);
+    matrices = gpu::Buffer(ctx, {render::kMaxShadowLayers * sizeof(glm::mat4), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+                                 gpu::MemoryUsage::Upload, "relight.test.matrices"});
+    std::memset(matrices.mapped(), 0, matrices.size());
+    gpu::ImageDesc d;
+    d.format = VK_FORMAT_D32_SFLOAT;
+    d.layers = 2;
+    d.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    d.name = "relight.test.atlas";
+    atlas = gpu::Image(ctx, d);
+    const float texels[2] = {1.0f, 1.0f};
+    gpu::upload(ctx, atlas, {reinterpret_cast<const std::uint8_t*>(texels), sizeof texels});
+    gpu::SamplerDesc sd;
+    sd.compare = true;
+    sd.mipmap = VK_SAMPLER_MIPMAP_MODE_NEAREST;
+    compare = samplers.get(sd);
+  }
+
+  void run(RelightPass& pass, int iterations, bool pack) {
+    gpu::submitAndWait(ctx, [&](VkCommandBuffer cmd) {
+      pass.record(cmd, descriptors, lights, 1, matrices, atlas.view(), compare, false, iterations, pack);
+    });
+  }
+  std::vector<glm::vec3> delta(const RelightPass& pass) {
+    const auto bytes = gpu::readback(ctx, pass.delta());
+    std::vector<glm::vec3> out(volume.grid.probeCount() * 9);
+    for (std::size_t i = 0; i < out.size(); ++i) {
+      glm::vec4 v;
+      std::memcpy(&v, bytes.data() + 16 * i, 16);
+      out[i] = glm::vec3(v);
+    }
+    return out;
+  }
+  std::vector<glm::vec3> radiance(const RelightPass& pass) {
+    const auto bytes = gpu::readback(ctx, pass.surfelRadiance());
+    std::vector<glm::vec3> out(data.surfels.size());
+    for (std::size_t i = 0; i < out.size(); ++i) {
+      glm::vec4 v;
+      std::memcpy(&v, bytes.data() + 16 * i, 16);
+      out[i] = glm::vec3(v);
+    }
+    return out;
+  }
+  // The lit floor surfel nearest below the light (V_static = 1, facing it).
+  std::size_t floorSurfelUnderLight() const {
+    std::size_t best = 0;
+    float bestD = 1e9f;
+    for (std::size_t s = 0; s < data.surfels.size(); ++s) {
+      const Surfel& sf = data.surfels[s];
+      if (sf.normal.y < 0.99f || vStatic[s] != 1.0f) continue;
+      const float d = glm::length(glm::vec2(sf.position.x, sf.position.z));
+      if (d < bestD) bestD = d, best = s;
+    }
+    return best;
+  }
+};
+
+float maxAbs(const std::vector<glm::vec3>& v) {
+  float m = 0.0f;
+  for (const glm::vec3& x : v) m = std::max({m, std::abs(x.x), std::abs(x.y), std::abs(x.z)});
+  return m;
+}
+
+}  // namespace
+
+TEST(ProbeRelightGpu, WithoutADynamicShadowTheProbesStayTheBakedBitForBit) {
+  Fixture f;
+  RelightPass pass(f.ctx, f.volume, f.data, f.packed);
+  pass.setLights({&f.light, 1}, *f.bvh);
+  pass.setTestVisibility(f.vStatic);  // V_now = V_static: nothing dynamic in the light
+  f.run(pass, 4, true);
+  // min(V, V) − V = 0 exactly and the feedback of a zero ΔSH is 0: ΔSH is exactly zero.
+  EXPECT_EQ(maxAbs(f.delta(pass)), 0.0f);
+  // And the pack stage rewrites the block as node.cpp packed the baked volume.
+  const std::vector<std::uint32_t> want = packedShWords(f.volume);
+  const auto bytes = gpu::readback(f.ctx, f.packed);
+  std::size_t differ = 0;
+  for (std::size_t i = 0; i < want.size(); ++i) {
+    std::uint32_t got;
+    std::memcpy(&got, bytes.data() + 4 * i, 4);
+    differ += got != want[i];
+  }
+  EXPECT_EQ(differ, 0u) << "of " << want.size() << " words";
+}
+
+TEST(ProbeRelightGpu, AShadowedSurfelLowersExactlyTheProbesWhoseRaysHitIt) {
+  Fixture f;
+  RelightPass pass(f.ctx, f.volume, f.data, f.packed);
+  pass.setLights({&f.light, 1}, *f.bvh);
+  const std::size_t k = f.floorSurfelUnderLight();
+  std::vector<float> vNow = f.vStatic;
+  vNow[k] = 0.0f;  // a dynamic caster's shadow on surfel k alone
+  pass.setTestVisibility(vNow);
+  f.run(pass, 1, false);  // one iteration: the direct loss alone (ΔSH starts at 0)
+  const std::vector<glm::vec3> got = f.delta(pass);
+  std::vector<glm::vec3> want;
+  relightReference(f.data, f.volume, {&f.light, 1}, vNow, f.vStatic, 1, want);
+  const std::size_t probes = f.volume.grid.probeCount();
+  std::size_t hitProbes = 0;
+  const float scale = maxAbs(want);
+  ASSERT_GT(scale, 0.0f);
+  for (std::size_t p = 0; p < probes; ++p) {
+    const bool hits = f.volume.valid[p] != 0u &&
+                      std::find(f.data.hit.begin() + std::ptrdiff_t(p * f.data.rays),
+                                f.data.hit.begin() + std::ptrdiff_t((p + 1) * f.data.rays), std::uint32_t(k)) !=
+                          f.data.hit.begin() + std::ptrdiff_t((p + 1) * f.data.rays);
+    hitProbes += hits;
+    if (hits) {
+      EXPECT_LT(got[p * 9].x, 0.0f) << "probe " << p << " sees the shadowed surfel: its L_0 drops";
+    } else {
+      for (int i = 0; i < 9; ++i) EXPECT_EQ(got[p * 9 + std::size_t(i)], glm::vec3(0.0f)) << "probe " << p;
+    }
+    for (int i = 0; i < 9; ++i)
+      for (int c = 0; c < 3; ++c)
+        EXPECT_NEAR(got[p * 9 + std::size_t(i)][c], want[p * 9 + std::size_t(i)][c], kRelTol * scale);
+  }
+  EXPECT_GT(hitProbes, 0u);
+  EXPECT_LT(hitProbes, probes);
+}
+
+TEST(ProbeRelightGpu, IterationsMatchTheReferenceAndEachAddsAtMostRhoTimesTheLast) {
+  Fixture f;
+  RelightPass pass(f.ctx, f.volume, f.data, f.packed);
+  pass.setLights({&f.light, 1}, *f.bvh);
+  std::vector<float> vNow = f.vStatic;
+  for (std::size_t s = 0; s < f.data.surfels.size(); ++s)
+    if (f.data.surfels[s].normal.y > 0.99f && f.data.surfels[s].position.x > 0.0f) vNow[s] = 0.0f;  // half the floor
+  pass.setTestVisibility(vNow);
+  // The surfels' outgoing ΔL after iteration k: each iteration adds the room's next bounce of the
+  // loss, so the increments δ_k = ΔL_k − ΔL_{k−1} are the Neumann series' terms; their flux
+  // Σ_s area·|δ_k(s)| must shrink at least by ρ_max per iteration (energy conservation), up to
+  // the probes' interpolation and SH truncation: kProjectionSlack (measured: the ratios are
+  // 0.492, 0.503, 0.499, 0.4995, 0.499 for ρ = 0.5, i.e. at most 1.006 ρ).
+  std::vector<glm::vec3> prev(f.data.surfels.size(), glm::vec3(0.0f));
+  std::vector<double> flux;
+  for (int it = 1; it <= 6; ++it) {
+    f.run(pass, 1, false);
+    const std::vector<glm::vec3> l = f.radiance(pass);
+    double sum = 0.0;
+    for (std::size_t s = 0; s < l.size(); ++s)
+      sum += double(f.data.surfels[s].area) * (std::abs(l[s].x - prev[s].x) + std::abs(l[s].y - prev[s].y) +
+                                               std::abs(l[s].z - prev[s].z));
+    flux.push_back(sum);
+    prev = l;
+    if (it == 3) {  // the device after 3 iterations = the C++ reference's 3
+      std::vector<glm::vec3> want;
+      relightReference(f.data, f.volume, {&f.light, 1}, vNow, f.vStatic, 3, want);
+      const std::vector<glm::vec3> got = f.delta(pass);
+      const float scale = maxAbs(want);
+      for (std::size_t i = 0; i < got.size(); ++i)
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(got[i][c], want[i][c], 1e-4f * scale) << "coefficient " << i;
+    }
+  }
+  for (std::size_t k = 1; k < flux.size(); ++k) {
+    std::printf("iteration %zu: flux of the increment %.6g, ratio to the last %.4f\n", k + 1, flux[k], flux[k] / flux[k - 1]);
+    EXPECT_LE(flux[k], kProjectionSlack * kRho * flux[k - 1]) << "iteration " << k + 1;
+  }
+}
