@@ -241,6 +241,7 @@ bool ProbeNode::enableRelight(gpu::Context& ctx, RelightData data, const ref::Sc
   if (!shInUbo_) return false;
   relight_ = std::make_unique<RelightPass>(ctx, volume_, std::move(data), shUbo_);
   relightScene_ = &staticScene;
+  relightBaked_ = volume_.sh;
   return true;
 }
 

@@ -83,6 +83,7 @@ class ProbeNode final : public TechniqueRuntime {
   void addRelightPass(rg::RenderGraph& graph, const render::PassContext* pc);
   std::unique_ptr<RelightPass> relight_;
   const ref::SceneBvh* relightScene_ = nullptr;
+  std::vector<glm::vec3> relightBaked_;  // volume_.sh as baked (volume_.sh gets baked + ΔSH, relight_pass.cpp)
 };
 
 }  // namespace bounce::gi::probes

@@ -42,6 +42,12 @@ inline constexpr std::uint32_t kRelightMiss = 0xffffffffu;
 // Iterations of the room's bounce per frame; ΔSH persists between frames, so the series of bounces
 // goes on over frames (README "Probes relit each frame": convergence).
 inline constexpr int kRelightIterationsPerFrame = 2;
+// true: the CPU readers of the probes (incident::ProbeSource: DNRT's c_j, SL's pass 1, RTF's proxies)
+// read baked + ΔSH, read back from the frame slot's last run (a frames-in-flight lag, no stall). OFF:
+// measured (README "Probes relit each frame", Results) it moved cornell-1's DNRT rows by −0.003…0 and
+// SL's by ±0.0001, but made most of cornell-5's DNRT and RTF rows slightly worse (effect +0.0001…+0.0005),
+// so the CPU readers keep the baked SH.
+inline constexpr bool kRelightCpuReaders = false;
 
 struct Surfel {
   glm::vec3 position{0.0f};  // world, metres

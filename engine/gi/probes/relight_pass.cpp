@@ -113,7 +113,7 @@ void RelightPass::reset() {
 
 void RelightPass::record(VkCommandBuffer cmd, gpu::DescriptorAllocator& descriptors, const gpu::Buffer& lights,
                          std::uint32_t lightCount, const gpu::Buffer& shadowMatrices, VkImageView atlas,
-                         VkSampler compare, bool shadowsOn, int iterations, bool pack) {
+                         VkSampler compare, bool shadowsOn, int iterations, bool pack, int readbackSlot) {
   VkDescriptorSet set = descriptors.allocate(setLayout_);
   gpu::DescriptorWriter()
       .buffer(0, surfels_)
@@ -159,8 +159,30 @@ void RelightPass::record(VkCommandBuffer cmd, gpu::DescriptorAllocator& descript
   pipeline_.push(cmd, push_);
   vkCmdDispatch(cmd, std::max(probeGroups, 1u), 1, 1);
   computeBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
-                 VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
-                 VK_ACCESS_UNIFORM_READ_BIT | VK_ACCESS_SHADER_READ_BIT);
+                 VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                 VK_ACCESS_UNIFORM_READ_BIT | VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT);
+  if (readbackSlot < 0) return;
+  // ΔSH for the CPU readers (DNRT's c_j, SL's pass 1, RTF's proxies through incident::ProbeSource),
+  // read back when this slot comes round again: no wait on the GPU.
+  const auto slot = std::size_t(readbackSlot);
+  if (readback_.size() <= slot) readback_.resize(slot + 1), readbackWritten_.resize(slot + 1, false);
+  if (!readback_[slot])
+    readback_[slot] = gpu::Buffer(ctx_, {delta_.size(), VK_BUFFER_USAGE_TRANSFER_DST_BIT, gpu::MemoryUsage::Readback,
+                                         "probes.relight.readback"});
+  const VkBufferCopy region{0, 0, delta_.size()};
+  vkCmdCopyBuffer(cmd, delta_.handle(), readback_[slot].handle(), 1, &region);
+  computeBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT,
+                 VK_ACCESS_HOST_READ_BIT);
+  readbackWritten_[slot] = true;
+}
+
+bool RelightPass::readDelta(std::uint32_t slot, std::vector<glm::vec3>& out) const {
+  if (slot >= readback_.size() || !readbackWritten_[slot] || !readback_[slot].mapped()) return false;
+  const std::size_t n = data_.probes() * 9;
+  out.resize(n);
+  const auto* v = reinterpret_cast<const glm::vec4*>(readback_[slot].mapped());
+  for (std::size_t i = 0; i < n; ++i) out[i] = glm::vec3(v[i]);
+  return true;
 }
 
 }  // namespace bounce::gi::probes
@@ -181,20 +203,30 @@ void ProbeNode::addRelightPass(rg::RenderGraph& graph, const render::PassContext
   // The CPU part (V_static) runs while the graph is built, as SL's sphere poses do: only when the
   // frame's lights differ from the last frame's.
   if (pc->world) relight_->setLights(pc->world->lights, *relightScene_);
+  // With kRelightCpuReaders (off, relight.hpp) the CPU readers of the volume (incident::ProbeSource:
+  // DNRT's c_j, SL's pass 1, RTF's proxies) get baked + the ΔSH this frame slot computed last time
+  // round (FrameRing::begin has waited for it).
+  const int slot = kRelightCpuReaders && pc->frames ? int(pc->frames->current().slot) : -1;
+  std::vector<glm::vec3> delta;
+  if (slot >= 0 && relight_->readDelta(std::uint32_t(slot), delta)) {
+    const std::size_t coeffs = std::size_t(volume_.coeffs());
+    for (std::size_t p = 0; p < volume_.grid.probeCount(); ++p)
+      for (std::size_t i = 0; i < coeffs; ++i) volume_.sh[p * coeffs + i] = relightBaked_[p * coeffs + i] + delta[p * 9 + i];
+  }
   graph.addPass<Data>(
       "probes.relight",
       [&](rg::Builder& b, Data& d) {
         if (auto atlas = bb.find<rg::Texture>("shadow.atlas")) d.atlas = b.read(*atlas, rg::Usage::SampledCompute);
         b.sideEffect();  // writes the probes' uniform block, no graph resource
       },
-      [this, pc](const Data& d, const rg::PassResources& res, rg::CommandContext& c) {
+      [this, pc, slot](const Data& d, const rg::PassResources& res, rg::CommandContext& c) {
         VkCommandBuffer cmd = pc->cmd(c);
         VkSampler compare = pc->samplers->get({VK_FILTER_LINEAR, VK_SAMPLER_MIPMAP_MODE_NEAREST,
                                                VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, 1.0f, true});
         gpu::Image& atlas = d.atlas ? pc->backend->image(res.texture(*d.atlas)) : *pc->dummyShadowAtlas;
         relight_->record(cmd, *pc->frame().descriptors, *pc->lights, pc->lightCount, *pc->shadowMatrices,
                          pc->frameView(atlas, VK_IMAGE_VIEW_TYPE_2D_ARRAY, 0, atlas.desc().layers), compare,
-                         d.atlas.has_value());
+                         d.atlas.has_value(), kRelightIterationsPerFrame, true, slot);
       });
 }
 

@@ -31,7 +31,11 @@ class RelightPass {
   // the shadow atlas (or a dummy with shadowsOn false).
   void record(VkCommandBuffer cmd, gpu::DescriptorAllocator& descriptors, const gpu::Buffer& lights,
               std::uint32_t lightCount, const gpu::Buffer& shadowMatrices, VkImageView atlas, VkSampler compare,
-              bool shadowsOn, int iterations = kRelightIterationsPerFrame, bool pack = true);
+              bool shadowsOn, int iterations = kRelightIterationsPerFrame, bool pack = true, int readbackSlot = -1);
+  // The ΔSH that the last record() with this readbackSlot copied out (probes × 9, order-3 layout), for
+  // the CPU readers of the probes: false when that slot has not been recorded yet. Call only once
+  // the slot's frame has finished (FrameRing::begin waited for it): no stall, a frames-in-flight lag.
+  bool readDelta(std::uint32_t slot, std::vector<glm::vec3>& out) const;
   // Zero ΔSH (the next frame restarts the series).
   void reset();
 
@@ -55,6 +59,8 @@ class RelightPass {
   std::vector<render::LightGpu> lights_;
   std::uint32_t lightCount_ = 0;
   bool testVis_ = false;
+  std::vector<gpu::Buffer> readback_;  // per frame slot: ΔSH copied after the pack stage
+  std::vector<bool> readbackWritten_;
   gpu::Buffer surfels_, rays_, vStatic_, radiance_, delta_, baked_, valid_, moments_, vTest_;
   gpu::DescriptorSetLayout setLayout_;
   gpu::PipelineLayout layout_;

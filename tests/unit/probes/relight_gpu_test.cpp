@@ -187,6 +187,17 @@ TEST(ProbeRelightGpu, AShadowedSurfelLowersExactlyTheProbesWhoseRaysHitIt) {
   }
   EXPECT_GT(hitProbes, 0u);
   EXPECT_LT(hitProbes, probes);
+
+  // The CPU readers' copy (readbackSlot): after the slot's frame, readDelta gives the device's ΔSH
+  // exactly; a slot never recorded gives nothing.
+  std::vector<glm::vec3> back;
+  EXPECT_FALSE(pass.readDelta(0, back));
+  gpu::submitAndWait(f.ctx, [&](VkCommandBuffer cmd) {
+    pass.record(cmd, f.descriptors, f.lights, 1, f.matrices, f.atlas.view(), f.compare, false, 0, true, 0);
+  });
+  ASSERT_TRUE(pass.readDelta(0, back));
+  EXPECT_EQ(back, got);
+  EXPECT_FALSE(pass.readDelta(1, back));
 }
 
 TEST(ProbeRelightGpu, IterationsMatchTheReferenceAndEachAddsAtMostRhoTimesTheLast) {
