@@ -189,22 +189,33 @@ RelightData deserializeRelight(std::span<const std::uint8_t> bytes, const std::s
   return d;
 }
 
-RelightData loadOrBakeRelight(const BakeInput& input, const ProbeGrid& grid, const std::filesystem::path& probeCache) {
+std::filesystem::path relightCachePath(const BakeInput& input, const ProbeGrid& grid, const std::filesystem::path& probeCache) {
   Hasher h;
   h.str("bounce-probes-relight").u64(kRelightVersion).str(input.key).u64(kRelightSurfels);
   h.pod(grid.origin).pod(grid.spacing).pod(grid.count);
-  const std::filesystem::path file = probeCache / (input.key + "-relight-" + h.hex() + ".bin");
-  if (std::filesystem::exists(file)) {
-    try {
-      return deserializeRelight(readFileBytes(file), file.string());
-    } catch (const InputError& e) {
-      log::warn(std::string("probes.relight: re-baking: ") + e.what());
-    }
+  return probeCache / (input.key + "-relight-" + h.hex() + ".bin");
+}
+
+std::optional<RelightData> loadCachedRelight(const std::filesystem::path& file) {
+  if (!std::filesystem::exists(file)) return std::nullopt;
+  try {
+    return deserializeRelight(readFileBytes(file), file.string());
+  } catch (const InputError& e) {
+    log::warn(std::string("probes.relight: re-baking: ") + e.what());
+    return std::nullopt;
   }
+}
+
+RelightData bakeRelightToCache(const BakeInput& input, const ProbeGrid& grid, const std::filesystem::path& probeCache) {
   const ref::SceneBvh bvh{ref::SceneDesc(input.scene)};
   RelightData d = bakeRelight(bvh, grid, input.settings);
-  writeFileAtomic(file, serializeRelight(d));
+  writeFileAtomic(relightCachePath(input, grid, probeCache), serializeRelight(d));
   return d;
+}
+
+RelightData loadOrBakeRelight(const BakeInput& input, const ProbeGrid& grid, const std::filesystem::path& probeCache) {
+  if (auto cached = loadCachedRelight(relightCachePath(input, grid, probeCache))) return std::move(*cached);
+  return bakeRelightToCache(input, grid, probeCache);
 }
 
 std::vector<float> staticVisibility(const ref::SceneBvh& bvh, std::span<const Surfel> surfels,

@@ -76,7 +76,14 @@ RelightData bakeRelight(const ref::SceneBvh& bvh, const ProbeGrid& grid, const P
 std::vector<std::uint8_t> serializeRelight(const RelightData& data);
 RelightData deserializeRelight(std::span<const std::uint8_t> bytes, const std::string& name);
 
-// <probeCache>/<probe key>-relight-v<kRelightVersion>.bin, baked when missing or corrupt.
+// <probeCache>/<probe key>-relight-<key of the version, surfel count and grid>.bin: a bake job of the
+// probes technique when the level asks for relight (`bounce bake`, kept by `bounce cache --prune`).
+std::filesystem::path relightCachePath(const BakeInput& input, const ProbeGrid& grid, const std::filesystem::path& probeCache);
+// The entry when valid (a corrupt one is a warning and counts as missing).
+std::optional<RelightData> loadCachedRelight(const std::filesystem::path& file);
+// Bakes (ignoring the cache) and writes relightCachePath atomically.
+RelightData bakeRelightToCache(const BakeInput& input, const ProbeGrid& grid, const std::filesystem::path& probeCache);
+// loadCachedRelight, else bakeRelightToCache.
 RelightData loadOrBakeRelight(const BakeInput& input, const ProbeGrid& grid, const std::filesystem::path& probeCache);
 
 // V_static per (surfel, light), surfel-major (s·lights + l): 1 when a ray from the surfel (lifted

@@ -1,5 +1,6 @@
 #include "engine/gi/probes/technique.hpp"
 
+#include <chrono>
 #include <cstdio>
 
 #include "engine/core/paths.hpp"
@@ -49,7 +50,33 @@ class ProbesTechnique final : public Technique {
       return line;
     };
     job.run = [input] { return bakeLine(bakeToCache(*input, cacheFolder(), /*logBake=*/false), input->settings); };
-    return {job};
+    std::vector<BakeJob> jobs{job};
+    if (lc.level.probes.relight) {  // the relight bake (relight.hpp): surfels and each probe's static transport
+      const ProbeGrid grid = gridOf(*input);
+      BakeJob r;
+      r.technique = "probes";
+      r.what = "probes.relight";
+      r.output = relightCachePath(*input, grid, cacheFolder());
+      r.key = r.output.stem().string().substr(input->key.size() + std::string("-relight-").size());
+      r.inputs = input->files;
+      r.cached = [file = r.output]() -> std::optional<std::string> {
+        const std::optional<RelightData> d = loadCachedRelight(file);
+        if (!d) return std::nullopt;
+        return "probes.relight  " + std::to_string(d->surfels.size()) + " surfels, " + std::to_string(d->probes()) +
+               " probes × " + std::to_string(d->rays) + " rays: cached " + file.string();
+      };
+      r.run = [input, grid, file = r.output] {
+        const auto start = std::chrono::steady_clock::now();
+        const RelightData d = bakeRelightToCache(*input, grid, cacheFolder());
+        char line[512];
+        std::snprintf(line, sizeof line, "probes.relight  %zu surfels, %zu probes × %u rays: %.3f s -> %s", d.surfels.size(),
+                      d.probes(), d.rays, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
+                      file.c_str());
+        return std::string(line);
+      };
+      jobs.push_back(std::move(r));
+    }
+    return jobs;
   }
 
   std::string_view cacheKind() const override { return kCacheKind; }
