@@ -206,7 +206,7 @@ void ProbeNode::addRelightPass(rg::RenderGraph& graph, const render::PassContext
   // With kRelightCpuReaders (off, relight.hpp) the CPU readers of the volume (incident::ProbeSource:
   // DNRT's c_j, SL's pass 1, RTF's proxies) get baked + the ΔSH this frame slot computed last time
   // round (FrameRing::begin has waited for it).
-  const int slot = kRelightCpuReaders && pc->frames ? int(pc->frames->current().slot) : -1;
+  int slot = kRelightCpuReaders && pc->frames ? int(pc->frames->current().slot) : -1;
   std::vector<glm::vec3> delta;
   if (slot >= 0 && relight_->readDelta(std::uint32_t(slot), delta)) {
     const std::size_t coeffs = std::size_t(volume_.coeffs());
