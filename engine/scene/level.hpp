@@ -73,6 +73,9 @@ struct ProbesConfig {
   float spacing = 0.1f;
   int order = 3;
   std::uint32_t rays = 256;
+  // Relit each frame (engine/gi/probes/relight.hpp): the dynamic objects' shadows on the static
+  // surfels reach the probes' light. Off by default.
+  bool relight = false;
 };
 
 // The level's "vlm" object (used when effects name `vlm`): the acceleration grid (thesis ch. 4):

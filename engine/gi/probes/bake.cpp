@@ -270,14 +270,18 @@ std::optional<ProbeVolume> loadCached(const std::filesystem::path& file) {
   }
 }
 
-LoadResult bakeToCache(const BakeInput& input, const std::filesystem::path& probeCache, bool logBake) {
-  LoadResult r;
-  r.file = cachePath(input, probeCache);
+ProbeGrid gridOf(const BakeInput& input) {
   glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
   for (const auto& m : input.scene.meshes)
     for (const glm::vec3& p : m.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
   if (lo.x > hi.x) lo = hi = glm::vec3(0.0f);  // no static geometry: one probe at the origin
-  const ProbeGrid grid = gridOverBounds(lo, hi, input.settings.spacing);
+  return gridOverBounds(lo, hi, input.settings.spacing);
+}
+
+LoadResult bakeToCache(const BakeInput& input, const std::filesystem::path& probeCache, bool logBake) {
+  LoadResult r;
+  r.file = cachePath(input, probeCache);
+  const ProbeGrid grid = gridOf(input);
   if (grid.probeCount() > (1u << 22))
     throwInputError(input.source.string(), "/probes/spacing",
                     std::to_string(grid.probeCount()) + " probes over the static bounds", "a larger spacing");

@@ -114,6 +114,9 @@ struct BakeInput {
 };
 BakeInput prepare(const scene::Level& level, const std::filesystem::path& cookCache, const ProbeSettings& settings);
 
+// The grid bakeToCache lays over the static scene's bounds (gridOverBounds at the settings' spacing).
+ProbeGrid gridOf(const BakeInput& input);
+
 // <probeCache>/<key>.bin
 std::filesystem::path cachePath(const BakeInput& input, const std::filesystem::path& probeCache);
 

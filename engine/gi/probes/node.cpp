@@ -163,6 +163,8 @@ double packedShIrradianceError(const ProbeVolume& v) {
   return worst;
 }
 
+std::vector<std::uint32_t> packedShWords(const ProbeVolume& v) { return shPackedWords(v); }
+
 // SH texels (t + shTexels·x, row).
 std::unique_ptr<gpu::Image> uploadSh(gpu::Context& ctx, const ProbeVolume& v) {
   auto image = std::make_unique<gpu::Image>(ctx, probeImageDesc(ctx, v.grid, shTexels(v), VK_FORMAT_R32G32B32A32_SFLOAT, "probes.sh"));
@@ -204,7 +206,9 @@ ProbeNode::ProbeNode(gpu::Context& ctx, const render::Pipelines& pipelines, Prob
     const std::vector<std::uint32_t> words = shPackedWords(volume_);
     const VkDeviceSize bytes = words.size() * sizeof(std::uint32_t);
     shInUbo_ = shInUbo && !words.empty() && bytes <= kShUboBytes && kShUboBytes <= ctx.limits().maxUniformBufferRange;
-    shUbo_ = gpu::Buffer(ctx, {kShUboBytes, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+    // STORAGE: pass `probes.relight` writes it (relight_pass.hpp); TRANSFER_SRC: tests read it back.
+    shUbo_ = gpu::Buffer(ctx, {kShUboBytes, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
+                                                VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                                gpu::MemoryUsage::GpuOnly, "probes.sh.ubo"});
     if (shInUbo_) gpu::upload(ctx, shUbo_, {reinterpret_cast<const std::uint8_t*>(words.data()), std::size_t(bytes)});
   }
@@ -233,7 +237,16 @@ ProbeNode::ProbeNode(gpu::Context& ctx, const render::Pipelines& pipelines, Prob
   pipeline_ = gpu::createGraphicsPipeline(ctx, layout_, d);
 }
 
+bool ProbeNode::enableRelight(gpu::Context& ctx, RelightData data, const ref::SceneBvh& staticScene) {
+  if (!shInUbo_) return false;
+  relight_ = std::make_unique<RelightPass>(ctx, volume_, std::move(data), shUbo_);
+  relightScene_ = &staticScene;
+  relightBaked_ = volume_.sh;
+  return true;
+}
+
 void ProbeNode::addPasses(rg::RenderGraph& graph, const render::PassContext* pc) {
+  if (relight_) addRelightPass(graph, pc);
   struct Data {
     render::DeferredInputs g;
     rg::Handle<rg::Texture> hdr, ao;

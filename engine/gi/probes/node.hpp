@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "engine/gi/probes/probe_volume.hpp"
+#include "engine/gi/probes/relight_pass.hpp"
 #include "engine/gi/technique.hpp"
 #include "engine/gpu/buffer.hpp"
 #include "engine/gpu/descriptors.hpp"
@@ -32,6 +33,9 @@ ProbePush probePush(const ProbeVolume& v, float flag);
 // L_1/L_2 fractions of L_0 make at any receiver (node.cpp shPackedWords; derivation there): the
 // probes pass's output moves by at most ρ/π·ao times it plus the fp16 roundings.
 double packedShIrradianceError(const ProbeVolume& v);
+// The uniform block's words (node.cpp shPackedWords; empty when the volume does not fit halves): what
+// the probes pass reads, and what relight.comp's pack stage writes for baked + ΔSH (tests compare).
+std::vector<std::uint32_t> packedShWords(const ProbeVolume& v);
 
 class ProbeNode final : public TechniqueRuntime {
  public:
@@ -49,6 +53,12 @@ class ProbeNode final : public TechniqueRuntime {
     return [this](rg::RenderGraph& graph, render::PassContext& pc) { addPasses(graph, &pc); };
   }
   const ProbeVolume& volume() const { return volume_; }
+  // Level `"probes": {"relight": true}`: pass `probes.relight` (relight_pass.hpp) rewrites the
+  // uniform block each frame before this pass reads it. Needs the block path (shInUbo); false (and
+  // the baked probes stay) when the volume does not fit it. `staticScene` (not owned) must outlive
+  // the node: the static geometry V_static is traced against.
+  bool enableRelight(gpu::Context& ctx, RelightData data, const ref::SceneBvh& staticScene);
+  RelightPass* relight() { return relight_.get(); }
   // The volume's device images (uploadSh, uploadMoments), for Services::probeSh / probeMoments.
   const gpu::Image& shImage() const { return *sh_; }
   const gpu::Image& momentsImage() const { return *moments_; }
@@ -69,6 +79,11 @@ class ProbeNode final : public TechniqueRuntime {
   gpu::DescriptorSetLayout setLayout_;
   gpu::PipelineLayout layout_;
   gpu::Pipeline pipeline_;
+  // Pass "probes.relight" (defined in relight_pass.cpp): reads "shadow.atlas" when there is one.
+  void addRelightPass(rg::RenderGraph& graph, const render::PassContext* pc);
+  std::unique_ptr<RelightPass> relight_;
+  const ref::SceneBvh* relightScene_ = nullptr;
+  std::vector<glm::vec3> relightBaked_;  // volume_.sh as baked (volume_.sh gets baked + ΔSH, relight_pass.cpp)
 };
 
 }  // namespace bounce::gi::probes

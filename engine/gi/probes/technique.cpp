@@ -1,10 +1,14 @@
 #include "engine/gi/probes/technique.hpp"
 
+#include <chrono>
 #include <cstdio>
 
 #include "engine/core/paths.hpp"
 #include "engine/gi/probes/bake.hpp"
 #include "engine/gi/probes/node.hpp"
+#include "engine/gi/probes/relight.hpp"
+#include "engine/gi/incident/session_light.hpp"
+#include "engine/core/log.hpp"
 
 namespace bounce::gi::probes {
 namespace {
@@ -46,7 +50,33 @@ class ProbesTechnique final : public Technique {
       return line;
     };
     job.run = [input] { return bakeLine(bakeToCache(*input, cacheFolder(), /*logBake=*/false), input->settings); };
-    return {job};
+    std::vector<BakeJob> jobs{job};
+    if (lc.level.probes.relight) {  // the relight bake (relight.hpp): surfels and each probe's static transport
+      const ProbeGrid grid = gridOf(*input);
+      BakeJob r;
+      r.technique = "probes";
+      r.what = "probes.relight";
+      r.output = relightCachePath(*input, grid, cacheFolder());
+      r.key = r.output.stem().string().substr(input->key.size() + std::string("-relight-").size());
+      r.inputs = input->files;
+      r.cached = [file = r.output]() -> std::optional<std::string> {
+        const std::optional<RelightData> d = loadCachedRelight(file);
+        if (!d) return std::nullopt;
+        return "probes.relight  " + std::to_string(d->surfels.size()) + " surfels, " + std::to_string(d->probes()) +
+               " probes × " + std::to_string(d->rays) + " rays: cached " + file.string();
+      };
+      r.run = [input, grid, file = r.output] {
+        const auto start = std::chrono::steady_clock::now();
+        const RelightData d = bakeRelightToCache(*input, grid, cacheFolder());
+        char line[512];
+        std::snprintf(line, sizeof line, "probes.relight  %zu surfels, %zu probes × %u rays: %.3f s -> %s", d.surfels.size(),
+                      d.probes(), d.rays, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
+                      file.c_str());
+        return std::string(line);
+      };
+      jobs.push_back(std::move(r));
+    }
+    return jobs;
   }
 
   std::string_view cacheKind() const override { return kCacheKind; }
@@ -57,6 +87,18 @@ class ProbesTechnique final : public Technique {
     sc.services.probeVolume = &node->volume();
     sc.services.probeSh = &node->shImage();
     sc.services.probeMoments = &node->momentsImage();
+    if (sc.level.probes.relight) {
+      // The relight bake (cached under its own key next to the volume) and the static scene's BVH
+      // the session already builds for the incident-light service (V_static is traced against it).
+      // Techniques that read the probes on the CPU (DNRT's c_j through incident::ProbeSource) keep
+      // the baked SH.
+      const BakeInput input = prepare(sc.level, sc.cookCache, settingsFrom(sc.level));
+      RelightData data = loadOrBakeRelight(input, node->volume().grid, cacheFolder());
+      const ref::SceneBvh& bvh = incident::sessionLight(sc).lightVisibility().bvh();
+      if (!node->enableRelight(sc.ctx, std::move(data), bvh))
+        log::warn(sc.level.source.string() + ": /probes/relight: the volume does not fit the probes' uniform block; "
+                  "the baked probes are used");
+    }
     return node;
   }
 

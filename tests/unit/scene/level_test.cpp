@@ -315,6 +315,10 @@ TEST(Level, ProbesSettingsParseWithDefaults) {
   EXPECT_FLOAT_EQ(b.probes.spacing, 0.25f);
   EXPECT_EQ(b.probes.order, 2);
   EXPECT_EQ(b.probes.rays, 576u);
+  EXPECT_FALSE(b.probes.relight);  // off unless asked
+  const auto relit = writeTemp("probes-relight.json", R"({"bounce_level": 1, "effects": ["probes"],
+      "probes": {"relight": true}, "entities": []})");
+  EXPECT_TRUE(loadLevel(relit).probes.relight);
 }
 
 TEST(LevelErrors, ProbesSettings) {
@@ -327,7 +331,8 @@ TEST(LevelErrors, ProbesSettings) {
   EXPECT_EQ(loadError("probes-spacing", with(R"({"spacing": 0})")),
             "FILE: /probes/spacing: 0 is out of range (expected a number in [0.001, 1000])");
   EXPECT_EQ(loadError("probes-key", with(R"({"spacng": 0.2})")),
-            "FILE: /probes/spacng: unknown key \"spacng\", did you mean \"spacing\"? (expected one of: spacing, order, rays)");
+            "FILE: /probes/spacng: unknown key \"spacng\", did you mean \"spacing\"? (expected one of: spacing, order, rays, relight)");
+  EXPECT_EQ(loadError("probes-relight", with(R"({"relight": 1})")), "FILE: /probes/relight: wrong type: integer (expected true or false)");
 }
 
 // The "vlm" component (virtual lights, engine/gi/vlm) and "vlm_tag" (real geometry's id, thesis

@@ -1,0 +1,70 @@
+#pragma once
+// The GPU pass `probes.relight` (shaders/probes/relight.comp; what it computes: relight.hpp): per
+// frame, kRelightIterationsPerFrame × (surfel ΔE, probe gather), then baked + ΔSH packed into the
+// probes pass's uniform block (node.cpp shPackedWords' format), which is why that buffer carries
+// STORAGE usage. ΔSH persists between frames (the room's bounce continues over frames).
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "engine/gi/probes/probe_volume.hpp"
+#include "engine/gi/probes/relight.hpp"
+#include "engine/gpu/buffer.hpp"
+#include "engine/gpu/descriptors.hpp"
+#include "engine/gpu/pipeline.hpp"
+#include "engine/render/gpu_types.hpp"
+
+namespace bounce::gi::probes {
+
+class RelightPass {
+ public:
+  // `packed`: the probes pass's ProbeShBlock buffer (STORAGE usage), its valid bits already in it.
+  RelightPass(gpu::Context& ctx, const ProbeVolume& volume, RelightData data, const gpu::Buffer& packed);
+
+  // V_static for these lights (CPU, Embree through the static scene), recomputed only when the
+  // lights differ from the last call's. At most render::kMaxLights.
+  void setLights(std::span<const render::LightGpu> lights, const ref::SceneBvh& staticScene);
+  // Tests: V_now per (surfel, light) from this buffer instead of the shadow atlas (empty: atlas).
+  void setTestVisibility(std::span<const float> vNow);
+  // Records the frame's dispatches with a descriptor set from `descriptors` (the frame's allocator).
+  // `lights`/`lightCount`/`shadowMatrices`: the lighting pass's blocks; `atlas` a 2D-array view of
+  // the shadow atlas (or a dummy with shadowsOn false).
+  void record(VkCommandBuffer cmd, gpu::DescriptorAllocator& descriptors, const gpu::Buffer& lights,
+              std::uint32_t lightCount, const gpu::Buffer& shadowMatrices, VkImageView atlas, VkSampler compare,
+              bool shadowsOn, int iterations = kRelightIterationsPerFrame, bool pack = true, int readbackSlot = -1);
+  // The ΔSH that the last record() with this readbackSlot copied out (probes × 9, order-3 layout), for
+  // the CPU readers of the probes: false when that slot has not been recorded yet. Call only once
+  // the slot's frame has finished (FrameRing::begin waited for it): no stall, a frames-in-flight lag.
+  bool readDelta(std::uint32_t slot, std::vector<glm::vec3>& out) const;
+  // Zero ΔSH (the next frame restarts the series).
+  void reset();
+
+  const RelightData& data() const { return data_; }
+  const gpu::Buffer& delta() const { return delta_; }                  // probe·9 + i: vec4 (rgb)
+  const gpu::Buffer& surfelRadiance() const { return radiance_; }      // surfel: vec4 (rgb ΔL)
+  std::uint32_t lightsSet() const { return lightCount_; }
+
+ private:
+  struct Push {
+    glm::vec4 originSpacing;
+    glm::ivec4 countOrder;
+    glm::vec4 params;
+    glm::uvec4 sizes;
+    glm::uvec4 flags;
+  };
+  gpu::Context& ctx_;
+  RelightData data_;
+  const gpu::Buffer& packed_;
+  Push push_{};
+  std::vector<render::LightGpu> lights_;
+  std::uint32_t lightCount_ = 0;
+  bool testVis_ = false;
+  std::vector<gpu::Buffer> readback_;  // per frame slot: ΔSH copied after the pack stage
+  std::vector<bool> readbackWritten_;
+  gpu::Buffer surfels_, rays_, vStatic_, radiance_, delta_, baked_, valid_, moments_, vTest_;
+  gpu::DescriptorSetLayout setLayout_;
+  gpu::PipelineLayout layout_;
+  gpu::Pipeline pipeline_;
+};
+
+}  // namespace bounce::gi::probes
