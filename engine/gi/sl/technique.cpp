@@ -377,7 +377,7 @@ void SessionRuntime::enableGpu(SessionContext& sc) {
                                  participants_.front().component.half ? Resolution::Half : Resolution::Full,
                                  ProbeLight{sc.services.probeVolume, sc.services.probeSh, sc.services.probeMoments},
                                  participants_.front().component.localLights,
-                                 participants_.front().component.hierarchy);
+                                 participants_.front().component.hierarchy, participants_.front().component.fused);
 }
 
 render::Renderer::GraphNode SessionRuntime::node() {
