@@ -160,6 +160,10 @@ class SlTechnique final : public Technique {
                          (e.sl->hierarchy ? "true" : "false") + " differs from entity \"" + first->id + "\"'s " +
                          (first->sl->hierarchy ? "true" : "false") +
                          " (expected one setting for every sl entity of a level: pass 2 shades them in one draw)");
+      if (e.sl->fused != first->sl->fused)
+        throw InputError(sc.level.source.string() + ": " + e.pointer + "/sl/fused: " + (e.sl->fused ? "true" : "false") +
+                         " differs from entity \"" + first->id + "\"'s " + (first->sl->fused ? "true" : "false") +
+                         " (expected one setting for every sl entity of a level: pass 2 shades them in one draw)");
     }
     // The hierarchy's per-tile ratios travel as kMaxHierarchyObjects flat varyings (node.hpp).
     std::size_t objects = 0;

@@ -485,3 +485,22 @@ TEST(SlSession, EntitiesThatDisagreeOnLocalLightsAreBadInput) {
     EXPECT_NE(msg.find("(expected one setting for every sl entity of a level"), std::string::npos) << msg;
   }
 }
+
+// "fused" likewise: one pass draws every SL, so the entities must agree on it.
+TEST(SlSession, EntitiesThatDisagreeOnFusedAreBadInput) {
+  scene::Level l = game::loadLevelWithEffects(kCharacters, std::vector<std::string>{"direct", "probes", "sl"});
+  bool first = true;
+  for (auto& e : l.entities)
+    if (e.sl) {
+      e.sl->fused = first;
+      first = false;
+    }
+  try {
+    game::Session s(gpu::testkit::sharedContext(), std::move(l));
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("/sl/fused: false differs from entity"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("(expected one setting for every sl entity of a level"), std::string::npos) << msg;
+  }
+}
