@@ -201,6 +201,10 @@ struct Sl {
   // object stands in for the share of its SLs that the influence cut removes, scaled per screen tile
   // by Eq. 25's reflection ratio. Run time only. Default false (README "SL hierarchy on the GPU").
   bool hierarchy = false;
+  // "fused": with the probes running (so "sl.shadow" too) and the hierarchy off, "sl" and "sl.shadow"
+  // are one pass that walks each tile's candidates once (shaders/sl/sl_shadow.frag). Run time only.
+  // Default true; false keeps the two passes (README "SL: one walk for sl and sl.shadow").
+  bool fused = true;
   friend bool operator==(const Sl&, const Sl&) = default;
 };
 

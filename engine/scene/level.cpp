@@ -183,10 +183,10 @@ void parseDnrt(const json::Node& node, EntityDesc& d, const ParseContext&) {
 }
 
 // "sl": {"spheres": 1..64, "order": 3|4, "blocking": "per-sphere"|"per-object", "influence": 0|3..1000,
-//        "resolution": "full"|"half", "local_lights": bool, "hierarchy": bool} — every key optional (defaults 16, 4, per-sphere, 12, full). The sphere limit is gi::sl::kMaxSpheres
+//        "resolution": "full"|"half", "local_lights": bool, "hierarchy": bool, "fused": bool} — every key optional (defaults 16, 4, per-sphere, 12, full, false, false, true). The sphere limit is gi::sl::kMaxSpheres
 //        (one uint64 mask).
 void parseSl(const json::Node& node, EntityDesc& d, const ParseContext&) {
-  const auto o = node.object({"spheres", "order", "blocking", "influence", "resolution", "local_lights", "hierarchy"});
+  const auto o = node.object({"spheres", "order", "blocking", "influence", "resolution", "local_lights", "hierarchy", "fused"});
   Sl c;
   if (auto v = o.optional("spheres")) c.spheres = int(v->integer(1, 64));
   if (auto v = o.optional("order")) {
@@ -214,6 +214,7 @@ void parseSl(const json::Node& node, EntityDesc& d, const ParseContext&) {
   }
   if (auto v = o.optional("local_lights")) c.localLights = v->boolean();
   if (auto v = o.optional("hierarchy")) c.hierarchy = v->boolean();
+  if (auto v = o.optional("fused")) c.fused = v->boolean();
   d.sl = c;
 }
 

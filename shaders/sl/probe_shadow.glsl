@@ -14,48 +14,24 @@
 const float kSlShadowEpsilon = 1e-9;  // probe_shadow.hpp kShadowEpsilon (sr)
 const float kSlShadowMaxRatio = 4.0;  // probe_shadow.hpp kShadowMaxRatio
 
-// Over the SLs whose bit is set in `candidates` (sl.glsl slIrradianceAt's convention: those left out
-// must be culled at p by the receiver rules, so they would add nothing).
-// `count`: SLs at indices ≥ count are skipped (slCount(), or past it for the §7.3 parents,
-// sl/hierarchy_shadow.glsl).
-vec3 slProbeShadow(vec3 p, vec3 n, in vec3 L[9], uvec4 candidates, uint count) {
+// ΔE from the `alive` live SLs that sl.glsl's slWalk left in slLive / slDist / slAdjusted (the
+// second loop: the rotation, the exp and the per-lane reads, run as often as the 8 pixels' longest
+// live list, README "SL cost, session 8"). sl_shadow.frag calls it after slIrradianceLive on the
+// same walk (one walk for both terms); slProbeShadow below walks first.
+vec3 slProbeShadowLive(vec3 p, vec3 n, in vec3 L[9], uint alive) {
   float sum[16];
   for (uint k = 0u; k < 16u; ++k) sum[k] = 0.0;
   float exact = kSlShadowEpsilon, sharedX = kSlShadowEpsilon, approx = kSlShadowEpsilon;
   // Â_l √((2l+1)/(4π)): ρ_n · (a ZH z rotated to d) = Σ_l Â_l √((2l+1)/(4π)) z_l P_l(n·d) (addition
   // theorem), so one blocker's A_j needs no 16-coefficient rotation.
   const vec4 lobeZonal = vec4(SH_A0 * 0.28209479177387814, SH_A1 * 0.48860251190291992, SH_A2 * 0.63078313050504001, 0.0);
-  // Two loops, as sl.glsl's slIrradianceAt: the walk applies the receiver rules to every candidate
-  // and keeps those that reach p (llvmpipe runs an untaken branch in full, so work inside the walk
-  // is paid per candidate); the second loop, with the rotation, the exp and the per-lane reads, runs
-  // as often as the 8 pixels' longest live list (README "SL cost, session 8"). The same terms in
-  // the same order. One do…while over the set (mask.glsl): max(n, 1) bodies, not n + 4 (README
-  // "Loop bodies III").
-  vec4 live[kSpheres];   // adjusted centre, radius
-  uint liveIndex[kSpheres];
-  float liveDist[kSpheres];
-  uint alive = 0u;
-  uvec4 rest = candidates;
-  do {
-    uint i = maskPop(rest);
-    if (i < count) {
-      vec4 cr;
-      float d;
-      if (slSeenFrom(i, p, n, cr, d)) {
-        live[alive] = cr;
-        liveIndex[alive] = i;
-        liveDist[alive] = d;
-        ++alive;
-      }
-    }
-  } while (rest != uvec4(0u));
   uint t = 0u;
   do {
     if (t < alive) {
-      vec3 c = live[t].xyz;
-      float r = live[t].w;
-      float d = liveDist[t];
-      uint i = liveIndex[t];
+      vec3 c = slAdjusted[t].xyz;
+      float r = slAdjusted[t].w;
+      float d = slDist[t];
+      uint i = slLive[t];
       {
         vec3 dir = (c - p) / d;
         float s = min(1.0, r / d);
@@ -100,6 +76,17 @@ vec3 slProbeShadow(vec3 p, vec3 n, in vec3 L[9], uvec4 candidates, uint count) {
   float additive = sqrt(clamp((SH_A0 - vDotLobe + kSlShadowEpsilon) / approx, 0.0, 1.0));
   float ratio = clamp((additive * sharedX + (1.0 - additive) * exact) / approx, 1.0 / kSlShadowMaxRatio, kSlShadowMaxRatio);
   return clamp(-ratio * (unshadowed - shadowed), -max(unshadowed, vec3(0.0)), vec3(0.0));
+}
+
+// Over the SLs whose bit is set in `candidates` (sl.glsl slIrradianceAt's convention: those left out
+// must be culled at p by the receiver rules, so they would add nothing).
+// `count`: SLs at indices ≥ count are skipped (slCount(), or past it for the §7.3 parents,
+// sl/hierarchy_shadow.glsl). Two loops, as sl.glsl's slIrradianceAt: the walk (slWalk) applies the
+// receiver rules to every candidate and keeps those that reach p (llvmpipe runs an untaken branch in
+// full, so work inside the walk is paid per candidate); slProbeShadowLive does the rest. The same
+// terms in the same order.
+vec3 slProbeShadow(vec3 p, vec3 n, in vec3 L[9], uvec4 candidates, uint count) {
+  return slProbeShadowLive(p, n, L, slWalk(p, n, candidates, count));
 }
 
 vec3 slProbeShadow(vec3 p, vec3 n, in vec3 L[9], uvec4 candidates) {

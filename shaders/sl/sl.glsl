@@ -196,8 +196,11 @@ vec3 slObjectTerms[SL_OBJECT_TERMS];
 
 // Per-light state at this receiver, by slot s of the live list (evaluate.cpp's Prepared): only the
 // SLs that reach p after the receiver rules take a slot, so every later loop runs over them alone.
+// slWalk fills slLive, slDist and slAdjusted; slIrradianceLive and probe_shadow.glsl's
+// slProbeShadowLive read them (sl_shadow.frag: one walk for both terms).
 uint slLive[kSpheres];         // the SL's index
 float slDist[kSpheres];
+vec4 slAdjusted[kSpheres];     // its centre and radius after the receiver rules (slSeenFrom)
 float slLogs[kSpheres * 16u];
 float slRatio[kSpheres];       // exact Ṽ / Eq. 23 Ṽ of the unoccluded cap, when formed
 float slExactOpen[kSpheres];   // the exact Ṽ, used alone when the ratio is not formed
@@ -231,16 +234,32 @@ void slFinish(uint s, in float blockers[16], bool haveExpB, inout float expB[16]
 #endif
 }
 
-// E(p) (Eq. 14), W/m² per channel for L^c in W/(m²·sr), from the SLs whose bit is set in `candidates`
-// (bit i % 32 of word i / 32; the tiled pass gives its tile's list, engine/gi/sl/tiles.hpp). SLs left
-// out must be ones the receiver rules cull at p (beyond the influence bound): a culled SL neither
-// lights nor blocks, so the sum is the same as over all SLs, term for term and in the same order.
-//
-// Two loops, because llvmpipe runs both sides of a branch but leaves a loop once none of its 8
-// lanes is still in it (README "What costs what on lavapipe"): the first applies the cheap receiver
-// rules to every candidate and keeps the ones that reach p; the second, with the rotations and exps,
-// runs as often as the 8 pixels' longest live list, not once per candidate.
-vec3 slIrradianceAt(vec3 p, vec3 n, uvec4 candidates) {
+// The walk (the first loop): the candidates below `limit` that reach p after the receiver rules,
+// in candidate order, into slLive / slDist / slAdjusted; returns their count. Every loop over
+// candidates or live slots here and below is `do … while` with its body guarded: a `for` runs one
+// more body with every lane masked (README "Loop bodies III"); this one walks the four words as one
+// set (mask.glsl: max(n, 1) bodies, not n + 4).
+uint slWalk(vec3 p, vec3 n, uvec4 candidates, uint limit) {
+  uint count = 0u;
+  uvec4 rest = candidates;
+  do {
+    uint i = maskPop(rest);
+    if (i < limit) {
+      vec4 cr;
+      float d;
+      if (slSeenFrom(i, p, n, cr, d)) {
+        slLive[count] = i;
+        slDist[count] = d;
+        slAdjusted[count] = cr;
+        ++count;
+      }
+    }
+  } while (rest != uvec4(0u));
+  return count;
+}
+
+// E(p) from the `count` live SLs slWalk left (the second loop on).
+vec3 slIrradianceLive(vec3 p, vec3 n, uint count) {
   float zero[16];
   for (uint k = 0u; k < 16u; ++k) zero[k] = 0.0;
   float yn[16];
@@ -248,32 +267,13 @@ vec3 slIrradianceAt(vec3 p, vec3 n, uvec4 candidates) {
 #ifdef SL_OBJECT_TERMS
   for (uint o = 0u; o < uint(SL_OBJECT_TERMS); ++o) slObjectTerms[o] = vec3(0.0);
 #endif
-  vec4 adjusted[kSpheres];
-  uint count = 0u;
-  // Every loop over candidates or live slots below is `do … while` with its body guarded: a `for`
-  // runs one more body with every lane masked (README "Loop bodies III"); this one walks the four
-  // words as one set (mask.glsl: max(n, 1) bodies, not n + 4).
-  uvec4 rest = candidates;
-  do {
-    uint i = maskPop(rest);
-    if (i < min(slCount(), kSpheres)) {
-      vec4 cr;
-      float d;
-      if (slSeenFrom(i, p, n, cr, d)) {
-        slLive[count] = i;
-        slDist[count] = d;
-        adjusted[count] = cr;
-        slOrder[count] = count;
-        slSlotOf[i] = count;
-        ++count;
-      }
-    }
-  } while (rest != uvec4(0u));
   uint s = 0u;
   do {
     if (s < count) {
-      vec3 c = adjusted[s].xyz;
-      float r = adjusted[s].w;
+      vec3 c = slAdjusted[s].xyz;
+      float r = slAdjusted[s].w;
+      slOrder[s] = s;
+      slSlotOf[min(slLive[s], kSpheres - 1u)] = s;
       float d = slDist[s];
       vec3 dir = (c - p) / d;
       float theta = asin(min(1.0, r / d));
@@ -287,7 +287,7 @@ vec3 slIrradianceAt(vec3 p, vec3 n, uvec4 candidates) {
       float exactOpen = slOpenCap(min(1.0, r / d), ydir, yn, cap);
       slExactOpen[s] = exactOpen;
       // Eq. 18: the weight rotated to the SL-local direction from its centre to p (§7.1). Here, for
-      // the live SLs only, and not in the candidate loop above: there every candidate pays it (the
+      // the live SLs only, and not in the walk (slWalk): there every candidate pays it (the
       // branch is not skipped), and the reads at the tile's index are no cheaper — measured by the
       // process's CPU time per frame (README "SL per-object blocking and sl.shadow cost"), per-object
       // 0.774 s here against 1.185 s there.
@@ -454,6 +454,19 @@ vec3 slIrradianceAt(vec3 p, vec3 n, uvec4 candidates) {
     ++a;
   } while (a < count);
   return e;
+}
+
+// E(p) (Eq. 14), W/m² per channel for L^c in W/(m²·sr), from the SLs whose bit is set in `candidates`
+// (bit i % 32 of word i / 32; the tiled pass gives its tile's list, engine/gi/sl/tiles.hpp). SLs left
+// out must be ones the receiver rules cull at p (beyond the influence bound): a culled SL neither
+// lights nor blocks, so the sum is the same as over all SLs, term for term and in the same order.
+//
+// Two loops, because llvmpipe runs both sides of a branch but leaves a loop once none of its 8
+// lanes is still in it (README "What costs what on lavapipe"): the walk (slWalk) applies the cheap
+// receiver rules to every candidate and keeps the ones that reach p; the second (slIrradianceLive),
+// with the rotations and exps, runs as often as the 8 pixels' longest live list, not once per candidate.
+vec3 slIrradianceAt(vec3 p, vec3 n, uvec4 candidates) {
+  return slIrradianceLive(p, n, slWalk(p, n, candidates, min(slCount(), kSpheres)));
 }
 
 // Over every SL (the self-test's receivers, which no tile list culls).

@@ -54,7 +54,7 @@ std::vector<gpu::Binding> upsampleBindings() {
 
 Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t framesInFlight,
            std::span<const SphereSet* const> sets, int order, Blocking blocking, float influence, Resolution resolution,
-           ProbeLight probes, bool localLights, bool hierarchy)
+           ProbeLight probes, bool localLights, bool hierarchy, bool fuse)
     : ctx_(ctx),
       order_(order),
       blocking_(blocking),
@@ -114,7 +114,7 @@ Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t fra
     silhouette_.push_back(set->spheres.empty() ? 1.0f : set->spheres.front().shadowScale);
   }
   if (probes && spheres_ > 0)
-    shadow_ = std::make_unique<ProbeShadowPass>(ctx, shared, probes, order, blocking, spheres_, influence, half, hierarchy);
+    shadow_ = std::make_unique<ProbeShadowPass>(ctx, shared, probes, order, blocking, spheres_, influence, half, hierarchy, fuse);
   if (localLights && spheres_ > 0)
     local_ = std::make_unique<LocalLightPass>(ctx, shared, order, blocking, spheres_, influence);
   if (hierarchy) {
@@ -254,6 +254,18 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::s
         });
   }
 
+  // One walk for both terms when "sl.shadow" runs too and the hierarchy is off (sl_shadow.frag,
+  // README "SL: one walk for sl and sl.shadow"): pass "sl" then holds both.
+  if (shadow_ && shadow_->fusesThisFrame(pc)) {
+    const rg::Handle<rg::Texture> both = shadow_->addFused(graph, pc, *slot.shade, slot.intensity->intensity(),
+                                                           {&slot.tiles, 0, tileCount}, singleTiles, halfSize);
+    if (!half) {
+      if (local_) local_->addTo(graph, pc, *slot.shade, slot.intensity->intensity(), {&slot.tiles, 0, tileCount});
+      return;
+    }
+    addUpsample(graph, pc, slot, both, shadeTiles, upsampleTiles);
+    return;
+  }
   struct Data {
     render::DeferredInputs g;
     rg::Handle<rg::Texture> hdr;
@@ -309,6 +321,12 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::s
       shadow_ ? shadow_->addTo(graph, pc, *slot.shade, slot.intensity->intensity(), {&slot.tiles, 0, tileCount}, data.hdr,
                                shadowRatios)
               : data.hdr;
+  addUpsample(graph, pc, slot, halfE, shadeTiles, upsampleTiles);
+}
+
+void Node::addUpsample(rg::RenderGraph& graph, const render::PassContext* pc, Slot& slot, rg::Handle<rg::Texture> halfE,
+                       std::uint32_t shadeTiles, std::uint32_t upsampleTiles) {
+  auto& bb = graph.blackboard();
   struct UpData {
     render::DeferredInputs g;
     rg::Handle<rg::Texture> half, hdr;

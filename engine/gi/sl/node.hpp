@@ -51,7 +51,9 @@ class Node {
   Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t framesInFlight,
        std::span<const SphereSet* const> sets, int order, Blocking blocking, float influence,
        Resolution resolution = Resolution::Full, ProbeLight probes = {}, bool localLights = false,
-       bool hierarchy = false);
+       bool hierarchy = false, bool fuse = true);
+  // `fuse` (level "fused", default true): with "sl.shadow" running and the hierarchy off, one pass
+  // "sl" walks each tile's candidates once for both terms (ProbeShadowPass::addFused).
   // This frame's SLs, concatenated over the sets: pose, object index, probes' SH at the centre.
   void addTo(rg::RenderGraph& graph, const render::PassContext& pc, std::span<const PosedSphere> posed,
              std::span<const std::uint32_t> objects, std::span<const incident::RadianceSH> indirect);
@@ -59,6 +61,10 @@ class Node {
   bool hierarchy() const { return hierarchy_; }
 
  private:
+  struct Slot;
+  // "sl.upsample" (half resolution): spreads `halfE` ("sl.half") over "lighting.hdr", then "sl.local".
+  void addUpsample(rg::RenderGraph& graph, const render::PassContext* pc, Slot& slot, rg::Handle<rg::Texture> halfE,
+                   std::uint32_t shadeTiles, std::uint32_t upsampleTiles);
   struct Slot {
     std::unique_ptr<IntensityPass> intensity;
     std::unique_ptr<ShadeData> shade;

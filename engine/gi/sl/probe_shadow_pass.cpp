@@ -1,5 +1,7 @@
 #include "engine/gi/sl/probe_shadow_pass.hpp"
 
+#include <tuple>
+
 #include "engine/core/error.hpp"
 #include "engine/gi/probes/node.hpp"
 #include "engine/gi/sl/tiles.hpp"
@@ -38,7 +40,8 @@ std::vector<gpu::Binding> inputBindings(bool hierarchy) {
 }  // namespace
 
 ProbeShadowPass::ProbeShadowPass(gpu::Context& ctx, const render::Pipelines& shared, ProbeLight probes, int order,
-                                 Blocking blocking, std::uint32_t spheres, float influence, bool half, bool hierarchy)
+                                 Blocking blocking, std::uint32_t spheres, float influence, bool half, bool hierarchy,
+                                 bool fuse)
     : ctx_(ctx),
       probes_(probes),
       half_(half),
@@ -58,6 +61,21 @@ ProbeShadowPass::ProbeShadowPass(gpu::Context& ctx, const render::Pipelines& sha
   d.specialization.push_back(half ? 1u : 0u);                          // probe_shadow.frag kHalf
   d.name = std::string(half ? "sl.shadow.half" : "sl.shadow") + (hierarchy ? ".hierarchy" : "");
   pipeline_ = gpu::createGraphicsPipeline(ctx, layout_, d);
+  if (fuse && !hierarchy) {
+    // One walk for both terms (sl_shadow.frag): the same vertex shader, set and push block; "sl"'s
+    // blend (half: written into the cleared "sl.half", which it creates).
+    gpu::ShaderModule fusedFrag(ctx, "sl/sl_shadow.frag.spv");
+    d.fragment = &fusedFrag;
+    d.blend = half ? gpu::Blend::None : gpu::Blend::Additive;
+    d.specialization.push_back(0u);  // sl_shadow.frag kSingleObject (constant_id 6)
+    d.name = std::string(half ? "sl+shadow.half" : "sl+shadow");
+    fused_ = gpu::createGraphicsPipeline(ctx, layout_, d);
+    if (blocking == Blocking::PerObject) {
+      d.specialization.back() = 1u;
+      d.name += ".single-object";
+      fusedSingle_ = gpu::createGraphicsPipeline(ctx, layout_, d);
+    }
+  }
   if (hierarchy) {
     ratioInputs_ = gpu::DescriptorSetLayout(ctx, ratioBindings(), "sl.shadow.hierarchy.inputs");
     ratioLayout_ = gpu::PipelineLayout(ctx, {shared.frameLayout.handle(), ratioInputs_.handle()},
@@ -129,18 +147,7 @@ rg::Handle<rg::Texture> ProbeShadowPass::addTo(rg::RenderGraph& graph, const ren
       },
       [this, pc, withAo, &shade, &intensity, tiles, ratios](const Data& d, const rg::PassResources& res, rg::CommandContext& c) {
         VkCommandBuffer cmd = pc->cmd(c);
-        VkSampler point = pc->samplers->get({VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST});
-        auto view = [&](rg::Handle<rg::Texture> h) { return pc->backend->image(res.texture(h)).view(); };
-        VkDescriptorSet inputs = pc->frame().descriptors->allocate(inputLayout_);
-        gpu::DescriptorWriter w;
-        render::writeDeferredInputs(w, d.g, *pc, res, point)
-            .sampledImage(3, probes_.sh->view(), point)
-            .sampledImage(4, probes_.moments->view(), point)
-            .sampledImage(5, view(withAo ? d.ao : d.g.albedo), point);
-        w.buffer(kTilesBinding, *tiles.buffer);
-        shade.write(w, kFirstShadeBinding, intensity, point);
-        if (hierarchy_) w.buffer(kRatiosBinding, *ratios);
-        w.update(ctx_, inputs);
+        VkDescriptorSet inputs = writeInputs(pc, res, d.g, withAo ? d.ao : d.g.albedo, shade, intensity, *tiles.buffer, ratios);
         gpu::Image& target = pc->backend->image(res.texture(d.target));
         render::Attachment color{target.view(), true};  // additive: keep what is there
         const VkExtent2D extent{target.desc().width, target.desc().height};
@@ -148,16 +155,89 @@ rg::Handle<rg::Texture> ProbeShadowPass::addTo(rg::RenderGraph& graph, const ren
         pipeline_.bind(cmd);
         pipeline_.bindSet(cmd, 0, pc->frameSet);
         pipeline_.bindSet(cmd, 1, inputs);
-        // One push block for both stages: probe_sh.glsl's (fragment), then shadow_tiles.vert's.
-        struct Push {
-          probes::ProbePush probe;
-          TilePush tile;
-        };
-        static_assert(sizeof(probes::ProbePush) == 48, "shadow_tiles.vert: SL_TILE_PUSH_OFFSET");
-        const Push push{probes::probePush(*probes_.volume, withAo ? 1.0f : 0.0f),
-               TilePush{glm::vec2(1.0f / float(extent.width), 1.0f / float(extent.height)), kScreenTile, 0u}};
-        pipeline_.push(cmd, push);
+        push(cmd, pipeline_, withAo, extent);
         if (tiles.count > 0) vkCmdDraw(cmd, 6, tiles.count, 0, tiles.first);
+        ctx_.cmdEndRendering(cmd);
+      });
+  if (!half_) bb.put("lighting.hdr", data.target);
+  return data.target;
+}
+
+VkDescriptorSet ProbeShadowPass::writeInputs(const render::PassContext* pc, const rg::PassResources& res,
+                                             const render::DeferredInputs& g, rg::Handle<rg::Texture> ao,
+                                             const ShadeData& shade, const gpu::Buffer& intensity, const gpu::Buffer& tiles,
+                                             const gpu::Buffer* ratios) const {
+  VkSampler point = pc->samplers->get({VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST});
+  VkDescriptorSet inputs = pc->frame().descriptors->allocate(inputLayout_);
+  gpu::DescriptorWriter w;
+  render::writeDeferredInputs(w, g, *pc, res, point)
+      .sampledImage(3, probes_.sh->view(), point)
+      .sampledImage(4, probes_.moments->view(), point)
+      .sampledImage(5, pc->backend->image(res.texture(ao)).view(), point);
+  w.buffer(kTilesBinding, tiles);
+  shade.write(w, kFirstShadeBinding, intensity, point);
+  if (hierarchy_) w.buffer(kRatiosBinding, *ratios);
+  w.update(ctx_, inputs);
+  return inputs;
+}
+
+void ProbeShadowPass::push(VkCommandBuffer cmd, const gpu::Pipeline& pipeline, bool withAo, VkExtent2D extent) const {
+  // One push block for both stages: probe_sh.glsl's (fragment), then shadow_tiles.vert's.
+  struct Push {
+    probes::ProbePush probe;
+    TilePush tile;
+  };
+  static_assert(sizeof(probes::ProbePush) == 48, "shadow_tiles.vert: SL_TILE_PUSH_OFFSET");
+  const Push p{probes::probePush(*probes_.volume, withAo ? 1.0f : 0.0f),
+               TilePush{glm::vec2(1.0f / float(extent.width), 1.0f / float(extent.height)), kScreenTile, 0u}};
+  pipeline.push(cmd, p);
+}
+
+bool ProbeShadowPass::fusesThisFrame(const render::PassContext* pc) const {
+  return fused_.handle() != VK_NULL_HANDLE && pc->world->has("probes");
+}
+
+rg::Handle<rg::Texture> ProbeShadowPass::addFused(rg::RenderGraph& graph, const render::PassContext* pc,
+                                                  const ShadeData& shade, const gpu::Buffer& intensity, TileRange tiles,
+                                                  std::uint32_t singleTiles, glm::uvec2 halfSize) {
+  auto& bb = graph.blackboard();
+  const bool withAo = bb.contains("ao.term");
+  struct Data {
+    render::DeferredInputs g;
+    rg::Handle<rg::Texture> target, ao;
+  };
+  // Named "sl": its timestamp holds both terms (README's pass table); "sl.shadow" does not run.
+  const auto& data = graph.addPass<Data>(
+      "sl",
+      [&](rg::Builder& b, Data& d) {
+        d.g = render::readDeferredInputs(b, bb);
+        d.target = half_ ? b.write(b.create<rg::Texture>("sl.half", rg::TextureDesc{halfSize.x, halfSize.y, 1, 1, 1,
+                                                                                   rg::Format::RGBA16F, false}),
+                                   rg::Usage::ColorAttachment)
+                         : b.write(bb.get<rg::Texture>("lighting.hdr"), rg::Usage::ColorAttachment);
+        if (withAo) d.ao = b.read(bb.get<rg::Texture>("ao.term"), rg::Usage::SampledFragment);
+      },
+      [this, pc, withAo, &shade, &intensity, tiles, singleTiles](const Data& d, const rg::PassResources& res,
+                                                                rg::CommandContext& c) {
+        VkCommandBuffer cmd = pc->cmd(c);
+        VkDescriptorSet inputs =
+            writeInputs(pc, res, d.g, withAo ? d.ao : d.g.albedo, shade, intensity, *tiles.buffer, nullptr);
+        gpu::Image& target = pc->backend->image(res.texture(d.target));
+        // "sl.half" starts at zero (tiles no SL reaches are not drawn); "lighting.hdr" keeps its light.
+        render::Attachment color{target.view(), !half_ && res.keepsContents(d.target)};
+        const VkExtent2D extent{target.desc().width, target.desc().height};
+        render::beginRendering(ctx_, cmd, extent, {&color, 1}, nullptr);
+        // As "sl": per-object, the tiles of one object first, without the closer objects' exp.
+        for (const auto& [pipeline, first, count] :
+             {std::tuple<const gpu::Pipeline*, std::uint32_t, std::uint32_t>{&fusedSingle_, tiles.first, singleTiles},
+              {&fused_, tiles.first + singleTiles, tiles.count - singleTiles}}) {
+          if (count == 0) continue;
+          pipeline->bind(cmd);
+          pipeline->bindSet(cmd, 0, pc->frameSet);
+          pipeline->bindSet(cmd, 1, inputs);
+          push(cmd, *pipeline, withAo, extent);
+          vkCmdDraw(cmd, 6, count, 0, first);
+        }
         ctx_.cmdEndRendering(cmd);
       });
   if (!half_) bb.put("lighting.hdr", data.target);

@@ -14,6 +14,7 @@
 #include "engine/gi/sl/shade.hpp"
 #include "engine/gpu/image.hpp"
 #include "engine/render/graph/render_graph.hpp"
+#include "engine/render/passes/gbuffer_pass.hpp"
 #include "engine/render/pass_context.hpp"
 
 namespace bounce::gi::sl {
@@ -39,7 +40,7 @@ class ProbeShadowPass {
   // `probes` (not owned) must outlive the pass; order, blocking, spheres and influence as the SL
   // pass's pipeline (ShadeData::specialization); `half`: write ao · ΔE into "sl.half".
   ProbeShadowPass(gpu::Context& ctx, const render::Pipelines& shared, ProbeLight probes, int order, Blocking blocking,
-                  std::uint32_t spheres, float influence, bool half, bool hierarchy = false);
+                  std::uint32_t spheres, float influence, bool half, bool hierarchy = false, bool fuse = false);
   // Adds the pass when "probes" runs this frame; `shade` and `intensity` as the SL pass binds them.
   // Full resolution: blends into "lighting.hdr" and publishes it; half: into `halfTarget` ("sl.half",
   // which the SL pass cleared) and returns its new version. Returns `halfTarget` unchanged when it
@@ -49,14 +50,30 @@ class ProbeShadowPass {
   rg::Handle<rg::Texture> addTo(rg::RenderGraph& graph, const render::PassContext* pc, const ShadeData& shade,
                                 const gpu::Buffer& intensity, TileRange tiles, rg::Handle<rg::Texture> halfTarget = {},
                                 const gpu::Buffer* ratios = nullptr);
+  // One walk for "sl" and "sl.shadow" (shaders/sl/sl_shadow.frag; built with `fuse`, never with the
+  // hierarchy): whether this frame draws the fused pass instead of the two (the probes run).
+  bool fusesThisFrame(const render::PassContext* pc) const;
+  // Adds pass "sl" with both terms: full resolution blends ρ/π (E + ao ΔE) into "lighting.hdr" and
+  // publishes it; half creates "sl.half" (cleared) with E + ao ΔE and returns it. `singleTiles`: the
+  // first tiles of `tiles` whose SLs are one object's (per-object blocking, sl.frag kSingleObject).
+  rg::Handle<rg::Texture> addFused(rg::RenderGraph& graph, const render::PassContext* pc, const ShadeData& shade,
+                                   const gpu::Buffer& intensity, TileRange tiles, std::uint32_t singleTiles,
+                                   glm::uvec2 halfSize);
 
  private:
+  // Set 1 of sl.shadow and the fused pass (probe_shadow_frag.glsl's bindings), and their push block.
+  VkDescriptorSet writeInputs(const render::PassContext* pc, const rg::PassResources& res, const render::DeferredInputs& g,
+                              rg::Handle<rg::Texture> ao, const ShadeData& shade, const gpu::Buffer& intensity,
+                              const gpu::Buffer& tiles, const gpu::Buffer* ratios) const;
+  void push(VkCommandBuffer cmd, const gpu::Pipeline& pipeline, bool withAo, VkExtent2D extent) const;
+
   gpu::Context& ctx_;
   ProbeLight probes_;
   bool half_ = false;
   gpu::DescriptorSetLayout inputLayout_;
   gpu::PipelineLayout layout_;
   gpu::Pipeline pipeline_;
+  gpu::Pipeline fused_, fusedSingle_;  // with `fuse`: sl_shadow.frag, kSingleObject off / on (per-object)
   bool hierarchy_ = false;
   gpu::DescriptorSetLayout ratioInputs_;
   gpu::PipelineLayout ratioLayout_;

@@ -160,6 +160,10 @@ class SlTechnique final : public Technique {
                          (e.sl->hierarchy ? "true" : "false") + " differs from entity \"" + first->id + "\"'s " +
                          (first->sl->hierarchy ? "true" : "false") +
                          " (expected one setting for every sl entity of a level: pass 2 shades them in one draw)");
+      if (e.sl->fused != first->sl->fused)
+        throw InputError(sc.level.source.string() + ": " + e.pointer + "/sl/fused: " + (e.sl->fused ? "true" : "false") +
+                         " differs from entity \"" + first->id + "\"'s " + (first->sl->fused ? "true" : "false") +
+                         " (expected one setting for every sl entity of a level: pass 2 shades them in one draw)");
     }
     // The hierarchy's per-tile ratios travel as kMaxHierarchyObjects flat varyings (node.hpp).
     std::size_t objects = 0;
@@ -183,7 +187,8 @@ class SlTechnique final : public Technique {
           r.setting = "spheres=" + std::to_string(spheres) + ";order=" + std::to_string(order) +
                       ";blocking=" + (perObject ? "per-object" : "per-sphere") + ";ref=all";
           r.effects = {"direct", "shadows", "probes", "sl"};
-          r.passes = {"shadow", "lighting", "probes", "sl.intensity", "sl", "sl.shadow"};
+          r.passes = {"shadow", "lighting", "probes", "sl.intensity", "sl"};
+          r.optionalPasses = {"sl.shadow"};  // its own pass only unfused (README "SL: one walk for sl and sl.shadow")
           r.configure = [=](scene::Level& level) {
             for (auto& e : level.entities)
               if (e.sl) {
@@ -204,7 +209,8 @@ class SlTechnique final : public Technique {
         r.setting = "spheres=" + std::to_string(spheres) + ";order=4;blocking=" +
                     (perObject ? "per-object" : "per-sphere") + ";local_lights=on;ref=all";
         r.effects = {"direct", "shadows", "probes", "sl"};
-        r.passes = {"shadow", "lighting", "probes", "sl.intensity", "sl", "sl.shadow", "sl.local"};
+        r.passes = {"shadow", "lighting", "probes", "sl.intensity", "sl", "sl.local"};
+        r.optionalPasses = {"sl.shadow"};  // fused into "sl" unless "fused": false
         r.configure = [=](scene::Level& level) {
           for (auto& e : level.entities)
             if (e.sl) {
@@ -227,9 +233,11 @@ class SlTechnique final : public Technique {
         std::snprintf(f, sizeof f, "%g", double(influence));
         r.setting = std::string("spheres=level;order=4;influence=") + f + ";hierarchy=" + (hierarchy ? "on" : "off") + ";ref=all";
         r.effects = {"direct", "shadows", "probes", "sl"};
-        r.passes = {"shadow", "lighting", "probes", "sl.intensity", "sl", "sl.shadow"};
-        // A row runs only where its passes ran; the hierarchy's tile passes only run with it on.
-        if (hierarchy) r.passes.insert(r.passes.end(), {"sl.hierarchy", "sl.shadow.hierarchy"});
+        r.passes = {"shadow", "lighting", "probes", "sl.intensity", "sl"};
+        // A row runs only where its passes ran; the hierarchy's tile passes only run with it on, and
+        // "sl.shadow" is its own pass then (one walk for both terms only without the hierarchy).
+        if (hierarchy) r.passes.insert(r.passes.end(), {"sl.hierarchy", "sl.shadow.hierarchy", "sl.shadow"});
+        else r.optionalPasses = {"sl.shadow"};
         r.configure = [=](scene::Level& level) {
           for (auto& e : level.entities)
             if (e.sl) {
@@ -242,7 +250,8 @@ class SlTechnique final : public Technique {
         rows.push_back(std::move(r));
       }
   }
-  // "sl.shadow" runs only beside "probes" (its light is what it shadows).
+  // "sl.shadow" runs only beside "probes" (its light is what it shadows), as its own pass only with the
+  // hierarchy or "fused": false (else "sl" holds it: README "SL: one walk for sl and sl.shadow").
   std::vector<std::string> passes() const override { return {"sl.intensity", "sl.hierarchy", "sl", "sl.shadow.hierarchy", "sl.shadow", "sl.local"}; }
 };
 
@@ -377,7 +386,7 @@ void SessionRuntime::enableGpu(SessionContext& sc) {
                                  participants_.front().component.half ? Resolution::Half : Resolution::Full,
                                  ProbeLight{sc.services.probeVolume, sc.services.probeSh, sc.services.probeMoments},
                                  participants_.front().component.localLights,
-                                 participants_.front().component.hierarchy);
+                                 participants_.front().component.hierarchy, participants_.front().component.fused);
 }
 
 render::Renderer::GraphNode SessionRuntime::node() {

@@ -205,9 +205,13 @@ TEST(SlSession, EntitiesThatDisagreeOnBlockingOrInfluenceAreBadInput) {
 // "sl.intensity", "sl" and "sl.shadow", once each. The shadow takes light away around the
 // characters (some values darker than without `sl`), never more than the probes added: no value is
 // darker than the same frame without probes (the clamp ΔE ≥ −E_u; tonemapping is monotonic).
+// ("fused": false keeps the two passes; SlSession.OneWalkForBothTermsMatchesTheTwoPasses: fused.)
 TEST(SlSession, WithProbesItShadowsTheirLightButNeverBelowTheFrameWithoutThem) {
   const auto frame = [](std::vector<std::string> effects) {
-    game::Session s(gpu::testkit::sharedContext(), game::loadLevelWithEffects(kCharacters, effects));
+    scene::Level level = game::loadLevelWithEffects(kCharacters, effects);
+    for (scene::EntityDesc& e : level.entities)
+      if (e.sl) e.sl->fused = false;
+    game::Session s(gpu::testkit::sharedContext(), level);
     return oneFrame(s);
   };
   const Frame a = frame({"direct", "shadows", "probes", "sl"});
@@ -243,11 +247,15 @@ TEST(SlSession, WithProbesItShadowsTheirLightButNeverBelowTheFrameWithoutThem) {
 // with each full pixel's ρ/π. The shadow still exists (values darker than probes alone), never
 // below the frame without probes, and the SL term (shadow and bounce together, the frame minus
 // probes alone) stays close to the full-resolution one (differences printed).
+// ("fused": false: the two passes, as above.)
 TEST(SlSession, ShadowOnTheProbesFollowsHalfResolutionIntoTheUpsample) {
   const auto frame = [](std::vector<std::string> effects, bool half) {
     scene::Level level = game::loadLevelWithEffects(kCharacters, effects);
     for (scene::EntityDesc& e : level.entities)
-      if (e.sl) e.sl->half = half;
+      if (e.sl) {
+        e.sl->half = half;
+        e.sl->fused = false;
+      }
     game::Session s(gpu::testkit::sharedContext(), level);
     return oneFrame(s);
   };
@@ -285,6 +293,51 @@ TEST(SlSession, ShadowOnTheProbesFollowsHalfResolutionIntoTheUpsample) {
               kExtent.width, kExtent.height, darker, darkerFull, halfSum, fullSum, 100.0 * relAbs, relRmse);
   EXPECT_LT(relAbs, 0.15);
   EXPECT_LT(relRmse, 0.7);
+}
+
+// "fused" (the default; README "SL: one walk for sl and sl.shadow"): with the probes running and the
+// hierarchy off, "sl" walks each tile's candidates once and writes both terms, so the pass list is
+// the two-pass one without "sl.shadow", at full and at half resolution. Each term is the same floats
+// as in its own pass (sl_shadow.frag); only the blend differs: the two passes round to RGBA16F twice,
+// fp16(fp16(d + a) + b), the fused one once, fp16(d + (a + b)), d the target's light, a the bounce,
+// b ≤ 0 the shadow. So the HDR values differ by at most u (|d + a| + 2 |d + a + b|), u = 2^-11,
+// and |d + a| ≤ 2 |d + a + b| + a where |b| ≤ the probes' part of d (the clamp ΔE ≥ −E_u): a
+// relative 5u ≈ 0.0025 at most; PBR Neutral then sRGB scale a relative change by ≤ 0.44 in output
+// units for values ≤ 1 (x · d(x^(1/2.4))/dx · 1.055 = 0.44 x^(1/2.4)), ≤ 0.0011 < 1/255: the 8-bit
+// images differ by at most one step per channel value (rounding either way).
+TEST(SlSession, OneWalkForBothTermsMatchesTheTwoPasses) {
+  for (const bool half : {false, true}) {
+    const auto frame = [half](bool fused) {
+      scene::Level level = game::loadLevelWithEffects(kCharacters, std::vector<std::string>{"direct", "shadows", "probes", "sl"});
+      for (scene::EntityDesc& e : level.entities)
+        if (e.sl) {
+          e.sl->half = half;
+          e.sl->fused = fused;
+        }
+      game::Session s(gpu::testkit::sharedContext(), level);
+      return oneFrame(s);
+    };
+    const Frame one = frame(true), two = frame(false);
+    ASSERT_EQ(std::count(one.passes.begin(), one.passes.end(), "sl"), 1);
+    EXPECT_EQ(std::count(one.passes.begin(), one.passes.end(), "sl.shadow"), 0);
+    ASSERT_EQ(std::count(two.passes.begin(), two.passes.end(), "sl.shadow"), 1);
+    std::vector<std::string> rest;
+    for (const std::string& p : two.passes)
+      if (p != "sl.shadow") rest.push_back(p);
+    EXPECT_EQ(one.passes, rest);
+    ASSERT_EQ(one.rgb.size(), two.rgb.size());
+    int unequal = 0, beyondStep = 0;
+    float maxDiff = 0.0f;
+    for (std::size_t i = 0; i < one.rgb.size(); ++i) {
+      const float d = std::abs(one.rgb[i] - two.rgb[i]);
+      unequal += d > 0.0f;
+      beyondStep += d > 1.5f / 255.0f;
+      maxDiff = std::max(maxDiff, d);
+    }
+    EXPECT_EQ(beyondStep, 0);
+    std::printf("sl one walk vs two passes (%s resolution) at %ux%u: %d of %zu channel values differ, max %.1f/255\n",
+                half ? "half" : "full", kExtent.width, kExtent.height, unequal, one.rgb.size(), maxDiff * 255.0f);
+  }
 }
 
 // "local_lights" (§7.3): the level's point light as an SL of radius 0.3 m. Its shadow map is off
@@ -429,6 +482,25 @@ TEST(SlSession, EntitiesThatDisagreeOnLocalLightsAreBadInput) {
   } catch (const InputError& e) {
     const std::string msg = e.what();
     EXPECT_NE(msg.find("/sl/local_lights: false differs from entity"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("(expected one setting for every sl entity of a level"), std::string::npos) << msg;
+  }
+}
+
+// "fused" likewise: one pass draws every SL, so the entities must agree on it.
+TEST(SlSession, EntitiesThatDisagreeOnFusedAreBadInput) {
+  scene::Level l = game::loadLevelWithEffects(kCharacters, std::vector<std::string>{"direct", "probes", "sl"});
+  bool first = true;
+  for (auto& e : l.entities)
+    if (e.sl) {
+      e.sl->fused = first;
+      first = false;
+    }
+  try {
+    game::Session s(gpu::testkit::sharedContext(), std::move(l));
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("/sl/fused: false differs from entity"), std::string::npos) << msg;
     EXPECT_NE(msg.find("(expected one setting for every sl entity of a level"), std::string::npos) << msg;
   }
 }

@@ -1,0 +1,69 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+// Passes "sl" and "sl.shadow" in one (issue 13 pass 2, README "SL: one walk for sl and sl.shadow"),
+// drawn when both run and the §7.3 hierarchy is off: the two walk the same tiles and the same
+// candidates, so each pixel walks its tile's candidates once (sl.glsl slWalk: the receiver rules)
+// and both terms read that live list — E(p) (sl.glsl slIrradianceLive, sl_frag.glsl's term) and the
+// shadow on the probes' light ΔE(p) (probe_shadow.glsl slProbeShadowLive, probe_shadow_frag.glsl's
+// term). Each term is the same floats as its own pass computes; the output is their sum, blended
+// once (additive) where the two passes blend twice: the images differ by RGBA16F rounding only.
+// Full resolution: ρ/π · E + ρ/π · ao · ΔE added to "lighting.hdr"; half (kHalf): pixel j of
+// "sl.half" takes G-buffer pixel 2j and writes E + ao · ΔE ("sl.upsample" applies ρ/π).
+// Bindings and push block are sl.shadow's (probe_shadow_frag.glsl, sl/shadow_tiles.vert);
+// specialization: sl.glsl's ids 0–3, kCoeffs (4), kHalf (5), kSingleObject (6, sl_frag.glsl's).
+layout(constant_id = 0) const uint kOrder = 4u;
+layout(constant_id = 1) const bool kPerObject = false;
+layout(constant_id = 2) const uint kSpheres = 64u;
+layout(constant_id = 3) const float kInfluence = 0.0;
+layout(constant_id = 4) const int kCoeffs = 9;  // the probes' order²: 4 or 9
+layout(constant_id = 5) const bool kHalf = false;
+layout(constant_id = 6) const bool kSingleObject = false;  // per-object: tiles whose SLs are one object's
+#define SL_SINGLE_OBJECT kSingleObject
+
+#include "frame.glsl"
+#include "sh.glsl"
+
+layout(set = 0, binding = 0) uniform FrameUbo { Camera camera; };
+layout(set = 1, binding = 0) uniform sampler2D gAlbedo;
+layout(set = 1, binding = 1) uniform sampler2D gNormal;
+layout(set = 1, binding = 2) uniform sampler2D gDepth;
+layout(set = 1, binding = 3) uniform sampler2D probeSh;       // RGBA32F (probes/probe_sh.glsl)
+layout(set = 1, binding = 4) uniform sampler2D probeMoments;  // RG32F
+layout(set = 1, binding = 5) uniform sampler2D aoTerm;  // "ao.term" (1 = unoccluded) when pc.bias.w = 1
+layout(push_constant) uniform Push {
+  vec4 originSpacing;
+  ivec4 countOrder;
+  vec4 bias;  // w: 1 = multiply by aoTerm, as the probes pass does
+} pc;
+#include "probes/probe_sh.glsl"
+#define SL_SET 1
+#define SL_BINDING 7  // binding 6: the tiles (sl/tiles.glsl)
+#include "sl/sl_data.glsl"
+#include "sl/sl.glsl"
+#include "sl/probe_shadow.glsl"
+
+layout(location = 0) flat in uvec4 inCandidates;
+layout(location = 0) out vec4 outRadiance;
+
+const float kInvPi = 0.31830988618379067;
+
+void main() {
+  ivec2 pixel = kHalf ? min(2 * ivec2(gl_FragCoord.xy), ivec2(camera.resolution.xy) - 1) : ivec2(gl_FragCoord.xy);
+  float depth = texelFetch(gDepth, pixel, 0).r;
+  if (depth >= 1.0) {
+    outRadiance = vec4(0.0);
+    return;
+  }
+  vec3 albedo = texelFetch(gAlbedo, pixel, 0).rgb;
+  vec3 n = texelFetch(gNormal, pixel, 0).xyz;
+  vec3 p = worldFromDepth(camera.invViewProj, (vec2(pixel) + 0.5) * camera.resolution.zw, depth);
+  // One walk; slIrradianceLive leaves slLive / slDist / slAdjusted as it found them.
+  uint alive = slWalk(p, n, inCandidates, min(slCount(), kSpheres));
+  vec3 e = max(slIrradianceLive(p, n, alive), vec3(0.0));
+  vec3 L[9];
+  probeRadianceSh(p, n, normalize(camera.position.xyz - p), L);
+  float ao = pc.bias.w > 0.5 ? texelFetch(aoTerm, pixel, 0).r : 1.0;
+  vec3 delta = ao * slProbeShadowLive(p, n, L, alive);
+  // Each pass's own output, then summed (fp32): the terms as the two passes write them.
+  outRadiance = vec4(kHalf ? e + delta : albedo * kInvPi * e + albedo * kInvPi * delta, 0.0);
+}
