@@ -38,6 +38,7 @@ layout(push_constant) uniform Push {
 #include "sl/sl_data.glsl"
 #include "sl/sl.glsl"
 #include "sl/probe_shadow.glsl"
+#include "sl/receiver.glsl"
 #ifdef SL_HIERARCHY
 #include "sl/hierarchy.glsl"
 #include "sl/hierarchy_shadow.glsl"
@@ -52,15 +53,13 @@ layout(location = 0) out vec4 outRadiance;
 const float kInvPi = 0.31830988618379067;
 
 void main() {
-  ivec2 pixel = kHalf ? min(2 * ivec2(gl_FragCoord.xy), ivec2(camera.resolution.xy) - 1) : ivec2(gl_FragCoord.xy);
-  float depth = texelFetch(gDepth, pixel, 0).r;
-  if (depth >= 1.0) {
+  ivec2 pixel;
+  vec3 x, n;
+  if (!slReceiver(pixel, x, n)) {
     outRadiance = vec4(0.0);
     return;
   }
   vec3 albedo = texelFetch(gAlbedo, pixel, 0).rgb;
-  vec3 n = texelFetch(gNormal, pixel, 0).xyz;
-  vec3 x = worldFromDepth(camera.invViewProj, (vec2(pixel) + 0.5) * camera.resolution.zw, depth);
   vec3 L[9];
   probeRadianceSh(x, n, normalize(camera.position.xyz - x), L);
   float ao = pc.bias.w > 0.5 ? texelFetch(aoTerm, pixel, 0).r : 1.0;

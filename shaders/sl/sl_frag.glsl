@@ -27,6 +27,7 @@ layout(set = 1, binding = 2) uniform sampler2D gDepth;
 #define SL_BINDING 3
 #include "sl/sl_data.glsl"
 #include "sl/sl.glsl"
+#include "sl/receiver.glsl"
 #ifdef SL_HIERARCHY
 #include "sl/hierarchy.glsl"
 #endif
@@ -40,15 +41,12 @@ layout(location = 0) out vec4 outRadiance;
 const float kInvPi = 0.31830988618379067;
 
 void main() {
-  // The receiver: this pixel, or at half resolution the G-buffer pixel it stands for.
-  ivec2 pixel = kHalf ? min(2 * ivec2(gl_FragCoord.xy), ivec2(camera.resolution.xy) - 1) : ivec2(gl_FragCoord.xy);
-  float depth = texelFetch(gDepth, pixel, 0).r;
-  if (depth >= 1.0) {
+  ivec2 pixel;
+  vec3 p, n;
+  if (!slReceiver(pixel, p, n)) {
     outRadiance = vec4(0.0);
     return;
   }
-  vec3 n = texelFetch(gNormal, pixel, 0).xyz;
-  vec3 p = worldFromDepth(camera.invViewProj, (vec2(pixel) + 0.5) * camera.resolution.zw, depth);
 #ifdef SL_HIERARCHY
   // §7.3 (sl/hierarchy.glsl): the children cut by rule 0, plus each listed parent for the share cut.
   vec3 e = max(slIrradianceAt(p, n, inCandidates) + slHierarchyAt(p, n, inCandidates, inRatios), vec3(0.0));

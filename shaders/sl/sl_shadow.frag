@@ -41,6 +41,7 @@ layout(push_constant) uniform Push {
 #include "sl/sl_data.glsl"
 #include "sl/sl.glsl"
 #include "sl/probe_shadow.glsl"
+#include "sl/receiver.glsl"
 
 layout(location = 0) flat in uvec4 inCandidates;
 layout(location = 0) out vec4 outRadiance;
@@ -48,15 +49,13 @@ layout(location = 0) out vec4 outRadiance;
 const float kInvPi = 0.31830988618379067;
 
 void main() {
-  ivec2 pixel = kHalf ? min(2 * ivec2(gl_FragCoord.xy), ivec2(camera.resolution.xy) - 1) : ivec2(gl_FragCoord.xy);
-  float depth = texelFetch(gDepth, pixel, 0).r;
-  if (depth >= 1.0) {
+  ivec2 pixel;
+  vec3 p, n;
+  if (!slReceiver(pixel, p, n)) {
     outRadiance = vec4(0.0);
     return;
   }
   vec3 albedo = texelFetch(gAlbedo, pixel, 0).rgb;
-  vec3 n = texelFetch(gNormal, pixel, 0).xyz;
-  vec3 p = worldFromDepth(camera.invViewProj, (vec2(pixel) + 0.5) * camera.resolution.zw, depth);
   // One walk; slIrradianceLive leaves slLive / slDist / slAdjusted as it found them.
   uint alive = slWalk(p, n, inCandidates, min(slCount(), kSpheres));
   vec3 e = max(slIrradianceLive(p, n, alive), vec3(0.0));
