@@ -7,8 +7,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
+#include <initializer_list>
 #include <numeric>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "engine/core/error.hpp"
@@ -23,10 +26,35 @@ namespace {
 const std::filesystem::path kCharacters = std::filesystem::path(BOUNCE_SOURCE_DIR) / "content/levels/characters.json";
 constexpr VkExtent2D kExtent{96, 96};
 
+// 8-bit output: one step of rounding either way.
+constexpr float kStep = 1.5f / 255.0f;
+
 struct Frame {
   std::vector<std::string> passes;
   std::vector<float> rgb;
+  // Where `name` ran in the pass list (its size when it did not).
+  std::ptrdiff_t at(const std::string& name) const { return std::find(passes.begin(), passes.end(), name) - passes.begin(); }
+  // The pass list without `names`.
+  std::vector<std::string> passesWithout(std::initializer_list<std::string_view> names) const {
+    std::vector<std::string> rest;
+    for (const std::string& p : passes)
+      if (std::find(names.begin(), names.end(), p) == names.end()) rest.push_back(p);
+    return rest;
+  }
 };
+
+// Channel values of `a` more than one step darker / brighter than the same ones of `b`.
+struct Steps {
+  int darker = 0, brighter = 0;
+};
+Steps stepsBetween(const Frame& a, const Frame& b) {
+  Steps s;
+  for (std::size_t i = 0; i < a.rgb.size(); ++i) {
+    s.darker += a.rgb[i] < b.rgb[i] - kStep;
+    s.brighter += a.rgb[i] > b.rgb[i] + kStep;
+  }
+  return s;
+}
 
 Frame oneFrame(game::Session& session) {
   gpu::OffscreenPresenter presenter(gpu::testkit::sharedContext(), kExtent);
@@ -58,21 +86,13 @@ TEST(SlSession, RunsItsTwoPassesAndOnlyAddsLight) {
 
   ASSERT_EQ(std::count(a.passes.begin(), a.passes.end(), "sl.intensity"), 1);
   ASSERT_EQ(std::count(a.passes.begin(), a.passes.end(), "sl"), 1);
-  const auto at = [&](const std::string& name) { return std::find(a.passes.begin(), a.passes.end(), name) - a.passes.begin(); };
-  EXPECT_LT(at("sl.intensity"), at("sl"));
-  EXPECT_LT(at("lighting"), at("sl"));
-  std::vector<std::string> rest;
-  for (const std::string& p : a.passes)
-    if (p != "sl" && p != "sl.intensity") rest.push_back(p);
-  EXPECT_EQ(rest, b.passes);
+  EXPECT_LT(a.at("sl.intensity"), a.at("sl"));
+  EXPECT_LT(a.at("lighting"), a.at("sl"));
+  EXPECT_EQ(a.passesWithout({"sl", "sl.intensity"}), b.passes);
 
   ASSERT_EQ(a.rgb.size(), b.rgb.size());
   ASSERT_EQ(a.rgb.size(), std::size_t(kExtent.width) * kExtent.height * 3);
-  int darker = 0, brighter = 0;
-  for (std::size_t i = 0; i < a.rgb.size(); ++i) {
-    darker += a.rgb[i] < b.rgb[i] - 1.5f / 255.0f;  // 8-bit output: one step of rounding either way
-    brighter += a.rgb[i] > b.rgb[i] + 1.5f / 255.0f;
-  }
+  const auto [darker, brighter] = stepsBetween(a, b);
   EXPECT_EQ(darker, 0);
   EXPECT_GT(brighter, 0);
   std::printf("sl on the characters level at %ux%u: %d of %zu channel values brighter, none darker\n", kExtent.width,
@@ -100,15 +120,14 @@ TEST(SlSession, HalfResolutionUpsamplesAndStaysCloseToFull) {
   for (const char* pass : {"sl.intensity", "sl", "sl.upsample"})
     ASSERT_EQ(std::count(h.passes.begin(), h.passes.end(), pass), 1) << pass;
   EXPECT_EQ(std::count(f.passes.begin(), f.passes.end(), "sl.upsample"), 0);
-  const auto at = [&](const std::string& name) { return std::find(h.passes.begin(), h.passes.end(), name) - h.passes.begin(); };
-  EXPECT_LT(at("sl"), at("sl.upsample"));
-  EXPECT_LT(at("lighting"), at("sl.upsample"));
+  EXPECT_LT(h.at("sl"), h.at("sl.upsample"));
+  EXPECT_LT(h.at("lighting"), h.at("sl.upsample"));
 
   ASSERT_EQ(h.rgb.size(), b.rgb.size());
   int darker = 0;
   double fullSum = 0.0, halfSum = 0.0, diff2 = 0.0, term2 = 0.0;
   for (std::size_t i = 0; i < h.rgb.size(); ++i) {
-    darker += h.rgb[i] < b.rgb[i] - 1.5f / 255.0f;
+    darker += h.rgb[i] < b.rgb[i] - kStep;
     const double tf = double(f.rgb[i]) - b.rgb[i], th = double(h.rgb[i]) - b.rgb[i];
     fullSum += tf;
     halfSum += th;
@@ -219,17 +238,12 @@ TEST(SlSession, WithProbesItShadowsTheirLightButNeverBelowTheFrameWithoutThem) {
   const Frame c = frame({"direct", "shadows"});
   for (const char* name : {"sl.intensity", "sl", "sl.shadow"})
     ASSERT_EQ(std::count(a.passes.begin(), a.passes.end(), name), 1) << name;
-  const auto at = [&](const std::string& name) { return std::find(a.passes.begin(), a.passes.end(), name) - a.passes.begin(); };
-  EXPECT_LT(at("probes"), at("sl.shadow"));
-  EXPECT_LT(at("sl"), at("sl.shadow"));
-  std::vector<std::string> rest;
-  for (const std::string& p : a.passes)
-    if (p != "sl" && p != "sl.intensity" && p != "sl.shadow") rest.push_back(p);
-  EXPECT_EQ(rest, b.passes);
+  EXPECT_LT(a.at("probes"), a.at("sl.shadow"));
+  EXPECT_LT(a.at("sl"), a.at("sl.shadow"));
+  EXPECT_EQ(a.passesWithout({"sl", "sl.intensity", "sl.shadow"}), b.passes);
 
   ASSERT_EQ(a.rgb.size(), b.rgb.size());
   ASSERT_EQ(a.rgb.size(), c.rgb.size());
-  constexpr float kStep = 1.5f / 255.0f;  // 8-bit output: one step of rounding either way
   int darker = 0, belowNoProbes = 0;
   for (std::size_t i = 0; i < a.rgb.size(); ++i) {
     darker += a.rgb[i] < b.rgb[i] - kStep;
@@ -265,13 +279,11 @@ TEST(SlSession, ShadowOnTheProbesFollowsHalfResolutionIntoTheUpsample) {
   const Frame c = frame({"direct", "shadows"}, false);
   for (const char* name : {"sl.intensity", "sl", "sl.shadow", "sl.upsample"})
     ASSERT_EQ(std::count(h.passes.begin(), h.passes.end(), name), 1) << name;
-  const auto at = [&](const std::string& name) { return std::find(h.passes.begin(), h.passes.end(), name) - h.passes.begin(); };
-  EXPECT_LT(at("sl"), at("sl.shadow"));
-  EXPECT_LT(at("sl.shadow"), at("sl.upsample"));
-  EXPECT_LT(at("probes"), at("sl.upsample"));
+  EXPECT_LT(h.at("sl"), h.at("sl.shadow"));
+  EXPECT_LT(h.at("sl.shadow"), h.at("sl.upsample"));
+  EXPECT_LT(h.at("probes"), h.at("sl.upsample"));
 
   ASSERT_EQ(h.rgb.size(), b.rgb.size());
-  constexpr float kStep = 1.5f / 255.0f;  // 8-bit output: one step of rounding either way
   int darker = 0, darkerFull = 0, belowNoProbes = 0;
   double diff2 = 0.0, term2 = 0.0, halfSum = 0.0, fullSum = 0.0;
   for (std::size_t i = 0; i < h.rgb.size(); ++i) {
@@ -321,17 +333,14 @@ TEST(SlSession, OneWalkForBothTermsMatchesTheTwoPasses) {
     ASSERT_EQ(std::count(one.passes.begin(), one.passes.end(), "sl"), 1);
     EXPECT_EQ(std::count(one.passes.begin(), one.passes.end(), "sl.shadow"), 0);
     ASSERT_EQ(std::count(two.passes.begin(), two.passes.end(), "sl.shadow"), 1);
-    std::vector<std::string> rest;
-    for (const std::string& p : two.passes)
-      if (p != "sl.shadow") rest.push_back(p);
-    EXPECT_EQ(one.passes, rest);
+    EXPECT_EQ(one.passes, two.passesWithout({"sl.shadow"}));
     ASSERT_EQ(one.rgb.size(), two.rgb.size());
     int unequal = 0, beyondStep = 0;
     float maxDiff = 0.0f;
     for (std::size_t i = 0; i < one.rgb.size(); ++i) {
       const float d = std::abs(one.rgb[i] - two.rgb[i]);
       unequal += d > 0.0f;
-      beyondStep += d > 1.5f / 255.0f;
+      beyondStep += d > kStep;
       maxDiff = std::max(maxDiff, d);
     }
     EXPECT_EQ(beyondStep, 0);
@@ -361,18 +370,10 @@ TEST(SlSession, LocalLightsAddOnePassThatOnlyTakesLightAway) {
   const Frame a = oneFrame(on), b = oneFrame(off);
   ASSERT_EQ(std::count(a.passes.begin(), a.passes.end(), "sl.local"), 1);
   EXPECT_EQ(std::count(b.passes.begin(), b.passes.end(), "sl.local"), 0);
-  const auto at = [&](const std::string& name) { return std::find(a.passes.begin(), a.passes.end(), name) - a.passes.begin(); };
-  EXPECT_LT(at("sl"), at("sl.local"));
-  std::vector<std::string> rest;
-  for (const std::string& p : a.passes)
-    if (p != "sl.local") rest.push_back(p);
-  EXPECT_EQ(rest, b.passes);
+  EXPECT_LT(a.at("sl"), a.at("sl.local"));
+  EXPECT_EQ(a.passesWithout({"sl.local"}), b.passes);
   ASSERT_EQ(a.rgb.size(), b.rgb.size());
-  int darker = 0, brighter = 0;
-  for (std::size_t i = 0; i < a.rgb.size(); ++i) {
-    darker += a.rgb[i] < b.rgb[i] - 1.5f / 255.0f;
-    brighter += a.rgb[i] > b.rgb[i] + 1.5f / 255.0f;
-  }
+  const auto [darker, brighter] = stepsBetween(a, b);
   EXPECT_EQ(brighter, 0);
   EXPECT_GT(darker, 0);
   std::printf("local lights on the characters level at %ux%u: %d of %zu channel values darker, none brighter\n",
@@ -396,19 +397,11 @@ TEST(SlSession, HierarchyAddsOnePassAndOnlyLightBeyondTheCut) {
   game::Session on(gpu::testkit::sharedContext(), level(true));
   const Frame a = oneFrame(on), b = oneFrame(off);
   ASSERT_EQ(std::count(a.passes.begin(), a.passes.end(), "sl.hierarchy"), 1);
-  const auto at = [&](const std::string& name) { return std::find(a.passes.begin(), a.passes.end(), name) - a.passes.begin(); };
-  EXPECT_LT(at("sl.intensity"), at("sl.hierarchy"));
-  EXPECT_LT(at("sl.hierarchy"), at("sl"));
-  std::vector<std::string> rest;
-  for (const std::string& p : a.passes)
-    if (p != "sl.hierarchy") rest.push_back(p);
-  EXPECT_EQ(rest, b.passes);
+  EXPECT_LT(a.at("sl.intensity"), a.at("sl.hierarchy"));
+  EXPECT_LT(a.at("sl.hierarchy"), a.at("sl"));
+  EXPECT_EQ(a.passesWithout({"sl.hierarchy"}), b.passes);
   ASSERT_EQ(a.rgb.size(), b.rgb.size());
-  int darker = 0, brighter = 0;
-  for (std::size_t i = 0; i < a.rgb.size(); ++i) {
-    darker += a.rgb[i] < b.rgb[i] - 1.5f / 255.0f;
-    brighter += a.rgb[i] > b.rgb[i] + 1.5f / 255.0f;
-  }
+  const auto [darker, brighter] = stepsBetween(a, b);
   EXPECT_EQ(darker, 0);
   EXPECT_GT(brighter, 0);
   std::printf("hierarchy on the characters level at influence 4, %ux%u: %d of %zu channel values brighter, none darker\n",
@@ -433,11 +426,10 @@ TEST(SlSession, HierarchyShadowRunsBeforeSlShadowAndKeepsItsClamp) {
   const Frame c = frame({"direct", "shadows"}, true);
   for (const char* name : {"sl.intensity", "sl.hierarchy", "sl", "sl.shadow.hierarchy", "sl.shadow"})
     ASSERT_EQ(std::count(a.passes.begin(), a.passes.end(), name), 1) << name;
-  const auto at = [&](const std::string& name) { return std::find(a.passes.begin(), a.passes.end(), name) - a.passes.begin(); };
-  EXPECT_EQ(at("sl.shadow.hierarchy") + 1, at("sl.shadow"));
+  EXPECT_EQ(a.at("sl.shadow.hierarchy") + 1, a.at("sl.shadow"));
   ASSERT_EQ(a.rgb.size(), c.rgb.size());
   int belowNoProbes = 0;
-  for (std::size_t i = 0; i < a.rgb.size(); ++i) belowNoProbes += a.rgb[i] < c.rgb[i] - 1.5f / 255.0f;
+  for (std::size_t i = 0; i < a.rgb.size(); ++i) belowNoProbes += a.rgb[i] < c.rgb[i] - kStep;
   EXPECT_EQ(belowNoProbes, 0);
 }
 
@@ -462,7 +454,7 @@ TEST(SlSession, HierarchyRunsAtHalfResolution) {
   int differ = 0;
   for (std::size_t i = 0; i < a.rgb.size(); ++i) {
     ASSERT_TRUE(std::isfinite(a.rgb[i]));
-    differ += std::abs(a.rgb[i] - b.rgb[i]) > 1.5f / 255.0f;
+    differ += std::abs(a.rgb[i] - b.rgb[i]) > kStep;
   }
   EXPECT_GT(differ, 0);
 }
