@@ -60,17 +60,18 @@ int runBenchSl(const cli::Args& args) {
     influence = float(f);
   }
 
-  std::vector<bool> halves;
+  std::vector<int> steps;  // pass 2's G-buffer pixels per sample per axis (engine/gi/sl/resolution.hpp)
   for (const std::string& r : args.list("--sl-resolution").value_or(std::vector<std::string>{"full"})) {
-    if (r != "full" && r != "half")
-      throwInputError("bounce bench", "--sl-resolution", "'" + r + "' is not a resolution", "full, half or both: full,half");
-    halves.push_back(r == "half");
+    if (r != "full" && r != "half" && r != "quarter")
+      throwInputError("bounce bench", "--sl-resolution", "'" + r + "' is not a resolution",
+                      "full, half, quarter or a list: full,half,quarter");
+    steps.push_back(r == "quarter" ? 4 : r == "half" ? 2 : 1);
   }
 
   gpu::Context ctx({args.str("--device")});
   gpu::OffscreenPresenter presenter(ctx, {std::uint32_t(res.first), std::uint32_t(res.second)});
   for (int n : counts)
-    for (bool half : halves)
+    for (int step : steps)
       for (bool perObject : {false, true}) {
       scene::Level configured = level;
       scene::overrideEffects(configured, "direct,shadows,sl");
@@ -79,7 +80,7 @@ int runBenchSl(const cli::Args& args) {
           e.sl->spheres = n / entities;
           e.sl->perObject = perObject;
           if (influence) e.sl->influence = *influence;
-          e.sl->half = half;
+          e.sl->step = step;
         }
       TimingCollector timings;
       double updateMs = std::numeric_limits<double>::quiet_NaN();
@@ -104,13 +105,13 @@ int runBenchSl(const cli::Args& args) {
           ++found;
           timed = s.frames;
         }
-      if (found != (half ? 3 : 2)) throw InternalError("bench sl: the session did not run every SL pass");
+      if (found != (step > 1 ? 3 : 2)) throw InternalError("bench sl: the session did not run every SL pass");
       float f = 0.0f;
       for (const auto& e : configured.entities)
         if (e.sl) f = e.sl->influence;
       std::printf("spheres=%d blocking=%s %dx%d sl_ms=%.3f sl_update_ms=%.3f frames=%zu influence=%g resolution=%s\n", n,
                   perObject ? "per-object" : "per-sphere", res.first, res.second, slMs, updateMs, timed, double(f),
-                  half ? "half" : "full");
+                  step == 4 ? "quarter" : step == 2 ? "half" : "full");
       std::fflush(stdout);
     }
   return 0;

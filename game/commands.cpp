@@ -122,7 +122,7 @@ const std::vector<cli::CommandSpec>& commandSpecs() {
         {"--objects", "N", "rtf: only the level's first N dynamic objects (default all)"},
         // bench sl (game/bench_sl.hpp); --level (default characters), --resolution (default 1280x720) and --frames (default 3) above also apply
         {"--influence", "F", "sl: every sl component's influence (0 = off, else 3..1000 radii; default the level's)"},
-        {"--sl-resolution", "LIST", "sl: pass 2's resolution, full, half or full,half (default full); sl_ms then adds sl.upsample"},
+        {"--sl-resolution", "LIST", "sl: pass 2's resolution, full, half, quarter or a list such as full,half,quarter (default full); sl_ms then adds sl.upsample"},
         {"--radii", "INNER,OUTER", "rtf: innermost and outermost sphere radii in units of the bounding radius (default 0.1,8)"},
         {"--no-gpu", "", "rtf: only the bake and CPU lines"},
         {"--only", "TEXT", "skinning: only the models whose name contains TEXT (e.g. +subdiv)"}},

@@ -189,9 +189,9 @@ struct Sl {
   // "influence": F of sl::evaluate's rule 0 — a receiver ignores SLs farther than F radii (fading
   // from F/2); 0 = every SL at every pixel. Run time only (pass 2), the bake is the same.
   float influence = 12.0f;
-  // "resolution": "full" (false, the default) or "half" (true): pass 2 shades every second pixel per
-  // axis and an edge-aware upsample fills the rest (engine/gi/sl/node.hpp Resolution). Run time only.
-  bool half = false;
+  // "resolution": "full" (1, the default), "half" (2) or "quarter" (4): pass 2 shades one pixel in
+  // step × step and an edge-aware upsample fills the rest (engine/gi/sl/resolution.hpp). Run time only.
+  int step = 1;
   // "local_lights": the level's point and spot lights become SLs of their own radius (Light::radius)
   // in pass 2 (§7.3): this object's shadow on them is the SLs' SH-exponentiated visibility of the
   // light's sphere ("sl.local", engine/gi/sl/local_light.hpp) instead of the shadow map's (its draws

@@ -183,7 +183,7 @@ void parseDnrt(const json::Node& node, EntityDesc& d, const ParseContext&) {
 }
 
 // "sl": {"spheres": 1..64, "order": 3|4, "blocking": "per-sphere"|"per-object", "influence": 0|3..1000,
-//        "resolution": "full"|"half", "local_lights": bool, "hierarchy": bool, "fused": bool} — every key optional (defaults 16, 4, per-sphere, 12, full, false, false, true). The sphere limit is gi::sl::kMaxSpheres
+//        "resolution": "full"|"half"|"quarter", "local_lights": bool, "hierarchy": bool, "fused": bool} — every key optional (defaults 16, 4, per-sphere, 12, full, false, false, true). The sphere limit is gi::sl::kMaxSpheres
 //        (one uint64 mask).
 void parseSl(const json::Node& node, EntityDesc& d, const ParseContext&) {
   const auto o = node.object({"spheres", "order", "blocking", "influence", "resolution", "local_lights", "hierarchy", "fused"});
@@ -209,8 +209,9 @@ void parseSl(const json::Node& node, EntityDesc& d, const ParseContext&) {
   }
   if (auto v = o.optional("resolution")) {
     const std::string m = v->string();
-    if (m != "full" && m != "half") v->fail("unknown resolution " + json::inQuotes(m), "full or half");
-    c.half = m == "half";
+    if (m != "full" && m != "half" && m != "quarter")
+      v->fail("unknown resolution " + json::inQuotes(m), "full, half or quarter");
+    c.step = m == "quarter" ? 4 : m == "half" ? 2 : 1;
   }
   if (auto v = o.optional("local_lights")) c.localLights = v->boolean();
   if (auto v = o.optional("hierarchy")) c.hierarchy = v->boolean();

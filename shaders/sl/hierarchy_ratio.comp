@@ -12,7 +12,7 @@ layout(constant_id = 0) const uint kOrder = 4u;
 layout(constant_id = 1) const bool kPerObject = false;
 layout(constant_id = 2) const uint kSpheres = 64u;
 layout(constant_id = 3) const float kInfluence = 0.0;  // 0 here: Eq. 25 is against the uncut children
-layout(constant_id = 4) const bool kHalf = false;       // tiles of the half-size target (G-buffer pixel 2j)
+layout(constant_id = 4) const uint kStep = 1u;  // tiles of the reduced target (G-buffer pixel kStep·j)
 
 #include "frame.glsl"
 layout(set = 0, binding = 0) uniform sampler2D gNormal;
@@ -41,7 +41,7 @@ void main() {
   ivec2 last = ivec2(pc.screen.xy) - 1;
   for (uint k = 0u; k < 5u; ++k) {
     ivec2 pixel = ivec2((vec2(tile) + offsets[k]) * float(pc.tileSize));
-    if (kHalf) pixel *= 2;
+    pixel *= int(kStep);
     pixel = min(pixel, last);
     float depth = texelFetch(gDepth, pixel, 0).r;
     if (depth >= 1.0) continue;

@@ -7,15 +7,16 @@
 // Background pixels (depth 1) receive nothing. Drawn as the SL pass's tiles (sl/shadow_tiles.vert):
 // a pixel visits only its tile's SLs; tiles no SL's influence reaches are not drawn (ΔE = 0 there).
 // Specialization constants: sl.glsl's (ids 0–3, engine/gi/sl/shade.hpp), the probes' SH count
-// (id 4) and kHalf (id 5): pixel j of the half-size "sl.half" takes G-buffer pixel 2j and adds
-// ao · ΔE there (no albedo; "sl.upsample" applies each full pixel's ρ/π, as for the SLs' own E; ao is
-// then taken at 2j, not per full pixel — ours, for the half cost).
+// (id 4) and kStep (id 5, G-buffer pixels per sample per axis: 1, 2, 4): pixel j of the reduced
+// "sl.half" / "sl.quarter" takes G-buffer pixel kStep·j and adds ao · ΔE there (no albedo;
+// "sl.upsample" applies each full pixel's ρ/π, as for the SLs' own E; ao is then taken at kStep·j,
+// not per full pixel — ours, for the reduced cost).
 layout(constant_id = 0) const uint kOrder = 4u;
 layout(constant_id = 1) const bool kPerObject = false;
 layout(constant_id = 2) const uint kSpheres = 64u;
 layout(constant_id = 3) const float kInfluence = 0.0;
 layout(constant_id = 4) const int kCoeffs = 9;  // the probes' order²: 4 or 9
-layout(constant_id = 5) const bool kHalf = false;
+layout(constant_id = 5) const uint kStep = 1u;
 
 #include "frame.glsl"
 #include "sh.glsl"
@@ -69,5 +70,5 @@ void main() {
 #else
   vec3 delta = ao * slProbeShadow(x, n, L, inCandidates);
 #endif
-  outRadiance = vec4(kHalf ? delta : albedo * kInvPi * delta, 0.0);
+  outRadiance = vec4(kStep > 1u ? delta : albedo * kInvPi * delta, 0.0);
 }

@@ -13,7 +13,7 @@ layout(constant_id = 1) const bool kPerObject = false;
 layout(constant_id = 2) const uint kSpheres = 64u;
 layout(constant_id = 3) const float kInfluence = 0.0;
 layout(constant_id = 4) const int kCoeffs = 9;
-layout(constant_id = 5) const bool kHalf = false;
+layout(constant_id = 5) const uint kStep = 1u;  // tiles of the reduced target (G-buffer pixel kStep·j)
 
 #include "frame.glsl"
 #include "sh.glsl"
@@ -48,7 +48,7 @@ void main() {
   ivec2 last = ivec2(camera.resolution.xy) - 1;
   for (uint k = 0u; k < 5u; ++k) {
     ivec2 pixel = ivec2((vec2(tile) + offsets[k]) * float(pc.tileSize));
-    if (kHalf) pixel *= 2;
+    pixel *= int(kStep);
     pixel = min(pixel, last);
     float depth = texelFetch(gDepth, pixel, 0).r;
     if (depth >= 1.0) continue;

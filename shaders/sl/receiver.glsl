@@ -1,11 +1,12 @@
 // The receiver of SL pass 2's fragment shaders (sl, sl.shadow, and both in one walk): this pixel, or at
-// half resolution the G-buffer pixel it stands for, its world position p and normal n. False on the
-// background (depth 1), where the pass writes 0. The includer declares camera (frame.glsl), gDepth,
-// gNormal and the specialization constant kHalf.
+// half or quarter resolution the G-buffer pixel kStep·j it stands for (engine/gi/sl/resolution.hpp),
+// its world position p and normal n. False on the background (depth 1), where the pass writes 0. The
+// includer declares camera (frame.glsl), gDepth, gNormal and the specialization constant kStep
+// (G-buffer pixels per sample per axis: 1, 2 or 4).
 #ifndef BOUNCE_SL_RECEIVER_GLSL
 #define BOUNCE_SL_RECEIVER_GLSL
 bool slReceiver(out ivec2 pixel, out vec3 p, out vec3 n) {
-  pixel = kHalf ? min(2 * ivec2(gl_FragCoord.xy), ivec2(camera.resolution.xy) - 1) : ivec2(gl_FragCoord.xy);
+  pixel = kStep > 1u ? min(int(kStep) * ivec2(gl_FragCoord.xy), ivec2(camera.resolution.xy) - 1) : ivec2(gl_FragCoord.xy);
   float depth = texelFetch(gDepth, pixel, 0).r;
   if (depth >= 1.0) return false;
   n = texelFetch(gNormal, pixel, 0).xyz;

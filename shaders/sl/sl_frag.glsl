@@ -5,15 +5,16 @@
 // Background pixels (depth 1) receive nothing. Drawn as tiles (shaders/sl/tiles.vert): a pixel
 // visits only its tile's SLs, those whose influence bound covers the tile. Order, blocking, the
 // per-receiver array size and the resolution are specialization constants
-// (engine/gi/sl/shade.hpp ShadeData::specialization, kHalf: engine/gi/sl/node.cpp).
-// Half resolution (kHalf): pixel j of the half-size target shades the G-buffer's pixel 2j and writes
-// E itself (W/m², no albedo) into "sl.half"; shaders/sl/upsample.frag spreads it over the full
-// resolution with depth and normal weights and applies each full pixel's own albedo.
+// (engine/gi/sl/shade.hpp ShadeData::specialization, kStep: engine/gi/sl/node.cpp).
+// Half or quarter resolution (kStep 2 or 4, engine/gi/sl/resolution.hpp): pixel j of the reduced
+// target shades the G-buffer's pixel kStep·j and writes E itself (W/m², no albedo) into "sl.half" /
+// "sl.quarter"; shaders/sl/upsample.frag spreads it over the full resolution with depth and normal
+// weights and applies each full pixel's own albedo.
 layout(constant_id = 0) const uint kOrder = 4u;
 layout(constant_id = 1) const bool kPerObject = false;
 layout(constant_id = 2) const uint kSpheres = 64u;
 layout(constant_id = 3) const float kInfluence = 0.0;
-layout(constant_id = 4) const bool kHalf = false;
+layout(constant_id = 4) const uint kStep = 1u;  // G-buffer pixels per sample per axis: 1, 2, 4
 layout(constant_id = 5) const bool kSingleObject = false;  // per-object: tiles whose SLs are one object's
 #define SL_SINGLE_OBJECT kSingleObject
 
@@ -53,5 +54,5 @@ void main() {
 #else
   vec3 e = max(slIrradianceAt(p, n, inCandidates), vec3(0.0));
 #endif
-  outRadiance = kHalf ? vec4(e, 0.0) : vec4(texelFetch(gAlbedo, pixel, 0).rgb * kInvPi * e, 0.0);
+  outRadiance = kStep > 1u ? vec4(e, 0.0) : vec4(texelFetch(gAlbedo, pixel, 0).rgb * kInvPi * e, 0.0);
 }

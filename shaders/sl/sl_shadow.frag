@@ -7,16 +7,17 @@
 // shadow on the probes' light ΔE(p) (probe_shadow.glsl slProbeShadowLive, probe_shadow_frag.glsl's
 // term). Each term is the same floats as its own pass computes; the output is their sum, blended
 // once (additive) where the two passes blend twice: the images differ by RGBA16F rounding only.
-// Full resolution: ρ/π · E + ρ/π · ao · ΔE added to "lighting.hdr"; half (kHalf): pixel j of
-// "sl.half" takes G-buffer pixel 2j and writes E + ao · ΔE ("sl.upsample" applies ρ/π).
+// Full resolution: ρ/π · E + ρ/π · ao · ΔE added to "lighting.hdr"; half or quarter (kStep 2, 4):
+// pixel j of "sl.half" / "sl.quarter" takes G-buffer pixel kStep·j and writes E + ao · ΔE
+// ("sl.upsample" applies ρ/π).
 // Bindings and push block are sl.shadow's (probe_shadow_frag.glsl, sl/shadow_tiles.vert);
-// specialization: sl.glsl's ids 0–3, kCoeffs (4), kHalf (5), kSingleObject (6, sl_frag.glsl's).
+// specialization: sl.glsl's ids 0–3, kCoeffs (4), kStep (5), kSingleObject (6, sl_frag.glsl's).
 layout(constant_id = 0) const uint kOrder = 4u;
 layout(constant_id = 1) const bool kPerObject = false;
 layout(constant_id = 2) const uint kSpheres = 64u;
 layout(constant_id = 3) const float kInfluence = 0.0;
 layout(constant_id = 4) const int kCoeffs = 9;  // the probes' order²: 4 or 9
-layout(constant_id = 5) const bool kHalf = false;
+layout(constant_id = 5) const uint kStep = 1u;  // G-buffer pixels per sample per axis: 1, 2, 4
 layout(constant_id = 6) const bool kSingleObject = false;  // per-object: tiles whose SLs are one object's
 #define SL_SINGLE_OBJECT kSingleObject
 
@@ -64,5 +65,5 @@ void main() {
   float ao = pc.bias.w > 0.5 ? texelFetch(aoTerm, pixel, 0).r : 1.0;
   vec3 delta = ao * slProbeShadowLive(p, n, L, alive);
   // Each pass's own output, then summed (fp32): the terms as the two passes write them.
-  outRadiance = vec4(kHalf ? e + delta : albedo * kInvPi * e + albedo * kInvPi * delta, 0.0);
+  outRadiance = vec4(kStep > 1u ? e + delta : albedo * kInvPi * e + albedo * kInvPi * delta, 0.0);
 }

@@ -79,22 +79,25 @@ Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t fra
   gpu::GraphicsPipelineDesc d;
   d.vertex = hierarchy ? &hierarchyVert_ : &vert_;
   d.fragment = &frag_;
-  const bool half = resolution == Resolution::Half;
+  const std::uint32_t step = resolutionStep(resolution);
+  const bool reduced = step > 1u;
   d.colorFormats = {kHdrFormat};
-  // Full: added to "lighting.hdr"; half: written into the cleared "sl.half" for the upsample.
-  d.blend = half ? gpu::Blend::None : gpu::Blend::Additive;
+  // Full: added to "lighting.hdr"; half, quarter: written into the cleared "sl.half" / "sl.quarter"
+  // for the upsample.
+  d.blend = reduced ? gpu::Blend::None : gpu::Blend::Additive;
   d.specialization = ShadeData::specialization(order, blocking, spheres_, influence);
-  d.specialization.push_back(half ? 1u : 0u);  // sl.frag kHalf (constant_id 4)
-  d.specialization.push_back(0u);              // sl.frag kSingleObject (constant_id 5)
+  d.specialization.push_back(step);  // sl.frag kStep (constant_id 4)
+  d.specialization.push_back(0u);    // sl.frag kSingleObject (constant_id 5)
   d.name = std::string("sl.") + (blocking == Blocking::PerObject ? "per-object" : "per-sphere") + ".sh" +
-           std::to_string(order * order) + (half ? ".half" : "") + (hierarchy ? ".hierarchy" : "");
+           std::to_string(order * order) + (reduced ? ".step" + std::to_string(step) : "") +
+           (hierarchy ? ".hierarchy" : "");
   pipeline_ = gpu::createGraphicsPipeline(ctx, layout_, d);
   if (blocking == Blocking::PerObject) {
     d.specialization.back() = 1u;
     d.name += ".single-object";
     singleObject_ = gpu::createGraphicsPipeline(ctx, layout_, d);
   }
-  if (half) {
+  if (reduced) {
     upsampleInputs_ = gpu::DescriptorSetLayout(ctx, upsampleBindings(), "sl.upsample.inputs");
     upsampleLayout_ = gpu::PipelineLayout(ctx, {shared.frameLayout.handle(), upsampleInputs_.handle()},
                                           {VkPushConstantRange{VK_SHADER_STAGE_ALL, 0, sizeof(TilePush)}}, "sl.upsample");
@@ -104,7 +107,8 @@ Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t fra
     u.fragment = &upsampleFrag_;
     u.colorFormats = {kHdrFormat};
     u.blend = gpu::Blend::Additive;
-    u.name = "sl.upsample";
+    u.specialization = {step};  // upsample.frag kStep (constant_id 0)
+    u.name = "sl.upsample.step" + std::to_string(step);
     upsample_ = gpu::createGraphicsPipeline(ctx, upsampleLayout_, u);
   }
   for (const SphereSet* set : sets) {
@@ -114,7 +118,7 @@ Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t fra
     silhouette_.push_back(set->spheres.empty() ? 1.0f : set->spheres.front().shadowScale);
   }
   if (probes && spheres_ > 0)
-    shadow_ = std::make_unique<ProbeShadowPass>(ctx, shared, probes, order, blocking, spheres_, influence, half, hierarchy, fuse);
+    shadow_ = std::make_unique<ProbeShadowPass>(ctx, shared, probes, order, blocking, spheres_, influence, step, hierarchy, fuse);
   if (localLights && spheres_ > 0)
     local_ = std::make_unique<LocalLightPass>(ctx, shared, order, blocking, spheres_, influence);
   if (hierarchy) {
@@ -122,7 +126,7 @@ Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t fra
     ratioLayout_ = gpu::PipelineLayout(ctx, {ratioInputs_.handle()}, {VkPushConstantRange{VK_SHADER_STAGE_ALL, 0, sizeof(RatioPush)}},
                                        "sl.hierarchy");
     gpu::SpecConstants spec = ShadeData::specialization(order, blocking, spheres_, 0.0f);  // Eq. 25: uncut
-    spec.push_back(half ? 1u : 0u);                                                        // kHalf
+    spec.push_back(step);                                                                  // kStep
     ratioPipeline_ = gpu::createComputePipeline(ctx, ratioLayout_, gpu::ShaderModule(ctx, "sl/hierarchy_ratio.comp.spv"),
                                                 "sl.hierarchy", nullptr, spec);
   }
@@ -153,12 +157,13 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::s
   std::vector<ShadedSphere> binned = shaded;
   for (std::size_t o = 0; o < parents.size(); ++o)
     binned.push_back({parents[o].centre, parents[o].radius, glm::mat3(1.0f), std::uint32_t(o)});
-  // The tiles this frame's SLs may reach (tiles.hpp), in the target's pixels: at half resolution
-  // the half-size target's tiles for pass 2, then the full-size ones for the upsample.
+  // The tiles this frame's SLs may reach (tiles.hpp), in the target's pixels: at half or quarter
+  // resolution the reduced target's tiles for pass 2, then the full-size ones for the upsample.
   const glm::uvec2 resolution(std::uint32_t(pc->world->camera.resolution.x), std::uint32_t(pc->world->camera.resolution.y));
-  const bool half = resolution_ == Resolution::Half;
-  const glm::uvec2 halfSize = (resolution + 1u) / 2u;
-  std::vector<ShadeTile> tiles = binTiles(pc->world->camera.viewProj, half ? halfSize : resolution, binned, influence_);
+  const std::uint32_t step = resolutionStep(resolution_);
+  const bool half = step > 1u;  // reduced: half or quarter
+  const glm::uvec2 halfSize = reducedSize(resolution, step);
+  std::vector<ShadeTile> tiles = binTiles(pc->world->camera.viewProj, halfSize, binned, influence_);
   const std::uint32_t shadeTiles = std::uint32_t(tiles.size());
   // Per-object blocking: the tiles whose SLs all belong to one object first (singleObject_).
   std::uint32_t singleTiles = 0;
@@ -274,7 +279,7 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::s
       "sl",
       [&](rg::Builder& b, Data& d) {
         d.g = render::readDeferredInputs(b, bb);
-        d.hdr = half ? b.write(b.create<rg::Texture>("sl.half", rg::TextureDesc{halfSize.x, halfSize.y, 1, 1, 1,
+        d.hdr = half ? b.write(b.create<rg::Texture>(reducedTargetName(step), rg::TextureDesc{halfSize.x, halfSize.y, 1, 1, 1,
                                                                                  rg::Format::RGBA16F, false}),
                                rg::Usage::ColorAttachment)
                      : b.write(bb.get<rg::Texture>("lighting.hdr"), rg::Usage::ColorAttachment);
@@ -290,7 +295,8 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::s
         if (hierarchy_) w.buffer(kRatiosBinding, slot.ratios);
         w.update(ctx_, inputs);
         gpu::Image& target = pc->backend->image(res.texture(d.hdr));
-        // "sl.half" starts at zero (tiles no SL reaches are not drawn); "lighting.hdr" keeps its light.
+        // "sl.half" / "sl.quarter" starts at zero (tiles no SL reaches are not drawn); "lighting.hdr"
+        // keeps its light.
         render::Attachment color{target.view(), resolution_ == Resolution::Full && res.keepsContents(d.hdr)};
         const VkExtent2D extent{target.desc().width, target.desc().height};
         render::beginRendering(ctx_, cmd, extent, {&color, 1}, nullptr);
@@ -315,7 +321,7 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::s
     if (local_) local_->addTo(graph, pc, *slot.shade, slot.intensity->intensity(), {&slot.tiles, 0, tileCount});
     return;
   }
-  // The shadow on the probes' light joins E in "sl.half" (ao · ΔE, same tiles), so one upsample
+  // The shadow on the probes' light joins E in "sl.half" / "sl.quarter" (ao · ΔE, same tiles), so one upsample
   // spreads both.
   const rg::Handle<rg::Texture> halfE =
       shadow_ ? shadow_->addTo(graph, pc, *slot.shade, slot.intensity->intensity(), {&slot.tiles, 0, tileCount}, data.hdr,
@@ -356,7 +362,7 @@ void Node::addUpsample(rg::RenderGraph& graph, const render::PassContext* pc, Sl
         upsample_.bindSet(cmd, 0, pc->frameSet);
         upsample_.bindSet(cmd, 1, inputs);
         upsample_.push(cmd, TilePush{glm::vec2(1.0f / float(extent.width), 1.0f / float(extent.height)), kScreenTile, 0u});
-        // The full-resolution tiles follow the half-size ones in the tile buffer.
+        // The full-resolution tiles follow the reduced target's ones in the tile buffer.
         if (upsampleTiles > 0) vkCmdDraw(cmd, 6, upsampleTiles, 0, shadeTiles);
         ctx_.cmdEndRendering(cmd);
       });

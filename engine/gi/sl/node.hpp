@@ -1,5 +1,5 @@
 #pragma once
-// The SL render-graph node: two passes per frame, three at half resolution.
+// The SL render-graph node: two passes per frame, three at half or quarter resolution.
 //  "sl.intensity" (compute, pass 1, §5.1): every SL's intensity SH from the level's lights (with the
 //     shadow atlas when `shadows` runs) and the probes' light at its samples (IntensityPass);
 //  "sl" (fragment, pass 2, §5.2): adds ρ/π · Σ L̃ Ṽ to "lighting.hdr" per G-buffer pixel
@@ -7,9 +7,10 @@
 //     blackboard. Drawn as 16×16 tiles: only the tiles some SL's influence bound covers, each pixel
 //     visiting only its tile's SLs (tiles.hpp, shaders/sl/tiles.vert); with per-object blocking the
 //     tiles of one object's SLs are drawn first, by a pipeline without the closer objects' exp;
-//  at Resolution::Half, "sl" writes E at every second G-buffer pixel per axis into the transient
-//     "sl.half" (half size, RGBA16F) and "sl.upsample" (shaders/sl/upsample.frag) adds the
-//     depth- and normal-weighted upsample times ρ/π to "lighting.hdr".
+//  at Resolution::Half (Quarter), "sl" writes E at every second (fourth) G-buffer pixel per axis
+//     into the transient "sl.half" ("sl.quarter"; RGBA16F, resolution.hpp) and "sl.upsample"
+//     (shaders/sl/upsample.frag, the same step) adds the depth- and normal-weighted upsample times
+//     ρ/π to "lighting.hdr".
 //  "sl.hierarchy" (compute, §7.3 Eq. 25, with `hierarchy`: one parent SL per set, hierarchy.hpp):
 //     per drawn tile of "sl" the ratio t per object at the tile's centre (hierarchy_ratio.comp), read
 //     by "sl" (sl_hierarchy.frag: Eq. 26's parent term) — the parents' spheres per frame on the CPU
@@ -19,7 +20,7 @@
 //     spot lights (LocalLightPass), drawn as the full-resolution tiles, last;
 //  "sl.shadow" (fragment, pass 2's shadow on the probes' light): when the probes' light is given and
 //     the probes pass runs, the SLs' soft shadow on it (ProbeShadowPass), drawn as the same tiles;
-//     at Resolution::Half into "sl.half" before the upsample.
+//     at a reduced resolution into "sl.half" / "sl.quarter" before the upsample.
 // Each is timed under its own name by the graph. Pass 2 shades every SL of every object in one pass
 // (the blocking couples objects: an object's Ṽ needs the closer objects' logs), so there are no
 // per-object rows. Per frame slot the node owns its own pass-1 buffers, pass-2 sphere block and tile
@@ -33,15 +34,12 @@
 #include "engine/gi/sl/intensity.hpp"
 #include "engine/gi/sl/local_light_pass.hpp"
 #include "engine/gi/sl/probe_shadow_pass.hpp"
+#include "engine/gi/sl/resolution.hpp"
 #include "engine/gi/sl/shade.hpp"
 #include "engine/render/graph/render_graph.hpp"
 #include "engine/render/pass_context.hpp"
 
 namespace bounce::gi::sl {
-
-// Pass 2's resolution: every pixel, or half the pixels per axis with an edge-aware upsample
-// ("sl.upsample", shaders/sl/upsample.frag) — the level key "sl": {"resolution": "full"|"half"}.
-enum class Resolution { Full, Half };
 
 class Node {
  public:
@@ -62,7 +60,8 @@ class Node {
 
  private:
   struct Slot;
-  // "sl.upsample" (half resolution): spreads `halfE` ("sl.half") over "lighting.hdr", then "sl.local".
+  // "sl.upsample" (half or quarter resolution): spreads `halfE` ("sl.half" / "sl.quarter") over
+  // "lighting.hdr", then "sl.local".
   void addUpsample(rg::RenderGraph& graph, const render::PassContext* pc, Slot& slot, rg::Handle<rg::Texture> halfE,
                    std::uint32_t shadeTiles, std::uint32_t upsampleTiles);
   struct Slot {
@@ -81,10 +80,10 @@ class Node {
   std::vector<Slot> slots_;
   gpu::DescriptorSetLayout inputLayout_;
   gpu::PipelineLayout layout_;
-  gpu::DescriptorSetLayout upsampleInputs_;  // at half resolution only
+  gpu::DescriptorSetLayout upsampleInputs_;  // at a reduced resolution only
   gpu::PipelineLayout upsampleLayout_;
   gpu::ShaderModule vert_, frag_, upsampleFrag_, hierarchyVert_;  // hierarchyVert_: "sl" with the hierarchy
-  gpu::Pipeline pipeline_, upsample_;  // upsample_: at half resolution only
+  gpu::Pipeline pipeline_, upsample_;  // upsample_: at a reduced resolution only
   // Per-object blocking only: pass 2 for the tiles whose SLs all belong to one object (sl.frag
   // kSingleObject: no exp of closer objects, which is exp(0) there); pipeline_ draws the others.
   gpu::Pipeline singleObject_;

@@ -40,11 +40,12 @@ std::vector<gpu::Binding> inputBindings(bool hierarchy) {
 }  // namespace
 
 ProbeShadowPass::ProbeShadowPass(gpu::Context& ctx, const render::Pipelines& shared, ProbeLight probes, int order,
-                                 Blocking blocking, std::uint32_t spheres, float influence, bool half, bool hierarchy,
-                                 bool fuse)
+                                 Blocking blocking, std::uint32_t spheres, float influence, std::uint32_t step,
+                                 bool hierarchy, bool fuse)
     : ctx_(ctx),
       probes_(probes),
-      half_(half),
+      half_(step > 1u),
+      step_(step),
       inputLayout_(ctx, inputBindings(hierarchy), "sl.shadow.inputs"),
       layout_(ctx, {shared.frameLayout.handle(), inputLayout_.handle()},
               {{VK_SHADER_STAGE_ALL, 0, sizeof(probes::ProbePush) + sizeof(TilePush)}}, "sl.shadow") {
@@ -58,8 +59,9 @@ ProbeShadowPass::ProbeShadowPass(gpu::Context& ctx, const render::Pipelines& sha
   d.blend = gpu::Blend::Additive;  // RGBA16F keeps the negative sum: the shadow takes light away
   d.specialization = ShadeData::specialization(order, blocking, spheres, influence);
   d.specialization.push_back(std::uint32_t(probes.volume->coeffs()));  // probe_shadow.frag kCoeffs
-  d.specialization.push_back(half ? 1u : 0u);                          // probe_shadow.frag kHalf
-  d.name = std::string(half ? "sl.shadow.half" : "sl.shadow") + (hierarchy ? ".hierarchy" : "");
+  d.specialization.push_back(step);                                     // probe_shadow.frag kStep
+  const bool half = half_;
+  d.name = std::string("sl.shadow") + (half ? ".step" + std::to_string(step) : "") + (hierarchy ? ".hierarchy" : "");
   pipeline_ = gpu::createGraphicsPipeline(ctx, layout_, d);
   if (fuse && !hierarchy) {
     // One walk for both terms (sl_shadow.frag): the same vertex shader, set and push block; "sl"'s
@@ -68,7 +70,7 @@ ProbeShadowPass::ProbeShadowPass(gpu::Context& ctx, const render::Pipelines& sha
     d.fragment = &fusedFrag;
     d.blend = half ? gpu::Blend::None : gpu::Blend::Additive;
     d.specialization.push_back(0u);  // sl_shadow.frag kSingleObject (constant_id 6)
-    d.name = std::string(half ? "sl+shadow.half" : "sl+shadow");
+    d.name = std::string("sl+shadow") + (half ? ".step" + std::to_string(step) : "");
     fused_ = gpu::createGraphicsPipeline(ctx, layout_, d);
     if (blocking == Blocking::PerObject) {
       d.specialization.back() = 1u;
@@ -82,7 +84,7 @@ ProbeShadowPass::ProbeShadowPass(gpu::Context& ctx, const render::Pipelines& sha
                                        {{VK_SHADER_STAGE_ALL, 0, sizeof(RatioPush)}}, "sl.shadow.hierarchy");
     gpu::SpecConstants spec = ShadeData::specialization(order, blocking, spheres, 0.0f);  // τ: uncut
     spec.push_back(std::uint32_t(probes.volume->coeffs()));
-    spec.push_back(half ? 1u : 0u);
+    spec.push_back(step);
     ratioPipeline_ = gpu::createComputePipeline(ctx, ratioLayout_, gpu::ShaderModule(ctx, "sl/probe_shadow_ratio.comp.spv"),
                                                 "sl.shadow.hierarchy", nullptr, spec);
   }
@@ -211,7 +213,7 @@ rg::Handle<rg::Texture> ProbeShadowPass::addFused(rg::RenderGraph& graph, const 
       "sl",
       [&](rg::Builder& b, Data& d) {
         d.g = render::readDeferredInputs(b, bb);
-        d.target = half_ ? b.write(b.create<rg::Texture>("sl.half", rg::TextureDesc{halfSize.x, halfSize.y, 1, 1, 1,
+        d.target = half_ ? b.write(b.create<rg::Texture>(reducedTargetName(step_), rg::TextureDesc{halfSize.x, halfSize.y, 1, 1, 1,
                                                                                    rg::Format::RGBA16F, false}),
                                    rg::Usage::ColorAttachment)
                          : b.write(bb.get<rg::Texture>("lighting.hdr"), rg::Usage::ColorAttachment);

@@ -11,6 +11,7 @@
 // It binds the probes node's device images of the volume (gi::Services::probeSh / probeMoments:
 // the layout probes/probe_sh.glsl reads); before, it uploaded a copy of its own.
 #include "engine/gi/probes/probe_volume.hpp"
+#include "engine/gi/sl/resolution.hpp"
 #include "engine/gi/sl/shade.hpp"
 #include "engine/gpu/image.hpp"
 #include "engine/render/graph/render_graph.hpp"
@@ -38,9 +39,10 @@ struct TileRange {
 class ProbeShadowPass {
  public:
   // `probes` (not owned) must outlive the pass; order, blocking, spheres and influence as the SL
-  // pass's pipeline (ShadeData::specialization); `half`: write ao · ΔE into "sl.half".
+  // pass's pipeline (ShadeData::specialization); `step` (resolution.hpp): 1 full resolution, 2 or 4:
+  // write ao · ΔE at G-buffer pixel step·j into "sl.half" / "sl.quarter".
   ProbeShadowPass(gpu::Context& ctx, const render::Pipelines& shared, ProbeLight probes, int order, Blocking blocking,
-                  std::uint32_t spheres, float influence, bool half, bool hierarchy = false, bool fuse = false);
+                  std::uint32_t spheres, float influence, std::uint32_t step, bool hierarchy = false, bool fuse = false);
   // Adds the pass when "probes" runs this frame; `shade` and `intensity` as the SL pass binds them.
   // Full resolution: blends into "lighting.hdr" and publishes it; half: into `halfTarget` ("sl.half",
   // which the SL pass cleared) and returns its new version. Returns `halfTarget` unchanged when it
@@ -54,7 +56,8 @@ class ProbeShadowPass {
   // hierarchy): whether this frame draws the fused pass instead of the two (the probes run).
   bool fusesThisFrame(const render::PassContext* pc) const;
   // Adds pass "sl" with both terms: full resolution blends ρ/π (E + ao ΔE) into "lighting.hdr" and
-  // publishes it; half creates "sl.half" (cleared) with E + ao ΔE and returns it. `singleTiles`: the
+  // publishes it; half / quarter creates "sl.half" / "sl.quarter" (cleared, `halfSize`) with E + ao ΔE
+  // and returns it. `singleTiles`: the
   // first tiles of `tiles` whose SLs are one object's (per-object blocking, sl.frag kSingleObject).
   rg::Handle<rg::Texture> addFused(rg::RenderGraph& graph, const render::PassContext* pc, const ShadeData& shade,
                                    const gpu::Buffer& intensity, TileRange tiles, std::uint32_t singleTiles,
@@ -69,7 +72,8 @@ class ProbeShadowPass {
 
   gpu::Context& ctx_;
   ProbeLight probes_;
-  bool half_ = false;
+  bool half_ = false;  // reduced resolution: half or quarter (step_ > 1)
+  std::uint32_t step_ = 1;
   gpu::DescriptorSetLayout inputLayout_;
   gpu::PipelineLayout layout_;
   gpu::Pipeline pipeline_;

@@ -145,8 +145,10 @@ class SlTechnique final : public Technique {
         throw InputError(sc.level.source.string() + ": " + e.pointer + "/sl/influence: " + num(e.sl->influence) +
                          " differs from entity \"" + first->id + "\"'s " + num(first->sl->influence) +
                          " (expected one influence for every sl entity of a level: pass 2 shades them in one draw)");
-      const auto resolutionName = [](const scene::Sl& c) { return c.half ? "half" : "full"; };
-      if (e.sl->half != first->sl->half)
+      const auto resolutionName = [](const scene::Sl& c) {
+        return c.step == 4 ? "quarter" : c.step == 2 ? "half" : "full";
+      };
+      if (e.sl->step != first->sl->step)
         throw InputError(sc.level.source.string() + ": " + e.pointer + "/sl/resolution: \"" + resolutionName(*e.sl) +
                          "\" differs from entity \"" + first->id + "\"'s \"" + resolutionName(*first->sl) +
                          "\" (expected one resolution for every sl entity of a level: pass 2 shades them in one draw)");
@@ -383,7 +385,7 @@ void SessionRuntime::enableGpu(SessionContext& sc) {
   indirect_ = &incident::sessionLight(sc).indirect();
   node_ = std::make_unique<Node>(sc.ctx, sc.renderer.pipelines(), sc.renderer.frames().framesInFlight(), sets, order,
                                  blocking, participants_.front().component.influence,
-                                 participants_.front().component.half ? Resolution::Half : Resolution::Full,
+                                 resolutionFromStep(participants_.front().component.step),
                                  ProbeLight{sc.services.probeVolume, sc.services.probeSh, sc.services.probeMoments},
                                  participants_.front().component.localLights,
                                  participants_.front().component.hierarchy, participants_.front().component.fused);

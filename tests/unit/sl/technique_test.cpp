@@ -15,6 +15,7 @@
 #include "engine/core/file.hpp"
 #include "engine/core/paths.hpp"
 #include "engine/gi/sl/hierarchy.hpp"
+#include "engine/gi/sl/resolution.hpp"
 #include "engine/gi/sl/technique.hpp"
 #include "engine/gi/sl/update.hpp"
 #include "engine/ref/reference_scene.hpp"
@@ -62,8 +63,13 @@ TEST(SlComponent, ParsesWithDefaults) {
                                                {"id": "b", "dynamic": true, )" + mesh() + R"(, "sl": {}})");
   const scene::Level level = scene::loadLevel(path);
   ASSERT_EQ(level.entities.size(), 2u);
-  EXPECT_EQ(level.entities[0].sl, (scene::Sl{32, 3, true, 0.0f, true}));
-  EXPECT_EQ(level.entities[1].sl, (scene::Sl{16, 4, false, 12.0f, false}));
+  EXPECT_EQ(level.entities[0].sl, (scene::Sl{32, 3, true, 0.0f, 2}));
+  EXPECT_EQ(level.entities[1].sl, (scene::Sl{16, 4, false, 12.0f, 1}));
+  // "quarter": one pass-2 sample per 4 × 4 G-buffer pixels (engine/gi/sl/resolution.hpp).
+  const scene::Level quarter = scene::loadLevel(
+      writeLevel("sl-quarter", R"({"id": "a", "dynamic": true, )" + mesh() + R"(, "sl": {"resolution": "quarter"}})"));
+  EXPECT_EQ(quarter.entities[0].sl->step, 4);
+  EXPECT_EQ(gi::sl::resolutionStep(gi::sl::resolutionFromStep(quarter.entities[0].sl->step)), 4u);
   EXPECT_FALSE(level.entities[0].sl->localLights);
   EXPECT_EQ(settingsFrom(*level.entities[0].sl).spheres, 32);
   EXPECT_EQ(settingsFrom(*level.entities[0].sl).order, 3);
@@ -79,8 +85,8 @@ TEST(SlComponent, BadInputIsOneLine) {
             "FILE: /entities/0/sl/blocking: unknown blocking \"per-pixel\" (expected per-sphere or per-object)");
   EXPECT_EQ(loadError("sl-influence", dyn + R"(, "sl": {"influence": 2.5}})"),
             "FILE: /entities/0/sl/influence: influence 2.5 (expected 0 (off) or 3..1000 sphere radii)");
-  EXPECT_EQ(loadError("sl-resolution", dyn + R"(, "sl": {"resolution": "quarter"}})"),
-            "FILE: /entities/0/sl/resolution: unknown resolution \"quarter\" (expected full or half)");
+  EXPECT_EQ(loadError("sl-resolution", dyn + R"(, "sl": {"resolution": "eighth"}})"),
+            "FILE: /entities/0/sl/resolution: unknown resolution \"eighth\" (expected full, half or quarter)");
   EXPECT_EQ(loadError("sl-local", dyn + R"(, "sl": {"local_lights": 1}})"),
             "FILE: /entities/0/sl/local_lights: wrong type: integer (expected true or false)");
   EXPECT_EQ(loadError("sl-hierarchy", dyn + R"(, "sl": {"hierarchy": "on"}})"),
