@@ -251,6 +251,27 @@ class SlTechnique final : public Technique {
         };
         rows.push_back(std::move(r));
       }
+    // Pass 2's resolution (README "SL at quarter resolution, session 10"): the level's own spheres,
+    // blocking and influence, order 4, at full, half and quarter resolution with the edge-aware upsample.
+    for (const int step : {1, 2, 4}) {
+      AccuracyRow r;
+      r.technique = "sl";
+      r.setting = std::string("spheres=level;order=4;resolution=") + (step == 4 ? "quarter" : step == 2 ? "half" : "full") +
+                  ";ref=all";
+      r.effects = {"direct", "shadows", "probes", "sl"};
+      r.passes = {"shadow", "lighting", "probes", "sl.intensity", "sl"};
+      if (step > 1) r.passes.push_back("sl.upsample");
+      r.optionalPasses = {"sl.shadow"};  // fused into "sl" unless "fused": false
+      r.configure = [=](scene::Level& level) {
+        for (auto& e : level.entities)
+          if (e.sl) {
+            e.sl->order = 4;
+            e.sl->step = step;
+            e.sl->localLights = false;
+          }
+      };
+      rows.push_back(std::move(r));
+    }
   }
   // "sl.shadow" runs only beside "probes" (its light is what it shadows), as its own pass only with the
   // hierarchy or "fused": false (else "sl" holds it: README "SL: one walk for sl and sl.shadow").
