@@ -12,7 +12,7 @@
 #define BOUNCE_SL_UPSAMPLE_GLSL
 
 const float kSlUpPlaneScale = 0.01;  // plane distance / eye distance at which the weight is e^-1
-const float kSlUpNormalPower = 8.0;
+const float kSlUpNormalPower = 8.0;  // written out as three squarings in slUpsampleMatch
 const float kSlUpMinWeight = 1e-4;   // below: the best-matching sample alone
 
 // The 4 taps of full-resolution pixel `pixel` (≥ 0): reduced samples j = j0 + (k & 1, k >> 1), j0 =
@@ -29,10 +29,14 @@ void slUpsampleTaps(ivec2 pixel, int step, ivec2 reducedSize, ivec2 full, out iv
 }
 
 // How well tap k's receiver (point pq, normal nq; valid: not background) matches this pixel's (p, n,
-// eye = |p − eye position|): exp(−(|n·(pq − p)| / (eye·kSlUpPlaneScale))²) · max(0, n·nq)^kSlUpNormalPower.
+// eye = |p − eye position|): exp(−(|n·(pq − p)| / (eye·kSlUpPlaneScale))²) · max(0, n·nq)^8 — the
+// 8th power (kSlUpNormalPower) as three squarings, not pow(): llvmpipe's pow is a log2 and an exp2
+// polynomial each (session 10, for the upsample's cost; the same value to rounding).
 float slUpsampleMatch(vec3 p, vec3 n, float eye, vec3 pq, vec3 nq, bool valid) {
   float plane = abs(dot(n, pq - p)) / (eye * kSlUpPlaneScale);
-  return valid ? exp(-plane * plane) * pow(max(dot(n, nq), 0.0), kSlUpNormalPower) : 0.0;
+  float c = max(dot(n, nq), 0.0);
+  float c2 = c * c, c4 = c2 * c2;
+  return valid ? exp(-plane * plane) * (c4 * c4) : 0.0;
 }
 
 // The blend of the 4 taps' E (W/m²) for one pixel: Σ b_k m_k E_k / Σ b_k m_k, or the best match's E.
