@@ -462,15 +462,17 @@ TEST(SlSession, HierarchyShadowRunsBeforeSlShadowAndKeepsItsClamp) {
   EXPECT_EQ(belowNoProbes, 0);
 }
 
-// The hierarchy at half resolution: both tile passes run on the half-size tiles (G-buffer pixel 2j),
-// "sl.upsample" after them; the frame is finite and differs from the same frame without the hierarchy.
+// The hierarchy at half and quarter resolution: both tile passes run on the reduced tiles (G-buffer
+// pixel step·j), "sl.upsample" after them; the frame is finite and differs from the same frame without
+// the hierarchy.
 TEST(SlSession, HierarchyRunsAtHalfResolution) {
-  const auto frame = [](bool hierarchy) {
+ for (const int step : {2, 4}) {
+  const auto frame = [step](bool hierarchy) {
     scene::Level l = game::loadLevelWithEffects(kCharacters, std::vector<std::string>{"direct", "shadows", "probes", "sl"});
     for (auto& e : l.entities)
       if (e.sl) {
         e.sl->influence = 4.0f;
-        e.sl->step = 2;
+        e.sl->step = step;
         e.sl->hierarchy = hierarchy;
       }
     game::Session s(gpu::testkit::sharedContext(), std::move(l));
@@ -485,7 +487,8 @@ TEST(SlSession, HierarchyRunsAtHalfResolution) {
     ASSERT_TRUE(std::isfinite(a.rgb[i]));
     differ += std::abs(a.rgb[i] - b.rgb[i]) > kStep;
   }
-  EXPECT_GT(differ, 0);
+  EXPECT_GT(differ, 0) << "step " << step;
+ }
 }
 
 // Entities must agree on "local_lights" ("sl.local" shades every SL in one draw): one line, exit 2.
