@@ -86,10 +86,124 @@ std::vector<Surfel> sampleSurfels(const ref::SceneDesc& scene, std::uint32_t cou
   return out;
 }
 
+namespace {
+
+// The nearest surfel facing a direction, found through a uniform grid over the surfels instead of
+// a scan of all of them. The scan made the bake O(probes · R · surfels): 2744 probes × 256 rays ×
+// 4096 surfels = 2.9·10⁹ distance tests on the characters level (60–116 s a volume, stop 25), and
+// 7× that on its 0.125 m accuracy grids. With cells of about twice the surfels' mean spacing
+// (√(area/count): they lie on surfaces) a query visits a few cells: O(probes · R · a few dozen).
+// The result is the scan's exactly: the same nearest (squared distance, ties to the lower index).
+class SurfelGrid {
+ public:
+  explicit SurfelGrid(std::span<const Surfel> surfels) : surfels_(surfels) {
+    if (surfels.empty()) return;
+    lo_ = hi_ = surfels[0].position;
+    double area = 0.0;
+    for (const Surfel& s : surfels) {
+      lo_ = glm::min(lo_, s.position), hi_ = glm::max(hi_, s.position);
+      area += double(s.area);
+    }
+    const glm::vec3 extent = hi_ - lo_;
+    // Cell edge: 2·√(area per surfel), at least 1/256 of the largest extent (bounded cell count);
+    // a degenerate set (zero area) gets one cell per axis.
+    float h = float(2.0 * std::sqrt(area / double(surfels.size())));
+    h = std::max(h, std::max({extent.x, extent.y, extent.z}) / 256.0f);
+    if (!(h > 0.0f)) h = 1.0f;
+    cell_ = h;
+    dims_ = glm::max(glm::ivec3(glm::floor(extent / h)) + 1, glm::ivec3(1));
+    const std::size_t cells = std::size_t(dims_.x) * std::size_t(dims_.y) * std::size_t(dims_.z);
+    start_.assign(cells + 1, 0u);
+    for (const Surfel& s : surfels) ++start_[index(cellOf(s.position)) + 1];
+    for (std::size_t c = 0; c < cells; ++c) start_[c + 1] += start_[c];
+    items_.resize(surfels.size());
+    std::vector<std::uint32_t> fill(start_.begin(), start_.end() - 1);
+    for (std::size_t i = 0; i < surfels.size(); ++i) items_[fill[index(cellOf(surfels[i].position))]++] = std::uint32_t(i);
+  }
+
+  // The surfel with n·dir < 0 nearest to q (kRelightMiss when none faces dir).
+  std::uint32_t nearestFacing(const glm::vec3& q, const glm::vec3& dir) const {
+    if (surfels_.empty()) return kRelightMiss;
+    // q may lie outside the surfels' box (a hit on a face with no surfel): the distance bound below
+    // is then taken from the clamped cell, which is still a lower bound per shell.
+    const glm::ivec3 c = cellOf(q);
+    const glm::vec3 qc = glm::clamp(q, lo_, hi_);
+    const float outside = glm::length(q - qc);  // every surfel is at least this far
+    float best = std::numeric_limits<float>::max();
+    std::uint32_t bestIndex = kRelightMiss;
+    const int maxShell = std::max({dims_.x, dims_.y, dims_.z});
+    for (int r = 0; r <= maxShell; ++r) {
+      for (int z = c.z - r; z <= c.z + r; ++z) {
+        if (z < 0 || z >= dims_.z) continue;
+        for (int y = c.y - r; y <= c.y + r; ++y) {
+          if (y < 0 || y >= dims_.y) continue;
+          const bool rimYZ = z == c.z - r || z == c.z + r || y == c.y - r || y == c.y + r;
+          for (int x = c.x - r; x <= c.x + r; x += (rimYZ || r == 0) ? 1 : 2 * r) {
+            if (x < 0 || x >= dims_.x) continue;
+            const std::size_t cell = index(glm::ivec3(x, y, z));
+            for (std::uint32_t k = start_[cell]; k < start_[cell + 1]; ++k) {
+              const std::uint32_t s = items_[k];
+              const Surfel& sf = surfels_[s];
+              if (glm::dot(sf.normal, dir) >= 0.0f) continue;  // must face the ray (towards the probe)
+              const glm::vec3 v = sf.position - q;
+              const float dd = glm::dot(v, v);
+              if (dd < best || (dd == best && s < bestIndex)) best = dd, bestIndex = s;
+            }
+          }
+        }
+      }
+      // A surfel in a cell outside shell r differs from cell c by more than r cells on some axis,
+      // so it is at least r·h from the clamped point qc (which lies in cell c) on that axis; and
+      // as qc is q's projection onto the surfels' box, |q − s|² ≥ |q − qc|² + |qc − s|². Stop
+      // once best is strictly within that (an equally near surfel of lower index cannot remain).
+      const float reach2 = outside * outside + (float(r) * cell_) * (float(r) * cell_);
+      if (bestIndex != kRelightMiss && best < reach2) break;
+    }
+    return bestIndex;
+  }
+
+ private:
+  glm::ivec3 cellOf(const glm::vec3& p) const {
+    return glm::clamp(glm::ivec3(glm::floor((p - lo_) / cell_)), glm::ivec3(0), dims_ - 1);
+  }
+  std::size_t index(const glm::ivec3& c) const {
+    return (std::size_t(c.z) * std::size_t(dims_.y) + std::size_t(c.y)) * std::size_t(dims_.x) + std::size_t(c.x);
+  }
+  std::span<const Surfel> surfels_;
+  glm::vec3 lo_{0.0f}, hi_{0.0f};
+  float cell_ = 1.0f;
+  glm::ivec3 dims_{1};
+  std::vector<std::uint32_t> start_, items_;
+};
+
+}  // namespace
+
+std::uint32_t nearestFacingSurfel(std::span<const Surfel> surfels, const glm::vec3& q, const glm::vec3& dir) {
+  float best = std::numeric_limits<float>::max();
+  std::uint32_t bestIndex = kRelightMiss;
+  for (std::size_t s = 0; s < surfels.size(); ++s) {
+    const Surfel& sf = surfels[s];
+    if (glm::dot(sf.normal, dir) >= 0.0f) continue;  // must face the ray (towards the probe)
+    const glm::vec3 v = sf.position - q;
+    const float dd = glm::dot(v, v);
+    if (dd < best) best = dd, bestIndex = std::uint32_t(s);
+  }
+  return bestIndex;
+}
+
+std::vector<std::uint32_t> nearestFacingSurfels(std::span<const Surfel> surfels, std::span<const glm::vec3> q,
+                                                std::span<const glm::vec3> dir) {
+  const SurfelGrid g(surfels);
+  std::vector<std::uint32_t> out(q.size());
+  for (std::size_t i = 0; i < q.size(); ++i) out[i] = g.nearestFacing(q[i], dir[i]);
+  return out;
+}
+
 RelightData bakeRelight(const ref::SceneBvh& bvh, const ProbeGrid& grid, const ProbeSettings& settings,
                         std::uint32_t surfelCount, const std::string& label) {
   RelightData d;
   d.surfels = sampleSurfels(bvh.scene(), surfelCount);
+  const SurfelGrid surfelGrid(d.surfels);
   d.rays = settings.rays;
   const std::size_t probes = grid.probeCount();
   d.dirs.assign(probes * d.rays, glm::vec3(0.0f));
@@ -109,16 +223,7 @@ RelightData bakeRelight(const ref::SceneBvh& bvh, const ProbeGrid& grid, const P
       ref::Hit hit;
       if (!bvh.intersect(p, dir, 0.0f, std::numeric_limits<float>::infinity(), hit)) continue;
       if (glm::dot(hit.geometricNormal, dir) > 0.0f) continue;  // a back face: inside geometry
-      float best = std::numeric_limits<float>::max();
-      std::uint32_t bestIndex = kRelightMiss;
-      for (std::size_t s = 0; s < d.surfels.size(); ++s) {
-        const Surfel& sf = d.surfels[s];
-        if (glm::dot(sf.normal, dir) >= 0.0f) continue;  // must face the ray (towards the probe)
-        const glm::vec3 v = sf.position - hit.position;
-        const float dd = glm::dot(v, v);
-        if (dd < best) best = dd, bestIndex = std::uint32_t(s);
-      }
-      d.hit[i * d.rays + k] = bestIndex;
+      d.hit[i * d.rays + k] = surfelGrid.nearestFacing(hit.position, dir);
     }
     if (progress) progress->advance();
   });

@@ -73,6 +73,13 @@ std::vector<Surfel> sampleSurfels(const ref::SceneDesc& scene, std::uint32_t cou
 RelightData bakeRelight(const ref::SceneBvh& bvh, const ProbeGrid& grid, const ProbeSettings& settings,
                         std::uint32_t surfels = kRelightSurfels, const std::string& label = "probes.relight");
 
+// The bake's hit → surfel rule: the surfel facing `dir` (n·dir < 0) nearest to q (squared distance,
+// ties to the lower index), or kRelightMiss. The scan over every surfel (the definition, tests) and
+// the bake's grid search (relight.cpp SurfelGrid, the same answers) for many points at once.
+std::uint32_t nearestFacingSurfel(std::span<const Surfel> surfels, const glm::vec3& q, const glm::vec3& dir);
+std::vector<std::uint32_t> nearestFacingSurfels(std::span<const Surfel> surfels, std::span<const glm::vec3> q,
+                                                std::span<const glm::vec3> dir);
+
 std::vector<std::uint8_t> serializeRelight(const RelightData& data);
 RelightData deserializeRelight(std::span<const std::uint8_t> bytes, const std::string& name);
 
