@@ -33,7 +33,7 @@
 namespace bounce::gi::probes {
 
 // Bump when the relight bake's output changes for the same inputs (part of its cache key).
-inline constexpr std::uint32_t kRelightVersion = 1;
+inline constexpr std::uint32_t kRelightVersion = 2;  // 2: the directions regenerated on load, not stored
 // Surfels on the static geometry. 4096: on cornell-1 (≈1.6 m² of static surface) one per ≈4 cm²,
 // ≈2 cm apart, so the prop's 0.1 m lamp shadow covers ≈25 of them; the per-frame cost is linear in
 // it (one shadow lookup per surfel and light) and the gather's cost does not depend on it.
@@ -59,7 +59,7 @@ struct Surfel {
 struct RelightData {
   std::vector<Surfel> surfels;
   std::uint32_t rays = 0;            // R per probe (the probe bake's)
-  std::vector<glm::vec3> dirs;       // probes × R unit directions, the baker's
+  std::vector<glm::vec3> dirs;       // probes × R unit directions, the baker's (not in the cache file: regenerated)
   std::vector<std::uint32_t> hit;    // probes × R: the hit surfel or kRelightMiss
   std::size_t probes() const { return rays ? hit.size() / rays : 0; }
 };
