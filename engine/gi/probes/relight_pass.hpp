@@ -1,8 +1,10 @@
 #pragma once
 // The GPU pass `probes.relight` (shaders/probes/relight.comp; what it computes: relight.hpp): per
 // frame, kRelightIterationsPerFrame × (surfel ΔE, probe gather), then baked + ΔSH packed into the
-// probes pass's uniform block (node.cpp shPackedWords' format), which is why that buffer carries
-// STORAGE usage. ΔSH persists between frames (the room's bounce continues over frames).
+// probes pass's uniform block (node.cpp shPackedWords' format; that buffer carries STORAGE usage)
+// when the pass reads it, and written as the "probes.sh" image's fp32 texels (copied into the image:
+// the probes pass's source past 2016 probes, and the SL shadow's always; session 10). ΔSH persists
+// between frames (the room's bounce continues over frames).
 #include <cstdint>
 #include <span>
 #include <vector>
