@@ -9,7 +9,12 @@
 //  1  one invocation per probe: ΔSH = 4π/R Σ_dirs Y(ω) ΔL(hit surfel) (relightGatherAdd);
 //  2  one invocation per probe: baked + ΔSH packed as engine/gi/probes/node.cpp shPackedWords does
 //     (L_0 halves, scale s rounded up to a half, L_i/(s·L_0) as snorm bytes), into the buffer the
-//     probes pass binds as ProbeShBlock; the valid bits after the probes are not touched.
+//     probes pass binds as ProbeShBlock (outputs.x; the valid bits after the probes are not
+//     touched), and as the probe image's floats (outputs.y: node.cpp shTexelFloats' layout,
+//     probe-major, copied into the "probes.sh" image after the dispatch, relight_pass.cpp). The
+//     image is what probes.frag reads when the volume does not fit the block (> 2016 probes) and
+//     what the SL shadow on the probes' light reads always (probes/probe_sh.glsl), so both see the
+//     relit light.
 // The math is shaders/probes/relight.glsl (compiled as C++ too: engine/gi/probes/relight.cpp).
 // SSBOs are fine here: a compute pass (DESIGN's machine facts keep them out of fragment shaders).
 #include "lights.glsl"
@@ -37,6 +42,7 @@ layout(std430, binding = 9) writeonly buffer Packed { uint packedWords[]; };  //
 layout(std430, binding = 10) readonly buffer Valid { uint validFlags[]; };    // per probe, 0 or 1
 layout(std430, binding = 11) readonly buffer Moments { vec2 momentsBuf[]; };  // probe·64 + bin (m, m²)
 layout(std430, binding = 12) readonly buffer TestVis { float vTest[]; };      // surfel·lightCount + l (tests)
+layout(std430, binding = 13) writeonly buffer Texels { vec4 texels[]; };      // probe·kTexels + t: the image's texels
 
 layout(push_constant) uniform Push {
   vec4 originSpacing;  // xyz: probe (0,0,0), w: spacing (m)
@@ -44,6 +50,7 @@ layout(push_constant) uniform Push {
   vec4 params;         // x: normal bias (m), y: Chebyshev variance floor (m²), z: 4π/R
   uvec4 sizes;         // x: surfels, y: probes, z: R, w: lights
   uvec4 flags;         // x: stage, y: shadows on, z: V_now from vTest (tests), w: feedback on
+  uvec4 outputs;       // stage 2 writes: x: the packed block, y: the image's texels
 } pc;
 
 #include "probes/relight.glsl"
@@ -108,6 +115,19 @@ void packStage(uint probe) {
   for (int i = 0; i < 9; ++i) L[i] = i < coeffs ? baked[9 * probe + i].rgb + delta[9 * probe + i].rgb : vec3(0.0);
   // L_0 is a mean radiance: a loss larger than the baked light (shadow-map noise) clamps at 0.
   L[0] = max(L[0], vec3(0.0));
+  if (pc.outputs.y != 0u) {
+    // The image's texels (node.cpp shTexelFloats): L_0.rgb, L_1.rgb, … then the valid flag, 4 floats
+    // a texel, kTexels = (3·coeffs + 4)/4 texels a probe (probe_sh.glsl).
+    float t[28];
+    for (int i = 0; i < 28; ++i) t[i] = 0.0;
+    for (int i = 0; i < coeffs; ++i)
+      for (int c = 0; c < 3; ++c) t[3 * i + c] = L[i][c];
+    t[3 * coeffs] = validFlags[probe] != 0u ? 1.0 : 0.0;
+    uint texelsPerProbe = uint(3 * coeffs + 4) / 4u;
+    for (uint k = 0u; k < texelsPerProbe; ++k)
+      texels[texelsPerProbe * probe + k] = vec4(t[4 * k], t[4 * k + 1], t[4 * k + 2], t[4 * k + 3]);
+  }
+  if (pc.outputs.x == 0u) return;
   vec3 l0h = vec3(unpackHalf2x16(packHalf2x16(L[0].rg)), unpackHalf2x16(packHalf2x16(vec2(L[0].b, 0.0))).x);
   float s = 0.0;
   for (int i = 1; i < coeffs; ++i)

@@ -22,7 +22,9 @@ gpu::ImageDesc probeImageDesc(gpu::Context& ctx, const ProbeGrid& g, std::uint32
   d.format = format;
   d.width = slots * std::uint32_t(g.count.x);
   d.height = std::uint32_t(g.count.y) * std::uint32_t(g.count.z);
-  d.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+  // TRANSFER_DST: the upload, and pass probes.relight's per-frame copy into the SH image;
+  // TRANSFER_SRC: tests read it back.
+  d.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
   d.name = name;
   const std::uint32_t limit = ctx.limits().maxImageDimension2D;
   if (d.width > limit || d.height > limit)
@@ -237,12 +239,12 @@ ProbeNode::ProbeNode(gpu::Context& ctx, const render::Pipelines& pipelines, Prob
   pipeline_ = gpu::createGraphicsPipeline(ctx, layout_, d);
 }
 
-bool ProbeNode::enableRelight(gpu::Context& ctx, RelightData data, const ref::SceneBvh& staticScene) {
-  if (!shInUbo_) return false;
-  relight_ = std::make_unique<RelightPass>(ctx, volume_, std::move(data), shUbo_);
+void ProbeNode::enableRelight(gpu::Context& ctx, RelightData data, const ref::SceneBvh& staticScene) {
+  // The block when the pass reads it, and always the image (the pass's source past 2016 probes, and
+  // the SL shadow's on the probes' light).
+  relight_ = std::make_unique<RelightPass>(ctx, volume_, std::move(data), shUbo_, sh_.get(), shInUbo_);
   relightScene_ = &staticScene;
   relightBaked_ = volume_.sh;
-  return true;
 }
 
 void ProbeNode::addPasses(rg::RenderGraph& graph, const render::PassContext* pc) {

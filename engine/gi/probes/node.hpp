@@ -54,13 +54,15 @@ class ProbeNode final : public TechniqueRuntime {
   }
   const ProbeVolume& volume() const { return volume_; }
   // Level `"probes": {"relight": true}`: pass `probes.relight` (relight_pass.hpp) rewrites the
-  // uniform block each frame before this pass reads it. Needs the block path (shInUbo); false (and
-  // the baked probes stay) when the volume does not fit it. `staticScene` (not owned) must outlive
+  // uniform block (when the volume fits it) and the SH image (always: probes.frag's source past the
+  // block, and the SL shadow's) each frame before this pass reads them; any volume size (session 10:
+  // before, a volume past 2016 probes kept the baked light). `staticScene` (not owned) must outlive
   // the node: the static geometry V_static is traced against.
-  bool enableRelight(gpu::Context& ctx, RelightData data, const ref::SceneBvh& staticScene);
+  void enableRelight(gpu::Context& ctx, RelightData data, const ref::SceneBvh& staticScene);
   RelightPass* relight() { return relight_.get(); }
   // The volume's device images (uploadSh, uploadMoments), for Services::probeSh / probeMoments.
   const gpu::Image& shImage() const { return *sh_; }
+  gpu::Image& shImage() { return *sh_; }  // tests read it back (TRANSFER_SRC usage)
   const gpu::Image& momentsImage() const { return *moments_; }
 
  private:

@@ -33,7 +33,7 @@
 namespace bounce::gi::probes {
 
 // Bump when the relight bake's output changes for the same inputs (part of its cache key).
-inline constexpr std::uint32_t kRelightVersion = 1;
+inline constexpr std::uint32_t kRelightVersion = 2;  // 2: the directions regenerated on load, not stored
 // Surfels on the static geometry. 4096: on cornell-1 (≈1.6 m² of static surface) one per ≈4 cm²,
 // ≈2 cm apart, so the prop's 0.1 m lamp shadow covers ≈25 of them; the per-frame cost is linear in
 // it (one shadow lookup per surfel and light) and the gather's cost does not depend on it.
@@ -59,7 +59,7 @@ struct Surfel {
 struct RelightData {
   std::vector<Surfel> surfels;
   std::uint32_t rays = 0;            // R per probe (the probe bake's)
-  std::vector<glm::vec3> dirs;       // probes × R unit directions, the baker's
+  std::vector<glm::vec3> dirs;       // probes × R unit directions, the baker's (not in the cache file: regenerated)
   std::vector<std::uint32_t> hit;    // probes × R: the hit surfel or kRelightMiss
   std::size_t probes() const { return rays ? hit.size() / rays : 0; }
 };
@@ -72,6 +72,13 @@ std::vector<Surfel> sampleSurfels(const ref::SceneDesc& scene, std::uint32_t cou
 // hit or a miss is kRelightMiss (ΔL = 0 there: the background does not change). Progress bar.
 RelightData bakeRelight(const ref::SceneBvh& bvh, const ProbeGrid& grid, const ProbeSettings& settings,
                         std::uint32_t surfels = kRelightSurfels, const std::string& label = "probes.relight");
+
+// The bake's hit → surfel rule: the surfel facing `dir` (n·dir < 0) nearest to q (squared distance,
+// ties to the lower index), or kRelightMiss. The scan over every surfel (the definition, tests) and
+// the bake's grid search (relight.cpp SurfelGrid, the same answers) for many points at once.
+std::uint32_t nearestFacingSurfel(std::span<const Surfel> surfels, const glm::vec3& q, const glm::vec3& dir);
+std::vector<std::uint32_t> nearestFacingSurfels(std::span<const Surfel> surfels, std::span<const glm::vec3> q,
+                                                std::span<const glm::vec3> dir);
 
 std::vector<std::uint8_t> serializeRelight(const RelightData& data);
 RelightData deserializeRelight(std::span<const std::uint8_t> bytes, const std::string& name);

@@ -29,10 +29,12 @@ void computeBarrier(VkCommandBuffer cmd, VkPipelineStageFlags src, VkAccessFlags
 
 }  // namespace
 
-RelightPass::RelightPass(gpu::Context& ctx, const ProbeVolume& volume, RelightData data, const gpu::Buffer& packed)
+RelightPass::RelightPass(gpu::Context& ctx, const ProbeVolume& volume, RelightData data, const gpu::Buffer& packed,
+                         gpu::Image* image, bool block)
     : ctx_(ctx),
       data_(std::move(data)),
       packed_(packed),
+      image_(image),
       setLayout_(ctx,
                  {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                   {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
@@ -46,7 +48,8 @@ RelightPass::RelightPass(gpu::Context& ctx, const ProbeVolume& volume, RelightDa
                   {9, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                   {10, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                   {11, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                  {12, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}},
+                  {12, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                  {13, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}},
                  "probes.relight"),
       layout_(ctx, {setLayout_.handle()}, {{VK_SHADER_STAGE_ALL, 0, sizeof(Push)}}, "probes.relight") {
   const std::size_t probes = volume.grid.probeCount();
@@ -87,6 +90,12 @@ RelightPass::RelightPass(gpu::Context& ctx, const ProbeVolume& volume, RelightDa
   push_.params = glm::vec4(g.spacing * volume.bias.normal, volume.minVariance(),
                            float(4.0 * math::kPi / double(std::max<std::uint32_t>(data_.rays, 1))), 0.0f);
   push_.sizes = glm::uvec4(std::uint32_t(data_.surfels.size()), std::uint32_t(probes), data_.rays, 0u);
+  push_.outputs = glm::uvec4(block ? 1u : 0u, image_ ? 1u : 0u, 0u, 0u);
+  // 16 B a texel, (3·order² + 4)/4 texels a probe (probe_sh.glsl kTexels); a 16 B stand-in when no
+  // image is written (binding 13 is always bound).
+  const std::size_t texelBytes = image_ ? probes * std::size_t(3 * volume.coeffs() + 4) / 4 * 16 : 16;
+  texels_ = gpu::Buffer(ctx, {texelBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                              gpu::MemoryUsage::GpuOnly, "probes.relight.texels"});
   pipeline_ = gpu::createComputePipeline(ctx, layout_, gpu::ShaderModule(ctx, "probes/relight.comp.spv"), "probes.relight");
 }
 
@@ -129,6 +138,7 @@ void RelightPass::record(VkCommandBuffer cmd, gpu::DescriptorAllocator& descript
       .buffer(10, valid_)
       .buffer(11, moments_)
       .buffer(12, vTest_)
+      .buffer(13, texels_)
       .update(ctx_, set);
   // The lights whose V_static is set (setLights) and the block's count must agree: use the fewer.
   push_.sizes.w = std::min(lightCount, lightCount_);
@@ -161,6 +171,17 @@ void RelightPass::record(VkCommandBuffer cmd, gpu::DescriptorAllocator& descript
   computeBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                  VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
                  VK_ACCESS_UNIFORM_READ_BIT | VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT);
+  if (image_) {
+    // The texels into the probe image (row-major texels = probe-major, node.cpp shTexelFloats). The
+    // whole-image transitions are full barriers (commands.hpp transition): they also order this
+    // copy after the previous frame's reads of the image (probes, sl.shadow) — write after read.
+    gpu::transition(cmd, *image_, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+    VkBufferImageCopy region{};
+    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    region.imageExtent = {image_->desc().width, image_->desc().height, 1};
+    vkCmdCopyBufferToImage(cmd, texels_.handle(), image_->handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+    gpu::transition(cmd, *image_, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+  }
   if (readbackSlot < 0) return;
   // ΔSH for the CPU readers (DNRT's c_j, SL's pass 1, RTF's proxies through incident::ProbeSource),
   // read back when this slot comes round again: no wait on the GPU.

@@ -1,8 +1,10 @@
 #pragma once
 // The GPU pass `probes.relight` (shaders/probes/relight.comp; what it computes: relight.hpp): per
 // frame, kRelightIterationsPerFrame × (surfel ΔE, probe gather), then baked + ΔSH packed into the
-// probes pass's uniform block (node.cpp shPackedWords' format), which is why that buffer carries
-// STORAGE usage. ΔSH persists between frames (the room's bounce continues over frames).
+// probes pass's uniform block (node.cpp shPackedWords' format; that buffer carries STORAGE usage)
+// when the pass reads it, and written as the "probes.sh" image's fp32 texels (copied into the image:
+// the probes pass's source past 2016 probes, and the SL shadow's always; session 10). ΔSH persists
+// between frames (the room's bounce continues over frames).
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -11,6 +13,7 @@
 #include "engine/gi/probes/relight.hpp"
 #include "engine/gpu/buffer.hpp"
 #include "engine/gpu/descriptors.hpp"
+#include "engine/gpu/image.hpp"
 #include "engine/gpu/pipeline.hpp"
 #include "engine/render/gpu_types.hpp"
 
@@ -18,8 +21,13 @@ namespace bounce::gi::probes {
 
 class RelightPass {
  public:
-  // `packed`: the probes pass's ProbeShBlock buffer (STORAGE usage), its valid bits already in it.
-  RelightPass(gpu::Context& ctx, const ProbeVolume& volume, RelightData data, const gpu::Buffer& packed);
+  // `packed`: the probes pass's ProbeShBlock buffer (STORAGE usage), its valid bits already in it;
+  // written only when `block` (the volume fits it: the probes pass reads it). `image` (optional): the
+  // volume's "probes.sh" image (uploadSh; TRANSFER_DST usage, SHADER_READ_ONLY between passes),
+  // rewritten each frame with baked + ΔSH in fp32: what probes.frag reads when the volume does not
+  // fit the block, and what the SL shadow on the probes' light reads (probe_sh.glsl).
+  RelightPass(gpu::Context& ctx, const ProbeVolume& volume, RelightData data, const gpu::Buffer& packed,
+              gpu::Image* image = nullptr, bool block = true);
 
   // V_static for these lights (CPU, Embree through the static scene), recomputed only when the
   // lights differ from the last call's. At most render::kMaxLights.
@@ -51,10 +59,13 @@ class RelightPass {
     glm::vec4 params;
     glm::uvec4 sizes;
     glm::uvec4 flags;
+    glm::uvec4 outputs;  // relight.comp pc.outputs: x: write the block, y: the image's texels
   };
   gpu::Context& ctx_;
   RelightData data_;
   const gpu::Buffer& packed_;
+  gpu::Image* image_ = nullptr;
+  gpu::Buffer texels_;  // the image's texels, probe-major (node.cpp shTexelFloats), copied into image_
   Push push_{};
   std::vector<render::LightGpu> lights_;
   std::uint32_t lightCount_ = 0;

@@ -95,9 +95,7 @@ class ProbesTechnique final : public Technique {
       const BakeInput input = prepare(sc.level, sc.cookCache, settingsFrom(sc.level));
       RelightData data = loadOrBakeRelight(input, node->volume().grid, cacheFolder());
       const ref::SceneBvh& bvh = incident::sessionLight(sc).lightVisibility().bvh();
-      if (!node->enableRelight(sc.ctx, std::move(data), bvh))
-        log::warn(sc.level.source.string() + ": /probes/relight: the volume does not fit the probes' uniform block; "
-                  "the baked probes are used");
+      node->enableRelight(sc.ctx, std::move(data), bvh);
     }
     return node;
   }

@@ -18,7 +18,10 @@
 #include "engine/gi/probes/relight_pass.hpp"
 #include "engine/gpu/commands.hpp"
 #include "engine/gpu/image.hpp"
+#include "engine/core/paths.hpp"
+#include "engine/gpu/presenter_offscreen.hpp"
 #include "engine/gpu/testing.hpp"
+#include "game/session.hpp"
 #include "tests/unit/ref/test_scenes.hpp"
 
 using namespace bounce;
@@ -244,9 +247,12 @@ TEST(ProbeRelightGpu, IterationsMatchTheReferenceAndEachAddsAtMostRhoTimesTheLas
 // wherever the shadow map agrees with the Embree ray to the lamp; where they disagree (a few surfels
 // at shadow edges) it moves the image by what the README measured, 2.6e-4 relative RMS. Bound: 1e-3
 // (the reference's own noise on cornell-1's effect is ≈ 0.07 of it, README "Probes relit each frame").
-TEST(ProbeRelightSession, WithoutADynamicObjectTheRelitFrameIsTheBakedOne) {
+// `probes`: the level's "probes" object without "relight" (the test sets it); `name` its folder.
+// Returns the probe count of the volume the level bakes.
+namespace {
+std::size_t expectRelitFrameWithoutThePropIsTheBaked(nlohmann::json probes, const std::string& name) {
   namespace fs = std::filesystem;
-  const fs::path out = fs::path(BOUNCE_TEST_OUT) / "probes-relight-static";
+  const fs::path out = fs::path(BOUNCE_TEST_OUT) / name;
   const fs::path source = fs::path(BOUNCE_SOURCE_DIR) / "content/levels/cornell-1.json";
   nlohmann::json level = nlohmann::json::parse(readFileText(source));
   nlohmann::json kept = nlohmann::json::array();
@@ -256,12 +262,14 @@ TEST(ProbeRelightSession, WithoutADynamicObjectTheRelitFrameIsTheBakedOne) {
     if (e.contains("mesh")) e["mesh"]["asset"] = (source.parent_path() / e["mesh"]["asset"].get<std::string>()).lexically_normal().string();
     kept.push_back(e);
   }
-  ASSERT_LT(kept.size(), level["entities"].size());  // the prop is gone
+  EXPECT_LT(kept.size(), level["entities"].size());  // the prop is gone
   level["entities"] = kept;
   double rms[2] = {0, 0};
   std::vector<float> image[2];
+  std::size_t probeCount = 0;
   for (int relit = 0; relit < 2; ++relit) {
-    level["probes"] = {{"relight", relit == 1}};
+    probes["relight"] = relit == 1;
+    level["probes"] = probes;
     const fs::path levelPath = out / ("level-" + std::to_string(relit) + ".json");
     writeFileAtomic(levelPath, level.dump());
     const fs::path script = out / ("script-" + std::to_string(relit) + ".json");
@@ -269,18 +277,184 @@ TEST(ProbeRelightSession, WithoutADynamicObjectTheRelitFrameIsTheBakedOne) {
                                 "\", \"resolution\": [128, 128], \"dt\": 0.0166667, \"frames\": 8, \"capture\": [7], "
                                 "\"effects\": [\"direct\", \"shadows\", \"probes\"]}");
     const game::CaptureResult r = game::runCaptureScript(script, out / ("capture-" + std::to_string(relit)));
-    ASSERT_EQ(r.frames.size(), 1u);
+    EXPECT_EQ(r.frames.size(), 1u);
+    if (r.frames.size() != 1u) return 0;
     image[relit] = gpu::readPfm(r.frames[0].pfm).rgb;
     const auto& passes = r.executedPasses;
     EXPECT_EQ(std::count(passes.begin(), passes.end(), "probes.relight"), relit);
+    const scene::Level loaded = scene::loadLevel(levelPath);
+    probeCount = gridOf(prepare(loaded, game::cookCacheDir(), settingsFrom(loaded))).probeCount();
   }
-  ASSERT_EQ(image[0].size(), image[1].size());
-  for (std::size_t i = 0; i < image[0].size(); ++i) {
+  EXPECT_EQ(image[0].size(), image[1].size());
+  for (std::size_t i = 0; i < std::min(image[0].size(), image[1].size()); ++i) {
     const double d = double(image[1][i]) - double(image[0][i]);
     rms[0] += d * d;
     rms[1] += double(image[0][i]) * image[0][i];
   }
   const double rel = std::sqrt(rms[0] / rms[1]);
-  std::printf("cornell-1 without its prop: relit vs baked frame, relative RMS %.3g\n", rel);
+  std::printf("cornell-1 without its prop, %zu probes: relit vs baked frame, relative RMS %.3g\n", probeCount, rel);
   EXPECT_LE(rel, 1e-3);
+  return probeCount;
+}
+
+// ΔSH as the pass left it (probe·9 + i, order-3 layout).
+std::vector<glm::vec3> readDelta(gpu::Context& ctx, const RelightPass& pass, std::size_t probes) {
+  const auto bytes = gpu::readback(ctx, pass.delta());
+  std::vector<glm::vec3> out(probes * 9);
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    glm::vec4 v;
+    std::memcpy(&v, bytes.data() + 16 * i, 16);
+    out[i] = glm::vec3(v);
+  }
+  return out;
+}
+
+// The baked volume with baked + ΔSH, L_0 clamped at 0 as relight.comp's pack stage does.
+ProbeVolume relitVolume(const ProbeVolume& baked, const std::vector<glm::vec3>& delta) {
+  ProbeVolume v = baked;
+  const std::size_t coeffs = std::size_t(v.coeffs());
+  for (std::size_t p = 0; p < v.grid.probeCount(); ++p) {
+    for (std::size_t i = 0; i < coeffs; ++i) v.sh[p * coeffs + i] = baked.sh[p * coeffs + i] + delta[p * 9 + i];
+    v.sh[p * coeffs] = glm::max(v.sh[p * coeffs], glm::vec3(0.0f));
+  }
+  return v;
+}
+
+}  // namespace
+
+TEST(ProbeRelightSession, WithoutADynamicObjectTheRelitFrameIsTheBakedOne) {
+  EXPECT_LE(expectRelitFrameWithoutThePropIsTheBaked(nlohmann::json::object(), "probes-relight-static"), 2016u);
+}
+
+// The same past the probes' uniform block (2016 probes, node.cpp kShUboBytes): the probes pass reads
+// the image, which the relight pass rewrites (session 10; before, such a volume kept the baked light).
+TEST(ProbeRelightSession, WithoutADynamicObjectTheRelitFrameIsTheBakedOnePastTheUniformBlock) {
+  EXPECT_GT(expectRelitFrameWithoutThePropIsTheBaked({{"spacing", 0.04}}, "probes-relight-static-image"), 2016u);
+}
+
+// The relit light through the image (session 10: what probes.frag reads past 2016 probes) against
+// the relit light through the uniform block, on cornell-1 with its prop (a real dynamic shadow in
+// the shadow atlas): two nodes on the same baked volume, each relit for 3 frames (6 iterations), the
+// one reading the block, the other the image. Their ΔSH are the same (the same pass), and their
+// frames differ by the block's packing alone: the bound of ProbeGpu.ShFromTheUniformBlockIsTheImagePath…
+// (fp16 roundings + the 8-bit fractions' packedShIrradianceError/π) for the RELIT volume. And the
+// image path is relit: its frame differs from the baked image path's beyond that bound.
+TEST(ProbeRelightSession, TheRelitImagePathIsTheRelitBlockPathWithinThePacking) {
+  namespace fs = std::filesystem;
+  gpu::Context& ctx = gpu::testkit::sharedContext();
+  const fs::path levelPath = fs::path(BOUNCE_SOURCE_DIR) / "content/levels/cornell-1.json";
+  game::Session session(ctx, game::loadLevelWithEffects(levelPath, std::vector<std::string>{"direct", "shadows", "probes"}));
+  session.update(0.0);
+  const scene::Level level = scene::loadLevel(levelPath);
+  const auto baked = loadOrBake(level, game::cookCacheDir(), bounce::cacheDir("probes"), settingsFrom(level));
+  const BakeInput input = prepare(level, game::cookCacheDir(), settingsFrom(level));
+  const ref::SceneBvh staticScene{ref::SceneDesc(input.scene)};
+  const RelightData data = loadOrBakeRelight(input, baked.volume.grid, bounce::cacheDir("probes"));
+  const std::size_t probes = baked.volume.grid.probeCount();
+  const auto render = [&](ProbeNode& node, int frames) {
+    session.renderer().setNode("probes", node.node());
+    std::vector<float> hdr;
+    for (int f = 0; f < frames; ++f) {
+      gpu::OffscreenPresenter presenter(ctx, {160, 120});
+      render::FrameSettings settings;
+      settings.keepHdr = true;
+      session.render(presenter, settings);
+      hdr = session.renderer().readHdr();
+    }
+    return hdr;
+  };
+  ProbeNode block(ctx, session.renderer().pipelines(), baked.volume), image(ctx, session.renderer().pipelines(), baked.volume, false),
+      plain(ctx, session.renderer().pipelines(), baked.volume, false);
+  ASSERT_TRUE(block.shInUbo());
+  ASSERT_FALSE(image.shInUbo());
+  block.enableRelight(ctx, data, staticScene);
+  image.enableRelight(ctx, data, staticScene);
+  const std::vector<float> a = render(block, 3), b = render(image, 3), c = render(plain, 1);
+  const std::vector<glm::vec3> da = readDelta(ctx, *block.relight(), probes), db = readDelta(ctx, *image.relight(), probes);
+  EXPECT_EQ(da, db) << "the same pass on the same frames";
+  float largest = 0.0f;
+  for (const glm::vec3& d : da) largest = std::max({largest, -d.x, -d.y, -d.z});
+  ASSERT_GT(largest, 0.0f) << "the prop's shadow takes light from some probe";
+  const ProbeVolume relit = relitVolume(baked.volume, da);
+  ASSERT_EQ(a.size(), b.size());
+  ASSERT_EQ(a.size(), c.size());
+  constexpr double kHalfUlp = 1.0 / 2048.0;
+  const double quantised = packedShIrradianceError(relit) / 3.14159265358979;
+  double top = 0.0;
+  for (float v : b) top = std::max(top, double(std::abs(v)));
+  std::size_t outside = 0, relitMoves = 0;
+  double worst = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    const double big = std::max(std::abs(double(a[i])), std::abs(double(b[i])));
+    const double halves = 3.0 * kHalfUlp * big + kHalfUlp * top, bound = halves + quantised;
+    const double diff = std::abs(double(a[i]) - b[i]);
+    outside += diff > bound;
+    worst = std::max(worst, diff / bound);
+    relitMoves += std::abs(double(b[i]) - c[i]) > bound;
+  }
+  std::printf("cornell-1 relit, image path vs block path: largest |difference| %.3f of the packing bound (E_q/pi = %.3g, "
+              "%.2e of the top %.3g); %zu of %zu channel values of the relit image path differ from the baked image path "
+              "beyond the bound; largest probe loss |dL| %.3g\n",
+              worst, quantised, quantised / top, top, relitMoves, a.size(), double(largest));
+  EXPECT_EQ(outside, 0u);
+  EXPECT_GT(relitMoves, 0u);
+}
+
+// Issue 13 with relight: the SL shadow on the probes' light (passes "sl.shadow" and the fused "sl")
+// reads the probes' SH image (Services::probeSh = the node's image, probes/probe_sh.glsl's
+// probeRadianceSh), which "probes.relight" rewrites before them each frame. On the characters level
+// (729 probes, the block path for the probes pass) after 3 frames, the image holds baked + ΔSH
+// exactly (every texel, fp32), and ΔSH is not zero there: the SL term shadows the relit light, the
+// one the probes pass adds (within the block's packing), not the baked one.
+TEST(ProbeRelightSession, SlShadowReadsTheRelitProbeImage) {
+  namespace fs = std::filesystem;
+  const fs::path characters = fs::path(BOUNCE_SOURCE_DIR) / "content/levels/characters.json";
+  gpu::Context& ctx = gpu::testkit::sharedContext();
+  for (const bool fused : {true, false}) {
+    scene::Level level = game::loadLevelWithEffects(characters, std::vector<std::string>{"direct", "shadows", "probes", "sl"});
+    level.probes.relight = true;
+    for (scene::EntityDesc& e : level.entities)
+      if (e.sl) e.sl->fused = fused;
+    game::Session session(ctx, level);
+    ProbeNode* node = session.probes();
+    ASSERT_NE(node, nullptr);
+    ASSERT_NE(node->relight(), nullptr);
+    for (int f = 0; f < 3; ++f) {
+      gpu::OffscreenPresenter presenter(ctx, {96, 96});
+      session.update(0.25 + f / 60.0);
+      session.render(presenter, {});
+    }
+    session.renderer().frames().waitIdle();
+    const std::vector<std::string> passes = session.renderer().executedPasses();
+    const auto at = [&](const char* name) { return std::find(passes.begin(), passes.end(), name) - passes.begin(); };
+    const char* shadowPass = fused ? "sl" : "sl.shadow";
+    ASSERT_LT(at(shadowPass), std::ptrdiff_t(passes.size())) << shadowPass;
+    EXPECT_LT(at("probes.relight"), at(shadowPass));
+
+    const ProbeVolume& baked = node->volume();  // the CPU readers' baked SH (kRelightCpuReaders off)
+    const std::size_t probes = baked.grid.probeCount(), coeffs = std::size_t(baked.coeffs()), texels = (3 * coeffs + 4) / 4;
+    const ProbeVolume relit = relitVolume(baked, readDelta(ctx, *node->relight(), probes));
+    const auto bytes = gpu::readback(ctx, node->shImage());
+    ASSERT_EQ(bytes.size(), probes * texels * 16);
+    std::vector<float> got(probes * texels * 4);
+    std::memcpy(got.data(), bytes.data(), bytes.size());
+    std::size_t differ = 0;
+    double moved = 0.0, top = 0.0;
+    for (std::size_t p = 0; p < probes; ++p) {
+      for (std::size_t i = 0; i < coeffs; ++i)
+        for (int ch = 0; ch < 3; ++ch) {
+          const float v = got[p * texels * 4 + 3 * i + std::size_t(ch)];
+          differ += v != relit.sh[p * coeffs + i][ch];
+          moved = std::max(moved, double(std::abs(v - baked.sh[p * coeffs + i][ch])));
+          top = std::max(top, double(std::abs(baked.sh[p * coeffs + i][ch])));
+        }
+      differ += got[p * texels * 4 + 3 * coeffs] != (baked.valid[p] != 0u ? 1.0f : 0.0f);
+    }
+    std::printf("characters, %s: the SL shadow's probe image = baked + dSH in %zu of %zu values; it moved from the "
+                "baked by up to %.3g (%.2e of the largest baked coefficient)\n",
+                fused ? "fused sl" : "sl.shadow", probes * (3 * coeffs + 1) - differ, probes * (3 * coeffs + 1), moved,
+                moved / top);
+    EXPECT_EQ(differ, 0u);
+    EXPECT_GT(moved, 0.0);
+  }
 }

@@ -66,3 +66,34 @@ TEST(ProbeRelightBake, RaysAreTheProbeBakersDirectionsAndHitFacingSurfels) {
   ASSERT_EQ(back.surfels.size(), d.surfels.size());
   EXPECT_EQ(back.surfels[7].position, d.surfels[7].position);
 }
+
+// The bake's grid search (relight.cpp SurfelGrid) gives exactly the scan's surfel: the nearest one
+// facing the ray, ties to the lower index. Points on the box's faces (where the bake's hits are),
+// inside it, and outside the surfels' bounds; every direction, so the facing test excludes whole
+// faces. The scan was the bake's O(probes · R · surfels) cost (README "Probes relit each frame,
+// session 10").
+TEST(ProbeRelightBake, GridSearchFindsTheScansNearestFacingSurfel) {
+  ref::SceneDesc s;
+  s.meshes = ref::test::insideOfCube(0.5f, 0);
+  s.materials = {{glm::vec3(0.5f), -1, glm::vec3(0.0f), -1}};
+  const std::vector<Surfel> surfels = sampleSurfels(s, 1000);
+  math::Pcg32 rng(7);
+  std::vector<glm::vec3> q, dir;
+  for (int i = 0; i < 3000; ++i) {
+    glm::vec3 p(rng.nextFloat() - 0.5f, rng.nextFloat() - 0.5f, rng.nextFloat() - 0.5f);
+    if (i % 3 == 0) p[i % 9 / 3] = (i % 2 ? 0.5f : -0.5f);  // on a face
+    if (i % 3 == 1) p *= 3.0f;                             // mostly outside the box
+    q.push_back(p);
+    dir.push_back(glm::vec3(math::uniformSphere(rng.next2D())));
+  }
+  q.push_back(glm::vec3(0.0f)), dir.push_back(glm::vec3(0.0f, 0.0f, 1.0f));  // the centre: many ties of distance
+  const std::vector<std::uint32_t> got = nearestFacingSurfels(surfels, q, dir);
+  ASSERT_EQ(got.size(), q.size());
+  std::size_t misses = 0;
+  for (std::size_t i = 0; i < q.size(); ++i) {
+    const std::uint32_t want = nearestFacingSurfel(surfels, q[i], dir[i]);
+    EXPECT_EQ(got[i], want) << "point " << i;
+    misses += want == kRelightMiss;
+  }
+  EXPECT_EQ(misses, 0u);  // some face always faces any direction
+}
