@@ -33,6 +33,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <memory>
 #include <set>
 #include <string>
 #include <vector>
@@ -146,10 +147,25 @@ int main(int argc, char** argv) {
   std::vector<Reach> reach;
   std::vector<ecs::Entity> rtfEntities;
   with.registry.view<scene::Rtf>().each([&](ecs::Entity e, scene::Rtf&) { rtfEntities.push_back(e); });
+  std::vector<std::unique_ptr<ref::SceneBvh>> objectBvh;  // each object alone, its local frame (blocked-oof-at-r)
   for (ecs::Entity e : rtfEntities) {
     const gi::rtf::FieldSettings s = gi::rtf::settingsFrom(with.registry.get<scene::Rtf>(e));
-    fields.push_back(gi::rtf::bakeCached(gi::dnrt::objectScene(with.registry, e, with.assets), s, gi::rtf::cacheFolder()));
+    ref::SceneDesc od = gi::dnrt::objectScene(with.registry, e, with.assets);
+    fields.push_back(gi::rtf::bakeCached(od, s, gi::rtf::cacheFolder()));
+    objectBvh.push_back(std::make_unique<ref::SceneBvh>(std::move(od)));
   }
+  // The cube-map directions the bake projects the OOF over (bake.cpp), at face 16.
+  struct Dir { glm::vec3 w; std::array<double, gi::rtf::kShCount> y; double solidAngle; };
+  std::vector<Dir> oofDirs;
+  for (int face = 0; face < 6; ++face)
+    for (int y = 0; y < 16; ++y)
+      for (int x = 0; x < 16; ++x) {
+        const glm::dvec3 w = sh::cubeTexelDirection(face, x, y, 16);
+        Dir d{glm::vec3(w), {}, sh::cubeTexelSolidAngle(x, y, 16)};
+        sh::evalBasis<double>(gi::rtf::kShOrder, w, d.y);
+        for (auto& c : d.y) c *= sh::cubeTexelSolidAngle(x, y, 16);
+        oofDirs.push_back(d);
+      }
   for (std::size_t i = 0; i < rtfEntities.size(); ++i) {
     const auto& s = fields[i].settings;
     objects.push_back({&fields[i], with.registry.get<scene::WorldTransform>(rtfEntities[i]).matrix, gi::rtf::tailReach(fields[i], tail)});
@@ -200,9 +216,10 @@ int main(int argc, char** argv) {
   std::vector<std::vector<glm::vec4>> scales;
   for (const gi::rtf::Object& o : objects) scales.push_back(gi::rtf::blockedScale(*o.field, o.world, light.indirect(), &bvhWithout));
 
-  enum { kInter, kBlocked, kRoom, kBlockedProbes, kRtfInter, kRtfBlocked, kField, kAtR, kShapeO, kAtO, kGpu, kParts };
+  enum { kInter, kBlocked, kRoom, kBlockedProbes, kRtfInter, kRtfBlocked, kField, kAtR, kShapeO, kAtO, kGpu, kOofAtR, kOofNoFade, kOofShExactCos, kVisExactCos, kParts };
   const char* names[kParts] = {"ref-interreflected", "ref-blocked", "ref-room", "blocked-probes", "rtf-interreflected",
-                               "rtf-blocked", "field", "blocked-receiver", "blocked-shape-o", "blocked-at-o", "blocked-gpu"};
+                               "rtf-blocked", "field", "blocked-receiver", "blocked-shape-o", "blocked-at-o", "blocked-gpu",
+                               "blocked-oof-at-r", "blocked-oof-at-r-nofade", "blocked-oofsh-exactcos", "blocked-vis-exactcos"};
   std::vector<gpu::FloatImage> images(kParts);
   for (auto& im : images) im.width = W, im.height = H, im.rgb.assign(std::size_t(W) * H * 3, 0.0f);
   parallelFor(0, std::size_t(W) * H, [&](std::size_t pixel) {
@@ -257,7 +274,7 @@ int main(int argc, char** argv) {
     put(kField, glm::vec3(nearest));
     // The blocked term four ways (header), each object's term on its own, in its frame.
     const gi::rtf::ShRgb atR = gi::rtf::sourceRadiance(light.indirect(), hit.position);
-    glm::vec3 variant[4] = {};
+    glm::vec3 variant[4] = {}, exactV(0.0f), exactNoFade(0.0f), shExactCos(0.0f), visExactCos(0.0f);
     for (std::size_t k = 0; k < objects.size(); ++k) {
       const gi::rtf::Field& f = *objects[k].field;
       const gi::rtf::Placement pl = gi::rtf::place(f, objects[k].world);
@@ -289,8 +306,51 @@ int main(int argc, char** argv) {
         const auto e = sh::convolveCosine<glm::vec3>(std::span<const glm::vec3>(b));
         variant[v] += rho / float(math::kPi) * sh::evalSum<glm::vec3, float>(std::span<const glm::vec3>(e).first(9), glm::normalize(nl));
       }
+      // blocked-oof-at-r: the OOF projected AT r (no lookup), as the bake projects it, with the light at r:
+      // what is left of blocked-receiver's error against blocked-probes is the SH truncation alone.
+      float fade = 0.0f;  // the lookup's fade beyond the outermost sphere, as blocked-receiver's
+      for (float w : lk.weight) fade += w;
+      if (glm::length(q) < 3.0f * f.settings.outerRadius) {
+        const glm::vec3 ql = glm::vec3(pl.worldToLocal * glm::vec4(hit.position, 1.0f));
+        const glm::vec3 nn = glm::normalize(nl);
+        std::vector<glm::vec3> notV(gi::rtf::kShCount, glm::vec3(0.0f));
+        std::vector<char> hitDir(oofDirs.size(), 0);
+        for (std::size_t di = 0; di < oofDirs.size(); ++di) {
+          const Dir& d = oofDirs[di];
+          ref::Hit oh;
+          if (!objectBvh[k]->intersect(ql, d.w, 1e-5f * f.radius, 1e30f, oh)) continue;
+          hitDir[di] = 1;
+          for (int j = 0; j < gi::rtf::kShCount; ++j) notV[std::size_t(j)] += glm::vec3(float(d.y[std::size_t(j)]));
+        }
+        const auto b = sh::product<glm::vec3>(std::span<const glm::vec3>(notV), std::span<const glm::vec3>(lights[0]), gi::rtf::kShOrder);
+        const auto e = sh::convolveCosine<glm::vec3>(std::span<const glm::vec3>(b));
+        const glm::vec3 A = rho / float(math::kPi) * sh::evalSum<glm::vec3, float>(std::span<const glm::vec3>(e).first(9), nn);
+        exactNoFade += A;
+        exactV += fade * A;
+        // The same integral with the exact clamped cosine (numerical over the cube directions): with the
+        // order-4 (1 − V) (B), and with the exact visibility (C).
+        glm::dvec3 B(0.0), C(0.0);
+        for (std::size_t di = 0; di < oofDirs.size(); ++di) {
+          const Dir& d = oofDirs[di];
+          const double c = std::max(0.0, double(glm::dot(nn, d.w)));
+          if (c <= 0.0) continue;
+          const auto yb = sh::evalBasis<double>(gi::rtf::kShOrder, glm::dvec3(d.w));
+          const double dw = d.solidAngle;
+          glm::dvec3 L(0.0);
+          double ov = 0.0;
+          for (int j = 0; j < gi::rtf::kShCount; ++j) L += glm::dvec3(lights[0][std::size_t(j)]) * yb[std::size_t(j)], ov += double(notV[std::size_t(j)].x) * yb[std::size_t(j)];
+          B += ov * L * c * dw;
+          if (hitDir[di]) C += L * c * dw;
+        }
+        shExactCos += rho / float(math::kPi) * glm::vec3(B);
+        visExactCos += rho / float(math::kPi) * glm::vec3(C);
+      }
     }
     for (int v = 0; v < 4; ++v) put(kAtR + v, variant[v]);
+    put(kOofAtR, exactV);
+    put(kOofNoFade, exactNoFade);
+    put(kOofShExactCos, shExactCos);
+    put(kVisExactCos, visExactCos);
   }, 16);
   for (int i = 0; i < kParts; ++i) gpu::writePfm(out / (std::string(names[i]) + ".pfm"), images[std::size_t(i)]);
   std::fprintf(stderr, "rtf_parts: wrote %s\n", out.c_str());
