@@ -81,8 +81,9 @@ TEST(RtfEvaluate, InnermostBetweenAndBeyondOutermostFadeContinuously) {
   EXPECT_NEAR(weightSum(lookup(fs, mid * dir)), 0.5f * solid(mid), 1e-4f);
   EXPECT_NEAR(weightSum(lookup(fs, (rN + dr) * dir)), 0.0f, 1e-4f);  // float rounding of r, ×1/(kFadeRamp·Δr)
   // What the end keeps of the solid-angle law over the last spacing (mean over r in [r_N, r_N + Δr]):
-  // (1 − kFadeRamp/2)-ish, ≥ 0.85 of it here; the pre-session-10 linear fade over the whole spacing kept
-  // 1/2 ÷ 0.86 ≈ 0.58 of it (README "Sixth pass": on cornell-5 that band lost 0.0129 of 0.0160 blocked).
+  // about 1 − kFadeRamp/2, ≥ 0.85 of it; the pre-session-10 linear fade over the whole spacing kept
+  // about 0.5 ÷ 0.85 ≈ 0.59 of it on cornell-5's fields (README "Sixth pass": that band blocked 0.0042
+  // where the OOF at the receiver blocks 0.0179).
   double kept = 0.0, law = 0.0;
   for (int i = 0; i < 1000; ++i) {
     const float r = rN + (float(i) + 0.5f) / 1000.0f * dr;
