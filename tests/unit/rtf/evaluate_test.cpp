@@ -106,6 +106,30 @@ TEST(RtfEvaluate, InnermostBetweenAndBeyondOutermostFadeContinuously) {
   EXPECT_LT(occlusion(f, rN * dir)[0], 2.0f * std::sqrt(float(kPi)));
 }
 
+// The field's end against the sphere's closed form (README "Sixth pass"): past r_N the OOF's occluded
+// part (u − V)_00 = Y_00·Ω(r) should fall as the unit sphere's solid angle Ω(r) = 2π(1 − √(1 − 1/r²)).
+// The ratio to its value at r_N removes the cube-map projection's error (the same factor at both
+// radii): (r_N/r)² departs from Ω(r)/Ω(r_N) by at most 0.53 % here (r_N = 4, up to the ramp at
+// r_N + (1 − kFadeRamp)Δr = 4.875; asymptotically exact, Ω → π/r²): bound 1 %. The old linear fade over
+// the whole spacing gave 1 − t at r_N + tΔr: 0.75, 0.5, 0.25 against 0.87, 0.76, 0.67 — 14–63 % of the
+// blocked light lost.
+TEST(RtfEvaluate, EndOfTheOofFollowsTheSpheresSolidAngle) {
+  const Field& f = sphereBake().field;
+  const FieldSettings& fs = f.settings;
+  const float rN = sphereRadius(fs, fs.spheres - 1), dr = sphereRadius(fs, 1) - sphereRadius(fs, 0);
+  const glm::vec3 dir = glm::normalize(glm::vec3(0.3f, -0.5f, 0.8f));
+  const float u = 2.0f * std::sqrt(float(kPi));
+  const auto omega = [](double r) { return 2.0 * kPi * (1.0 - std::sqrt(1.0 - 1.0 / (r * r))); };
+  const double atN = double(u - occlusion(f, rN * dir)[0]);
+  ASSERT_GT(atN, 0.0);
+  for (float t : {0.25f, 0.5f, 1.0f - kFadeRamp}) {
+    const float r = rN + t * dr;
+    const double got = double(u - occlusion(f, r * dir)[0]) / atN, want = omega(r) / omega(rN);
+    EXPECT_NEAR(got, want, 0.01 * want) << t;
+    EXPECT_GT(got - double(1.0f - t), 0.1) << t;  // what the old fade kept, well below
+  }
+}
+
 // scene::Rtf::tail: beyond the outermost sphere the field goes on as (r_N/|q|)² to its reach, ramping
 // to zero over the last kFadeRamp·Δr (continuous at r_N and at the reach); a reach within r_N + Δr is
 // the shipped end at r_N + Δr. The reach comes from the OOF: the solid angle Ω_N the object covers seen from
