@@ -34,6 +34,8 @@ def main():
     gpu = pfm(f"{acc}/image-{row}.pfm") - pfm(f"{acc}/without-{row}.pfm")
     forms = ["ref-blocked", "blocked-vis-exactcos", "blocked-oofsh-exactcos", "blocked-oof-at-r-nofade",
              "blocked-oof-at-r", "blocked-receiver", "blocked-at-o", "blocked-gpu"]
+    import os
+    forms += [f for f in ("blocked-level", "blocked-eq3", "blocked-surface") if os.path.exists(f"{parts}/{f}.pfm")]  # seventh pass
     im = {n: g(n) for n in forms + ["rtf-interreflected", "ref-interreflected"]}
     base = gpu - (im["rtf-interreflected"] - im["blocked-gpu"])
     edges = sorted([e * R for e in (0, 0.15, 0.3, 0.45, 0.6, 0.75, 1.0, 1.2, 1.5, 3.0)] + [rn])
