@@ -4,8 +4,8 @@
 // normal n and albedo ρ, what engine/gi/rtf/evaluate.cpp shade() computes for one object:
 //   ρ/π · E_n(ξ(q))  −  ρ/π · E_n((u − V(q)) ⊙ L)
 // ξ(q) the trilinear lookup of the object's ξ image (its interreflected light arriving at q), V(q)
-// its OOF, u the SH of V ≡ 1, L the indirect light (the record's product matrix: its shape at o,
-// scaled per sample to its level there by the ξ pass, update.hpp blockedScale), all in the
+// its OOF, u the SH of V ≡ 1, L the indirect light (the record's product matrix: the light at o,
+// scaled per sample by the ξ pass where objects share occlusion, overlap.hpp), all in the
 // object's frame (the normal is rotated there instead of 16 coefficients into the world), and
 // E_n(L) = Σ Â_l L_lm Y_lm(n) with Â_3 = 0, so only bands 0..2 matter. Both terms are folded per
 // sample by the ξ pass into X_i (i < 9, xi.comp), stored in 8 bits as 7 RGBA texels (DNRT's
