@@ -4,8 +4,8 @@
 // normal n and albedo ρ, what engine/gi/rtf/evaluate.cpp shade() computes for one object:
 //   ρ/π · E_n(ξ(q))  −  ρ/π · E_n((u − V(q)) ⊙ L)
 // ξ(q) the trilinear lookup of the object's ξ image (its interreflected light arriving at q), V(q)
-// its OOF, u the SH of V ≡ 1, L the indirect light (the record's product matrix: its shape at o,
-// scaled per sample to its level there by the ξ pass, update.hpp blockedScale), all in the
+// its OOF, u the SH of V ≡ 1, L the indirect light (the record's product matrix: the light at o,
+// scaled per sample by the ξ pass where objects share occlusion, overlap.hpp), all in the
 // object's frame (the normal is rotated there instead of 16 coefficients into the world), and
 // E_n(L) = Σ Â_l L_lm Y_lm(n) with Â_3 = 0, so only bands 0..2 matter. Both terms are folded per
 // sample by the ξ pass into X_i (i < 9, xi.comp), stored in 8 bits as 7 RGBA texels (DNRT's
@@ -47,11 +47,11 @@ void main() {
   vec3 q = vec3(dot(toQ[0], r), dot(toQ[1], r), dot(toQ[2], r));
   // Eq. 10's radial weights (rtf.glsl rtfTaps, evaluate.cpp lookup()): the slice coordinate
   // clamped to the first and last sphere's slice centres (inside the innermost sphere: its value),
-  // times the fade beyond the outermost sphere r_N (evaluate.cpp tailFade): over one spacing, or
-  // with a tail (r_N/|q|)² (the object's solid angle) and over the last spacing before `reach`.
+  // times the fade beyond the outermost sphere r_N (evaluate.cpp tailFade): (r_N/|q|)² (the object's
+  // solid angle), ramped to zero over the last quarter spacing before r_N + Δr, or before `reach`.
   float len = length(q);
-  float fade = reach > 0.0 ? (len <= radial.w ? 1.0 : (radial.w * radial.w) / (len * len) * clamp((reach - len) * radial.y, 0.0, 1.0))
-                           : clamp(1.0 - (len - radial.w) * radial.y, 0.0, 1.0);
+  float end = reach > 0.0 ? reach : radial.w + 1.0 / radial.y;
+  float fade = len <= radial.w ? 1.0 : (radial.w * radial.w) / (len * len) * clamp((end - len) * radial.y / kRtfFadeRamp, 0.0, 1.0);
   if (fade <= 0.0) discard;  // beyond the fade: the field is zero
   // The object's own surface: its transfer already holds its self-interreflection (Eq. 8).
   if (texelFetch(gEntity, pixel, 0).r == self) discard;

@@ -2,8 +2,8 @@
 // interreflection() / occlusion() compute (tests/unit/rtf/lookup_gpu_test.cpp checks it): the 8
 // samples around q (local offset from the bounding-sphere centre in units of η) — bilinear between
 // the texel centres of the cube face q's direction falls on (clamped to that face), linear between
-// the two spheres bracketing |q|, the innermost sphere inside it, a linear fade to zero over one
-// sphere spacing beyond the outermost. Fields are read from 2D-array textures with a LINEAR sampler
+// the two spheres bracketing |q|, the innermost sphere inside it, beyond the outermost (r_N/|q|)² to
+// a linear ramp to zero over the last quarter of one sphere spacing (evaluate.hpp kFadeRamp). Fields are read from 2D-array textures with a LINEAR sampler
 // (the bilinear part; two taps per coefficient, rtfTaps):
 //   ξ:   rgba32f, layer sphere·16 + i, texel (face·n_r + x, y)   (xi.comp)
 //   OOF: rgba32f, layer sphere·4 + i/4, texel (face·n_r + x, y), component i%4 (xi_pass.cpp)
@@ -16,6 +16,7 @@ struct RtfGrid {
 };
 
 const float kRtfUnitVisibility = 3.5449077;  // 4π·Y_00 = 2√π: the SH of V ≡ 1
+const float kRtfFadeRamp = 0.25;             // evaluate.hpp kFadeRamp: the end's ramp, share of a spacing
 
 float rtfSphereRadius(RtfGrid g, int s) { return g.innerRadius + (g.outerRadius - g.innerRadius) * float(s) / float(g.spheres - 1); }
 
@@ -63,7 +64,7 @@ void rtfTaps(RtfGrid g, vec3 q, out vec2 uv, out int s0, out int s1, out float w
     s0 = 0; s1 = 0;
   } else if (r >= rN) {
     s0 = g.spheres - 1; s1 = s0;
-    fade = max(0.0, 1.0 - (r - rN) / dr);
+    fade = (rN * rN) / (r * r) * clamp((rN + dr - r) / (kRtfFadeRamp * dr), 0.0, 1.0);  // evaluate.cpp tailFade
   } else {
     float t = (r - g.innerRadius) / dr;
     s0 = min(int(floor(t)), g.spheres - 2);

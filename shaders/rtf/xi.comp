@@ -42,8 +42,8 @@ layout(std430, binding = 6) readonly buffer Oof { float oof[]; };
 layout(rgba8, binding = 7) uniform writeonly image3D net;
 layout(std430, binding = 8) buffer Range { uint range[28]; };  // float bits of max |X| per slot; 0 before stage 1
 layout(std430, binding = 9) buffer Net { vec4 netValue[]; };    // X per (sample, i < 9), rgb
-// The indirect light at the sample against the light at o, per channel (update.hpp blockedScale):
-// the blocked term is the light at the receiver, not at o (ours: a scale of T', see XiPass).
+// The per-sample factor of the blocked term (overlap.hpp sharedOcclusionScale: the share of the
+// directions this object hides that no other object's term already takes off; 1 where one object acts).
 layout(std430, binding = 10) readonly buffer BlockedScale { vec4 blockedScale[]; };
 
 // α_e(r) at n = r·n_e + e − 1 (n_e may be odd: a row can start in a word's high half).

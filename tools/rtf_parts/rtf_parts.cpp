@@ -23,7 +23,10 @@
 //   blocked-receiver  L = the probes' light at r, s = 1   (shade()'s light, per object)
 //   blocked-shape-o   L = the light at o scaled per channel by L_00(r)/L_00(o), s = 1   (o's shape, r's level)
 //   blocked-at-o      L = the light at o, s = 1   (the GPU before the third pass)
-//   blocked-gpu       L = the light at o, s_s = update.hpp blockedScale (the GPU pass as shipped)
+//   blocked-gpu       L = the light at o, s_s = overlap.hpp sharedOcclusionScale (the GPU pass as shipped)
+//   blocked-level     L = the light at o, s_s = update.hpp blockedScale (the GPU before the seventh pass)
+//   blocked-eq3       L = the light at o, s_s = Σ_k w_k L_00(χ_k)/L_00(o), Eq. 3's weights from the sample to the proxies
+//   blocked-surface   L = the light at o, s_s = L_00(o + η d_s)/L_00(o), on the bounding sphere along the sample's ray
 //
 // usage: rtf_parts LEVEL WIDTH HEIGHT DIRS_PER_AXIS OUT_DIR [FRAME [TAIL]]   (TAIL: scene::Rtf::tail τ for every object)
 //   writes OUT_DIR/{ref-interreflected,ref-blocked,ref-room,blocked-probes,rtf-interreflected,
@@ -33,6 +36,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <memory>
 #include <set>
 #include <string>
 #include <vector>
@@ -46,6 +50,7 @@
 #include "engine/gi/probes/bake.hpp"
 #include "engine/gi/rtf/bake.hpp"
 #include "engine/gi/rtf/evaluate.hpp"
+#include "engine/gi/rtf/overlap.hpp"
 #include "engine/gi/rtf/technique.hpp"
 #include "engine/gi/rtf/update.hpp"
 #include "engine/gpu/image_io.hpp"
@@ -146,10 +151,25 @@ int main(int argc, char** argv) {
   std::vector<Reach> reach;
   std::vector<ecs::Entity> rtfEntities;
   with.registry.view<scene::Rtf>().each([&](ecs::Entity e, scene::Rtf&) { rtfEntities.push_back(e); });
+  std::vector<std::unique_ptr<ref::SceneBvh>> objectBvh;  // each object alone, its local frame (blocked-oof-at-r)
   for (ecs::Entity e : rtfEntities) {
     const gi::rtf::FieldSettings s = gi::rtf::settingsFrom(with.registry.get<scene::Rtf>(e));
-    fields.push_back(gi::rtf::bakeCached(gi::dnrt::objectScene(with.registry, e, with.assets), s, gi::rtf::cacheFolder()));
+    ref::SceneDesc od = gi::dnrt::objectScene(with.registry, e, with.assets);
+    fields.push_back(gi::rtf::bakeCached(od, s, gi::rtf::cacheFolder()));
+    objectBvh.push_back(std::make_unique<ref::SceneBvh>(std::move(od)));
   }
+  // The cube-map directions the bake projects the OOF over (bake.cpp), at face 16.
+  struct Dir { glm::vec3 w; std::array<double, gi::rtf::kShCount> y; double solidAngle; };
+  std::vector<Dir> oofDirs;
+  for (int face = 0; face < 6; ++face)
+    for (int y = 0; y < 16; ++y)
+      for (int x = 0; x < 16; ++x) {
+        const glm::dvec3 w = sh::cubeTexelDirection(face, x, y, 16);
+        Dir d{glm::vec3(w), {}, sh::cubeTexelSolidAngle(x, y, 16)};
+        sh::evalBasis<double>(gi::rtf::kShOrder, w, d.y);
+        for (auto& c : d.y) c *= sh::cubeTexelSolidAngle(x, y, 16);
+        oofDirs.push_back(d);
+      }
   for (std::size_t i = 0; i < rtfEntities.size(); ++i) {
     const auto& s = fields[i].settings;
     objects.push_back({&fields[i], with.registry.get<scene::WorldTransform>(rtfEntities[i]).matrix, gi::rtf::tailReach(fields[i], tail)});
@@ -197,12 +217,52 @@ int main(int argc, char** argv) {
                  bounced.bounceEnergy[b] / std::max(bounced.bounceEnergy[0], 1e-30));
 
   // The GPU's per-sample level of the blocked light (update.hpp blockedScale, static geometry = the level without its props).
-  std::vector<std::vector<glm::vec4>> scales;
-  for (const gi::rtf::Object& o : objects) scales.push_back(gi::rtf::blockedScale(*o.field, o.world, light.indirect(), &bvhWithout));
-
-  enum { kInter, kBlocked, kRoom, kBlockedProbes, kRtfInter, kRtfBlocked, kField, kAtR, kShapeO, kAtO, kGpu, kParts };
+  // The GPU's per-sample factor as shipped (overlap.hpp sharedOcclusionScale: the objects' shared occlusion, light at o),
+  // and the former per-sample light level (update.hpp blockedScale, static geometry = the level without its props).
+  std::vector<std::vector<glm::vec4>> scales, levels;
+  for (std::size_t k = 0; k < objects.size(); ++k) {
+    scales.push_back(gi::rtf::sharedOcclusionScale(objects, k));
+    levels.push_back(gi::rtf::blockedScale(*objects[k].field, objects[k].world, light.indirect(), &bvhWithout));
+  }
+  // Two per-sample levels from the light AT THE OBJECT (issue 14, seventh pass), L_00 per channel over L_00(o):
+  //   eq3:     Σ_k w_k(p_s) L_00(χ_k), w_k = Eq. 3's normalised inverse distances from the sample p_s to the proxies
+  //   surface: L_00 at o + η·d_s, the bounding sphere's point on the sample's ray from o
+  std::vector<std::vector<glm::vec4>> scalesEq3, scalesSurf;
+  for (const gi::rtf::Object& ob : objects) {
+    const gi::rtf::Field& f = *ob.field;
+    const gi::rtf::Placement pl = gi::rtf::place(f, ob.world);
+    const glm::vec3 at = glm::max(light.indirect().radianceSH(pl.centreWorld)[0], glm::vec3(1e-6f));
+    std::vector<glm::vec3> chi, lchi;
+    for (const glm::vec3& c : f.proxies) {
+      chi.push_back(glm::vec3(ob.world * glm::vec4(c, 1.0f)));
+      lchi.push_back(light.indirect().radianceSH(chi.back())[0]);
+    }
+    const gi::rtf::FieldSettings& s = f.settings;
+    const int per = gi::rtf::samplesPerSphere(s), n2 = s.faceSize * s.faceSize;
+    std::vector<glm::vec4> e3(gi::rtf::sampleCount(s)), sf(gi::rtf::sampleCount(s));
+    for (int rest = 0; rest < per; ++rest) {
+      const int face = rest / n2, x = rest % n2 % s.faceSize, y = rest % n2 / s.faceSize;
+      const glm::vec3 dir = pl.localToWorldRotation * glm::vec3(sh::cubeTexelDirection(face, x, y, s.faceSize));
+      const glm::vec3 surf = light.indirect().radianceSH(pl.centreWorld + pl.radiusWorld * dir)[0] / at;
+      for (int sphere = 0; sphere < s.spheres; ++sphere) {
+        const glm::vec3 p = pl.centreWorld + pl.radiusWorld * gi::rtf::sphereRadius(s, sphere) * dir;
+        glm::vec3 l(0.0f);
+        float wsum = 0.0f;
+        for (std::size_t k = 0; k < chi.size(); ++k) {
+          const float w = 1.0f / std::max(glm::length(p - chi[k]), 1e-4f);
+          l += w * lchi[k], wsum += w;
+        }
+        e3[std::size_t(sphere * per + rest)] = glm::vec4(glm::max(l / wsum / at, glm::vec3(0.0f)), 1.0f);
+        sf[std::size_t(sphere * per + rest)] = glm::vec4(glm::max(surf, glm::vec3(0.0f)), 1.0f);
+      }
+    }
+    scalesEq3.push_back(std::move(e3));
+    scalesSurf.push_back(std::move(sf));
+  }
+  enum { kInter, kBlocked, kRoom, kBlockedProbes, kRtfInter, kRtfBlocked, kField, kAtR, kShapeO, kAtO, kGpu, kOofAtR, kOofNoFade, kOofShExactCos, kVisExactCos, kEq3, kSurf, kLevel, kParts };
   const char* names[kParts] = {"ref-interreflected", "ref-blocked", "ref-room", "blocked-probes", "rtf-interreflected",
-                               "rtf-blocked", "field", "blocked-receiver", "blocked-shape-o", "blocked-at-o", "blocked-gpu"};
+                               "rtf-blocked", "field", "blocked-receiver", "blocked-shape-o", "blocked-at-o", "blocked-gpu",
+                               "blocked-oof-at-r", "blocked-oof-at-r-nofade", "blocked-oofsh-exactcos", "blocked-vis-exactcos", "blocked-eq3", "blocked-surface", "blocked-level"};
   std::vector<gpu::FloatImage> images(kParts);
   for (auto& im : images) im.width = W, im.height = H, im.rgb.assign(std::size_t(W) * H * 3, 0.0f);
   parallelFor(0, std::size_t(W) * H, [&](std::size_t pixel) {
@@ -257,7 +317,7 @@ int main(int argc, char** argv) {
     put(kField, glm::vec3(nearest));
     // The blocked term four ways (header), each object's term on its own, in its frame.
     const gi::rtf::ShRgb atR = gi::rtf::sourceRadiance(light.indirect(), hit.position);
-    glm::vec3 variant[4] = {};
+    glm::vec3 variant[7] = {}, exactV(0.0f), exactNoFade(0.0f), shExactCos(0.0f), visExactCos(0.0f);
     for (std::size_t k = 0; k < objects.size(); ++k) {
       const gi::rtf::Field& f = *objects[k].field;
       const gi::rtf::Placement pl = gi::rtf::place(f, objects[k].world);
@@ -270,9 +330,9 @@ int main(int argc, char** argv) {
       lights[2] = lights[1];
       gi::rtf::ShRgb shapeO = lights[1];
       for (auto& c : shapeO) c *= level;
-      const gi::rtf::ShRgb* useL[4] = {&lights[0], &shapeO, &lights[1], &lights[1]};
+      const gi::rtf::ShRgb* useL[7] = {&lights[0], &shapeO, &lights[1], &lights[1], &lights[1], &lights[1], &lights[1]};
       const glm::vec3 nl = toLocal * n;
-      for (int v = 0; v < 4; ++v) {
+      for (int v = 0; v < 7; ++v) {
         std::vector<glm::vec3> notV(gi::rtf::kShCount, glm::vec3(0.0f));
         float total = 0.0f;
         for (int t = 0; t < 8; ++t) {
@@ -280,7 +340,7 @@ int main(int argc, char** argv) {
           if (w == 0.0f) continue;
           total += w;
           const std::size_t smp = lk.sample[std::size_t(t)];
-          const glm::vec3 sc = v == 3 ? glm::vec3(scales[k][smp]) : glm::vec3(1.0f);
+          const glm::vec3 sc = v == 3 ? glm::vec3(scales[k][smp]) : v == 4 ? glm::vec3(scalesEq3[k][smp]) : v == 5 ? glm::vec3(scalesSurf[k][smp]) : v == 6 ? glm::vec3(levels[k][smp]) : glm::vec3(1.0f);
           for (int j = 0; j < gi::rtf::kShCount; ++j)
             notV[std::size_t(j)] += w * sc * ((j == 0 ? 3.5449077f : 0.0f) - f.oof[smp * gi::rtf::kShCount + std::size_t(j)]);
         }
@@ -289,8 +349,54 @@ int main(int argc, char** argv) {
         const auto e = sh::convolveCosine<glm::vec3>(std::span<const glm::vec3>(b));
         variant[v] += rho / float(math::kPi) * sh::evalSum<glm::vec3, float>(std::span<const glm::vec3>(e).first(9), glm::normalize(nl));
       }
+      // blocked-oof-at-r: the OOF projected AT r (no lookup), as the bake projects it, with the light at r:
+      // what is left of blocked-receiver's error against blocked-probes is the SH truncation alone.
+      float fade = 0.0f;  // the lookup's fade beyond the outermost sphere, as blocked-receiver's
+      for (float w : lk.weight) fade += w;
+      if (glm::length(q) < 3.0f * f.settings.outerRadius) {
+        const glm::vec3 ql = glm::vec3(pl.worldToLocal * glm::vec4(hit.position, 1.0f));
+        const glm::vec3 nn = glm::normalize(nl);
+        std::vector<glm::vec3> notV(gi::rtf::kShCount, glm::vec3(0.0f));
+        std::vector<char> hitDir(oofDirs.size(), 0);
+        for (std::size_t di = 0; di < oofDirs.size(); ++di) {
+          const Dir& d = oofDirs[di];
+          ref::Hit oh;
+          if (!objectBvh[k]->intersect(ql, d.w, 1e-5f * f.radius, 1e30f, oh)) continue;
+          hitDir[di] = 1;
+          for (int j = 0; j < gi::rtf::kShCount; ++j) notV[std::size_t(j)] += glm::vec3(float(d.y[std::size_t(j)]));
+        }
+        const auto b = sh::product<glm::vec3>(std::span<const glm::vec3>(notV), std::span<const glm::vec3>(lights[0]), gi::rtf::kShOrder);
+        const auto e = sh::convolveCosine<glm::vec3>(std::span<const glm::vec3>(b));
+        const glm::vec3 A = rho / float(math::kPi) * sh::evalSum<glm::vec3, float>(std::span<const glm::vec3>(e).first(9), nn);
+        exactNoFade += A;
+        exactV += fade * A;
+        // The same integral with the exact clamped cosine (numerical over the cube directions): with the
+        // order-4 (1 − V) (B), and with the exact visibility (C).
+        glm::dvec3 B(0.0), C(0.0);
+        for (std::size_t di = 0; di < oofDirs.size(); ++di) {
+          const Dir& d = oofDirs[di];
+          const double c = std::max(0.0, double(glm::dot(nn, d.w)));
+          if (c <= 0.0) continue;
+          const auto yb = sh::evalBasis<double>(gi::rtf::kShOrder, glm::dvec3(d.w));
+          const double dw = d.solidAngle;
+          glm::dvec3 L(0.0);
+          double ov = 0.0;
+          for (int j = 0; j < gi::rtf::kShCount; ++j) L += glm::dvec3(lights[0][std::size_t(j)]) * yb[std::size_t(j)], ov += double(notV[std::size_t(j)].x) * yb[std::size_t(j)];
+          B += ov * L * c * dw;
+          if (hitDir[di]) C += L * c * dw;
+        }
+        shExactCos += rho / float(math::kPi) * glm::vec3(B);
+        visExactCos += rho / float(math::kPi) * glm::vec3(C);
+      }
     }
     for (int v = 0; v < 4; ++v) put(kAtR + v, variant[v]);
+    put(kEq3, variant[4]);
+    put(kSurf, variant[5]);
+    put(kLevel, variant[6]);
+    put(kOofAtR, exactV);
+    put(kOofNoFade, exactNoFade);
+    put(kOofShExactCos, shExactCos);
+    put(kVisExactCos, visExactCos);
   }, 16);
   for (int i = 0; i < kParts; ++i) gpu::writePfm(out / (std::string(names[i]) + ".pfm"), images[std::size_t(i)]);
   std::fprintf(stderr, "rtf_parts: wrote %s\n", out.c_str());

@@ -84,8 +84,8 @@ float radialWeight(float ra, float rb, float r) {
 float tailFade(const FieldSettings& s, float r, float reach) {
   const float rN = sphereRadius(s, s.spheres - 1), dr = (s.outerRadius - s.innerRadius) / float(s.spheres - 1);
   if (r <= rN) return 1.0f;
-  if (!(reach > rN + dr)) return std::max(0.0f, 1.0f - (r - rN) / dr);
-  return (rN / r) * (rN / r) * glm::clamp((reach - r) / dr, 0.0f, 1.0f);
+  const float end = reach > rN + dr ? reach : rN + dr;
+  return (rN / r) * (rN / r) * glm::clamp((end - r) / (kFadeRamp * dr), 0.0f, 1.0f);
 }
 
 float tailReach(const Field& f, float tail) {

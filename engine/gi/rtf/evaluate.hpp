@@ -19,9 +19,13 @@
 // seen from 1.25 between spheres at 1 and 1.5: +24 % linear in |q|, +7 % linear in 1/|q|²; on
 // cornell-rtf README Results "RTF"). Exact at the spheres, so continuous.
 // Inside the innermost sphere the innermost sphere's value is used. Beyond the outermost sphere
-// r_N the field fades linearly to zero at r_N + Δr (Δr the sphere spacing), as if a sphere of
-// zeros lay there: continuous at r_N, zero from r_N + Δr on. The OOF fades to "unoccluded"
-// (V = 1) the same way, so the occluded part (1 − V) fades to zero.
+// r_N the field goes on as (r_N/|q|)² — what it carries falls with the object's solid angle
+// (radialWeight's comment) — and ends at r_N + Δr (Δr the sphere spacing; the shading pass draws no
+// further) by a linear ramp over the last kFadeRamp·Δr: continuous at r_N, zero from r_N + Δr on.
+// The OOF fades to "unoccluded" (V = 1) the same way, so the occluded part (1 − V) fades to zero.
+// (Before session 10 the ramp was the whole spacing from r_N: it kept on average half of the field
+// there where the solid angle keeps 0.85, and on cornell-5 that band blocked 0.0042 where the OOF at
+// the receiver blocks 0.0179 and the path tracer 0.0158 — README "Sixth pass".)
 #include <array>
 #include <span>
 #include <vector>
@@ -55,12 +59,17 @@ struct Lookup {
   std::array<std::uint32_t, 8> sample{};
   std::array<float, 8> weight{};
 };
-// `reach` (units of η, run time: scene::Rtf::reach × the outermost radius): 0 keeps the fade above;
+// `reach` (units of η, run time: scene::Rtf::reach × the outermost radius): 0 keeps the end above;
 // beyond r_N + Δr the field instead goes on as (r_N/|q|)² — what a field carries falls off as the solid
-// angle of the object (radialWeight's comment) — and fades linearly to zero over the last Δr before
+// angle of the object (radialWeight's comment) — and ramps to zero over the last kFadeRamp·Δr before
 // `reach` (continuous at r_N and at `reach`).
 Lookup lookup(const FieldSettings& settings, glm::vec3 q, float reach = 0.0f);
-// The radial factor beyond the outermost sphere r_N (1 inside it): lookup()'s fade, rtf.frag's.
+// The share of Δr over which the field ramps to zero at its end (header comment): a quarter spacing,
+// so the ramp's slope is 4/Δr of the value there (the field's own change between two spheres is ~1/Δr
+// of it near the object): steeper than the field, still continuous.
+inline constexpr float kFadeRamp = 0.25f;
+// The radial factor beyond the outermost sphere r_N (1 inside it): lookup()'s fade, rtf.frag's:
+// (r_N/r)² · clamp((end − r)/(kFadeRamp·Δr), 0, 1), end = reach when reach > r_N + Δr, else r_N + Δr.
 float tailFade(const FieldSettings& settings, float r, float reach);
 // The reach (η) of scene::Rtf::tail τ: the object's solid angle seen from the outermost sphere,
 // Ω_N = the mean over its samples of ∫(1 − V) = 4π − V_00/Y_00 (the OOF), falls as (r_N/r)², so it

@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "engine/core/error.hpp"
+#include "engine/gi/rtf/overlap.hpp"
 #include "engine/math/sampling.hpp"
 #include "engine/math/sh.hpp"
 #include "engine/scene/components.hpp"
@@ -111,7 +112,8 @@ FrameObjects Update::frame(std::span<const render::LightGpu> lights) {
       out.records.push_back(packObject(*objects[o].field, objects[o].world, sourceRadiance(indirect, pl.centreWorld),
                                        participants_[out.participant[o]].entity.index(), participants_[out.participant[o]].sh,
                                        objects[o].reach));
-      out.blockedScale.push_back(blockedScale(*objects[o].field, objects[o].world, indirect, staticScene_));
+      // The objects' shared occlusion (overlap.hpp); the light is o's (packObject), unscaled where one object acts.
+      out.blockedScale.push_back(sharedOcclusionScale(objects, o));
     }
   }
   bounceMs_.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());

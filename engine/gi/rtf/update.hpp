@@ -11,13 +11,15 @@
 //    light between all objects at once, so a per-object count has no meaning);
 //  - the shading step's blocked light (Eq. 10's occlusion of the incident light, the OOF) is the
 //    INDIRECT light only (probes / background): the real lights' direct light is already removed
-//    by the shadow maps, which draw every dynamic object. Its directional shape is the light's at
-//    the object's centre (the record's product matrix), its level per channel the light's at each
-//    field sample (blockedScale below), which the lookup carries to the receiver; shade() takes the
-//    whole light at the receiver, so the two agree where the light is the same everywhere;
+//    by the shadow maps, which draw every dynamic object. It is the light at the object's centre
+//    (the record's product matrix: the radiance through the object is, in free space, the radiance
+//    at o in those directions); shade() takes the whole light at the receiver, so the two agree
+//    where the light is the same everywhere;
 //  - the GPU pass adds each object's term on its own (additive blending); Algorithm 1 at a receiver
-//    multiplies the objects' visibilities (V_{<i}). The two agree for one object (the GPU test) and
-//    to first order in (1 − V) where objects' fields overlap.
+//    multiplies the objects' visibilities (V_{<i}). The two agree for one object (the GPU test);
+//    where fields overlap, each object's term is scaled per field sample by sharedOcclusionScale
+//    (overlap.hpp: half the directions two objects both hide taken off each), which the lookup
+//    carries to the receiver (README RTF "Seventh pass").
 #include <chrono>
 #include <span>
 #include <string>
@@ -57,7 +59,9 @@ static_assert(sizeof(RtfObjectGpu) <= kRtfObjectStride);
 RtfObjectGpu packObject(const Field& field, const glm::mat4& world, const ShRgb& indirect, std::uint32_t entity,
                         int shCount = 9, float reach = 0.0f);
 
-// The shading step's blocked light at the receiver instead of at o (ours; the departure is the
+// NOT the GPU's any more (README RTF "Seventh pass": it helped cornell-rtf only where fields overlap,
+// by cancelling the sum's double count, and hurt both levels elsewhere; kept for rtf_parts' blocked-level
+// form and its tests). The shading step's blocked light at the receiver instead of at o (ours; the departure is the
 // scale): Eq. 10 blocks the indirect light L(r) at the receiver r, (u − V(q)) ⊙ L(r); the record's
 // product matrix T' holds L(o). Per field sample q (world position p_q), the ξ pass scales T'·(u − V)
 // by s_c(q) = L_00,c(p_q) / L_00,c(o) per channel (l = 0: the mean radiance; the directional shape
@@ -98,7 +102,7 @@ struct FrameObjects {
   std::vector<std::size_t> participant;            // index into Update::participants()
   std::vector<std::vector<glm::vec3>> proxyLight;  // m·16 RGB per object, object frame (for the ξ pass)
   std::vector<RtfObjectGpu> records;
-  std::vector<std::vector<glm::vec4>> blockedScale;  // per object: blockedScale() of its field, or empty
+  std::vector<std::vector<glm::vec4>> blockedScale;  // per object: sharedOcclusionScale() of its field (overlap.hpp)
   std::vector<double> bounceEnergy;                // BounceResult::bounceEnergy
   int bounces = 0;
 };
@@ -109,7 +113,8 @@ class Update {
   // Not owned. Null indirect: none; null visibility: every light unoccluded.
   void setIndirect(const incident::IndirectSource* indirect) { service_.setIndirect(indirect); }
   void setLightVisibility(const incident::Visibility* visibility) { service_.setVisibility(visibility); }
-  // The level's static geometry for blockedScale (not owned; null: every sample counts).
+  // The level's static geometry (not owned; null: every sample counts); no longer read by frame() (the
+  // per-sample level blockedScale left the GPU's path, README RTF "Seventh pass").
   void setStaticScene(const ref::SceneBvh* bvh) { staticScene_ = bvh; }
   const std::vector<Participant>& participants() const { return participants_; }
   int bounces() const;

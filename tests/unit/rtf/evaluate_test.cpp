@@ -72,10 +72,24 @@ TEST(RtfEvaluate, InnermostBetweenAndBeyondOutermostFadeContinuously) {
   const glm::vec3 dir = glm::normalize(glm::vec3(0.3f, -0.5f, 0.8f));
   // Inside the innermost sphere and between spheres: a partition of unity.
   for (float r : {0.0f, 0.5f * r0, r0, 0.5f * (r0 + sphereRadius(fs, 1)), 2.0f, rN}) EXPECT_NEAR(weightSum(lookup(fs, r * dir)), 1.0f, 1e-6f) << r;
-  // Beyond: linear fade to 0 at rN + Δr.
-  EXPECT_NEAR(weightSum(lookup(fs, (rN + 0.25f * dr) * dir)), 0.75f, 1e-5f);
-  EXPECT_NEAR(weightSum(lookup(fs, (rN + 0.5f * dr) * dir)), 0.5f, 1e-5f);
-  EXPECT_NEAR(weightSum(lookup(fs, (rN + dr) * dir)), 0.0f, 1e-5f);  // float rounding of r
+  // Beyond: (r_N/r)² (the object's solid angle) to r_N + (1 − kFadeRamp)Δr, then a linear ramp to 0
+  // at r_N + Δr (half of (r_N/r)² in the ramp's middle).
+  const auto solid = [&](float r) { return (rN / r) * (rN / r); };
+  for (float t : {0.25f, 0.5f, 1.0f - kFadeRamp})
+    EXPECT_NEAR(weightSum(lookup(fs, (rN + t * dr) * dir)), solid(rN + t * dr), 1e-5f) << t;
+  const float mid = rN + (1.0f - 0.5f * kFadeRamp) * dr;
+  EXPECT_NEAR(weightSum(lookup(fs, mid * dir)), 0.5f * solid(mid), 1e-4f);
+  EXPECT_NEAR(weightSum(lookup(fs, (rN + dr) * dir)), 0.0f, 1e-4f);  // float rounding of r, ×1/(kFadeRamp·Δr)
+  // What the end keeps of the solid-angle law over the last spacing (mean over r in [r_N, r_N + Δr]):
+  // about 1 − kFadeRamp/2, ≥ 0.85 of it; the pre-session-10 linear fade over the whole spacing kept
+  // about 0.5 ÷ 0.85 ≈ 0.59 of it on cornell-5's fields (README "Sixth pass": that band blocked 0.0042
+  // where the OOF at the receiver blocks 0.0179).
+  double kept = 0.0, law = 0.0;
+  for (int i = 0; i < 1000; ++i) {
+    const float r = rN + (float(i) + 0.5f) / 1000.0f * dr;
+    kept += weightSum(lookup(fs, r * dir)), law += solid(r);
+  }
+  EXPECT_GT(kept / law, 0.85);
   EXPECT_EQ(weightSum(lookup(fs, (rN + 1.01f * dr) * dir)), 0.0f);
   EXPECT_EQ(weightSum(lookup(fs, 1e6f * dir)), 0.0f);
   // Continuity of the looked-up field across the outermost sphere, and a lit field fades to 0.
@@ -92,9 +106,33 @@ TEST(RtfEvaluate, InnermostBetweenAndBeyondOutermostFadeContinuously) {
   EXPECT_LT(occlusion(f, rN * dir)[0], 2.0f * std::sqrt(float(kPi)));
 }
 
-// scene::Rtf::tail: beyond the outermost sphere the field goes on as (r_N/|q|)² to its reach, fading
-// to zero over the last spacing (continuous at r_N and at the reach); a reach within r_N + Δr is the
-// one-spacing fade. The reach comes from the OOF: the solid angle Ω_N the object covers seen from
+// The field's end against the sphere's closed form (README "Sixth pass"): past r_N the OOF's occluded
+// part (u − V)_00 = Y_00·Ω(r) should fall as the unit sphere's solid angle Ω(r) = 2π(1 − √(1 − 1/r²)).
+// The ratio to its value at r_N removes the cube-map projection's error (the same factor at both
+// radii): (r_N/r)² departs from Ω(r)/Ω(r_N) by at most 0.53 % here (r_N = 4, up to the ramp at
+// r_N + (1 − kFadeRamp)Δr = 4.875; asymptotically exact, Ω → π/r²): bound 1 %. The old linear fade over
+// the whole spacing gave 1 − t at r_N + tΔr: 0.75, 0.5, 0.25 against 0.87, 0.76, 0.67 — 14–63 % of the
+// blocked light lost.
+TEST(RtfEvaluate, EndOfTheOofFollowsTheSpheresSolidAngle) {
+  const Field& f = sphereBake().field;
+  const FieldSettings& fs = f.settings;
+  const float rN = sphereRadius(fs, fs.spheres - 1), dr = sphereRadius(fs, 1) - sphereRadius(fs, 0);
+  const glm::vec3 dir = glm::normalize(glm::vec3(0.3f, -0.5f, 0.8f));
+  const float u = 2.0f * std::sqrt(float(kPi));
+  const auto omega = [](double r) { return 2.0 * kPi * (1.0 - std::sqrt(1.0 - 1.0 / (r * r))); };
+  const double atN = double(u - occlusion(f, rN * dir)[0]);
+  ASSERT_GT(atN, 0.0);
+  for (float t : {0.25f, 0.5f, 1.0f - kFadeRamp}) {
+    const float r = rN + t * dr;
+    const double got = double(u - occlusion(f, r * dir)[0]) / atN, want = omega(r) / omega(rN);
+    EXPECT_NEAR(got, want, 0.01 * want) << t;
+    EXPECT_GT(got - double(1.0f - t), 0.1) << t;  // what the old fade kept, well below
+  }
+}
+
+// scene::Rtf::tail: beyond the outermost sphere the field goes on as (r_N/|q|)² to its reach, ramping
+// to zero over the last kFadeRamp·Δr (continuous at r_N and at the reach); a reach within r_N + Δr is
+// the shipped end at r_N + Δr. The reach comes from the OOF: the solid angle Ω_N the object covers seen from
 // r_N, falling as (r_N/r)², drops to τ·π there.
 TEST(RtfEvaluate, TailGoesAsOneOverRSquaredToItsReachAndFadesThere) {
   const FieldSettings fs = testing::smallSettings();
@@ -103,13 +141,13 @@ TEST(RtfEvaluate, TailGoesAsOneOverRSquaredToItsReachAndFadesThere) {
   const glm::vec3 dir = glm::normalize(glm::vec3(0.3f, -0.5f, 0.8f));
   for (float r : {0.0f, 1.0f, 2.0f, rN}) EXPECT_NEAR(weightSum(lookup(fs, r * dir, reach)), 1.0f, 1e-6f) << r;
   EXPECT_NEAR(weightSum(lookup(fs, rN * (1.0f + 1e-5f) * dir, reach)), 1.0f, 1e-4f);  // continuous at r_N
-  for (float r : {1.25f * rN, 1.5f * rN, 2.0f * rN, reach - dr})
+  for (float r : {1.25f * rN, 1.5f * rN, 2.0f * rN, reach - kFadeRamp * dr})
     EXPECT_NEAR(weightSum(lookup(fs, r * dir, reach)), (rN / r) * (rN / r), 1e-6f) << r;
-  const float mid = reach - 0.5f * dr;
-  EXPECT_NEAR(weightSum(lookup(fs, mid * dir, reach)), 0.5f * (rN / mid) * (rN / mid), 1e-5f);
+  const float mid = reach - 0.5f * kFadeRamp * dr;
+  EXPECT_NEAR(weightSum(lookup(fs, mid * dir, reach)), 0.5f * (rN / mid) * (rN / mid), 1e-4f);
   EXPECT_NEAR(weightSum(lookup(fs, reach * dir, reach)), 0.0f, 1e-6f);
   EXPECT_EQ(weightSum(lookup(fs, 1.01f * reach * dir, reach)), 0.0f);
-  // A reach within one spacing of r_N: the shipped fade, exactly.
+  // A reach within one spacing of r_N: the shipped end, exactly.
   for (float r : {rN + 0.25f * dr, rN + 0.5f * dr, rN + 2.0f * dr})
     EXPECT_EQ(weightSum(lookup(fs, r * dir, rN + dr)), weightSum(lookup(fs, r * dir))) << r;
   // The OOF carries the tail too: the occluded part (u − V) scales by the same factor.

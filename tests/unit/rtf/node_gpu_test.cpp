@@ -116,7 +116,7 @@ TEST(RtfGpu, ShaderMatchesCpuShadingOnTheFloor) {
       else beyondNonZero += (rgb[i] != 0.0f || rgb[i + 1] != 0.0f || rgb[i + 2] != 0.0f), ++beyond;
       want.push_back(sh.net());
       got.emplace_back(rgb[i], rgb[i + 1], rgb[i + 2]);
-      const float fade = std::clamp(1.0f - (qLen - fsettings.outerRadius) / dr, 0.0f, 1.0f);
+      const float fade = tailFade(fsettings, qLen, 0.0f);
       glm::vec3 tol;
       for (int c = 0; c < 3; ++c) tol[c] = testing::netBound(range, record.toLocal, glm::vec3(0, 1, 0), fade, floor.albedo[c], c);
       netTol.push_back(tol);
@@ -217,7 +217,6 @@ TEST(RtfGpu, BlockedLightAtTheReceiverFollowsTheLightsLevel) {
   const glm::vec3 nLocal(glm::dot(glm::vec3(record.toLocal[0]), glm::vec3(0, 1, 0)), glm::dot(glm::vec3(record.toLocal[1]), glm::vec3(0, 1, 0)),
                          glm::dot(glm::vec3(record.toLocal[2]), glm::vec3(0, 1, 0)));
   const auto y = sh::evalBasis<float>(3, nLocal);
-  const float dr = (fs.outerRadius - fs.innerRadius) / float(fs.spheres - 1);
   float worstGpu = 0.0f, worstShade = 0.0f, largestBlocked = 0.0f, levelSpread = 0.0f;
   int compared = 0;
   for (std::uint32_t py = 0; py < kH; ++py)
@@ -228,7 +227,7 @@ TEST(RtfGpu, BlockedLightAtTheReceiverFollowsTheLightsLevel) {
       const glm::vec4 pw(*p, 1.0f);
       const glm::vec3 q(glm::dot(record.toQ[0], pw), glm::dot(record.toQ[1], pw), glm::dot(record.toQ[2], pw));
       const Lookup l = lookup(fs, q);
-      const float fade = std::clamp(1.0f - (glm::length(q) - fs.outerRadius) / dr, 0.0f, 1.0f);
+      const float fade = tailFade(fs, glm::length(q), 0.0f);
       if (fade <= 0.0f) continue;
       const Shading sh = shade(objects, bounced, ramp, *p, glm::vec3(0, 1, 0), floor.albedo, -1);
       const float cr = ramp.level(*p) / ramp.level(pl.centreWorld);
@@ -291,7 +290,6 @@ TEST(RtfGpu, FourShShadingMatchesCpuShadingWithBandsZeroAndOne) {
   constexpr float kHalfRel = 1e-3f, kSumRel = 1e-4f;
   const std::array<float, 28> range = testing::netRanges(testing::netValues(s.field, bounced.xi[0], record.blocked));
   const FieldSettings& fs = s.field.settings;
-  const float dr = (fs.outerRadius - fs.innerRadius) / float(fs.spheres - 1);
   float largest = 0.0f;
   for (std::uint32_t y = 0; y < kH; ++y)
     for (std::uint32_t x = 0; x < kW; ++x)
@@ -307,7 +305,7 @@ TEST(RtfGpu, FourShShadingMatchesCpuShadingWithBandsZeroAndOne) {
       const glm::vec3 nine = shade(objects, bounced, sky, *p, glm::vec3(0, 1, 0), floor.albedo, -1, 9).net();
       const glm::vec4 pw(*p, 1.0f);
       const float qLen = glm::length(glm::vec3(glm::dot(record.toQ[0], pw), glm::dot(record.toQ[1], pw), glm::dot(record.toQ[2], pw)));
-      const float fade = std::clamp(1.0f - (qLen - fs.outerRadius) / dr, 0.0f, 1.0f);
+      const float fade = tailFade(fs, qLen, 0.0f);
       const std::size_t i = (std::size_t(y) * kW + x) * 3;
       for (int c = 0; c < 3; ++c) {
         const float bound = kHalfRel * std::abs(want[c]) + kSumRel * largest +
@@ -421,7 +419,6 @@ TEST(RtfGpu, SessionRunsTheBouncingStepAndBothPasses) {
   const RtfObjectGpu record = packObject(s.field, s.world, ShRgb{}, s.box.index());
   const std::array<float, 28> range = testing::netRanges(testing::netValues(s.field, bounced.xi[0], record.blocked));
   const FieldSettings& fs = s.field.settings;
-  const float dr = (fs.outerRadius - fs.innerRadius) / float(fs.spheres - 1);
   float largest = 0.0f, worst = 0.0f;
   int compared = 0;
   for (std::uint32_t y = 0; y < kH; ++y)
@@ -432,7 +429,7 @@ TEST(RtfGpu, SessionRunsTheBouncingStepAndBothPasses) {
       const std::size_t i = (std::size_t(y) * kW + x) * 3;
       const glm::vec4 pw(*p, 1.0f);
       const float qLen = glm::length(glm::vec3(glm::dot(record.toQ[0], pw), glm::dot(record.toQ[1], pw), glm::dot(record.toQ[2], pw)));
-      const float fade = std::clamp(1.0f - (qLen - fs.outerRadius) / dr, 0.0f, 1.0f);
+      const float fade = tailFade(fs, qLen, 0.0f);
       for (int c = 0; c < 3; ++c)
         worst = std::max(worst, std::abs(rgb[i + std::size_t(c)] - want[c]) - 1e-3f * std::abs(want[c]) -
                                     testing::netBound(range, record.toLocal, glm::vec3(0, 1, 0), fade, floor.albedo[c], c));
@@ -525,8 +522,7 @@ TEST(RtfGpu, OverlappingObjectsAddAndMatchTheCpuSum) {
         const FieldSettings& fs = fields[k].settings;
         const glm::vec4 pw(*p, 1.0f);
         const float qLen = glm::length(glm::vec3(glm::dot(rec.toQ[0], pw), glm::dot(rec.toQ[1], pw), glm::dot(rec.toQ[2], pw)));
-        const float dr = (fs.outerRadius - fs.innerRadius) / float(fs.spheres - 1);
-        const float fade = std::clamp(1.0f - (qLen - fs.outerRadius) / dr, 0.0f, 1.0f);
+        const float fade = tailFade(fs, qLen, 0.0f);
         for (int c = 0; c < 3; ++c) netTol[c] += testing::netBound(range[k], rec.toLocal, glm::vec3(0, 1, 0), fade, floor.albedo[c], c);
       }
       for (int c = 0; c < 3; ++c) {

@@ -13,6 +13,7 @@
 #include "engine/core/error.hpp"
 #include "engine/core/file.hpp"
 #include "engine/core/paths.hpp"
+#include "engine/gi/rtf/overlap.hpp"
 #include "engine/gi/rtf/technique.hpp"
 #include "engine/math/sampling.hpp"
 #include "engine/math/sh.hpp"
@@ -222,6 +223,15 @@ TEST(RtfUpdate, FrameIsTheBouncingStepAndPacksTheRecords) {
   EXPECT_EQ(f.bounceEnergy, want.bounceEnergy);
   ASSERT_EQ(f.bounceEnergy.size(), 2u);
   EXPECT_GT(f.bounceEnergy[1], 0.0);  // light did bounce from one box onto the other
+  // The blocked term's per-sample factor is the two boxes' shared occlusion (overlap.hpp; README RTF
+  // "Seventh pass"): the boxes stand 3 η apart, so some of each one's samples lie in the other's field.
+  ASSERT_EQ(f.blockedScale.size(), 2u);
+  for (std::size_t o = 0; o < 2; ++o) {
+    EXPECT_EQ(f.blockedScale[o], sharedOcclusionScale(objects, o)) << o;
+    int shared = 0;
+    for (const glm::vec4& s : f.blockedScale[o]) shared += s.x < 1.0f;
+    EXPECT_GT(shared, 0) << o;
+  }
 
   for (std::size_t o = 0; o < 2; ++o) {
     const Field& field = parts[o].field;

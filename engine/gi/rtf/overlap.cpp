@@ -1,0 +1,77 @@
+#include "engine/gi/rtf/overlap.hpp"
+// overlap.hpp: the objects' shared occlusion, per field sample.
+
+#include <algorithm>
+
+#include "engine/core/parallel.hpp"
+#include "engine/math/sh.hpp"
+#include "engine/math/sh_project.hpp"
+#include "engine/math/sh_rotate.hpp"
+
+namespace bounce::gi::rtf {
+
+std::vector<glm::vec4> sharedOcclusionScale(std::span<const Object> objects, std::size_t a) {
+  constexpr float u = 3.5449077f;  // √(4π): the l = 0 coefficient of the constant 1, ∫f dω = u·f_0
+  const Field& f = *objects[a].field;
+  const FieldSettings& s = f.settings;
+  std::vector<glm::vec4> out(sampleCount(s), glm::vec4(1.0f));
+  const Placement pa = place(f, objects[a].world);
+  const float dr = (s.outerRadius - s.innerRadius) / float(s.spheres - 1);
+  const float reachA = pa.radiusWorld * (s.outerRadius + dr);
+  struct Other {
+    const Field* field;
+    float reach;
+    glm::mat4 worldToLocal;
+    sh::Rotationf toA;  // B's local frame → A's local frame
+  };
+  std::vector<Other> others;
+  for (std::size_t b = 0; b < objects.size(); ++b) {
+    if (b == a) continue;
+    const Field& fb = *objects[b].field;
+    const Placement pb = place(fb, objects[b].world);
+    const FieldSettings& sb = fb.settings;
+    const float drb = (sb.outerRadius - sb.innerRadius) / float(sb.spheres - 1);
+    const float reachB = pb.radiusWorld * std::max(sb.outerRadius + drb, objects[b].reach);
+    if (glm::length(pa.centreWorld - pb.centreWorld) >= reachA + reachB) continue;  // no sample of A in B's field
+    others.push_back({&fb, objects[b].reach, pb.worldToLocal,
+                      sh::Rotationf::fromMatrix(glm::transpose(pa.localToWorldRotation) * pb.localToWorldRotation)});
+  }
+  if (others.empty()) return out;
+  const int per = samplesPerSphere(s), n2 = s.faceSize * s.faceSize;
+  parallelFor(0, std::size_t(per), [&](std::size_t ray) {
+    const int rest = int(ray), face = rest / n2, x = rest % n2 % s.faceSize, y = rest % n2 / s.faceSize;
+    const glm::vec3 dir = pa.localToWorldRotation * glm::vec3(sh::cubeTexelDirection(face, x, y, s.faceSize));
+    for (int sphere = 0; sphere < s.spheres; ++sphere) {
+      const std::size_t smp = std::size_t(sphere * per + rest);
+      const float* oofA = f.oof.data() + smp * kShCount;
+      const float a0 = u - oofA[0];  // (1 − V_A)'s l = 0 coefficient
+      if (a0 <= 1e-6f) continue;     // A hides nothing from this sample
+      const glm::vec3 p = pa.centreWorld + pa.radiusWorld * sphereRadius(s, sphere) * dir;
+      float shared = 0.0f;
+      for (const Other& o : others) {
+        const Field& fb = *o.field;
+        const glm::vec3 qb = (glm::vec3(o.worldToLocal * glm::vec4(p, 1.0f)) - fb.centre) / fb.radius;
+        const Lookup lk = lookup(fb.settings, qb, o.reach);
+        ShScalar vb{};
+        float total = 0.0f;
+        for (int t = 0; t < 8; ++t) {
+          const float w = lk.weight[std::size_t(t)];
+          if (w == 0.0f) continue;
+          total += w;
+          const float* oofB = fb.oof.data() + std::size_t(lk.sample[std::size_t(t)]) * kShCount;
+          for (int j = 0; j < kShCount; ++j) vb[std::size_t(j)] += w * ((j == 0 ? u : 0.0f) - oofB[j]);
+        }
+        if (total == 0.0f) continue;
+        ShScalar vbA{};
+        o.toA.apply<float>(std::span<const float>(vb), std::span<float>(vbA));
+        float dot = a0 * vbA[0];
+        for (int j = 1; j < kShCount; ++j) dot -= oofA[j] * vbA[std::size_t(j)];  // (1 − V_A)_j = −oof_j for j > 0
+        shared += std::clamp(dot / (a0 * u), 0.0f, 1.0f);
+      }
+      out[smp] = glm::vec4(glm::vec3(std::max(0.0f, 1.0f - 0.5f * shared)), 1.0f);
+    }
+  }, 64);
+  return out;
+}
+
+}  // namespace bounce::gi::rtf

@@ -1,0 +1,105 @@
+// The objects' shared occlusion (overlap.hpp, README RTF "Seventh pass"): per sample of A,
+// s = 1 − ½ W_B(p)·∫(1 − V_A)(1 − V_B) dω / ∫(1 − V_A) dω, with OOFs set by hand so the integrals are
+// known numbers: (1 − V) = c_0·Y_00 + c_z·Y_1,0 at every sample of a field (coefficient 2 is the z
+// lobe), W_B(p) the sum of B's lookup weights at p (1 inside B's field, its end's fraction past r_N).
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "engine/gi/rtf/overlap.hpp"
+#include "engine/math/sh_project.hpp"
+
+namespace bounce::gi::rtf {
+namespace {
+
+constexpr float kU = 3.5449077f;  // √(4π)
+
+// A field of 5 spheres (0.5–4 η), 6·3² directions, radius 0.5 m, every sample's (1 − V) = (c0, 0, cz, 0, …).
+Field handField(float c0, float cz, int lobe = 2) {
+  Field f;
+  f.settings.spheres = 5;
+  f.settings.faceSize = 3;
+  f.settings.innerRadius = 0.5f;
+  f.settings.outerRadius = 4.0f;
+  f.centre = glm::vec3(0.0f);
+  f.radius = 0.5f;
+  f.oof.assign(sampleCount(f.settings) * kShCount, 0.0f);
+  for (std::size_t s = 0; s < sampleCount(f.settings); ++s) {
+    f.oof[s * kShCount + 0] = kU - c0;  // V = u·Y_00 − (1 − V)
+    f.oof[s * kShCount + std::size_t(lobe)] = -cz;
+  }
+  return f;
+}
+
+glm::vec3 samplePosition(const Field& f, glm::vec3 o, std::size_t r) {
+  const FieldSettings& s = f.settings;
+  const int per = samplesPerSphere(s), n2 = s.faceSize * s.faceSize;
+  const int sphere = int(r) / per, rest = int(r) % per, face = rest / n2;
+  const glm::vec3 d(sh::cubeTexelDirection(face, rest % n2 % s.faceSize, rest % n2 / s.faceSize, s.faceSize));
+  return o + f.radius * sphereRadius(s, sphere) * d;
+}
+
+TEST(RtfOverlap, OneObjectAloneOrOutOfReachKeepsTheLightAtO) {
+  const Field a = handField(2.0f, 0.8f), b = handField(1.5f, 0.6f);
+  const std::vector<Object> alone = {{&a, glm::mat4(1.0f), 0.0f}};
+  for (const glm::vec4& s : sharedOcclusionScale(alone, 0)) EXPECT_EQ(s, glm::vec4(1.0f));
+  // B's centre 9.5 m away: A's samples reach 4.875·0.5 m, B's field as far: no sample shares.
+  const std::vector<Object> apart = {{&a, glm::mat4(1.0f), 0.0f}, {&b, glm::translate(glm::mat4(1.0f), glm::vec3(9.5f, 0, 0)), 0.0f}};
+  for (const glm::vec4& s : sharedOcclusionScale(apart, 0)) EXPECT_EQ(s, glm::vec4(1.0f));
+}
+
+// B 1 m (2 η) from A along x, turned about x by 0, 90 and 180 degrees: its z lobe lands on world z, −y and
+// −z, so with A's lobe on z the l = 1 part of ∫(1 − V_A)(1 − V_B) is +0.8·0.6, 0 and −0.8·0.6; with A's lobe
+// on y (coefficient 1) and B turned 90 degrees, −0.8·0.6 (+0.48 if the rotation went the wrong way). Where
+// B's field holds p fully (W = 1) s = 1 − ½(2·1.5 + lobe)/(2√(4π)) = 0.75458 / 0.78843 / 0.82228.
+TEST(RtfOverlap, SharedPartIsHalfTheSphericalProductOverWhatAHides) {
+  const Field az = handField(2.0f, 0.8f), ay = handField(2.0f, 0.8f, 1), b = handField(1.5f, 0.6f);
+  const struct {
+    const Field* a;
+    float degrees, lobe, full;
+  } cases[] = {{&az, 0.0f, 0.48f, 0.75458f}, {&az, 90.0f, 0.0f, 0.78843f}, {&az, 180.0f, -0.48f, 0.82228f}, {&ay, 90.0f, -0.48f, 0.82228f}};
+  for (const auto& c : cases) {
+    const Field& a = *c.a;
+    const glm::mat4 wb = glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(1.0f, 0.0f, 0.0f)), glm::radians(c.degrees),
+                                     glm::vec3(1.0f, 0.0f, 0.0f));
+    const std::vector<Object> objects = {{&a, glm::mat4(1.0f), 0.0f}, {&b, wb, 0.0f}};
+    const std::vector<glm::vec4> s = sharedOcclusionScale(objects, 0);
+    ASSERT_EQ(s.size(), sampleCount(a.settings));
+    int full = 0, partial = 0, none = 0;
+    for (std::size_t r = 0; r < s.size(); ++r) {
+      const glm::vec3 p = samplePosition(a, glm::vec3(0.0f), r);
+      const glm::vec3 qb = glm::vec3(glm::inverse(wb) * glm::vec4(p, 1.0f)) / b.radius;
+      float w = 0.0f;
+      for (float x : lookup(b.settings, qb).weight) w += x;
+      const float want = 1.0f - 0.5f * w * (2.0f * 1.5f + c.lobe) / (2.0f * kU);
+      EXPECT_NEAR(s[r].x, want, 2e-5f) << c.degrees << " " << r;
+      EXPECT_EQ(s[r].x, s[r].y);
+      EXPECT_EQ(s[r].x, s[r].z);
+      EXPECT_EQ(s[r].w, 1.0f);
+      if (w > 1.0f - 1e-6f) {
+        ++full;
+        EXPECT_NEAR(s[r].x, c.full, 2e-5f) << c.degrees << " " << r;
+      } else if (w > 0.0f) {
+        ++partial;
+      } else {
+        ++none;
+      }
+    }
+    // All three kinds of sample occur: inside B's field, in its end, beyond it.
+    EXPECT_GT(full, 0);
+    EXPECT_GT(partial, 0);
+    EXPECT_GT(none, 0);
+  }
+}
+
+// A hides nothing from a sample (1 − V_A = 0): nothing to share, s = 1 whatever B hides.
+TEST(RtfOverlap, SampleThatAHidesNothingFromIsOne) {
+  const Field a = handField(0.0f, 0.0f), b = handField(1.5f, 0.6f);
+  const std::vector<Object> objects = {{&a, glm::mat4(1.0f), 0.0f}, {&b, glm::translate(glm::mat4(1.0f), glm::vec3(1.0f, 0, 0)), 0.0f}};
+  for (const glm::vec4& s : sharedOcclusionScale(objects, 0)) EXPECT_EQ(s, glm::vec4(1.0f));
+}
+
+}  // namespace
+}  // namespace bounce::gi::rtf
