@@ -63,6 +63,16 @@ Steps stepsBetween(const Frame& a, const Frame& b) {
   return s;
 }
 
+// The characters level at full resolution: the level ships `"resolution": "quarter"` (session 10); the
+// tests that check pass 2's own pass list and its sign at every pixel pin it to full, and
+// reducedAgainstFull / the half and quarter tests cover the reduced sizes.
+scene::Level charactersAtFull(std::vector<std::string> effects) {
+  scene::Level level = game::loadLevelWithEffects(kCharacters, effects);
+  for (scene::EntityDesc& e : level.entities)
+    if (e.sl) e.sl->step = 1;
+  return level;
+}
+
 Frame oneFrame(game::Session& session) {
   gpu::OffscreenPresenter presenter(gpu::testkit::sharedContext(), kExtent);
   session.update(0.25);
@@ -77,8 +87,7 @@ Frame oneFrame(game::Session& session) {
 }  // namespace
 
 TEST(SlSession, RunsItsTwoPassesAndOnlyAddsLight) {
-  game::Session with(gpu::testkit::sharedContext(),
-                     game::loadLevelWithEffects(kCharacters, std::vector<std::string>{"direct", "shadows", "sl"}));
+  game::Session with(gpu::testkit::sharedContext(), charactersAtFull({"direct", "shadows", "sl"}));
   EXPECT_TRUE(with.notes().empty());
   EXPECT_TRUE(with.runs(scene::Effect::Sl));
   EXPECT_TRUE(with.runningEffects().has(scene::Effect::Sl));
@@ -86,8 +95,7 @@ TEST(SlSession, RunsItsTwoPassesAndOnlyAddsLight) {
   ASSERT_NE(with.technique("sl"), nullptr);
   const Frame a = oneFrame(with);
 
-  game::Session without(gpu::testkit::sharedContext(),
-                        game::loadLevelWithEffects(kCharacters, std::vector<std::string>{"direct", "shadows"}));
+  game::Session without(gpu::testkit::sharedContext(), charactersAtFull({"direct", "shadows"}));
   EXPECT_FALSE(without.runs(scene::Effect::Sl));
   const Frame b = oneFrame(without);
 
@@ -253,7 +261,7 @@ TEST(SlSession, EntitiesThatDisagreeOnBlockingOrInfluenceAreBadInput) {
 // ("fused": false keeps the two passes; SlSession.OneWalkForBothTermsMatchesTheTwoPasses: fused.)
 TEST(SlSession, WithProbesItShadowsTheirLightButNeverBelowTheFrameWithoutThem) {
   const auto frame = [](std::vector<std::string> effects) {
-    scene::Level level = game::loadLevelWithEffects(kCharacters, effects);
+    scene::Level level = charactersAtFull(effects);
     for (scene::EntityDesc& e : level.entities)
       if (e.sl) e.sl->fused = false;
     game::Session s(gpu::testkit::sharedContext(), level);
