@@ -10,7 +10,7 @@ namespace bounce::gi::dnrt {
 Runtime::Runtime(gpu::Context& ctx, const render::Pipelines& pipelines, ecs::Registry& registry,
                  const ref::ReferenceAssets& assets, const std::filesystem::path& cacheDir,
                  std::uint32_t framesInFlight, glm::vec3 background)
-    : registry_(registry), background_(background) {
+    : ctx_(ctx), assets_(assets), cacheDir_(cacheDir), registry_(registry), background_(background) {
   incident_.setIndirect(&background_);
   std::vector<ecs::Entity> entities;
   registry.view<scene::Dnrt, scene::MeshRef>().each([&](ecs::Entity e, scene::Dnrt&, scene::MeshRef&) {
@@ -29,6 +29,19 @@ Runtime::Runtime(gpu::Context& ctx, const render::Pipelines& pipelines, ecs::Reg
     objects_.push_back(std::move(o));
   }
   node_ = std::make_unique<Node>(ctx, pipelines, framesInFlight);
+}
+
+void Runtime::excludeLightsFromAntiRadiance() {
+  if (lightsExcluded_) return;
+  lightsExcluded_ = true;
+  for (Object& o : objects_) {
+    FieldSettings s = o.field.settings;
+    s.occlusionOnly = true;
+    bool cached = false;
+    o.occlusion = bakeCached(objectScene(registry_, o.entity, assets_), s, cacheDir_, &cached);
+    baked_ += cached ? 0 : 1;
+    o.occlusionTextures = std::make_unique<FieldTextures>(ctx_, *o.occlusion, o.name + ".occlusion");
+  }
 }
 
 void Runtime::setIrradianceSource(const IrradianceSource* source) {

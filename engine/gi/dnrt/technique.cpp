@@ -22,9 +22,14 @@ std::filesystem::path cacheFolder() { return cacheDir(kCacheKind); }
 
 std::string describe(const std::string& name, const FieldSettings& s) {
   char text[256];
-  std::snprintf(text, sizeof text, "dnrt    %s: %d^3 x %d rays, %d SH", name.c_str(), s.grid,
-                s.samplesPerAxis * s.samplesPerAxis, s.shCount);
+  std::snprintf(text, sizeof text, "dnrt    %s: %d^3 x %d rays, %d SH%s", name.c_str(), s.grid,
+                s.samplesPerAxis * s.samplesPerAxis, s.shCount, s.occlusionOnly ? ", occlusion only" : "");
   return text;
+}
+
+// Runtime::excludeLightsFromAntiRadiance's condition: the level's probes are relit each frame.
+bool lightsOccludedElsewhere(const scene::Level& level) {
+  return level.effects.has(scene::Effect::Probes) && level.probes.relight;
 }
 
 // One entity's bake, as its job needs it after planning (the level's registry is gone by then):
@@ -76,19 +81,22 @@ class DnrtTechnique final : public Technique {
     std::vector<std::filesystem::path> inputs;
     if (!lc.level.source.empty()) inputs.push_back(lc.level.source);
     std::vector<BakeJob> jobs;
-    for (ecs::Entity e : entities) {
+    for (ecs::Entity e : entities)
+      for (const bool occlusionOnly : {false, true}) {
+      if (occlusionOnly && !lightsOccludedElsewhere(lc.level)) continue;
       auto ob = std::make_shared<ObjectBake>();
       ob->name = lc.registry.get<scene::Name>(e).id;
       ob->mesh = lc.registry.get<scene::MeshRef>(e);
       if (const auto* m = lc.registry.tryGet<scene::MaterialOverride>(e)) ob->material = *m;
       ob->cookCache = lc.cookCache;
       ob->settings = settingsFrom(lc.registry.get<scene::Dnrt>(e));
+      ob->settings.occlusionOnly = occlusionOnly;  // the runtime's second field (runtime.hpp)
       // Keyed by the cooked asset's content key (objectSourceKey): no cooking or decoding here.
       ob->key = cacheKey(objectSourceKey(lc.registry, e, lc.cookCache), ob->settings);
       ob->output = cachePath(ob->key, cacheFolder());
       BakeJob job;
       job.technique = "dnrt";
-      job.what = "dnrt " + ob->name;
+      job.what = "dnrt " + ob->name + (occlusionOnly ? " occlusion" : "");
       job.part = ob->name;
       job.key = ob->key;
       job.output = ob->output;
@@ -185,6 +193,10 @@ SessionRuntime::SessionRuntime(SessionContext& sc) {
   incident::SessionLight& light = incident::sessionLight(sc);
   runtime_->setIrradianceSource(&light.indirect());
   runtime_->setLightVisibility(&light.lightVisibility());
+  // The probes relit each frame carry the bounce of the lights' occlusion (the objects' shadows on
+  // the static surfaces) and the shadow maps its direct part: the anti-radiance takes the probes'
+  // light only (runtime.hpp; README "DNRT with the relit probes, session 10").
+  if (lightsOccludedElsewhere(sc.level)) runtime_->excludeLightsFromAntiRadiance();
 }
 
 }  // namespace bounce::gi::dnrt

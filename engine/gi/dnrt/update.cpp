@@ -32,6 +32,15 @@ std::vector<NodeObject> Runtime::objectsFor(const render::RenderWorld& world) co
                                               improved ? incident::kHanningWindow : incident::kNoWindow);
     out.push_back({o.textures.get(), packObject(o.field, placed->matrix, L, o.entity.index()), o.name,
                    component && component->intrusion, component ? component->mode : Mode::Box});
+    if (o.occlusionTextures) {
+      // The lights' part of c_j (L minus the indirect source alone), negated: with the field's −k_j
+      // it adds back Σ_j c_j^lights k_j, so the anti-radiance is the indirect light's only.
+      const incident::RadianceSH indirect = incidentSH(pl.centreWorld, pl.radiusWorld, {});
+      incident::RadianceSH minusLights{};
+      for (std::size_t j = 0; j < minusLights.size(); ++j) minusLights[j] = indirect[j] - L[j];
+      out.back().occlusion = o.occlusionTextures.get();
+      out.back().occlusionData = packObject(*o.occlusion, placed->matrix, minusLights, o.entity.index());
+    }
   }
   return out;
 }
