@@ -27,11 +27,6 @@ std::string describe(const std::string& name, const FieldSettings& s) {
   return text;
 }
 
-// Runtime::excludeLightsFromAntiRadiance's condition: the level's probes are relit each frame.
-bool lightsOccludedElsewhere(const scene::Level& level) {
-  return level.effects.has(scene::Effect::Probes) && level.probes.relight;
-}
-
 // One entity's bake, as its job needs it after planning (the level's registry is gone by then):
 // what objectScene() reads of the entity, its settings, its key and output. The object scene is
 // made (its asset cooked and decoded) only when the job runs, so planning hashes files, not texels.
@@ -83,7 +78,8 @@ class DnrtTechnique final : public Technique {
     std::vector<BakeJob> jobs;
     for (ecs::Entity e : entities)
       for (const bool occlusionOnly : {false, true}) {
-      if (occlusionOnly && !lightsOccludedElsewhere(lc.level)) continue;
+      // The occlusion-only field (−k_j) of an object whose anti-radiance leaves the lights out (runtime.hpp).
+      if (occlusionOnly && lc.registry.get<scene::Dnrt>(e).lightsInAntiRadiance) continue;
       auto ob = std::make_shared<ObjectBake>();
       ob->name = lc.registry.get<scene::Name>(e).id;
       ob->mesh = lc.registry.get<scene::MeshRef>(e);
@@ -193,10 +189,6 @@ SessionRuntime::SessionRuntime(SessionContext& sc) {
   incident::SessionLight& light = incident::sessionLight(sc);
   runtime_->setIrradianceSource(&light.indirect());
   runtime_->setLightVisibility(&light.lightVisibility());
-  // The probes relit each frame carry the bounce of the lights' occlusion (the objects' shadows on
-  // the static surfaces) and the shadow maps its direct part: the anti-radiance takes the probes'
-  // light only (runtime.hpp; README "DNRT with the relit probes, session 10").
-  if (lightsOccludedElsewhere(sc.level)) runtime_->excludeLightsFromAntiRadiance();
 }
 
 }  // namespace bounce::gi::dnrt

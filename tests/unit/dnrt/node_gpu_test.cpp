@@ -543,6 +543,8 @@ TEST(DnrtGpu, LightsLeftOutOfTheAntiRadianceAddTheirTermInTheCombinedVolume) {
   const auto frames = gpu::FrameRing::kDefaultFramesInFlight;
   Runtime dnrt(ctx, session.renderer().pipelines(), session.registry(), assets,
                fs::path(BOUNCE_TEST_OUT) / "dnrt" / "occlusion-cache", frames, session.level().background);
+  // box-a's level entry says "lights_in_anti_radiance": false, box-b's does not: the constructor
+  // gives box-a its occlusion term; the call gives box-b one too.
   EXPECT_FALSE(dnrt.lightsExcludedFromAntiRadiance());
   dnrt.excludeLightsFromAntiRadiance();
   EXPECT_TRUE(dnrt.lightsExcludedFromAntiRadiance());
