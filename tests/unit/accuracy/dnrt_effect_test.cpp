@@ -74,6 +74,8 @@ TEST(AccuracyDnrt, ObjectEffectWithinToleranceAndBetterThanLeavingItOut) {
               kSize, kSize, kSpp, paper.effectRelRmse, improved.effectRelRmse, relit.effectRelRmse, baked.effectRelRmse,
               paper.indirectEffectRelRmse, improved.indirectEffectRelRmse, relit.indirectEffectRelRmse,
               baked.indirectEffectRelRmse);
+  std::printf("whole image rel_rmse: dnrt paper %.4f, improved %.4f, probes relit %.4f, baked %.4f\n", paper.relRmse,
+              improved.relRmse, relit.relRmse, baked.relRmse);
   ASSERT_FALSE(paper.referenceEffectIsZero);
   for (const AccuracyResult* r : {&paper, &improved, &relit, &baked}) {
     ASSERT_TRUE(std::isfinite(r->effectRelRmse)) << r->row.setting;
@@ -106,6 +108,10 @@ TEST(AccuracyDnrt, ObjectEffectWithinToleranceAndBetterThanLeavingItOut) {
   // 0.1026 and 0.1068).
   EXPECT_LE(paper.effectRelRmse, relit.effectRelRmse);
   EXPECT_LE(paper.effectRelRmse, baked.effectRelRmse);
+  // Issue 15: DNRT's whole-image error below the probes + direct light it adds to (the same relit
+  // probes). Measured 0.1408 (paper), 0.1404 (improved) against 0.1432 (relit), 0.1469 (baked).
+  EXPECT_LT(paper.relRmse, relit.relRmse);
+  EXPECT_LT(improved.relRmse, relit.relRmse);
 }
 
 }  // namespace
