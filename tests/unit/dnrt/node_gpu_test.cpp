@@ -476,12 +476,15 @@ TEST(DnrtGpu, TileCullKeepsTheClusteredImageAndOnlyClearsMaskBits) {
 // so the two choices differ and the test can tell which one was taken.
 TEST(DnrtGpu, ImprovedAntiRadianceFieldsGetTheLightsSHWindowedAndPaperFieldsDoNot) {
   gpu::Context& ctx = gpu::testkit::sharedContext();
-  for (const bool improved : {true, false}) {
+  // Third case: improved, but the lights out of the anti-radiance (cornell-1's prop as shipped):
+  // the lights then reach only t_j, no band factor scales them, and there is no window.
+  for (const auto& [improved, lightsIn] : {std::pair{true, true}, std::pair{false, true}, std::pair{true, false}}) {
     scene::Level level = game::loadLevelWithEffects(fs::path(BOUNCE_SOURCE_DIR) / "content/levels/cornell-1.json",
                                                     std::vector<std::string>{"direct", "shadows"});
     for (scene::EntityDesc& e : level.entities)
       if (e.dnrt) {
         e.dnrt->improvedAntiRadiance = improved;
+        e.dnrt->lightsInAntiRadiance = lightsIn;
         e.dnrt->shCount = 9;
         e.dnrt->grid = 16;
         e.dnrt->samplesPerAxis = 4;  // the field's values do not matter here, only which c_j are packed
@@ -514,10 +517,11 @@ TEST(DnrtGpu, ImprovedAntiRadianceFieldsGetTheLightsSHWindowedAndPaperFieldsDoNo
     float differ = 0.0f;
     for (int j = 4; j < 9; ++j) differ = std::max(differ, glm::length(glm::vec3(windowed.c[j] - plain.c[j])));
     EXPECT_GT(differ, 1e-4f * glm::length(glm::vec3(plain.c[0]))) << "band 2 carries the lamp: the window shows";
-    const DnrtObjectGpu& want = improved ? windowed : plain;
+    const DnrtObjectGpu& want = improved && lightsIn ? windowed : plain;
     for (int j = 0; j < 9; ++j)
       for (int ch = 0; ch < 3; ++ch)
-        EXPECT_FLOAT_EQ(packed[0].data.c[j][ch], want.c[j][ch]) << (improved ? "improved" : "paper") << " c_" << j;
+        EXPECT_FLOAT_EQ(packed[0].data.c[j][ch], want.c[j][ch])
+            << (improved ? "improved" : "paper") << (lightsIn ? "" : ", lights out of k_j") << " c_" << j;
   }
 }
 
@@ -561,10 +565,9 @@ TEST(DnrtGpu, LightsLeftOutOfTheAntiRadianceAddTheirTermInTheCombinedVolume) {
     EXPECT_FALSE(all[i].textures->field().settings.occlusionOnly);
     const glm::vec3 o(all[i].data.centreWorld);
     const float radius = all[i].data.centreWorld.w;
-    const auto window = all[i].textures->field().settings.antiRadiance == AntiRadiance::Improved ? incident::kHanningWindow
-                                                                                                  : incident::kNoWindow;
-    const incident::RadianceSH full = dnrt.incidentSH(o, radius, session.world().lights, window);
-    const incident::RadianceSH indirect = dnrt.incidentSH(o, radius, {}, window);
+    // No window on the lights' SH for an object whose lights are out of k_j (update.cpp).
+    const incident::RadianceSH full = dnrt.incidentSH(o, radius, session.world().lights);
+    const incident::RadianceSH indirect = dnrt.incidentSH(o, radius, {});
     float lightPart = 0.0f;
     for (std::size_t j = 0; j < 9; ++j) lightPart = std::max(lightPart, glm::length(full[j] - indirect[j]));
     EXPECT_GT(lightPart, 0.01f) << "the lamp reaches the object";
