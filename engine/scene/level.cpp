@@ -141,10 +141,12 @@ void parseLight(const json::Node& node, EntityDesc& d, const ParseContext&) {
 }
 
 // "dnrt": {"sh": 4|9, "grid": 16|32|64, "inner": 3, "outer": 6, "intrusion": false,
-//          "anti_radiance": "paper"|"improved", "rays": 256, "mode": "box"|"fullscreen"|"clustered"} — every key
+//          "anti_radiance": "paper"|"improved", "lights_in_anti_radiance": true, "rays": 256,
+//          "mode": "box"|"fullscreen"|"clustered"} — every key
 //          optional (defaults above).
 void parseDnrt(const json::Node& node, EntityDesc& d, const ParseContext&) {
-  const auto o = node.object({"sh", "grid", "inner", "outer", "intrusion", "anti_radiance", "rays", "mode"});
+  const auto o =
+      node.object({"sh", "grid", "inner", "outer", "intrusion", "anti_radiance", "lights_in_anti_radiance", "rays", "mode"});
   Dnrt c;
   if (auto v = o.optional("sh")) {
     c.shCount = int(v->integer(0, 16));
@@ -167,6 +169,7 @@ void parseDnrt(const json::Node& node, EntityDesc& d, const ParseContext&) {
     if (m != "paper" && m != "improved") v->fail("unknown mode " + json::inQuotes(m), "paper or improved");
     c.improvedAntiRadiance = m == "improved";
   }
+  if (auto v = o.optional("lights_in_anti_radiance")) c.lightsInAntiRadiance = v->boolean();
   if (auto v = o.optional("rays")) {
     const auto rays = v->integer(1, 65536);
     const auto side = std::int64_t(std::lround(std::sqrt(double(rays))));

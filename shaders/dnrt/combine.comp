@@ -18,6 +18,10 @@
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 
 layout(constant_id = 0) const bool kSh9 = false;
+// Add to what the volume holds instead of writing it: a second term of the same object (its
+// occlusion-only field with the lights' c_j negated, Runtime::excludeLightsFromAntiRadiance),
+// dispatched after the first, behind a barrier.
+layout(constant_id = 1) const bool kAccumulate = false;
 
 layout(std430, set = 0, binding = 0) readonly buffer Objects { DnrtObject objects[]; };
 // Table 2's slots (dnrt.frag's order); a 4-SH field binds slot 0 in 3..6 (never read).
@@ -28,7 +32,7 @@ layout(set = 0, binding = 4) uniform sampler3D field3;
 layout(set = 0, binding = 5) uniform sampler3D field4;
 layout(set = 0, binding = 6) uniform sampler3D field5;
 layout(set = 0, binding = 7) uniform sampler3D field6;
-layout(set = 0, binding = 8, rgba16f) uniform writeonly image3D combined;
+layout(set = 0, binding = 8, rgba16f) uniform image3D combined;
 layout(push_constant) uniform Push {
   uint object;  // record in Objects
   int srcZ;     // first z layer of the vertices in the slot textures (an atlas brick's z0, else 0)
@@ -48,5 +52,7 @@ void main() {
                 dot(k[5], texelFetch(field5, src, 0)));
     sum += k[6].rgb * texelFetch(field6, src, 0).rgb;
   }
-  imageStore(combined, ivec3(v.xy, v.z + pc.dstZ), vec4(sum, 0.0));
+  ivec3 dst = ivec3(v.xy, v.z + pc.dstZ);
+  if (kAccumulate) sum += imageLoad(combined, dst).rgb;
+  imageStore(combined, dst, vec4(sum, 0.0));
 }

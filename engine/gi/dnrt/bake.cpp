@@ -137,7 +137,7 @@ BakeResult bake(const ref::SceneDesc& object, const FieldSettings& settings) {
       sh::evalBasis<double>(order, w, yw);
       for (int j = 0; j < nc; ++j) {
         const int l = j == 0 ? 0 : (j < 4 ? 1 : 2);
-        t[std::size_t(j)] += yn[std::size_t(j)] * rho;
+        if (!settings.occlusionOnly) t[std::size_t(j)] += yn[std::size_t(j)] * rho;
         k[std::size_t(j)] += glm::dvec3(yw[std::size_t(j)] * kScale[std::size_t(l)]);
       }
     }
@@ -167,6 +167,7 @@ namespace {
 void hashVersionAndSettings(Hasher& h, const FieldSettings& s) {
   h.str("dnrt-field-v3");
   h.pod(s.shCount).pod(s.grid).pod(s.innerExtent).pod(s.outerExtent).pod(s.samplesPerAxis).pod(s.antiRadiance);
+  if (s.occlusionOnly) h.str("occlusion-only");  // only when set: the full fields keep their keys
 }
 }  // namespace
 

@@ -15,7 +15,9 @@ namespace bounce::gi::dnrt {
 namespace {
 constexpr char kMagic[8] = {'B', 'D', 'N', 'R', 'T', 'F', 'L', 'D'};
 constexpr std::uint32_t kVersion = 2;  // 2: a checksum of every byte before it ends the file
-constexpr int kMaxGrid = 256;  // 256³·4·7 bytes = 470 MB: far beyond any sensible field
+constexpr int kMaxGrid = 256;
+// FieldSettings::occlusionOnly rides in the anti-radiance word, so fields written before it read as they were.
+constexpr std::uint32_t kOcclusionOnlyBit = 1u << 8;  // 256³·4·7 bytes = 470 MB: far beyond any sensible field
 }  // namespace
 
 void checkSettings(const FieldSettings& s) {
@@ -149,7 +151,7 @@ std::vector<std::uint8_t> serialize(const Field& f) {
   w.put(f.settings.innerExtent);
   w.put(f.settings.outerExtent);
   w.put(std::int32_t(f.settings.samplesPerAxis));
-  w.put(std::uint32_t(f.settings.antiRadiance));
+  w.put(std::uint32_t(f.settings.antiRadiance) | (f.settings.occlusionOnly ? kOcclusionOnlyBit : 0u));
   w.put(f.centre);
   w.put(f.radius);
   for (const Range& r : f.ranges) w.put(r);
@@ -167,7 +169,9 @@ Field deserialize(std::span<const std::uint8_t> bytes, const std::string& file) 
   f.settings.innerExtent = r.get<float>("innerExtent");
   f.settings.outerExtent = r.get<float>("outerExtent");
   f.settings.samplesPerAxis = r.get<std::int32_t>("samplesPerAxis");
-  f.settings.antiRadiance = static_cast<AntiRadiance>(r.get<std::uint32_t>("antiRadiance"));
+  const auto mode = r.get<std::uint32_t>("antiRadiance");
+  f.settings.antiRadiance = static_cast<AntiRadiance>(mode & ~kOcclusionOnlyBit);
+  f.settings.occlusionOnly = (mode & kOcclusionOnlyBit) != 0;
   try {
     checkSettings(f.settings);
   } catch (const InternalError& e) {

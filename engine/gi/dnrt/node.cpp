@@ -113,9 +113,13 @@ Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t fra
   }
   {
     gpu::ShaderModule combine(ctx, "dnrt/combine.comp.spv");
-    for (std::uint32_t sh9 = 0; sh9 < 2; ++sh9)
-      combine_[sh9] = gpu::createComputePipeline(ctx, combinePipelineLayout_, combine,
-                                                 sh9 ? "dnrt.combine.sh9" : "dnrt.combine.sh4", nullptr, {sh9});
+    for (std::uint32_t v = 0; v < 4; ++v) {  // v: sh9 | accumulate << 1 (combine.comp's constants 0, 1)
+      const std::uint32_t sh9 = v & 1u, accumulate = v >> 1;
+      combine_[v] = gpu::createComputePipeline(
+          ctx, combinePipelineLayout_, combine,
+          std::string(sh9 ? "dnrt.combine.sh9" : "dnrt.combine.sh4") + (accumulate ? ".accumulate" : ""), nullptr,
+          {sh9, accumulate});
+    }
   }
   fullscreenVert_ = gpu::ShaderModule(ctx, "passes/fullscreen.vert.spv");
   clusterFrag_ = gpu::ShaderModule(ctx, "dnrt/clustered.frag.spv");
@@ -179,13 +183,17 @@ const gpu::Pipeline& Node::clusteredPipeline(bool single) {
 gpu::Buffer& Node::objectBuffer(std::uint32_t slot, const std::vector<NodeObject>& objects) {
   // This slot's object records (the ring waited for the slot's fence before the frame began). The
   // combine pass and the draw pass both call this in one frame; the second writes the same bytes.
+  // Record i: object i; record objects.size() + i: its occlusion term (NodeObject::occlusion), if any.
   gpu::Buffer& buffer = objectBuffers_[slot % objectBuffers_.size()];
-  const VkDeviceSize bytes = objects.size() * sizeof(DnrtShaderObject);
+  const VkDeviceSize bytes = 2 * objects.size() * sizeof(DnrtShaderObject);
   if (!buffer || buffer.size() < bytes)
     buffer = gpu::Buffer(ctx_, {bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::Upload, "dnrt.objects"});
   for (std::size_t i = 0; i < objects.size(); ++i) {
     const DnrtShaderObject folded = fold(objects[i].data);
     std::memcpy(buffer.mapped() + i * sizeof(DnrtShaderObject), &folded, sizeof(DnrtShaderObject));
+    const DnrtShaderObject occlusion = objects[i].occlusion ? fold(objects[i].occlusionData) : DnrtShaderObject{};
+    std::memcpy(buffer.mapped() + (objects.size() + i) * sizeof(DnrtShaderObject), &occlusion,
+                sizeof(DnrtShaderObject));
   }
   return buffer;
 }
@@ -239,6 +247,7 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
   struct ClusterItem {
     std::size_t object = 0;
     int brick = 0;       // the field's brick in the RGBA8 atlas
+    int occlusionBrick = -1;  // its occlusion field's brick (NodeObject::occlusion), -1: none
     std::uint32_t z = 0;  // the object's own brick in this frame's combined atlas (combine.comp)
   };
   glm::uvec3 combinedSize(0u);
@@ -246,17 +255,23 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
   std::vector<bool> clustered(objects.size(), false);
   {
     std::vector<std::size_t> asked;
-    std::vector<const FieldTextures*> textures;
+    std::vector<const FieldTextures*> textures;  // per asked object: its field, then its occlusion field if any
     for (std::size_t i = 0; i < objects.size(); ++i)
       if (modeOf(objects[i]) == Mode::Clustered && !objects[i].intrusion) {
         asked.push_back(i);
         textures.push_back(objects[i].textures);
+        if (objects[i].occlusion) textures.push_back(objects[i].occlusion);
       }
     const std::vector<int> bricks = asked.empty() ? std::vector<int>{} : atlasFor(textures);
+    std::size_t t = 0;
     for (std::size_t k = 0; k < asked.size(); ++k) {
+      const int brick = bricks[t++];
+      const int occlusionBrick = objects[asked[k]].occlusion ? bricks[t++] : -1;
       const auto side = std::uint32_t(objects[asked[k]].data.extents.w) + 2u;  // a padded brick (cluster.hpp)
-      if (bricks[k] < 0 || combinedSize.z + side > ctx_.limits().maxImageDimension3D) continue;  // drawn alone
-      cluster.push_back({asked[k], bricks[k], combinedSize.z});
+      if (brick < 0 || (objects[asked[k]].occlusion && occlusionBrick < 0) ||
+          combinedSize.z + side > ctx_.limits().maxImageDimension3D)
+        continue;  // drawn alone
+      cluster.push_back({asked[k], brick, occlusionBrick, combinedSize.z});
       clustered[asked[k]] = true;
       combinedSize = glm::uvec3(std::max(combinedSize.x, side), std::max(combinedSize.y, side), combinedSize.z + side);
     }
@@ -345,9 +360,11 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
           gpu::Buffer& buffer = objectBuffer(pc->frame().slot, objects);
           VkSampler point = pc->samplers->get({VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST});
           // Object i's vertices [0, size)³ from its slots at layer srcZ into `target` at layer dstZ.
-          const auto dispatch = [&](std::size_t i, const std::function<VkImageView(int)>& slot, VkImageView target,
-                                    std::int32_t srcZ, std::int32_t dstZ, std::int32_t size) {
-            const gpu::Pipeline& p = combine_[objects[i].data.extents.z > 4.5f ? 1 : 0];
+          // `record`: i, or objects.size() + i for object i's occlusion term, added to what is there.
+          const auto dispatch = [&](std::size_t i, bool occlusion, const std::function<VkImageView(int)>& slot,
+                                    VkImageView target, std::int32_t srcZ, std::int32_t dstZ, std::int32_t size) {
+            const std::size_t record = occlusion ? objects.size() + i : i;
+            const gpu::Pipeline& p = combine_[(objects[i].data.extents.z > 4.5f ? 1 : 0) | (occlusion ? 2 : 0)];
             p.bind(cmd);
             VkDescriptorSet set = pc->frame().descriptors->allocate(combineLayout_);
             gpu::DescriptorWriter w;
@@ -356,23 +373,45 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
             w.storageImage(8, target);
             w.update(ctx_, set);
             p.bindSet(cmd, 0, set);
-            p.push(cmd, CombinePush{std::uint32_t(i), srcZ, dstZ, size});
+            p.push(cmd, CombinePush{std::uint32_t(record), srcZ, dstZ, size});
             const auto groups = std::uint32_t(size + 3) / 4;  // local size 4³
             vkCmdDispatch(cmd, groups, groups, groups);
           };
-          for (std::size_t i = 0; i < objects.size(); ++i)
-            if (d.volumes[i])
-              dispatch(i, [&](int s) { return objects[i].textures->view(s); },
-                       pc->backend->image(res.texture(*d.volumes[i])).view(), 0, 0,
-                       std::int32_t(objects[i].data.extents.w));
-          if (d.atlas) {
-            const VkImageView target = pc->backend->image(res.texture(*d.atlas)).view();
-            const auto atlasSlot = [&](int s) {
-              return atlas_.slots[std::size_t(s) < atlas_.slots.size() ? std::size_t(s) : 0]->view();
-            };
-            for (const ClusterItem& item : cluster)
-              dispatch(item.object, atlasSlot, target, std::int32_t(atlas_.layout.z0[std::size_t(item.brick)]),
-                       std::int32_t(item.z), std::int32_t(objects[item.object].data.extents.w) + 2);
+          // Pass 0 writes every object's Σ_j c_j M_j; pass 1 adds the occlusion terms to them (after
+          // a barrier: the same texels are read back).
+          for (int pass = 0; pass < 2; ++pass) {
+            bool any = false;
+            for (std::size_t i = 0; i < objects.size(); ++i)
+              if (d.volumes[i] && (pass == 0 || objects[i].occlusion)) {
+                const FieldTextures* field = pass == 0 ? objects[i].textures : objects[i].occlusion;
+                dispatch(i, pass == 1, [&](int s) { return field->view(s); },
+                         pc->backend->image(res.texture(*d.volumes[i])).view(), 0, 0,
+                         std::int32_t(objects[i].data.extents.w));
+                any = true;
+              }
+            if (d.atlas) {
+              const VkImageView target = pc->backend->image(res.texture(*d.atlas)).view();
+              const auto atlasSlot = [&](int s) {
+                return atlas_.slots[std::size_t(s) < atlas_.slots.size() ? std::size_t(s) : 0]->view();
+              };
+              for (const ClusterItem& item : cluster)
+                if (pass == 0 || item.occlusionBrick >= 0) {
+                  const int brick = pass == 0 ? item.brick : item.occlusionBrick;
+                  dispatch(item.object, pass == 1, atlasSlot, target,
+                           std::int32_t(atlas_.layout.z0[std::size_t(brick)]), std::int32_t(item.z),
+                           std::int32_t(objects[item.object].data.extents.w) + 2);
+                  any = true;
+                }
+            }
+            if (pass == 0 && any) {
+              const bool occlusions =
+                  std::any_of(objects.begin(), objects.end(), [](const NodeObject& o) { return o.occlusion != nullptr; });
+              if (!occlusions) break;
+              VkMemoryBarrier written{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_SHADER_WRITE_BIT,
+                                      VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT};
+              vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0,
+                                   1, &written, 0, nullptr, 0, nullptr);
+            }
           }
         });
     volumes = combine.volumes;

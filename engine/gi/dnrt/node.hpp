@@ -63,6 +63,11 @@ struct NodeObject {
   std::string name;                         // timestamp scope "dnrt/<name>" (the entity id)
   bool intrusion = false;                   // render and test an intrusion map (§5.2.3)
   Mode mode = Mode::Box;                    // the level's "mode"
+  // Optional second term of the same object, added into its combined volume (combine.comp
+  // kAccumulate): an occlusion-only field (−k_j) with the lights' c_j negated (Runtime::
+  // excludeLightsFromAntiRadiance). Same placement as `data`; null: none.
+  const FieldTextures* occlusion = nullptr;
+  DnrtObjectGpu occlusionData;
 };
 
 struct NodeSettings {
@@ -127,10 +132,11 @@ class Node {
   std::array<gpu::Pipeline, 2> clustered_;  // index: single (clustered.frag kSingle)
   Atlas atlas_;
   std::vector<gpu::Buffer> tileBuffers_, clusterObjectBuffers_;  // per frame slot: masks, DnrtClusterObject[]
-  // combine.comp: Σ_j c_j M_j per grid vertex for the box and full-screen draws (index: sh9).
+  // combine.comp: Σ_j c_j M_j per grid vertex for the box and full-screen draws (index: sh9 |
+  // accumulate << 1; accumulate adds an occlusion term to what the first dispatch wrote).
   gpu::DescriptorSetLayout combineLayout_;
   gpu::PipelineLayout combinePipelineLayout_;
-  std::array<gpu::Pipeline, 2> combine_;
+  std::array<gpu::Pipeline, 4> combine_;
   // tile_cull.comp: the clustered draw's tile masks cut by each tile's depth range (one dispatch a batch).
   gpu::DescriptorSetLayout cullLayout_;
   gpu::PipelineLayout cullPipelineLayout_;

@@ -14,6 +14,7 @@
 // Objects count as visible when the frame draws them (RenderWorld::draws names their entity).
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -36,6 +37,19 @@ class Runtime {
 
   // Where c_j come from (not owned; must outlive the runtime); null restores the background.
   void setIrradianceSource(const IrradianceSource* source);
+  // The lights' occlusion is drawn elsewhere (the direct pass's shadow maps; the relit probes carry
+  // its bounce): each object's anti-radiance then subtracts only the indirect source's light. The
+  // constructor does this for the objects whose `dnrt` says "lights_in_anti_radiance": false (meant
+  // with "probes": {"relight": true}); this call does it for every object. The
+  // paper's Eq. 11 subtracts L_init, all the light arriving through the object; a light's share of
+  // it is already missing behind the object in this renderer (shadow maps), so subtracting it again
+  // counts the shadow twice, smeared by the SH over pixels the object does not shadow (README "DNRT
+  // with the relit probes, session 10"). Bakes (through the cache) each object's occlusion-only
+  // field (FieldSettings::occlusionOnly, −k_j) and per frame adds Σ_j (−c_j^lights) (−k_j):
+  //   L_DNRT = ρ (n_o·n_r)₊ [Σ_j c_j (t_j − k_j) + Σ_j c_j^lights k_j],  c_j = c_j^indirect + c_j^lights.
+  void excludeLightsFromAntiRadiance();
+  // Every object's anti-radiance leaves the lights out.
+  bool lightsExcludedFromAntiRadiance() const;
   // How much of an object sees each light (not owned; null: every light fully visible).
   void setLightVisibility(const incident::Visibility* visibility) { incident_.setVisibility(visibility); }
   // c_j's source for one object: the radiance SH arriving at its bounding sphere (centre, radius
@@ -60,7 +74,15 @@ class Runtime {
     std::string name;
     Field field;
     std::unique_ptr<FieldTextures> textures;
+    // excludeLightsFromAntiRadiance: the occlusion-only field (−k_j) and its textures.
+    std::optional<Field> occlusion;
+    std::unique_ptr<FieldTextures> occlusionTextures;
   };
+  gpu::Context& ctx_;
+  const ref::ReferenceAssets& assets_;
+  std::filesystem::path cacheDir_;
+  // The object's occlusion-only field and its textures (excludeLightsFromAntiRadiance).
+  void addOcclusion(Object& o);
   ecs::Registry& registry_;
   ConstantEnvironment background_;
   incident::Service incident_;

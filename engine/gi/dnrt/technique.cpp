@@ -22,8 +22,8 @@ std::filesystem::path cacheFolder() { return cacheDir(kCacheKind); }
 
 std::string describe(const std::string& name, const FieldSettings& s) {
   char text[256];
-  std::snprintf(text, sizeof text, "dnrt    %s: %d^3 x %d rays, %d SH", name.c_str(), s.grid,
-                s.samplesPerAxis * s.samplesPerAxis, s.shCount);
+  std::snprintf(text, sizeof text, "dnrt    %s: %d^3 x %d rays, %d SH%s", name.c_str(), s.grid,
+                s.samplesPerAxis * s.samplesPerAxis, s.shCount, s.occlusionOnly ? ", occlusion only" : "");
   return text;
 }
 
@@ -76,56 +76,60 @@ class DnrtTechnique final : public Technique {
     std::vector<std::filesystem::path> inputs;
     if (!lc.level.source.empty()) inputs.push_back(lc.level.source);
     std::vector<BakeJob> jobs;
-    for (ecs::Entity e : entities) {
-      auto ob = std::make_shared<ObjectBake>();
-      ob->name = lc.registry.get<scene::Name>(e).id;
-      ob->mesh = lc.registry.get<scene::MeshRef>(e);
-      if (const auto* m = lc.registry.tryGet<scene::MaterialOverride>(e)) ob->material = *m;
-      ob->cookCache = lc.cookCache;
-      ob->settings = settingsFrom(lc.registry.get<scene::Dnrt>(e));
-      // Keyed by the cooked asset's content key (objectSourceKey): no cooking or decoding here.
-      ob->key = cacheKey(objectSourceKey(lc.registry, e, lc.cookCache), ob->settings);
-      ob->output = cachePath(ob->key, cacheFolder());
-      BakeJob job;
-      job.technique = "dnrt";
-      job.what = "dnrt " + ob->name;
-      job.part = ob->name;
-      job.key = ob->key;
-      job.output = ob->output;
-      job.inputs = inputs;
-      job.inputs.push_back(ob->mesh.asset);
-      job.cached = [ob]() -> std::optional<std::string> {
-        if (!std::filesystem::exists(ob->output)) return std::nullopt;
-        try {
-          load(ob->output);
-        } catch (const InputError& err) {
-          log::warn(std::string("dnrt: re-baking a corrupt cache entry: ") + err.what());
-          return std::nullopt;
-        }
-        return describe(ob->name, ob->settings) + ": cached " + ob->output.string();
-      };
-      job.run = [ob] {
-        bool deformed = false;
-        const ref::SceneDesc object = ob->object(&deformed);  // cooked and decoded now, not timed as the bake
-        // A skinned or morphed object: the field is its bind pose's (the cube maps of its neighbours
-        // follow their poses, its own transfer does not): say so when it is baked.
-        if (deformed)
-          log::warn("dnrt " + ob->name + ": the mesh is skinned or morphed; its DNRT field is baked in the bind pose "
-                    "and does not follow the animation");
-        const auto start = std::chrono::steady_clock::now();
-        const BakeResult r = bake(object, ob->settings);
-        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        save(r.field, ob->output);
-        char text[512];
-        std::snprintf(text, sizeof text,
-                      ": %.3f s, %zu vertices inside filled, 8-bit error %.3g (bound %.3g), ranges %s -> %s", seconds,
-                      r.insideVertices, r.quantization.maxAbs, r.quantization.bound,
-                      r.withinAnalyticBound ? "inside the analytic bound (Table 1)" : "OUT OF BOUND",
-                      ob->output.c_str());
-        return describe(ob->name, ob->settings) + text;
-      };
-      jobs.push_back(std::move(job));
-    }
+    for (ecs::Entity e : entities)
+      for (const bool occlusionOnly : {false, true}) {
+        // The occlusion-only field (−k_j) of an object whose anti-radiance leaves the lights out (runtime.hpp).
+        if (occlusionOnly && lc.registry.get<scene::Dnrt>(e).lightsInAntiRadiance) continue;
+        auto ob = std::make_shared<ObjectBake>();
+        ob->name = lc.registry.get<scene::Name>(e).id;
+        ob->mesh = lc.registry.get<scene::MeshRef>(e);
+        if (const auto* m = lc.registry.tryGet<scene::MaterialOverride>(e)) ob->material = *m;
+        ob->cookCache = lc.cookCache;
+        ob->settings = settingsFrom(lc.registry.get<scene::Dnrt>(e));
+        ob->settings.occlusionOnly = occlusionOnly;  // the runtime's second field (runtime.hpp)
+        // Keyed by the cooked asset's content key (objectSourceKey): no cooking or decoding here.
+        ob->key = cacheKey(objectSourceKey(lc.registry, e, lc.cookCache), ob->settings);
+        ob->output = cachePath(ob->key, cacheFolder());
+        BakeJob job;
+        job.technique = "dnrt";
+        job.what = "dnrt " + ob->name + (occlusionOnly ? " occlusion" : "");
+        job.part = ob->name;
+        job.key = ob->key;
+        job.output = ob->output;
+        job.inputs = inputs;
+        job.inputs.push_back(ob->mesh.asset);
+        job.cached = [ob]() -> std::optional<std::string> {
+          if (!std::filesystem::exists(ob->output)) return std::nullopt;
+          try {
+            load(ob->output);
+          } catch (const InputError& err) {
+            log::warn(std::string("dnrt: re-baking a corrupt cache entry: ") + err.what());
+            return std::nullopt;
+          }
+          return describe(ob->name, ob->settings) + ": cached " + ob->output.string();
+        };
+        job.run = [ob] {
+          bool deformed = false;
+          const ref::SceneDesc object = ob->object(&deformed);  // cooked and decoded now, not timed as the bake
+          // A skinned or morphed object: the field is its bind pose's (the cube maps of its neighbours
+          // follow their poses, its own transfer does not): say so when it is baked.
+          if (deformed)
+            log::warn("dnrt " + ob->name + ": the mesh is skinned or morphed; its DNRT field is baked in the bind pose "
+                      "and does not follow the animation");
+          const auto start = std::chrono::steady_clock::now();
+          const BakeResult r = bake(object, ob->settings);
+          const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+          save(r.field, ob->output);
+          char text[512];
+          std::snprintf(text, sizeof text,
+                        ": %.3f s, %zu vertices inside filled, 8-bit error %.3g (bound %.3g), ranges %s -> %s", seconds,
+                        r.insideVertices, r.quantization.maxAbs, r.quantization.bound,
+                        r.withinAnalyticBound ? "inside the analytic bound (Table 1)" : "OUT OF BOUND",
+                        ob->output.c_str());
+          return describe(ob->name, ob->settings) + text;
+        };
+        jobs.push_back(std::move(job));
+      }
     return jobs;
   }
 

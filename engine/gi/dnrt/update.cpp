@@ -26,12 +26,24 @@ std::vector<NodeObject> Runtime::objectsFor(const render::RenderWorld& world) co
     const Placement pl = place(o.field, placed->matrix);
     const auto* component = registry_.tryGet<scene::Dnrt>(o.entity);
     // App. B.2's improved anti-radiance divides band 2 by Â_2 (×4) and so amplifies the ringing of
-    // a lamp's truncated lobe: its fields get the lights' SH Hanning-windowed (incident.hpp).
-    const bool improved = o.field.settings.antiRadiance == AntiRadiance::Improved;
+    // a lamp's truncated lobe: its fields get the lights' SH Hanning-windowed (incident.hpp). Not
+    // when the lights are out of the anti-radiance (occlusionTextures): the lights then reach only
+    // t_j, which no band factor scales (measured: cornell-1's improved rows, indirect-only
+    // 0.487–0.577 windowed, 0.471–0.566 not; README "DNRT with the relit probes, session 10").
+    const bool windowed = o.field.settings.antiRadiance == AntiRadiance::Improved && !o.occlusionTextures;
     const incident::RadianceSH L = incidentSH(pl.centreWorld, pl.radiusWorld, world.lights,
-                                              improved ? incident::kHanningWindow : incident::kNoWindow);
+                                              windowed ? incident::kHanningWindow : incident::kNoWindow);
     out.push_back({o.textures.get(), packObject(o.field, placed->matrix, L, o.entity.index()), o.name,
                    component && component->intrusion, component ? component->mode : Mode::Box});
+    if (o.occlusionTextures) {
+      // The lights' part of c_j (L minus the indirect source alone), negated: with the field's −k_j
+      // it adds back Σ_j c_j^lights k_j, so the anti-radiance is the indirect light's only.
+      const incident::RadianceSH indirect = incidentSH(pl.centreWorld, pl.radiusWorld, {});
+      incident::RadianceSH minusLights{};
+      for (std::size_t j = 0; j < minusLights.size(); ++j) minusLights[j] = indirect[j] - L[j];
+      out.back().occlusion = o.occlusionTextures.get();
+      out.back().occlusionData = packObject(*o.occlusion, placed->matrix, minusLights, o.entity.index());
+    }
   }
   return out;
 }

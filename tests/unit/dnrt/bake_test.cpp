@@ -274,6 +274,39 @@ TEST(DnrtBake, ImprovedAntiRadianceRecoversBlockedRadiance) {
   EXPECT_GT(bias[0], 5.0 * std::abs(bias[1]));  // paper: too little occlusion (positive = less negative)
 }
 
+// FieldSettings::occlusionOnly (Runtime::excludeLightsFromAntiRadiance): m_j = −k_j, t_j left out.
+// k_j depends on where the rays hit, not on the albedo, and the rays are the same (seeded per
+// vertex), so the occlusion-only field of a coloured sphere is, value for value, the full field of a
+// black one (t_j = 0); the full field minus it is t_j, which for a coloured sphere is ≥ 0 in m_0.
+// Its own cache entry; the file keeps the flag.
+TEST(DnrtBake, OcclusionOnlyFieldIsTheAntiRadianceAlone) {
+  for (const AntiRadiance mode : {AntiRadiance::Paper, AntiRadiance::Improved}) {
+    FieldSettings s = ciSettings(9);
+    s.grid = 8;
+    s.samplesPerAxis = 8;
+    s.antiRadiance = mode;
+    FieldSettings occlusion = s;
+    occlusion.occlusionOnly = true;
+    const BakeResult black = bake(testing::sphere(glm::vec3(0.0f), 1.0f, glm::vec3(0.0f)), s);
+    const BakeResult coloured = bake(testing::sphere(glm::vec3(0.0f), 1.0f, kRhoS), s);
+    const BakeResult only = bake(testing::sphere(glm::vec3(0.0f), 1.0f, kRhoS), occlusion);
+    ASSERT_EQ(only.values.size(), black.values.size());
+    for (std::size_t i = 0; i < only.values.size(); ++i) ASSERT_EQ(only.values[i], black.values[i]) << i;
+    int lit = 0;
+    for (std::size_t v = 0; v < only.field.vertexCount(); ++v) {
+      const glm::vec3 t0 = coloured.values[v * 9] - only.values[v * 9];
+      EXPECT_GE(glm::min(t0.x, glm::min(t0.y, t0.z)), -1e-6f) << v;
+      lit += t0.x > 0.0f ? 1 : 0;
+    }
+    EXPECT_GT(lit, 0);
+    EXPECT_TRUE(only.withinAnalyticBound);
+    EXPECT_TRUE(deserialize(serialize(only.field), "occlusion.field").settings.occlusionOnly);
+    EXPECT_FALSE(deserialize(serialize(coloured.field), "full.field").settings.occlusionOnly);
+    const auto object = testing::sphere(glm::vec3(0.0f), 1.0f, kRhoS);
+    EXPECT_NE(cacheKey(object, occlusion), cacheKey(object, s));
+  }
+}
+
 TEST(DnrtBake, CachedBakeStoresAndReloadsTheSameField) {
   const std::filesystem::path dir = std::filesystem::path(BOUNCE_TEST_OUT) / "dnrt-cache";
   std::filesystem::remove_all(dir);

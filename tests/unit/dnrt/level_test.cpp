@@ -42,6 +42,8 @@ TEST(DnrtLevel, CornellPropsCarryFields) {
         EXPECT_EQ(e.dnrt->shCount, 4);
         EXPECT_EQ(e.dnrt->grid, 32);
         EXPECT_EQ(e.dnrt->mode, scene::DnrtMode::Box) << "the default mode rasterises the outer cube";
+        // cornell-1 relights its probes, and its prop's anti-radiance leaves the lamp out (session 10).
+        EXPECT_EQ(e.dnrt->lightsInAntiRadiance, name != std::string("cornell-1.json")) << name;
       }
     EXPECT_EQ(withField, name == std::string("cornell-1.json") ? 1 : name == std::string("cornell-5.json") ? 5 : 10);
   }
@@ -51,7 +53,7 @@ TEST(DnrtLevel, ParsesEverySetting) {
   const scene::Level level = scene::loadLevel(writeLevel(
       "dnrt-all.json",
       R"({"sh": 9, "grid": 16, "inner": 2.5, "outer": 4, "intrusion": true, "anti_radiance": "improved", "rays": 64, )"
-      R"("mode": "fullscreen"})"));
+      R"("mode": "fullscreen", "lights_in_anti_radiance": false})"));
   ASSERT_TRUE(level.entities[0].dnrt);
   const scene::Dnrt& d = *level.entities[0].dnrt;
   EXPECT_EQ(d.shCount, 9);
@@ -62,6 +64,7 @@ TEST(DnrtLevel, ParsesEverySetting) {
   EXPECT_TRUE(d.improvedAntiRadiance);
   EXPECT_EQ(d.samplesPerAxis, 8);
   EXPECT_EQ(d.mode, scene::DnrtMode::FullScreen);
+  EXPECT_FALSE(d.lightsInAntiRadiance);
   const FieldSettings s = settingsFrom(d);
   EXPECT_EQ(s.antiRadiance, AntiRadiance::Improved);
   EXPECT_NO_THROW(checkSettings(s));
@@ -86,6 +89,7 @@ TEST(DnrtLevel, RejectsBadSettingsWithOneLine) {
       {R"({"rays": 200})", "/entities/0/dnrt/rays"},
       {R"({"mode": "tiles"})", "/entities/0/dnrt/mode"},
       {R"({"mode": 1})", "/entities/0/dnrt/mode"},
+      {R"({"lights_in_anti_radiance": "no"})", "/entities/0/dnrt/lights_in_anti_radiance"},
       {R"({"speed": 1})", "speed"},
   };
   for (const auto& [json, where] : cases) {

@@ -476,12 +476,15 @@ TEST(DnrtGpu, TileCullKeepsTheClusteredImageAndOnlyClearsMaskBits) {
 // so the two choices differ and the test can tell which one was taken.
 TEST(DnrtGpu, ImprovedAntiRadianceFieldsGetTheLightsSHWindowedAndPaperFieldsDoNot) {
   gpu::Context& ctx = gpu::testkit::sharedContext();
-  for (const bool improved : {true, false}) {
+  // Third case: improved, but the lights out of the anti-radiance (cornell-1's prop as shipped):
+  // the lights then reach only t_j, no band factor scales them, and there is no window.
+  for (const auto& [improved, lightsIn] : {std::pair{true, true}, std::pair{false, true}, std::pair{true, false}}) {
     scene::Level level = game::loadLevelWithEffects(fs::path(BOUNCE_SOURCE_DIR) / "content/levels/cornell-1.json",
                                                     std::vector<std::string>{"direct", "shadows"});
     for (scene::EntityDesc& e : level.entities)
       if (e.dnrt) {
         e.dnrt->improvedAntiRadiance = improved;
+        e.dnrt->lightsInAntiRadiance = lightsIn;
         e.dnrt->shCount = 9;
         e.dnrt->grid = 16;
         e.dnrt->samplesPerAxis = 4;  // the field's values do not matter here, only which c_j are packed
@@ -514,11 +517,117 @@ TEST(DnrtGpu, ImprovedAntiRadianceFieldsGetTheLightsSHWindowedAndPaperFieldsDoNo
     float differ = 0.0f;
     for (int j = 4; j < 9; ++j) differ = std::max(differ, glm::length(glm::vec3(windowed.c[j] - plain.c[j])));
     EXPECT_GT(differ, 1e-4f * glm::length(glm::vec3(plain.c[0]))) << "band 2 carries the lamp: the window shows";
-    const DnrtObjectGpu& want = improved ? windowed : plain;
+    const DnrtObjectGpu& want = improved && lightsIn ? windowed : plain;
     for (int j = 0; j < 9; ++j)
       for (int ch = 0; ch < 3; ++ch)
-        EXPECT_FLOAT_EQ(packed[0].data.c[j][ch], want.c[j][ch]) << (improved ? "improved" : "paper") << " c_" << j;
+        EXPECT_FLOAT_EQ(packed[0].data.c[j][ch], want.c[j][ch])
+            << (improved ? "improved" : "paper") << (lightsIn ? "" : ", lights out of k_j") << " c_" << j;
   }
+}
+
+}  // namespace
+}  // namespace bounce::gi::dnrt
+
+namespace bounce::gi::dnrt {
+namespace {
+
+// Lights left out of the anti-radiance (Runtime::excludeLightsFromAntiRadiance; README "DNRT with
+// the relit probes, session 10"): each object carries a second term, its occlusion-only field (−k_j)
+// with the lights' c_j negated, which combine.comp adds into the object's own combined volume
+// (kAccumulate). Checked against the same terms drawn as separate objects (the additive blend, as
+// RuntimeBakesThroughTheCacheAndOverlappingObjectsAdd) in the box and the clustered modes, and the
+// packed c_j of the two terms sum to the indirect source's alone (the lamp cancels in k_j).
+TEST(DnrtGpu, LightsLeftOutOfTheAntiRadianceAddTheirTermInTheCombinedVolume) {
+  gpu::Context& ctx = gpu::testkit::sharedContext();
+  const fs::path levelPath = fs::path(BOUNCE_SOURCE_DIR) / "tests/data/dnrt/two-boxes-lamp.json";
+  game::Session session(ctx, game::loadLevelWithEffects(levelPath, std::nullopt));
+  session.update(0.0);
+  ref::ReferenceAssets assets;
+  assets.load(session.registry(), fs::path(BOUNCE_TEST_OUT) / "dnrt" / "cooked");
+  const auto frames = gpu::FrameRing::kDefaultFramesInFlight;
+  Runtime dnrt(ctx, session.renderer().pipelines(), session.registry(), assets,
+               fs::path(BOUNCE_TEST_OUT) / "dnrt" / "occlusion-cache", frames, session.level().background);
+  // box-a's level entry says "lights_in_anti_radiance": false, box-b's does not: the constructor
+  // gives box-a its occlusion term; the call gives box-b one too.
+  EXPECT_FALSE(dnrt.lightsExcludedFromAntiRadiance());
+  dnrt.excludeLightsFromAntiRadiance();
+  EXPECT_TRUE(dnrt.lightsExcludedFromAntiRadiance());
+  session.renderer().setNode("dnrt", dnrt.node());
+  renderOnce(session, ctx);
+  const std::vector<NodeObject> all = dnrt.objectsFor(session.world());
+  ASSERT_EQ(all.size(), 2u);
+  ASSERT_EQ(session.world().lights.size(), 1u);
+
+  // c_j of the two terms: full + (−lights) = the background alone, per coefficient and channel.
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    ASSERT_NE(all[i].occlusion, nullptr);
+    EXPECT_TRUE(all[i].occlusion->field().settings.occlusionOnly);
+    EXPECT_FALSE(all[i].textures->field().settings.occlusionOnly);
+    const glm::vec3 o(all[i].data.centreWorld);
+    const float radius = all[i].data.centreWorld.w;
+    // No window on the lights' SH for an object whose lights are out of k_j (update.cpp).
+    const incident::RadianceSH full = dnrt.incidentSH(o, radius, session.world().lights);
+    const incident::RadianceSH indirect = dnrt.incidentSH(o, radius, {});
+    float lightPart = 0.0f;
+    for (std::size_t j = 0; j < 9; ++j) lightPart = std::max(lightPart, glm::length(full[j] - indirect[j]));
+    EXPECT_GT(lightPart, 0.01f) << "the lamp reaches the object";
+    // packObject convolves and rotates into the object's frame, both linear; the background is
+    // uniform, so the sum is its band 0 alone (rotation-invariant) and zero in bands 1–2.
+    const incident::RadianceSH c = irradianceSH(indirect);
+    const int sh = all[i].textures->field().settings.shCount;
+    for (int j = 0; j < sh; ++j) {
+      const glm::vec3 sum = glm::vec3(all[i].data.c[j]) + glm::vec3(all[i].occlusionData.c[j]);
+      const glm::vec3 want = j == 0 ? c[0] : glm::vec3(0.0f);
+      EXPECT_LE(glm::length(sum - want), 1e-5f * (1.0f + glm::length(glm::vec3(all[i].data.c[j])))) << "object " << i << " c_" << j;
+    }
+  }
+
+  Node node(ctx, session.renderer().pipelines(), frames);
+  const auto renderWith = [&](std::vector<NodeObject> objects, std::optional<Mode> mode) {
+    session.renderer().setNode("dnrt", [&, objects, mode](rg::RenderGraph& graph, render::PassContext& pc) {
+      node.addTo(graph, pc, objects, NodeSettings{mode});
+    });
+    return renderOnce(session, ctx);
+  };
+  session.renderer().setNode("dnrt", {});
+  const std::vector<float> base = renderOnce(session, ctx).rgb;
+  std::vector<NodeObject> plain = all, split = all;
+  for (NodeObject& o : plain) o.occlusion = nullptr;
+  for (NodeObject& o : split) o.occlusion = nullptr;
+  for (const NodeObject& o : all) {
+    NodeObject term;
+    term.textures = o.occlusion;
+    term.data = o.occlusionData;
+    term.name = o.name + "-occlusion";
+    split.push_back(term);
+  }
+  float filterStep = 0.0f;  // Σ_terms Σ_slots |k| / 255, as ClusteredModeDrawsThePerObjectImage
+  for (const NodeObject& o : split) {
+    const DnrtShaderObject f = fold(o.data);
+    for (const glm::vec4& kt : f.k) filterStep += (std::abs(kt.x) + std::abs(kt.y) + std::abs(kt.z) + std::abs(kt.w)) / 255.0f;
+  }
+  const Frame fused = renderWith(all, std::nullopt), separate = renderWith(split, std::nullopt);
+  const Frame clustered = renderWith(all, Mode::Clustered), without = renderWith(plain, std::nullopt);
+  EXPECT_EQ(clustered.passes, fused.passes);
+  constexpr float kHalfUlp = 1.0f / 2048.0f;
+  const float n = float(split.size());
+  float largestTerm = 0.0f, worstSeparate = 0.0f, worstClustered = 0.0f, worstAbs = 0.0f;
+  for (std::size_t i = 0; i < fused.rgb.size(); ++i) {
+    const float v = fused.rgb[i] - base[i];
+    const float tolerance = (n + 2.0f) * kHalfUlp * (std::abs(base[i]) + 2.0f * std::abs(v)) + filterStep + 1e-7f;
+    worstSeparate = std::max(worstSeparate, std::abs(separate.rgb[i] - fused.rgb[i]) / tolerance);
+    worstClustered = std::max(worstClustered, std::abs(clustered.rgb[i] - fused.rgb[i]) / tolerance);
+    largestTerm = std::max(largestTerm, std::abs(fused.rgb[i] - without.rgb[i]));
+    worstAbs = std::max({worstAbs, std::abs(separate.rgb[i] - fused.rgb[i]), std::abs(clustered.rgb[i] - fused.rgb[i])});
+  }
+  std::printf("lights out of the anti-radiance: largest |lights' k term| %.4f; fused vs separate draws %.3f, "
+              "clustered vs box %.3f of the tolerance (filter step %.2g); worst |difference| %.2g\n",
+              largestTerm, worstSeparate, worstClustered, filterStep, worstAbs);
+  EXPECT_GT(largestTerm, 0.005f) << "the lamp's anti-radiance is a visible term";
+  EXPECT_LE(worstSeparate, 1.0f);
+  EXPECT_LE(worstClustered, 1.0f);
+  // As a whole, within 1 % of the term (a term added to the wrong brick or left out would show).
+  EXPECT_LE(worstAbs, 0.01f * largestTerm);
 }
 
 }  // namespace

@@ -68,7 +68,9 @@ TEST(RendererGraph, DebugViewCullsLightingAndSkipsTonemap) {
   const Result r = renderOnce(std::nullopt, s);  // the level's own effects: direct, shadows, probes, dnrt
   // The debug view reads the shadow atlas (for its shadow mode), so the shadow pass stays; the GI
   // nodes only add to "lighting.hdr", which nothing reads, so they go with the lighting pass.
-  EXPECT_EQ(r.executed, (Passes{"shadow", "gbuffer", "debug-view"}));
+  // cornell-1 relights its probes: probes.relight writes the probes' uniform block, no graph
+  // resource, so it is a side-effect pass and stays even when the probes pass is culled.
+  EXPECT_EQ(r.executed, (Passes{"shadow", "gbuffer", "probes.relight", "debug-view"}));
   EXPECT_TRUE(passCulled(r.dot, "lighting"));
   EXPECT_TRUE(passCulled(r.dot, "probes"));
   EXPECT_TRUE(passCulled(r.dot, "dnrt"));
@@ -81,12 +83,14 @@ TEST(RendererGraph, CullingOffRunsEveryPass) {
   s.debugView = render::DebugView::Albedo;
   s.culling = false;
   const Result debug = renderOnce(std::nullopt, s);  // direct, shadows, probes, dnrt
-  EXPECT_EQ(debug.executed, (Passes{"shadow", "gbuffer", "lighting", "probes", "dnrt.combine", "dnrt", "debug-view"}));
+  EXPECT_EQ(debug.executed,
+            (Passes{"shadow", "gbuffer", "lighting", "probes.relight", "probes", "dnrt.combine", "dnrt", "debug-view"}));
   EXPECT_FALSE(passCulled(debug.dot, "lighting"));
 
   s.debugView = render::DebugView::None;
   const Result lit = renderOnce(std::nullopt, s);
-  EXPECT_EQ(lit.executed, (Passes{"shadow", "gbuffer", "lighting", "probes", "dnrt.combine", "dnrt", "tonemap"}));
+  EXPECT_EQ(lit.executed,
+            (Passes{"shadow", "gbuffer", "lighting", "probes.relight", "probes", "dnrt.combine", "dnrt", "tonemap"}));
   // Nothing culled; the legend at the end shows what a culled (dashed) pass would look like.
   EXPECT_EQ(lit.dot.substr(0, lit.dot.find("subgraph cluster_legend")).find("dashed"), std::string::npos) << "nothing culled";
 }
@@ -127,9 +131,10 @@ TEST(RendererGraph, GiNodesExistOnlyForNamedEffects) {
     EXPECT_EQ(plain.ao(gi::ao::Kind::Ssao), nullptr);
   }
   const Result all = renderOnce(std::vector<std::string>{"direct", "shadows", "ssao", "probes", "dnrt"}, {});
-  EXPECT_EQ(all.executed, (Passes{"shadow", "gbuffer", "lighting", "ssao", "probes", "dnrt.combine", "dnrt", "tonemap"}));
+  EXPECT_EQ(all.executed, (Passes{"shadow", "gbuffer", "lighting", "ssao", "probes.relight", "probes", "dnrt.combine",
+                                   "dnrt", "tonemap"}));
   const Result probesOnly = renderOnce(std::vector<std::string>{"direct", "probes"}, {});
-  EXPECT_EQ(probesOnly.executed, (Passes{"gbuffer", "lighting", "probes", "tonemap"}));
+  EXPECT_EQ(probesOnly.executed, (Passes{"gbuffer", "lighting", "probes.relight", "probes", "tonemap"}));
   EXPECT_FALSE(hasPass(probesOnly.dot, "dnrt"));
   EXPECT_FALSE(hasPass(probesOnly.dot, "ssao"));
 }
