@@ -47,11 +47,10 @@ void main() {
   vec3 q = vec3(dot(toQ[0], r), dot(toQ[1], r), dot(toQ[2], r));
   // Eq. 10's radial weights (rtf.glsl rtfTaps, evaluate.cpp lookup()): the slice coordinate
   // clamped to the first and last sphere's slice centres (inside the innermost sphere: its value),
-  // times the fade beyond the outermost sphere r_N (evaluate.cpp tailFade): (r_N/|q|)² (the object's
-  // solid angle), ramped to zero over the last quarter spacing before r_N + Δr, or before `reach`.
+  // times the fade beyond the outermost sphere r_N (rtfTailFade = evaluate.cpp tailFade): (r_N/|q|)²
+  // (the object's solid angle), ramped to zero over the last quarter spacing before r_N + Δr, or before `reach`.
   float len = length(q);
-  float end = reach > 0.0 ? reach : radial.w + 1.0 / radial.y;
-  float fade = len <= radial.w ? 1.0 : (radial.w * radial.w) / (len * len) * clamp((end - len) * radial.y / kRtfFadeRamp, 0.0, 1.0);
+  float fade = rtfTailFade(radial.w, radial.y, len, reach);
   if (fade <= 0.0) discard;  // beyond the fade: the field is zero
   // The object's own surface: its transfer already holds its self-interreflection (Eq. 8).
   if (texelFetch(gEntity, pixel, 0).r == self) discard;

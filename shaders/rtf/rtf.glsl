@@ -18,6 +18,16 @@ struct RtfGrid {
 const float kRtfUnitVisibility = 3.5449077;  // 4π·Y_00 = 2√π: the SH of V ≡ 1
 const float kRtfFadeRamp = 0.25;             // evaluate.hpp kFadeRamp: the end's ramp, share of a spacing
 
+// evaluate.cpp tailFade: the radial factor beyond the outermost sphere r_N (1 inside it),
+// (r_N/r)² (the object's solid angle) · clamp((end − r)/(kRtfFadeRamp·Δr), 0, 1), end = `reach` when
+// it is > 0 (a record's reach is 0 unless the tail passes r_N + Δr: update.cpp packObject), else
+// r_N + Δr. Radii in η; invDr = 1/Δr (rtf.frag's record holds it).
+float rtfTailFade(float rN, float invDr, float r, float reach) {
+  if (r <= rN) return 1.0;
+  float end = reach > 0.0 ? reach : rN + 1.0 / invDr;
+  return (rN * rN) / (r * r) * clamp((end - r) * invDr / kRtfFadeRamp, 0.0, 1.0);
+}
+
 float rtfSphereRadius(RtfGrid g, int s) { return g.innerRadius + (g.outerRadius - g.innerRadius) * float(s) / float(g.spheres - 1); }
 
 // Between spheres ra < rb, the weight of rb at |q| = r: linear in 1/r² (evaluate.cpp radialWeight,
@@ -64,7 +74,7 @@ void rtfTaps(RtfGrid g, vec3 q, out vec2 uv, out int s0, out int s1, out float w
     s0 = 0; s1 = 0;
   } else if (r >= rN) {
     s0 = g.spheres - 1; s1 = s0;
-    fade = (rN * rN) / (r * r) * clamp((rN + dr - r) / (kRtfFadeRamp * dr), 0.0, 1.0);  // evaluate.cpp tailFade
+    fade = rtfTailFade(rN, 1.0 / dr, r, 0.0);  // no tail: the end at r_N + Δr
   } else {
     float t = (r - g.innerRadius) / dr;
     s0 = min(int(floor(t)), g.spheres - 2);

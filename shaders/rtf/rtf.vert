@@ -27,7 +27,7 @@ layout(location = 6) flat out vec4 outRadial;  // inner (η), 1/Δr, spheres −
 layout(location = 7) flat out vec4 outFace;    // n_r, 1/(6 n_r), 1/n_r, 1/(7 · spheres)
 layout(location = 8) flat out vec4 outRange[7];
 layout(location = 15) flat out uint outSelf;
-layout(location = 16) flat out float outReach;  // the tail's end (η; 0: the one-spacing fade), ids.z
+layout(location = 16) flat out float outReach;  // the tail's end (η; 0: the end at r_N + Δr), ids.z
 
 const int kCorners = 8;  // the octagon: 6 fan triangles, 18 vertices (node.cpp's draw)
 

@@ -238,11 +238,10 @@ int main(int argc, char** argv) {
       lchi.push_back(light.indirect().radianceSH(chi.back())[0]);
     }
     const gi::rtf::FieldSettings& s = f.settings;
-    const int per = gi::rtf::samplesPerSphere(s), n2 = s.faceSize * s.faceSize;
+    const int per = gi::rtf::samplesPerSphere(s);
     std::vector<glm::vec4> e3(gi::rtf::sampleCount(s)), sf(gi::rtf::sampleCount(s));
     for (int rest = 0; rest < per; ++rest) {
-      const int face = rest / n2, x = rest % n2 % s.faceSize, y = rest % n2 / s.faceSize;
-      const glm::vec3 dir = pl.localToWorldRotation * glm::vec3(sh::cubeTexelDirection(face, x, y, s.faceSize));
+      const glm::vec3 dir = pl.localToWorldRotation * gi::rtf::sampleDirection(s, std::size_t(rest));
       const glm::vec3 surf = light.indirect().radianceSH(pl.centreWorld + pl.radiusWorld * dir)[0] / at;
       for (int sphere = 0; sphere < s.spheres; ++sphere) {
         const glm::vec3 p = pl.centreWorld + pl.radiusWorld * gi::rtf::sphereRadius(s, sphere) * dir;

@@ -13,9 +13,6 @@ namespace bounce::gi::rtf {
 
 namespace {
 
-// V ≡ 1 has the single coefficient ∫ Y_00 dω = 4π·Y_00 = 2√π.
-const float kUnitVisibility = float(4.0 * math::kPi * sh::constants::kY00);
-
 ShScalar unitVisibility() {
   ShScalar v{};
   v[0] = kUnitVisibility;

@@ -34,11 +34,17 @@
 
 #include "engine/gi/dnrt/irradiance_source.hpp"
 #include "engine/gi/rtf/field.hpp"
+#include "engine/math/sampling.hpp"
+#include "engine/math/sh_eval.hpp"
 
 namespace bounce::gi::rtf {
 
 using ShRgb = std::array<glm::vec3, kShCount>;  // 16 RGB SH coefficients
 using ShScalar = std::array<float, kShCount>;
+
+// V ≡ 1 has the single coefficient ∫ Y_00 dω = 4π·Y_00 = 2√π (= √(4π)); so ∫f dω = kUnitVisibility·f_0
+// and (1 − V)'s l = 0 coefficient is kUnitVisibility − V_0. rtf.glsl kRtfUnitVisibility, xi.comp's u_0.
+inline constexpr float kUnitVisibility = float(4.0 * math::kPi * sh::constants::kY00);
 
 struct Placement {
   glm::mat4 worldToLocal{1.0f};
@@ -74,7 +80,7 @@ float tailFade(const FieldSettings& settings, float r, float reach);
 // The reach (η) of scene::Rtf::tail τ: the object's solid angle seen from the outermost sphere,
 // Ω_N = the mean over its samples of ∫(1 − V) = 4π − V_00/Y_00 (the OOF), falls as (r_N/r)², so it
 // drops below τ·π at r = r_N·√(Ω_N/(τπ)); the tail's linear fade ends there. 0 (no tail: the
-// one-spacing fade) when τ ≤ 0 or that radius is within r_N + Δr.
+// end at r_N + Δr) when τ ≤ 0 or that radius is within r_N + Δr.
 float tailReach(const Field& field, float tail);
 // The weight of the outer sphere (radius rb) against the inner (ra) for a point at |q| = r in
 // [ra, rb]: linear in 1/r², (1/ra² − 1/r²)/(1/ra² − 1/rb²), clamped to [0, 1]. rtf.frag and
@@ -95,7 +101,7 @@ ShScalar occlusion(const Field& field, glm::vec3 q, float reach = 0.0f);
 struct Object {
   const Field* field = nullptr;
   glm::mat4 world{1.0f};
-  float reach = 0.0f;  // lookup()'s: 0 the one-spacing fade, else where the (r_N/|q|)² tail ends (η)
+  float reach = 0.0f;  // lookup()'s: 0 the end at r_N + Δr, else where the (r_N/|q|)² tail ends (η)
 };
 
 struct BounceResult {

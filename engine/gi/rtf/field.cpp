@@ -9,6 +9,7 @@
 #include "engine/core/error.hpp"
 #include "engine/core/file.hpp"
 #include "engine/core/hash.hpp"
+#include "engine/math/sh_project.hpp"
 
 namespace bounce::gi::rtf {
 
@@ -37,6 +38,13 @@ float sphereRadius(const FieldSettings& s, int index) {
 }
 int samplesPerSphere(const FieldSettings& s) { return 6 * s.faceSize * s.faceSize; }
 std::size_t sampleCount(const FieldSettings& s) { return std::size_t(s.spheres) * std::size_t(samplesPerSphere(s)); }
+glm::vec3 sampleDirection(const FieldSettings& s, std::size_t index) {
+  const int n2 = s.faceSize * s.faceSize, rest = int(index % std::size_t(samplesPerSphere(s)));
+  return glm::vec3(sh::cubeTexelDirection(rest / n2, rest % n2 % s.faceSize, rest % n2 / s.faceSize, s.faceSize));
+}
+glm::vec3 samplePosition(const FieldSettings& s, std::size_t index) {
+  return sphereRadius(s, int(index / std::size_t(samplesPerSphere(s)))) * sampleDirection(s, index);
+}
 std::size_t itfDimension(const FieldSettings& s) { return std::size_t(s.proxies) * kShCount * kShCount * 3; }
 
 namespace {

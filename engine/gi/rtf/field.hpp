@@ -57,6 +57,11 @@ void checkSettings(const FieldSettings& s);
 float sphereRadius(const FieldSettings& s, int index);
 int samplesPerSphere(const FieldSettings& s);
 std::size_t sampleCount(const FieldSettings& s);
+// Unit direction (local frame) of sample `index`'s ray from o: cubeTexelDirection(face, x, y) of the
+// header's sample order; the sample lies on sphere index / samplesPerSphere.
+glm::vec3 sampleDirection(const FieldSettings& s, std::size_t index);
+// Sample `index`'s offset from o in units of η: sphereRadius · sampleDirection.
+glm::vec3 samplePosition(const FieldSettings& s, std::size_t index);
 // Dimension of one sample's ITF vector: proxies · 16 · 16 · 3.
 std::size_t itfDimension(const FieldSettings& s);
 inline std::size_t itfIndex(int k, int i, int j, int c) { return ((std::size_t(k) * kShCount + i) * kShCount + j) * 3 + c; }

@@ -4,14 +4,12 @@
 #include <algorithm>
 
 #include "engine/core/parallel.hpp"
-#include "engine/math/sh.hpp"
-#include "engine/math/sh_project.hpp"
 #include "engine/math/sh_rotate.hpp"
 
 namespace bounce::gi::rtf {
 
 std::vector<glm::vec4> sharedOcclusionScale(std::span<const Object> objects, std::size_t a) {
-  constexpr float u = 3.5449077f;  // √(4π): the l = 0 coefficient of the constant 1, ∫f dω = u·f_0
+  constexpr float u = kUnitVisibility;  // ∫f dω = u·f_0 (evaluate.hpp)
   const Field& f = *objects[a].field;
   const FieldSettings& s = f.settings;
   std::vector<glm::vec4> out(sampleCount(s), glm::vec4(1.0f));
@@ -37,12 +35,11 @@ std::vector<glm::vec4> sharedOcclusionScale(std::span<const Object> objects, std
                       sh::Rotationf::fromMatrix(glm::transpose(pa.localToWorldRotation) * pb.localToWorldRotation)});
   }
   if (others.empty()) return out;
-  const int per = samplesPerSphere(s), n2 = s.faceSize * s.faceSize;
+  const int per = samplesPerSphere(s);
   parallelFor(0, std::size_t(per), [&](std::size_t ray) {
-    const int rest = int(ray), face = rest / n2, x = rest % n2 % s.faceSize, y = rest % n2 / s.faceSize;
-    const glm::vec3 dir = pa.localToWorldRotation * glm::vec3(sh::cubeTexelDirection(face, x, y, s.faceSize));
+    const glm::vec3 dir = pa.localToWorldRotation * sampleDirection(s, ray);
     for (int sphere = 0; sphere < s.spheres; ++sphere) {
-      const std::size_t smp = std::size_t(sphere * per + rest);
+      const std::size_t smp = std::size_t(sphere) * std::size_t(per) + ray;
       const float* oofA = f.oof.data() + smp * kShCount;
       const float a0 = u - oofA[0];  // (1 − V_A)'s l = 0 coefficient
       if (a0 <= 1e-6f) continue;     // A hides nothing from this sample
@@ -51,17 +48,11 @@ std::vector<glm::vec4> sharedOcclusionScale(std::span<const Object> objects, std
       for (const Other& o : others) {
         const Field& fb = *o.field;
         const glm::vec3 qb = (glm::vec3(o.worldToLocal * glm::vec4(p, 1.0f)) - fb.centre) / fb.radius;
-        const Lookup lk = lookup(fb.settings, qb, o.reach);
-        ShScalar vb{};
-        float total = 0.0f;
-        for (int t = 0; t < 8; ++t) {
-          const float w = lk.weight[std::size_t(t)];
-          if (w == 0.0f) continue;
-          total += w;
-          const float* oofB = fb.oof.data() + std::size_t(lk.sample[std::size_t(t)]) * kShCount;
-          for (int j = 0; j < kShCount; ++j) vb[std::size_t(j)] += w * ((j == 0 ? u : 0.0f) - oofB[j]);
-        }
-        if (total == 0.0f) continue;
+        // (1 − V_B) at p: u·δ_0 − V_B, V_B Eq. 10's lookup faded to V = 1 at the field's end (occlusion()),
+        // so all zero beyond B's field.
+        ShScalar vb = occlusion(fb, qb, o.reach);
+        for (int j = 0; j < kShCount; ++j) vb[std::size_t(j)] = (j == 0 ? u : 0.0f) - vb[std::size_t(j)];
+        if (vb == ShScalar{}) continue;
         ShScalar vbA{};
         o.toA.apply<float>(std::span<const float>(vb), std::span<float>(vbA));
         float dot = a0 * vbA[0];

@@ -213,7 +213,6 @@ SessionRuntime::SessionRuntime(SessionContext& sc, const std::filesystem::path& 
   incident::SessionLight& light = incident::sessionLight(sc);
   update_->setIndirect(&light.indirect());
   update_->setLightVisibility(&light.lightVisibility());
-  update_->setStaticScene(&light.lightVisibility().bvh());
   for (const Participant& p : update_->participants()) xi_.push_back(std::make_unique<XiPass>(sc.ctx, p.field));
   node_ = std::make_unique<Node>(sc.ctx, sc.renderer.pipelines(), sc.renderer.frames().framesInFlight());
 }

@@ -30,7 +30,8 @@ RtfObjectGpu packObject(const Field& f, const glm::mat4& world, const ShRgb& ind
   for (int r = 0; r < 3; ++r) o.toLocal[r] = glm::vec4(toLocal[0][r], toLocal[1][r], toLocal[2][r], 0.0f);
   const FieldSettings& s = f.settings;
   const float dr = (s.outerRadius - s.innerRadius) / float(s.spheres - 1);
-  const bool tail = reach > s.outerRadius + dr;  // lookup(): otherwise the one-spacing fade
+  // tailFade(): otherwise the field ends at r_N + Δr ((r_N/|q|)² with a ramp over its last quarter spacing).
+  const bool tail = reach > s.outerRadius + dr;
   o.centreWorld = glm::vec4(p.centreWorld, (tail ? reach : s.outerRadius + dr) * p.radiusWorld);
   o.grid = glm::vec4(float(s.spheres), float(s.faceSize), s.innerRadius, s.outerRadius);
   o.ids = glm::uvec4(entity + 1u, std::uint32_t(shCount), std::bit_cast<std::uint32_t>(tail ? reach : 0.0f), 0u);
@@ -53,11 +54,10 @@ std::vector<glm::vec4> blockedScale(const Field& f, const glm::mat4& world, cons
   const Placement pl = place(f, world);
   const glm::vec3 at = indirect.radianceSH(pl.centreWorld)[0];
   const FieldSettings& s = f.settings;
-  const int per = samplesPerSphere(s), n2 = s.faceSize * s.faceSize;
+  const int per = samplesPerSphere(s);
   std::vector<glm::vec4> out(sampleCount(s), glm::vec4(1.0f));
   for (int rest = 0; rest < per; ++rest) {  // each ray from o, outward
-    const int face = rest / n2, x = rest % n2 % s.faceSize, y = rest % n2 / s.faceSize;
-    const glm::vec3 dir = pl.localToWorldRotation * glm::vec3(sh::cubeTexelDirection(face, x, y, s.faceSize));
+    const glm::vec3 dir = pl.localToWorldRotation * sampleDirection(s, std::size_t(rest));
     float hidden = std::numeric_limits<float>::infinity();  // distance along the ray to static geometry
     if (staticScene) {
       ref::Hit hit;

@@ -55,7 +55,7 @@ static_assert(sizeof(RtfObjectGpu) <= kRtfObjectStride);
 
 // The record of a field placed by `world` with indirect radiance `indirect` (world frame, at o),
 // entity `entity` (index; its own pixels skip the field), shaded with `shCount` (4 or 9) SH, with
-// lookup()'s `reach` (η; 0: the one-spacing fade).
+// lookup()'s `reach` (η; 0: the end at r_N + Δr, tailFade).
 RtfObjectGpu packObject(const Field& field, const glm::mat4& world, const ShRgb& indirect, std::uint32_t entity,
                         int shCount = 9, float reach = 0.0f);
 
@@ -113,9 +113,6 @@ class Update {
   // Not owned. Null indirect: none; null visibility: every light unoccluded.
   void setIndirect(const incident::IndirectSource* indirect) { service_.setIndirect(indirect); }
   void setLightVisibility(const incident::Visibility* visibility) { service_.setVisibility(visibility); }
-  // The level's static geometry (not owned; null: every sample counts); no longer read by frame() (the
-  // per-sample level blockedScale left the GPU's path, README RTF "Seventh pass").
-  void setStaticScene(const ref::SceneBvh* bvh) { staticScene_ = bvh; }
   const std::vector<Participant>& participants() const { return participants_; }
   int bounces() const;
 
@@ -127,7 +124,6 @@ class Update {
   ecs::Registry& registry_;
   std::vector<Participant> participants_;
   incident::Service service_;
-  const ref::SceneBvh* staticScene_ = nullptr;
   std::vector<double> bounceMs_;
 };
 

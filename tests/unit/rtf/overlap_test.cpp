@@ -9,12 +9,11 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "engine/gi/rtf/overlap.hpp"
-#include "engine/math/sh_project.hpp"
 
 namespace bounce::gi::rtf {
 namespace {
 
-constexpr float kU = 3.5449077f;  // √(4π)
+constexpr float kU = kUnitVisibility;  // √(4π)
 
 // A field of 5 spheres (0.5–4 η), 6·3² directions, radius 0.5 m, every sample's (1 − V) = (c0, 0, cz, 0, …).
 Field handField(float c0, float cz, int lobe = 2) {
@@ -33,14 +32,6 @@ Field handField(float c0, float cz, int lobe = 2) {
   return f;
 }
 
-glm::vec3 samplePosition(const Field& f, glm::vec3 o, std::size_t r) {
-  const FieldSettings& s = f.settings;
-  const int per = samplesPerSphere(s), n2 = s.faceSize * s.faceSize;
-  const int sphere = int(r) / per, rest = int(r) % per, face = rest / n2;
-  const glm::vec3 d(sh::cubeTexelDirection(face, rest % n2 % s.faceSize, rest % n2 / s.faceSize, s.faceSize));
-  return o + f.radius * sphereRadius(s, sphere) * d;
-}
-
 TEST(RtfOverlap, OneObjectAloneOrOutOfReachKeepsTheLightAtO) {
   const Field a = handField(2.0f, 0.8f), b = handField(1.5f, 0.6f);
   const std::vector<Object> alone = {{&a, glm::mat4(1.0f), 0.0f}};
@@ -54,33 +45,46 @@ TEST(RtfOverlap, OneObjectAloneOrOutOfReachKeepsTheLightAtO) {
 // −z, so with A's lobe on z the l = 1 part of ∫(1 − V_A)(1 − V_B) is +0.8·0.6, 0 and −0.8·0.6; with A's lobe
 // on y (coefficient 1) and B turned 90 degrees, −0.8·0.6 (+0.48 if the rotation went the wrong way). Where
 // B's field holds p fully (W = 1) s = 1 − ½(2·1.5 + lobe)/(2√(4π)) = 0.75458 / 0.78843 / 0.82228.
+// Both turned: A 90 degrees about (1, 1, 0)/√2 (its y lobe to world (½, ½, √½)), B 90 degrees about
+// (0, 1, 1)/√2 (its z lobe to (√½, ½, ½)): lobe = 0.48·(¼ + √½) = +0.45941, s = 0.75603; each wrong
+// order of the frame change (R_B R_Aᵀ, R_Bᵀ R_A, R_A R_Bᵀ for R_Aᵀ R_B) gives a negative lobe (−0.070,
+// −0.410, −0.219), s ≥ 0.7934.
 TEST(RtfOverlap, SharedPartIsHalfTheSphericalProductOverWhatAHides) {
   const Field az = handField(2.0f, 0.8f), ay = handField(2.0f, 0.8f, 1), b = handField(1.5f, 0.6f);
+  const glm::vec3 x(1.0f, 0.0f, 0.0f), xy = glm::normalize(glm::vec3(1.0f, 1.0f, 0.0f)), yz = glm::normalize(glm::vec3(0.0f, 1.0f, 1.0f));
   const struct {
     const Field* a;
-    float degrees, lobe, full;
-  } cases[] = {{&az, 0.0f, 0.48f, 0.75458f}, {&az, 90.0f, 0.0f, 0.78843f}, {&az, 180.0f, -0.48f, 0.82228f}, {&ay, 90.0f, -0.48f, 0.82228f}};
+    float degreesA;
+    glm::vec3 axisA;
+    float degreesB;
+    glm::vec3 axisB;
+    float lobe, full;
+  } cases[] = {{&az, 0.0f, x, 0.0f, x, 0.48f, 0.75458f},
+               {&az, 0.0f, x, 90.0f, x, 0.0f, 0.78843f},
+               {&az, 0.0f, x, 180.0f, x, -0.48f, 0.82228f},
+               {&ay, 0.0f, x, 90.0f, x, -0.48f, 0.82228f},
+               {&ay, 90.0f, xy, 90.0f, yz, 0.45941f, 0.75603f}};
   for (const auto& c : cases) {
     const Field& a = *c.a;
-    const glm::mat4 wb = glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(1.0f, 0.0f, 0.0f)), glm::radians(c.degrees),
-                                     glm::vec3(1.0f, 0.0f, 0.0f));
-    const std::vector<Object> objects = {{&a, glm::mat4(1.0f), 0.0f}, {&b, wb, 0.0f}};
+    const glm::mat4 wa = glm::rotate(glm::mat4(1.0f), glm::radians(c.degreesA), c.axisA);
+    const glm::mat4 wb = glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(1.0f, 0.0f, 0.0f)), glm::radians(c.degreesB), c.axisB);
+    const std::vector<Object> objects = {{&a, wa, 0.0f}, {&b, wb, 0.0f}};
     const std::vector<glm::vec4> s = sharedOcclusionScale(objects, 0);
     ASSERT_EQ(s.size(), sampleCount(a.settings));
     int full = 0, partial = 0, none = 0;
     for (std::size_t r = 0; r < s.size(); ++r) {
-      const glm::vec3 p = samplePosition(a, glm::vec3(0.0f), r);
+      const glm::vec3 p(wa * glm::vec4(a.radius * samplePosition(a.settings, r), 1.0f));
       const glm::vec3 qb = glm::vec3(glm::inverse(wb) * glm::vec4(p, 1.0f)) / b.radius;
       float w = 0.0f;
       for (float x : lookup(b.settings, qb).weight) w += x;
       const float want = 1.0f - 0.5f * w * (2.0f * 1.5f + c.lobe) / (2.0f * kU);
-      EXPECT_NEAR(s[r].x, want, 2e-5f) << c.degrees << " " << r;
+      EXPECT_NEAR(s[r].x, want, 2e-5f) << c.degreesA << " " << c.degreesB << " " << r;
       EXPECT_EQ(s[r].x, s[r].y);
       EXPECT_EQ(s[r].x, s[r].z);
       EXPECT_EQ(s[r].w, 1.0f);
       if (w > 1.0f - 1e-6f) {
         ++full;
-        EXPECT_NEAR(s[r].x, c.full, 2e-5f) << c.degrees << " " << r;
+        EXPECT_NEAR(s[r].x, c.full, 2e-5f) << c.degreesA << " " << c.degreesB << " " << r;
       } else if (w > 0.0f) {
         ++partial;
       } else {

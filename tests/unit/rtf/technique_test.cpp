@@ -76,7 +76,7 @@ TEST(RtfComponent, ParsesWithDefaults) {
   EXPECT_EQ(level.entities[0].rtf, (scene::Rtf{12, 3, 6, 4, 16, 6, 5, 0, 0.25f, 6.0f, 4, 0.02f}));
   EXPECT_EQ(level.entities[1].rtf, scene::Rtf{});
   EXPECT_EQ(level.entities[1].rtf->sh, 9);
-  EXPECT_EQ(level.entities[1].rtf->tail, 0.0f);  // no tail: the one-spacing fade
+  EXPECT_EQ(level.entities[1].rtf->tail, 0.0f);  // no tail: the field ends at r_N + Δr
   const FieldSettings s = settingsFrom(*level.entities[0].rtf);
   EXPECT_EQ(s.proxies, 12);
   EXPECT_EQ(s.spheres, 6);
