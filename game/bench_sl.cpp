@@ -8,6 +8,7 @@
 #include "engine/core/error.hpp"
 #include "engine/core/paths.hpp"
 #include "engine/core/progress.hpp"
+#include "engine/gi/sl/resolution.hpp"
 #include "engine/gi/sl/sphere_set.hpp"
 #include "engine/gi/sl/technique.hpp"
 #include "engine/gpu/presenter_offscreen.hpp"
@@ -62,10 +63,11 @@ int runBenchSl(const cli::Args& args) {
 
   std::vector<int> steps;  // pass 2's G-buffer pixels per sample per axis (engine/gi/sl/resolution.hpp)
   for (const std::string& r : args.list("--sl-resolution").value_or(std::vector<std::string>{"full"})) {
-    if (r != "full" && r != "half" && r != "quarter")
+    const std::optional<std::uint32_t> step = gi::sl::parseResolution(r);
+    if (!step)
       throwInputError("bounce bench", "--sl-resolution", "'" + r + "' is not a resolution",
                       "full, half, quarter or a list: full,half,quarter");
-    steps.push_back(r == "quarter" ? 4 : r == "half" ? 2 : 1);
+    steps.push_back(int(*step));
   }
 
   gpu::Context ctx({args.str("--device")});
@@ -111,7 +113,7 @@ int runBenchSl(const cli::Args& args) {
         if (e.sl) f = e.sl->influence;
       std::printf("spheres=%d blocking=%s %dx%d sl_ms=%.3f sl_update_ms=%.3f frames=%zu influence=%g resolution=%s\n", n,
                   perObject ? "per-object" : "per-sphere", res.first, res.second, slMs, updateMs, timed, double(f),
-                  step == 4 ? "quarter" : step == 2 ? "half" : "full");
+                  gi::sl::resolutionName(std::uint32_t(step)));
       std::fflush(stdout);
     }
   return 0;

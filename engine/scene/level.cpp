@@ -7,6 +7,7 @@
 #include <unordered_map>
 
 #include "engine/core/error.hpp"
+#include "engine/gi/sl/resolution.hpp"  // header only: the "sl" "resolution" names, one table
 #include "engine/scene/json_reader.hpp"
 #include "engine/scene/motion.hpp"
 #include "engine/scene/systems.hpp"
@@ -212,9 +213,9 @@ void parseSl(const json::Node& node, EntityDesc& d, const ParseContext&) {
   }
   if (auto v = o.optional("resolution")) {
     const std::string m = v->string();
-    if (m != "full" && m != "half" && m != "quarter")
-      v->fail("unknown resolution " + json::inQuotes(m), "full, half or quarter");
-    c.step = m == "quarter" ? 4 : m == "half" ? 2 : 1;
+    const std::optional<std::uint32_t> step = gi::sl::parseResolution(m);
+    if (!step) v->fail("unknown resolution " + json::inQuotes(m), gi::sl::kResolutionNames);
+    c.step = int(*step);
   }
   if (auto v = o.optional("local_lights")) c.localLights = v->boolean();
   if (auto v = o.optional("hierarchy")) c.hierarchy = v->boolean();

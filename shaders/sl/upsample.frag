@@ -13,7 +13,7 @@ layout(set = 0, binding = 0) uniform FrameUbo { Camera camera; };
 layout(set = 1, binding = 0) uniform sampler2D gAlbedo;
 layout(set = 1, binding = 1) uniform sampler2D gNormal;
 layout(set = 1, binding = 2) uniform sampler2D gDepth;
-layout(set = 1, binding = 7) uniform sampler2D slHalf;  // "sl.half" or "sl.quarter"
+layout(set = 1, binding = 7) uniform sampler2D slReduced;  // "sl.half" or "sl.quarter"
 
 layout(location = 0) out vec4 outRadiance;
 
@@ -31,7 +31,7 @@ void main() {
   float eye = max(length(p - camera.position.xyz), 1e-6);
   ivec2 j[4], q[4];
   vec2 f;
-  slUpsampleTaps(pixel, int(kStep), textureSize(slHalf, 0), ivec2(camera.resolution.xy), j, q, f);
+  slUpsampleTaps(pixel, int(kStep), textureSize(slReduced, 0), ivec2(camera.resolution.xy), j, q, f);
   vec3 pq[4], nq[4], e[4];
   bool valid[4];
   for (int k = 0; k < 4; ++k) {
@@ -39,7 +39,7 @@ void main() {
     nq[k] = texelFetch(gNormal, q[k], 0).xyz;
     pq[k] = worldFromDepth(camera.invViewProj, (vec2(q[k]) + 0.5) * camera.resolution.zw, dq);
     valid[k] = dq < 1.0;
-    e[k] = texelFetch(slHalf, j[k], 0).rgb;
+    e[k] = texelFetch(slReduced, j[k], 0).rgb;
   }
   outRadiance = vec4(texelFetch(gAlbedo, pixel, 0).rgb * kInvPi * slUpsampleBlend(p, n, eye, f, pq, nq, valid, e), 0.0);
 }

@@ -19,6 +19,8 @@ const float kSlUpMinWeight = 1e-4;   // below: the best-matching sample alone
 // pixel / step (integer), clamped to the reduced size; the G-buffer pixel q = min(step·j, full − 1)
 // each holds; f = (pixel − step·j0) / step, the bilinear fractions — exact: step is a power of two
 // and the division an ldexp (a float division may round on llvmpipe, which multiplies by a reciprocal).
+// Only right for powers of two: the C++ side admits steps 1, 2 and 4 alone (sl::checkedStep,
+// engine/gi/sl/resolution.hpp, where every step enters: the level, `bounce bench`, the passes).
 void slUpsampleTaps(ivec2 pixel, int step, ivec2 reducedSize, ivec2 full, out ivec2 j[4], out ivec2 q[4], out vec2 f) {
   ivec2 j0 = pixel / step;
   f = ldexp(vec2(pixel - step * j0), ivec2(-findLSB(step)));

@@ -17,7 +17,7 @@ constexpr VkDescriptorType kSampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
 constexpr VkFormat kHdrFormat = VK_FORMAT_R16G16B16A16_SFLOAT;  // "lighting.hdr" (renderer.cpp)
 constexpr std::uint32_t kFirstShadeBinding = 3;                // sl.frag: SL_BINDING
 constexpr std::uint32_t kTilesBinding = 6;                     // tiles.vert: SlTiles
-constexpr std::uint32_t kHalfBinding = 7;                      // upsample.frag: slHalf
+constexpr std::uint32_t kReducedBinding = 7;                   // upsample.frag: slReduced
 constexpr std::uint32_t kRatiosBinding = 8;                    // hierarchy_tiles.vert: SlRatios
 
 std::vector<gpu::Binding> inputBindings(bool hierarchy) {
@@ -48,7 +48,8 @@ constexpr VkDeviceSize kRatioBytesPerTile = 4 * sizeof(glm::vec4);  // sl/hierar
 // upsample.frag's set 1 (every binding written: lavapipe reads a bound set's unwritten image
 // descriptors and crashes).
 std::vector<gpu::Binding> upsampleBindings() {
-  return {{0, kSampled}, {1, kSampled}, {2, kSampled}, {kTilesBinding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}, {kHalfBinding, kSampled}};
+  return {{0, kSampled}, {1, kSampled}, {2, kSampled}, {kTilesBinding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+          {kReducedBinding, kSampled}};
 }
 }  // namespace
 
@@ -161,9 +162,9 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::s
   // resolution the reduced target's tiles for pass 2, then the full-size ones for the upsample.
   const glm::uvec2 resolution(std::uint32_t(pc->world->camera.resolution.x), std::uint32_t(pc->world->camera.resolution.y));
   const std::uint32_t step = resolutionStep(resolution_);
-  const bool half = step > 1u;  // reduced: half or quarter
-  const glm::uvec2 halfSize = reducedSize(resolution, step);
-  std::vector<ShadeTile> tiles = binTiles(pc->world->camera.viewProj, halfSize, binned, influence_);
+  const bool reduced = step > 1u;  // half or quarter
+  const glm::uvec2 reducedExtent = reducedSize(resolution, step);
+  std::vector<ShadeTile> tiles = binTiles(pc->world->camera.viewProj, reducedExtent, binned, influence_);
   const std::uint32_t shadeTiles = std::uint32_t(tiles.size());
   // Per-object blocking: the tiles whose SLs all belong to one object first (singleObject_).
   std::uint32_t singleTiles = 0;
@@ -179,7 +180,7 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::s
     };
     singleTiles = std::uint32_t(std::stable_partition(tiles.begin(), tiles.end(), oneObject) - tiles.begin());
   }
-  if (half) {
+  if (reduced) {
     const std::vector<ShadeTile> full = binTiles(pc->world->camera.viewProj, resolution, binned, influence_);
     tiles.insert(tiles.end(), full.begin(), full.end());
   }
@@ -263,8 +264,8 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::s
   // README "SL: one walk for sl and sl.shadow"): pass "sl" then holds both.
   if (shadow_ && shadow_->fusesThisFrame(pc)) {
     const rg::Handle<rg::Texture> both = shadow_->addFused(graph, pc, *slot.shade, slot.intensity->intensity(),
-                                                           {&slot.tiles, 0, tileCount}, singleTiles, halfSize);
-    if (!half) {
+                                                           {&slot.tiles, 0, tileCount}, singleTiles, reducedExtent);
+    if (!reduced) {
       if (local_) local_->addTo(graph, pc, *slot.shade, slot.intensity->intensity(), {&slot.tiles, 0, tileCount});
       return;
     }
@@ -279,10 +280,11 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::s
       "sl",
       [&](rg::Builder& b, Data& d) {
         d.g = render::readDeferredInputs(b, bb);
-        d.hdr = half ? b.write(b.create<rg::Texture>(reducedTargetName(step), rg::TextureDesc{halfSize.x, halfSize.y, 1, 1, 1,
-                                                                                 rg::Format::RGBA16F, false}),
-                               rg::Usage::ColorAttachment)
-                     : b.write(bb.get<rg::Texture>("lighting.hdr"), rg::Usage::ColorAttachment);
+        d.hdr = reduced ? b.write(b.create<rg::Texture>(reducedTargetName(step),
+                                                        rg::TextureDesc{reducedExtent.x, reducedExtent.y, 1, 1, 1,
+                                                                        rg::Format::RGBA16F, false}),
+                                  rg::Usage::ColorAttachment)
+                        : b.write(bb.get<rg::Texture>("lighting.hdr"), rg::Usage::ColorAttachment);
       },
       [this, pc, &slot, tileCount, singleTiles](const Data& d, const rg::PassResources& res, rg::CommandContext& c) {
         VkCommandBuffer cmd = pc->cmd(c);
@@ -315,7 +317,7 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::s
         }
         ctx_.cmdEndRendering(cmd);
       });
-  if (!half) {
+  if (!reduced) {
     bb.put("lighting.hdr", data.hdr);
     if (shadow_) shadow_->addTo(graph, pc, *slot.shade, slot.intensity->intensity(), {&slot.tiles, 0, tileCount}, {}, shadowRatios);
     if (local_) local_->addTo(graph, pc, *slot.shade, slot.intensity->intensity(), {&slot.tiles, 0, tileCount});
@@ -323,25 +325,25 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::s
   }
   // The shadow on the probes' light joins E in "sl.half" / "sl.quarter" (ao · ΔE, same tiles), so one upsample
   // spreads both.
-  const rg::Handle<rg::Texture> halfE =
+  const rg::Handle<rg::Texture> reducedE =
       shadow_ ? shadow_->addTo(graph, pc, *slot.shade, slot.intensity->intensity(), {&slot.tiles, 0, tileCount}, data.hdr,
                                shadowRatios)
               : data.hdr;
-  addUpsample(graph, pc, slot, halfE, shadeTiles, upsampleTiles);
+  addUpsample(graph, pc, slot, reducedE, shadeTiles, upsampleTiles);
 }
 
-void Node::addUpsample(rg::RenderGraph& graph, const render::PassContext* pc, Slot& slot, rg::Handle<rg::Texture> halfE,
-                       std::uint32_t shadeTiles, std::uint32_t upsampleTiles) {
+void Node::addUpsample(rg::RenderGraph& graph, const render::PassContext* pc, Slot& slot,
+                       rg::Handle<rg::Texture> reducedE, std::uint32_t shadeTiles, std::uint32_t upsampleTiles) {
   auto& bb = graph.blackboard();
   struct UpData {
     render::DeferredInputs g;
-    rg::Handle<rg::Texture> half, hdr;
+    rg::Handle<rg::Texture> reduced, hdr;
   };
   const auto& up = graph.addPass<UpData>(
       "sl.upsample",
       [&](rg::Builder& b, UpData& d) {
         d.g = render::readDeferredInputs(b, bb);
-        d.half = b.read(halfE, rg::Usage::SampledFragment);
+        d.reduced = b.read(reducedE, rg::Usage::SampledFragment);
         d.hdr = b.write(bb.get<rg::Texture>("lighting.hdr"), rg::Usage::ColorAttachment);
       },
       [this, pc, &slot, shadeTiles, upsampleTiles](const UpData& d, const rg::PassResources& res, rg::CommandContext& c) {
@@ -352,7 +354,7 @@ void Node::addUpsample(rg::RenderGraph& graph, const render::PassContext* pc, Sl
         gpu::DescriptorWriter w;
         render::writeDeferredInputs(w, d.g, *pc, res, point);
         w.buffer(kTilesBinding, slot.tiles);
-        w.sampledImage(kHalfBinding, view(d.half), point);
+        w.sampledImage(kReducedBinding, view(d.reduced), point);
         w.update(ctx_, inputs);
         gpu::Image& target = pc->backend->image(res.texture(d.hdr));
         render::Attachment color{target.view(), res.keepsContents(d.hdr)};

@@ -60,9 +60,9 @@ class Node {
 
  private:
   struct Slot;
-  // "sl.upsample" (half or quarter resolution): spreads `halfE` ("sl.half" / "sl.quarter") over
+  // "sl.upsample" (half or quarter resolution): spreads `reducedE` ("sl.half" / "sl.quarter") over
   // "lighting.hdr", then "sl.local".
-  void addUpsample(rg::RenderGraph& graph, const render::PassContext* pc, Slot& slot, rg::Handle<rg::Texture> halfE,
+  void addUpsample(rg::RenderGraph& graph, const render::PassContext* pc, Slot& slot, rg::Handle<rg::Texture> reducedE,
                    std::uint32_t shadeTiles, std::uint32_t upsampleTiles);
   struct Slot {
     std::unique_ptr<IntensityPass> intensity;

@@ -12,7 +12,8 @@ namespace bounce::gi::sl {
 
 namespace {
 constexpr VkDescriptorType kSampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-constexpr VkFormat kHdrFormat = VK_FORMAT_R16G16B16A16_SFLOAT;  // "lighting.hdr" (renderer.cpp), "sl.half"
+// "lighting.hdr" (renderer.cpp), "sl.half" / "sl.quarter".
+constexpr VkFormat kHdrFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 constexpr std::uint32_t kTilesBinding = 6;                     // tiles.vert: SlTiles
 constexpr std::uint32_t kFirstShadeBinding = 7;                // probe_shadow.frag: SL_BINDING
 constexpr std::uint32_t kRatiosBinding = 10;                   // shadow_hierarchy_tiles.vert: SlRatios
@@ -44,7 +45,7 @@ ProbeShadowPass::ProbeShadowPass(gpu::Context& ctx, const render::Pipelines& sha
                                  bool hierarchy, bool fuse)
     : ctx_(ctx),
       probes_(probes),
-      half_(step > 1u),
+      reduced_(checkedStep(step) > 1u),  // 1, 2 or 4 only (resolution.hpp)
       step_(step),
       inputLayout_(ctx, inputBindings(hierarchy), "sl.shadow.inputs"),
       layout_(ctx, {shared.frameLayout.handle(), inputLayout_.handle()},
@@ -60,17 +61,17 @@ ProbeShadowPass::ProbeShadowPass(gpu::Context& ctx, const render::Pipelines& sha
   d.specialization = ShadeData::specialization(order, blocking, spheres, influence);
   d.specialization.push_back(std::uint32_t(probes.volume->coeffs()));  // probe_shadow.frag kCoeffs
   d.specialization.push_back(step);                                     // probe_shadow.frag kStep
-  const bool half = half_;
-  d.name = std::string("sl.shadow") + (half ? ".step" + std::to_string(step) : "") + (hierarchy ? ".hierarchy" : "");
+  const bool reduced = reduced_;
+  d.name = std::string("sl.shadow") + (reduced ? ".step" + std::to_string(step) : "") + (hierarchy ? ".hierarchy" : "");
   pipeline_ = gpu::createGraphicsPipeline(ctx, layout_, d);
   if (fuse && !hierarchy) {
     // One walk for both terms (sl_shadow.frag): the same vertex shader, set and push block; "sl"'s
-    // blend (half: written into the cleared "sl.half", which it creates).
+    // blend (half / quarter: written into the cleared "sl.half" / "sl.quarter", which it creates).
     gpu::ShaderModule fusedFrag(ctx, "sl/sl_shadow.frag.spv");
     d.fragment = &fusedFrag;
-    d.blend = half ? gpu::Blend::None : gpu::Blend::Additive;
+    d.blend = reduced ? gpu::Blend::None : gpu::Blend::Additive;
     d.specialization.push_back(0u);  // sl_shadow.frag kSingleObject (constant_id 6)
-    d.name = std::string("sl+shadow") + (half ? ".step" + std::to_string(step) : "");
+    d.name = std::string("sl+shadow") + (reduced ? ".step" + std::to_string(step) : "");
     fused_ = gpu::createGraphicsPipeline(ctx, layout_, d);
     if (blocking == Blocking::PerObject) {
       d.specialization.back() = 1u;
@@ -92,8 +93,8 @@ ProbeShadowPass::ProbeShadowPass(gpu::Context& ctx, const render::Pipelines& sha
 
 rg::Handle<rg::Texture> ProbeShadowPass::addTo(rg::RenderGraph& graph, const render::PassContext* pc,
                                                const ShadeData& shade, const gpu::Buffer& intensity, TileRange tiles,
-                                               rg::Handle<rg::Texture> halfTarget, const gpu::Buffer* ratios) {
-  if (!pc->world->has("probes")) return halfTarget;  // no probe light this frame: nothing to shadow
+                                               rg::Handle<rg::Texture> reducedTarget, const gpu::Buffer* ratios) {
+  if (!pc->world->has("probes")) return reducedTarget;  // no probe light this frame: nothing to shadow
   auto& bb = graph.blackboard();
   const bool withAo = bb.contains("ao.term");  // as the probes pass: its light was multiplied by it
   // The tile pass writes tile t's τ at 4t; the vertex shader reads them at gl_InstanceIndex: both
@@ -144,7 +145,7 @@ rg::Handle<rg::Texture> ProbeShadowPass::addTo(rg::RenderGraph& graph, const ren
       "sl.shadow",
       [&](rg::Builder& b, Data& d) {
         d.g = render::readDeferredInputs(b, bb);
-        d.target = b.write(half_ ? halfTarget : bb.get<rg::Texture>("lighting.hdr"), rg::Usage::ColorAttachment);
+        d.target = b.write(reduced_ ? reducedTarget : bb.get<rg::Texture>("lighting.hdr"), rg::Usage::ColorAttachment);
         if (withAo) d.ao = b.read(bb.get<rg::Texture>("ao.term"), rg::Usage::SampledFragment);
       },
       [this, pc, withAo, &shade, &intensity, tiles, ratios](const Data& d, const rg::PassResources& res, rg::CommandContext& c) {
@@ -161,7 +162,7 @@ rg::Handle<rg::Texture> ProbeShadowPass::addTo(rg::RenderGraph& graph, const ren
         if (tiles.count > 0) vkCmdDraw(cmd, 6, tiles.count, 0, tiles.first);
         ctx_.cmdEndRendering(cmd);
       });
-  if (!half_) bb.put("lighting.hdr", data.target);
+  if (!reduced_) bb.put("lighting.hdr", data.target);
   return data.target;
 }
 
@@ -201,7 +202,7 @@ bool ProbeShadowPass::fusesThisFrame(const render::PassContext* pc) const {
 
 rg::Handle<rg::Texture> ProbeShadowPass::addFused(rg::RenderGraph& graph, const render::PassContext* pc,
                                                   const ShadeData& shade, const gpu::Buffer& intensity, TileRange tiles,
-                                                  std::uint32_t singleTiles, glm::uvec2 halfSize) {
+                                                  std::uint32_t singleTiles, glm::uvec2 reducedExtent) {
   auto& bb = graph.blackboard();
   const bool withAo = bb.contains("ao.term");
   struct Data {
@@ -213,10 +214,11 @@ rg::Handle<rg::Texture> ProbeShadowPass::addFused(rg::RenderGraph& graph, const 
       "sl",
       [&](rg::Builder& b, Data& d) {
         d.g = render::readDeferredInputs(b, bb);
-        d.target = half_ ? b.write(b.create<rg::Texture>(reducedTargetName(step_), rg::TextureDesc{halfSize.x, halfSize.y, 1, 1, 1,
-                                                                                   rg::Format::RGBA16F, false}),
-                                   rg::Usage::ColorAttachment)
-                         : b.write(bb.get<rg::Texture>("lighting.hdr"), rg::Usage::ColorAttachment);
+        d.target = reduced_ ? b.write(b.create<rg::Texture>(reducedTargetName(step_),
+                                                            rg::TextureDesc{reducedExtent.x, reducedExtent.y, 1, 1, 1,
+                                                                            rg::Format::RGBA16F, false}),
+                                      rg::Usage::ColorAttachment)
+                            : b.write(bb.get<rg::Texture>("lighting.hdr"), rg::Usage::ColorAttachment);
         if (withAo) d.ao = b.read(bb.get<rg::Texture>("ao.term"), rg::Usage::SampledFragment);
       },
       [this, pc, withAo, &shade, &intensity, tiles, singleTiles](const Data& d, const rg::PassResources& res,
@@ -225,8 +227,9 @@ rg::Handle<rg::Texture> ProbeShadowPass::addFused(rg::RenderGraph& graph, const 
         VkDescriptorSet inputs =
             writeInputs(pc, res, d.g, withAo ? d.ao : d.g.albedo, shade, intensity, *tiles.buffer, nullptr);
         gpu::Image& target = pc->backend->image(res.texture(d.target));
-        // "sl.half" starts at zero (tiles no SL reaches are not drawn); "lighting.hdr" keeps its light.
-        render::Attachment color{target.view(), !half_ && res.keepsContents(d.target)};
+        // "sl.half" / "sl.quarter" starts at zero (tiles no SL reaches are not drawn); "lighting.hdr"
+        // keeps its light.
+        render::Attachment color{target.view(), !reduced_ && res.keepsContents(d.target)};
         const VkExtent2D extent{target.desc().width, target.desc().height};
         render::beginRendering(ctx_, cmd, extent, {&color, 1}, nullptr);
         // As "sl": per-object, the tiles of one object first, without the closer objects' exp.
@@ -242,7 +245,7 @@ rg::Handle<rg::Texture> ProbeShadowPass::addFused(rg::RenderGraph& graph, const 
         }
         ctx_.cmdEndRendering(cmd);
       });
-  if (!half_) bb.put("lighting.hdr", data.target);
+  if (!reduced_) bb.put("lighting.hdr", data.target);
   return data.target;
 }
 

@@ -6,8 +6,8 @@
 // ShadeData, so the blockers are the same spheres, receiver rules and influence as the SLs' own light.
 // Drawn as the SL pass's tiles (tiles.hpp, shaders/sl/tiles.vert): a tile no SL's influence bound
 // reaches gets no shadow (every SL is culled there, so ΔE = 0), and each pixel visits only its
-// tile's SLs. At half resolution it follows pass 2: ao · ΔE at G-buffer pixel 2j is added into
-// "sl.half" before "sl.upsample", which applies each full pixel's ρ/π.
+// tile's SLs. At half or quarter resolution it follows pass 2: ao · ΔE at G-buffer pixel step·j is
+// added into "sl.half" / "sl.quarter" before "sl.upsample", which applies each full pixel's ρ/π.
 // It binds the probes node's device images of the volume (gi::Services::probeSh / probeMoments:
 // the layout probes/probe_sh.glsl reads); before, it uploaded a copy of its own.
 #include "engine/gi/probes/probe_volume.hpp"
@@ -44,24 +44,24 @@ class ProbeShadowPass {
   ProbeShadowPass(gpu::Context& ctx, const render::Pipelines& shared, ProbeLight probes, int order, Blocking blocking,
                   std::uint32_t spheres, float influence, std::uint32_t step, bool hierarchy = false, bool fuse = false);
   // Adds the pass when "probes" runs this frame; `shade` and `intensity` as the SL pass binds them.
-  // Full resolution: blends into "lighting.hdr" and publishes it; half: into `halfTarget` ("sl.half",
-  // which the SL pass cleared) and returns its new version. Returns `halfTarget` unchanged when it
-  // does not run.
+  // Full resolution: blends into "lighting.hdr" and publishes it; half / quarter: into `reducedTarget`
+  // ("sl.half" / "sl.quarter", which the SL pass cleared) and returns its new version. Returns
+  // `reducedTarget` unchanged when it does not run.
   // With `hierarchy` (§7.3, sl/hierarchy_shadow.glsl): "sl.shadow.hierarchy" first writes each drawn
   // tile's τ into `ratios` (4 vec4 per tile, the frame slot's), which "sl.shadow" reads.
   rg::Handle<rg::Texture> addTo(rg::RenderGraph& graph, const render::PassContext* pc, const ShadeData& shade,
-                                const gpu::Buffer& intensity, TileRange tiles, rg::Handle<rg::Texture> halfTarget = {},
-                                const gpu::Buffer* ratios = nullptr);
+                                const gpu::Buffer& intensity, TileRange tiles,
+                                rg::Handle<rg::Texture> reducedTarget = {}, const gpu::Buffer* ratios = nullptr);
   // One walk for "sl" and "sl.shadow" (shaders/sl/sl_shadow.frag; built with `fuse`, never with the
   // hierarchy): whether this frame draws the fused pass instead of the two (the probes run).
   bool fusesThisFrame(const render::PassContext* pc) const;
   // Adds pass "sl" with both terms: full resolution blends ρ/π (E + ao ΔE) into "lighting.hdr" and
-  // publishes it; half / quarter creates "sl.half" / "sl.quarter" (cleared, `halfSize`) with E + ao ΔE
-  // and returns it. `singleTiles`: the
-  // first tiles of `tiles` whose SLs are one object's (per-object blocking, sl.frag kSingleObject).
+  // publishes it; half / quarter creates "sl.half" / "sl.quarter" (cleared, `reducedExtent` texels)
+  // with E + ao ΔE and returns it. `singleTiles`: the first tiles of `tiles` whose SLs are one
+  // object's (per-object blocking, sl.frag kSingleObject).
   rg::Handle<rg::Texture> addFused(rg::RenderGraph& graph, const render::PassContext* pc, const ShadeData& shade,
                                    const gpu::Buffer& intensity, TileRange tiles, std::uint32_t singleTiles,
-                                   glm::uvec2 halfSize);
+                                   glm::uvec2 reducedExtent);
 
  private:
   // Set 1 of sl.shadow and the fused pass (probe_shadow_frag.glsl's bindings), and their push block.
@@ -72,7 +72,7 @@ class ProbeShadowPass {
 
   gpu::Context& ctx_;
   ProbeLight probes_;
-  bool half_ = false;  // reduced resolution: half or quarter (step_ > 1)
+  bool reduced_ = false;  // reduced resolution: half or quarter (step_ > 1)
   std::uint32_t step_ = 1;
   gpu::DescriptorSetLayout inputLayout_;
   gpu::PipelineLayout layout_;

@@ -13,6 +13,7 @@
 #include "engine/gi/participants.hpp"
 #include "engine/gi/dnrt/object_scene.hpp"
 #include "engine/gi/incident/session_light.hpp"
+#include "engine/gi/sl/resolution.hpp"
 #include "engine/scene/components.hpp"
 
 namespace bounce::gi::sl {
@@ -145,12 +146,10 @@ class SlTechnique final : public Technique {
         throw InputError(sc.level.source.string() + ": " + e.pointer + "/sl/influence: " + num(e.sl->influence) +
                          " differs from entity \"" + first->id + "\"'s " + num(first->sl->influence) +
                          " (expected one influence for every sl entity of a level: pass 2 shades them in one draw)");
-      const auto resolutionName = [](const scene::Sl& c) {
-        return c.step == 4 ? "quarter" : c.step == 2 ? "half" : "full";
-      };
       if (e.sl->step != first->sl->step)
-        throw InputError(sc.level.source.string() + ": " + e.pointer + "/sl/resolution: \"" + resolutionName(*e.sl) +
-                         "\" differs from entity \"" + first->id + "\"'s \"" + resolutionName(*first->sl) +
+        throw InputError(sc.level.source.string() + ": " + e.pointer + "/sl/resolution: \"" +
+                         resolutionName(std::uint32_t(e.sl->step)) + "\" differs from entity \"" + first->id +
+                         "\"'s \"" + resolutionName(std::uint32_t(first->sl->step)) +
                          "\" (expected one resolution for every sl entity of a level: pass 2 shades them in one draw)");
       if (e.sl->localLights != first->sl->localLights)
         throw InputError(sc.level.source.string() + ": " + e.pointer + "/sl/local_lights: " +
@@ -256,7 +255,7 @@ class SlTechnique final : public Technique {
     for (const int step : {1, 2, 4}) {
       AccuracyRow r;
       r.technique = "sl";
-      r.setting = std::string("spheres=level;order=4;resolution=") + (step == 4 ? "quarter" : step == 2 ? "half" : "full") +
+      r.setting = std::string("spheres=level;order=4;resolution=") + resolutionName(std::uint32_t(step)) +
                   ";ref=all";
       r.effects = {"direct", "shadows", "probes", "sl"};
       r.passes = {"shadow", "lighting", "probes", "sl.intensity", "sl"};
@@ -406,7 +405,7 @@ void SessionRuntime::enableGpu(SessionContext& sc) {
   indirect_ = &incident::sessionLight(sc).indirect();
   node_ = std::make_unique<Node>(sc.ctx, sc.renderer.pipelines(), sc.renderer.frames().framesInFlight(), sets, order,
                                  blocking, participants_.front().component.influence,
-                                 resolutionFromStep(participants_.front().component.step),
+                                 resolutionFromStep(std::uint32_t(participants_.front().component.step)),
                                  ProbeLight{sc.services.probeVolume, sc.services.probeSh, sc.services.probeMoments},
                                  participants_.front().component.localLights,
                                  participants_.front().component.hierarchy, participants_.front().component.fused);

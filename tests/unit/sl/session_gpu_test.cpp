@@ -291,13 +291,14 @@ TEST(SlSession, WithProbesItShadowsTheirLightButNeverBelowTheFrameWithoutThem) {
 }
 
 // At "resolution": "half" the shadow on the probes' light follows pass 2: "sl.shadow" adds ao · ΔE at
-// the half-size receivers into "sl.half" after "sl" and before "sl.upsample", which spreads E + ΔE
+// the reduced target's receivers (G-buffer pixel step·j) into "sl.half" after "sl" and before
+// "sl.upsample", which spreads E + ΔE
 // with each full pixel's ρ/π. The shadow still exists (values darker than probes alone), never
 // below the frame without probes, and the SL term (shadow and bounce together, the frame minus
 // probes alone) stays close to the full-resolution one (differences printed).
 // ("fused": false: the two passes, as above.)
 // At "quarter" the same passes in the same order (the loop's second round; "sl.quarter").
-TEST(SlSession, ShadowOnTheProbesFollowsHalfResolutionIntoTheUpsample) {
+TEST(SlSession, ShadowOnTheProbesFollowsReducedResolutionIntoTheUpsample) {
  for (const int step : {2, 4}) {
   const auto frame = [](std::vector<std::string> effects, int levelStep) {
     scene::Level level = game::loadLevelWithEffects(kCharacters, effects);
@@ -473,7 +474,7 @@ TEST(SlSession, HierarchyShadowRunsBeforeSlShadowAndKeepsItsClamp) {
 // The hierarchy at half and quarter resolution: both tile passes run on the reduced tiles (G-buffer
 // pixel step·j), "sl.upsample" after them; the frame is finite and differs from the same frame without
 // the hierarchy.
-TEST(SlSession, HierarchyRunsAtHalfResolution) {
+TEST(SlSession, HierarchyRunsAtReducedResolution) {
  for (const int step : {2, 4}) {
   const auto frame = [step](bool hierarchy) {
     scene::Level l = game::loadLevelWithEffects(kCharacters, std::vector<std::string>{"direct", "shadows", "probes", "sl"});

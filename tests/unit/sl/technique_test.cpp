@@ -69,10 +69,33 @@ TEST(SlComponent, ParsesWithDefaults) {
   const scene::Level quarter = scene::loadLevel(
       writeLevel("sl-quarter", R"({"id": "a", "dynamic": true, )" + mesh() + R"(, "sl": {"resolution": "quarter"}})"));
   EXPECT_EQ(quarter.entities[0].sl->step, 4);
-  EXPECT_EQ(gi::sl::resolutionStep(gi::sl::resolutionFromStep(quarter.entities[0].sl->step)), 4u);
+  EXPECT_EQ(gi::sl::resolutionStep(gi::sl::resolutionFromStep(std::uint32_t(quarter.entities[0].sl->step))), 4u);
   EXPECT_FALSE(level.entities[0].sl->localLights);
   EXPECT_EQ(settingsFrom(*level.entities[0].sl).spheres, 32);
   EXPECT_EQ(settingsFrom(*level.entities[0].sl).order, 3);
+}
+
+// One table of pass 2's steps (engine/gi/sl/resolution.hpp): names and steps round-trip, every other
+// step is refused (the upsample's ldexp fraction is exact only for powers of two, and 3 must not
+// silently become full resolution), and the level, `bounce bench` and the accuracy rows read it.
+TEST(SlResolution, OneNameForEachOfTheStepsOneTwoFour) {
+  using namespace gi::sl;
+  const std::pair<const char*, std::uint32_t> table[] = {{"full", 1u}, {"half", 2u}, {"quarter", 4u}};
+  for (const auto& [name, step] : table) {
+    EXPECT_EQ(parseResolution(name), step) << name;
+    EXPECT_STREQ(resolutionName(step), name);
+    EXPECT_EQ(resolutionStep(resolutionFromStep(step)), step);
+  }
+  EXPECT_STREQ(reducedTargetName(2u), "sl.half");
+  EXPECT_STREQ(reducedTargetName(4u), "sl.quarter");
+  EXPECT_THROW(reducedTargetName(1u), InternalError);  // full resolution has no reduced target
+  for (const char* bad : {"", "Full", "eighth", "third", "2"}) EXPECT_EQ(parseResolution(bad), std::nullopt) << bad;
+  for (const std::uint32_t bad : {0u, 3u, 5u, 8u, 0xffffffffu}) {
+    EXPECT_FALSE(isResolutionStep(bad)) << bad;
+    EXPECT_THROW(resolutionFromStep(bad), InternalError) << bad;
+    EXPECT_THROW(resolutionName(bad), InternalError) << bad;
+    EXPECT_THROW(reducedTargetName(bad), InternalError) << bad;
+  }
 }
 
 TEST(SlComponent, BadInputIsOneLine) {
