@@ -128,8 +128,7 @@ ProbeVolume bakeProbes(const ref::SceneBvh& bvh, const ProbeGrid& grid, const Pr
       if (!std::isfinite(l.x) || !std::isfinite(l.y) || !std::isfinite(l.z)) ++bad, l = glm::dvec3(0.0);
       return l;
     };
-    // Seed of the strata: distinct from the path generator's (fromIndex) by construction.
-    std::vector<glm::dvec3> l = sh::projectMonteCarlo(radiance, settings.order, perAxis, 0x9e3779b97f4a7c15ull ^ i);
+    std::vector<glm::dvec3> l = sh::projectMonteCarlo(radiance, settings.order, perAxis, probeRaySeed(i));
     rays += probeRays;
     nonFinite += bad;
     if (progress) progress->advance();

@@ -17,6 +17,7 @@
 //
 // Deterministic (seeds from probe indices, each probe summed in sample order), TBB-parallel, with
 // a progress bar; cached as <cache>/<key>.bin keyed by every input (loadOrBake).
+#include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <optional>
@@ -58,6 +59,13 @@ inline constexpr float kMinSurfaceDistance = 0.25f;  // × spacing
 inline constexpr float kMaxOffset = 0.45f;           // × spacing (stays nearer its grid point than any other's)
 inline constexpr int kOffsetDirections = 128;
 inline constexpr int kOffsetIterations = 3;
+
+// Seed of probe i's ray strata (sh::projectMonteCarlo in bakeProbes). The relight bake regenerates
+// the same directions from it (relight.cpp probeRayDirections), so ray k of both bakes is one ray:
+// one definition, or the relight cache's hit surfels stop matching the probe bake's directions.
+// Distinct from the path generator's (math::Pcg32::fromIndex: a splitmix64 of the index, its own
+// stream), so the strata and the paths are not one random sequence.
+constexpr std::uint64_t probeRaySeed(std::size_t i) { return 0x9e3779b97f4a7c15ull ^ std::uint64_t(i); }
 
 // The point a probe at `p` is baked from (virtual offset above); `p` itself when nothing is near.
 glm::vec3 virtualOffset(const ref::SceneBvh& bvh, const glm::vec3& p, float spacing);

@@ -240,8 +240,8 @@ ProbeNode::ProbeNode(gpu::Context& ctx, const render::Pipelines& pipelines, Prob
 }
 
 void ProbeNode::enableRelight(gpu::Context& ctx, RelightData data, const ref::SceneBvh& staticScene) {
-  // The block when the pass reads it, and always the image (the pass's source past 2016 probes, and
-  // the SL shadow's on the probes' light).
+  // The block when the pass reads it, and the image on the frames it is read (the pass's source past
+  // 2016 probes, and the SL shadow's on the probes' light: addRelightPass).
   relight_ = std::make_unique<RelightPass>(ctx, volume_, std::move(data), shUbo_, sh_.get(), shInUbo_);
   relightScene_ = &staticScene;
   relightBaked_ = volume_.sh;

@@ -54,7 +54,7 @@ class ProbeNode final : public TechniqueRuntime {
   }
   const ProbeVolume& volume() const { return volume_; }
   // Level `"probes": {"relight": true}`: pass `probes.relight` (relight_pass.hpp) rewrites the
-  // uniform block (when the volume fits it) and the SH image (always: probes.frag's source past the
+  // uniform block (when the volume fits it) and the SH image (when read: probes.frag's source past the
   // block, and the SL shadow's) each frame before this pass reads them; any volume size (session 10:
   // before, a volume past 2016 probes kept the baked light). `staticScene` (not owned) must outlive
   // the node: the static geometry V_static is traced against.

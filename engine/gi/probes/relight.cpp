@@ -201,11 +201,11 @@ std::vector<std::uint32_t> nearestFacingSurfels(std::span<const Surfel> surfels,
 
 namespace {
 // Probe i's R ray directions as the probe bake draws them: sh::projectMonteCarlo's strata with
-// bakeProbes' seed (bake.cpp), so ray k here is its ray k. Regenerated on load rather than stored
+// bakeProbes' seed (probeRaySeed, bake.hpp), so ray k here is its ray k. Regenerated on load rather than stored
 // (kRelightVersion 2: a 0.125 m volume of 19 683 probes kept 60 MB of directions in its file).
 void probeRayDirections(std::size_t i, std::uint32_t rays, glm::vec3* out) {
   const int perAxis = int(std::lround(std::sqrt(double(rays))));
-  math::Pcg32 rng(0x9e3779b97f4a7c15ull ^ i);
+  math::Pcg32 rng(probeRaySeed(i));
   const std::vector<glm::dvec2> strata = math::stratified2D(perAxis, rng);
   for (std::size_t k = 0; k < rays; ++k) out[k] = k < strata.size() ? glm::vec3(math::uniformSphere(strata[k])) : glm::vec3(0.0f);
 }

@@ -27,6 +27,27 @@ void computeBarrier(VkCommandBuffer cmd, VkPipelineStageFlags src, VkAccessFlags
   vkCmdPipelineBarrier(cmd, src, dst, 0, 1, &b, 0, nullptr, 0, nullptr);
 }
 
+// A layout transition of the whole image between exactly these stages and accesses (gpu::transition
+// is a full ALL_COMMANDS → ALL_COMMANDS barrier: it would drain the GPU twice a frame here).
+void imageBarrier(VkCommandBuffer cmd, gpu::Image& image, VkImageLayout newLayout, VkPipelineStageFlags src,
+                  VkAccessFlags srcAccess, VkPipelineStageFlags dst, VkAccessFlags dstAccess) {
+  VkImageMemoryBarrier b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
+  b.srcAccessMask = srcAccess;
+  b.dstAccessMask = dstAccess;
+  b.oldLayout = image.layout();
+  b.newLayout = newLayout;
+  b.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  b.image = image.handle();
+  b.subresourceRange = image.fullRange();
+  vkCmdPipelineBarrier(cmd, src, dst, 0, 0, nullptr, 0, nullptr, 1, &b);
+  image.setLayout(newLayout);
+}
+
+// The stages that read the probe image: probes.frag, sl.shadow and the fused sl pass (fragment);
+// compute for any compute reader of probe_sh.glsl.
+constexpr VkPipelineStageFlags kImageReaders = VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
+
 }  // namespace
 
 RelightPass::RelightPass(gpu::Context& ctx, const ProbeVolume& volume, RelightData data, const gpu::Buffer& packed,
@@ -122,7 +143,8 @@ void RelightPass::reset() {
 
 void RelightPass::record(VkCommandBuffer cmd, gpu::DescriptorAllocator& descriptors, const gpu::Buffer& lights,
                          std::uint32_t lightCount, const gpu::Buffer& shadowMatrices, VkImageView atlas,
-                         VkSampler compare, bool shadowsOn, int iterations, bool pack, int readbackSlot) {
+                         VkSampler compare, bool shadowsOn, int iterations, bool pack, int readbackSlot,
+                         bool writeImage) {
   VkDescriptorSet set = descriptors.allocate(setLayout_);
   gpu::DescriptorWriter()
       .buffer(0, surfels_)
@@ -143,8 +165,11 @@ void RelightPass::record(VkCommandBuffer cmd, gpu::DescriptorAllocator& descript
   // The lights whose V_static is set (setLights) and the block's count must agree: use the fewer.
   push_.sizes.w = std::min(lightCount, lightCount_);
   push_.flags = glm::uvec4(0u, shadowsOn ? 1u : 0u, testVis_ ? 1u : 0u, 1u);
-  // The previous frame's probes pass read the block this pass rewrites (write after read).
-  computeBarrier(cmd, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+  const bool image = image_ && writeImage;
+  push_.outputs.y = image ? 1u : 0u;  // no texels when no copy follows
+  // The previous frame's probes pass read the block this pass rewrites, and its copies read the
+  // texels and ΔSH (transfer) that the dispatches rewrite: write after read.
+  computeBarrier(cmd, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
                  VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_UNIFORM_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT,
                  VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
   pipeline_.bind(cmd);
@@ -171,16 +196,19 @@ void RelightPass::record(VkCommandBuffer cmd, gpu::DescriptorAllocator& descript
   computeBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                  VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
                  VK_ACCESS_UNIFORM_READ_BIT | VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT);
-  if (image_) {
-    // The texels into the probe image (row-major texels = probe-major, node.cpp shTexelFloats). The
-    // whole-image transitions are full barriers (commands.hpp transition): they also order this
-    // copy after the previous frame's reads of the image (probes, sl.shadow) — write after read.
-    gpu::transition(cmd, *image_, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+  if (image) {
+    // The texels into the probe image (row-major texels = probe-major, node.cpp shTexelFloats).
+    // Before: the previous frame's reads of the image (probes, sl.shadow: fragment or compute) and
+    // its copy (transfer write) finish before this copy writes it — write after read / write.
+    imageBarrier(cmd, *image_, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, kImageReaders | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                 VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
     VkBufferImageCopy region{};
     region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
     region.imageExtent = {image_->desc().width, image_->desc().height, 1};
     vkCmdCopyBufferToImage(cmd, texels_.handle(), image_->handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
-    gpu::transition(cmd, *image_, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    // After: this frame's readers see the copy (read after write).
+    imageBarrier(cmd, *image_, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                 VK_ACCESS_TRANSFER_WRITE_BIT, kImageReaders, VK_ACCESS_SHADER_READ_BIT);
   }
   if (readbackSlot < 0) return;
   // ΔSH for the CPU readers (DNRT's c_j, SL's pass 1, RTF's proxies through incident::ProbeSource),
@@ -234,20 +262,24 @@ void ProbeNode::addRelightPass(rg::RenderGraph& graph, const render::PassContext
     for (std::size_t p = 0; p < volume_.grid.probeCount(); ++p)
       for (std::size_t i = 0; i < coeffs; ++i) volume_.sh[p * coeffs + i] = relightBaked_[p * coeffs + i] + delta[p * 9 + i];
   }
+  // The "probes.sh" image has readers this frame when the probes pass reads it (the volume does not
+  // fit the block) or an SL pass may shadow the probes' light with it (sl.shadow, fused sl: the
+  // Services::probeSh readers); otherwise the texels and their copy are skipped.
+  const bool imageRead = !shInUbo_ || (pc->world && pc->world->has("sl"));
   graph.addPass<Data>(
       "probes.relight",
       [&](rg::Builder& b, Data& d) {
         if (auto atlas = bb.find<rg::Texture>("shadow.atlas")) d.atlas = b.read(*atlas, rg::Usage::SampledCompute);
         b.sideEffect();  // writes the probes' uniform block, no graph resource
       },
-      [this, pc, slot](const Data& d, const rg::PassResources& res, rg::CommandContext& c) {
+      [this, pc, slot, imageRead](const Data& d, const rg::PassResources& res, rg::CommandContext& c) {
         VkCommandBuffer cmd = pc->cmd(c);
         VkSampler compare = pc->samplers->get({VK_FILTER_LINEAR, VK_SAMPLER_MIPMAP_MODE_NEAREST,
                                                VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, 1.0f, true});
         gpu::Image& atlas = d.atlas ? pc->backend->image(res.texture(*d.atlas)) : *pc->dummyShadowAtlas;
         relight_->record(cmd, *pc->frame().descriptors, *pc->lights, pc->lightCount, *pc->shadowMatrices,
                          pc->frameView(atlas, VK_IMAGE_VIEW_TYPE_2D_ARRAY, 0, atlas.desc().layers), compare,
-                         d.atlas.has_value(), kRelightIterationsPerFrame, true, slot);
+                         d.atlas.has_value(), kRelightIterationsPerFrame, true, slot, imageRead);
       });
 }
 

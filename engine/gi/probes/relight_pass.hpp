@@ -3,8 +3,9 @@
 // frame, kRelightIterationsPerFrame × (surfel ΔE, probe gather), then baked + ΔSH packed into the
 // probes pass's uniform block (node.cpp shPackedWords' format; that buffer carries STORAGE usage)
 // when the pass reads it, and written as the "probes.sh" image's fp32 texels (copied into the image:
-// the probes pass's source past 2016 probes, and the SL shadow's always; session 10). ΔSH persists
-// between frames (the room's bounce continues over frames).
+// the probes pass's source past 2016 probes, and the SL shadow's always; session 10) on the frames
+// something reads the image (ProbeNode::addRelightPass). ΔSH persists between frames (the room's
+// bounce continues over frames).
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -36,10 +37,13 @@ class RelightPass {
   void setTestVisibility(std::span<const float> vNow);
   // Records the frame's dispatches with a descriptor set from `descriptors` (the frame's allocator).
   // `lights`/`lightCount`/`shadowMatrices`: the lighting pass's blocks; `atlas` a 2D-array view of
-  // the shadow atlas (or a dummy with shadowsOn false).
+  // the shadow atlas (or a dummy with shadowsOn false). `writeImage` false: nothing reads the image
+  // this frame, so the pack stage writes no texels and the image is not copied (it keeps what it last
+  // held); the block is written as always.
   void record(VkCommandBuffer cmd, gpu::DescriptorAllocator& descriptors, const gpu::Buffer& lights,
               std::uint32_t lightCount, const gpu::Buffer& shadowMatrices, VkImageView atlas, VkSampler compare,
-              bool shadowsOn, int iterations = kRelightIterationsPerFrame, bool pack = true, int readbackSlot = -1);
+              bool shadowsOn, int iterations = kRelightIterationsPerFrame, bool pack = true, int readbackSlot = -1,
+              bool writeImage = true);
   // The ΔSH that the last record() with this readbackSlot copied out (probes × 9, order-3 layout), for
   // the CPU readers of the probes: false when that slot has not been recorded yet. Call only once
   // the slot's frame has finished (FrameRing::begin waited for it): no stall, a frames-in-flight lag.

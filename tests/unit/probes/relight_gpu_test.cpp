@@ -458,3 +458,48 @@ TEST(ProbeRelightSession, SlShadowReadsTheRelitProbeImage) {
     EXPECT_GT(moved, 0.0);
   }
 }
+
+// The probe image is copied only on frames something reads it (ProbeNode::addRelightPass): with the
+// volume in the uniform block and no SL pass (cornell-1, effects direct, shadows, probes), nothing
+// does, so after 3 relit frames with the prop's real shadow (ΔSH ≠ 0) the image still holds the bake
+// bit for bit (uploadSh: every SH float and the valid flag), while ΔSH — what the block gets — moved.
+TEST(ProbeRelightSession, WithoutAnImageReaderTheImageKeepsTheBakeWhileTheProbesAreRelit) {
+  namespace fs = std::filesystem;
+  gpu::Context& ctx = gpu::testkit::sharedContext();
+  const fs::path levelPath = fs::path(BOUNCE_SOURCE_DIR) / "content/levels/cornell-1.json";
+  scene::Level level = game::loadLevelWithEffects(levelPath, std::vector<std::string>{"direct", "shadows", "probes"});
+  level.probes.relight = true;
+  game::Session session(ctx, level);
+  ProbeNode* node = session.probes();
+  ASSERT_NE(node, nullptr);
+  ASSERT_NE(node->relight(), nullptr);
+  ASSERT_TRUE(node->shInUbo()) << "the probes pass must read the block, not the image";
+  for (int f = 0; f < 3; ++f) {
+    gpu::OffscreenPresenter presenter(ctx, {96, 96});
+    session.update(f / 60.0);
+    session.render(presenter, {});
+  }
+  session.renderer().frames().waitIdle();
+  const std::vector<std::string> passes = session.renderer().executedPasses();
+  EXPECT_EQ(std::count(passes.begin(), passes.end(), "probes.relight"), 1);
+
+  const ProbeVolume& baked = node->volume();  // the baked SH (kRelightCpuReaders off)
+  const std::size_t probes = baked.grid.probeCount(), coeffs = std::size_t(baked.coeffs()), texels = (3 * coeffs + 4) / 4;
+  const std::vector<glm::vec3> delta = readDelta(ctx, *node->relight(), probes);
+  float largest = 0.0f;
+  for (const glm::vec3& d : delta) largest = std::max({largest, std::abs(d.x), std::abs(d.y), std::abs(d.z)});
+  EXPECT_GT(largest, 0.0f) << "the prop's shadow moves some probe";
+  const auto bytes = gpu::readback(ctx, node->shImage());
+  ASSERT_EQ(bytes.size(), probes * texels * 16);
+  std::vector<float> got(probes * texels * 4);
+  std::memcpy(got.data(), bytes.data(), bytes.size());
+  std::size_t differ = 0;
+  for (std::size_t p = 0; p < probes; ++p) {
+    for (std::size_t i = 0; i < coeffs; ++i)
+      for (int ch = 0; ch < 3; ++ch) differ += got[p * texels * 4 + 3 * i + std::size_t(ch)] != baked.sh[p * coeffs + i][ch];
+    differ += got[p * texels * 4 + 3 * coeffs] != (baked.valid[p] != 0u ? 1.0f : 0.0f);
+  }
+  std::printf("cornell-1, block path, no sl: the probe image differs from the bake in %zu of %zu values; largest |dL| %.3g\n",
+              differ, probes * (3 * coeffs + 1), double(largest));
+  EXPECT_EQ(differ, 0u);
+}

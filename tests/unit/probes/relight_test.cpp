@@ -46,10 +46,9 @@ TEST(ProbeRelightBake, RaysAreTheProbeBakersDirectionsAndHitFacingSurfels) {
   const RelightData d = bakeRelight(bvh, grid, settings, 384, "");
   ASSERT_EQ(d.probes(), grid.probeCount());
   for (std::size_t i = 0; i < grid.probeCount(); ++i) {
-    // sh::projectMonteCarlo's directions with bakeProbes' seed (bake.cpp), recorded in order.
+    // sh::projectMonteCarlo's directions with bakeProbes' seed (bake.hpp probeRaySeed), recorded in order.
     std::vector<glm::dvec3> want;
-    sh::projectMonteCarlo([&](const glm::dvec3& dir) { want.push_back(dir); return 0.0; }, 2, 8,
-                          0x9e3779b97f4a7c15ull ^ i);
+    sh::projectMonteCarlo([&](const glm::dvec3& dir) { want.push_back(dir); return 0.0; }, 2, 8, probeRaySeed(i));
     ASSERT_EQ(want.size(), 64u);
     for (std::size_t k = 0; k < 64; ++k) {
       EXPECT_EQ(d.dirs[i * 64 + k], glm::vec3(want[k])) << "probe " << i << " ray " << k;
