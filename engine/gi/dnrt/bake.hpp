@@ -13,8 +13,8 @@
 // Improved anti-radiance (App. B.2): L_init(ω) ≈ Σ_j (c_j / Â_l) Y_j(ω) (the radiance whose
 // irradiance the c_j are) instead of I(ω)/π, i.e. k_j scaled by π/Â_l: ×1 (l = 0), ×3/2 (l = 1),
 // ×4 (l = 2). The runtime is unchanged (same c_j).
-// FieldSettings::occlusionOnly bakes m_j = −k_j (t_j = 0): the lights' anti-radiance, which the
-// runtime subtracts with the lights' c_j when their occlusion is drawn elsewhere (runtime.hpp).
+// FieldSettings::occlusionOnly bakes m_j = −k_j (t_j = 0): added with the lights' c_j negated, it
+// cancels the lights' part of the anti-radiance when their occlusion is drawn elsewhere (runtime.hpp).
 //
 // Vertices inside O (most hits are back faces) and the vertex at o itself (n_o undefined) have no
 // meaningful value: they are filled from valid neighbours (repeated averaging of the valid

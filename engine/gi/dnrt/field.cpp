@@ -15,9 +15,9 @@ namespace bounce::gi::dnrt {
 namespace {
 constexpr char kMagic[8] = {'B', 'D', 'N', 'R', 'T', 'F', 'L', 'D'};
 constexpr std::uint32_t kVersion = 2;  // 2: a checksum of every byte before it ends the file
-constexpr int kMaxGrid = 256;
+constexpr int kMaxGrid = 256;  // 256³·4·7 bytes = 470 MB: far beyond any sensible field
 // FieldSettings::occlusionOnly rides in the anti-radiance word, so fields written before it read as they were.
-constexpr std::uint32_t kOcclusionOnlyBit = 1u << 8;  // 256³·4·7 bytes = 470 MB: far beyond any sensible field
+constexpr std::uint32_t kOcclusionOnlyBit = 1u << 8;
 }  // namespace
 
 void checkSettings(const FieldSettings& s) {

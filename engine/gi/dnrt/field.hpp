@@ -40,8 +40,8 @@ struct FieldSettings {
   float outerExtent = 6.0f;  // half-size of the outer cube, in units of R; > innerExtent
   int samplesPerAxis = 16;   // rays per vertex = samplesPerAxis² (stratified, cosine-weighted)
   AntiRadiance antiRadiance = AntiRadiance::Paper;
-  // The anti-radiance alone: m_j = −k_j (t_j left out). The runtime subtracts the LIGHTS' part of
-  // the anti-radiance with it when the lights' occlusion is already drawn elsewhere (the direct
+  // The anti-radiance alone: m_j = −k_j (t_j left out). Added with the lights' c_j negated, it cancels
+  // the LIGHTS' part of the anti-radiance when the lights' occlusion is already drawn elsewhere (the direct
   // pass's shadow maps, and the relit probes for its bounce): README "DNRT with the relit probes,
   // session 10". Stored in the file as bit 8 of the anti-radiance word (older files: 0).
   bool occlusionOnly = false;

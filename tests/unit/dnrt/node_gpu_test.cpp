@@ -525,12 +525,6 @@ TEST(DnrtGpu, ImprovedAntiRadianceFieldsGetTheLightsSHWindowedAndPaperFieldsDoNo
   }
 }
 
-}  // namespace
-}  // namespace bounce::gi::dnrt
-
-namespace bounce::gi::dnrt {
-namespace {
-
 // Lights left out of the anti-radiance (Runtime::excludeLightsFromAntiRadiance; README "DNRT with
 // the relit probes, session 10"): each object carries a second term, its occlusion-only field (−k_j)
 // with the lights' c_j negated, which combine.comp adds into the object's own combined volume
