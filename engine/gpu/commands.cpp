@@ -142,17 +142,22 @@ std::vector<std::uint8_t> readback(Context& ctx, Image& image, std::uint32_t mip
 }
 
 void transition(VkCommandBuffer cmd, Image& image, VkImageLayout newLayout) {
+  transition(cmd, image, newLayout, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_ACCESS_MEMORY_WRITE_BIT,
+             VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT);
+}
+
+void transition(VkCommandBuffer cmd, Image& image, VkImageLayout newLayout, VkPipelineStageFlags src,
+                VkAccessFlags srcAccess, VkPipelineStageFlags dst, VkAccessFlags dstAccess) {
   VkImageMemoryBarrier b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
-  b.srcAccessMask = VK_ACCESS_MEMORY_WRITE_BIT;
-  b.dstAccessMask = VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT;
+  b.srcAccessMask = srcAccess;
+  b.dstAccessMask = dstAccess;
   b.oldLayout = image.layout();
   b.newLayout = newLayout;
   b.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
   b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
   b.image = image.handle();
   b.subresourceRange = image.fullRange();
-  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 0, nullptr, 0,
-                       nullptr, 1, &b);
+  vkCmdPipelineBarrier(cmd, src, dst, 0, 0, nullptr, 0, nullptr, 1, &b);
   image.setLayout(newLayout);
 }
 

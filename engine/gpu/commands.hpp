@@ -36,6 +36,10 @@ std::vector<std::uint8_t> readback(Context& ctx, Image& image, std::uint32_t mip
 // Whole-image layout change with a full (ALL_COMMANDS → ALL_COMMANDS) barrier. Correct and
 // simple; the render graph derives precise barriers instead.
 void transition(VkCommandBuffer cmd, Image& image, VkImageLayout newLayout);
+// The same layout transition between exactly these stages and accesses, for a per-frame barrier
+// where the full one above would drain the whole GPU.
+void transition(VkCommandBuffer cmd, Image& image, VkImageLayout newLayout, VkPipelineStageFlags src,
+                VkAccessFlags srcAccess, VkPipelineStageFlags dst, VkAccessFlags dstAccess);
 
 // Full memory barrier between everything before and after (tests, one-shot work).
 void fullBarrier(VkCommandBuffer cmd);

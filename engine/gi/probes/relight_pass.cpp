@@ -27,23 +27,6 @@ void computeBarrier(VkCommandBuffer cmd, VkPipelineStageFlags src, VkAccessFlags
   vkCmdPipelineBarrier(cmd, src, dst, 0, 1, &b, 0, nullptr, 0, nullptr);
 }
 
-// A layout transition of the whole image between exactly these stages and accesses (gpu::transition
-// is a full ALL_COMMANDS → ALL_COMMANDS barrier: it would drain the GPU twice a frame here).
-void imageBarrier(VkCommandBuffer cmd, gpu::Image& image, VkImageLayout newLayout, VkPipelineStageFlags src,
-                  VkAccessFlags srcAccess, VkPipelineStageFlags dst, VkAccessFlags dstAccess) {
-  VkImageMemoryBarrier b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
-  b.srcAccessMask = srcAccess;
-  b.dstAccessMask = dstAccess;
-  b.oldLayout = image.layout();
-  b.newLayout = newLayout;
-  b.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-  b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-  b.image = image.handle();
-  b.subresourceRange = image.fullRange();
-  vkCmdPipelineBarrier(cmd, src, dst, 0, 0, nullptr, 0, nullptr, 1, &b);
-  image.setLayout(newLayout);
-}
-
 // The stages that read the probe image: probes.frag, sl.shadow and the fused sl pass (fragment);
 // compute for any compute reader of probe_sh.glsl.
 constexpr VkPipelineStageFlags kImageReaders = VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
@@ -200,15 +183,15 @@ void RelightPass::record(VkCommandBuffer cmd, gpu::DescriptorAllocator& descript
     // The texels into the probe image (row-major texels = probe-major, node.cpp shTexelFloats).
     // Before: the previous frame's reads of the image (probes, sl.shadow: fragment or compute) and
     // its copy (transfer write) finish before this copy writes it — write after read / write.
-    imageBarrier(cmd, *image_, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, kImageReaders | VK_PIPELINE_STAGE_TRANSFER_BIT,
-                 VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
+    gpu::transition(cmd, *image_, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, kImageReaders | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                    VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
     VkBufferImageCopy region{};
     region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
     region.imageExtent = {image_->desc().width, image_->desc().height, 1};
     vkCmdCopyBufferToImage(cmd, texels_.handle(), image_->handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
     // After: this frame's readers see the copy (read after write).
-    imageBarrier(cmd, *image_, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                 VK_ACCESS_TRANSFER_WRITE_BIT, kImageReaders, VK_ACCESS_SHADER_READ_BIT);
+    gpu::transition(cmd, *image_, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                    VK_ACCESS_TRANSFER_WRITE_BIT, kImageReaders, VK_ACCESS_SHADER_READ_BIT);
   }
   if (readbackSlot < 0) return;
   // ΔSH for the CPU readers (DNRT's c_j, SL's pass 1, RTF's proxies through incident::ProbeSource),
