@@ -28,6 +28,17 @@
 //   blocked-eq3       L = the light at o, s_s = Σ_k w_k L_00(χ_k)/L_00(o), Eq. 3's weights from the sample to the proxies
 //   blocked-surface   L = the light at o, s_s = L_00(o + η d_s)/L_00(o), on the bounding sphere along the sample's ray
 //
+// The second inter-object bounce (issue 14, eighth pass; tools/rtf_bounce2.py reads them):
+//   ref-via-other     ρ·E[ρ_A L(ω')·1(ω' from A's hit hits ANOTHER object B first)] over ω hitting object A:
+//                     the part of ref-interreflected that came to A from the other objects (the reference's
+//                     bounces ≥ 2 between the objects; 4 cosine directions ω' at A per ω, unlimited bounces)
+//   ref-via-self      the same for ω' hitting A itself (self-interreflection, in RTF's transfer T)
+//   rtf-interreflected-b1/-b3/-b4   shade()'s interreflected light at 1, 3 and 4 bounces
+// and per object on stderr: the reference's interreflected light via it and its part from the others, against
+// RTF's (2 − 1)/1 via its field alone; and at each proxy the reference's l = 0 radiance from the other objects
+// (the level without the object, 6·16² directions × 4 paths) against RTF's second bounce there
+// (RTF_PARTS_PROXIES_ONLY=1: stop after those lines).
+//
 // usage: rtf_parts LEVEL WIDTH HEIGHT DIRS_PER_AXIS OUT_DIR [FRAME [TAIL]]   (TAIL: scene::Rtf::tail τ for every object)
 //   writes OUT_DIR/{ref-interreflected,ref-blocked,ref-room,blocked-probes,rtf-interreflected,
 //   rtf-blocked,field}.pfm (outgoing radiance, rows top to bottom as bounce accuracy's images).
@@ -158,6 +169,29 @@ int main(int argc, char** argv) {
     fields.push_back(gi::rtf::bakeCached(od, s, gi::rtf::cacheFolder()));
     objectBvh.push_back(std::make_unique<ref::SceneBvh>(std::move(od)));
   }
+  // Each rtf object alone, posed in the world (which object a ray hits first; issue 14, "Eighth pass").
+  std::vector<std::unique_ptr<Posed>> alone;
+  std::vector<std::unique_ptr<ref::SceneBvh>> aloneBvh;
+  for (ecs::Entity e : rtfEntities) {
+    scene::Level one = level;
+    one.entities.clear();
+    for (const auto& ent : level.entities)
+      if (ent.id == with.registry.get<scene::Name>(e).id || ent.camera) one.entities.push_back(ent);
+    alone.push_back(std::make_unique<Posed>());
+    pose(one, time, cooked, *alone.back());
+    aloneBvh.push_back(std::make_unique<ref::SceneBvh>(alone.back()->desc));
+  }
+  // The rtf object whose surface is hit first along o + t·w at t ≈ tHit (−1: none; object `skip` ignored).
+  auto objectHit = [&](glm::vec3 o, glm::vec3 w, float tHit, int skip = -1) {
+    int best = -1;
+    float bestT = 1e30f;
+    for (std::size_t k = 0; k < aloneBvh.size(); ++k) {
+      ref::Hit h;
+      if (int(k) == skip) continue;
+      if (aloneBvh[k]->intersect(o, w, 0.0f, 1e30f, h) && h.t < bestT) best = int(k), bestT = h.t;
+    }
+    return best >= 0 && bestT <= tHit * (1.0f + 1e-4f) + 1e-5f ? best : -1;
+  };
   // The cube-map directions the bake projects the OOF over (bake.cpp), at face 16.
   struct Dir { glm::vec3 w; std::array<double, gi::rtf::kShCount> y; double solidAngle; };
   std::vector<Dir> oofDirs;
@@ -181,6 +215,17 @@ int main(int argc, char** argv) {
   }
   const gi::rtf::LitSource lit(service, lights);
   const gi::rtf::BounceResult bounced = gi::rtf::bounce(objects, lit, 2);
+  const gi::rtf::BounceResult bounced1 = gi::rtf::bounce(objects, lit, 1);
+  const gi::rtf::BounceResult bounced3 = gi::rtf::bounce(objects, lit, 3), bounced4 = gi::rtf::bounce(objects, lit, 4);
+  // Each object's field alone with its own bounced light, 1 and 2 bounces (per-object interreflected sums).
+  std::vector<gi::rtf::BounceResult> single1, single2;
+  for (std::size_t k = 0; k < objects.size(); ++k) {
+    single1.push_back({{bounced1.proxyLight[k]}, {bounced1.xi[k]}, {}});
+    single2.push_back({{bounced.proxyLight[k]}, {bounced.xi[k]}, {}});
+  }
+  // Per object A and pixel: reference interreflected via A, its part that came to A from another object
+  // (bounce ≥ 2 between the objects), RTF's interreflected via A at 1 and 2 bounces (Σ RGB).
+  std::vector<std::array<double, 4>> perObject(std::size_t(W) * H * objects.size(), std::array<double, 4>{});
   std::fprintf(stderr, "rtf_parts: %zu rtf objects, %zu lights, %ux%u, %d² directions per pixel\n", objects.size(),
                lights.size(), W, H, spa);
   // How far apart the objects stand: a sphere of radius η_B at distance d lit like A sends A about
@@ -210,6 +255,58 @@ int main(int argc, char** argv) {
                    with.registry.get<scene::Name>(rtfEntities[a]).id.c_str(), e0, e1, e1 / std::max(e0, 1e-30));
     }
   }
+  // At each object J's proxies χ_k, the reference's radiance from the OTHER objects (the level without J,
+  // 6·16² cube directions, 4 paths each, unlimited bounces; the part whose first hit is another object):
+  // its l = 0 coefficient against RTF's second bounce (2 bounces − 1) at the same proxies (Σ over proxies, RGB mean).
+  for (std::size_t J = 0; J < objects.size(); ++J) {
+    scene::Level minusJ = level;
+    minusJ.entities.clear();
+    const std::string idJ = with.registry.get<scene::Name>(rtfEntities[J]).id;
+    for (const auto& ent : level.entities)
+      if (ent.id != idJ) minusJ.entities.push_back(ent);
+    Posed pj;
+    pose(minusJ, time, cooked, pj);
+    const ref::SceneBvh bvhJ(pj.desc);
+    const gi::rtf::Field& f = *objects[J].field;
+    std::vector<double> refOther(f.proxies.size(), 0.0), rtfOther(f.proxies.size(), 0.0);
+    parallelFor(0, f.proxies.size(), [&](std::size_t k) {
+      // 1 % of the way towards J's centre (J is not in bvhJ): a proxy on the floor (a box's bottom corner)
+      // would otherwise start its rays on the floor's plane.
+      const glm::vec3 o = glm::vec3(objects[J].world * glm::vec4(f.centre, 1.0f));
+      const glm::vec3 chi = glm::mix(glm::vec3(objects[J].world * glm::vec4(f.proxies[k], 1.0f)), o, 0.01f);
+      math::Pcg32 rng = math::Pcg32::fromIndex(J * 1000 + k);
+      std::uint64_t rays = 0;
+      double acc = 0.0;
+      for (const Dir& d : oofDirs)
+        for (int path = 0; path < 4; ++path) {
+          ref::Hit first;
+          bool any = false;
+          const glm::dvec3 L = ref::tracePathFrom(bvhJ, chi, d.w, 0.0f, 1e30f, ref::kUnlimitedBounces, rng, rays, &first, &any);
+          if (any && objectHit(chi, d.w, first.t, int(J)) >= 0) acc += (L.x + L.y + L.z) / 3.0 * 0.28209479 * d.solidAngle / 4.0;
+        }
+      refOther[k] = acc;
+      const glm::vec3 l1 = bounced.proxyLight[J][k * gi::rtf::kShCount] - bounced1.proxyLight[J][k * gi::rtf::kShCount];
+      rtfOther[k] = double(l1.x + l1.y + l1.z) / 3.0;
+    }, 1);
+    double a = 0.0, b = 0.0;
+    std::string per;
+    for (std::size_t k = 0; k < f.proxies.size(); ++k) {
+      a += refOther[k], b += rtfOther[k];
+      char buf[64];
+      const glm::vec3 chi = glm::vec3(objects[J].world * glm::vec4(f.proxies[k], 1.0f));
+      float nearest = 1e30f;  // the nearest other object's |q| (η) at the proxy
+      for (std::size_t B = 0; B < objects.size(); ++B)
+        if (B != J) {
+          const gi::rtf::Placement pb = gi::rtf::place(*objects[B].field, objects[B].world);
+          nearest = std::min(nearest, glm::length(chi - pb.centreWorld) / pb.radiusWorld);
+        }
+      std::snprintf(buf, sizeof buf, " %.3g/%.3g@%.2f", refOther[k], rtfOther[k], nearest);
+      per += buf;
+    }
+    std::fprintf(stderr, "rtf_parts: object %zu (%s): proxies' L_00 from the other objects: reference %.4g, RTF second bounce %.4g (%.3g); per proxy ref/RTF:%s\n",
+                 J, idJ.c_str(), a, b, b / std::max(a, 1e-30), per.c_str());
+  }
+  if (std::getenv("RTF_PARTS_PROXIES_ONLY") != nullptr) return 0;  // the proxy lines above only
   // Algorithm 1's energy per bounce (evaluate.hpp BounceResult::bounceEnergy): what a second
   // inter-object bounce can add at all, against the first.
   for (std::size_t b = 0; b < bounced.bounceEnergy.size(); ++b)
@@ -258,10 +355,12 @@ int main(int argc, char** argv) {
     scalesEq3.push_back(std::move(e3));
     scalesSurf.push_back(std::move(sf));
   }
-  enum { kInter, kBlocked, kRoom, kBlockedProbes, kRtfInter, kRtfBlocked, kField, kAtR, kShapeO, kAtO, kGpu, kOofAtR, kOofNoFade, kOofShExactCos, kVisExactCos, kEq3, kSurf, kLevel, kParts };
+  enum { kInter, kBlocked, kRoom, kBlockedProbes, kRtfInter, kRtfBlocked, kField, kAtR, kShapeO, kAtO, kGpu, kOofAtR, kOofNoFade, kOofShExactCos, kVisExactCos, kEq3, kSurf, kLevel, kViaOther, kViaSelf, kRtfInter1, kRtfInter3, kRtfInter4, kParts };
   const char* names[kParts] = {"ref-interreflected", "ref-blocked", "ref-room", "blocked-probes", "rtf-interreflected",
                                "rtf-blocked", "field", "blocked-receiver", "blocked-shape-o", "blocked-at-o", "blocked-gpu",
-                               "blocked-oof-at-r", "blocked-oof-at-r-nofade", "blocked-oofsh-exactcos", "blocked-vis-exactcos", "blocked-eq3", "blocked-surface", "blocked-level"};
+                               "blocked-oof-at-r", "blocked-oof-at-r-nofade", "blocked-oofsh-exactcos", "blocked-vis-exactcos", "blocked-eq3", "blocked-surface", "blocked-level",
+                               "ref-via-other", "ref-via-self", "rtf-interreflected-b1",
+                               "rtf-interreflected-b3", "rtf-interreflected-b4"};
   std::vector<gpu::FloatImage> images(kParts);
   for (auto& im : images) im.width = W, im.height = H, im.rgb.assign(std::size_t(W) * H * 3, 0.0f);
   parallelFor(0, std::size_t(W) * H, [&](std::size_t pixel) {
@@ -277,7 +376,8 @@ int main(int argc, char** argv) {
     if (glm::dot(ng, cam.direction) > 0.0f) ng = -ng;
     const auto probeSh = light.indirect().radianceSH(hit.position);
     math::Pcg32 rng = math::Pcg32::fromIndex(pixel);
-    glm::dvec3 sum[4] = {};
+    glm::dvec3 sum[6] = {};
+    std::array<glm::dvec3, 8> objInter{}, objOther{};
     std::uint64_t rays = 0;
     const auto dirs = math::stratified2D(spa, rng);
     for (const glm::dvec2& u : dirs) {
@@ -291,6 +391,31 @@ int main(int argc, char** argv) {
       const bool onProp = any && bvhProps.intersect(o, w, 0.0f, 1e30f, ph) && ph.t <= first.t * (1.0f + 1e-5f) + 1e-6f;
       if (onProp) {
         sum[0] += lw, sum[1] += lo;
+        // The light that reached the object A (first hit) from another object B (bounce ≥ 2 between the
+        // objects) or from A itself: kSub cosine directions about A's normal at the hit, each traced on
+        // (unlimited bounces) when its first hit is an object; ρ_A·E[L·1(B)] is that part of A's
+        // outgoing light (the rest: A's emission, its direct light and the room's light at A).
+        const int a = objectHit(o, w, first.t);
+        if (a >= 0) {
+          objInter[std::size_t(a)] += lw;
+          const glm::vec3 rhoA = albedoAt(with.desc, first);
+          glm::vec3 na = first.shadingNormal, nga = first.geometricNormal;
+          if (glm::dot(na, w) > 0.0f) na = -na;
+          if (glm::dot(nga, w) > 0.0f) nga = -nga;
+          constexpr int kSub = 4;
+          for (int sub = 0; sub < kSub; ++sub) {
+            const glm::vec3 w2 = glm::vec3(math::cosineHemisphere(rng.next2D(), glm::dvec3(na)));
+            if (glm::dot(w2, nga) <= 0.0f) continue;
+            const glm::vec3 o2 = offset(first.position, nga, w2);
+            ref::Hit h2;
+            if (!bvhWith.intersect(o2, w2, 0.0f, 1e30f, h2)) continue;
+            const int b = objectHit(o2, w2, h2.t);
+            if (b < 0) continue;
+            const glm::dvec3 l2 = glm::dvec3(rhoA) * ref::tracePathFrom(bvhWith, o2, w2, 0.0f, 1e30f, ref::kUnlimitedBounces, rng, rays) / double(kSub);
+            sum[b == a ? 5 : 4] += l2;
+            if (b != a) objOther[std::size_t(a)] += l2;
+          }
+        }
         const auto yb = sh::evalBasis<double>(3, glm::dvec3(w));
         glm::dvec3 lp(0.0);
         for (int i = 0; i < 9; ++i) lp += glm::dvec3(probeSh[std::size_t(i)]) * yb[std::size_t(i)];
@@ -308,6 +433,19 @@ int main(int argc, char** argv) {
     put(kBlocked, rho * glm::vec3(sum[1] * inv));
     put(kRoom, rho * glm::vec3(sum[2] * inv));
     put(kBlockedProbes, rho * glm::vec3(sum[3] * inv));
+    put(kViaOther, rho * glm::vec3(sum[4] * inv));
+    put(kViaSelf, rho * glm::vec3(sum[5] * inv));
+    put(kRtfInter1, gi::rtf::shade(objects, bounced1, light.indirect(), hit.position, n, rho, -1, 9).interreflected);
+    put(kRtfInter3, gi::rtf::shade(objects, bounced3, light.indirect(), hit.position, n, rho, -1, 9).interreflected);
+    put(kRtfInter4, gi::rtf::shade(objects, bounced4, light.indirect(), hit.position, n, rho, -1, 9).interreflected);
+    for (std::size_t k = 0; k < objects.size(); ++k) {
+      const std::span<const gi::rtf::Object> one(&objects[k], 1);
+      auto& po = perObject[pixel * objects.size() + k];
+      const auto s3 = [](glm::dvec3 v) { return v.x + v.y + v.z; };
+      po[0] = s3(glm::dvec3(rho) * objInter[k] * inv), po[1] = s3(glm::dvec3(rho) * objOther[k] * inv);
+      po[2] = s3(glm::dvec3(gi::rtf::shade(one, single1[k], light.indirect(), hit.position, n, rho, -1, 9).interreflected));
+      po[3] = s3(glm::dvec3(gi::rtf::shade(one, single2[k], light.indirect(), hit.position, n, rho, -1, 9).interreflected));
+    }
     const gi::rtf::Shading sh = gi::rtf::shade(objects, bounced, light.indirect(), hit.position, n, rho, -1, 9);
     put(kRtfInter, sh.interreflected);
     put(kRtfBlocked, sh.blocked);
@@ -397,6 +535,18 @@ int main(int argc, char** argv) {
     put(kOofShExactCos, shExactCos);
     put(kVisExactCos, visExactCos);
   }, 16);
+  // Per object A, over the receivers: the reference's interreflected light via A and its part that came to A
+  // from the other objects, against RTF's (2 bounces − 1) over 1 bounce via A's field (Σ RGB, summed over pixels).
+  for (std::size_t k = 0; k < objects.size(); ++k) {
+    std::array<double, 4> t{};
+    for (std::size_t px = 0; px < std::size_t(W) * H; ++px)
+      for (int j = 0; j < 4; ++j) t[std::size_t(j)] += perObject[px * objects.size() + k][std::size_t(j)];
+    std::fprintf(stderr,
+                 "rtf_parts: object %zu (%s): reference interreflected %.4g, from other objects %.4g (%.3g); RTF 1 bounce %.4g, "
+                 "2 bounces %.4g (second bounce %.3g of the first)\n",
+                 k, with.registry.get<scene::Name>(rtfEntities[k]).id.c_str(), t[0], t[1], t[1] / std::max(t[0] - t[1], 1e-30), t[2], t[3],
+                 (t[3] - t[2]) / std::max(t[2], 1e-30));
+  }
   for (int i = 0; i < kParts; ++i) gpu::writePfm(out / (std::string(names[i]) + ".pfm"), images[std::size_t(i)]);
   std::fprintf(stderr, "rtf_parts: wrote %s\n", out.c_str());
   return 0;
