@@ -62,6 +62,12 @@ def main():
           f"gpu 1 + reference bounce>=2 {err(g1 + other):.1f}")
     for s in (2, 4):
         print(f"  gpu 1 + {s} x rtf (2-1) {err(g1 + s * d):.1f}")
+    import os
+    if os.path.exists(f"{parts}/rtf-interreflected-exact1.pfm"):  # the proxies' room light scaled to the traced one
+        e1, e2 = g("rtf-interreflected-exact1"), g("rtf-interreflected-exact2")
+        print(f"  exact proxy room light: 1 bounce {err(g1 + e1 - r1):.1f}, 2 bounces {err(g2 + e2 - r2):.1f}; its (2-1) "
+              f"{(e2 - e1)[mask].sum():.4f} against the reference's {other[mask].sum():.4f}; single bounce mean "
+              f"{e1[mask].mean():+.5f} against rtf-b1 {r1[mask].mean():+.5f} and the reference's {(inter - other)[mask].mean():+.5f}")
     for b in (3, 4):  # RTF at 3 and 4 bounces: the GPU 2-bounce row + the CPU's (b − 2)
         rb = g(f"rtf-interreflected-b{b}")
         print(f"  gpu 2 + rtf ({b}-2) = {b} bounces {err(g2 + rb - r2):.1f}; its extra bounces on the indirect-only pixels: "

@@ -34,9 +34,13 @@
 //                     bounces ≥ 2 between the objects; 4 cosine directions ω' at A per ω, unlimited bounces)
 //   ref-via-self      the same for ω' hitting A itself (self-interreflection, in RTF's transfer T)
 //   rtf-interreflected-b1/-b3/-b4   shade()'s interreflected light at 1, 3 and 4 bounces
+//   rtf-interreflected-exact1/-exact2   a what-if: Algorithm 1 with each proxy's probe light scaled to the
+//                     room's traced l = 0 there (below), at 1 and 2 bounces
 // and per object on stderr: the reference's interreflected light via it and its part from the others, against
-// RTF's (2 − 1)/1 via its field alone; and at each proxy the reference's l = 0 radiance from the other objects
-// (the level without the object, 6·16² directions × 4 paths) against RTF's second bounce there
+// RTF's (2 − 1)/1 via its field alone; at each proxy the reference's l = 0 radiance from the other objects
+// (the level without the object, 6·16² directions × 4 paths) against RTF's second bounce (and bounces 2–4)
+// there, the weight Eq. 10 puts on another object's samples inside it (V ≡ 0), and the room's traced l = 0
+// (the level without any object) against the probes' there and at χ moved towards o
 // (RTF_PARTS_PROXIES_ONLY=1: stop after those lines).
 //
 // usage: rtf_parts LEVEL WIDTH HEIGHT DIRS_PER_AXIS OUT_DIR [FRAME [TAIL]]   (TAIL: scene::Rtf::tail τ for every object)
@@ -258,6 +262,10 @@ int main(int argc, char** argv) {
   // At each object J's proxies χ_k, the reference's radiance from the OTHER objects (the level without J,
   // 6·16² cube directions, 4 paths each, unlimited bounces; the part whose first hit is another object):
   // its l = 0 coefficient against RTF's second bounce (2 bounces − 1) at the same proxies (Σ over proxies, RGB mean).
+  // The source with each proxy's room light (the probes' part) scaled to the traced one (a what-if:
+  // Algorithm 1 with exact proxy light; rtf-interreflected-exact1/-exact2).
+  struct ProxyScale { glm::vec3 at; double ratio; };
+  std::vector<ProxyScale> proxyScale;
   for (std::size_t J = 0; J < objects.size(); ++J) {
     scene::Level minusJ = level;
     minusJ.entities.clear();
@@ -268,7 +276,8 @@ int main(int argc, char** argv) {
     pose(minusJ, time, cooked, pj);
     const ref::SceneBvh bvhJ(pj.desc);
     const gi::rtf::Field& f = *objects[J].field;
-    std::vector<double> refOther(f.proxies.size(), 0.0), rtfOther(f.proxies.size(), 0.0);
+    std::vector<double> refOther(f.proxies.size(), 0.0), rtfOther(f.proxies.size(), 0.0), rtfOther4(f.proxies.size(), 0.0), refRoom(f.proxies.size(), 0.0), probeRoom(f.proxies.size(), 0.0);
+    std::vector<std::array<double, 4>> probeToward(f.proxies.size());
     parallelFor(0, f.proxies.size(), [&](std::size_t k) {
       // 1 % of the way towards J's centre (J is not in bvhJ): a proxy on the floor (a box's bottom corner)
       // would otherwise start its rays on the floor's plane.
@@ -276,37 +285,95 @@ int main(int argc, char** argv) {
       const glm::vec3 chi = glm::mix(glm::vec3(objects[J].world * glm::vec4(f.proxies[k], 1.0f)), o, 0.01f);
       math::Pcg32 rng = math::Pcg32::fromIndex(J * 1000 + k);
       std::uint64_t rays = 0;
-      double acc = 0.0;
+      double acc = 0.0, room = 0.0;
       for (const Dir& d : oofDirs)
         for (int path = 0; path < 4; ++path) {
           ref::Hit first;
           bool any = false;
           const glm::dvec3 L = ref::tracePathFrom(bvhJ, chi, d.w, 0.0f, 1e30f, ref::kUnlimitedBounces, rng, rays, &first, &any);
           if (any && objectHit(chi, d.w, first.t, int(J)) >= 0) acc += (L.x + L.y + L.z) / 3.0 * 0.28209479 * d.solidAngle / 4.0;
+          const glm::dvec3 L0 = ref::tracePathFrom(bvhWithout, chi, d.w, 0.0f, 1e30f, ref::kUnlimitedBounces, rng, rays);
+          room += (L0.x + L0.y + L0.z) / 3.0 * 0.28209479 * d.solidAngle / 4.0;
         }
       refOther[k] = acc;
+      // The room's light at χ without any object (the traced l = 0) against the probes' there: the source
+      // light Algorithm 1's bounce 0 starts from.
+      const glm::vec3 pr = light.indirect().radianceSH(chi)[0];
+      refRoom[k] = room, probeRoom[k] = double(pr.x + pr.y + pr.z) / 3.0;
+      for (int t = 0; t < 4; ++t) {  // the probes' l = 0 at χ moved towards o by 0, ¼, ½, 1 of the way
+        const glm::vec3 pt = light.indirect().radianceSH(glm::mix(chi, o, 0.25f * float(t == 3 ? 4 : t)))[0];
+        probeToward[k][std::size_t(t)] = double(pt.x + pt.y + pt.z) / 3.0;
+      }
       const glm::vec3 l1 = bounced.proxyLight[J][k * gi::rtf::kShCount] - bounced1.proxyLight[J][k * gi::rtf::kShCount];
       rtfOther[k] = double(l1.x + l1.y + l1.z) / 3.0;
+      const glm::vec3 l4 = bounced4.proxyLight[J][k * gi::rtf::kShCount] - bounced1.proxyLight[J][k * gi::rtf::kShCount];
+      rtfOther4[k] = double(l4.x + l4.y + l4.z) / 3.0;
     }, 1);
-    double a = 0.0, b = 0.0;
+    double a = 0.0, b = 0.0, b4 = 0.0;
+    for (double v : rtfOther4) b4 += v;
     std::string per;
     for (std::size_t k = 0; k < f.proxies.size(); ++k) {
       a += refOther[k], b += rtfOther[k];
-      char buf[64];
+      char buf[96];
       const glm::vec3 chi = glm::vec3(objects[J].world * glm::vec4(f.proxies[k], 1.0f));
       float nearest = 1e30f;  // the nearest other object's |q| (η) at the proxy
+      float inside = 0.0f;    // the largest weight Eq. 10 puts on another object's samples with V ≡ 0 (inside it)
       for (std::size_t B = 0; B < objects.size(); ++B)
         if (B != J) {
-          const gi::rtf::Placement pb = gi::rtf::place(*objects[B].field, objects[B].world);
+          const gi::rtf::Field& fb = *objects[B].field;
+          const gi::rtf::Placement pb = gi::rtf::place(fb, objects[B].world);
           nearest = std::min(nearest, glm::length(chi - pb.centreWorld) / pb.radiusWorld);
+          const glm::vec3 qb = (glm::vec3(pb.worldToLocal * glm::vec4(chi, 1.0f)) - fb.centre) / fb.radius;
+          const gi::rtf::Lookup lk = gi::rtf::lookup(fb.settings, qb, objects[B].reach);
+          float w0 = 0.0f;
+          for (int t = 0; t < 8; ++t)
+            if (std::abs(fb.oof[lk.sample[std::size_t(t)] * gi::rtf::kShCount]) < 1e-3f) w0 += lk.weight[std::size_t(t)];
+          inside = std::max(inside, w0);
         }
-      std::snprintf(buf, sizeof buf, " %.3g/%.3g@%.2f", refOther[k], rtfOther[k], nearest);
+      std::snprintf(buf, sizeof buf, " %.3g/%.3g/%.3g@%.2f(w0 %.2f)", refOther[k], rtfOther[k], rtfOther4[k], nearest, inside);
       per += buf;
     }
-    std::fprintf(stderr, "rtf_parts: object %zu (%s): proxies' L_00 from the other objects: reference %.4g, RTF second bounce %.4g (%.3g); per proxy ref/RTF:%s\n",
-                 J, idJ.c_str(), a, b, b / std::max(a, 1e-30), per.c_str());
+    std::string rooms;
+    for (std::size_t k = 0; k < f.proxies.size(); ++k)
+      proxyScale.push_back({glm::vec3(objects[J].world * glm::vec4(f.proxies[k], 1.0f)), probeRoom[k] > 1e-6 ? refRoom[k] / probeRoom[k] : 1.0});
+    for (std::size_t k = 0; k < f.proxies.size(); ++k) {
+      char buf[48];
+      std::snprintf(buf, sizeof buf, " %.3g/%.3g", refRoom[k], probeRoom[k]);
+      rooms += buf;
+    }
+    std::fprintf(stderr, "rtf_parts: object %zu: the room's L_00 at the proxies, traced without the objects / the probes':%s\n", J, rooms.c_str());
+    {
+      double e[4] = {}, tr = 0.0;
+      for (std::size_t k = 0; k < f.proxies.size(); ++k) {
+        tr += refRoom[k];
+        for (int t = 0; t < 4; ++t) e[t] += std::abs(probeToward[k][std::size_t(t)] - refRoom[k]);
+      }
+      std::fprintf(stderr, "rtf_parts: object %zu: mean |probes - traced| / traced at chi moved towards o by 0, 1/4, 1/2, 1: %.3f %.3f %.3f %.3f\n", J,
+                   e[0] / tr, e[1] / tr, e[2] / tr, e[3] / tr);
+    }
+    std::fprintf(stderr, "rtf_parts: object %zu (%s): proxies' L_00 from the other objects: reference %.4g, RTF second bounce %.4g (%.3g), bounces 2-4 %.4g (%.3g); per proxy ref/RTF 2/RTF 4:%s\n",
+                 J, idJ.c_str(), a, b, b / std::max(a, 1e-30), b4, b4 / std::max(a, 1e-30), per.c_str());
   }
   if (std::getenv("RTF_PARTS_PROXIES_ONLY") != nullptr) return 0;  // the proxy lines above only
+  struct ExactProxySource final : gi::incident::IndirectSource {
+    const gi::incident::IndirectSource& lit;
+    const gi::incident::IndirectSource& probes;
+    const std::vector<ProxyScale>& scale;
+    ExactProxySource(const gi::incident::IndirectSource& l, const gi::incident::IndirectSource& p, const std::vector<ProxyScale>& s)
+        : lit(l), probes(p), scale(s) {}
+    gi::incident::RadianceSH radianceSH(glm::vec3 p) const override {
+      gi::incident::RadianceSH L = lit.radianceSH(p);
+      for (const ProxyScale& ps : scale)
+        if (glm::length(ps.at - p) < 1e-5f * std::max(1.0f, glm::length(p))) {
+          const gi::incident::RadianceSH pr = probes.radianceSH(p);
+          for (std::size_t i = 0; i < L.size(); ++i) L[i] += float(ps.ratio - 1.0) * pr[i];
+          break;
+        }
+      return L;
+    }
+  };
+  const ExactProxySource exactSource(lit, light.indirect(), proxyScale);
+  const gi::rtf::BounceResult exact1 = gi::rtf::bounce(objects, exactSource, 1), exact2 = gi::rtf::bounce(objects, exactSource, 2);
   // Algorithm 1's energy per bounce (evaluate.hpp BounceResult::bounceEnergy): what a second
   // inter-object bounce can add at all, against the first.
   for (std::size_t b = 0; b < bounced.bounceEnergy.size(); ++b)
@@ -355,12 +422,13 @@ int main(int argc, char** argv) {
     scalesEq3.push_back(std::move(e3));
     scalesSurf.push_back(std::move(sf));
   }
-  enum { kInter, kBlocked, kRoom, kBlockedProbes, kRtfInter, kRtfBlocked, kField, kAtR, kShapeO, kAtO, kGpu, kOofAtR, kOofNoFade, kOofShExactCos, kVisExactCos, kEq3, kSurf, kLevel, kViaOther, kViaSelf, kRtfInter1, kRtfInter3, kRtfInter4, kParts };
+  enum { kInter, kBlocked, kRoom, kBlockedProbes, kRtfInter, kRtfBlocked, kField, kAtR, kShapeO, kAtO, kGpu, kOofAtR, kOofNoFade, kOofShExactCos, kVisExactCos, kEq3, kSurf, kLevel, kViaOther, kViaSelf, kRtfInter1, kRtfInter3, kRtfInter4, kExact1, kExact2, kParts };
   const char* names[kParts] = {"ref-interreflected", "ref-blocked", "ref-room", "blocked-probes", "rtf-interreflected",
                                "rtf-blocked", "field", "blocked-receiver", "blocked-shape-o", "blocked-at-o", "blocked-gpu",
                                "blocked-oof-at-r", "blocked-oof-at-r-nofade", "blocked-oofsh-exactcos", "blocked-vis-exactcos", "blocked-eq3", "blocked-surface", "blocked-level",
                                "ref-via-other", "ref-via-self", "rtf-interreflected-b1",
-                               "rtf-interreflected-b3", "rtf-interreflected-b4"};
+                               "rtf-interreflected-b3", "rtf-interreflected-b4",
+                               "rtf-interreflected-exact1", "rtf-interreflected-exact2"};
   std::vector<gpu::FloatImage> images(kParts);
   for (auto& im : images) im.width = W, im.height = H, im.rgb.assign(std::size_t(W) * H * 3, 0.0f);
   parallelFor(0, std::size_t(W) * H, [&](std::size_t pixel) {
@@ -438,6 +506,8 @@ int main(int argc, char** argv) {
     put(kRtfInter1, gi::rtf::shade(objects, bounced1, light.indirect(), hit.position, n, rho, -1, 9).interreflected);
     put(kRtfInter3, gi::rtf::shade(objects, bounced3, light.indirect(), hit.position, n, rho, -1, 9).interreflected);
     put(kRtfInter4, gi::rtf::shade(objects, bounced4, light.indirect(), hit.position, n, rho, -1, 9).interreflected);
+    put(kExact1, gi::rtf::shade(objects, exact1, light.indirect(), hit.position, n, rho, -1, 9).interreflected);
+    put(kExact2, gi::rtf::shade(objects, exact2, light.indirect(), hit.position, n, rho, -1, 9).interreflected);
     for (std::size_t k = 0; k < objects.size(); ++k) {
       const std::span<const gi::rtf::Object> one(&objects[k], 1);
       auto& po = perObject[pixel * objects.size() + k];
