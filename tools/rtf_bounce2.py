@@ -9,7 +9,8 @@ prints the means of the reference's single-bounce interreflected light (ref-inte
 bounce ≥ 2 part, RTF's first bounce and its second (2 − 1), the reference effect, the GPU 1- and 2-bounce rows'
 effects; then over all receivers the correlation of RTF's (2 − 1) with ref-via-other (per pixel and on 4×4
 blocks, which average the reference's noise), and the squared error (Σ RGB / indirect-only pixels × 1e6) of the
-GPU 1-bounce row with RTF's (2 − 1) added, with the reference's bounce ≥ 2 added instead, and scaled.
+GPU 1-bounce row with RTF's (2 − 1) added, with the reference's bounce ≥ 2 added instead, and scaled; the GPU rows
+with the CPU's terms swapped for the exact-proxy-light what-if (rtf-interreflected-exact1/2) and for 3 and 4 bounces.
 
 usage: tools/rtf_bounce2.py PARTS_DIR ACC_DIR [R]   (R: the field's end in η, default 4.7)
 """
