@@ -317,6 +317,7 @@ int main(int argc, char** argv) {
       char buf[96];
       const glm::vec3 chi = glm::vec3(objects[J].world * glm::vec4(f.proxies[k], 1.0f));
       float nearest = 1e30f;  // the nearest other object's |q| (η) at the proxy
+      float insideMesh = 0.0f;  // the largest share of directions that leave through another object's back faces
       float inside = 0.0f;    // the largest weight Eq. 10 puts on another object's samples with V ≡ 0 (inside it)
       for (std::size_t B = 0; B < objects.size(); ++B)
         if (B != J) {
@@ -329,8 +330,17 @@ int main(int argc, char** argv) {
           for (int t = 0; t < 8; ++t)
             if (std::abs(fb.oof[lk.sample[std::size_t(t)] * gi::rtf::kShCount]) < 1e-3f) w0 += lk.weight[std::size_t(t)];
           inside = std::max(inside, w0);
+          // Is χ inside B's mesh? the share of directions whose first hit on B is a back face.
+          int back = 0, total = 0;
+          for (std::size_t di = 0; di < oofDirs.size(); di += 7) {
+            ref::Hit h;
+            if (!aloneBvh[B]->intersect(chi, oofDirs[di].w, 0.0f, 1e30f, h)) continue;
+            ++total;
+            back += glm::dot(h.geometricNormal, oofDirs[di].w) > 0.0f;
+          }
+          insideMesh = std::max(insideMesh, total > 0 ? float(back) / float(oofDirs.size() / 7) : 0.0f);
         }
-      std::snprintf(buf, sizeof buf, " %.3g/%.3g/%.3g@%.2f(w0 %.2f)", refOther[k], rtfOther[k], rtfOther4[k], nearest, inside);
+      std::snprintf(buf, sizeof buf, " %.3g/%.3g/%.3g@%.2f(w0 %.2f back %.2f)", refOther[k], rtfOther[k], rtfOther4[k], nearest, inside, insideMesh);
       per += buf;
     }
     std::string rooms;
