@@ -72,6 +72,12 @@ vec2 probeMomentsAt(int probe, int bin, int bins) {  // bins: PROBE_VIS_BINS, de
   return texelFetch(probeMoments, probeTexel(probe, bin, bins), 0).rg;
 }
 
+#ifdef PROBE_TILES
+// An includer that defines PROBE_TILES also declares `const bool kTiles` and `sampler2D probeTiles`
+// (bilinear): the probes' irradiance tiles (probes/probe_tiles.glsl, written by probes/tiles.comp).
+#include "probes/probe_tiles.glsl"
+#endif
+
 #define PROBE_DATA_PARAM
 #define PROBE_DATA_ARG
 #define PROBE_VALID(i) probeValid(i)
@@ -117,6 +123,8 @@ void probeAddSh(int pk, float w, inout vec3 L[9]) {
 // saved; here the corner is arithmetic on k). do-while with the test at the end (README "What costs
 // what on lavapipe"); a lane may pass through the body after its own last corner (`live` false:
 // it adds 0). Session 11: probes / lighting, README "Probes cost, session 11".
+// With PROBE_TILES and kTiles, L[0] returns Σ_k w_k E_k(n) / Σ w_k instead (one bilinear tap of
+// probe k's irradiance tile per corner, probe_tiles.glsl) and L[1…] stay 0.
 void probeRadianceSh(vec3 x, vec3 n, vec3 v, out vec3 L[9]) {
   vec3 q = x + pc.bias.x * n + pc.bias.y * v;
   const ivec3 count = pc.countOrder.xyz;
@@ -124,6 +132,10 @@ void probeRadianceSh(vec3 x, vec3 n, vec3 v, out vec3 L[9]) {
   ivec3 base = probeCellBase(count, g);
   vec3 f = g - vec3(base);
   for (int i = 0; i < 9; ++i) L[i] = vec3(0.0);
+#ifdef PROBE_TILES
+  const vec2 tile = probeTileCoord(n);  // the same place in every probe's square
+  const vec2 invSize = 1.0 / vec2(PROBE_TILE * count.x, PROBE_TILE * count.y * count.z);
+#endif
   uint nz = 0u;
   for (int k = 0; k < 8; ++k) nz |= probeTrilinear(f, k) > 0.0 ? (1u << uint(k)) : 0u;
   float sum = 0.0;
@@ -136,7 +148,12 @@ void probeRadianceSh(vec3 x, vec3 n, vec3 v, out vec3 L[9]) {
     float w = probeCornerWeight(pc.originSpacing.xyz, pc.originSpacing.w, pc.bias.z, q, n, c, idx, probeTrilinear(f, k));
     w = live ? w : 0.0;
     sum += w;
-    probeAddSh(idx, w, L);
+#ifdef PROBE_TILES
+    if (kTiles)  // a specialization constant
+      L[0] += w * textureLod(probeTiles, (vec2(probeTileOrigin(c, count)) + tile) * invSize, 0.0).rgb;
+    else
+#endif
+      probeAddSh(idx, w, L);
   } while (nz != 0u);
   float inv = sum > 0.0 ? 1.0 / sum : 0.0;
   for (int i = 0; i < kCoeffs; ++i) L[i] *= inv;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include <glm/gtc/packing.hpp>
 
@@ -13,6 +14,8 @@
 
 namespace bounce::gi::probes {
 namespace {
+
+constexpr int kProbeTile = 16;  // shaders/probes/probe_tiles.glsl PROBE_TILE (test ProbeTiles.* checks)
 
 // Probe p = x + count.x·row of the volume in texel row `row`, `slots` texels per probe in that row
 // (probes.frag probeTexel). Throws when the layout exceeds the device's 2D image size.
@@ -128,6 +131,13 @@ std::vector<std::uint32_t> momentHalfWords(const ProbeVolume& v) {
   return words;
 }
 
+// The irradiance tiles' image (probe_tiles.glsl probeTileOrigin): a PROBE_TILE² square a probe, in
+// the probe images' row layout.
+glm::uvec2 tileImageSize(const ProbeGrid& g) {
+  return {std::uint32_t(kProbeTile) * std::uint32_t(g.count.x),
+          std::uint32_t(kProbeTile) * std::uint32_t(g.count.y) * std::uint32_t(g.count.z)};
+}
+
 // probes.frag's ProbeShBlock: 4096 uvec4 = 64 KiB, lavapipe's maxUniformBufferRange (the Vulkan
 // minimum is 16 KiB; a device below 64 KiB keeps the image path). 2 texels a probe at either order
 // plus a texel per 32 probes' valid bits: 2016 probes (4032 + 63 texels; a 0.125 m grid over
@@ -190,7 +200,8 @@ ProbePush probePush(const ProbeVolume& v, float flag) {
           glm::vec4(g.spacing * v.bias.normal, g.spacing * v.bias.view, v.minVariance(), flag)};
 }
 
-ProbeNode::ProbeNode(gpu::Context& ctx, const render::Pipelines& pipelines, ProbeVolume volume, bool shInUbo)
+ProbeNode::ProbeNode(gpu::Context& ctx, const render::Pipelines& pipelines, ProbeVolume volume, bool shInUbo,
+                     bool tiles)
     : volume_(std::move(volume)),
       sh_(uploadSh(ctx, volume_)),
       moments_(uploadMoments(ctx, volume_)),
@@ -202,7 +213,8 @@ ProbeNode::ProbeNode(gpu::Context& ctx, const render::Pipelines& pipelines, Prob
                   {4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                   {5, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
                   {6, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-                  {7, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER}},
+                  {7, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
+                  {8, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}},
                  "probes") {
   {
     const std::vector<std::uint32_t> words = shPackedWords(volume_);
@@ -224,6 +236,26 @@ ProbeNode::ProbeNode(gpu::Context& ctx, const render::Pipelines& pipelines, Prob
     if (momentsInUbo_)
       gpu::upload(ctx, momentsUbo_, {reinterpret_cast<const std::uint8_t*>(words.data()), std::size_t(bytes)});
   }
+  {
+    // The tiles read the SH from the block only (tiles.comp), and their image must fit a 2D image.
+    const glm::uvec2 size = tileImageSize(volume_.grid);
+    const std::uint32_t limit = ctx.limits().maxImageDimension2D;
+    tiles_ = tiles && shInUbo_ && size.x <= limit && size.y <= limit;
+    if (tiles_) {
+      tilesSetLayout_ = gpu::DescriptorSetLayout(ctx,
+                                                 {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+                                                  {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+                                                  {2, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
+                                                  {3, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
+                                                  {4, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}},
+                                                 "probes.tiles");
+      tilesLayout_ = gpu::PipelineLayout(ctx, {tilesSetLayout_.handle()}, {{VK_SHADER_STAGE_ALL, 0, sizeof(ProbePush)}},
+                                         "probes.tiles");
+      gpu::ShaderModule comp(ctx, "probes/tiles.comp.spv");
+      tilesPipeline_ = gpu::createComputePipeline(ctx, tilesLayout_, comp, "probes.tiles", nullptr,
+                                                  {std::uint32_t(volume_.coeffs())});  // tiles.comp kCoeffs
+    }
+  }
   layout_ = gpu::PipelineLayout(ctx, {pipelines.frameLayout.handle(), setLayout_.handle()},
                                 {{VK_SHADER_STAGE_ALL, 0, sizeof(ProbePush)}}, "probes");
   gpu::ShaderModule vert(ctx, "passes/fullscreen.vert.spv");
@@ -233,8 +265,8 @@ ProbeNode::ProbeNode(gpu::Context& ctx, const render::Pipelines& pipelines, Prob
   d.fragment = &frag;
   d.colorFormats = {VK_FORMAT_R16G16B16A16_SFLOAT};
   d.blend = gpu::Blend::Additive;
-  d.specialization = {std::uint32_t(volume_.coeffs()), shInUbo_ ? 1u : 0u,
-                      momentsInUbo_ ? 1u : 0u};  // probes.frag kCoeffs, kShInUbo, kMomentsInUbo
+  d.specialization = {std::uint32_t(volume_.coeffs()), shInUbo_ ? 1u : 0u, momentsInUbo_ ? 1u : 0u,
+                      tiles_ ? 1u : 0u};  // probes.frag kCoeffs, kShInUbo, kMomentsInUbo, kTiles
   d.name = "probes";
   pipeline_ = gpu::createGraphicsPipeline(ctx, layout_, d);
 }
@@ -251,9 +283,46 @@ void ProbeNode::addPasses(rg::RenderGraph& graph, const render::PassContext* pc)
   if (relight_) addRelightPass(graph, pc);
   struct Data {
     render::DeferredInputs g;
-    rg::Handle<rg::Texture> hdr, ao;
+    rg::Handle<rg::Texture> hdr, ao, tiles;
   };
   auto& bb = graph.blackboard();
+  // This frame's irradiance tiles (tiles.comp), after probes.relight rewrote the block (its final
+  // barrier makes the block visible to compute reads). A graph texture read only by the probes
+  // pass, so it is culled with it.
+  struct TilesData {
+    rg::Handle<rg::Texture> tiles;
+  };
+  std::optional<rg::Handle<rg::Texture>> tiles;
+  if (tiles_) {
+    const glm::uvec2 size = tileImageSize(volume_.grid);
+    tiles = graph
+                .addPass<TilesData>(
+                    "probes.tiles",
+                    [&](rg::Builder& b, TilesData& d) {
+                      d.tiles = b.write(b.create<rg::Texture>("probes.tiles",
+                                                              rg::TextureDesc{size.x, size.y, 1, 1, 1,
+                                                                              rg::Format::RGBA16F, false}),
+                                        rg::Usage::StorageWrite);
+                    },
+                    [this, pc](const TilesData& d, const rg::PassResources& res, rg::CommandContext& c) {
+                      VkCommandBuffer cmd = pc->cmd(c);
+                      VkSampler point = pc->samplers->get({VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST});
+                      VkDescriptorSet set = pc->frame().descriptors->allocate(tilesSetLayout_);
+                      gpu::DescriptorWriter()
+                          .sampledImage(0, sh_->view(), point)
+                          .sampledImage(1, moments_->view(), point)
+                          .buffer(2, shUbo_, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 0, kShUboBytes)
+                          .buffer(3, momentsUbo_, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 0, kMomentsUboBytes)
+                          .storageImage(4, pc->backend->image(res.texture(d.tiles)).view())
+                          .update(*pc->gpu, set);
+                      tilesPipeline_.bind(cmd);
+                      tilesPipeline_.bindSet(cmd, 0, set);
+                      tilesPipeline_.push(cmd, probePush(volume_, 0.0f));
+                      vkCmdDispatch(cmd, std::uint32_t(volume_.grid.count.x),
+                                    std::uint32_t(volume_.grid.count.y * volume_.grid.count.z), 1);
+                    })
+                .tiles;
+  }
   // An AO node (ssao/hbao) set before this one publishes "ao.term": the indirect term is then
   // multiplied by it, the way the DNRT paper's baselines use AO (§6.4). Without one, binding 6
   // repeats the albedo and the shader ignores it.
@@ -264,6 +333,7 @@ void ProbeNode::addPasses(rg::RenderGraph& graph, const render::PassContext* pc)
         d.g = render::readDeferredInputs(b, bb);
         d.hdr = b.write(bb.get<rg::Texture>("lighting.hdr"), rg::Usage::ColorAttachment);
         if (withAo) d.ao = b.read(bb.get<rg::Texture>("ao.term"), rg::Usage::SampledFragment);
+        if (tiles) d.tiles = b.read(*tiles, rg::Usage::SampledFragment);
       },
       [this, pc, withAo](const Data& d, const rg::PassResources& res, rg::CommandContext& c) {
         VkCommandBuffer cmd = pc->cmd(c);
@@ -277,6 +347,9 @@ void ProbeNode::addPasses(rg::RenderGraph& graph, const render::PassContext* pc)
             .buffer(5, shUbo_, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 0, kShUboBytes)
             .buffer(7, momentsUbo_, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 0, kMomentsUboBytes)
             .sampledImage(6, view(withAo ? d.ao : d.g.albedo), point)
+            // bilinear: one tap a probe (probe_tiles.glsl); without tiles the shader ignores it
+            .sampledImage(8, tiles_ ? view(d.tiles) : sh_->view(),
+                          tiles_ ? pc->samplers->get({VK_FILTER_LINEAR, VK_SAMPLER_MIPMAP_MODE_NEAREST}) : point)
             .update(*pc->gpu, set);
         gpu::Image& target = pc->backend->image(res.texture(d.hdr));
         render::Attachment color{target.view(), true};  // additive: keep the direct light
