@@ -8,14 +8,19 @@
 #include <glm/gtc/packing.hpp>
 
 #include "engine/core/error.hpp"
+#include "engine/math/sh.hpp"
 #include "engine/gpu/commands.hpp"
 #include "engine/render/passes/rendering.hpp"
 #include "engine/render/passes/gbuffer_pass.hpp"
 
 namespace bounce::gi::probes {
+namespace glsl {
+using namespace glm;
+#include "shaders/probes/probe_tiles.glsl"
+}  // namespace glsl
 namespace {
 
-constexpr int kProbeTile = 16;  // shaders/probes/probe_tiles.glsl PROBE_TILE (test ProbeTiles.* checks)
+constexpr int kProbeTile = glsl::PROBE_TILE;
 
 // Probe p = x + count.x·row of the volume in texel row `row`, `slots` texels per probe in that row
 // (probes.frag probeTexel). Throws when the layout exceeds the device's 2D image size.
@@ -177,6 +182,40 @@ double packedShIrradianceError(const ProbeVolume& v) {
 
 std::vector<std::uint32_t> packedShWords(const ProbeVolume& v) { return shPackedWords(v); }
 
+// The tiles' interpolation error (probe_tiles.glsl): E(n) is a polynomial of degree ≤ 2 in n
+// (order 3), smooth, but the octahedral map bends it, so rather than a loose derivative bound this
+// measures it: for each valid probe, its tile's texel values E(dir(t)) bilinearly interpolated at
+// probeTileCoord(n) (what the sampler does; llvmpipe filters RGBA16F with float weights) against
+// E(n), at 128² normals spread over the octahedral square (texel centres, edges and the points
+// between, 9 per texel) — the largest |difference| per channel (W/m²). The pass mixes ≤ 8 probes with
+// weights summing to 1, so this bounds a pixel's E too (plus the texels' fp16 rounding).
+double tileIrradianceError(const ProbeVolume& v) {
+  const std::size_t coeffs = std::size_t(v.coeffs());
+  constexpr int kTile = glsl::PROBE_TILE, kSamples = 128;
+  double worst = 0.0;
+  std::vector<glm::vec3> tile(std::size_t(kTile * kTile));
+  for (std::size_t p = 0; p < v.grid.probeCount(); ++p) {
+    if (v.valid[p] == 0) continue;
+    const std::span<const glm::vec3> L(&v.sh[p * coeffs], coeffs);
+    for (int y = 0; y < kTile; ++y)
+      for (int x = 0; x < kTile; ++x)
+        tile[std::size_t(y * kTile + x)] =
+            sh::evalIrradiance<glm::vec3, float>(L, glsl::probeTileDirection(glm::ivec2(x, y)));
+    for (int j = 0; j <= kSamples; ++j)
+      for (int i = 0; i <= kSamples; ++i) {
+        const glm::vec3 n = glsl::probeOctDecode(glm::vec2(float(i), float(j)) * (2.0f / kSamples) - 1.0f);
+        const glm::vec2 c = glsl::probeTileCoord(n) - 0.5f;  // texel centres at integers
+        const glm::ivec2 c0 = glm::clamp(glm::ivec2(glm::floor(c)), glm::ivec2(0), glm::ivec2(kTile - 2));
+        const glm::vec2 f = c - glm::vec2(c0);
+        const auto at = [&](int dx, int dy) { return tile[std::size_t((c0.y + dy) * kTile + c0.x + dx)]; };
+        const glm::vec3 got = glm::mix(glm::mix(at(0, 0), at(1, 0), f.x), glm::mix(at(0, 1), at(1, 1), f.x), f.y);
+        const glm::vec3 want = sh::evalIrradiance<glm::vec3, float>(L, n);
+        for (int ch = 0; ch < 3; ++ch) worst = std::max(worst, std::abs(double(got[ch]) - double(want[ch])));
+      }
+  }
+  return worst;
+}
+
 // SH texels (t + shTexels·x, row).
 std::unique_ptr<gpu::Image> uploadSh(gpu::Context& ctx, const ProbeVolume& v) {
   auto image = std::make_unique<gpu::Image>(ctx, probeImageDesc(ctx, v.grid, shTexels(v), VK_FORMAT_R32G32B32A32_SFLOAT, "probes.sh"));
@@ -280,7 +319,8 @@ void ProbeNode::enableRelight(gpu::Context& ctx, RelightData data, const ref::Sc
 }
 
 void ProbeNode::addPasses(rg::RenderGraph& graph, const render::PassContext* pc) {
-  if (relight_) addRelightPass(graph, pc);
+  std::optional<rg::Handle<rg::Buffer>> block;  // probes.relight's output, read below: culled with them
+  if (relight_) block = addRelightPass(graph, pc);
   struct Data {
     render::DeferredInputs g;
     rg::Handle<rg::Texture> hdr, ao, tiles;
@@ -303,6 +343,7 @@ void ProbeNode::addPasses(rg::RenderGraph& graph, const render::PassContext* pc)
                                                               rg::TextureDesc{size.x, size.y, 1, 1, 1,
                                                                               rg::Format::RGBA16F, false}),
                                         rg::Usage::StorageWrite);
+                      if (block) b.read(*block, rg::Usage::UniformBuffer);
                     },
                     [this, pc](const TilesData& d, const rg::PassResources& res, rg::CommandContext& c) {
                       VkCommandBuffer cmd = pc->cmd(c);
@@ -334,6 +375,7 @@ void ProbeNode::addPasses(rg::RenderGraph& graph, const render::PassContext* pc)
         d.hdr = b.write(bb.get<rg::Texture>("lighting.hdr"), rg::Usage::ColorAttachment);
         if (withAo) d.ao = b.read(bb.get<rg::Texture>("ao.term"), rg::Usage::SampledFragment);
         if (tiles) d.tiles = b.read(*tiles, rg::Usage::SampledFragment);
+        if (block) b.read(*block, rg::Usage::UniformBuffer);  // bound either way (with tiles unread)
       },
       [this, pc, withAo](const Data& d, const rg::PassResources& res, rg::CommandContext& c) {
         VkCommandBuffer cmd = pc->cmd(c);

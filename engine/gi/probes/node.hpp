@@ -33,6 +33,9 @@ ProbePush probePush(const ProbeVolume& v, float flag);
 // L_1/L_2 fractions of L_0 make at any receiver (node.cpp shPackedWords; derivation there): the
 // probes pass's output moves by at most ρ/π·ao times it plus the fp16 roundings.
 double packedShIrradianceError(const ProbeVolume& v);
+// The largest |E| change per channel (W/m²) that the irradiance tiles' bilinear interpolation makes
+// at any receiver (node.cpp tileIrradianceError: measured over dense normals, not derived).
+double tileIrradianceError(const ProbeVolume& v);
 // The uniform block's words (node.cpp shPackedWords; empty when the volume does not fit halves): what
 // the probes pass reads, and what relight.comp's pack stage writes for baked + ΔSH (tests compare).
 std::vector<std::uint32_t> packedShWords(const ProbeVolume& v);
@@ -92,8 +95,9 @@ class ProbeNode final : public TechniqueRuntime {
   gpu::DescriptorSetLayout tilesSetLayout_;
   gpu::PipelineLayout tilesLayout_;
   gpu::Pipeline tilesPipeline_;
-  // Pass "probes.relight" (defined in relight_pass.cpp): reads "shadow.atlas" when there is one.
-  void addRelightPass(rg::RenderGraph& graph, const render::PassContext* pc);
+  // Pass "probes.relight" (defined in relight_pass.cpp): reads "shadow.atlas" when there is one;
+  // returns the block it wrote (graph buffer "probes.sh.block"), which the probes' passes read.
+  rg::Handle<rg::Buffer> addRelightPass(rg::RenderGraph& graph, const render::PassContext* pc);
   std::unique_ptr<RelightPass> relight_;
   const ref::SceneBvh* relightScene_ = nullptr;
   std::vector<glm::vec3> relightBaked_;  // volume_.sh as baked (volume_.sh gets baked + ΔSH, relight_pass.cpp)
