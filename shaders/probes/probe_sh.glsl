@@ -72,65 +72,91 @@ vec2 probeMomentsAt(int probe, int bin, int bins) {  // bins: PROBE_VIS_BINS, de
   return texelFetch(probeMoments, probeTexel(probe, bin, bins), 0).rg;
 }
 
+#ifdef PROBE_TILES
+// An includer that defines PROBE_TILES also declares `const bool kTiles` and `sampler2D probeTiles`
+// (bilinear): the probes' irradiance tiles (probes/probe_tiles.glsl, written by probes/tiles.comp).
+#include "probes/probe_tiles.glsl"
+#endif
+
 #define PROBE_DATA_PARAM
+#define PROBE_DATA_ARG
 #define PROBE_VALID(i) probeValid(i)
 #define PROBE_MOMENTS(i, b) probeMomentsAt(i, b, PROBE_VIS_BINS)
 #include "probes/probe_weights.glsl"
 
+// L += w · probe pk's SH (coefficients ≥ kCoeffs untouched).
+void probeAddSh(int pk, float w, inout vec3 L[9]) {
+#ifdef PROBE_SH_UBO
+  if (kShInUbo) {  // a specialization constant: the other path is compiled out
+    uint word[8];  // only the kPackedWords used words are loaded (constant components once unrolled)
+    for (int j = 0; j < kPackedWords; ++j) word[j] = probeShUbo[kPackedTexels * pk + j / 4][j % 4];
+    vec2 rg = unpackHalf2x16(word[0]), bs = unpackHalf2x16(word[1]);
+    vec3 l0 = vec3(rg, bs.x);
+    L[0] += w * l0;
+    vec3 scale = (w * bs.y) * l0;  // L_i = scale ⊙ fraction_i, weighted
+    float f[24];                   // 3 · (kCoeffs − 1) ≤ 24
+    for (int j = 2; j < kPackedWords; ++j) {
+      vec4 q = unpackSnorm4x8(word[j]);
+      f[4 * j - 8] = q.x, f[4 * j - 7] = q.y, f[4 * j - 6] = q.z, f[4 * j - 5] = q.w;
+    }
+    for (int i = 1; i < kCoeffs; ++i) L[i] += scale * vec3(f[3 * i - 3], f[3 * i - 2], f[3 * i - 1]);
+    return;
+  }
+#endif
+  float f[28];  // kTexels · 4 ≤ 28
+  for (int t = 0; t < kTexels; ++t) {
+    vec4 v = probeShTexel(pk, t);
+    f[4 * t] = v.x, f[4 * t + 1] = v.y, f[4 * t + 2] = v.z, f[4 * t + 3] = v.w;
+  }
+  for (int i = 0; i < kCoeffs; ++i) L[i] += w * vec3(f[3 * i], f[3 * i + 1], f[3 * i + 2]);
+}
+
 // L = Σ_k w_k L^k at surface point x with unit normal n, v the unit vector to the eye (the lookup
 // point is biased along both, probe_weights.glsl); coefficients ≥ kCoeffs are 0.
+// One loop over the cell corners of non-zero trilinear weight (a receiver on a face of the volume
+// has 4, on an edge 2): each computes its probe's weight (probe_weights.glsl probeCornerWeight, the
+// CPU API's code) and adds its weighted SH; the sum is divided by Σ w_k once at the end, as E is
+// linear in L (probeWeights normalises first: the same value up to float rounding, ≤ 1 fp16 step
+// in the image). llvmpipe skips no branch but leaves a loop when none of its 8 lanes is still in
+// it, so a group of wall pixels runs 4 corners, not 8, of the weights too (session 9 looped the SH
+// only, and picking probe[k], weight[k] out of arrays by selects cost what the skipped weights
+// saved; here the corner is arithmetic on k). do-while with the test at the end (README "What costs
+// what on lavapipe"); a lane may pass through the body after its own last corner (`live` false:
+// it adds 0). Session 11: probes / lighting, README "Probes cost, session 11".
+// With PROBE_TILES and kTiles, L[0] returns Σ_k w_k E_k(n) / Σ w_k instead (one bilinear tap of
+// probe k's irradiance tile per corner, probe_tiles.glsl) and L[1…] stay 0.
 void probeRadianceSh(vec3 x, vec3 n, vec3 v, out vec3 L[9]) {
   vec3 q = x + pc.bias.x * n + pc.bias.y * v;
-  int probe[8];
-  float weight[8];
-  probeWeights(pc.countOrder.xyz, pc.originSpacing.xyz, pc.originSpacing.w, pc.bias.z, q, n, probe, weight);
+  const ivec3 count = pc.countOrder.xyz;
+  vec3 g = probeGridCoord(count, pc.originSpacing.xyz, pc.originSpacing.w, q);
+  ivec3 base = probeCellBase(count, g);
+  vec3 f = g - vec3(base);
   for (int i = 0; i < 9; ++i) L[i] = vec3(0.0);
-  // Only the probes of non-zero weight (a receiver on a face of the volume has 4, on an edge 2): a
-  // branch is not skipped on llvmpipe, but a loop ends when none of the 8 lanes is still in it, so
-  // the SH loads run max(nonzero) times over the 8 lanes instead of 8 (session 9: probes / lighting
-  // 1.82 → 1.70 on cornell-1). do-while with the test at the end (README "What costs what on
-  // lavapipe"); a lane may pass through the body after its own last probe (`live` false: it adds 0,
-  // as a zero weight did before). The same probes in the same order, so the same sums: the image is
-  // bit-identical. k is per lane, so probe[k] and weight[k] are picked by a select over the 8: the
-  // arrays indexed by k directly gave wrong images on lavapipe 22.3 (rel RMSE 0.02–0.03, measured).
+#ifdef PROBE_TILES
+  const vec2 tile = probeTileCoord(n);  // the same place in every probe's square
+  const vec2 invSize = 1.0 / vec2(PROBE_TILE * count.x, PROBE_TILE * count.y * count.z);
+#endif
   uint nz = 0u;
-  for (int k = 0; k < 8; ++k) nz |= weight[k] > 0.0 ? (1u << uint(k)) : 0u;
+  for (int k = 0; k < 8; ++k) nz |= probeTrilinear(f, k) > 0.0 ? (1u << uint(k)) : 0u;
+  float sum = 0.0;
   do {
     const bool live = nz != 0u;
     int k = max(findLSB(nz), 0);
     nz &= nz - 1u;
-    float wk = 0.0;
-    int pk = probe[0];
-    for (int j = 0; j < 8; ++j) {
-      wk = k == j ? weight[j] : wk;
-      pk = k == j ? probe[j] : pk;
-    }
-    wk = live ? wk : 0.0;
-#ifdef PROBE_SH_UBO
-    if (kShInUbo) {  // a specialization constant: the other path is compiled out
-      uint w[8];     // only the kPackedWords used words are loaded (constant components once unrolled)
-      for (int j = 0; j < kPackedWords; ++j) w[j] = probeShUbo[kPackedTexels * pk + j / 4][j % 4];
-      vec2 rg = unpackHalf2x16(w[0]), bs = unpackHalf2x16(w[1]);
-      vec3 l0 = vec3(rg, bs.x);
-      L[0] += wk * l0;
-      vec3 scale = (wk * bs.y) * l0;  // L_i = scale ⊙ fraction_i, weighted
-      float f[24];                            // 3 · (kCoeffs − 1) ≤ 24
-      for (int j = 2; j < kPackedWords; ++j) {
-        vec4 q = unpackSnorm4x8(w[j]);
-        f[4 * j - 8] = q.x, f[4 * j - 7] = q.y, f[4 * j - 6] = q.z, f[4 * j - 5] = q.w;
-      }
-      for (int i = 1; i < kCoeffs; ++i) L[i] += scale * vec3(f[3 * i - 3], f[3 * i - 2], f[3 * i - 1]);
-    } else
+    ivec3 c = probeCorner(count, base, k);
+    int idx = probeIndex(count, c);
+    float w = probeCornerWeight(pc.originSpacing.xyz, pc.originSpacing.w, pc.bias.z, q, n, c, idx, probeTrilinear(f, k));
+    w = live ? w : 0.0;
+    sum += w;
+#ifdef PROBE_TILES
+    if (kTiles)  // a specialization constant
+      L[0] += w * textureLod(probeTiles, (vec2(probeTileOrigin(c, count)) + tile) * invSize, 0.0).rgb;
+    else
 #endif
-    {
-      float f[28];  // kTexels · 4 ≤ 28
-      for (int t = 0; t < kTexels; ++t) {
-        vec4 v = probeShTexel(pk, t);
-        f[4 * t] = v.x, f[4 * t + 1] = v.y, f[4 * t + 2] = v.z, f[4 * t + 3] = v.w;
-      }
-      for (int i = 0; i < kCoeffs; ++i) L[i] += wk * vec3(f[3 * i], f[3 * i + 1], f[3 * i + 2]);
-    }
+      probeAddSh(idx, w, L);
   } while (nz != 0u);
+  float inv = sum > 0.0 ? 1.0 / sum : 0.0;
+  for (int i = 0; i < kCoeffs; ++i) L[i] *= inv;
 }
 
 #endif  // BOUNCE_PROBE_SH_GLSL

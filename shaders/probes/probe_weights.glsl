@@ -4,6 +4,7 @@
 //
 // The includer defines how probe data is read:
 //   PROBE_DATA_PARAM      extra leading parameter (C++: the volume; GLSL: empty)
+//   PROBE_DATA_ARG        the same passed on (C++: `volume,`; GLSL: empty)
 //   PROBE_VALID(i)        bool: probe i is usable (not inside geometry)
 //   PROBE_MOMENTS(i, b)   vec2: mean and mean-square hit distance of probe i in bin b (metres, m²)
 //
@@ -56,31 +57,60 @@ float probeBackface(vec3 dirToProbe, vec3 n) {
   return t * t + 0.2f;
 }
 
-// The 8 probes around the biased receiver q (grid: probe (i,j,k) at origin + spacing·(i,j,k),
-// count probes per axis) and their normalised weights; all weights 0 when no valid probe is near.
+// The biased receiver q in grid units (grid: probe (i,j,k) at origin + spacing·(i,j,k), count probes
+// per axis), clamped to the grid, and its cell's corner probe (0,0,0): q's fraction in the cell is
+// g − base. Corner k of the cell is base + (k & 1, (k >> 1) & 1, (k >> 2) & 1).
+vec3 probeGridCoord(ivec3 count, vec3 origin, float spacing, vec3 q) {
+  return clamp((q - origin) / spacing, vec3(0.0f), vec3(count - ivec3(1)));
+}
+
+ivec3 probeCellBase(ivec3 count, vec3 g) { return min(ivec3(floor(g)), max(count - ivec3(2), ivec3(0))); }
+
+ivec3 probeCorner(ivec3 count, ivec3 base, int k) {
+  return min(base + ivec3(k & 1, (k >> 1) & 1, (k >> 2) & 1), count - ivec3(1));
+}
+
+int probeIndex(ivec3 count, ivec3 c) { return (c.z * count.y + c.y) * count.x + c.x; }
+
+// Corner k's trilinear weight (0 on the far side of a face q is clamped onto).
+float probeTrilinear(vec3 f, int k) {
+  vec3 tri = mix(vec3(1.0f) - f, f, vec3(ivec3(k & 1, (k >> 1) & 1, (k >> 2) & 1)));
+  return tri.x * tri.y * tri.z;
+}
+
+// The unnormalised weight of probe idx at grid corner c for q with normal n, given its trilinear
+// weight tri > 0: tri · backface · Chebyshev, 0 when the probe is not valid.
+float probeCornerWeight(PROBE_DATA_PARAM vec3 origin, float spacing, float minVariance, vec3 q, vec3 n, ivec3 c,
+                        int idx, float tri) {
+  float w = tri;
+  if (PROBE_VALID(idx)) {
+    vec3 toPoint = q - (origin + vec3(c) * spacing);
+    float dist = length(toPoint);
+    if (dist > 1e-6f) {
+      vec3 dir = toPoint / dist;
+      w *= probeBackface(-dir, n) * probeChebyshev(PROBE_MOMENTS(idx, probeVisBin(dir)), dist, minVariance);
+    }
+  } else {
+    w = 0.0f;
+  }
+  return w;
+}
+
+// The 8 probes around the biased receiver q and their normalised weights; all weights 0 when no
+// valid probe is near. (probes.frag sums the same unnormalised weights over the non-zero corners
+// only and divides once: probe_sh.glsl probeRadianceSh.)
 void probeWeights(PROBE_DATA_PARAM ivec3 count, vec3 origin, float spacing, float minVariance, vec3 q, vec3 n,
                   out int probe[8], out float weight[8]) {
-  vec3 g = clamp((q - origin) / spacing, vec3(0.0f), vec3(count - ivec3(1)));
-  ivec3 base = min(ivec3(floor(g)), max(count - ivec3(2), ivec3(0)));
+  vec3 g = probeGridCoord(count, origin, spacing, q);
+  ivec3 base = probeCellBase(count, g);
   vec3 f = g - vec3(base);
   float sum = 0.0f;
   for (int k = 0; k < 8; ++k) {
-    ivec3 off = ivec3(k & 1, (k >> 1) & 1, (k >> 2) & 1);
-    ivec3 c = min(base + off, count - ivec3(1));
-    int idx = (c.z * count.y + c.y) * count.x + c.x;
-    vec3 tri = mix(vec3(1.0f) - f, f, vec3(off));
-    float w = tri.x * tri.y * tri.z;
+    ivec3 c = probeCorner(count, base, k);
+    int idx = probeIndex(count, c);
+    float w = probeTrilinear(f, k);
     probe[k] = idx;
-    if (w > 0.0f && PROBE_VALID(idx)) {
-      vec3 toPoint = q - (origin + vec3(c) * spacing);
-      float dist = length(toPoint);
-      if (dist > 1e-6f) {
-        vec3 dir = toPoint / dist;
-        w *= probeBackface(-dir, n) * probeChebyshev(PROBE_MOMENTS(idx, probeVisBin(dir)), dist, minVariance);
-      }
-    } else {
-      w = 0.0f;
-    }
+    w = w > 0.0f ? probeCornerWeight(PROBE_DATA_ARG origin, spacing, minVariance, q, n, c, idx, w) : 0.0f;
     weight[k] = w;
     sum += w;
   }

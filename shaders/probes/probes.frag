@@ -19,6 +19,9 @@ layout(constant_id = 1) const bool kShInUbo = false;
 // The visibility moments from the second uniform block below when they fit it (node.cpp
 // kMomentsUboBytes): (mean, σ) halves, one word a bin (probe_sh.glsl probeMomentsAt).
 layout(constant_id = 2) const bool kMomentsInUbo = false;
+// E(n) from the probes' irradiance tiles (pass `probes.tiles`, probes/probe_tiles.glsl): one
+// bilinear tap a probe instead of its SH words; set with kShInUbo when the tile image fits.
+layout(constant_id = 3) const bool kTiles = false;
 
 layout(set = 0, binding = 0) uniform FrameUbo { Camera camera; };
 layout(set = 1, binding = 0) uniform sampler2D gAlbedo;
@@ -28,8 +31,9 @@ layout(set = 1, binding = 2) uniform sampler2D gDepth;
 layout(set = 1, binding = 3) uniform sampler2D probeSh;       // RGBA32F
 layout(set = 1, binding = 4) uniform sampler2D probeMoments;  // RG32F
 layout(std140, set = 1, binding = 5) uniform ProbeShBlock { uvec4 probeShUbo[4096]; };  // packed SH, word j of p: [kPackedTexels·p + j / 4][j % 4]
-layout(set = 1, binding = 6) uniform sampler2D aoTerm;
-layout(std140, set = 1, binding = 7) uniform ProbeMomentsBlock { uvec4 probeMomentsUbo[4096]; };  // word 64·p + bin  // "ao.term" (1 = unoccluded) when bias.w = 1
+layout(set = 1, binding = 6) uniform sampler2D aoTerm;  // "ao.term" (1 = unoccluded) when bias.w = 1
+layout(std140, set = 1, binding = 7) uniform ProbeMomentsBlock { uvec4 probeMomentsUbo[4096]; };  // word 64·p + bin
+layout(set = 1, binding = 8) uniform sampler2D probeTiles;  // RGBA16F, bilinear (kTiles)
 
 layout(push_constant) uniform Push {
   vec4 originSpacing;  // xyz: probe (0,0,0) position, w: spacing (m)
@@ -38,6 +42,7 @@ layout(push_constant) uniform Push {
 } pc;
 
 #define PROBE_SH_UBO  // probe_sh.glsl: read kShInUbo's probeShUbo
+#define PROBE_TILES   // … and kTiles' probeTiles
 #include "probes/probe_sh.glsl"
 
 layout(location = 0) in vec2 inUv;
@@ -58,5 +63,6 @@ void main() {
   vec3 L[9];
   probeRadianceSh(x, n, normalize(camera.position.xyz - x), L);
   float ao = pc.bias.w > 0.5 ? texelFetch(aoTerm, pixel, 0).r : 1.0;
-  outRadiance = vec4(albedo * kInvPi * ao * max(shIrradiance9(L, n), vec3(0.0)), 0.0);
+  vec3 e = kTiles ? L[0] : shIrradiance9(L, n);  // probeRadianceSh: with kTiles, L[0] is E(n)
+  outRadiance = vec4(albedo * kInvPi * ao * max(e, vec3(0.0)), 0.0);
 }

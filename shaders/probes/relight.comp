@@ -56,6 +56,7 @@ layout(push_constant) uniform Push {
 #include "probes/relight.glsl"
 
 #define PROBE_DATA_PARAM
+#define PROBE_DATA_ARG
 #define PROBE_VALID(i) (validFlags[i] != 0u)
 #define PROBE_MOMENTS(i, b) momentsBuf[(i) * PROBE_VIS_BINS + (b)]
 #include "probes/probe_weights.glsl"

@@ -3,16 +3,24 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include <glm/gtc/packing.hpp>
 
 #include "engine/core/error.hpp"
+#include "engine/math/sh.hpp"
 #include "engine/gpu/commands.hpp"
 #include "engine/render/passes/rendering.hpp"
 #include "engine/render/passes/gbuffer_pass.hpp"
 
 namespace bounce::gi::probes {
+namespace glsl {
+using namespace glm;
+#include "shaders/probes/probe_tiles.glsl"
+}  // namespace glsl
 namespace {
+
+constexpr int kProbeTile = glsl::PROBE_TILE;
 
 // Probe p = x + count.x·row of the volume in texel row `row`, `slots` texels per probe in that row
 // (probes.frag probeTexel). Throws when the layout exceeds the device's 2D image size.
@@ -128,6 +136,13 @@ std::vector<std::uint32_t> momentHalfWords(const ProbeVolume& v) {
   return words;
 }
 
+// The irradiance tiles' image (probe_tiles.glsl probeTileOrigin): a PROBE_TILE² square a probe, in
+// the probe images' row layout.
+glm::uvec2 tileImageSize(const ProbeGrid& g) {
+  return {std::uint32_t(kProbeTile) * std::uint32_t(g.count.x),
+          std::uint32_t(kProbeTile) * std::uint32_t(g.count.y) * std::uint32_t(g.count.z)};
+}
+
 // probes.frag's ProbeShBlock: 4096 uvec4 = 64 KiB, lavapipe's maxUniformBufferRange (the Vulkan
 // minimum is 16 KiB; a device below 64 KiB keeps the image path). 2 texels a probe at either order
 // plus a texel per 32 probes' valid bits: 2016 probes (4032 + 63 texels; a 0.125 m grid over
@@ -167,6 +182,40 @@ double packedShIrradianceError(const ProbeVolume& v) {
 
 std::vector<std::uint32_t> packedShWords(const ProbeVolume& v) { return shPackedWords(v); }
 
+// The tiles' interpolation error (probe_tiles.glsl): E(n) is a polynomial of degree ≤ 2 in n
+// (order 3), smooth, but the octahedral map bends it, so rather than a loose derivative bound this
+// measures it: for each valid probe, its tile's texel values E(dir(t)) bilinearly interpolated at
+// probeTileCoord(n) (what the sampler does; llvmpipe filters RGBA16F with float weights) against
+// E(n), at 128² normals spread over the octahedral square (texel centres, edges and the points
+// between, 9 per texel) — the largest |difference| per channel (W/m²). The pass mixes ≤ 8 probes with
+// weights summing to 1, so this bounds a pixel's E too (plus the texels' fp16 rounding).
+double tileIrradianceError(const ProbeVolume& v) {
+  const std::size_t coeffs = std::size_t(v.coeffs());
+  constexpr int kTile = glsl::PROBE_TILE, kSamples = 128;
+  double worst = 0.0;
+  std::vector<glm::vec3> tile(std::size_t(kTile * kTile));
+  for (std::size_t p = 0; p < v.grid.probeCount(); ++p) {
+    if (v.valid[p] == 0) continue;
+    const std::span<const glm::vec3> L(&v.sh[p * coeffs], coeffs);
+    for (int y = 0; y < kTile; ++y)
+      for (int x = 0; x < kTile; ++x)
+        tile[std::size_t(y * kTile + x)] =
+            sh::evalIrradiance<glm::vec3, float>(L, glsl::probeTileDirection(glm::ivec2(x, y)));
+    for (int j = 0; j <= kSamples; ++j)
+      for (int i = 0; i <= kSamples; ++i) {
+        const glm::vec3 n = glsl::probeOctDecode(glm::vec2(float(i), float(j)) * (2.0f / kSamples) - 1.0f);
+        const glm::vec2 c = glsl::probeTileCoord(n) - 0.5f;  // texel centres at integers
+        const glm::ivec2 c0 = glm::clamp(glm::ivec2(glm::floor(c)), glm::ivec2(0), glm::ivec2(kTile - 2));
+        const glm::vec2 f = c - glm::vec2(c0);
+        const auto at = [&](int dx, int dy) { return tile[std::size_t((c0.y + dy) * kTile + c0.x + dx)]; };
+        const glm::vec3 got = glm::mix(glm::mix(at(0, 0), at(1, 0), f.x), glm::mix(at(0, 1), at(1, 1), f.x), f.y);
+        const glm::vec3 want = sh::evalIrradiance<glm::vec3, float>(L, n);
+        for (int ch = 0; ch < 3; ++ch) worst = std::max(worst, std::abs(double(got[ch]) - double(want[ch])));
+      }
+  }
+  return worst;
+}
+
 // SH texels (t + shTexels·x, row).
 std::unique_ptr<gpu::Image> uploadSh(gpu::Context& ctx, const ProbeVolume& v) {
   auto image = std::make_unique<gpu::Image>(ctx, probeImageDesc(ctx, v.grid, shTexels(v), VK_FORMAT_R32G32B32A32_SFLOAT, "probes.sh"));
@@ -190,7 +239,8 @@ ProbePush probePush(const ProbeVolume& v, float flag) {
           glm::vec4(g.spacing * v.bias.normal, g.spacing * v.bias.view, v.minVariance(), flag)};
 }
 
-ProbeNode::ProbeNode(gpu::Context& ctx, const render::Pipelines& pipelines, ProbeVolume volume, bool shInUbo)
+ProbeNode::ProbeNode(gpu::Context& ctx, const render::Pipelines& pipelines, ProbeVolume volume, bool shInUbo,
+                     bool tiles)
     : volume_(std::move(volume)),
       sh_(uploadSh(ctx, volume_)),
       moments_(uploadMoments(ctx, volume_)),
@@ -202,7 +252,8 @@ ProbeNode::ProbeNode(gpu::Context& ctx, const render::Pipelines& pipelines, Prob
                   {4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                   {5, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
                   {6, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-                  {7, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER}},
+                  {7, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
+                  {8, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}},
                  "probes") {
   {
     const std::vector<std::uint32_t> words = shPackedWords(volume_);
@@ -224,6 +275,26 @@ ProbeNode::ProbeNode(gpu::Context& ctx, const render::Pipelines& pipelines, Prob
     if (momentsInUbo_)
       gpu::upload(ctx, momentsUbo_, {reinterpret_cast<const std::uint8_t*>(words.data()), std::size_t(bytes)});
   }
+  {
+    // The tiles read the SH from the block only (tiles.comp), and their image must fit a 2D image.
+    const glm::uvec2 size = tileImageSize(volume_.grid);
+    const std::uint32_t limit = ctx.limits().maxImageDimension2D;
+    tiles_ = tiles && shInUbo_ && size.x <= limit && size.y <= limit;
+    if (tiles_) {
+      tilesSetLayout_ = gpu::DescriptorSetLayout(ctx,
+                                                 {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+                                                  {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+                                                  {2, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
+                                                  {3, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
+                                                  {4, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}},
+                                                 "probes.tiles");
+      tilesLayout_ = gpu::PipelineLayout(ctx, {tilesSetLayout_.handle()}, {{VK_SHADER_STAGE_ALL, 0, sizeof(ProbePush)}},
+                                         "probes.tiles");
+      gpu::ShaderModule comp(ctx, "probes/tiles.comp.spv");
+      tilesPipeline_ = gpu::createComputePipeline(ctx, tilesLayout_, comp, "probes.tiles", nullptr,
+                                                  {std::uint32_t(volume_.coeffs())});  // tiles.comp kCoeffs
+    }
+  }
   layout_ = gpu::PipelineLayout(ctx, {pipelines.frameLayout.handle(), setLayout_.handle()},
                                 {{VK_SHADER_STAGE_ALL, 0, sizeof(ProbePush)}}, "probes");
   gpu::ShaderModule vert(ctx, "passes/fullscreen.vert.spv");
@@ -233,8 +304,8 @@ ProbeNode::ProbeNode(gpu::Context& ctx, const render::Pipelines& pipelines, Prob
   d.fragment = &frag;
   d.colorFormats = {VK_FORMAT_R16G16B16A16_SFLOAT};
   d.blend = gpu::Blend::Additive;
-  d.specialization = {std::uint32_t(volume_.coeffs()), shInUbo_ ? 1u : 0u,
-                      momentsInUbo_ ? 1u : 0u};  // probes.frag kCoeffs, kShInUbo, kMomentsInUbo
+  d.specialization = {std::uint32_t(volume_.coeffs()), shInUbo_ ? 1u : 0u, momentsInUbo_ ? 1u : 0u,
+                      tiles_ ? 1u : 0u};  // probes.frag kCoeffs, kShInUbo, kMomentsInUbo, kTiles
   d.name = "probes";
   pipeline_ = gpu::createGraphicsPipeline(ctx, layout_, d);
 }
@@ -248,12 +319,51 @@ void ProbeNode::enableRelight(gpu::Context& ctx, RelightData data, const ref::Sc
 }
 
 void ProbeNode::addPasses(rg::RenderGraph& graph, const render::PassContext* pc) {
-  if (relight_) addRelightPass(graph, pc);
+  std::optional<rg::Handle<rg::Buffer>> block;  // probes.relight's output, read below: culled with them
+  if (relight_) block = addRelightPass(graph, pc);
   struct Data {
     render::DeferredInputs g;
-    rg::Handle<rg::Texture> hdr, ao;
+    rg::Handle<rg::Texture> hdr, ao, tiles;
   };
   auto& bb = graph.blackboard();
+  // This frame's irradiance tiles (tiles.comp), after probes.relight rewrote the block (its final
+  // barrier makes the block visible to compute reads). A graph texture read only by the probes
+  // pass, so it is culled with it.
+  struct TilesData {
+    rg::Handle<rg::Texture> tiles;
+  };
+  std::optional<rg::Handle<rg::Texture>> tiles;
+  if (tiles_) {
+    const glm::uvec2 size = tileImageSize(volume_.grid);
+    tiles = graph
+                .addPass<TilesData>(
+                    "probes.tiles",
+                    [&](rg::Builder& b, TilesData& d) {
+                      d.tiles = b.write(b.create<rg::Texture>("probes.tiles",
+                                                              rg::TextureDesc{size.x, size.y, 1, 1, 1,
+                                                                              rg::Format::RGBA16F, false}),
+                                        rg::Usage::StorageWrite);
+                      if (block) b.read(*block, rg::Usage::UniformBuffer);
+                    },
+                    [this, pc](const TilesData& d, const rg::PassResources& res, rg::CommandContext& c) {
+                      VkCommandBuffer cmd = pc->cmd(c);
+                      VkSampler point = pc->samplers->get({VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST});
+                      VkDescriptorSet set = pc->frame().descriptors->allocate(tilesSetLayout_);
+                      gpu::DescriptorWriter()
+                          .sampledImage(0, sh_->view(), point)
+                          .sampledImage(1, moments_->view(), point)
+                          .buffer(2, shUbo_, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 0, kShUboBytes)
+                          .buffer(3, momentsUbo_, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 0, kMomentsUboBytes)
+                          .storageImage(4, pc->backend->image(res.texture(d.tiles)).view())
+                          .update(*pc->gpu, set);
+                      tilesPipeline_.bind(cmd);
+                      tilesPipeline_.bindSet(cmd, 0, set);
+                      tilesPipeline_.push(cmd, probePush(volume_, 0.0f));
+                      vkCmdDispatch(cmd, std::uint32_t(volume_.grid.count.x),
+                                    std::uint32_t(volume_.grid.count.y * volume_.grid.count.z), 1);
+                    })
+                .tiles;
+  }
   // An AO node (ssao/hbao) set before this one publishes "ao.term": the indirect term is then
   // multiplied by it, the way the DNRT paper's baselines use AO (§6.4). Without one, binding 6
   // repeats the albedo and the shader ignores it.
@@ -264,6 +374,8 @@ void ProbeNode::addPasses(rg::RenderGraph& graph, const render::PassContext* pc)
         d.g = render::readDeferredInputs(b, bb);
         d.hdr = b.write(bb.get<rg::Texture>("lighting.hdr"), rg::Usage::ColorAttachment);
         if (withAo) d.ao = b.read(bb.get<rg::Texture>("ao.term"), rg::Usage::SampledFragment);
+        if (tiles) d.tiles = b.read(*tiles, rg::Usage::SampledFragment);
+        if (block) b.read(*block, rg::Usage::UniformBuffer);  // bound either way (with tiles unread)
       },
       [this, pc, withAo](const Data& d, const rg::PassResources& res, rg::CommandContext& c) {
         VkCommandBuffer cmd = pc->cmd(c);
@@ -277,6 +389,9 @@ void ProbeNode::addPasses(rg::RenderGraph& graph, const render::PassContext* pc)
             .buffer(5, shUbo_, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 0, kShUboBytes)
             .buffer(7, momentsUbo_, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 0, kMomentsUboBytes)
             .sampledImage(6, view(withAo ? d.ao : d.g.albedo), point)
+            // bilinear: one tap a probe (probe_tiles.glsl); without tiles the shader ignores it
+            .sampledImage(8, tiles_ ? view(d.tiles) : sh_->view(),
+                          tiles_ ? pc->samplers->get({VK_FILTER_LINEAR, VK_SAMPLER_MIPMAP_MODE_NEAREST}) : point)
             .update(*pc->gpu, set);
         gpu::Image& target = pc->backend->image(res.texture(d.hdr));
         render::Attachment color{target.view(), true};  // additive: keep the direct light

@@ -33,6 +33,9 @@ ProbePush probePush(const ProbeVolume& v, float flag);
 // L_1/L_2 fractions of L_0 make at any receiver (node.cpp shPackedWords; derivation there): the
 // probes pass's output moves by at most ρ/π·ao times it plus the fp16 roundings.
 double packedShIrradianceError(const ProbeVolume& v);
+// The largest |E| change per channel (W/m²) that the irradiance tiles' bilinear interpolation makes
+// at any receiver (node.cpp tileIrradianceError: measured over dense normals, not derived).
+double tileIrradianceError(const ProbeVolume& v);
 // The uniform block's words (node.cpp shPackedWords; empty when the volume does not fit halves): what
 // the probes pass reads, and what relight.comp's pack stage writes for baked + ΔSH (tests compare).
 std::vector<std::uint32_t> packedShWords(const ProbeVolume& v);
@@ -42,9 +45,14 @@ class ProbeNode final : public TechniqueRuntime {
   // `pipelines` gives the shared frame layout (set 0: camera).
   // `shInUbo`: read the SH from a uniform block when they fit one (the default; probes.frag
   // kShInUbo), false: always from the image (tests compare the two paths).
-  ProbeNode(gpu::Context& ctx, const render::Pipelines& pipelines, ProbeVolume volume, bool shInUbo = true);
+  ProbeNode(gpu::Context& ctx, const render::Pipelines& pipelines, ProbeVolume volume, bool shInUbo = true,
+            bool tiles = true);
   bool shInUbo() const { return shInUbo_; }
   bool momentsInUbo() const { return momentsInUbo_; }
+  // The probes pass taps per-probe irradiance tiles (pass `probes.tiles`, probes.frag kTiles,
+  // shaders/probes/probe_tiles.glsl) instead of reading the SH: when the SH are in the block and the
+  // tile image fits the device. `tiles` false in the constructor keeps the SH path (tests compare).
+  bool tiles() const { return tiles_; }
   // Reads the G-buffer from the blackboard ("gbuffer.albedo", "gbuffer.normal", "gbuffer.depth"),
   // blends into "lighting.hdr" and publishes the new version under the same key.
   void addPasses(rg::RenderGraph& graph, const render::PassContext* pc);
@@ -81,8 +89,15 @@ class ProbeNode final : public TechniqueRuntime {
   gpu::DescriptorSetLayout setLayout_;
   gpu::PipelineLayout layout_;
   gpu::Pipeline pipeline_;
-  // Pass "probes.relight" (defined in relight_pass.cpp): reads "shadow.atlas" when there is one.
-  void addRelightPass(rg::RenderGraph& graph, const render::PassContext* pc);
+  // Pass `probes.tiles` (shaders/probes/tiles.comp): each probe's E(n) over its octahedral tile,
+  // every frame (after `probes.relight`), into a graph texture only the probes pass reads.
+  bool tiles_ = false;
+  gpu::DescriptorSetLayout tilesSetLayout_;
+  gpu::PipelineLayout tilesLayout_;
+  gpu::Pipeline tilesPipeline_;
+  // Pass "probes.relight" (defined in relight_pass.cpp): reads "shadow.atlas" when there is one;
+  // returns the block it wrote (graph buffer "probes.sh.block"), which the probes' passes read.
+  rg::Handle<rg::Buffer> addRelightPass(rg::RenderGraph& graph, const render::PassContext* pc);
   std::unique_ptr<RelightPass> relight_;
   const ref::SceneBvh* relightScene_ = nullptr;
   std::vector<glm::vec3> relightBaked_;  // volume_.sh as baked (volume_.sh gets baked + ΔSH, relight_pass.cpp)

@@ -15,12 +15,14 @@ using namespace glm;
 #define in
 #define out
 #define PROBE_DATA_PARAM const ProbeVolume &volume,
+#define PROBE_DATA_ARG volume,
 #define PROBE_VALID(i) (volume.valid[std::size_t(i)] != 0u)
 #define PROBE_MOMENTS(i, b) volume.moments[std::size_t(i) * kVisBins + std::size_t(b)]
 #include "shaders/probes/probe_weights.glsl"
 #undef PROBE_MOMENTS
 #undef PROBE_VALID
 #undef PROBE_DATA_PARAM
+#undef PROBE_DATA_ARG
 #undef in
 #undef out
 static_assert(kVisRes == 8 && kVisBins == 64, "keep in step with probe_weights.glsl");

@@ -227,9 +227,10 @@ bool RelightPass::readDelta(std::uint32_t slot, std::vector<glm::vec3>& out) con
 
 namespace bounce::gi::probes {
 
-void ProbeNode::addRelightPass(rg::RenderGraph& graph, const render::PassContext* pc) {
+rg::Handle<rg::Buffer> ProbeNode::addRelightPass(rg::RenderGraph& graph, const render::PassContext* pc) {
   struct Data {
     std::optional<rg::Handle<rg::Texture>> atlas;
+    rg::Handle<rg::Buffer> block;
   };
   auto& bb = graph.blackboard();
   // The CPU part (V_static) runs while the graph is built, as SL's sphere poses do: only when the
@@ -248,12 +249,20 @@ void ProbeNode::addRelightPass(rg::RenderGraph& graph, const render::PassContext
   // The "probes.sh" image has readers this frame when the probes pass reads it (the volume does not
   // fit the block) or an SL pass may shadow the probes' light with it (sl.shadow, fused sl: the
   // Services::probeSh readers); otherwise the texels and their copy are skipped.
-  const bool imageRead = !shInUbo_ || (pc->world && pc->world->has("sl"));
-  graph.addPass<Data>(
+  const bool slReads = pc->world && pc->world->has("sl");
+  const bool imageRead = !shInUbo_ || slReads;
+  // The block (and with it the image) as a graph buffer that the probes' own passes read
+  // (probes.tiles, probes): this pass follows its readers, culled with them (a debug view that culls
+  // `probes`). The SL passes read the image outside the graph, so with SL it stays a side effect.
+  // graphDot builds the graph without a device: any id names the import there.
+  const rg::PhysicalId physical = pc->backend ? pc->backend->importBuffer(shUbo_) : 1001;
+  const auto block = graph.importBuffer("probes.sh.block", rg::BufferDesc{shUbo_.size()}, rg::ResourceState{}, physical);
+  const auto& relit = graph.addPass<Data>(
       "probes.relight",
       [&](rg::Builder& b, Data& d) {
         if (auto atlas = bb.find<rg::Texture>("shadow.atlas")) d.atlas = b.read(*atlas, rg::Usage::SampledCompute);
-        b.sideEffect();  // writes the probes' uniform block, no graph resource
+        d.block = b.write(block, rg::Usage::StorageWrite);
+        if (slReads) b.sideEffect();  // its image has readers outside the graph
       },
       [this, pc, slot, imageRead](const Data& d, const rg::PassResources& res, rg::CommandContext& c) {
         VkCommandBuffer cmd = pc->cmd(c);
@@ -264,6 +273,7 @@ void ProbeNode::addRelightPass(rg::RenderGraph& graph, const render::PassContext
                          pc->frameView(atlas, VK_IMAGE_VIEW_TYPE_2D_ARRAY, 0, atlas.desc().layers), compare,
                          d.atlas.has_value(), kRelightIterationsPerFrame, true, slot, imageRead);
       });
+  return relit.block;
 }
 
 }  // namespace bounce::gi::probes

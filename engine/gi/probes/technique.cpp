@@ -112,7 +112,7 @@ class ProbesTechnique final : public Technique {
         std::snprintf(setting, sizeof setting, "spacing=%gm;sh_order=%d;ref=all", spacing, order);
         r.setting = setting;
         r.effects = {"direct", "shadows", "probes"};
-        r.passes = {"shadow", "lighting", "probes"};
+        r.passes = {"shadow", "lighting", "probes.tiles", "probes"};
         r.configure = [spacing, order](scene::Level& level) {
           level.probes.spacing = float(spacing);
           level.probes.order = order;
@@ -121,7 +121,7 @@ class ProbesTechnique final : public Technique {
       }
   }
 
-  std::vector<std::string> passes() const override { return {"probes"}; }
+  std::vector<std::string> passes() const override { return {"probes.tiles", "probes"}; }
 };
 
 }  // namespace

@@ -31,10 +31,10 @@ std::vector<AccuracyRow> rows() {
   probes.technique = "probes";
   probes.setting = "level;ref=all";
   probes.effects = {"direct", "shadows", "probes"};
-  probes.passes = {"shadow", "lighting", "probes.relight", "probes"};
+  probes.passes = {"shadow", "lighting", "probes.relight", "probes.tiles", "probes"};
   out.push_back(probes);
   probes.setting = "baked;ref=all";
-  probes.passes = {"shadow", "lighting", "probes"};
+  probes.passes = {"shadow", "lighting", "probes.tiles", "probes"};
   probes.configure = [](scene::Level& level) { level.probes.relight = false; };
   out.push_back(probes);
   return out;

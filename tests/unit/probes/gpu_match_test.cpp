@@ -127,8 +127,11 @@ TEST(ProbeGpu, ShFromTheUniformBlockIsTheImagePathWithinItsRounding) {
   const gi::probes::ProbeVolume* volumes[] = {&baked.volume, &order2, &holes};
   std::vector<float> allValid;
   for (const gi::probes::ProbeVolume* volume : volumes) {
-    gi::probes::ProbeNode ubo(ctx, session.renderer().pipelines(), *volume);
+    // The packed SH themselves, not the irradiance tiles made from them (next test).
+    gi::probes::ProbeNode ubo(ctx, session.renderer().pipelines(), *volume, true, false);
     gi::probes::ProbeNode image(ctx, session.renderer().pipelines(), *volume, false);
+    EXPECT_FALSE(ubo.tiles());
+    EXPECT_FALSE(image.tiles());
     EXPECT_TRUE(ubo.shInUbo());
     EXPECT_TRUE(ubo.momentsInUbo());
     EXPECT_FALSE(image.shInUbo());
@@ -210,4 +213,81 @@ TEST(ProbeGpu, ShFromTheUniformBlockIsTheImagePathWithinItsRounding) {
   EXPECT_FALSE(gi::probes::ProbeNode(ctx, session.renderer().pipelines(), big).shInUbo());
   big.sh[10] = glm::vec3(10.0f, 0.0f, 0.0f);  // s = 10⁴: finite, the block path
   EXPECT_TRUE(gi::probes::ProbeNode(ctx, session.renderer().pipelines(), big).shInUbo());
+}
+
+// Session 11: probes.frag taps each corner probe's irradiance tile (pass probes.tiles, one bilinear
+// RGBA16F tap a probe, shaders/probes/probe_tiles.glsl) instead of reading its packed SH words. The
+// tiles are E of the same packed SH at the texels' normals, so against the block's SH path a channel
+// moves by the tiles' interpolation error (gi::probes::tileIrradianceError, measured over dense
+// normals on the CPU) times ρ/π ≤ 1/π, plus the tile texels' fp16 rounding and the two targets'
+// (2⁻¹¹ each, relative; the E_k mixed can exceed their mix, hence the floor 2⁻¹¹ of the top value):
+// |a − b| ≤ 4·2⁻¹¹·max(a, b) + 2⁻¹¹·top + E_t/π.
+TEST(ProbeGpu, TilesAreTheShPathWithinTheirInterpolationError) {
+  gpu::Context& ctx = gpu::testkit::sharedContext();
+  const fs::path levelPath = fs::path(BOUNCE_SOURCE_DIR) / "content/levels/cornell-1.json";
+  game::Session session(ctx, game::loadLevelWithEffects(levelPath, std::vector<std::string>{"probes"}));
+  session.update(0.0);
+  const auto baked =
+      gi::probes::loadOrBake(scene::loadLevel(levelPath), game::cookCacheDir(), bounce::cacheDir("probes"), {});
+  const auto render = [&](gi::probes::ProbeNode& node) {
+    session.renderer().setNode("probes", node.node());
+    gpu::OffscreenPresenter presenter(ctx, {160, 120});
+    render::FrameSettings settings;
+    settings.keepHdr = true;
+    session.render(presenter, settings);
+    return session.renderer().readHdr();
+  };
+  gi::probes::ProbeVolume order2 = baked.volume;
+  order2.order = 2;
+  order2.sh.clear();
+  for (std::size_t p = 0; p < baked.volume.grid.probeCount(); ++p)
+    for (std::size_t i = 0; i < 4; ++i) order2.sh.push_back(baked.volume.sh[p * 9 + i]);
+  const gi::probes::ProbeVolume* orders[] = {&baked.volume, &order2};
+  for (const gi::probes::ProbeVolume* volume : orders) {
+    gi::probes::ProbeNode tiles(ctx, session.renderer().pipelines(), *volume);
+    gi::probes::ProbeNode sh(ctx, session.renderer().pipelines(), *volume, true, false);
+    ASSERT_TRUE(tiles.tiles());
+    ASSERT_FALSE(sh.tiles());
+    const std::vector<float> a = render(tiles), b = render(sh);
+    ASSERT_EQ(a.size(), b.size());
+    constexpr double kHalfUlp = 1.0 / 2048.0;
+    const double interpolation = gi::probes::tileIrradianceError(*volume) / 3.14159265358979;  // ρ/π·E_t, ρ ≤ 1
+    double top = 0.0, sumSq = 0.0, diffSq = 0.0, largest = 0.0;
+    for (std::size_t i = 0; i < a.size(); ++i) top = std::max(top, double(std::abs(b[i])));
+    std::size_t lit = 0, outside = 0, equal = 0;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      lit += b[i] > 0.0f, equal += a[i] == b[i];
+      const double big = std::max(std::abs(double(a[i])), std::abs(double(b[i]))), diff = std::abs(double(a[i]) - b[i]);
+      const double halves = 4.0 * kHalfUlp * big + kHalfUlp * top;
+      outside += diff > halves + interpolation;
+      largest = std::max(largest, diff / interpolation);
+      sumSq += double(b[i]) * b[i], diffSq += diff * diff;
+    }
+    std::printf("probes order %d, irradiance tiles vs the SH: relative RMSE %.2e, largest difference %.3f of the "
+                "interpolation bound E_t/pi = %.3g (%.2e of the top value %.3g), %zu of %zu values equal\n",
+                volume->order, std::sqrt(diffSq / sumSq), largest, interpolation, interpolation / top, top, equal,
+                a.size());
+    EXPECT_GT(lit, a.size() / 2);
+    EXPECT_EQ(outside, 0u) << "order " << volume->order;
+    EXPECT_LT(equal, a.size());                    // the tiles really are read
+    // E_t is absolute, set by the brightest probes (beside the lamp): 12 % (order 3) / 8 % (order 2) of
+    // the image's top value, while the pixels move by at most 0.05 of it. On average the image moves
+    // far less, measured 3.6e-3 / 2.8e-3 relative RMSE: a tenth of the goldens' 2 % tolerance.
+    EXPECT_LT(interpolation, 0.15 * top);
+    EXPECT_LT(std::sqrt(diffSq / sumSq), 5e-3);
+  }
+  // Tiles need the block (they read the SH from it) and an image within the device's 2D limit:
+  // 1100 probes in one column fit the block but make a 16 × 17 600 image.
+  gi::probes::ProbeVolume big = baked.volume;
+  for (const glm::ivec3 count : {glm::ivec3(9), glm::ivec3(1, 1100, 1), glm::ivec3(13)}) {
+    big.grid.count = count;
+    const std::size_t n = big.grid.probeCount();
+    big.sh.assign(n * std::size_t(big.coeffs()), glm::vec3(0.1f));
+    big.moments.assign(n * std::size_t(gi::probes::kVisBins), glm::vec2(1.0f, 1.0f));
+    big.valid.assign(n, 1u);
+    const gi::probes::ProbeNode node(ctx, session.renderer().pipelines(), big);
+    const bool fits = 16u * std::uint32_t(count.y * count.z) <= ctx.limits().maxImageDimension2D;
+    EXPECT_EQ(node.shInUbo(), n <= 2016u) << n;
+    EXPECT_EQ(node.tiles(), node.shInUbo() && fits) << n;
+  }
 }

@@ -103,9 +103,9 @@ TEST_F(Cli, ProfileCsvHasHeaderAndOneRowPerPassPlusFrame) {
   }
   // cornell-1 names direct, shadows, probes and dnrt and relights its probes (probes.relight); its one
   // prop carries a DNRT field (dnrt.combine sums its transfer per grid vertex before the draw).
-  EXPECT_EQ(passes, (std::vector<std::string>{"shadow", "gbuffer", "lighting", "probes.relight", "probes",
+  EXPECT_EQ(passes, (std::vector<std::string>{"shadow", "gbuffer", "lighting", "probes.relight", "probes.tiles", "probes",
                                               "dnrt.combine", "dnrt", "dnrt", "tonemap", "frame"}));
-  EXPECT_EQ(objects, (std::vector<std::string>{"", "", "", "", "", "", "", "prop-textured-box", "", ""}));
+  EXPECT_EQ(objects, (std::vector<std::string>{"", "", "", "", "", "", "", "", "prop-textured-box", "", ""}));
 }
 
 // The Cornell VLM level: both phases give the dynamic VLM on the moving prop its own row

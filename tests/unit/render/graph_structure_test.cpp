@@ -68,10 +68,13 @@ TEST(RendererGraph, DebugViewCullsLightingAndSkipsTonemap) {
   const Result r = renderOnce(std::nullopt, s);  // the level's own effects: direct, shadows, probes, dnrt
   // The debug view reads the shadow atlas (for its shadow mode), so the shadow pass stays; the GI
   // nodes only add to "lighting.hdr", which nothing reads, so they go with the lighting pass.
-  // cornell-1 relights its probes: probes.relight writes the probes' uniform block, no graph
-  // resource, so it is a side-effect pass and stays even when the probes pass is culled.
-  EXPECT_EQ(r.executed, (Passes{"shadow", "gbuffer", "probes.relight", "debug-view"}));
+  // cornell-1 relights its probes: probes.relight writes the probes' uniform block, imported as
+  // graph buffer "probes.sh.block" that probes.tiles and probes read, so it goes with them (session
+  // 11; before, a side-effect pass that ran for nothing).
+  EXPECT_EQ(r.executed, (Passes{"shadow", "gbuffer", "debug-view"}));
   EXPECT_TRUE(passCulled(r.dot, "lighting"));
+  EXPECT_TRUE(passCulled(r.dot, "probes.relight"));
+  EXPECT_TRUE(passCulled(r.dot, "probes.tiles"));
   EXPECT_TRUE(passCulled(r.dot, "probes"));
   EXPECT_TRUE(passCulled(r.dot, "dnrt"));
   EXPECT_FALSE(passCulled(r.dot, "debug-view"));
@@ -84,13 +87,13 @@ TEST(RendererGraph, CullingOffRunsEveryPass) {
   s.culling = false;
   const Result debug = renderOnce(std::nullopt, s);  // direct, shadows, probes, dnrt
   EXPECT_EQ(debug.executed,
-            (Passes{"shadow", "gbuffer", "lighting", "probes.relight", "probes", "dnrt.combine", "dnrt", "debug-view"}));
+            (Passes{"shadow", "gbuffer", "lighting", "probes.relight", "probes.tiles", "probes", "dnrt.combine", "dnrt", "debug-view"}));
   EXPECT_FALSE(passCulled(debug.dot, "lighting"));
 
   s.debugView = render::DebugView::None;
   const Result lit = renderOnce(std::nullopt, s);
   EXPECT_EQ(lit.executed,
-            (Passes{"shadow", "gbuffer", "lighting", "probes.relight", "probes", "dnrt.combine", "dnrt", "tonemap"}));
+            (Passes{"shadow", "gbuffer", "lighting", "probes.relight", "probes.tiles", "probes", "dnrt.combine", "dnrt", "tonemap"}));
   // Nothing culled; the legend at the end shows what a culled (dashed) pass would look like.
   EXPECT_EQ(lit.dot.substr(0, lit.dot.find("subgraph cluster_legend")).find("dashed"), std::string::npos) << "nothing culled";
 }
@@ -109,10 +112,10 @@ TEST(RendererGraph, TransientImagesArePooledAcrossFrames) {
   run(0, int(slots));
   const std::size_t afterEverySlot = session.renderer().backend().createdImages();
   // Transients per frame: five G-buffer targets (albedo, normal, emissive, entity, depth), the
-  // shadow atlas and the prop's DNRT combined volume (dnrt.combine → dnrt, while the G-buffer is
-  // still read); all are alive together at the dnrt pass, so none can share memory in a frame,
-  // and each frame slot owns its own pool.
-  constexpr std::size_t kTransientsPerFrame = 7;
+  // shadow atlas, the probes' irradiance tiles (probes.tiles → probes, session 11; a size no other
+  // transient has) and the prop's DNRT combined volume (dnrt.combine → dnrt, while the G-buffer is
+  // still read); none is reused for another within a frame, and each frame slot owns its own pool.
+  constexpr std::size_t kTransientsPerFrame = 8;
   EXPECT_EQ(afterEverySlot, kTransientsPerFrame * slots);
   run(int(slots), 10 - int(slots));
   EXPECT_EQ(session.renderer().backend().createdImages(), afterEverySlot) << "10 frames created more images than "
@@ -131,10 +134,10 @@ TEST(RendererGraph, GiNodesExistOnlyForNamedEffects) {
     EXPECT_EQ(plain.ao(gi::ao::Kind::Ssao), nullptr);
   }
   const Result all = renderOnce(std::vector<std::string>{"direct", "shadows", "ssao", "probes", "dnrt"}, {});
-  EXPECT_EQ(all.executed, (Passes{"shadow", "gbuffer", "lighting", "ssao", "probes.relight", "probes", "dnrt.combine",
+  EXPECT_EQ(all.executed, (Passes{"shadow", "gbuffer", "lighting", "ssao", "probes.relight", "probes.tiles", "probes", "dnrt.combine",
                                    "dnrt", "tonemap"}));
   const Result probesOnly = renderOnce(std::vector<std::string>{"direct", "probes"}, {});
-  EXPECT_EQ(probesOnly.executed, (Passes{"gbuffer", "lighting", "probes.relight", "probes", "tonemap"}));
+  EXPECT_EQ(probesOnly.executed, (Passes{"gbuffer", "lighting", "probes.relight", "probes.tiles", "probes", "tonemap"}));
   EXPECT_FALSE(hasPass(probesOnly.dot, "dnrt"));
   EXPECT_FALSE(hasPass(probesOnly.dot, "ssao"));
 }
