@@ -42,6 +42,10 @@
 // there, the weight Eq. 10 puts on another object's samples inside it (V ≡ 0), and the room's traced l = 0
 // (the level without any object) against the probes' there and at χ moved towards o
 // (RTF_PARTS_PROXIES_ONLY=1: stop after those lines).
+// RTF_PARTS_TAP="J k B" (issue 14, ninth pass): at proxy k of object J, object B's Eq. 10 lookup tap by tap
+// (sphere, weight, B's ξ l = 0 from its field and from a fresh uncompressed bake, V_0, the reference's l = 0
+// from B at the sample's world position), per sphere Σ|ξ_0| uncompressed against the field's, and at tap 2
+// the vertices the sample's hits take their transfer from.
 //
 // usage: rtf_parts LEVEL WIDTH HEIGHT DIRS_PER_AXIS OUT_DIR [FRAME [TAIL]]   (TAIL: scene::Rtf::tail τ for every object)
 //   writes OUT_DIR/{ref-interreflected,ref-blocked,ref-room,blocked-probes,rtf-interreflected,
@@ -278,6 +282,121 @@ int main(int argc, char** argv) {
     const gi::rtf::Field& f = *objects[J].field;
     std::vector<double> refOther(f.proxies.size(), 0.0), rtfOther(f.proxies.size(), 0.0), rtfOther4(f.proxies.size(), 0.0), refRoom(f.proxies.size(), 0.0), probeRoom(f.proxies.size(), 0.0);
     std::vector<std::array<double, 4>> probeToward(f.proxies.size());
+    // RTF_PARTS_TAP="J k B": proxy k of object J, object B's Eq. 10 lookup there, tap by tap: the sphere, the
+    // weight, B's bounce-1 ξ l = 0 (RTF's light from B at the sample, Algorithm 1 with 1 bounce), V's l = 0 and
+    // the reference's l = 0 from B at the sample's world position (the level without J, as refOther).
+    if (const char* tap = std::getenv("RTF_PARTS_TAP")) {
+      unsigned tj = 0, tk = 0, tb = 0;
+      if (std::sscanf(tap, "%u %u %u", &tj, &tk, &tb) == 3 && tj == J && tb < objects.size() && tk < f.proxies.size()) {
+        const gi::rtf::Field& fb = *objects[tb].field;
+        const gi::rtf::Placement pb = gi::rtf::place(fb, objects[tb].world);
+        const glm::vec3 chi = glm::vec3(objects[J].world * glm::vec4(f.proxies[tk], 1.0f));
+        const glm::vec3 qb = (glm::vec3(pb.worldToLocal * glm::vec4(chi, 1.0f)) - fb.centre) / fb.radius;
+        const gi::rtf::Lookup lk = gi::rtf::lookup(fb.settings, qb, objects[tb].reach);
+        const auto xi0 = [&](const std::vector<glm::vec3>& xi, std::size_t s) { const glm::vec3 v = xi[s * gi::rtf::kShCount]; return (v.x + v.y + v.z) / 3.0f; };
+        const gi::rtf::ShRgb I = gi::rtf::interreflection(fb, bounced1.xi[tb], qb, objects[tb].reach);
+        std::fprintf(stderr, "rtf_parts: tap J=%u k=%u B=%u |q|=%.3f q=(%.3f %.3f %.3f) interreflection l0 %.4g\n", tj, tk, tb, glm::length(qb), qb.x, qb.y, qb.z,
+                     (I[0].x + I[0].y + I[0].z) / 3.0f);
+        // The same field uncompressed (a fresh bake of B at its settings: CPCA's share of the error).
+        const gi::rtf::BakeResult raw = gi::rtf::bake(gi::dnrt::objectScene(with.registry, rtfEntities[tb], with.assets), fb.settings);
+        const std::size_t D = gi::rtf::itfDimension(fb.settings);
+        {  // At tap 2's sample: the vertices its front hits take their transfer from (bake.cpp's nearest vertex).
+          const ref::SceneDesc od = gi::dnrt::objectScene(with.registry, rtfEntities[tb], with.assets);
+          const std::vector<glm::vec3> tv = gi::rtf::vertexTransfer(od, fb.proxies, fb.radius, fb.settings);
+          std::vector<glm::vec3> P, Nn;
+          for (const auto& m : od.meshes)
+            for (std::size_t i = 0; i < m.positions.size(); ++i) P.push_back(m.positions[i]), Nn.push_back(i < m.normals.size() ? m.normals[i] : glm::vec3(0, 0, 1));
+          const std::size_t stride = std::size_t(fb.settings.proxies) * gi::rtf::kShCount;
+          const glm::vec3 sp = fb.centre + gi::rtf::samplePosition(fb.settings, lk.sample[2]) * fb.radius;
+          int hitsN = 0, dark = 0;
+          double tsum = 0.0, dsum = 0.0;
+          for (std::size_t di = 0; di < oofDirs.size(); ++di) {
+            ref::Hit h;
+            if (!objectBvh[tb]->intersect(sp, oofDirs[di].w, 0.0f, 1e30f, h) || glm::dot(h.geometricNormal, oofDirs[di].w) > 0.0f) continue;
+            std::size_t best = 0;
+            float bd = 1e30f;
+            for (std::size_t i = 0; i < P.size(); ++i) {
+              const float d2 = glm::dot(P[i] - h.position, P[i] - h.position);
+              if (glm::dot(Nn[i], h.geometricNormal) > 0.0f && d2 < bd) bd = d2, best = i;
+            }
+            double t0 = 0.0;
+            for (int k = 0; k < fb.settings.proxies; ++k) { const glm::vec3 x = tv[best * stride + std::size_t(k) * gi::rtf::kShCount]; t0 += (x.x + x.y + x.z) / 3.0; }
+            ++hitsN, tsum += t0, dsum += std::sqrt(bd) / fb.radius;
+            if (t0 < 0.02) {
+              ++dark;
+              if (dark <= 6)
+                std::fprintf(stderr, "rtf_parts:   dark hit at (%.3g %.3g %.3g) ng (%.2f %.2f %.2f) vertex %zu at %.3g eta, n (%.2f %.2f %.2f), T0 %.4g\n", h.position.x, h.position.y, h.position.z,
+                             h.geometricNormal.x, h.geometricNormal.y, h.geometricNormal.z, best, std::sqrt(bd) / fb.radius, Nn[best].x, Nn[best].y, Nn[best].z, t0);
+            }
+          }
+          std::fprintf(stderr, "rtf_parts:   tap 2: %d front hits, mean Σ_k T0 %.4g, mean vertex distance %.3g eta, %d with Σ_k T0 < 0.02; %zu vertices\n", hitsN, tsum / std::max(hitsN, 1),
+                       dsum / std::max(hitsN, 1), dark, P.size());
+        }
+        {  // Per sphere: Σ |ξ0| over its samples, uncompressed against the field's (CPCA), B's bounce-1 light.
+          const std::size_t per = std::size_t(gi::rtf::samplesPerSphere(fb.settings));
+          std::string line;
+          for (int sp = 0; sp < fb.settings.spheres; ++sp) {
+            double r = 0.0, c = 0.0, diff = 0.0;
+            for (std::size_t si = std::size_t(sp) * per; si < std::size_t(sp + 1) * per; ++si) {
+              double x = 0.0;
+              for (int k = 0; k < fb.settings.proxies; ++k)
+                for (int j = 0; j < gi::rtf::kShCount; ++j)
+                  for (int ch = 0; ch < 3; ++ch)
+                    x += raw.itf[si * D + gi::rtf::itfIndex(k, 0, j, ch)] * bounced1.proxyLight[tb][std::size_t(k) * gi::rtf::kShCount + std::size_t(j)][ch] / 3.0;
+              const glm::vec3 v = bounced1.xi[tb][si * gi::rtf::kShCount];
+              const double y = (v.x + v.y + v.z) / 3.0;
+              r += std::abs(x), c += std::abs(y), diff += std::abs(x - y);
+            }
+            char b[64];
+            std::snprintf(b, sizeof b, " %d: %.3g/%.3g (|d| %.3g)", sp, r, c, diff);
+            line += b;
+          }
+          std::fprintf(stderr, "rtf_parts:   B's xi0 per sphere, uncompressed/CPCA:%s (field frobenius %.4g, fresh bake's %.4g)\n", line.c_str(), fb.frobenius, raw.stats.frobenius);
+        }
+        for (int t = 0; t < 8; ++t) {
+          const std::size_t si = lk.sample[std::size_t(t)];
+          double rawXi = 0.0;
+          for (int k = 0; k < fb.settings.proxies; ++k)
+            for (int j = 0; j < gi::rtf::kShCount; ++j)
+              for (int c = 0; c < 3; ++c)
+                rawXi += raw.itf[si * D + gi::rtf::itfIndex(k, 0, j, c)] * bounced1.proxyLight[tb][std::size_t(k) * gi::rtf::kShCount + std::size_t(j)][c] / 3.0;
+          std::string perK;
+          for (int k = 0; k < fb.settings.proxies; ++k) {
+            double m00 = 0.0;
+            for (int c = 0; c < 3; ++c) m00 += raw.itf[si * D + gi::rtf::itfIndex(k, 0, 0, c)] / 3.0;
+            char b[24];
+            std::snprintf(b, sizeof b, " %.3g", m00);
+            perK += b;
+          }
+          std::fprintf(stderr, "rtf_parts:   tap %d M00 per proxy:%s\n", t, perK.c_str());
+          int front = 0, back = 0;
+          for (const Dir& d : oofDirs) {
+            ref::Hit h;
+            if (!objectBvh[tb]->intersect(fb.centre + gi::rtf::samplePosition(fb.settings, si) * fb.radius, d.w, 0.0f, 1e30f, h)) continue;
+            (glm::dot(h.geometricNormal, d.w) > 0.0f ? back : front) += 1;
+          }
+          std::fprintf(stderr, "rtf_parts:   tap %d uncompressed xi1 l0 %.4g, front/back hits %d/%d of %zu\n", t, rawXi, front, back, oofDirs.size());
+          const glm::vec3 sl = gi::rtf::samplePosition(fb.settings, si);
+          const glm::vec3 sw = glm::vec3(objects[tb].world * glm::vec4(fb.centre + sl * fb.radius, 1.0f));
+          math::Pcg32 rng = math::Pcg32::fromIndex(7777 + t);
+          std::uint64_t rays = 0;
+          double acc = 0.0;
+          for (const Dir& d : oofDirs)
+            for (int path = 0; path < 4; ++path) {
+              ref::Hit first;
+              bool any = false;
+              const glm::dvec3 L = ref::tracePathFrom(bvhJ, sw, d.w, 0.0f, 1e30f, ref::kUnlimitedBounces, rng, rays, &first, &any);
+              if (any && objectHit(sw, d.w, first.t, int(J)) == int(tb)) acc += (L.x + L.y + L.z) / 3.0 * 0.28209479 * d.solidAngle / 4.0;
+            }
+          std::fprintf(stderr, "rtf_parts:   tap %d sample %zu |s|=%.2f w=%.3f xi1 l0 %.4g (bounce-2 xi %.4g) V0/u %.3f ref l0 from B %.4g\n", t, si, glm::length(sl),
+                       lk.weight[std::size_t(t)], xi0(bounced1.xi[tb], si), xi0(bounced.xi[tb], si), fb.oof[si * gi::rtf::kShCount] / gi::rtf::kUnitVisibility, acc);
+        }
+        const auto& pl = bounced1.proxyLight[tb];
+        std::string ls;
+        for (std::size_t k = 0; k < fb.proxies.size(); ++k) { char b[32]; const glm::vec3 v = pl[k * gi::rtf::kShCount]; std::snprintf(b, sizeof b, " %.3g", (v.x + v.y + v.z) / 3.0f); ls += b; }
+        std::fprintf(stderr, "rtf_parts:   B's proxies' l0 light (bounce 1):%s\n", ls.c_str());
+      }
+    }
     parallelFor(0, f.proxies.size(), [&](std::size_t k) {
       // 1 % of the way towards J's centre (J is not in bvhJ): a proxy on the floor (a box's bottom corner)
       // would otherwise start its rays on the floor's plane.
