@@ -16,7 +16,8 @@ reference effect corrected for the reference's noise (e*, = accuracy.csv's *_cor
 correlation with the converged effect, and the best least-squares scale of each part. The same
 split by world distance from the nearest character (pixels are ray-cast into the room's box from the
 level camera; the characters are vertical segments at their t = 0 orbit positions) and by which
-character is nearest.
+character is nearest (only for a level whose room is the "room-floor" … entities, characters.json;
+other levels get the indirect-only line alone).
 
 usage: tools/sl_parts.py DIR [--influence F] [--level content/levels/characters.json]
 """
@@ -126,17 +127,18 @@ def main():
     shadow = effect(d, f"{base}-terms-shadow-ref-all") - relight
     mask3 = np.repeat(mask[:, :, None], 3, 2)
     h, w = mask.shape
-    pos = room_positions(level, h, w)
-    chars = characters(level)
-    dist = np.stack([segment_distance(pos, p, ht) for _, p, ht in chars], -1)
-    nearest, dmin = dist.argmin(-1), dist.min(-1)
     print(f"{d}, influence {f}: parts of the row with both terms; sum − both: max "
           f"{np.abs(relight + bounce + shadow - both)[mask3].max():.2e}")
     groups = [("indirect-only", mask)]
-    for lo, hi in ((0.0, 0.5), (0.5, 1.0), (1.0, 2.0), (2.0, 99.0)):
-        groups.append((f"  {lo:g}-{hi:g} m from a character", mask & (dmin >= lo) & (dmin < hi)))
-    for k, (name, _, _) in enumerate(chars):
-        groups.append((f"  nearest {name}", mask & (nearest == k)))
+    if any(e["id"] == "room-floor" for e in level["entities"]):  # the characters' room: bands and characters
+        pos = room_positions(level, h, w)
+        chars = characters(level)
+        dist = np.stack([segment_distance(pos, p, ht) for _, p, ht in chars], -1)
+        nearest, dmin = dist.argmin(-1), dist.min(-1)
+        for lo, hi in ((0.0, 0.5), (0.5, 1.0), (1.0, 2.0), (2.0, 99.0)):
+            groups.append((f"  {lo:g}-{hi:g} m from a character", mask & (dmin >= lo) & (dmin < hi)))
+        for k, (name, _, _) in enumerate(chars):
+            groups.append((f"  nearest {name}", mask & (nearest == k)))
     total = None
     for label, m in groups:
         m3 = np.repeat(m[:, :, None], 3, 2)
