@@ -208,6 +208,11 @@ struct Sl {
   // are one pass that walks each tile's candidates once (shaders/sl/sl_shadow.frag). Run time only.
   // Default true; false keeps the two passes (README "SL: one walk for sl and sl.shadow").
   bool fused = true;
+  // Which of pass 2's two terms the fused pass adds (a bit mask, kSlBounce | kSlShadow): not a level
+  // key, only `bounce accuracy`'s decomposition rows ("terms=bounce|shadow|none", README "SL on the
+  // characters: what the error is made of, session 11") clear a bit, so one render shows one term.
+  // Needs the fused pass (probes on, hierarchy off, "fused" true).
+  int terms = 3;
   friend bool operator==(const Sl&, const Sl&) = default;
 };
 

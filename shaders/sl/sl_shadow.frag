@@ -11,14 +11,17 @@
 // pixel j of "sl.half" / "sl.quarter" takes G-buffer pixel kStep·j and writes E + ao · ΔE
 // ("sl.upsample" applies ρ/π).
 // Bindings and push block are sl.shadow's (probe_shadow_frag.glsl, sl/shadow_tiles.vert);
-// specialization: sl.glsl's ids 0–3, kCoeffs (4), kStep (5), kSingleObject (6, sl_frag.glsl's).
+// specialization: sl.glsl's ids 0–3, kCoeffs (4), kStep (5), kTerms (6), kSingleObject (7, sl_frag.glsl's).
 layout(constant_id = 0) const uint kOrder = 4u;
 layout(constant_id = 1) const bool kPerObject = false;
 layout(constant_id = 2) const uint kSpheres = 64u;
 layout(constant_id = 3) const float kInfluence = 0.0;
 layout(constant_id = 4) const int kCoeffs = 9;  // the probes' order²: 4 or 9
 layout(constant_id = 5) const uint kStep = 1u;  // G-buffer pixels per sample per axis: 1, 2, 4
-layout(constant_id = 6) const bool kSingleObject = false;  // per-object: tiles whose SLs are one object's
+// Which terms are added (bit 0 E, bit 1 ΔE): 3 always but in `bounce accuracy`'s decomposition rows
+// (scene::Sl::terms); a constant, so the shipped pipeline is the same code.
+layout(constant_id = 6) const uint kTerms = 3u;
+layout(constant_id = 7) const bool kSingleObject = false;  // per-object: tiles whose SLs are one object's
 #define SL_SINGLE_OBJECT kSingleObject
 
 #include "frame.glsl"
@@ -59,11 +62,11 @@ void main() {
   vec3 albedo = texelFetch(gAlbedo, pixel, 0).rgb;
   // One walk; slIrradianceLive leaves slLive / slDist / slAdjusted as it found them.
   uint alive = slWalk(p, n, inCandidates, min(slCount(), kSpheres));
-  vec3 e = max(slIrradianceLive(p, n, alive), vec3(0.0));
+  vec3 e = (kTerms & 1u) != 0u ? max(slIrradianceLive(p, n, alive), vec3(0.0)) : vec3(0.0);
   vec3 L[9];
   probeRadianceSh(p, n, normalize(camera.position.xyz - p), L);
   float ao = pc.bias.w > 0.5 ? texelFetch(aoTerm, pixel, 0).r : 1.0;
-  vec3 delta = ao * slProbeShadowLive(p, n, L, alive);
+  vec3 delta = (kTerms & 2u) != 0u ? ao * slProbeShadowLive(p, n, L, alive) : vec3(0.0);
   // Each pass's own output, then summed (fp32): the terms as the two passes write them.
   outRadiance = vec4(kStep > 1u ? e + delta : albedo * kInvPi * e + albedo * kInvPi * delta, 0.0);
 }

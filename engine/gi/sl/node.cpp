@@ -55,7 +55,7 @@ std::vector<gpu::Binding> upsampleBindings() {
 
 Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t framesInFlight,
            std::span<const SphereSet* const> sets, int order, Blocking blocking, float influence, Resolution resolution,
-           ProbeLight probes, bool localLights, bool hierarchy, bool fuse)
+           ProbeLight probes, bool localLights, bool hierarchy, bool fuse, std::uint32_t terms)
     : ctx_(ctx),
       order_(order),
       blocking_(blocking),
@@ -118,8 +118,11 @@ Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t fra
     share_.push_back(float(unionShare(local)));
     silhouette_.push_back(set->spheres.empty() ? 1.0f : set->spheres.front().shadowScale);
   }
+  if (terms != 3u && !(probes && fuse && !hierarchy))
+    throw InternalError("sl::Node: one term alone needs the fused pass (probes, \"fused\", no hierarchy)");
   if (probes && spheres_ > 0)
-    shadow_ = std::make_unique<ProbeShadowPass>(ctx, shared, probes, order, blocking, spheres_, influence, step, hierarchy, fuse);
+    shadow_ = std::make_unique<ProbeShadowPass>(ctx, shared, probes, order, blocking, spheres_, influence, step, hierarchy, fuse,
+                                                terms);
   if (localLights && spheres_ > 0)
     local_ = std::make_unique<LocalLightPass>(ctx, shared, order, blocking, spheres_, influence);
   if (hierarchy) {

@@ -49,9 +49,11 @@ class Node {
   Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t framesInFlight,
        std::span<const SphereSet* const> sets, int order, Blocking blocking, float influence,
        Resolution resolution = Resolution::Full, ProbeLight probes = {}, bool localLights = false,
-       bool hierarchy = false, bool fuse = true);
+       bool hierarchy = false, bool fuse = true, std::uint32_t terms = 3u);
   // `fuse` (level "fused", default true): with "sl.shadow" running and the hierarchy off, one pass
-  // "sl" walks each tile's candidates once for both terms (ProbeShadowPass::addFused).
+  // "sl" walks each tile's candidates once for both terms (ProbeShadowPass::addFused). `terms`
+  // (scene::Sl::terms, a diagnostic): bit 0 the SLs' bounce E, bit 1 the shadow on the probes' light;
+  // anything but both needs the fused pass.
   // This frame's SLs, concatenated over the sets: pose, object index, probes' SH at the centre.
   void addTo(rg::RenderGraph& graph, const render::PassContext& pc, std::span<const PosedSphere> posed,
              std::span<const std::uint32_t> objects, std::span<const incident::RadianceSH> indirect);

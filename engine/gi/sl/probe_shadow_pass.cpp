@@ -42,7 +42,7 @@ std::vector<gpu::Binding> inputBindings(bool hierarchy) {
 
 ProbeShadowPass::ProbeShadowPass(gpu::Context& ctx, const render::Pipelines& shared, ProbeLight probes, int order,
                                  Blocking blocking, std::uint32_t spheres, float influence, std::uint32_t step,
-                                 bool hierarchy, bool fuse)
+                                 bool hierarchy, bool fuse, std::uint32_t terms)
     : ctx_(ctx),
       probes_(probes),
       reduced_(checkedStep(step) > 1u),  // 1, 2 or 4 only (resolution.hpp)
@@ -70,7 +70,8 @@ ProbeShadowPass::ProbeShadowPass(gpu::Context& ctx, const render::Pipelines& sha
     gpu::ShaderModule fusedFrag(ctx, "sl/sl_shadow.frag.spv");
     d.fragment = &fusedFrag;
     d.blend = reduced ? gpu::Blend::None : gpu::Blend::Additive;
-    d.specialization.push_back(0u);  // sl_shadow.frag kSingleObject (constant_id 6)
+    d.specialization.push_back(terms);  // sl_shadow.frag kTerms (constant_id 6): Node's `terms`
+    d.specialization.push_back(0u);     // sl_shadow.frag kSingleObject (constant_id 7)
     d.name = std::string("sl+shadow") + (reduced ? ".step" + std::to_string(step) : "");
     fused_ = gpu::createGraphicsPipeline(ctx, layout_, d);
     if (blocking == Blocking::PerObject) {

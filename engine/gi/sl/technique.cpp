@@ -271,6 +271,33 @@ class SlTechnique final : public Technique {
       };
       rows.push_back(std::move(r));
     }
+    // What the level's SL adds, one term at a time (README "SL on the characters: what the error is
+    // made of"): the fused pass with only the SLs' bounce E (Eq. 13), only the shadow on the probes'
+    // light (Eq. 6), or neither (the probes, relit, with SL's passes running) — at the cut F of 12 and 6.
+    // The parts add up to the row with both: tools/sl_parts.py reads them from --effect-images.
+    for (const float influence : {12.0f, 6.0f})
+      for (const auto& [name, terms] : {std::pair{"none", 0}, {"bounce", 1}, {"shadow", 2}}) {
+        AccuracyRow r;
+        r.technique = "sl";
+        char f[16];
+        std::snprintf(f, sizeof f, "%g", double(influence));
+        r.setting = std::string("spheres=level;order=4;influence=") + f + ";terms=" + name + ";ref=all";
+        r.effects = {"direct", "shadows", "probes", "sl"};
+        r.passes = {"shadow", "lighting", "probes", "sl.intensity", "sl"};
+        r.optionalPasses = {"sl.shadow"};  // never drawn: the rows need the fused pass
+        r.configure = [=, terms = terms](scene::Level& level) {
+          for (auto& e : level.entities)
+            if (e.sl) {
+              e.sl->order = 4;
+              e.sl->influence = influence;
+              e.sl->hierarchy = false;
+              e.sl->fused = true;
+              e.sl->localLights = false;
+              e.sl->terms = terms;
+            }
+        };
+        rows.push_back(std::move(r));
+      }
   }
   // "sl.shadow" runs only beside "probes" (its light is what it shadows), as its own pass only with the
   // hierarchy or "fused": false (else "sl" holds it: README "SL: one walk for sl and sl.shadow").
@@ -408,7 +435,8 @@ void SessionRuntime::enableGpu(SessionContext& sc) {
                                  resolutionFromStep(std::uint32_t(participants_.front().component.step)),
                                  ProbeLight{sc.services.probeVolume, sc.services.probeSh, sc.services.probeMoments},
                                  participants_.front().component.localLights,
-                                 participants_.front().component.hierarchy, participants_.front().component.fused);
+                                 participants_.front().component.hierarchy, participants_.front().component.fused,
+                                 std::uint32_t(participants_.front().component.terms));
 }
 
 render::Renderer::GraphNode SessionRuntime::node() {
