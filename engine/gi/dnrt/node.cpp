@@ -23,6 +23,10 @@ constexpr VkDescriptorType kStorage = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
 constexpr VkDescriptorType kUniform = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
 constexpr VkDescriptorType kStorageImage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
 constexpr VkFormat kHdrFormat = VK_FORMAT_R16G16B16A16_SFLOAT;  // "lighting.hdr" (renderer.cpp)
+constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;        // "gbuffer.depth" (gbuffer_pass.cpp)
+// The depth's layout in the dnrt pass: a read-only depth attachment (the box draws' test) that the
+// shaders also sample (rg::Usage::DepthRead beside SampledFragment).
+constexpr VkImageLayout kDepthReadOnly = VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL;
 
 struct Push {
   std::uint32_t object = 0;
@@ -163,6 +167,13 @@ const gpu::Pipeline& Node::pipeline(const Variant& v) {
   d.blend = gpu::Blend::Additive;
   // Box: back faces of the cube, each covered pixel once, inside or out. Full screen: one triangle.
   d.cull = v.fullScreen ? VK_CULL_MODE_NONE : VK_CULL_MODE_FRONT_BIT;
+  // The box's back face against the scene's depth (the G-buffer's, read-only): a pixel whose surface
+  // lies behind where its view ray leaves the cube is outside the cube (s = 0), so it fails the test
+  // before the fragment shader runs; a surface inside the cube, or in front of it, passes.
+  d.depthFormat = kDepthFormat;
+  d.depthTest = !v.fullScreen;
+  d.depthWrite = false;
+  d.depthCompare = VK_COMPARE_OP_GREATER_OR_EQUAL;
   d.specialization = {v.intrusion ? 1u : 0u, v.fullScreen ? 1u : 0u};  // dnrt.frag id 0, dnrt.vert id 1
   d.name = std::string("dnrt.") + (v.fullScreen ? "fullscreen" : "box") + (v.intrusion ? ".intrusion" : "");
   p = gpu::createGraphicsPipeline(ctx_, layout_, d);
@@ -177,6 +188,7 @@ const gpu::Pipeline& Node::clusteredPipeline(bool single) {
   d.fragment = &clusterFrag_;
   d.colorFormats = {kHdrFormat};
   d.blend = gpu::Blend::Additive;
+  d.depthFormat = kDepthFormat;  // the dnrt pass's read-only depth attachment (not tested here)
   d.specialization = {single ? 1u : 0u};  // clustered.frag kSingle
   d.name = std::string("dnrt.clustered") + (single ? ".single" : "");
   p = gpu::createGraphicsPipeline(ctx_, clusterPipelineLayout_, d);
@@ -429,6 +441,7 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
           d.volumes.push_back(v ? std::optional(b.read(*v, rg::Usage::SampledFragment)) : std::nullopt);
         if (combinedAtlas) d.atlas = b.read(*combinedAtlas, rg::Usage::SampledFragment);
         if (cullsTiles) b.read(d.g.depth, rg::Usage::SampledCompute);  // tile_cull.comp
+        b.read(d.g.depth, rg::Usage::DepthRead);  // the box draws' depth test, read-only (pipeline())
       },
       [this, pc, objects = std::move(objects), cluster = std::move(cluster), clustered = std::move(clustered),
        tileCull = settings.tileCull, modeOf = [mode = settings.mode](const NodeObject& o) { return mode.value_or(o.mode); }](
@@ -441,7 +454,7 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
         auto view = [&](rg::Handle<rg::Texture> h) { return pc->backend->image(res.texture(h)).view(); };
         VkDescriptorSet inputs = pc->frame().descriptors->allocate(inputLayout_);
         gpu::DescriptorWriter writer;
-        render::writeDeferredInputs(writer, d.g, *pc, res, point)
+        render::writeDeferredInputs(writer, d.g, *pc, res, point, kDepthReadOnly)
             .buffer(3, buffer)
             .sampledImage(4, view(d.g.entity), point)
             .update(ctx_, inputs);
@@ -484,7 +497,7 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
           }
           clusterInputs = pc->frame().descriptors->allocate(inputLayout_);
           gpu::DescriptorWriter writer;
-          render::writeDeferredInputs(writer, d.g, *pc, res, point)
+          render::writeDeferredInputs(writer, d.g, *pc, res, point, kDepthReadOnly)
               .buffer(3, tiles)
               .sampledImage(4, view(d.g.entity), point)
               .update(ctx_, clusterInputs);
@@ -492,7 +505,7 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
           for (std::size_t b = 0; tileCull && b < batches; ++b) {
             VkDescriptorSet set = pc->frame().descriptors->allocate(cullLayout_);
             gpu::DescriptorWriter w;
-            w.sampledImage(0, view(d.g.depth), point);
+            w.sampledImage(0, view(d.g.depth), point, kDepthReadOnly);
             w.buffer(1, tiles);
             w.buffer(2, *records, kUniform, b * kClusterBatchBytes, kClusterBatchBytes);
             w.update(ctx_, set);
@@ -510,7 +523,9 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
           }
         }
 
-        render::beginRendering(ctx_, cmd, extent, {&color, 1}, nullptr);
+        render::Attachment depth{view(d.g.depth)};
+        depth.readOnly = true;
+        render::beginRendering(ctx_, cmd, extent, {&color, 1}, &depth);
         gpu::TimestampPool* ts = pc->frame().timestamps.get();
         const gpu::Pipeline* bound = nullptr;
         for (std::size_t i = 0; i < objects.size(); ++i) {
