@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "engine/core/log.hpp"
 #include "engine/gi/dnrt/bake.hpp"
 #include "engine/gi/dnrt/irradiance_source.hpp"
 #include "engine/gi/dnrt/node.hpp"
@@ -636,6 +637,22 @@ TEST(DnrtGpu, LightsLeftOutOfTheAntiRadianceAddTheirTermInTheCombinedVolume) {
   EXPECT_LE(worstClustered, 1.0f);
   // As a whole, within 1 % of the term (a term added to the wrong brick or left out would show).
   EXPECT_LE(worstAbs, 0.01f * largestTerm);
+}
+
+// "lights_in_anti_radiance": false is meant with relit probes (they carry the lamp's bounce off the
+// object's shadow that the anti-radiance no longer subtracts): a session of a level that sets it
+// without them warns once (dnrt's SessionRuntime); the same level with the key true does not.
+TEST(DnrtGpu, LightsOutOfTheAntiRadianceWithoutRelitProbesWarnsOnce) {
+  gpu::Context& ctx = gpu::testkit::sharedContext();
+  const fs::path levelPath = fs::path(BOUNCE_SOURCE_DIR) / "tests/data/dnrt/two-boxes-lamp.json";
+  for (const bool lightsOut : {true, false}) {
+    scene::Level level = game::loadLevelWithEffects(levelPath, std::nullopt);  // "effects": ["dnrt"], no probes
+    for (scene::EntityDesc& e : level.entities)
+      if (e.dnrt && !lightsOut) e.dnrt->lightsInAntiRadiance = true;
+    log::resetWarningCount();
+    game::Session session(ctx, level);
+    EXPECT_EQ(log::warningCount(), lightsOut ? 1u : 0u) << (lightsOut ? "box-a's key false" : "every key true");
+  }
 }
 
 }  // namespace
