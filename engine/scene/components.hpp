@@ -174,7 +174,7 @@ struct Dnrt {
   bool intrusion = false;     // §5.2.3 cube depth map from o (run-time visibility test)
   bool improvedAntiRadiance = false;  // App. B.2 instead of Eq. 12
   // false: the anti-radiance subtracts only the probes' light, not the lights' (their occlusion is
-  // the shadow maps' and, relit, the probes'): gi/dnrt/runtime.hpp excludeLightsFromAntiRadiance.
+  // the shadow maps' and, relit, the probes'): gi/dnrt/runtime.hpp, Runtime's constructor.
   bool lightsInAntiRadiance = true;
   int samplesPerAxis = 16;    // bake rays per vertex = samplesPerAxis² ("rays", a square)
   DnrtMode mode = DnrtMode::Box;  // run time only ("mode"), the field is the same

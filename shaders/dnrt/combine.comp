@@ -18,10 +18,11 @@
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 
 layout(constant_id = 0) const bool kSh9 = false;
-// Add to what the volume holds instead of writing it: a second term of the same object (its
-// occlusion-only field with the lights' c_j negated, Runtime::excludeLightsFromAntiRadiance),
-// dispatched after the first, behind a barrier.
-layout(constant_id = 1) const bool kAccumulate = false;
+// A second term of the same object, read in the same dispatch: its occlusion-only field (−k_j) with
+// the lights' c_j negated ("lights_in_anti_radiance": false, runtime.hpp), record pc.occlusion,
+// slots at bindings 9..15. Summed in fp32 before the one fp16 store (no barrier, no fp16 round trip
+// of the first term).
+layout(constant_id = 1) const bool kOcclusion = false;
 
 layout(std430, set = 0, binding = 0) readonly buffer Objects { DnrtObject objects[]; };
 // Table 2's slots (dnrt.frag's order); a 4-SH field binds slot 0 in 3..6 (never read).
@@ -32,12 +33,22 @@ layout(set = 0, binding = 4) uniform sampler3D field3;
 layout(set = 0, binding = 5) uniform sampler3D field4;
 layout(set = 0, binding = 6) uniform sampler3D field5;
 layout(set = 0, binding = 7) uniform sampler3D field6;
-layout(set = 0, binding = 8, rgba16f) uniform image3D combined;
+layout(set = 0, binding = 8, rgba16f) uniform writeonly image3D combined;
+// The occlusion-only field's slots, the same layout (kOcclusion; else bound to the first field's).
+layout(set = 0, binding = 9) uniform sampler3D occlusion0;
+layout(set = 0, binding = 10) uniform sampler3D occlusion1;
+layout(set = 0, binding = 11) uniform sampler3D occlusion2;
+layout(set = 0, binding = 12) uniform sampler3D occlusion3;
+layout(set = 0, binding = 13) uniform sampler3D occlusion4;
+layout(set = 0, binding = 14) uniform sampler3D occlusion5;
+layout(set = 0, binding = 15) uniform sampler3D occlusion6;
 layout(push_constant) uniform Push {
-  uint object;  // record in Objects
-  int srcZ;     // first z layer of the vertices in the slot textures (an atlas brick's z0, else 0)
-  int dstZ;     // first z layer written in `combined`
-  int size;     // vertices per axis: N (a field's own textures) or N + 2 (a padded atlas brick)
+  uint object;     // record in Objects
+  int srcZ;        // first z layer of the vertices in the slot textures (an atlas brick's z0, else 0)
+  int dstZ;        // first z layer written in `combined`
+  int size;        // vertices per axis: N (a field's own textures) or N + 2 (a padded atlas brick)
+  uint occlusion;  // kOcclusion: the occlusion term's record in Objects
+  int occlusionZ;  // kOcclusion: first z layer of its vertices in occlusion0..6
 } pc;
 
 void main() {
@@ -52,7 +63,16 @@ void main() {
                 dot(k[5], texelFetch(field5, src, 0)));
     sum += k[6].rgb * texelFetch(field6, src, 0).rgb;
   }
-  ivec3 dst = ivec3(v.xy, v.z + pc.dstZ);
-  if (kAccumulate) sum += imageLoad(combined, dst).rgb;
-  imageStore(combined, dst, vec4(sum, 0.0));
+  if (kOcclusion) {
+    ivec3 o = ivec3(v.xy, v.z + pc.occlusionZ);
+    vec4 q[7] = objects[pc.occlusion].k;
+    sum += objects[pc.occlusion].a.rgb + vec3(dot(q[0], texelFetch(occlusion0, o, 0)),
+                                             dot(q[1], texelFetch(occlusion1, o, 0)), dot(q[2], texelFetch(occlusion2, o, 0)));
+    if (kSh9) {
+      sum += vec3(dot(q[3], texelFetch(occlusion3, o, 0)), dot(q[4], texelFetch(occlusion4, o, 0)),
+                  dot(q[5], texelFetch(occlusion5, o, 0)));
+      sum += q[6].rgb * texelFetch(occlusion6, o, 0).rgb;
+    }
+  }
+  imageStore(combined, ivec3(v.xy, v.z + pc.dstZ), vec4(sum, 0.0));
 }

@@ -2,7 +2,8 @@
 #extension GL_GOOGLE_include_directive : require
 // DNRT box mode: one object's outer cube, so the fragment shader runs only on covered pixels.
 // 36 vertices from gl_VertexIndex (12 triangles, outward CCW); the pipeline culls FRONT faces and
-// has no depth test, so every covered pixel runs once, camera inside the cube or not.
+// tests them against the scene's depth without writing (GREATER_OR_EQUAL: the surface is not behind
+// the cube's exit point), so every covered pixel inside the cube runs once, camera inside it or not.
 // kFullScreen (the paper's mode): one full-screen triangle per object instead.
 // Either way the object's record is read here, once per vertex, and reaches dnrt.frag as flat
 // varyings (dnrt.glsl explains why); its k and a are applied per grid vertex by combine.comp.

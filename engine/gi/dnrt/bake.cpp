@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "engine/core/cache_entry.hpp"
 #include "engine/core/error.hpp"
@@ -83,7 +84,31 @@ BoundingSphere boundingSphere(const ref::SceneDesc& object) {
   return s;
 }
 
-BakeResult bake(const ref::SceneDesc& object, const FieldSettings& settings) {
+FieldSettings occlusionSettings(FieldSettings settings) {
+  settings.occlusionOnly = true;
+  return settings;
+}
+
+namespace {
+
+// The quantised field of `values` (filled where `valid` is 0), with its errors.
+BakeResult finish(const FieldSettings& settings, const BoundingSphere& sphere, std::vector<glm::vec3> values,
+                  std::vector<char> valid) {
+  BakeResult result;
+  result.insideVertices = std::size_t(std::count(valid.begin(), valid.end(), 0));
+  fillInvalid(settings.grid, settings.shCount, values, valid);
+  result.field = quantize(settings, sphere.centre, sphere.radius, values);
+  result.quantization = quantizationError(result.field, values);
+  result.withinAnalyticBound = rangesWithinAnalyticBound(result.field);
+  if (!result.withinAnalyticBound)
+    log::warn("dnrt: a coefficient range exceeds the estimator's analytic bound (field.hpp analyticRange, "
+              "inside the paper's Table 1): the bake is wrong");
+  result.values = std::move(values);
+  return result;
+}
+
+// `settings`' field, and when `occlusion` is set its occlusion-only field from the same rays.
+BakeResult bakeFields(const ref::SceneDesc& object, const FieldSettings& settings, BakeResult* occlusion) {
   checkSettings(settings);
   const BoundingSphere sphere = boundingSphere(object);
   if (!(sphere.radius > 0.0f) || !std::isfinite(sphere.radius))
@@ -105,6 +130,7 @@ BakeResult bake(const ref::SceneDesc& object, const FieldSettings& settings) {
     for (int l = 0; l < 3; ++l) kScale[std::size_t(l)] = math::kPi / sh::cosineLobeBand(l);
 
   std::vector<glm::vec3> values(nv * std::size_t(nc), glm::vec3(0.0f));
+  std::vector<glm::vec3> occlusionValues(occlusion ? values.size() : 0, glm::vec3(0.0f));  // −k_j
   std::vector<char> valid(nv, 0);
   const glm::dvec3 o(sphere.centre);
   const double R = sphere.radius;
@@ -144,22 +170,26 @@ BakeResult bake(const ref::SceneDesc& object, const FieldSettings& settings) {
     if (back > front) return progress.advance();  // inside O: filled below
     const double norm = 1.0 / (math::kPi * samples);
     for (int j = 0; j < nc; ++j) values[v * nc + std::size_t(j)] = glm::vec3((t[std::size_t(j)] - k[std::size_t(j)]) * norm);
+    if (occlusion)  // t_j = 0: the same expression as an occlusionOnly bake, so the same values
+      for (int j = 0; j < nc; ++j) occlusionValues[v * nc + std::size_t(j)] = glm::vec3((glm::dvec3(0.0) - k[std::size_t(j)]) * norm);
     valid[v] = 1;
     progress.advance();
   }, 16);
   progress.finish();
+  if (occlusion) *occlusion = finish(occlusionSettings(settings), sphere, std::move(occlusionValues), valid);
+  return finish(settings, sphere, std::move(values), std::move(valid));
+}
 
-  BakeResult result;
-  result.insideVertices = std::size_t(std::count(valid.begin(), valid.end(), 0));
-  fillInvalid(n, nc, values, valid);
-  result.field = quantize(settings, sphere.centre, sphere.radius, values);
-  result.quantization = quantizationError(result.field, values);
-  result.withinAnalyticBound = rangesWithinAnalyticBound(result.field);
-  if (!result.withinAnalyticBound)
-    log::warn("dnrt: a coefficient range exceeds the estimator's analytic bound (field.hpp analyticRange, "
-              "inside the paper's Table 1): the bake is wrong");
-  result.values = std::move(values);
-  return result;
+}  // namespace
+
+BakeResult bake(const ref::SceneDesc& object, const FieldSettings& settings) {
+  return bakeFields(object, settings, nullptr);
+}
+
+BakePair bakeWithOcclusion(const ref::SceneDesc& object, const FieldSettings& settings) {
+  BakePair pair;
+  pair.field = bakeFields(object, settings, &pair.occlusion);
+  return pair;
 }
 
 namespace {
@@ -201,6 +231,31 @@ Field bakeCached(const ref::SceneDesc& object, const FieldSettings& settings, co
       cachePath(object, settings, cacheDir), "dnrt: rebaking a corrupt cached field: ",
       [](const std::filesystem::path& p) { return load(p); }, [&] { return bake(object, settings).field; },
       [](const Field& f, const std::filesystem::path& p) { save(f, p); }, fromCache);
+}
+
+FieldPair bakeCachedWithOcclusion(const ref::SceneDesc& object, const FieldSettings& settings,
+                                  const std::filesystem::path& cacheDir, int* baked) {
+  const auto loadField = [](const std::filesystem::path& p) { return load(p); };
+  const auto saveField = [](const Field& f, const std::filesystem::path& p) { save(f, p); };
+  const std::string warning = "dnrt: rebaking a corrupt cached field: ";
+  std::optional<Field> occlusionBaked;  // the second field of a pair baked for the first entry
+  const auto bakeBoth = [&] {
+    BakePair pair = bakeWithOcclusion(object, settings);
+    occlusionBaked = std::move(pair.occlusion.field);
+    return std::move(pair.field.field);
+  };
+  bool fieldCached = false, occlusionCached = false;
+  FieldPair out;
+  out.field = loadOrBake(cachePath(object, settings, cacheDir), warning, loadField, bakeBoth, saveField, &fieldCached);
+  out.occlusion = loadOrBake(
+      cachePath(object, occlusionSettings(settings), cacheDir), warning, loadField,
+      [&] {
+        if (!occlusionBaked) bakeBoth();  // the full field came from the cache: trace once for this one
+        return std::move(*occlusionBaked);
+      },
+      saveField, &occlusionCached);
+  if (baked) *baked = (fieldCached ? 0 : 1) + (occlusionCached ? 0 : 1);
+  return out;
 }
 
 }  // namespace bounce::gi::dnrt

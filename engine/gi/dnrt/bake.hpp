@@ -15,6 +15,7 @@
 // ×4 (l = 2). The runtime is unchanged (same c_j).
 // FieldSettings::occlusionOnly bakes m_j = −k_j (t_j = 0): added with the lights' c_j negated, it
 // cancels the lights' part of the anti-radiance when their occlusion is drawn elsewhere (runtime.hpp).
+// bakeWithOcclusion gives a field and its occlusion-only field from the same rays (one trace).
 //
 // Vertices inside O (most hits are back faces) and the vertex at o itself (n_o undefined) have no
 // meaningful value: they are filled from valid neighbours (repeated averaging of the valid
@@ -50,6 +51,14 @@ struct BakeResult {
 // `object`: ONE object's meshes in its local frame (metres), materials and textures.
 BakeResult bake(const ref::SceneDesc& object, const FieldSettings& settings);
 
+// `settings`' field and its occlusion-only field (settings with occlusionOnly set: m_j = −k_j) from
+// ONE pass of rays: k_j is summed for the first anyway, so the second costs no trace. Each is value
+// for value what bake() gives for its settings (the rays are seeded per vertex).
+struct BakePair {
+  BakeResult field, occlusion;
+};
+BakePair bakeWithOcclusion(const ref::SceneDesc& object, const FieldSettings& settings);
+
 // Cache key: the settings and the baker/format version, plus what the object is: its
 // SceneDesc::sourceKey when set (objectScene sets it from the cooked asset's content key, so a
 // bake job's key needs no decoding: objectSourceKey()), else every mesh, material and texture byte.
@@ -66,5 +75,15 @@ std::filesystem::path cachePath(const std::string& key, const std::filesystem::p
 // cache file is rebaked with a warning). `fromCache` (optional) tells which happened.
 Field bakeCached(const ref::SceneDesc& object, const FieldSettings& settings, const std::filesystem::path& cacheDir,
                  bool* fromCache = nullptr);
+
+// Both entries of bakeWithOcclusion (each its own cache file, keyed as bakeCached keys it); a miss on
+// either bakes the pair once. `baked` (optional): how many of the two entries were baked (0, 1 or 2).
+struct FieldPair {
+  Field field, occlusion;
+};
+FieldPair bakeCachedWithOcclusion(const ref::SceneDesc& object, const FieldSettings& settings,
+                                  const std::filesystem::path& cacheDir, int* baked = nullptr);
+// `settings` with occlusionOnly set: the second field's settings (and cache key).
+FieldSettings occlusionSettings(FieldSettings settings);
 
 }  // namespace bounce::gi::dnrt

@@ -23,6 +23,10 @@ constexpr VkDescriptorType kStorage = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
 constexpr VkDescriptorType kUniform = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
 constexpr VkDescriptorType kStorageImage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
 constexpr VkFormat kHdrFormat = VK_FORMAT_R16G16B16A16_SFLOAT;  // "lighting.hdr" (renderer.cpp)
+constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;        // "gbuffer.depth" (gbuffer_pass.cpp)
+// The depth's layout in the dnrt pass: a read-only depth attachment (the box draws' test) that the
+// shaders also sample (rg::Usage::DepthRead beside SampledFragment).
+constexpr VkImageLayout kDepthReadOnly = VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL;
 
 struct Push {
   std::uint32_t object = 0;
@@ -31,6 +35,8 @@ struct Push {
 struct CombinePush {  // combine.comp's Push
   std::uint32_t object = 0;
   std::int32_t srcZ = 0, dstZ = 0, size = 0;
+  std::uint32_t occlusion = 0;  // kOcclusion: the occlusion term's record
+  std::int32_t occlusionZ = 0;  // kOcclusion: its first z layer
 };
 
 struct ClusterPush {  // clustered.frag's Push
@@ -99,7 +105,8 @@ Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t fra
       tileBuffers_(framesInFlight),
       clusterObjectBuffers_(framesInFlight),
       combineLayout_(ctx, {{0, kStorage}, {1, kSampled}, {2, kSampled}, {3, kSampled}, {4, kSampled}, {5, kSampled},
-                           {6, kSampled}, {7, kSampled}, {8, kStorageImage}},
+                           {6, kSampled}, {7, kSampled}, {8, kStorageImage}, {9, kSampled}, {10, kSampled},
+                           {11, kSampled}, {12, kSampled}, {13, kSampled}, {14, kSampled}, {15, kSampled}},
                      "dnrt.combine"),
       combinePipelineLayout_(ctx, {combineLayout_.handle()},
                              {VkPushConstantRange{VK_SHADER_STAGE_ALL, 0, sizeof(CombinePush)}},
@@ -113,12 +120,12 @@ Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t fra
   }
   {
     gpu::ShaderModule combine(ctx, "dnrt/combine.comp.spv");
-    for (std::uint32_t v = 0; v < 4; ++v) {  // v: sh9 | accumulate << 1 (combine.comp's constants 0, 1)
-      const std::uint32_t sh9 = v & 1u, accumulate = v >> 1;
+    for (std::uint32_t v = 0; v < 4; ++v) {  // v: sh9 | occlusion << 1 (combine.comp's constants 0, 1)
+      const std::uint32_t sh9 = v & 1u, occlusion = v >> 1;
       combine_[v] = gpu::createComputePipeline(
           ctx, combinePipelineLayout_, combine,
-          std::string(sh9 ? "dnrt.combine.sh9" : "dnrt.combine.sh4") + (accumulate ? ".accumulate" : ""), nullptr,
-          {sh9, accumulate});
+          std::string(sh9 ? "dnrt.combine.sh9" : "dnrt.combine.sh4") + (occlusion ? ".occlusion" : ""), nullptr,
+          {sh9, occlusion});
     }
   }
   fullscreenVert_ = gpu::ShaderModule(ctx, "passes/fullscreen.vert.spv");
@@ -160,6 +167,13 @@ const gpu::Pipeline& Node::pipeline(const Variant& v) {
   d.blend = gpu::Blend::Additive;
   // Box: back faces of the cube, each covered pixel once, inside or out. Full screen: one triangle.
   d.cull = v.fullScreen ? VK_CULL_MODE_NONE : VK_CULL_MODE_FRONT_BIT;
+  // The box's back face against the scene's depth (the G-buffer's, read-only): a pixel whose surface
+  // lies behind where its view ray leaves the cube is outside the cube (s = 0), so it fails the test
+  // before the fragment shader runs; a surface inside the cube, or in front of it, passes.
+  d.depthFormat = kDepthFormat;
+  d.depthTest = !v.fullScreen;
+  d.depthWrite = false;
+  d.depthCompare = VK_COMPARE_OP_GREATER_OR_EQUAL;
   d.specialization = {v.intrusion ? 1u : 0u, v.fullScreen ? 1u : 0u};  // dnrt.frag id 0, dnrt.vert id 1
   d.name = std::string("dnrt.") + (v.fullScreen ? "fullscreen" : "box") + (v.intrusion ? ".intrusion" : "");
   p = gpu::createGraphicsPipeline(ctx_, layout_, d);
@@ -174,6 +188,7 @@ const gpu::Pipeline& Node::clusteredPipeline(bool single) {
   d.fragment = &clusterFrag_;
   d.colorFormats = {kHdrFormat};
   d.blend = gpu::Blend::Additive;
+  d.depthFormat = kDepthFormat;  // the dnrt pass's read-only depth attachment (not tested here)
   d.specialization = {single ? 1u : 0u};  // clustered.frag kSingle
   d.name = std::string("dnrt.clustered") + (single ? ".single" : "");
   p = gpu::createGraphicsPipeline(ctx_, clusterPipelineLayout_, d);
@@ -359,58 +374,49 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
           VkCommandBuffer cmd = pc->cmd(c);
           gpu::Buffer& buffer = objectBuffer(pc->frame().slot, objects);
           VkSampler point = pc->samplers->get({VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST});
-          // Object i's vertices [0, size)³ from its slots at layer srcZ into `target` at layer dstZ.
-          // `record`: i, or objects.size() + i for object i's occlusion term, added to what is there.
-          const auto dispatch = [&](std::size_t i, bool occlusion, const std::function<VkImageView(int)>& slot,
-                                    VkImageView target, std::int32_t srcZ, std::int32_t dstZ, std::int32_t size) {
-            const std::size_t record = occlusion ? objects.size() + i : i;
-            const gpu::Pipeline& p = combine_[(objects[i].data.extents.z > 4.5f ? 1 : 0) | (occlusion ? 2 : 0)];
+          // Object i's vertices [0, size)³ from its slots at layer srcZ into `target` at layer dstZ, and
+          // with an occlusion term (`occlusionSlot` non-null; record objects.size() + i) that term's
+          // vertices from its slots at layer occlusionZ, summed in the same dispatch.
+          using Slots = std::function<VkImageView(int)>;
+          const auto dispatch = [&](std::size_t i, const Slots& slot, const Slots* occlusionSlot, VkImageView target,
+                                    std::int32_t srcZ, std::int32_t occlusionZ, std::int32_t dstZ, std::int32_t size) {
+            const gpu::Pipeline& p = combine_[(objects[i].data.extents.z > 4.5f ? 1 : 0) | (occlusionSlot ? 2 : 0)];
             p.bind(cmd);
             VkDescriptorSet set = pc->frame().descriptors->allocate(combineLayout_);
             gpu::DescriptorWriter w;
             w.buffer(0, buffer);
-            for (int s = 0; s < 7; ++s) w.sampledImage(std::uint32_t(s + 1), slot(s), point);
+            for (int s = 0; s < 7; ++s) {
+              w.sampledImage(std::uint32_t(s + 1), slot(s), point);
+              w.sampledImage(std::uint32_t(s + 9), occlusionSlot ? (*occlusionSlot)(s) : slot(s), point);
+            }
             w.storageImage(8, target);
             w.update(ctx_, set);
             p.bindSet(cmd, 0, set);
-            p.push(cmd, CombinePush{std::uint32_t(record), srcZ, dstZ, size});
+            p.push(cmd, CombinePush{std::uint32_t(i), srcZ, dstZ, size, std::uint32_t(objects.size() + i), occlusionZ});
             const auto groups = std::uint32_t(size + 3) / 4;  // local size 4³
             vkCmdDispatch(cmd, groups, groups, groups);
           };
-          // Pass 0 writes every object's Σ_j c_j M_j; pass 1 adds the occlusion terms to them (after
-          // a barrier: the same texels are read back).
-          for (int pass = 0; pass < 2; ++pass) {
-            bool any = false;
-            for (std::size_t i = 0; i < objects.size(); ++i)
-              if (d.volumes[i] && (pass == 0 || objects[i].occlusion)) {
-                const FieldTextures* field = pass == 0 ? objects[i].textures : objects[i].occlusion;
-                dispatch(i, pass == 1, [&](int s) { return field->view(s); },
-                         pc->backend->image(res.texture(*d.volumes[i])).view(), 0, 0,
-                         std::int32_t(objects[i].data.extents.w));
-                any = true;
-              }
-            if (d.atlas) {
-              const VkImageView target = pc->backend->image(res.texture(*d.atlas)).view();
-              const auto atlasSlot = [&](int s) {
-                return atlas_.slots[std::size_t(s) < atlas_.slots.size() ? std::size_t(s) : 0]->view();
-              };
-              for (const ClusterItem& item : cluster)
-                if (pass == 0 || item.occlusionBrick >= 0) {
-                  const int brick = pass == 0 ? item.brick : item.occlusionBrick;
-                  dispatch(item.object, pass == 1, atlasSlot, target,
-                           std::int32_t(atlas_.layout.z0[std::size_t(brick)]), std::int32_t(item.z),
-                           std::int32_t(objects[item.object].data.extents.w) + 2);
-                  any = true;
-                }
-            }
-            if (pass == 0 && any) {
-              const bool occlusions =
-                  std::any_of(objects.begin(), objects.end(), [](const NodeObject& o) { return o.occlusion != nullptr; });
-              if (!occlusions) break;
-              VkMemoryBarrier written{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_SHADER_WRITE_BIT,
-                                      VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT};
-              vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0,
-                                   1, &written, 0, nullptr, 0, nullptr);
+          for (std::size_t i = 0; i < objects.size(); ++i) {
+            if (!d.volumes[i]) continue;
+            const FieldTextures* field = objects[i].textures;
+            const FieldTextures* occlusion = objects[i].occlusion;
+            const Slots fieldSlot = [field](int s) { return field->view(s); };
+            const Slots occlusionSlot = [occlusion](int s) { return occlusion->view(s); };
+            dispatch(i, fieldSlot, occlusion ? &occlusionSlot : nullptr,
+                     pc->backend->image(res.texture(*d.volumes[i])).view(), 0, 0, 0,
+                     std::int32_t(objects[i].data.extents.w));
+          }
+          if (d.atlas) {
+            const VkImageView target = pc->backend->image(res.texture(*d.atlas)).view();
+            const Slots atlasSlot = [&](int s) {
+              return atlas_.slots[std::size_t(s) < atlas_.slots.size() ? std::size_t(s) : 0]->view();
+            };
+            for (const ClusterItem& item : cluster) {
+              const bool occlusion = item.occlusionBrick >= 0;  // both bricks in the one atlas
+              dispatch(item.object, atlasSlot, occlusion ? &atlasSlot : nullptr, target,
+                       std::int32_t(atlas_.layout.z0[std::size_t(item.brick)]),
+                       occlusion ? std::int32_t(atlas_.layout.z0[std::size_t(item.occlusionBrick)]) : 0,
+                       std::int32_t(item.z), std::int32_t(objects[item.object].data.extents.w) + 2);
             }
           }
         });
@@ -435,6 +441,7 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
           d.volumes.push_back(v ? std::optional(b.read(*v, rg::Usage::SampledFragment)) : std::nullopt);
         if (combinedAtlas) d.atlas = b.read(*combinedAtlas, rg::Usage::SampledFragment);
         if (cullsTiles) b.read(d.g.depth, rg::Usage::SampledCompute);  // tile_cull.comp
+        b.read(d.g.depth, rg::Usage::DepthRead);  // the box draws' depth test, read-only (pipeline())
       },
       [this, pc, objects = std::move(objects), cluster = std::move(cluster), clustered = std::move(clustered),
        tileCull = settings.tileCull, modeOf = [mode = settings.mode](const NodeObject& o) { return mode.value_or(o.mode); }](
@@ -447,7 +454,7 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
         auto view = [&](rg::Handle<rg::Texture> h) { return pc->backend->image(res.texture(h)).view(); };
         VkDescriptorSet inputs = pc->frame().descriptors->allocate(inputLayout_);
         gpu::DescriptorWriter writer;
-        render::writeDeferredInputs(writer, d.g, *pc, res, point)
+        render::writeDeferredInputs(writer, d.g, *pc, res, point, kDepthReadOnly)
             .buffer(3, buffer)
             .sampledImage(4, view(d.g.entity), point)
             .update(ctx_, inputs);
@@ -490,7 +497,7 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
           }
           clusterInputs = pc->frame().descriptors->allocate(inputLayout_);
           gpu::DescriptorWriter writer;
-          render::writeDeferredInputs(writer, d.g, *pc, res, point)
+          render::writeDeferredInputs(writer, d.g, *pc, res, point, kDepthReadOnly)
               .buffer(3, tiles)
               .sampledImage(4, view(d.g.entity), point)
               .update(ctx_, clusterInputs);
@@ -498,7 +505,7 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
           for (std::size_t b = 0; tileCull && b < batches; ++b) {
             VkDescriptorSet set = pc->frame().descriptors->allocate(cullLayout_);
             gpu::DescriptorWriter w;
-            w.sampledImage(0, view(d.g.depth), point);
+            w.sampledImage(0, view(d.g.depth), point, kDepthReadOnly);
             w.buffer(1, tiles);
             w.buffer(2, *records, kUniform, b * kClusterBatchBytes, kClusterBatchBytes);
             w.update(ctx_, set);
@@ -516,7 +523,9 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
           }
         }
 
-        render::beginRendering(ctx_, cmd, extent, {&color, 1}, nullptr);
+        render::Attachment depth{view(d.g.depth)};
+        depth.readOnly = true;
+        render::beginRendering(ctx_, cmd, extent, {&color, 1}, &depth);
         gpu::TimestampPool* ts = pc->frame().timestamps.get();
         const gpu::Pipeline* bound = nullptr;
         for (std::size_t i = 0; i < objects.size(); ++i) {

@@ -6,7 +6,8 @@
 //
 // Modes (scene::DnrtMode: NodeObject::mode from the level's "mode", NodeSettings::mode for all):
 // - box (default), better than the paper's full-screen pass per object: each object rasterises its
-//   outer cube (back faces, no depth test), so the cost follows the pixels the cube covers;
+//   outer cube (back faces, depth-tested GREATER_OR_EQUAL against the G-buffer depth, read-only, so
+//   surfaces behind the cube never reach the shader), so the cost follows the pixels inside the cube;
 // - fullscreen: the paper's mode (a full-screen triangle per object), for comparison;
 // - clustered (issue 15, cluster.hpp): one full-screen draw per 32 objects, each pixel reading the
 //   G-buffer once and visiting only the objects whose outer cube covers its 16×16 tile, the fields
@@ -63,9 +64,9 @@ struct NodeObject {
   std::string name;                         // timestamp scope "dnrt/<name>" (the entity id)
   bool intrusion = false;                   // render and test an intrusion map (§5.2.3)
   Mode mode = Mode::Box;                    // the level's "mode"
-  // Optional second term of the same object, added into its combined volume (combine.comp
-  // kAccumulate): an occlusion-only field (−k_j) with the lights' c_j negated (Runtime::
-  // excludeLightsFromAntiRadiance). Same placement as `data`; null: none.
+  // Optional second term of the same object, summed into its combined volume in the same dispatch
+  // (combine.comp kOcclusion): an occlusion-only field (−k_j) with the lights' c_j negated
+  // ("lights_in_anti_radiance": false, runtime.hpp). Same placement as `data`; null: none.
   const FieldTextures* occlusion = nullptr;
   DnrtObjectGpu occlusionData;
 };
@@ -133,7 +134,7 @@ class Node {
   Atlas atlas_;
   std::vector<gpu::Buffer> tileBuffers_, clusterObjectBuffers_;  // per frame slot: masks, DnrtClusterObject[]
   // combine.comp: Σ_j c_j M_j per grid vertex for the box and full-screen draws (index: sh9 |
-  // accumulate << 1; accumulate adds an occlusion term to what the first dispatch wrote).
+  // occlusion << 1; occlusion sums the object's occlusion term in the same dispatch).
   gpu::DescriptorSetLayout combineLayout_;
   gpu::PipelineLayout combinePipelineLayout_;
   std::array<gpu::Pipeline, 4> combine_;

@@ -10,7 +10,7 @@ namespace bounce::gi::dnrt {
 Runtime::Runtime(gpu::Context& ctx, const render::Pipelines& pipelines, ecs::Registry& registry,
                  const ref::ReferenceAssets& assets, const std::filesystem::path& cacheDir,
                  std::uint32_t framesInFlight, glm::vec3 background)
-    : ctx_(ctx), assets_(assets), cacheDir_(cacheDir), registry_(registry), background_(background) {
+    : registry_(registry), background_(background) {
   incident_.setIndirect(&background_);
   std::vector<ecs::Entity> entities;
   registry.view<scene::Dnrt, scene::MeshRef>().each([&](ecs::Entity e, scene::Dnrt&, scene::MeshRef&) {
@@ -22,32 +22,25 @@ Runtime::Runtime(gpu::Context& ctx, const render::Pipelines& pipelines, ecs::Reg
     o.entity = e;
     const auto* name = registry.tryGet<scene::Name>(e);
     o.name = name ? name->id : std::to_string(e.index());
-    bool cached = false;
-    o.field = bakeCached(objectScene(registry, e, assets), settingsFrom(registry.get<scene::Dnrt>(e)), cacheDir, &cached);
-    baked_ += cached ? 0 : 1;
+    const scene::Dnrt& component = registry.get<scene::Dnrt>(e);
+    const ref::SceneDesc object = objectScene(registry, e, assets);
+    const FieldSettings settings = settingsFrom(component);
+    if (component.lightsInAntiRadiance) {
+      bool cached = false;
+      o.field = bakeCached(object, settings, cacheDir, &cached);
+      baked_ += cached ? 0 : 1;
+    } else {
+      int baked = 0;
+      FieldPair pair = bakeCachedWithOcclusion(object, settings, cacheDir, &baked);
+      baked_ += std::size_t(baked);
+      o.field = std::move(pair.field);
+      o.occlusion = std::move(pair.occlusion);
+      o.occlusionTextures = std::make_unique<FieldTextures>(ctx, *o.occlusion, o.name + ".occlusion");
+    }
     o.textures = std::make_unique<FieldTextures>(ctx, o.field, o.name);
-    if (!registry.get<scene::Dnrt>(e).lightsInAntiRadiance) addOcclusion(o);
     objects_.push_back(std::move(o));
   }
   node_ = std::make_unique<Node>(ctx, pipelines, framesInFlight);
-}
-
-void Runtime::addOcclusion(Object& o) {
-  FieldSettings s = o.field.settings;
-  s.occlusionOnly = true;
-  bool cached = false;
-  o.occlusion = bakeCached(objectScene(registry_, o.entity, assets_), s, cacheDir_, &cached);
-  baked_ += cached ? 0 : 1;
-  o.occlusionTextures = std::make_unique<FieldTextures>(ctx_, *o.occlusion, o.name + ".occlusion");
-}
-
-void Runtime::excludeLightsFromAntiRadiance() {
-  for (Object& o : objects_)
-    if (!o.occlusionTextures) addOcclusion(o);
-}
-
-bool Runtime::lightsExcludedFromAntiRadiance() const {
-  return std::all_of(objects_.begin(), objects_.end(), [](const Object& o) { return o.occlusionTextures != nullptr; });
 }
 
 void Runtime::setIrradianceSource(const IrradianceSource* source) {

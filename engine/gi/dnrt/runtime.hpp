@@ -37,19 +37,17 @@ class Runtime {
 
   // Where c_j come from (not owned; must outlive the runtime); null restores the background.
   void setIrradianceSource(const IrradianceSource* source);
-  // The lights' occlusion is drawn elsewhere (the direct pass's shadow maps; the relit probes carry
-  // its bounce): each object's anti-radiance then subtracts only the indirect source's light. The
-  // constructor does this for the objects whose `dnrt` says "lights_in_anti_radiance": false (meant
-  // with "probes": {"relight": true}); this call does it for every object. The
-  // paper's Eq. 11 subtracts L_init, all the light arriving through the object; a light's share of
-  // it is already missing behind the object in this renderer (shadow maps), so subtracting it again
-  // counts the shadow twice, smeared by the SH over pixels the object does not shadow (README "DNRT
-  // with the relit probes, session 10"). Bakes (through the cache) each object's occlusion-only
-  // field (FieldSettings::occlusionOnly, −k_j) and per frame adds Σ_j (−c_j^lights) (−k_j):
+  // An object whose `dnrt` says "lights_in_anti_radiance": false (meant with "probes": {"relight":
+  // true}) leaves the lights out of its anti-radiance: their occlusion is drawn elsewhere (the direct
+  // pass's shadow maps; the relit probes carry its bounce), so its anti-radiance subtracts only the
+  // indirect source's light. The paper's Eq. 11 subtracts L_init, all the light arriving through the
+  // object; a light's share of it is already missing behind the object in this renderer (shadow
+  // maps), so subtracting it again counts the shadow twice, smeared by the SH over pixels the object
+  // does not shadow (README "DNRT with the relit probes, session 10"). The constructor bakes (through
+  // the cache, from the same rays as the field: bakeCachedWithOcclusion) the object's occlusion-only
+  // field (FieldSettings::occlusionOnly, −k_j) and objectsFor adds per frame Σ_j (−c_j^lights) (−k_j):
   //   L_DNRT = ρ (n_o·n_r)₊ [Σ_j c_j (t_j − k_j) + Σ_j c_j^lights k_j],  c_j = c_j^indirect + c_j^lights.
-  void excludeLightsFromAntiRadiance();
-  // Every object's anti-radiance leaves the lights out.
-  bool lightsExcludedFromAntiRadiance() const;
+  // (No call switches it for every object: the level's key is the one switch; tests set it there.)
   // How much of an object sees each light (not owned; null: every light fully visible).
   void setLightVisibility(const incident::Visibility* visibility) { incident_.setVisibility(visibility); }
   // c_j's source for one object: the radiance SH arriving at its bounding sphere (centre, radius
@@ -74,15 +72,10 @@ class Runtime {
     std::string name;
     Field field;
     std::unique_ptr<FieldTextures> textures;
-    // excludeLightsFromAntiRadiance: the occlusion-only field (−k_j) and its textures.
+    // "lights_in_anti_radiance": false: the occlusion-only field (−k_j) and its textures.
     std::optional<Field> occlusion;
     std::unique_ptr<FieldTextures> occlusionTextures;
   };
-  gpu::Context& ctx_;
-  const ref::ReferenceAssets& assets_;
-  std::filesystem::path cacheDir_;
-  // The object's occlusion-only field and its textures (excludeLightsFromAntiRadiance).
-  void addOcclusion(Object& o);
   ecs::Registry& registry_;
   ConstantEnvironment background_;
   incident::Service incident_;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <optional>
 
 #include "engine/core/error.hpp"
 #include "engine/core/log.hpp"
@@ -76,60 +77,74 @@ class DnrtTechnique final : public Technique {
     std::vector<std::filesystem::path> inputs;
     if (!lc.level.source.empty()) inputs.push_back(lc.level.source);
     std::vector<BakeJob> jobs;
-    for (ecs::Entity e : entities)
-      for (const bool occlusionOnly : {false, true}) {
-        // The occlusion-only field (−k_j) of an object whose anti-radiance leaves the lights out (runtime.hpp).
-        if (occlusionOnly && lc.registry.get<scene::Dnrt>(e).lightsInAntiRadiance) continue;
-        auto ob = std::make_shared<ObjectBake>();
-        ob->name = lc.registry.get<scene::Name>(e).id;
-        ob->mesh = lc.registry.get<scene::MeshRef>(e);
-        if (const auto* m = lc.registry.tryGet<scene::MaterialOverride>(e)) ob->material = *m;
-        ob->cookCache = lc.cookCache;
-        ob->settings = settingsFrom(lc.registry.get<scene::Dnrt>(e));
-        ob->settings.occlusionOnly = occlusionOnly;  // the runtime's second field (runtime.hpp)
-        // Keyed by the cooked asset's content key (objectSourceKey): no cooking or decoding here.
-        ob->key = cacheKey(objectSourceKey(lc.registry, e, lc.cookCache), ob->settings);
-        ob->output = cachePath(ob->key, cacheFolder());
-        BakeJob job;
-        job.technique = "dnrt";
-        job.what = "dnrt " + ob->name + (occlusionOnly ? " occlusion" : "");
-        job.part = ob->name;
-        job.key = ob->key;
-        job.output = ob->output;
-        job.inputs = inputs;
-        job.inputs.push_back(ob->mesh.asset);
-        job.cached = [ob]() -> std::optional<std::string> {
-          if (!std::filesystem::exists(ob->output)) return std::nullopt;
+    for (ecs::Entity e : entities) {
+      auto ob = std::make_shared<ObjectBake>();
+      ob->name = lc.registry.get<scene::Name>(e).id;
+      ob->mesh = lc.registry.get<scene::MeshRef>(e);
+      if (const auto* m = lc.registry.tryGet<scene::MaterialOverride>(e)) ob->material = *m;
+      ob->cookCache = lc.cookCache;
+      ob->settings = settingsFrom(lc.registry.get<scene::Dnrt>(e));
+      // Keyed by the cooked asset's content key (objectSourceKey): no cooking or decoding here.
+      const std::string source = objectSourceKey(lc.registry, e, lc.cookCache);
+      ob->key = cacheKey(source, ob->settings);
+      ob->output = cachePath(ob->key, cacheFolder());
+      // An object whose anti-radiance leaves the lights out also needs its occlusion-only field (−k_j,
+      // runtime.hpp): the same job writes it, from the same rays (bakeWithOcclusion).
+      std::optional<std::filesystem::path> occlusionOutput;
+      if (!lc.registry.get<scene::Dnrt>(e).lightsInAntiRadiance)
+        occlusionOutput = cachePath(cacheKey(source, occlusionSettings(ob->settings)), cacheFolder());
+      BakeJob job;
+      job.technique = "dnrt";
+      job.what = "dnrt " + ob->name + (occlusionOutput ? " + occlusion" : "");
+      job.part = ob->name;
+      job.key = ob->key;
+      job.output = ob->output;
+      job.inputs = inputs;
+      job.inputs.push_back(ob->mesh.asset);
+      job.cached = [ob, occlusionOutput]() -> std::optional<std::string> {
+        std::string line = describe(ob->name, ob->settings) + ": cached " + ob->output.string();
+        using Path = const std::filesystem::path*;
+        for (const Path path : {Path(&ob->output), occlusionOutput ? Path(&*occlusionOutput) : nullptr}) {
+          if (!path) continue;
+          if (!std::filesystem::exists(*path)) return std::nullopt;
           try {
-            load(ob->output);
+            load(*path);
           } catch (const InputError& err) {
             log::warn(std::string("dnrt: re-baking a corrupt cache entry: ") + err.what());
             return std::nullopt;
           }
-          return describe(ob->name, ob->settings) + ": cached " + ob->output.string();
-        };
-        job.run = [ob] {
-          bool deformed = false;
-          const ref::SceneDesc object = ob->object(&deformed);  // cooked and decoded now, not timed as the bake
-          // A skinned or morphed object: the field is its bind pose's (the cube maps of its neighbours
-          // follow their poses, its own transfer does not): say so when it is baked.
-          if (deformed)
-            log::warn("dnrt " + ob->name + ": the mesh is skinned or morphed; its DNRT field is baked in the bind pose "
-                      "and does not follow the animation");
-          const auto start = std::chrono::steady_clock::now();
-          const BakeResult r = bake(object, ob->settings);
-          const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-          save(r.field, ob->output);
-          char text[512];
-          std::snprintf(text, sizeof text,
-                        ": %.3f s, %zu vertices inside filled, 8-bit error %.3g (bound %.3g), ranges %s -> %s", seconds,
-                        r.insideVertices, r.quantization.maxAbs, r.quantization.bound,
-                        r.withinAnalyticBound ? "inside the analytic bound (Table 1)" : "OUT OF BOUND",
-                        ob->output.c_str());
-          return describe(ob->name, ob->settings) + text;
-        };
-        jobs.push_back(std::move(job));
-      }
+        }
+        if (occlusionOutput) line += ", " + occlusionOutput->string();
+        return line;
+      };
+      job.run = [ob, occlusionOutput] {
+        bool deformed = false;
+        const ref::SceneDesc object = ob->object(&deformed);  // cooked and decoded now, not timed as the bake
+        // A skinned or morphed object: the field is its bind pose's (the cube maps of its neighbours
+        // follow their poses, its own transfer does not): say so when it is baked.
+        if (deformed)
+          log::warn("dnrt " + ob->name + ": the mesh is skinned or morphed; its DNRT field is baked in the bind pose "
+                    "and does not follow the animation");
+        const auto start = std::chrono::steady_clock::now();
+        BakePair pair;
+        if (occlusionOutput) pair = bakeWithOcclusion(object, ob->settings);
+        else pair.field = bake(object, ob->settings);
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        const BakeResult& r = pair.field;
+        save(r.field, ob->output);
+        if (occlusionOutput) save(pair.occlusion.field, *occlusionOutput);
+        char text[512];
+        std::snprintf(text, sizeof text,
+                      ": %.3f s, %zu vertices inside filled, 8-bit error %.3g (bound %.3g), ranges %s -> %s", seconds,
+                      r.insideVertices, r.quantization.maxAbs, r.quantization.bound,
+                      r.withinAnalyticBound ? "inside the analytic bound (Table 1)" : "OUT OF BOUND",
+                      ob->output.c_str());
+        std::string line = describe(ob->name, ob->settings) + text;
+        if (occlusionOutput) line += " + occlusion only -> " + occlusionOutput->string();
+        return line;
+      };
+      jobs.push_back(std::move(job));
+    }
     return jobs;
   }
 
@@ -189,6 +204,17 @@ SessionRuntime::SessionRuntime(SessionContext& sc) {
   incident::SessionLight& light = incident::sessionLight(sc);
   runtime_->setIrradianceSource(&light.indirect());
   runtime_->setLightVisibility(&light.lightVisibility());
+  // "lights_in_anti_radiance": false leaves a lamp's occlusion behind the object to the shadow maps
+  // and its bounce to the relit probes (runtime.hpp); without relit probes that bounce is missing.
+  const bool relit = sc.level.probes.relight && sc.level.effects.has(scene::Effect::Probes);
+  std::vector<std::string> lightsOut;
+  sc.registry.view<scene::Dnrt, scene::Name>().each([&](ecs::Entity, scene::Dnrt& d, scene::Name& n) {
+    if (!d.lightsInAntiRadiance) lightsOut.push_back(n.id);
+  });
+  if (!relit && !lightsOut.empty())
+    log::warn(sc.level.source.string() + ": dnrt " + lightsOut.front() +
+              ": \"lights_in_anti_radiance\": false without relit probes (\"probes\": {\"relight\": true} and the "
+              "probes effect): the lights' bounce off the object's shadow is missing");
 }
 
 }  // namespace bounce::gi::dnrt

@@ -31,16 +31,18 @@ std::vector<NodeObject> Runtime::objectsFor(const render::RenderWorld& world) co
     // t_j, which no band factor scales (measured: cornell-1's improved rows, indirect-only
     // 0.487–0.577 windowed, 0.471–0.566 not; README "DNRT with the relit probes, session 10").
     const bool windowed = o.field.settings.antiRadiance == AntiRadiance::Improved && !o.occlusionTextures;
-    const incident::RadianceSH L = incidentSH(pl.centreWorld, pl.radiusWorld, world.lights,
-                                              windowed ? incident::kHanningWindow : incident::kNoWindow);
+    incident::RadianceSH lights{};  // the lights' part of L alone (the occlusion term's c_j, below)
+    const incident::RadianceSH L = incident_.radianceSH(pl.centreWorld, pl.radiusWorld, world.lights,
+                                                        windowed ? incident::kHanningWindow : incident::kNoWindow,
+                                                        o.occlusionTextures ? &lights : nullptr);
     out.push_back({o.textures.get(), packObject(o.field, placed->matrix, L, o.entity.index()), o.name,
                    component && component->intrusion, component ? component->mode : Mode::Box});
     if (o.occlusionTextures) {
-      // The lights' part of c_j (L minus the indirect source alone), negated: with the field's −k_j
-      // it adds back Σ_j c_j^lights k_j, so the anti-radiance is the indirect light's only.
-      const incident::RadianceSH indirect = incidentSH(pl.centreWorld, pl.radiusWorld, {});
-      incident::RadianceSH minusLights{};
-      for (std::size_t j = 0; j < minusLights.size(); ++j) minusLights[j] = indirect[j] - L[j];
+      // The lights' part of c_j (the service's lightsSH, unwindowed as L's is here: the very numbers L
+      // summed, not L − indirect), negated: with the field's −k_j it adds back Σ_j c_j^lights k_j, so
+      // the anti-radiance is the indirect light's only.
+      incident::RadianceSH minusLights = lights;
+      for (glm::vec3& c : minusLights) c = -c;
       out.back().occlusion = o.occlusionTextures.get();
       out.back().occlusionData = packObject(*o.occlusion, placed->matrix, minusLights, o.entity.index());
     }

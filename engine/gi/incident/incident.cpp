@@ -144,8 +144,9 @@ void applyWindow(const BandWindow& window, RadianceSH& sh) {
 }
 
 RadianceSH Service::radianceSH(glm::vec3 p, float radius, std::span<const render::LightGpu> lights,
-                               const BandWindow& window) const {
+                               const BandWindow& window, RadianceSH* lightsPart) const {
   RadianceSH sh = lightsSH(p, radius, lights, window);
+  if (lightsPart) *lightsPart = sh;
   if (indirect_) {
     const RadianceSH ind = indirect_->radianceSH(p);
     for (std::size_t i = 0; i < sh.size(); ++i) sh[i] += ind[i];

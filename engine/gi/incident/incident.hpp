@@ -136,8 +136,10 @@ class Service {
   RadianceSH lightsSH(glm::vec3 p, float radius, std::span<const render::LightGpu> lights,
                       const BandWindow& window = kNoWindow) const;
   // Indirect + lights (the lights' part windowed): the light arriving at the receiver.
+  // `lightsPart` (optional): receives the lights' part alone (lightsSH, same window), the same
+  // numbers the sum was made of, without tracing the lights' visibility twice.
   RadianceSH radianceSH(glm::vec3 p, float radius, std::span<const render::LightGpu> lights,
-                        const BandWindow& window = kNoWindow) const;
+                        const BandWindow& window = kNoWindow, RadianceSH* lightsPart = nullptr) const;
 
  private:
   const IndirectSource* indirect_ = nullptr;

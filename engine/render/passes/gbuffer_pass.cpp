@@ -57,9 +57,11 @@ DeferredInputs readDeferredInputs(rg::Builder& b, rg::Blackboard& bb, bool withE
 }
 
 gpu::DescriptorWriter& writeDeferredInputs(gpu::DescriptorWriter& w, const DeferredInputs& g, const PassContext& pc,
-                                           const rg::PassResources& res, VkSampler point) {
+                                           const rg::PassResources& res, VkSampler point, VkImageLayout depthLayout) {
   auto view = [&](rg::Handle<rg::Texture> h) { return pc.backend->image(res.texture(h)).view(); };
-  return w.sampledImage(0, view(g.albedo), point).sampledImage(1, view(g.normal), point).sampledImage(2, view(g.depth), point);
+  return w.sampledImage(0, view(g.albedo), point)
+      .sampledImage(1, view(g.normal), point)
+      .sampledImage(2, view(g.depth), point, depthLayout);
 }
 
 }  // namespace bounce::render

@@ -23,7 +23,10 @@ struct DeferredInputs {
 DeferredInputs readDeferredInputs(rg::Builder& b, rg::Blackboard& bb, bool withEntity = false);
 // Writes albedo, normal and depth at bindings 0, 1, 2 with the point sampler `point`, the opening of
 // every deferred GI pass's descriptor set (the bindings after them are the pass's own).
+// `depthLayout`: the depth's layout in the pass (DEPTH_READ_ONLY_OPTIMAL where the pass also tests
+// against it as a read-only attachment, rg::Usage::DepthRead).
 gpu::DescriptorWriter& writeDeferredInputs(gpu::DescriptorWriter& w, const DeferredInputs& g, const PassContext& pc,
-                                           const rg::PassResources& res, VkSampler point);
+                                           const rg::PassResources& res, VkSampler point,
+                                           VkImageLayout depthLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
 
 }  // namespace bounce::render

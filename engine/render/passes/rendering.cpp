@@ -21,9 +21,9 @@ void beginRendering(const gpu::Context& ctx, VkCommandBuffer cmd, VkExtent2D ext
   VkRenderingAttachmentInfo d{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
   if (depth) {
     d.imageView = depth->view;
-    d.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
-    d.loadOp = depth->load ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_CLEAR;
-    d.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    d.imageLayout = depth->readOnly ? VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL : VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+    d.loadOp = depth->load || depth->readOnly ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_CLEAR;
+    d.storeOp = depth->readOnly ? VK_ATTACHMENT_STORE_OP_NONE : VK_ATTACHMENT_STORE_OP_STORE;
     d.clearValue = depth->clear;
   }
   VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};

@@ -11,6 +11,9 @@ struct Attachment {
   VkImageView view = VK_NULL_HANDLE;
   bool load = false;             // keep the previous content (rg::PassResources::keepsContents)
   VkClearValue clear{};
+  // A depth attachment only tested, never written (rg::Usage::DepthRead): read-only layout, loaded,
+  // nothing stored, so the pass may sample it too.
+  bool readOnly = false;
 };
 
 void beginRendering(const gpu::Context& ctx, VkCommandBuffer cmd, VkExtent2D extent,

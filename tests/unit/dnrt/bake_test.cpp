@@ -2,6 +2,7 @@
 // black sphere under a linear radiance gradient (App. B.2), interior detection, determinism, scale.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -274,7 +275,7 @@ TEST(DnrtBake, ImprovedAntiRadianceRecoversBlockedRadiance) {
   EXPECT_GT(bias[0], 5.0 * std::abs(bias[1]));  // paper: too little occlusion (positive = less negative)
 }
 
-// FieldSettings::occlusionOnly (Runtime::excludeLightsFromAntiRadiance): m_j = −k_j, t_j left out.
+// FieldSettings::occlusionOnly ("lights_in_anti_radiance": false, runtime.hpp): m_j = −k_j, t_j left out.
 // k_j depends on where the rays hit, not on the albedo, and the rays are the same (seeded per
 // vertex), so the occlusion-only field of a coloured sphere is, value for value, the full field of a
 // black one (t_j = 0); the full field minus it is t_j, which for a coloured sphere is ≥ 0 in m_0.
@@ -305,6 +306,101 @@ TEST(DnrtBake, OcclusionOnlyFieldIsTheAntiRadianceAlone) {
     const auto object = testing::sphere(glm::vec3(0.0f), 1.0f, kRhoS);
     EXPECT_NE(cacheKey(object, occlusion), cacheKey(object, s));
   }
+}
+
+// bakeWithOcclusion traces once for both fields: each is, value for value and byte for byte, what
+// bake() gives for its own settings (the rays are seeded per vertex, k_j is summed for the first
+// anyway). And the 8-bit error of the pair as the runtime uses it ("lights_in_anti_radiance": false):
+// per vertex and channel
+//   Σ_j (c_j^ind + c_j^L) M_j + Σ_j (−c_j^L) O_j        (M: the field t − k, O: the occlusion field −k)
+// where the exact sums cancel the lights' anti-radiance Σ_j c_j^L k_j; quantised, each decoded
+// coefficient is off by at most half its slot's step (hi − lo)/510, so the sum is off by at most
+//   Σ_j |c_j^ind + c_j^L| (hi − lo)_M/510 + |c_j^L| (hi − lo)_O/510,
+// which must hold everywhere, and which stays a small part of the term the pair cancels (a lamp
+// near the object: the residual would otherwise show as a ghost of the lamp's anti-radiance).
+TEST(DnrtBake, OneTraceGivesBothFieldsAndTheirCancellationStaysWithinHalfAnEightBitStep) {
+  for (const AntiRadiance mode : {AntiRadiance::Paper, AntiRadiance::Improved}) {
+    FieldSettings s = ciSettings(9);
+    s.grid = 8;
+    s.samplesPerAxis = 8;
+    s.antiRadiance = mode;
+    const auto object = testing::sphere(glm::vec3(0.0f), 1.0f, kRhoS);
+    const BakePair pair = bakeWithOcclusion(object, s);
+    const BakeResult full = bake(object, s), only = bake(object, occlusionSettings(s));
+    ASSERT_EQ(pair.field.values, full.values);
+    ASSERT_EQ(pair.occlusion.values, only.values);
+    EXPECT_EQ(serialize(pair.field.field), serialize(full.field));
+    EXPECT_EQ(serialize(pair.occlusion.field), serialize(only.field));
+    EXPECT_EQ(pair.occlusion.insideVertices, pair.field.insideVertices);
+
+    // c^ind: a uniform sky; c^L: a lamp seen as a cap of half-angle acos 0.95 (incident.hpp addCap).
+    const auto indirect = irradianceSH(ConstantEnvironment(glm::vec3(0.3f, 0.25f, 0.2f)).radianceSH(glm::vec3(0.0f)));
+    incident::RadianceSH lamp{};
+    incident::addCap(glm::normalize(glm::vec3(1.0f, 2.0f, 0.5f)), 0.95f, glm::vec3(4.0f, 3.5f, 3.0f), lamp);
+    const auto cL = irradianceSH(lamp);
+    const Field& M = pair.field.field;
+    const Field& O = pair.occlusion.field;
+    const auto halfStep = [](const Field& f, int j, int ch) {
+      const Slot slot = slotOf(j, ch);
+      const Range r = f.ranges[std::size_t(slot.texture * 4 + slot.component)];
+      return (r.hi - r.lo) / 510.0f;
+    };
+    double worstOverBound = 0.0, worstError = 0.0, largestTerm = 0.0;
+    std::array<glm::vec3, 9> m{}, o{};
+    for (std::size_t v = 0; v < M.vertexCount(); ++v) {
+      M.decodeVertex(v, m);
+      O.decodeVertex(v, o);
+      for (int ch = 0; ch < 3; ++ch) {
+        double quantised = 0.0, exact = 0.0, bound = 0.0, term = 0.0;
+        for (std::size_t j = 0; j < 9; ++j) {
+          const double cAll = double(indirect[j][ch]) + double(cL[j][ch]), cl = cL[j][ch];
+          const glm::vec3 mv = pair.field.values[v * 9 + j], ov = pair.occlusion.values[v * 9 + j];
+          quantised += cAll * m[j][ch] - cl * o[j][ch];
+          exact += cAll * mv[ch] - cl * ov[ch];
+          term += cl * ov[ch];
+          bound += std::abs(cAll) * halfStep(M, int(j), ch) + std::abs(cl) * halfStep(O, int(j), ch);
+        }
+        worstOverBound = std::max(worstOverBound, std::abs(quantised - exact) / (bound * (1.0 + 1e-4) + 1e-9));
+        worstError = std::max(worstError, std::abs(quantised - exact));
+        largestTerm = std::max(largestTerm, std::abs(term));
+      }
+    }
+    std::printf("%s: occlusion pair's 8-bit error %.3g (%.3f of its bound), %.4f of the largest lights' "
+                "anti-radiance %.3g\n",
+                mode == AntiRadiance::Paper ? "paper" : "improved", worstError, worstOverBound,
+                worstError / largestTerm, largestTerm);
+    EXPECT_LE(worstOverBound, 1.0);
+    EXPECT_GT(largestTerm, 0.0);
+    EXPECT_LE(worstError, 0.02 * largestTerm);
+  }
+}
+
+// The pair through the cache: two entries, keyed as bakeCached keys each; a miss on one bakes (and
+// writes) only what is missing; the full field's entry is the one bakeCached reads.
+TEST(DnrtBake, CachedPairWritesBothEntriesAndRebakesOnlyTheMissingOne) {
+  const std::filesystem::path dir = std::filesystem::path(BOUNCE_TEST_OUT) / "dnrt-pair-cache";
+  std::filesystem::remove_all(dir);
+  FieldSettings s = ciSettings();
+  s.grid = 6;
+  s.samplesPerAxis = 4;
+  const auto object = testing::sphere(glm::vec3(0.0f), 1.0f, glm::vec3(0.5f), 12);
+  int baked = -1;
+  const FieldPair first = bakeCachedWithOcclusion(object, s, dir, &baked);
+  EXPECT_EQ(baked, 2);
+  EXPECT_TRUE(first.occlusion.settings.occlusionOnly);
+  EXPECT_FALSE(first.field.settings.occlusionOnly);
+  bool hit = false;
+  EXPECT_EQ(serialize(bakeCached(object, s, dir, &hit)), serialize(first.field));
+  EXPECT_TRUE(hit);
+  EXPECT_EQ(serialize(bakeCached(object, occlusionSettings(s), dir, &hit)), serialize(first.occlusion));
+  EXPECT_TRUE(hit);
+  bakeCachedWithOcclusion(object, s, dir, &baked);
+  EXPECT_EQ(baked, 0);
+  std::filesystem::remove(cachePath(object, occlusionSettings(s), dir));
+  const FieldPair again = bakeCachedWithOcclusion(object, s, dir, &baked);
+  EXPECT_EQ(baked, 1);
+  EXPECT_EQ(serialize(again.occlusion), serialize(first.occlusion));
+  EXPECT_EQ(serialize(again.field), serialize(first.field));
 }
 
 TEST(DnrtBake, CachedBakeStoresAndReloadsTheSameField) {

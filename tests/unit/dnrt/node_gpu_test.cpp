@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "engine/core/log.hpp"
 #include "engine/gi/dnrt/bake.hpp"
 #include "engine/gi/dnrt/irradiance_source.hpp"
 #include "engine/gi/dnrt/node.hpp"
@@ -525,27 +526,41 @@ TEST(DnrtGpu, ImprovedAntiRadianceFieldsGetTheLightsSHWindowedAndPaperFieldsDoNo
   }
 }
 
-// Lights left out of the anti-radiance (Runtime::excludeLightsFromAntiRadiance; README "DNRT with
-// the relit probes, session 10"): each object carries a second term, its occlusion-only field (−k_j)
-// with the lights' c_j negated, which combine.comp adds into the object's own combined volume
-// (kAccumulate). Checked against the same terms drawn as separate objects (the additive blend, as
-// RuntimeBakesThroughTheCacheAndOverlappingObjectsAdd) in the box and the clustered modes, and the
-// packed c_j of the two terms sum to the indirect source's alone (the lamp cancels in k_j).
+// Lights left out of the anti-radiance ("lights_in_anti_radiance": false, runtime.hpp; README "DNRT
+// with the relit probes, session 10"): each such object carries a second term, its occlusion-only
+// field (−k_j) with the lights' c_j negated, which combine.comp sums into the object's own combined
+// volume in the same dispatch (kOcclusion). Checked against the same terms drawn as separate objects
+// (the additive blend, as RuntimeBakesThroughTheCacheAndOverlappingObjectsAdd) in the box and the
+// clustered modes, and the packed c_j of the two terms sum to the indirect source's alone (the lamp
+// cancels in k_j).
 TEST(DnrtGpu, LightsLeftOutOfTheAntiRadianceAddTheirTermInTheCombinedVolume) {
   gpu::Context& ctx = gpu::testkit::sharedContext();
   const fs::path levelPath = fs::path(BOUNCE_SOURCE_DIR) / "tests/data/dnrt/two-boxes-lamp.json";
-  game::Session session(ctx, game::loadLevelWithEffects(levelPath, std::nullopt));
+  const auto frames = gpu::FrameRing::kDefaultFramesInFlight;
+  const fs::path cache = fs::path(BOUNCE_TEST_OUT) / "dnrt" / "occlusion-cache";
+  {  // As the level says: box-a's entry says "lights_in_anti_radiance": false, box-b's does not.
+    game::Session session(ctx, game::loadLevelWithEffects(levelPath, std::nullopt));
+    session.update(0.0);
+    ref::ReferenceAssets assets;
+    assets.load(session.registry(), fs::path(BOUNCE_TEST_OUT) / "dnrt" / "cooked");
+    Runtime dnrt(ctx, session.renderer().pipelines(), session.registry(), assets, cache, frames,
+                 session.level().background);
+    renderOnce(session, ctx);  // the frame's draws: objectsFor packs the drawn objects
+    const std::vector<NodeObject> asShipped = dnrt.objectsFor(session.world());
+    ASSERT_EQ(asShipped.size(), 2u);
+    EXPECT_NE(asShipped[0].occlusion, nullptr);
+    EXPECT_EQ(asShipped[1].occlusion, nullptr);
+  }
+  // Both boxes with the lights out of their anti-radiance.
+  scene::Level level = game::loadLevelWithEffects(levelPath, std::nullopt);
+  for (scene::EntityDesc& e : level.entities)
+    if (e.dnrt) e.dnrt->lightsInAntiRadiance = false;
+  game::Session session(ctx, level);
   session.update(0.0);
   ref::ReferenceAssets assets;
   assets.load(session.registry(), fs::path(BOUNCE_TEST_OUT) / "dnrt" / "cooked");
-  const auto frames = gpu::FrameRing::kDefaultFramesInFlight;
-  Runtime dnrt(ctx, session.renderer().pipelines(), session.registry(), assets,
-               fs::path(BOUNCE_TEST_OUT) / "dnrt" / "occlusion-cache", frames, session.level().background);
-  // box-a's level entry says "lights_in_anti_radiance": false, box-b's does not: the constructor
-  // gives box-a its occlusion term; the call gives box-b one too.
-  EXPECT_FALSE(dnrt.lightsExcludedFromAntiRadiance());
-  dnrt.excludeLightsFromAntiRadiance();
-  EXPECT_TRUE(dnrt.lightsExcludedFromAntiRadiance());
+  Runtime dnrt(ctx, session.renderer().pipelines(), session.registry(), assets, cache, frames,
+               session.level().background);
   session.renderer().setNode("dnrt", dnrt.node());
   renderOnce(session, ctx);
   const std::vector<NodeObject> all = dnrt.objectsFor(session.world());
@@ -622,6 +637,22 @@ TEST(DnrtGpu, LightsLeftOutOfTheAntiRadianceAddTheirTermInTheCombinedVolume) {
   EXPECT_LE(worstClustered, 1.0f);
   // As a whole, within 1 % of the term (a term added to the wrong brick or left out would show).
   EXPECT_LE(worstAbs, 0.01f * largestTerm);
+}
+
+// "lights_in_anti_radiance": false is meant with relit probes (they carry the lamp's bounce off the
+// object's shadow that the anti-radiance no longer subtracts): a session of a level that sets it
+// without them warns once (dnrt's SessionRuntime); the same level with the key true does not.
+TEST(DnrtGpu, LightsOutOfTheAntiRadianceWithoutRelitProbesWarnsOnce) {
+  gpu::Context& ctx = gpu::testkit::sharedContext();
+  const fs::path levelPath = fs::path(BOUNCE_SOURCE_DIR) / "tests/data/dnrt/two-boxes-lamp.json";
+  for (const bool lightsOut : {true, false}) {
+    scene::Level level = game::loadLevelWithEffects(levelPath, std::nullopt);  // "effects": ["dnrt"], no probes
+    for (scene::EntityDesc& e : level.entities)
+      if (e.dnrt && !lightsOut) e.dnrt->lightsInAntiRadiance = true;
+    log::resetWarningCount();
+    game::Session session(ctx, level);
+    EXPECT_EQ(log::warningCount(), lightsOut ? 1u : 0u) << (lightsOut ? "box-a's key false" : "every key true");
+  }
 }
 
 }  // namespace
