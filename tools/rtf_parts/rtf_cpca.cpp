@@ -20,7 +20,7 @@
 // N·D / (Σ_h (n_h + 1)·D + Σ_r n_h(r) + N) floats (fp16: bytes as above). Exact for the clustering
 // found at n_max; re-clustering at the chosen counts is not done.
 //
-// With REF_RAYS (> 0; issue 14, session 11, README "CPCA: interpolated transfer, noise floor") the
+// With REF_RAYS (> 0; issue 14, session 11, README "CPCA: the hit's transfer interpolated …") the
 // prop is baked a second time with 6·REF_RAYS² projection rays per sample, X_ref, and it prints the
 // projection's own error  noise = ‖X − X_ref‖_F / ‖X_ref‖_F  (the floor no compression of X gets
 // under, measured against the finer bake), then per count the CPCA of X measured against X_ref
