@@ -7,8 +7,6 @@
 #include <limits>
 #include <unordered_map>
 
-#include <glm/gtc/quaternion.hpp>
-
 #include "engine/core/cache_entry.hpp"
 #include "engine/core/error.hpp"
 #include "engine/core/hash.hpp"
@@ -218,11 +216,8 @@ BakeResult bake(const ref::SceneDesc& object, const FieldSettings& s) {
   const std::size_t N = sampleCount(s), D = itfDimension(s), m = std::size_t(s.proxies), stride = m * kShCount;
   const int perSphere = samplesPerSphere(s), n2 = s.faceSize * s.faceSize;
   // The projection directions: one cube map's texel centres with their exact solid angles (§4:
-  // "6 × 64 × 64 directions on a unit cubemap"), turned by a random rotation per sample (Shoemake's
-  // uniform quaternion from Pcg32, deterministic). Until session 11 the same axis-aligned map served
-  // every sample: its texel rows line up with the edges of axis-aligned props, so the aliasing of
-  // their silhouettes was systematic — 9.8 % of ‖X‖ against a 6·64²-ray bake at 6·16² rays, and the
-  // CPCA kept it (9.9 %); rotated, 5.8 % and 6.1 % (README "CPCA: … the projection's own error").
+  // "6 × 64 × 64 directions on a unit cubemap"), the SAME for every sample, so the integration
+  // error varies smoothly from sample to sample (CPCA compresses it) instead of as noise.
   struct Direction {
     glm::dvec3 w;
     double solidAngle;
@@ -232,7 +227,9 @@ BakeResult bake(const ref::SceneDesc& object, const FieldSettings& s) {
   for (int face = 0; face < 6; ++face)
     for (int y = 0; y < s.raysPerAxis; ++y)
       for (int x = 0; x < s.raysPerAxis; ++x) {
-        directions.push_back({sh::cubeTexelDirection(face, x, y, s.raysPerAxis), sh::cubeTexelSolidAngle(x, y, s.raysPerAxis), {}});
+        Direction d{sh::cubeTexelDirection(face, x, y, s.raysPerAxis), sh::cubeTexelSolidAngle(x, y, s.raysPerAxis), {}};
+        sh::evalBasis<double>(kShOrder, d.w, d.y);
+        directions.push_back(d);
       }
   result.itf.assign(N * D, 0.0f);
   f.oof.assign(N * kShCount, 0.0f);
@@ -258,15 +255,7 @@ BakeResult bake(const ref::SceneDesc& object, const FieldSettings& s) {
       std::array<double, kShCount> V{};
       int front = 0, back = 0;
       seen.clear();
-      math::Pcg32 rotationRng(sample, 0x72746631u);  // stream "rtf1": not the vertex rays' sequences
-      const double u1 = rotationRng.nextDouble(), u2 = rotationRng.nextDouble(), u3 = rotationRng.nextDouble();
-      constexpr double kTau = 6.283185307179586;
-      const glm::dmat3 rotation = glm::mat3_cast(glm::normalize(
-          glm::dquat(std::sqrt(u1) * std::cos(kTau * u3), std::sqrt(1.0 - u1) * std::sin(kTau * u2),
-                     std::sqrt(1.0 - u1) * std::cos(kTau * u2), std::sqrt(u1) * std::sin(kTau * u3))));
-      for (Direction dir : directions) {
-        dir.w = rotation * dir.w;
-        sh::evalBasis<double>(kShOrder, dir.w, dir.y);
+      for (const Direction& dir : directions) {
         const glm::dvec3& w = dir.w;
         ref::Hit hit;
         if (!bvh.intersect(glm::vec3(q), glm::vec3(w), 0.0f, std::numeric_limits<float>::infinity(), hit)) {
@@ -327,7 +316,7 @@ BakeResult bake(const ref::SceneDesc& object, const FieldSettings& s) {
 
 std::string cacheKey(const ref::SceneDesc& object, const FieldSettings& s) {
   Hasher h;
-  h.str("rtf-field-v6");  // baker and file format version: bump when either changes (v2: cube-map projection directions; v3: warm-started CPCA; v4: CPCA on lines, k-means++ seeds, float products; v5: fp16 basis and α, file version 2; v6: the projection's cube map turned per sample)
+  h.str("rtf-field-v5");  // baker and file format version: bump when either changes (v2: cube-map projection directions; v3: warm-started CPCA; v4: CPCA on lines, k-means++ seeds, float products; v5: fp16 basis and α, file version 2)
   h.pod(s.proxies).pod(s.spheres).pod(s.faceSize).pod(s.innerRadius).pod(s.outerRadius).pod(s.raysPerAxis);
   h.pod(s.vertexRaysPerAxis).pod(s.selfBounces).pod(s.clusters).pod(s.components);
   ref::hashGeometry(h, object);

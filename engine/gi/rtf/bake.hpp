@@ -12,8 +12,7 @@
 //     t = Σ_{b ≤ selfBounces} t^b, x the mesh vertex nearest the hit (same facing) — the hit
 //     point's transfer is approximated by its nearest vertex (the ray tracer reports no triangle);
 //  3. at every sample q on the concentric spheres (field.hpp) the ITF (Eq. 6–7), over the texel
-//     directions ω of one cube map (face size raysPerAxis; the paper's 6×64×64, §4), turned by a
-//     random rotation per sample (deterministic; session 11: no systematic aliasing), weighted by
+//     directions ω of one cube map (face size raysPerAxis; the paper's 6×64×64, §4) weighted by
 //     their exact solid angles Δω: M^{ij}_{q,k} = Σ_{rays hitting p} Δω y_i(ω) t_{p,k}^j, and the
 //     OOF V_q^i = Σ_{rays that miss} Δω y_i(ω). A sample inside the object (most hits are back
 //     faces) gets M = 0 and V = 0 (all light is blocked there);
