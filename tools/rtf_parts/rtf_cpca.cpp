@@ -20,7 +20,13 @@
 // N·D / (Σ_h (n_h + 1)·D + Σ_r n_h(r) + N) floats (fp16: bytes as above). Exact for the clustering
 // found at n_max; re-clustering at the chosen counts is not done.
 //
-// usage: rtf_cpca LEVEL OBJECT PROXIES SPHERES FACE RAYS CLUSTERS COMPONENTS[,COMPONENTS…]
+// With REF_RAYS (> 0; issue 14, session 11, README "CPCA: the hit's transfer interpolated …") the
+// prop is baked a second time with 6·REF_RAYS² projection rays per sample, X_ref, and it prints the
+// projection's own error  noise = ‖X − X_ref‖_F / ‖X_ref‖_F  (the floor no compression of X gets
+// under, measured against the finer bake), then per count the CPCA of X measured against X_ref
+// (vs_ref = ‖X̂ − X_ref‖/‖X_ref‖, fp16) and the CPCA of X_ref itself (ref_norm = ‖X̂_ref − X_ref‖/‖X_ref‖).
+//
+// usage: rtf_cpca LEVEL OBJECT PROXIES SPHERES FACE RAYS CLUSTERS COMPONENTS[,COMPONENTS…] [REF_RAYS]
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -97,6 +103,36 @@ int main(int argc, char** argv) {
   const gi::rtf::BakeResult baked = gi::rtf::bake(object, s);
   std::fprintf(stderr, "rtf_cpca: baked in %.1f s\n", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
   const std::size_t N = gi::rtf::sampleCount(s), D = gi::rtf::itfDimension(s);
+  const int refRays = argc > 9 ? std::atoi(argv[9]) : 0;
+  std::vector<float> reference;  // X_ref, the same samples with 6·REF_RAYS² projection rays
+  double refNorm2 = 0.0;
+  // ‖Y − X_ref‖_F / ‖X_ref‖_F, Y given sample by sample.
+  const auto againstReference = [&](auto&& sampleOf) {
+    double diff = 0.0;
+    std::vector<float> row(D);
+    for (std::size_t r = 0; r < N; ++r) {
+      sampleOf(r, std::span<float>(row));
+      for (std::size_t d = 0; d < D; ++d) {
+        const double e = double(row[d]) - double(reference[r * D + d]);
+        diff += e * e;
+      }
+    }
+    return std::sqrt(diff / refNorm2);
+  };
+  if (refRays > 0) {
+    gi::rtf::FieldSettings sr = s;
+    sr.raysPerAxis = refRays;
+    const auto t1 = std::chrono::steady_clock::now();
+    reference = gi::rtf::bake(object, sr).itf;
+    std::fprintf(stderr, "rtf_cpca: reference (6*%d^2 rays) baked in %.1f s\n", refRays,
+                 std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count());
+    for (float x : reference) refNorm2 += double(x) * double(x);
+    const double noise = againstReference([&](std::size_t r, std::span<float> out) {
+      std::copy_n(baked.itf.begin() + std::ptrdiff_t(r * D), D, out.begin());
+    });
+    std::printf("rays=%d ref_rays=%d noise=%.4f (||X - X_ref|| / ||X_ref||)\n", s.raysPerAxis, refRays, noise);
+    std::fflush(stdout);
+  }
   for (int ne : counts) {
     gi::rtf::CpcaSettings cs;
     cs.clusters = s.clusters, cs.components = ne;
@@ -110,6 +146,15 @@ int main(int argc, char** argv) {
                 "energy=%.5f\n", c.clusters, ne, e.ratio, e.frobenius, e.frobenius * e.frobenius, stored, h.frobenius,
                 h.frobenius * h.frobenius);
     std::fflush(stdout);
+    if (refRays > 0) {
+      const double vsRef = againstReference([&](std::size_t r, std::span<float> out) { c.reconstruct(r, out); });
+      gi::rtf::Cpca cr = gi::rtf::compress(reference, D, cs);
+      gi::rtf::roundToHalf(cr);
+      const double refOwn = gi::rtf::measure(cr, reference).frobenius;
+      std::printf("clusters=%d components=%d fp16: vs_ref=%.4f (CPCA of X against X_ref) ref_norm=%.4f (CPCA of X_ref)\n",
+                  c.clusters, ne, vsRef, refOwn);
+      std::fflush(stdout);
+    }
     if (ne != counts.back() || ne < 1) continue;
     // Per-cluster counts by error (header comment), from this (fp32) compression.
     double total = 0.0;
