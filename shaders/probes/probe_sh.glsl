@@ -149,9 +149,13 @@ void probeRadianceSh(vec3 x, vec3 n, vec3 v, out vec3 L[9]) {
     w = live ? w : 0.0;
     sum += w;
 #ifdef PROBE_TILES
-    if (kTiles)  // a specialization constant
-      L[0] += w * textureLod(probeTiles, (vec2(probeTileOrigin(c, count)) + tile) * invSize, 0.0).rgb;
-    else
+    if (kTiles) {  // a specialization constant
+      // w = 0 (a dead lane, a culled corner) adds exactly 0 even under a non-finite texel (0·Inf =
+      // NaN): a select (mix with a bvec is OpSelect), not a branch. tiles.comp clamps to the
+      // largest half, so this guards what that clamp cannot (an Inf/NaN SH).
+      const vec3 tap = textureLod(probeTiles, (vec2(probeTileOrigin(c, count)) + tile) * invSize, 0.0).rgb;
+      L[0] += mix(vec3(0.0), w * tap, bvec3(w > 0.0));
+    } else
 #endif
       probeAddSh(idx, w, L);
   } while (nz != 0u);

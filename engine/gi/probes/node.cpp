@@ -21,6 +21,9 @@ using namespace glm;
 namespace {
 
 constexpr int kProbeTile = glsl::PROBE_TILE;
+// tiles.comp's workgroup: PROBE_TILE × PROBE_TILE/2 invocations writing two rows each, within the
+// 128 every Vulkan device allows (maxComputeWorkGroupInvocations' required minimum).
+static_assert(kProbeTile % 2 == 0 && kProbeTile * (kProbeTile / 2) <= 128, "tiles.comp's workgroup");
 
 // Probe p = x + count.x·row of the volume in texel row `row`, `slots` texels per probe in that row
 // (probes.frag probeTexel). Throws when the layout exceeds the device's 2D image size.
