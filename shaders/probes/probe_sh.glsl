@@ -1,7 +1,9 @@
 // The baked volume's radiance SH at a receiver, read as the probes pass reads it (texelFetch from
 // the probe images, DESIGN.md: no SSBOs); shared by probes/probes.frag and the SL shadow on the
 // probes' light (sl/probe_shadow.frag), so both see the same L at a pixel (up to the packing
-// where probes.frag reads its uniform block, below).
+// where probes.frag reads its uniform block, below, and, where probes.frag taps the irradiance
+// tiles instead (kTiles), up to their interpolation error E_t: the SL shadow's E_u + ΔE is then
+// E_shadowed within E_t, sl/probe_shadow_frag.glsl).
 //
 // The includer declares, before including this file:
 //   const int kCoeffs (order²: 4 or 9, a specialization constant);
