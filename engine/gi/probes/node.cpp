@@ -189,8 +189,8 @@ std::vector<std::uint32_t> packedShWords(const ProbeVolume& v) { return shPacked
 // (order 3), smooth, but the octahedral map bends it, so rather than a loose derivative bound this
 // measures it: for each valid probe, its tile's texel values E(dir(t)) bilinearly interpolated at
 // probeTileCoord(n) (what the sampler does; llvmpipe filters RGBA16F with float weights) against
-// E(n), at 128² normals spread over the octahedral square (texel centres, edges and the points
-// between, 9 per texel) — the largest |difference| per channel (W/m²). The pass mixes ≤ 8 probes with
+// E(n), at 129² normals spread over the octahedral square (a 128-step lattice with both edges:
+// texel centres, edges and the points between, 9 per texel) — the largest |difference| per channel (W/m²). The pass mixes ≤ 8 probes with
 // weights summing to 1, so this bounds a pixel's E too (plus the texels' fp16 rounding).
 double tileIrradianceError(const ProbeVolume& v) {
   const std::size_t coeffs = std::size_t(v.coeffs());
