@@ -1,7 +1,9 @@
 // The baked volume's radiance SH at a receiver, read as the probes pass reads it (texelFetch from
 // the probe images, DESIGN.md: no SSBOs); shared by probes/probes.frag and the SL shadow on the
 // probes' light (sl/probe_shadow.frag), so both see the same L at a pixel (up to the packing
-// where probes.frag reads its uniform block, below).
+// where probes.frag reads its uniform block, below, and, where probes.frag taps the irradiance
+// tiles instead (kTiles), up to their interpolation error E_t: the SL shadow's E_u + ΔE is then
+// E_shadowed within E_t, sl/probe_shadow_frag.glsl).
 //
 // The includer declares, before including this file:
 //   const int kCoeffs (order²: 4 or 9, a specialization constant);
@@ -149,9 +151,13 @@ void probeRadianceSh(vec3 x, vec3 n, vec3 v, out vec3 L[9]) {
     w = live ? w : 0.0;
     sum += w;
 #ifdef PROBE_TILES
-    if (kTiles)  // a specialization constant
-      L[0] += w * textureLod(probeTiles, (vec2(probeTileOrigin(c, count)) + tile) * invSize, 0.0).rgb;
-    else
+    if (kTiles) {  // a specialization constant
+      // w = 0 (a dead lane, a culled corner) adds exactly 0 even under a non-finite texel (0·Inf =
+      // NaN): a select (mix with a bvec is OpSelect), not a branch. tiles.comp clamps to the
+      // largest half, so this guards what that clamp cannot (an Inf/NaN SH).
+      const vec3 tap = textureLod(probeTiles, (vec2(probeTileOrigin(c, count)) + tile) * invSize, 0.0).rgb;
+      L[0] += mix(vec3(0.0), w * tap, bvec3(w > 0.0));
+    } else
 #endif
       probeAddSh(idx, w, L);
   } while (nz != 0u);

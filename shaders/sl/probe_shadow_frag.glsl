@@ -3,7 +3,13 @@
 // light), deferred: every G-buffer pixel adds ρ(p)/π · ao · ΔE(p) to "lighting.hdr" (additive
 // blending into RGBA16F, which keeps the negative sum: ΔE ≤ 0 takes light away), ΔE from
 // sl/probe_shadow.glsl with the probes' radiance SH read as the probes pass reads it
-// (probes/probe_sh.glsl), so the probes' ρ/π · ao · E_u plus this is ρ/π · ao · E_shadowed.
+// (probes/probe_sh.glsl), so the probes' ρ/π · ao · E_u plus this is ρ/π · ao · E_shadowed when the
+// probes pass reads the SH too. With its irradiance tiles (session 11, probes.frag kTiles) it adds
+// the tiles' E_u instead, which differs from the SH's by at most the tiles' interpolation error E_t
+// (gi::probes::tileIrradianceError, + fp16), so the sum is E_shadowed within ρ/π · ao · E_t; and
+// since ΔE is clamped at −E_u of the SH, not of the tiles, a fully shadowed pixel's indirect sum can
+// go below 0 by up to that much (E_tiles < E_sh there). Not clamped here: this pass never sees the
+// tile value; the frame's negative channels end at tonemap.frag's max(c, 0), after the direct light.
 // Background pixels (depth 1) receive nothing. Drawn as the SL pass's tiles (sl/shadow_tiles.vert):
 // a pixel visits only its tile's SLs; tiles no SL's influence reaches are not drawn (ΔE = 0 there).
 // Specialization constants: sl.glsl's (ids 0–3, engine/gi/sl/shade.hpp), the probes' SH count

@@ -20,7 +20,8 @@ class AoTechnique final : public Technique {
     r.technique = kind;
     r.setting = "radius=0.1m;ref=all";
     r.effects = {"direct", "shadows", "probes", kind};
-    r.passes = {"shadow", "lighting", kind, "probes.tiles", "probes"};
+    r.passes = {"shadow", "lighting", kind, "probes"};
+    r.optionalPasses = {"probes.tiles"};  // per frame only when the probes are relit
     rows.push_back(std::move(r));
   }
   std::vector<std::string> passes() const override { return {kindName(kind_)}; }

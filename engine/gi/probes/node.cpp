@@ -21,6 +21,9 @@ using namespace glm;
 namespace {
 
 constexpr int kProbeTile = glsl::PROBE_TILE;
+// tiles.comp's workgroup: PROBE_TILE × PROBE_TILE/2 invocations writing two rows each, within the
+// 128 every Vulkan device allows (maxComputeWorkGroupInvocations' required minimum).
+static_assert(kProbeTile % 2 == 0 && kProbeTile * (kProbeTile / 2) <= 128, "tiles.comp's workgroup");
 
 // Probe p = x + count.x·row of the volume in texel row `row`, `slots` texels per probe in that row
 // (probes.frag probeTexel). Throws when the layout exceeds the device's 2D image size.
@@ -186,8 +189,8 @@ std::vector<std::uint32_t> packedShWords(const ProbeVolume& v) { return shPacked
 // (order 3), smooth, but the octahedral map bends it, so rather than a loose derivative bound this
 // measures it: for each valid probe, its tile's texel values E(dir(t)) bilinearly interpolated at
 // probeTileCoord(n) (what the sampler does; llvmpipe filters RGBA16F with float weights) against
-// E(n), at 128² normals spread over the octahedral square (texel centres, edges and the points
-// between, 9 per texel) — the largest |difference| per channel (W/m²). The pass mixes ≤ 8 probes with
+// E(n), at 129² normals spread over the octahedral square (a 128-step lattice with both edges:
+// texel centres, edges and the points between, 9 per texel) — the largest |difference| per channel (W/m²). The pass mixes ≤ 8 probes with
 // weights summing to 1, so this bounds a pixel's E too (plus the texels' fp16 rounding).
 double tileIrradianceError(const ProbeVolume& v) {
   const std::size_t coeffs = std::size_t(v.coeffs());
@@ -293,6 +296,7 @@ ProbeNode::ProbeNode(gpu::Context& ctx, const render::Pipelines& pipelines, Prob
       gpu::ShaderModule comp(ctx, "probes/tiles.comp.spv");
       tilesPipeline_ = gpu::createComputePipeline(ctx, tilesLayout_, comp, "probes.tiles", nullptr,
                                                   {std::uint32_t(volume_.coeffs())});  // tiles.comp kCoeffs
+      buildBakedTiles(ctx);
     }
   }
   layout_ = gpu::PipelineLayout(ctx, {pipelines.frameLayout.handle(), setLayout_.handle()},
@@ -308,6 +312,40 @@ ProbeNode::ProbeNode(gpu::Context& ctx, const render::Pipelines& pipelines, Prob
                       tiles_ ? 1u : 0u};  // probes.frag kCoeffs, kShInUbo, kMomentsInUbo, kTiles
   d.name = "probes";
   pipeline_ = gpu::createGraphicsPipeline(ctx, layout_, d);
+}
+
+// The baked volume's tiles, once: tiles.comp over the uploaded block into a persistent image the
+// probes pass reads every frame while nothing relights the volume (addPasses), instead of
+// recomputing the same texels each frame (1.3–1.5 ms on llvmpipe, README "Probes cost, session 11").
+void ProbeNode::buildBakedTiles(gpu::Context& ctx) {
+  const glm::uvec2 size = tileImageSize(volume_.grid);
+  gpu::ImageDesc d;
+  d.format = VK_FORMAT_R16G16B16A16_SFLOAT;
+  d.width = size.x;
+  d.height = size.y;
+  // STORAGE: tiles.comp writes it; SAMPLED: probes.frag taps it; TRANSFER_SRC: tests read it back.
+  d.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+  d.name = "probes.tiles.baked";
+  bakedTiles_ = std::make_unique<gpu::Image>(ctx, d);
+  gpu::DescriptorAllocator descriptors(ctx, "probes.tiles.baked");
+  gpu::SamplerCache samplers(ctx);
+  VkSampler point = samplers.get({VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST});
+  VkDescriptorSet set = descriptors.allocate(tilesSetLayout_);
+  gpu::submitAndWait(ctx, [&](VkCommandBuffer cmd) {
+    gpu::transition(cmd, *bakedTiles_, VK_IMAGE_LAYOUT_GENERAL);
+    gpu::DescriptorWriter()
+        .sampledImage(0, sh_->view(), point)
+        .sampledImage(1, moments_->view(), point)
+        .buffer(2, shUbo_, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 0, kShUboBytes)
+        .buffer(3, momentsUbo_, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 0, kMomentsUboBytes)
+        .storageImage(4, bakedTiles_->view())
+        .update(ctx, set);
+    tilesPipeline_.bind(cmd);
+    tilesPipeline_.bindSet(cmd, 0, set);
+    tilesPipeline_.push(cmd, probePush(volume_, 0.0f));
+    vkCmdDispatch(cmd, std::uint32_t(volume_.grid.count.x), std::uint32_t(volume_.grid.count.y * volume_.grid.count.z), 1);
+    gpu::transition(cmd, *bakedTiles_, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+  });
 }
 
 void ProbeNode::enableRelight(gpu::Context& ctx, RelightData data, const ref::SceneBvh& staticScene) {
@@ -333,7 +371,19 @@ void ProbeNode::addPasses(rg::RenderGraph& graph, const render::PassContext* pc)
     rg::Handle<rg::Texture> tiles;
   };
   std::optional<rg::Handle<rg::Texture>> tiles;
-  if (tiles_) {
+  if (tiles_ && !relight_) {
+    // Nothing changes the block: the tiles built once (buildBakedTiles), already in
+    // SHADER_READ_ONLY with their writes waited for; no probes.tiles pass.
+    const glm::uvec2 size = tileImageSize(volume_.grid);
+    rg::ResourceState built;
+    built.layout = rg::Layout::ShaderReadOnly;
+    // graphDot builds the graph without a device: any id names the import there (relight_pass.cpp
+    // kGraphDotBlock, the AO node's 1000, Renderer::graphDot's 1–3).
+    constexpr rg::PhysicalId kGraphDotTiles = 1002;
+    const rg::PhysicalId physical = pc->backend ? pc->backend->importImage(*bakedTiles_) : kGraphDotTiles;
+    tiles = graph.importTexture("probes.tiles.baked",
+                                rg::TextureDesc{size.x, size.y, 1, 1, 1, rg::Format::RGBA16F, false}, built, physical);
+  } else if (tiles_) {
     const glm::uvec2 size = tileImageSize(volume_.grid);
     tiles = graph
                 .addPass<TilesData>(

@@ -90,11 +90,15 @@ class ProbeNode final : public TechniqueRuntime {
   gpu::PipelineLayout layout_;
   gpu::Pipeline pipeline_;
   // Pass `probes.tiles` (shaders/probes/tiles.comp): each probe's E(n) over its octahedral tile,
-  // every frame (after `probes.relight`), into a graph texture only the probes pass reads.
+  // every frame after `probes.relight` into a graph texture only the probes pass reads; without
+  // relight no pass: bakedTiles_.
   bool tiles_ = false;
   gpu::DescriptorSetLayout tilesSetLayout_;
   gpu::PipelineLayout tilesLayout_;
   gpu::Pipeline tilesPipeline_;
+  // A baked volume's tiles (no relight), built once in the constructor and imported each frame.
+  std::unique_ptr<gpu::Image> bakedTiles_;
+  void buildBakedTiles(gpu::Context& ctx);
   // Pass "probes.relight" (defined in relight_pass.cpp): reads "shadow.atlas" when there is one;
   // returns the block it wrote (graph buffer "probes.sh.block"), which the probes' passes read.
   rg::Handle<rg::Buffer> addRelightPass(rg::RenderGraph& graph, const render::PassContext* pc);

@@ -254,8 +254,10 @@ rg::Handle<rg::Buffer> ProbeNode::addRelightPass(rg::RenderGraph& graph, const r
   // The block (and with it the image) as a graph buffer that the probes' own passes read
   // (probes.tiles, probes): this pass follows its readers, culled with them (a debug view that culls
   // `probes`). The SL passes read the image outside the graph, so with SL it stays a side effect.
-  // graphDot builds the graph without a device: any id names the import there.
-  const rg::PhysicalId physical = pc->backend ? pc->backend->importBuffer(shUbo_) : 1001;
+  // graphDot builds the graph without a device: any id names the import there, one apart from the
+  // other placeholders (Renderer::graphDot's 1–3, the AO node's 1000).
+  constexpr rg::PhysicalId kGraphDotBlock = 1001;
+  const rg::PhysicalId physical = pc->backend ? pc->backend->importBuffer(shUbo_) : kGraphDotBlock;
   const auto block = graph.importBuffer("probes.sh.block", rg::BufferDesc{shUbo_.size()}, rg::ResourceState{}, physical);
   const auto& relit = graph.addPass<Data>(
       "probes.relight",

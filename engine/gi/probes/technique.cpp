@@ -112,7 +112,8 @@ class ProbesTechnique final : public Technique {
         std::snprintf(setting, sizeof setting, "spacing=%gm;sh_order=%d;ref=all", spacing, order);
         r.setting = setting;
         r.effects = {"direct", "shadows", "probes"};
-        r.passes = {"shadow", "lighting", "probes.tiles", "probes"};
+        r.passes = {"shadow", "lighting", "probes"};
+        r.optionalPasses = {"probes.tiles"};  // per frame only when relit (a baked volume's are built once)
         r.configure = [spacing, order](scene::Level& level) {
           level.probes.spacing = float(spacing);
           level.probes.order = order;

@@ -141,3 +141,24 @@ TEST(RendererGraph, GiNodesExistOnlyForNamedEffects) {
   EXPECT_FALSE(hasPass(probesOnly.dot, "dnrt"));
   EXPECT_FALSE(hasPass(probesOnly.dot, "ssao"));
 }
+
+// A baked volume (relight off) does not change, so its irradiance tiles are built once when the node
+// is made (ProbeNode::buildBakedTiles) and imported each frame: no probes.tiles pass, on the first
+// frame or later ones, and the probes pass reads the import. Several frames, so the import's
+// declared state (SHADER_READ_ONLY, nothing pending) is checked by the validation layers each time.
+TEST(RendererGraph, BakedProbesBuildTheirTilesOnceWithoutAPass) {
+  gpu::Context& ctx = gpu::testkit::sharedContext();
+  scene::Level level = game::loadLevelWithEffects(kCornell, std::vector<std::string>{"direct", "shadows", "probes"});
+  level.probes.relight = false;
+  game::Session session(ctx, std::move(level));
+  gpu::OffscreenPresenter presenter(ctx, kExtent);
+  for (int f = 0; f < 4; ++f) {
+    session.update(f / 60.0);
+    session.render(presenter, {});
+    EXPECT_EQ(session.renderer().executedPasses(), (Passes{"shadow", "gbuffer", "lighting", "probes", "tonemap"})) << f;
+  }
+  const std::string dot = session.renderer().graphDot(session.world(), kExtent, {});
+  EXPECT_FALSE(hasPass(dot, "probes.tiles"));
+  EXPECT_NE(dot.find("probes.tiles.baked"), std::string::npos) << "the import the probes pass reads";
+  session.renderer().frames().waitIdle();
+}
