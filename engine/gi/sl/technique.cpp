@@ -173,6 +173,14 @@ class SlTechnique final : public Technique {
       throw InputError(sc.level.source.string() + ": " + first->pointer + "/sl/hierarchy: true on " +
                        std::to_string(objects) + " sl entities (expected at most " +
                        std::to_string(kMaxHierarchyObjects) + " with the hierarchy: one tile ratio per object)");
+    // With the hierarchy pass 2's blocks also hold one parent SL per entity (intensity.cpp setRange_),
+    // so the 128 counts spheres and parents together: 2 × 64 spheres + 2 parents is bad input here, not
+    // IntensityPass's InternalError at the first frame.
+    if (first && first->sl->hierarchy && spheres + entities.size() > kMaxShadedSpheres)
+      throw InputError(sc.level.source.string() + ": " + first->pointer + "/sl/hierarchy: true with " +
+                       std::to_string(spheres) + " sl spheres + " + std::to_string(entities.size()) +
+                       " parents (expected at most " + std::to_string(kMaxShadedSpheres) +
+                       " in all with the hierarchy: one parent per entity)");
     auto runtime = std::make_unique<SessionRuntime>(sc.registry, sc.cookCache, cacheFolder());
     runtime->enableGpu(sc);
     return runtime;

@@ -225,6 +225,29 @@ TEST(SlSession, MoreSpheresThanPassTwoHoldsIsBadInput) {
   }
 }
 
+// With the hierarchy pass 2's blocks also hold one parent SL per entity: two 64-sphere characters
+// (accepted without it, above) are 128 spheres + 2 parents — bad input naming the first entity's
+// /sl/hierarchy, thrown when the session is made, not IntensityPass's InternalError at the first frame.
+TEST(SlSession, SpheresAndParentsBeyondPassTwoAreBadInputWithTheHierarchy) {
+  scene::Level level = game::loadLevelWithEffects(kCharacters, std::vector<std::string>{"direct", "sl"});
+  const scene::EntityDesc* first = nullptr;
+  for (scene::EntityDesc& e : level.entities)
+    if (e.sl) {
+      e.sl->spheres = 64;
+      e.sl->hierarchy = true;
+      if (!first) first = &e;
+    }
+  ASSERT_NE(first, nullptr);
+  try {
+    game::Session session(gpu::testkit::sharedContext(), level);
+    FAIL() << "128 spheres + 2 parents were accepted";
+  } catch (const InputError& err) {
+    EXPECT_EQ(std::string(err.what()), kCharacters.string() + ": " + first->pointer +
+                                           "/sl/hierarchy: true with 128 sl spheres + 2 parents (expected at most "
+                                           "128 in all with the hierarchy: one parent per entity)");
+  }
+}
+
 // Pass 2 shades every SL in one draw, so blocking and influence hold for the whole level: a second
 // entity that asks for another is bad input naming its own pointer and the first entity's setting.
 TEST(SlSession, EntitiesThatDisagreeOnBlockingOrInfluenceAreBadInput) {
