@@ -118,6 +118,9 @@ Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t fra
     share_.push_back(float(unionShare(local)));
     silhouette_.push_back(set->spheres.empty() ? 1.0f : set->spheres.front().shadowScale);
   }
+  // terms is a 2-bit mask (kSlBounce | kSlShadow, sl_shadow.frag kTerms): 0..3.
+  if (terms > 3u) throw InternalError("sl::Node: terms is a mask of two bits (0..3)");
+  terms_ = terms;
   if (terms != 3u && !(probes && fuse && !hierarchy))
     throw InternalError("sl::Node: one term alone needs the fused pass (probes, \"fused\", no hierarchy)");
   if (probes && spheres_ > 0)
@@ -275,6 +278,11 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::s
     addUpsample(graph, pc, slot, both, shadeTiles, upsampleTiles);
     return;
   }
+  // Only the fused pass honours a partial mask: a frame without it (no "probes" in the world) would
+  // add both terms and the decomposition row would silently measure the whole thing.
+  if (terms_ != 3u)
+    throw InternalError("sl::Node: terms " + std::to_string(terms_) +
+                        " (one term alone) but this frame does not fuse (no \"probes\" in the world)");
   struct Data {
     render::DeferredInputs g;
     rg::Handle<rg::Texture> hdr;

@@ -95,6 +95,7 @@ class Node {
   std::vector<float> silhouette_;  // per object (set): its shadow scale (SlSphere::shadowScale)
   // §7.3 hierarchy (sl/hierarchy.glsl): the tile pass's layout and pipeline.
   bool hierarchy_ = false;
+  std::uint32_t terms_ = 3u;  // the constructor's `terms`: addTo refuses a partial mask unfused
   gpu::DescriptorSetLayout ratioInputs_;
   gpu::PipelineLayout ratioLayout_;
   gpu::Pipeline ratioPipeline_;

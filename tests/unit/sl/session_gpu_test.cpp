@@ -8,6 +8,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdio>
+#include <cstdlib>
 #include <initializer_list>
 #include <numeric>
 #include <string>
@@ -414,6 +416,50 @@ TEST(SlSession, DecompositionTermsSplitTheFusedPass) {
   EXPECT_EQ(outside, 0);
   std::printf("decomposition terms on the characters level: bounce brightens %d, shadow darkens %d of %zu values\n",
               bounceBrighter, shadowDarker, probes.rgb.size());
+}
+
+// `terms` is a mask of two bits, and only the fused pass honours a partial one: a mask above 3 is an
+// internal error when the session is made, and one term alone on a frame that does not fuse (the
+// probes switched off at run time, as the play overlay does) is an internal error at that frame, not
+// both terms silently.
+TEST(SlSession, DecompositionTermsOutOfRangeOrUnfusedAreInternalErrors) {
+  const auto level = [](int terms) {
+    scene::Level l = game::loadLevelWithEffects(kCharacters, std::vector<std::string>{"direct", "shadows", "probes", "sl"});
+    for (scene::EntityDesc& e : l.entities)
+      if (e.sl) e.sl->terms = terms;
+    return l;
+  };
+  try {
+    game::Session session(gpu::testkit::sharedContext(), level(4));
+    FAIL() << "terms 4 was accepted";
+  } catch (const InternalError& err) {
+    EXPECT_EQ(std::string(err.what()), "sl::Node: terms is a mask of two bits (0..3)");
+  }
+  // A throw inside a frame leaves the ring recording (an internal error ends the program: the
+  // session cannot be torn down), so the unfused frame runs in a death test's own process (re-run
+  // from the start, "threadsafe": no fork of a process holding a Vulkan device), which prints the
+  // error and leaves with code 3 before any teardown.
+  GTEST_FLAG_SET(death_test_style, "threadsafe");
+  EXPECT_EXIT(
+      {
+        game::Session session(gpu::testkit::sharedContext(), level(1));
+        const Frame fused = oneFrame(session);
+        if (std::count(fused.passes.begin(), fused.passes.end(), "sl") != 1) std::_Exit(4);
+        scene::EffectSet noProbes;
+        for (const scene::Effect e : {scene::Effect::Direct, scene::Effect::Shadows, scene::Effect::Sl}) noProbes.add(e);
+        session.level().effects = noProbes;
+        gpu::OffscreenPresenter presenter(gpu::testkit::sharedContext(), kExtent);
+        session.update(0.5);
+        try {
+          session.render(presenter, {});
+        } catch (const InternalError& err) {
+          std::fprintf(stderr, "%s\n", err.what());
+          std::_Exit(3);
+        }
+        std::_Exit(0);
+      },
+      ::testing::ExitedWithCode(3),
+      "sl::Node: terms 1 \\(one term alone\\) but this frame does not fuse \\(no \"probes\" in the world\\)");
 }
 
 // "fused" (the default; README "SL: one walk for sl and sl.shadow"): with the probes running and the
