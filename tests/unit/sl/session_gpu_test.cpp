@@ -330,6 +330,7 @@ TEST(SlSession, WithProbesItShadowsTheirLightButNeverBelowTheFrameWithoutThem) {
 // probes alone) stays close to the full-resolution one (differences printed).
 // ("fused": false: the two passes, as above.)
 // At "quarter" the same passes in the same order (the loop's second round; "sl.quarter").
+// At 32 spheres and influence 12, as reducedAgainstFull above: the bounds were measured so.
 TEST(SlSession, ShadowOnTheProbesFollowsReducedResolutionIntoTheUpsample) {
  for (const int step : {2, 4}) {
   const auto frame = [](std::vector<std::string> effects, int levelStep) {
@@ -338,6 +339,8 @@ TEST(SlSession, ShadowOnTheProbesFollowsReducedResolutionIntoTheUpsample) {
       if (e.sl) {
         e.sl->step = levelStep;
         e.sl->fused = false;
+        e.sl->spheres = 32;
+        e.sl->influence = 12.0f;
       }
     game::Session s(gpu::testkit::sharedContext(), level);
     return oneFrame(s);
