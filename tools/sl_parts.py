@@ -13,13 +13,16 @@ off by a specialization constant) give, at the cut F of the command line, three 
 (the shadow on the direct light is the shadow map's and lies outside the indirect-only mask).
 For every part and their sum: mean and RMS on the indirect-only pixels, the error against the
 reference effect corrected for the reference's noise (e*, = accuracy.csv's *_corrected), its
-correlation with the converged effect, and the best least-squares scale of each part. The same
+cosine with the converged effect (the uncentred correlation <t, r> / (|t| |r*|)), and the
+least-squares scale of each part alone against the whole effect r (not against that part's own
+share of r, which no reference isolates: it absorbs what the other parts miss, so read the joint fit
+of the three parts, the last line, for how far each part is off). The same
 split by world distance from the nearest character (pixels are ray-cast into the room's box from the
 level camera; the characters are vertical segments at their t = 0 orbit positions) and by which
 character is nearest (only for a level whose room is the "room-floor" … entities, characters.json;
 other levels get the indirect-only line alone).
 
-usage: tools/sl_parts.py DIR [--influence F] [--level content/levels/characters.json]
+usage: tools/sl_parts.py DIR [--influence 12|6] [--level content/levels/characters.json]
 """
 import argparse
 import json
@@ -73,7 +76,8 @@ def characters(level):
         p = np.array(e["transform"].get("translation", [0, 0, 0]), float)
         if o:
             th = 2 * math.pi * o.get("phase", 0.0)
-            p = np.array(o["center"], float) + o["radius"] * np.array([math.cos(th), 0.0, -math.sin(th)])
+            centre = np.array(o["center"], float) if "center" in o else p  # motion.cpp: default the translation
+            p = centre + o["radius"] * np.array([math.cos(th), 0.0, -math.sin(th)])
         height = 0.5 if "fox" in e["id"] else 1.5  # the Fox's back ≈ 0.5 m, CesiumMan ≈ 1.5 m (from the meshes)
         out.append((e["id"], p, height))
     return out
@@ -90,12 +94,13 @@ def line(name, t, r, n, m, total_err2):
     err = math.sqrt(float(((t - r) ** 2).sum()) / max(r2, 1e-300))
     floor = math.sqrt(n2 / max(r2, 1e-300))
     conv = r2 - n2  # ||r*||^2
-    corr = float((t * r).sum()) / math.sqrt(t2 * conv) if t2 > 0 and conv > 0 else float("nan")
-    scale = float((t * r).sum()) / t2 if t2 > 0 else float("nan")  # least-squares a in a*t ≈ r
+    # Uncentred (no means removed): a cosine, not Pearson's correlation. ⟨t, r⟩ estimates ⟨t, r*⟩ (n ⟂ t).
+    cos = float((t * r).sum()) / math.sqrt(t2 * conv) if t2 > 0 and conv > 0 else float("nan")
+    scale = float((t * r).sum()) / t2 if t2 > 0 else float("nan")  # least-squares a in a*t ≈ r (the whole r)
     share = float(((t - r) ** 2).sum() - n2) / total_err2 if total_err2 else float("nan")
     es = corrected(err, floor) if floor < 1 else float("nan")
     print(f"  {name:26s} mean {t.mean():+.5f} rms {math.sqrt((t ** 2).mean()):.5f} | e* {es:.3f} "
-          f"corr {corr:+.3f} best scale {scale:+.2f} | err² / SL's {share:5.2f}")
+          f"cos {cos:+.3f} scale alone {scale:+.2f} | err² / SL's {share:5.2f}")
 
 
 def table(label, parts, r, n, m):
@@ -104,7 +109,7 @@ def table(label, parts, r, n, m):
         return
     conv = float((rr ** 2).sum() - (nn ** 2).sum())
     floor = math.sqrt(float((nn ** 2).sum()) / float((rr ** 2).sum()))
-    print(f"{label}: {int(m.sum())} px, reference mean {rr.mean():+.5f} rms {math.sqrt((rr ** 2).mean()):.5f} "
+    print(f"{label}: {int(m.sum()) // 3} px, reference mean {rr.mean():+.5f} rms {math.sqrt((rr ** 2).mean()):.5f} "
           f"(converged rms {math.sqrt(max(conv, 0) / m.sum()):.5f}, floor {floor:.3f})")
     return conv
 
@@ -112,7 +117,7 @@ def table(label, parts, r, n, m):
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("dir")
-    ap.add_argument("--influence", default="6")
+    ap.add_argument("--influence", default="6", choices=["12", "6"])  # the decomposition rows' cuts
     ap.add_argument("--level", default="content/levels/characters.json")
     a = ap.parse_args()
     d, f = a.dir, a.influence
