@@ -348,6 +348,7 @@ AccuracyReport runAccuracy(const AccuracyOptions& options) {
     double gpuMs = 0.0;
     std::vector<std::string> executedPasses;
     bool available = false;
+    std::string badInput;  // the row's configuration is bad input (one line): skipped, the run goes on
   };
   std::map<std::string, Rendered> rendered;
   std::optional<ref::PixelMask> indirectMask;  // from the direct-only references, on first use
@@ -361,10 +362,20 @@ AccuracyReport runAccuracy(const AccuracyOptions& options) {
         if (row.configure) row.configure(*l);
       }
       TimingCollector timings;
-      TechniqueRender techWith = renderTechnique(ctx, presenter, with, time, row, options.measuredFrames, &timings);
       Rendered& r = rendered[key];
-      r.executedPasses = techWith.executedPasses;
-      r.available = rowAvailable(row, techWith.executedPasses);
+      TechniqueRender techWith;
+      // A row's settings can make a level that its technique refuses (e.g. SL's spheres + parents
+      // beyond pass 2's blocks): the session throws before any frame, so the row is skipped with the
+      // line, not the whole run stopped.
+      try {
+        techWith = renderTechnique(ctx, presenter, with, time, row, options.measuredFrames, &timings);
+      } catch (const InputError& err) {
+        r.badInput = err.what();
+      }
+      if (r.badInput.empty()) {
+        r.executedPasses = techWith.executedPasses;
+        r.available = rowAvailable(row, techWith.executedPasses);
+      }
       if (r.available) {
         r.with = std::move(techWith.image);
         r.without = renderTechnique(ctx, presenter, without, time, row, options.measuredFrames, nullptr).image;
@@ -372,6 +383,11 @@ AccuracyReport runAccuracy(const AccuracyOptions& options) {
       }
     }
     const Rendered& tech = rendered.at(key);
+    if (!tech.badInput.empty()) {
+      report.notes.push_back("skipped " + row.technique + " " + row.setting + ": bad input: " + tech.badInput);
+      progress.advance();
+      continue;
+    }
     if (!tech.available) {
       report.notes.push_back("skipped " + row.technique + " " + row.setting + ": the renderer ran " +
                              joinList(tech.executedPasses) + " but the row needs " + joinList(row.passes));
