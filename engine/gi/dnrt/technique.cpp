@@ -242,10 +242,14 @@ SessionRuntime::SessionRuntime(SessionContext& sc) {
   sc.registry.view<scene::Dnrt, scene::Name>().each([&](ecs::Entity, scene::Dnrt& d, scene::Name& n) {
     if (!d.lightsInAntiRadiance) lightsOut.push_back(n.id);
   });
-  if (!relit && !lightsOut.empty())
-    log::warn(sc.level.source.string() + ": dnrt " + lightsOut.front() +
+  if (!relit && !lightsOut.empty()) {
+    std::sort(lightsOut.begin(), lightsOut.end());  // the registry's order is not the level's
+    std::string names;
+    for (const std::string& n : lightsOut) names += (names.empty() ? "" : ", ") + n;
+    log::warn(sc.level.source.string() + ": dnrt " + names +
               ": \"lights_in_anti_radiance\": false without relit probes (\"probes\": {\"relight\": true} and the "
               "probes effect): the lights' bounce off the object's shadow is missing");
+  }
 }
 
 }  // namespace bounce::gi::dnrt
