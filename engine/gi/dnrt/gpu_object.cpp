@@ -7,7 +7,7 @@ namespace bounce::gi::dnrt {
 DnrtObjectGpu packObject(const Field& field, const glm::mat4& world, const std::array<glm::vec3, 9>& radiance,
                          std::int64_t entityIndex) {
   const Placement pl = place(field, world);
-  const auto c = toLocal(irradianceSH(radiance), pl.localToWorldRotation);
+  const auto c = toLocal(irradianceSH(radiance), pl);
   DnrtObjectGpu g;
   g.worldToLocal = pl.worldToLocal;
   // Unit cube → local outer cube about o → world.
