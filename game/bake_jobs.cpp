@@ -165,7 +165,10 @@ std::string ninjaPlan(const scene::Level& level, const std::vector<gi::BakeJob>&
                     "  command = $cmd\n"
                     "  description = bake $what\n\n";
   for (const auto& job : jobs) {
-    out += "build " + ninjaPath(job.output.string()) + ": bake";
+    out += "build " + ninjaPath(job.output.string());
+    if (!job.extraOutputs.empty()) out += " |";
+    for (const auto& extra : job.extraOutputs) out += " " + ninjaPath(extra.string());
+    out += ": bake";
     for (const auto& in : job.inputs) out += " " + ninjaPath(in.string());
     out += "\n  cmd = " + ninjaValue(jobCommand(level, job, cookCache)) + "\n";
     out += "  what = " + ninjaValue(job.what + " " + job.key) + "\n";

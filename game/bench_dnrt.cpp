@@ -75,14 +75,8 @@ void bakeMissing(const scene::Level& level, DnrtBenchRow& row) {
     const scene::Dnrt& component = registry.get<scene::Dnrt>(e);
     const gi::dnrt::FieldSettings settings = gi::dnrt::settingsFrom(component);
     const auto start = std::chrono::steady_clock::now();
-    int baked = 0;
-    if (component.lightsInAntiRadiance) {
-      bool cached = true;
-      gi::dnrt::bakeCached(object, settings, cacheDir("dnrt"), &cached);
-      baked = cached ? 0 : 1;
-    } else {  // its occlusion-only field too, from the same rays (as the runtime bakes it)
-      gi::dnrt::bakeCachedWithOcclusion(object, settings, cacheDir("dnrt"), &baked);
-    }
+    int baked = 0;  // with its occlusion-only field when the lights are out (as the runtime bakes it)
+    gi::dnrt::bakeCachedFor(object, settings, component.lightsInAntiRadiance, cacheDir("dnrt"), &baked);
     if (baked == 0) continue;
     row.fieldsBaked += baked;
     row.bakeSeconds += secondsSince(start);

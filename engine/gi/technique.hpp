@@ -83,6 +83,9 @@ struct BakeJob {
   // per-level one. bakeJobs(lc, part) plans only this one (what `bounce bake --job` runs).
   std::string part;
   std::filesystem::path output;               // the cache entry it writes
+  // Further entries the same run writes (DNRT's occlusion-only field), each before `output`, so
+  // `output` existing means they do: Ninja implicit outputs (`build OUTPUT | EXTRA: bake`).
+  std::vector<std::filesystem::path> extraOutputs;
   std::vector<std::filesystem::path> inputs;  // files it reads (the level, cooked assets)
   // When `output` holds a valid entry (read in full and validated: version, checksum), the line
   // `bounce bake` prints for it; nullopt when it is missing or invalid (then it must be re-baked).

@@ -302,6 +302,13 @@ void Context::createDevice() {
   vkGetPhysicalDeviceFeatures2(physical_, &have);
   if (!(core13 ? have13.dynamicRendering : haveDr.dynamicRendering))
     throw InternalError("vulkan: device '" + deviceName() + "' lacks the dynamicRendering feature");
+  // The render graph puts depth-only images in DEPTH_ATTACHMENT_OPTIMAL / DEPTH_READ_ONLY_OPTIMAL
+  // (render/vk_backend.cpp, render/passes/rendering.cpp: the passes that test against the G-buffer's
+  // depth without writing it, dnrt's box among them), which Vulkan 1.2 allows only with this feature
+  // enabled. Every 1.2 desktop driver and lavapipe have it; without it we stop here rather than run
+  // on layouts the driver may not honour.
+  if (!have12.separateDepthStencilLayouts)
+    throw InternalError("vulkan: device '" + deviceName() + "' lacks the separateDepthStencilLayouts feature");
 
   VkPhysicalDeviceFeatures& f = features_;
   const VkPhysicalDeviceFeatures& h = have.features;
@@ -330,6 +337,7 @@ void Context::createDevice() {
   en12.timelineSemaphore = have12.timelineSemaphore;
   en12.storageBuffer8BitAccess = have12.storageBuffer8BitAccess;
   en12.shaderFloat16 = have12.shaderFloat16;
+  en12.separateDepthStencilLayouts = VK_TRUE;  // checked above
   if (core13) {
     en12.pNext = &en13;
     en13.dynamicRendering = VK_TRUE;

@@ -10,6 +10,12 @@
 
 layout(constant_id = 0) const bool kIntrusion = false;
 
+// The box's depth test (GREATER_OR_EQUAL against the G-buffer's depth, no depth write: node.cpp
+// pipeline()) before the shader: a pixel whose surface lies behind the box's exit face never runs
+// it. Without depth writes or gl_FragDepth, early and late tests keep the same fragments, so the
+// image is the same (the discards below write nothing either way).
+layout(early_fragment_tests) in;
+
 layout(set = 0, binding = 0) uniform FrameUbo { Camera camera; };
 layout(set = 1, binding = 0) uniform sampler2D gAlbedo;
 layout(set = 1, binding = 1) uniform sampler2D gNormal;

@@ -258,4 +258,19 @@ FieldPair bakeCachedWithOcclusion(const ref::SceneDesc& object, const FieldSetti
   return out;
 }
 
+CachedFields bakeCachedFor(const ref::SceneDesc& object, const FieldSettings& settings, bool lightsInAntiRadiance,
+                           const std::filesystem::path& cacheDir, int* baked) {
+  CachedFields out;
+  if (lightsInAntiRadiance) {
+    bool cached = false;
+    out.field = bakeCached(object, settings, cacheDir, &cached);
+    if (baked) *baked = cached ? 0 : 1;
+  } else {
+    FieldPair pair = bakeCachedWithOcclusion(object, settings, cacheDir, baked);
+    out.field = std::move(pair.field);
+    out.occlusion = std::move(pair.occlusion);
+  }
+  return out;
+}
+
 }  // namespace bounce::gi::dnrt

@@ -23,6 +23,7 @@
 // Deterministic: vertex i draws its samples from Pcg32::fromIndex(i), whatever the thread count.
 #include <cstddef>
 #include <filesystem>
+#include <optional>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -85,5 +86,17 @@ FieldPair bakeCachedWithOcclusion(const ref::SceneDesc& object, const FieldSetti
                                   const std::filesystem::path& cacheDir, int* baked = nullptr);
 // `settings` with occlusionOnly set: the second field's settings (and cache key).
 FieldSettings occlusionSettings(FieldSettings settings);
+
+// What an object's `dnrt` needs through the cache, the one place that picks: the field alone
+// (bakeCached) when "lights_in_anti_radiance" is true, else the field and its occlusion-only field
+// from the same rays (bakeCachedWithOcclusion; runtime.hpp). `baked` (optional): entries baked (0–2).
+// The Runtime and `bounce bench dnrt` call it; a bake job (technique.cpp) bakes uncached (--force)
+// and writes its entries itself, choosing bakeWithOcclusion for the same reason.
+struct CachedFields {
+  Field field;
+  std::optional<Field> occlusion;  // set when !lightsInAntiRadiance
+};
+CachedFields bakeCachedFor(const ref::SceneDesc& object, const FieldSettings& settings, bool lightsInAntiRadiance,
+                           const std::filesystem::path& cacheDir, int* baked = nullptr);
 
 }  // namespace bounce::gi::dnrt

@@ -19,7 +19,11 @@ Placement place(const Field& field, const glm::mat4& world) {
     throw InternalError("dnrt::place: singular object transform");
   // Rotation from the normalised columns through a quaternion, which re-orthonormalises small
   // shears and rounding so sh::Rotation accepts it.
-  const glm::mat3 unit(m[0] / scale.x, m[1] / scale.y, m[2] / scale.z);
+  glm::mat3 unit(m[0] / scale.x, m[1] / scale.y, m[2] / scale.z);
+  // A mirror (det < 0) is no rotation: quat_cast would return an unrelated one. Keep −unit (a
+  // rotation) and the flag; toLocal(c, Placement) applies the inversion's (−1)^l.
+  p.mirrored = det < 0.0f;
+  if (p.mirrored) unit = -unit;
   p.localToWorldRotation = glm::mat3_cast(glm::normalize(glm::quat_cast(unit)));
   p.worldToLocal = glm::inverse(world);
   p.centreLocal = field.centre;
@@ -35,6 +39,13 @@ std::array<glm::vec3, 9> toLocal(const std::array<glm::vec3, 9>& c, const glm::m
   std::array<glm::vec3, 9> out{};
   r.apply<glm::vec3>(std::span<const glm::vec3>(c), std::span<glm::vec3>(out));
   return out;
+}
+
+std::array<glm::vec3, 9> toLocal(const std::array<glm::vec3, 9>& c, const Placement& placement) {
+  std::array<glm::vec3, 9> parity = c;
+  if (placement.mirrored)
+    for (std::size_t j = 1; j < 4; ++j) parity[j] = -parity[j];  // band 1: (−1)^1; bands 0 and 2 even
+  return toLocal(parity, placement.localToWorldRotation);
 }
 
 void sampleField(const Field& f, glm::vec3 q, std::span<glm::vec3> out) {

@@ -7,13 +7,18 @@ namespace bounce::gi::dnrt {
 DnrtObjectGpu packObject(const Field& field, const glm::mat4& world, const std::array<glm::vec3, 9>& radiance,
                          std::int64_t entityIndex) {
   const Placement pl = place(field, world);
-  const auto c = toLocal(irradianceSH(radiance), pl.localToWorldRotation);
+  const auto c = toLocal(irradianceSH(radiance), pl);
   DnrtObjectGpu g;
   g.worldToLocal = pl.worldToLocal;
   // Unit cube → local outer cube about o → world.
   const float half = field.settings.outerExtent * field.radius;
   glm::mat4 box(half);
   box[3] = glm::vec4(field.centre, 1.0f);
+  // A mirroring world matrix (det < 0) flips the cube's winding: the node's CULL_FRONT would keep the
+  // faces nearest the camera, and GREATER_OR_EQUAL against the scene's depth would reject every
+  // receiver. Mirroring the unit cube back (it is symmetric, so it covers the same points) keeps
+  // boxToWorld's determinant positive and its back faces back faces.
+  if (glm::determinant(glm::mat3(world)) < 0.0f) box[0] = -box[0];
   g.boxToWorld = world * box;
   g.centreWorld = glm::vec4(pl.centreWorld, pl.radiusWorld);
   g.centreLocal = glm::vec4(field.centre, field.radius);

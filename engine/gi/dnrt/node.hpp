@@ -7,7 +7,8 @@
 // Modes (scene::DnrtMode: NodeObject::mode from the level's "mode", NodeSettings::mode for all):
 // - box (default), better than the paper's full-screen pass per object: each object rasterises its
 //   outer cube (back faces, depth-tested GREATER_OR_EQUAL against the G-buffer depth, read-only, so
-//   surfaces behind the cube never reach the shader), so the cost follows the pixels inside the cube;
+//   surfaces behind the cube never reach the shader), so the cost follows the pixels the cube covers
+//   whose surface is not behind it (inside the cube or in front of it);
 // - fullscreen: the paper's mode (a full-screen triangle per object), for comparison;
 // - clustered (issue 15, cluster.hpp): one full-screen draw per 32 objects, each pixel reading the
 //   G-buffer once and visiting only the objects whose outer cube covers its 16×16 tile, the fields

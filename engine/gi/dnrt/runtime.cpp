@@ -25,18 +25,12 @@ Runtime::Runtime(gpu::Context& ctx, const render::Pipelines& pipelines, ecs::Reg
     const scene::Dnrt& component = registry.get<scene::Dnrt>(e);
     const ref::SceneDesc object = objectScene(registry, e, assets);
     const FieldSettings settings = settingsFrom(component);
-    if (component.lightsInAntiRadiance) {
-      bool cached = false;
-      o.field = bakeCached(object, settings, cacheDir, &cached);
-      baked_ += cached ? 0 : 1;
-    } else {
-      int baked = 0;
-      FieldPair pair = bakeCachedWithOcclusion(object, settings, cacheDir, &baked);
-      baked_ += std::size_t(baked);
-      o.field = std::move(pair.field);
-      o.occlusion = std::move(pair.occlusion);
-      o.occlusionTextures = std::make_unique<FieldTextures>(ctx, *o.occlusion, o.name + ".occlusion");
-    }
+    int baked = 0;
+    CachedFields fields = bakeCachedFor(object, settings, component.lightsInAntiRadiance, cacheDir, &baked);
+    baked_ += std::size_t(baked);
+    o.field = std::move(fields.field);
+    o.occlusion = std::move(fields.occlusion);
+    if (o.occlusion) o.occlusionTextures = std::make_unique<FieldTextures>(ctx, *o.occlusion, o.name + ".occlusion");
     o.textures = std::make_unique<FieldTextures>(ctx, o.field, o.name);
     objects_.push_back(std::move(o));
   }

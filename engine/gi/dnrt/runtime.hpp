@@ -52,9 +52,12 @@ class Runtime {
   void setLightVisibility(const incident::Visibility* visibility) { incident_.setVisibility(visibility); }
   // c_j's source for one object: the radiance SH arriving at its bounding sphere (centre, radius
   // in world units), world axes, before convolution and rotation.
-  // `window`: per-band factors on the lights' part (incident.hpp BandWindow).
+  // `window`: per-band factors on the lights' part (incident.hpp BandWindow); `lightsPart`
+  // (optional): the lights' part alone. objectsFor gets every object's c_j through it, and tests
+  // call it to compute the c_j a frame used.
   incident::RadianceSH incidentSH(glm::vec3 centre, float radius, std::span<const render::LightGpu> lights,
-                                  const incident::BandWindow& window = incident::kNoWindow) const;
+                                  const incident::BandWindow& window = incident::kNoWindow,
+                                  incident::RadianceSH* lightsPart = nullptr) const;
   NodeSettings& settings() { return settings_; }
   std::size_t objectCount() const { return objects_.size(); }
   const Field& field(std::size_t i) const { return objects_[i].field; }

@@ -69,15 +69,42 @@ class DnrtTechnique final : public Technique {
 
   std::vector<BakeJob> bakeJobs(const LevelContext& lc, std::string_view part) const override {
     std::vector<ecs::Entity> entities;
-    lc.registry.view<scene::Dnrt, scene::MeshRef>().each([&](ecs::Entity e, scene::Dnrt&, scene::MeshRef&) {
-      const auto* name = lc.registry.tryGet<scene::Name>(e);
-      if (part.empty() || (name && name->id == part)) entities.push_back(e);
-    });
+    lc.registry.view<scene::Dnrt, scene::MeshRef>().each(
+        [&](ecs::Entity e, scene::Dnrt&, scene::MeshRef&) { entities.push_back(e); });
     std::sort(entities.begin(), entities.end());  // deterministic order (as Runtime)
     std::vector<std::filesystem::path> inputs;
     if (!lc.level.source.empty()) inputs.push_back(lc.level.source);
-    std::vector<BakeJob> jobs;
+    // One job per field key: entities with the same object and settings (cornell-10's two trucks)
+    // share one entry. The group needs the occlusion-only field when ANY member leaves the lights
+    // out of its anti-radiance, whichever member comes first (one job per key: game/bake_jobs.cpp
+    // keeps the first). Grouped over every entity, so `--only dnrt:PART` plans the job PART is in.
+    struct Group {
+      ecs::Entity first;
+      std::vector<std::string> names;
+      std::string source;
+      bool needsOcclusion = false;
+    };
+    std::vector<Group> groups;
+    std::vector<std::string> keys;
     for (ecs::Entity e : entities) {
+      const std::string source = objectSourceKey(lc.registry, e, lc.cookCache);
+      const std::string key = cacheKey(source, settingsFrom(lc.registry.get<scene::Dnrt>(e)));
+      const auto at = std::find(keys.begin(), keys.end(), key);
+      Group* g = nullptr;
+      if (at == keys.end()) {
+        keys.push_back(key);
+        g = &groups.emplace_back(Group{e, {}, source});
+      } else {
+        g = &groups[std::size_t(at - keys.begin())];
+      }
+      const auto* name = lc.registry.tryGet<scene::Name>(e);
+      g->names.push_back(name ? name->id : std::string());
+      g->needsOcclusion = g->needsOcclusion || !lc.registry.get<scene::Dnrt>(e).lightsInAntiRadiance;
+    }
+    std::vector<BakeJob> jobs;
+    for (const Group& group : groups) {
+      if (!part.empty() && std::find(group.names.begin(), group.names.end(), part) == group.names.end()) continue;
+      const ecs::Entity e = group.first;
       auto ob = std::make_shared<ObjectBake>();
       ob->name = lc.registry.get<scene::Name>(e).id;
       ob->mesh = lc.registry.get<scene::MeshRef>(e);
@@ -85,20 +112,22 @@ class DnrtTechnique final : public Technique {
       ob->cookCache = lc.cookCache;
       ob->settings = settingsFrom(lc.registry.get<scene::Dnrt>(e));
       // Keyed by the cooked asset's content key (objectSourceKey): no cooking or decoding here.
-      const std::string source = objectSourceKey(lc.registry, e, lc.cookCache);
+      const std::string& source = group.source;
       ob->key = cacheKey(source, ob->settings);
       ob->output = cachePath(ob->key, cacheFolder());
       // An object whose anti-radiance leaves the lights out also needs its occlusion-only field (−k_j,
       // runtime.hpp): the same job writes it, from the same rays (bakeWithOcclusion).
       std::optional<std::filesystem::path> occlusionOutput;
-      if (!lc.registry.get<scene::Dnrt>(e).lightsInAntiRadiance)
+      if (group.needsOcclusion)
         occlusionOutput = cachePath(cacheKey(source, occlusionSettings(ob->settings)), cacheFolder());
       BakeJob job;
       job.technique = "dnrt";
       job.what = "dnrt " + ob->name + (occlusionOutput ? " + occlusion" : "");
+      for (std::size_t i = 1; i < group.names.size(); ++i) job.what += " (also dnrt " + group.names[i] + ")";
       job.part = ob->name;
       job.key = ob->key;
       job.output = ob->output;
+      if (occlusionOutput) job.extraOutputs.push_back(*occlusionOutput);
       job.inputs = inputs;
       job.inputs.push_back(ob->mesh.asset);
       job.cached = [ob, occlusionOutput]() -> std::optional<std::string> {
@@ -131,8 +160,10 @@ class DnrtTechnique final : public Technique {
         else pair.field = bake(object, ob->settings);
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         const BakeResult& r = pair.field;
-        save(r.field, ob->output);
+        // The occlusion entry first: `output` is the job's declared product (the Ninja edge's explicit
+        // output), so once it exists the extra one does too.
         if (occlusionOutput) save(pair.occlusion.field, *occlusionOutput);
+        save(r.field, ob->output);
         char text[512];
         std::snprintf(text, sizeof text,
                       ": %.3f s, %zu vertices inside filled, 8-bit error %.3g (bound %.3g), ranges %s -> %s", seconds,
@@ -211,10 +242,14 @@ SessionRuntime::SessionRuntime(SessionContext& sc) {
   sc.registry.view<scene::Dnrt, scene::Name>().each([&](ecs::Entity, scene::Dnrt& d, scene::Name& n) {
     if (!d.lightsInAntiRadiance) lightsOut.push_back(n.id);
   });
-  if (!relit && !lightsOut.empty())
-    log::warn(sc.level.source.string() + ": dnrt " + lightsOut.front() +
+  if (!relit && !lightsOut.empty()) {
+    std::sort(lightsOut.begin(), lightsOut.end());  // the registry's order is not the level's
+    std::string names;
+    for (const std::string& n : lightsOut) names += (names.empty() ? "" : ", ") + n;
+    log::warn(sc.level.source.string() + ": dnrt " + names +
               ": \"lights_in_anti_radiance\": false without relit probes (\"probes\": {\"relight\": true} and the "
               "probes effect): the lights' bounce off the object's shadow is missing");
+  }
 }
 
 }  // namespace bounce::gi::dnrt

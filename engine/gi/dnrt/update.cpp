@@ -11,8 +11,9 @@
 namespace bounce::gi::dnrt {
 
 incident::RadianceSH Runtime::incidentSH(glm::vec3 centre, float radius, std::span<const render::LightGpu> lights,
-                                         const incident::BandWindow& window) const {
-  return incident_.radianceSH(centre, radius, lights, window);
+                                         const incident::BandWindow& window,
+                                         incident::RadianceSH* lightsPart) const {
+  return incident_.radianceSH(centre, radius, lights, window, lightsPart);
 }
 
 std::vector<NodeObject> Runtime::objectsFor(const render::RenderWorld& world) const {
@@ -32,9 +33,9 @@ std::vector<NodeObject> Runtime::objectsFor(const render::RenderWorld& world) co
     // 0.487–0.577 windowed, 0.471–0.566 not; README "DNRT with the relit probes, session 10").
     const bool windowed = o.field.settings.antiRadiance == AntiRadiance::Improved && !o.occlusionTextures;
     incident::RadianceSH lights{};  // the lights' part of L alone (the occlusion term's c_j, below)
-    const incident::RadianceSH L = incident_.radianceSH(pl.centreWorld, pl.radiusWorld, world.lights,
-                                                        windowed ? incident::kHanningWindow : incident::kNoWindow,
-                                                        o.occlusionTextures ? &lights : nullptr);
+    const incident::RadianceSH L = incidentSH(pl.centreWorld, pl.radiusWorld, world.lights,
+                                              windowed ? incident::kHanningWindow : incident::kNoWindow,
+                                              o.occlusionTextures ? &lights : nullptr);
     out.push_back({o.textures.get(), packObject(o.field, placed->matrix, L, o.entity.index()), o.name,
                    component && component->intrusion, component ? component->mode : Mode::Box});
     if (o.occlusionTextures) {

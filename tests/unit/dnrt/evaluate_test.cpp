@@ -13,6 +13,7 @@
 #include "engine/gi/dnrt/gpu_object.hpp"
 #include "engine/gi/dnrt/irradiance_source.hpp"
 #include "engine/math/sh.hpp"
+#include "engine/math/sh_eval.hpp"
 #include "tests/unit/dnrt/test_meshes.hpp"
 
 namespace bounce::gi::dnrt {
@@ -227,6 +228,37 @@ TEST(DnrtEvaluate, FoldedShaderRecordRegroupsTheRecord) {
       }
     }
   }
+}
+
+}  // namespace
+}  // namespace bounce::gi::dnrt
+
+namespace bounce::gi::dnrt {
+namespace {
+
+// A mirrored object (det(world) < 0): its c_j are the world irradiance seen through the mirror,
+// Σ c_j Y_j(n) = Σ c_world_j Y_j(M n) for every local direction n (M: world's normalised columns),
+// and its box keeps a positive determinant (its back faces stay back faces, gpu_object.cpp).
+TEST(DnrtEvaluate, MirroredObjectSeesTheWorldThroughItsMirror) {
+  const BakeResult& r = twoTone();
+  const glm::quat q = glm::angleAxis(0.9f, glm::normalize(glm::vec3(0.4f, -1, 0.3f)));
+  const glm::mat4 world = glm::translate(glm::mat4(1.0f), glm::vec3(1, 0.5f, -2)) * glm::mat4_cast(q) *
+                          glm::scale(glm::mat4(1.0f), glm::vec3(-0.5f, 0.5f, 0.5f));
+  const DnrtObjectGpu g = packObject(r.field, world, skyRadiance());
+  const auto cWorld = irradianceSH(skyRadiance());
+  const glm::mat3 M = glm::mat3(glm::mat4_cast(q)) * glm::mat3(glm::scale(glm::mat4(1.0f), glm::vec3(-1, 1, 1)));
+  EXPECT_TRUE(place(r.field, world).mirrored);
+  EXPECT_GT(glm::determinant(glm::mat3(g.boxToWorld)), 0.0f);
+  float worst = 0.0f, largest = 0.0f;
+  for (const glm::vec3 n : {glm::vec3(1, 0, 0), glm::vec3(0, 1, 0), glm::vec3(0, 0, 1), glm::normalize(glm::vec3(1, 2, -3)),
+                            glm::normalize(glm::vec3(-2, 0.5f, 1)), glm::normalize(glm::vec3(0.3f, -1, -0.2f))}) {
+    const auto yl = sh::evalBasis<float>(3, n), yw = sh::evalBasis<float>(3, M * n);
+    glm::vec3 local(0.0f), seen(0.0f);
+    for (std::size_t j = 0; j < 9; ++j) local += glm::vec3(g.c[j]) * yl[j], seen += cWorld[j] * yw[j];
+    worst = std::max(worst, glm::length(local - seen));
+    largest = std::max(largest, glm::length(seen));
+  }
+  EXPECT_LT(worst, 1e-4f * largest) << "largest " << largest;
 }
 
 }  // namespace

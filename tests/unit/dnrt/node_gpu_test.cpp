@@ -9,6 +9,8 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <string>
+#include <vector>
 
 #include "engine/core/log.hpp"
 #include "engine/gi/dnrt/bake.hpp"
@@ -62,9 +64,12 @@ TEST(DnrtGpu, PropDarkensItsSurroundingsAndBrightensNothing) {
   const FieldTextures textures(ctx, baked.field, "prop");
   Node node(ctx, session.renderer().pipelines(), gpu::FrameRing::kDefaultFramesInFlight);
   const ConstantEnvironment env{glm::vec3(kAmbient)};
-  bool fullScreen = false, objectFullScreen = false;
+  bool fullScreen = false, objectFullScreen = false, mirrored = false;
   session.renderer().setNode("dnrt", [&](rg::RenderGraph& graph, render::PassContext& pc) {
-    const glm::mat4 world = reg.get<scene::WorldTransform>(prop).matrix;
+    // mirrored: the prop's field reflected through its local x = 0 plane (det(world) < 0).
+    const glm::mat4 world = reg.get<scene::WorldTransform>(prop).matrix *
+                            glm::mat4(glm::vec4(mirrored ? -1.0f : 1.0f, 0, 0, 0), glm::vec4(0, 1, 0, 0),
+                                      glm::vec4(0, 0, 1, 0), glm::vec4(0, 0, 0, 1));
     const glm::vec3 o = glm::vec3(world * glm::vec4(baked.field.centre, 1.0f));
     NodeObject obj{&textures, packObject(baked.field, world, env.radianceSH(o), prop.index()), "prop"};
     obj.mode = objectFullScreen ? Mode::FullScreen : Mode::Box;  // the level's "mode": "fullscreen"
@@ -76,6 +81,11 @@ TEST(DnrtGpu, PropDarkensItsSurroundingsAndBrightensNothing) {
   fullScreen = false, objectFullScreen = true;
   const Frame withObjectFull = renderOnce(session, ctx);
   EXPECT_EQ(withObjectFull.rgb, withFull.rgb) << "per-object and node-wide full-screen mode draw the same";
+  objectFullScreen = false, mirrored = true;
+  const Frame mirroredBox = renderOnce(session, ctx);
+  fullScreen = true;
+  const Frame mirroredFull = renderOnce(session, ctx);
+  fullScreen = false;
   session.renderer().setNode("dnrt", {});
   const Frame without = renderOnce(session, ctx);
 
@@ -97,6 +107,19 @@ TEST(DnrtGpu, PropDarkensItsSurroundingsAndBrightensNothing) {
   EXPECT_EQ(brightened, 0u);
   // The box covers every pixel with a non-zero term: both modes give the same image.
   EXPECT_LT(modeDiff, kHalfTol);
+
+  // A mirrored object (negative-determinant world matrix) keeps its box: its back faces stay back
+  // faces, so the box draws what full screen draws, and the mirrored field still darkens hundreds of
+  // values (a flipped winding would cull the exit faces and depth-reject every receiver: 0 darkened).
+  std::size_t mirroredDarkened = 0;
+  double mirroredDiff = 0.0;
+  for (std::size_t i = 0; i < with.rgb.size(); ++i) {
+    if (mirroredBox.rgb[i] - without.rgb[i] < -kHalfTol * std::max(1.0f, std::abs(without.rgb[i]))) ++mirroredDarkened;
+    mirroredDiff = std::max(mirroredDiff, double(std::abs(mirroredFull.rgb[i] - mirroredBox.rgb[i])));
+  }
+  std::printf("dnrt mirrored: %zu darkened; box vs full screen max diff %.2g\n", mirroredDarkened, mirroredDiff);
+  EXPECT_GT(mirroredDarkened, 300u);
+  EXPECT_LT(mirroredDiff, kHalfTol);
 }
 
 // The shader against its CPU mirror (evaluate.hpp), pixel by pixel: a rotated 9-SH box above a
@@ -641,17 +664,33 @@ TEST(DnrtGpu, LightsLeftOutOfTheAntiRadianceAddTheirTermInTheCombinedVolume) {
 
 // "lights_in_anti_radiance": false is meant with relit probes (they carry the lamp's bounce off the
 // object's shadow that the anti-radiance no longer subtracts): a session of a level that sets it
-// without them warns once (dnrt's SessionRuntime); the same level with the key true does not.
+// without them warns once (dnrt's SessionRuntime), naming every such entity; the same level with the
+// key true does not. Only that warning is counted (stderr lines naming the key), not others.
 TEST(DnrtGpu, LightsOutOfTheAntiRadianceWithoutRelitProbesWarnsOnce) {
   gpu::Context& ctx = gpu::testkit::sharedContext();
   const fs::path levelPath = fs::path(BOUNCE_SOURCE_DIR) / "tests/data/dnrt/two-boxes-lamp.json";
-  for (const bool lightsOut : {true, false}) {
+  struct Case {
+    std::vector<std::string> lightsOut;  // entities with the key false
+    std::string named;                   // what the warning names ("" = no warning)
+  };
+  for (const Case& c : {Case{{"box-a"}, "dnrt box-a: "}, Case{{"box-a", "box-b"}, "dnrt box-a, box-b: "}, Case{{}, ""}}) {
     scene::Level level = game::loadLevelWithEffects(levelPath, std::nullopt);  // "effects": ["dnrt"], no probes
     for (scene::EntityDesc& e : level.entities)
-      if (e.dnrt && !lightsOut) e.dnrt->lightsInAntiRadiance = true;
-    log::resetWarningCount();
-    game::Session session(ctx, level);
-    EXPECT_EQ(log::warningCount(), lightsOut ? 1u : 0u) << (lightsOut ? "box-a's key false" : "every key true");
+      if (e.dnrt) e.dnrt->lightsInAntiRadiance = std::find(c.lightsOut.begin(), c.lightsOut.end(), e.id) == c.lightsOut.end();
+    ::testing::internal::CaptureStderr();
+    { game::Session session(ctx, level); }
+    const std::string err = ::testing::internal::GetCapturedStderr();
+    std::vector<std::string> warnings;
+    for (std::size_t at = 0, end; at < err.size(); at = end + 1) {
+      end = std::min(err.find('\n', at), err.size());
+      const std::string line = err.substr(at, end - at);
+      if (line.find("lights_in_anti_radiance") != std::string::npos) warnings.push_back(line);
+    }
+    ASSERT_EQ(warnings.size(), c.named.empty() ? 0u : 1u) << err;
+    if (!c.named.empty()) {
+      EXPECT_EQ(warnings[0].rfind("warning: ", 0), 0u) << warnings[0];
+      EXPECT_NE(warnings[0].find(c.named), std::string::npos) << warnings[0];
+    }
   }
 }
 

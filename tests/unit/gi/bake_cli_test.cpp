@@ -170,6 +170,48 @@ TEST_F(BakeCli, CorruptOrTruncatedEntriesAreReBaked) {
 
 // A DNRT field is rigid: on a skinned or morphed mesh it is baked in the bind pose (issue 12, item 4). The
 // bake says so once, for that object only, and still writes the entry; a rigid box gets no warning.
+// Two entities, one mesh and one field setting: one job, one field entry. The first keeps the lights
+// in its anti-radiance, the second leaves them out, so the shared job must also bake the
+// occlusion-only field, whichever entity comes first, and declare it to Ninja (an implicit output).
+TEST_F(BakeCli, SharedFieldJobBakesTheOcclusionFieldIfAnyEntityNeedsIt) {
+  const fs::path level = kSource / "tests/data/gi/bake-shared-mesh.json";
+  const fs::path root = dir_ / "cache";
+  const Outcome listed = bounce(root, {"bake", level.string(), "--list-jobs"});
+  ASSERT_EQ(listed.code, 0) << listed.err;
+  ASSERT_EQ(lines(listed.out).size(), 1u) << listed.out;
+  EXPECT_NE(listed.out.find("\"what\": \"dnrt box-a + occlusion (also dnrt box-b)\""), std::string::npos) << listed.out;
+  // --only dnrt:box-b plans the same job (the group box-b is in).
+  const Outcome onlyB = bounce(root, {"bake", level.string(), "--list-jobs", "--only", "dnrt:box-b"});
+  ASSERT_EQ(onlyB.code, 0) << onlyB.err;
+  EXPECT_EQ(onlyB.out, listed.out);
+
+  const fs::path plan = root / "bake.ninja";
+  fs::create_directories(root);
+  const Outcome wrote = bounce(root, {"bake", level.string(), "--plan", plan.string()});
+  ASSERT_EQ(wrote.code, 0) << wrote.err;
+  std::vector<std::string> edges;
+  for (const auto& l : lines(readText(plan)))
+    if (l.rfind("build ", 0) == 0 && l.find(": bake") != std::string::npos) edges.push_back(l);
+  ASSERT_EQ(edges.size(), 1u) << readText(plan);
+  const std::string& edge = edges[0];
+  const auto bar = edge.find(" | "), colon = edge.find(": bake");
+  ASSERT_NE(bar, std::string::npos) << "the occlusion entry is an implicit output: " << edge;
+  const fs::path field = edge.substr(6, bar - 6), occlusion = edge.substr(bar + 3, colon - bar - 3);
+  EXPECT_EQ(field.parent_path(), root / "dnrt");
+  EXPECT_EQ(occlusion.parent_path(), root / "dnrt");
+  EXPECT_NE(field, occlusion);
+
+  const Outcome ran = sh("cd " + quote(root.string()) + " && ninja -f bake.ninja -j2", "ninja");
+  ASSERT_EQ(ran.code, 0) << ran.out << ran.err;
+  EXPECT_TRUE(fs::is_regular_file(field));
+  EXPECT_TRUE(fs::is_regular_file(occlusion));
+  EXPECT_EQ(entries(root).size(), 2u);
+  // Removing only the occlusion entry makes the edge dirty again (Ninja knows the output).
+  fs::remove(occlusion);
+  const Outcome again = sh("cd " + quote(root.string()) + " && ninja -f bake.ninja -j2 -n", "ninja2");
+  EXPECT_EQ(again.out.find("no work to do"), std::string::npos) << again.out;
+}
+
 TEST_F(BakeCli, DnrtOnASkinnedMeshWarnsThatItsFieldIsTheBindPose) {
   const fs::path root = dir_ / "cache";
   const fs::path level = kSource / "tests/data/gi/bake-skinned.json";

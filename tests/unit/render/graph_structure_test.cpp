@@ -7,6 +7,7 @@
 
 #include "engine/gpu/presenter_offscreen.hpp"
 #include "engine/gpu/testing.hpp"
+#include "engine/render/graph/usage.hpp"
 #include "game/session.hpp"
 
 using namespace bounce;
@@ -96,6 +97,34 @@ TEST(RendererGraph, CullingOffRunsEveryPass) {
             (Passes{"shadow", "gbuffer", "lighting", "probes.relight", "probes.tiles", "probes", "dnrt.combine", "dnrt", "tonemap"}));
   // Nothing culled; the legend at the end shows what a culled (dashed) pass would look like.
   EXPECT_EQ(lit.dot.substr(0, lit.dot.find("subgraph cluster_legend")).find("dashed"), std::string::npos) << "nothing culled";
+}
+
+// The dnrt pass tests its boxes against the G-buffer's depth, read-only: exactly one DepthRead
+// edge from a gbuffer.depth version into the pass, and DepthRead is the read-only depth layout at
+// the depth-test stages. Without that edge (no depth test) the box would light every pixel it
+// covers, and the graph would not keep the depth in a layout the depth test may read.
+TEST(RendererGraph, DnrtPassTestsTheGBufferDepthReadOnly) {
+  const Result r = renderOnce(std::nullopt, {});  // the level's own effects: direct, shadows, probes, dnrt
+  const std::string passNode = [&] {
+    const auto at = r.dot.find(" [label=\"dnrt\", shape=box");
+    if (at == std::string::npos) return std::string();
+    const auto start = r.dot.rfind("  p", at);
+    return r.dot.substr(start + 2, at - start - 2);
+  }();
+  ASSERT_FALSE(passNode.empty()) << r.dot;
+  std::size_t depthReads = 0, otherDepthReads = 0;
+  for (std::size_t at = r.dot.find(" -> " + passNode + " [label=\"DepthRead\""); at != std::string::npos;
+       at = r.dot.find(" -> " + passNode + " [label=\"DepthRead\"", at + 1)) {
+    const std::size_t line = r.dot.rfind('\n', at) + 1;
+    const std::string version = r.dot.substr(line + 2, at - line - 2);  // "  rX_vY -> pN"
+    const bool gbufferDepth = r.dot.find("  " + version + " [label=\"gbuffer.depth\\nv") != std::string::npos;
+    (gbufferDepth ? depthReads : otherDepthReads) += 1;
+  }
+  EXPECT_EQ(depthReads, 1u) << r.dot;
+  EXPECT_EQ(otherDepthReads, 0u);
+  EXPECT_EQ(rg::stateFor(rg::Usage::DepthRead, rg::ResourceKind::Texture, false),
+            (rg::ResourceState{rg::Layout::DepthReadOnly, rg::Stage::EarlyFragmentTests | rg::Stage::LateFragmentTests,
+                               rg::Access::DepthStencilRead}));
 }
 
 TEST(RendererGraph, TransientImagesArePooledAcrossFrames) {
