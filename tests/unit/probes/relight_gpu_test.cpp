@@ -320,6 +320,35 @@ ProbeVolume relitVolume(const ProbeVolume& baked, const std::vector<glm::vec3>& 
   return v;
 }
 
+// cornell-1 with its prop (a real dynamic shadow in the shadow atlas) in a session running direct,
+// shadows and probes, its baked volume and its relight data: what the relit-node comparisons share.
+struct CornellRelit {
+  gpu::Context& ctx = gpu::testkit::sharedContext();
+  std::filesystem::path levelPath = std::filesystem::path(BOUNCE_SOURCE_DIR) / "content/levels/cornell-1.json";
+  game::Session session{ctx, game::loadLevelWithEffects(levelPath, std::vector<std::string>{"direct", "shadows", "probes"})};
+  scene::Level level = scene::loadLevel(levelPath);
+  LoadResult baked = loadOrBake(level, game::cookCacheDir(), bounce::cacheDir("probes"), settingsFrom(level));
+  BakeInput input = prepare(level, game::cookCacheDir(), settingsFrom(level));
+  ref::SceneBvh staticScene{ref::SceneDesc(input.scene)};
+  RelightData data = loadOrBakeRelight(input, baked.volume.grid, bounce::cacheDir("probes"));
+
+  CornellRelit() { session.update(0.0); }
+
+  // The HDR frame (160×120) after `frames` frames with `node` as the session's probes node.
+  std::vector<float> render(ProbeNode& node, int frames) {
+    session.renderer().setNode("probes", node.node());
+    std::vector<float> hdr;
+    for (int f = 0; f < frames; ++f) {
+      gpu::OffscreenPresenter presenter(ctx, {160, 120});
+      render::FrameSettings settings;
+      settings.keepHdr = true;
+      session.render(presenter, settings);
+      hdr = session.renderer().readHdr();
+    }
+    return hdr;
+  }
+};
+
 }  // namespace
 
 TEST(ProbeRelightSession, WithoutADynamicObjectTheRelitFrameIsTheBakedOne) {
@@ -340,29 +369,14 @@ TEST(ProbeRelightSession, WithoutADynamicObjectTheRelitFrameIsTheBakedOnePastThe
 // (fp16 roundings + the 8-bit fractions' packedShIrradianceError/π) for the RELIT volume. And the
 // image path is relit: its frame differs from the baked image path's beyond that bound.
 TEST(ProbeRelightSession, TheRelitImagePathIsTheRelitBlockPathWithinThePacking) {
-  namespace fs = std::filesystem;
-  gpu::Context& ctx = gpu::testkit::sharedContext();
-  const fs::path levelPath = fs::path(BOUNCE_SOURCE_DIR) / "content/levels/cornell-1.json";
-  game::Session session(ctx, game::loadLevelWithEffects(levelPath, std::vector<std::string>{"direct", "shadows", "probes"}));
-  session.update(0.0);
-  const scene::Level level = scene::loadLevel(levelPath);
-  const auto baked = loadOrBake(level, game::cookCacheDir(), bounce::cacheDir("probes"), settingsFrom(level));
-  const BakeInput input = prepare(level, game::cookCacheDir(), settingsFrom(level));
-  const ref::SceneBvh staticScene{ref::SceneDesc(input.scene)};
-  const RelightData data = loadOrBakeRelight(input, baked.volume.grid, bounce::cacheDir("probes"));
+  CornellRelit cornell;
+  gpu::Context& ctx = cornell.ctx;
+  game::Session& session = cornell.session;
+  const auto& baked = cornell.baked;
+  const RelightData& data = cornell.data;
+  const ref::SceneBvh& staticScene = cornell.staticScene;
   const std::size_t probes = baked.volume.grid.probeCount();
-  const auto render = [&](ProbeNode& node, int frames) {
-    session.renderer().setNode("probes", node.node());
-    std::vector<float> hdr;
-    for (int f = 0; f < frames; ++f) {
-      gpu::OffscreenPresenter presenter(ctx, {160, 120});
-      render::FrameSettings settings;
-      settings.keepHdr = true;
-      session.render(presenter, settings);
-      hdr = session.renderer().readHdr();
-    }
-    return hdr;
-  };
+  const auto render = [&](ProbeNode& node, int frames) { return cornell.render(node, frames); };
   ProbeNode block(ctx, session.renderer().pipelines(), baked.volume), image(ctx, session.renderer().pipelines(), baked.volume, false),
       plain(ctx, session.renderer().pipelines(), baked.volume, false);
   ASSERT_TRUE(block.shInUbo());
@@ -515,29 +529,14 @@ TEST(ProbeRelightSession, WithoutAnImageReaderTheImageKeepsTheBakeWhileTheProbes
 // requires to be at least twice the tiles' RMSE (measured 8.9e-3 against 2.1e-3; a stale-block
 // frame would sit at ~ the relight's change, ≥ 4× the tiles' RMSE).
 TEST(ProbeRelightSession, TheRelitTilesAreTheRelitShPathWithinTheirInterpolationError) {
-  namespace fs = std::filesystem;
-  gpu::Context& ctx = gpu::testkit::sharedContext();
-  const fs::path levelPath = fs::path(BOUNCE_SOURCE_DIR) / "content/levels/cornell-1.json";
-  game::Session session(ctx, game::loadLevelWithEffects(levelPath, std::vector<std::string>{"direct", "shadows", "probes"}));
-  session.update(0.0);
-  const scene::Level level = scene::loadLevel(levelPath);
-  const auto baked = loadOrBake(level, game::cookCacheDir(), bounce::cacheDir("probes"), settingsFrom(level));
-  const BakeInput input = prepare(level, game::cookCacheDir(), settingsFrom(level));
-  const ref::SceneBvh staticScene{ref::SceneDesc(input.scene)};
-  const RelightData data = loadOrBakeRelight(input, baked.volume.grid, bounce::cacheDir("probes"));
+  CornellRelit cornell;
+  gpu::Context& ctx = cornell.ctx;
+  game::Session& session = cornell.session;
+  const auto& baked = cornell.baked;
+  const RelightData& data = cornell.data;
+  const ref::SceneBvh& staticScene = cornell.staticScene;
   const std::size_t probes = baked.volume.grid.probeCount();
-  const auto render = [&](ProbeNode& node, int frames) {
-    session.renderer().setNode("probes", node.node());
-    std::vector<float> hdr;
-    for (int f = 0; f < frames; ++f) {
-      gpu::OffscreenPresenter presenter(ctx, {160, 120});
-      render::FrameSettings settings;
-      settings.keepHdr = true;
-      session.render(presenter, settings);
-      hdr = session.renderer().readHdr();
-    }
-    return hdr;
-  };
+  const auto render = [&](ProbeNode& node, int frames) { return cornell.render(node, frames); };
   ProbeNode tiles(ctx, session.renderer().pipelines(), baked.volume),
       sh(ctx, session.renderer().pipelines(), baked.volume, true, false),
       plain(ctx, session.renderer().pipelines(), baked.volume, true, false);
