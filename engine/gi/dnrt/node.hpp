@@ -1,8 +1,9 @@
 #pragma once
 // The DNRT render-graph node (paper §5.2): one pass "dnrt" that adds every object's L_DNRT
 // (shaders/dnrt/dnrt.frag, Eq. 16) to "lighting.hdr" with additive blending, reading
-// "gbuffer.albedo", "gbuffer.normal", "gbuffer.depth" and "gbuffer.entity" (to skip each object's
-// own pixels) from the blackboard.
+// "gbuffer.albedo", "gbuffer.normal", "gbuffer.depth" and "gbuffer.entity" from the blackboard. Each
+// object's own pixels are skipped by their entity id, read from the normal's w where the id fits it
+// (NodeSettings::selfInNormal), else from "gbuffer.entity".
 //
 // Modes (scene::DnrtMode: NodeObject::mode from the level's "mode", NodeSettings::mode for all):
 // - box (default), better than the paper's full-screen pass per object: each object rasterises its
