@@ -23,12 +23,17 @@
 // frame by combine.comp (no descriptor indexing on lavapipe; one trilinear tap for 4 or 9 SH).
 #include "frame.glsl"
 #include "dnrt/dnrt.glsl"
+#include "gbuffer.glsl"
 
 // A batch of exactly one object (node.cpp): record 0, no loops. The loops' per-pixel index makes
 // every record field a per-lane load, and a loop body costs about twice the same code straight
 // (README "DNRT": "one object in straight-line code, no loop"); with the index a constant the
 // record is read as uniforms, as the box draw's flat varyings are. Same sums, same image.
 layout(constant_id = 0) const bool kSingle = false;
+// kSelfInNormal: every object of the batch has an entity id + 1 ≤ kEntityInNormalMax, so the self
+// test reads the normal's w (gbuffer.glsl: exact there, and no larger id rounds onto it) instead of
+// fetching gbuffer.entity (dnrt.frag does the same; node.cpp clusteredPipeline()).
+layout(constant_id = 1) const bool kSelfInNormal = false;
 
 layout(set = 0, binding = 0) uniform FrameUbo { Camera camera; };
 layout(set = 1, binding = 0) uniform sampler2D gAlbedo;
@@ -100,8 +105,9 @@ void main() {
   float depth = texelFetch(gDepth, pixel, 0).r;
   if (depth >= 1.0) discard;
   vec4 r = vec4(worldFromDepth(camera.invViewProj, (vec2(pixel) + 0.5) * camera.resolution.zw, depth), 1.0);
-  vec3 nr = texelFetch(gNormal, pixel, 0).xyz;
-  uint entity = texelFetch(gEntity, pixel, 0).r;
+  vec4 normal = texelFetch(gNormal, pixel, 0);
+  vec3 nr = normal.xyz;
+  uint entity = kSelfInNormal ? uint(normal.w) : texelFetch(gEntity, pixel, 0).r;
 
   if (kSingle) {  // a specialization constant: the loops below are compiled out, and vice versa
     if (!dnrtClusterReaches(0, r, nr, entity)) discard;

@@ -29,7 +29,8 @@ void main() {
   vec3 n = normalize(inNormal);
   if (dot(n, camera.position.xyz - inWorld) < 0.0) n = -n;
   outAlbedo = vec4(clamp(albedo, 0.0, 1.0), 1.0);
-  outNormal = vec4(n, 0.0);
+  // w: the entity id + 1, or kEntityInNormalMax + 1 for every larger one (gbuffer.glsl).
+  outNormal = vec4(n, float(min(inst.ids.x + 1u, kEntityInNormalMax + 1u)));
   outEmissive = vec4(emissive, 0.0);
   outEntity = inst.ids.x + 1u;
 }

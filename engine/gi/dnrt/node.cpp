@@ -157,7 +157,7 @@ Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t fra
 }
 
 const gpu::Pipeline& Node::pipeline(const Variant& v) {
-  const int key = (v.intrusion ? 1 : 0) | (v.fullScreen ? 2 : 0);
+  const int key = (v.intrusion ? 1 : 0) | (v.fullScreen ? 2 : 0) | (v.selfInNormal ? 4 : 0);
   gpu::Pipeline& p = variants_[std::size_t(key)];
   if (p.handle()) return p;
   gpu::GraphicsPipelineDesc d;
@@ -174,14 +174,16 @@ const gpu::Pipeline& Node::pipeline(const Variant& v) {
   d.depthTest = !v.fullScreen;
   d.depthWrite = false;
   d.depthCompare = VK_COMPARE_OP_GREATER_OR_EQUAL;
-  d.specialization = {v.intrusion ? 1u : 0u, v.fullScreen ? 1u : 0u};  // dnrt.frag id 0, dnrt.vert id 1
-  d.name = std::string("dnrt.") + (v.fullScreen ? "fullscreen" : "box") + (v.intrusion ? ".intrusion" : "");
+  // dnrt.frag id 0 and 2, dnrt.vert id 1
+  d.specialization = {v.intrusion ? 1u : 0u, v.fullScreen ? 1u : 0u, v.selfInNormal ? 1u : 0u};
+  d.name = std::string("dnrt.") + (v.fullScreen ? "fullscreen" : "box") + (v.intrusion ? ".intrusion" : "") +
+           (v.selfInNormal ? "" : ".entity");
   p = gpu::createGraphicsPipeline(ctx_, layout_, d);
   return p;
 }
 
-const gpu::Pipeline& Node::clusteredPipeline(bool single) {
-  gpu::Pipeline& p = clustered_[single ? 1 : 0];
+const gpu::Pipeline& Node::clusteredPipeline(bool single, bool selfInNormal) {
+  gpu::Pipeline& p = clustered_[(single ? 1 : 0) | (selfInNormal ? 2 : 0)];
   if (p.handle()) return p;
   gpu::GraphicsPipelineDesc d;
   d.vertex = &fullscreenVert_;
@@ -189,8 +191,8 @@ const gpu::Pipeline& Node::clusteredPipeline(bool single) {
   d.colorFormats = {kHdrFormat};
   d.blend = gpu::Blend::Additive;
   d.depthFormat = kDepthFormat;  // the dnrt pass's read-only depth attachment (not tested here)
-  d.specialization = {single ? 1u : 0u};  // clustered.frag kSingle
-  d.name = std::string("dnrt.clustered") + (single ? ".single" : "");
+  d.specialization = {single ? 1u : 0u, selfInNormal ? 1u : 0u};  // clustered.frag kSingle, kSelfInNormal
+  d.name = std::string("dnrt.clustered") + (single ? ".single" : "") + (selfInNormal ? "" : ".entity");
   p = gpu::createGraphicsPipeline(ctx_, clusterPipelineLayout_, d);
   return p;
 }
@@ -444,7 +446,8 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
         b.read(d.g.depth, rg::Usage::DepthRead);  // the box draws' depth test, read-only (pipeline())
       },
       [this, pc, objects = std::move(objects), cluster = std::move(cluster), clustered = std::move(clustered),
-       tileCull = settings.tileCull, modeOf = [mode = settings.mode](const NodeObject& o) { return mode.value_or(o.mode); }](
+       tileCull = settings.tileCull, selfInNormalAllowed = settings.selfInNormal,
+       modeOf = [mode = settings.mode](const NodeObject& o) { return mode.value_or(o.mode); }](
           const Data& d, const rg::PassResources& res, rg::CommandContext& c) {
         VkCommandBuffer cmd = pc->cmd(c);
         gpu::Buffer& buffer = objectBuffer(pc->frame().slot, objects);
@@ -531,8 +534,10 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
         for (std::size_t i = 0; i < objects.size(); ++i) {
           if (clustered[i]) continue;
           const bool full = modeOf(objects[i]) == Mode::FullScreen;
-          const gpu::Pipeline& p = pipeline({objects[i].intrusion, full});
-          if (bound != &p) {  // bind on a change of variant (per object: SH count, intrusion, "mode")
+          // The self test from the normal's w where the object's id fits it exactly (dnrt.frag).
+          const bool selfInNormal = selfInNormalAllowed && objects[i].data.ids.x <= render::kEntityInNormalMax;
+          const gpu::Pipeline& p = pipeline({objects[i].intrusion, full, selfInNormal});
+          if (bound != &p) {  // bind on a change of variant (per object: intrusion, "mode", id size)
             p.bind(cmd);
             p.bindSet(cmd, 0, pc->frameSet);
             p.bindSet(cmd, 1, inputs);
@@ -557,8 +562,12 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
                                    0.0f);
           for (std::size_t b = 0; b < batches; ++b) {
             const std::size_t end = std::min(cluster.size(), (b + 1) * kClusterBatch);
-            // One object in the batch: record 0 as uniforms, no loops (clustered.frag kSingle).
-            const gpu::Pipeline& p = clusteredPipeline(end - b * kClusterBatch == 1);
+            // One object in the batch: record 0 as uniforms, no loops (clustered.frag kSingle). The self
+            // test from the normal's w where every object's id fits it (dnrt.frag's kSelfInNormal).
+            bool selfInNormal = selfInNormalAllowed;
+            for (std::size_t k = b * kClusterBatch; k < end; ++k)
+              selfInNormal = selfInNormal && objects[cluster[k].object].data.ids.x <= render::kEntityInNormalMax;
+            const gpu::Pipeline& p = clusteredPipeline(end - b * kClusterBatch == 1, selfInNormal);
             p.bind(cmd);
             p.bindSet(cmd, 0, pc->frameSet);
             p.bindSet(cmd, 1, clusterInputs);

@@ -1,8 +1,9 @@
 #pragma once
 // The DNRT render-graph node (paper §5.2): one pass "dnrt" that adds every object's L_DNRT
 // (shaders/dnrt/dnrt.frag, Eq. 16) to "lighting.hdr" with additive blending, reading
-// "gbuffer.albedo", "gbuffer.normal", "gbuffer.depth" and "gbuffer.entity" (to skip each object's
-// own pixels) from the blackboard.
+// "gbuffer.albedo", "gbuffer.normal", "gbuffer.depth" and "gbuffer.entity" from the blackboard. Each
+// object's own pixels are skipped by their entity id, read from the normal's w where the id fits it
+// (NodeSettings::selfInNormal), else from "gbuffer.entity".
 //
 // Modes (scene::DnrtMode: NodeObject::mode from the level's "mode", NodeSettings::mode for all):
 // - box (default), better than the paper's full-screen pass per object: each object rasterises its
@@ -78,6 +79,10 @@ struct NodeSettings {
   // Clustered mode: cut each tile's mask by its pixels' depth range on the GPU (tile_cull.comp)
   // before the draw. Off: the CPU's screen-hull masks as they are (same image; tests compare them).
   bool tileCull = true;
+  // The self test reads the entity id + 1 from the normal's w where the object's id (clustered: every
+  // id of the batch) fits it (render::kEntityInNormalMax). Off: every draw fetches gbuffer.entity, the
+  // path of larger ids (same image; tests compare them).
+  bool selfInNormal = true;
 };
 
 // View-projection of cube face `face` (0..5: +X, −X, +Y, −Y, +Z, −Z) seen from `origin`, 90° square,
@@ -103,6 +108,7 @@ class Node {
   // No SH-count variant: the draw reads this frame's combined volume (combine.comp) for 4 and 9 SH.
   struct Variant {
     bool intrusion = false, fullScreen = false;
+    bool selfInNormal = false;  // the object's entity id + 1 ≤ render::kEntityInNormalMax (dnrt.frag)
   };
   const gpu::Pipeline& pipeline(const Variant& v);
 
@@ -116,7 +122,7 @@ class Node {
   };
   // The atlas holding `objects`' fields (grown if needed); brick index per object, -1 = no room.
   std::vector<int> atlasFor(const std::vector<const FieldTextures*>& textures);
-  const gpu::Pipeline& clusteredPipeline(bool single);
+  const gpu::Pipeline& clusteredPipeline(bool single, bool selfInNormal);
   // This frame slot's buffer of folded records (DnrtShaderObject per object), written now.
   gpu::Buffer& objectBuffer(std::uint32_t slot, const std::vector<NodeObject>& objects);
 
@@ -124,14 +130,14 @@ class Node {
   gpu::DescriptorSetLayout inputLayout_, fieldLayout_;
   gpu::PipelineLayout layout_, cubeLayout_;
   gpu::ShaderModule vert_, frag_;
-  std::array<gpu::Pipeline, 4> variants_;  // index: intrusion | fullScreen << 1
+  std::array<gpu::Pipeline, 8> variants_;  // index: intrusion | fullScreen << 1 | selfInNormal << 2
   gpu::Pipeline cube_;
   std::unique_ptr<gpu::Image> noIntrusion_;  // 1×1×6 R32F "nothing nearer than 1e30 m"
   std::vector<gpu::Buffer> objectBuffers_;  // per frame slot, DnrtObjectGpu[]
   gpu::DescriptorSetLayout clusterLayout_;
   gpu::PipelineLayout clusterPipelineLayout_;
   gpu::ShaderModule fullscreenVert_, clusterFrag_;
-  std::array<gpu::Pipeline, 2> clustered_;  // index: single (clustered.frag kSingle)
+  std::array<gpu::Pipeline, 4> clustered_;  // index: single | selfInNormal << 1 (clustered.frag)
   Atlas atlas_;
   std::vector<gpu::Buffer> tileBuffers_, clusterObjectBuffers_;  // per frame slot: masks, DnrtClusterObject[]
   // combine.comp: Σ_j c_j M_j per grid vertex for the box and full-screen draws (index: sh9 |

@@ -1,6 +1,8 @@
 #pragma once
 // G-buffer pass: rasterises every draw of the RenderWorld into albedo, normal, emissive, entity id
 // and depth (layout in shaders/common/gbuffer.glsl). Publishes "gbuffer.*" on the blackboard.
+#include <cstdint>
+
 #include "engine/gpu/descriptors.hpp"
 #include "engine/render/graph/render_graph.hpp"
 #include "engine/render/pass_context.hpp"
@@ -10,6 +12,11 @@ namespace bounce::render {
 struct GBuffer {
   rg::Handle<rg::Texture> albedo, normal, emissive, entity, depth;
 };
+
+// The normal target's w holds the entity id + 1 as a float up to this value and this value + 1 for
+// every larger id (shaders/common/gbuffer.glsl; fp16 holds the integers to 2048 exactly). A reader
+// compares it only with ids + 1 ≤ this, else it fetches "gbuffer.entity" (DNRT's self test).
+inline constexpr std::uint32_t kEntityInNormalMax = 2047;
 
 const GBuffer& addGBufferPass(rg::RenderGraph& graph, const PassContext* pc, VkExtent2D extent);
 

@@ -20,6 +20,7 @@
 #include "engine/gi/dnrt/runtime.hpp"
 #include "engine/gpu/presenter_offscreen.hpp"
 #include "engine/gpu/testing.hpp"
+#include "engine/render/passes/gbuffer_pass.hpp"
 #include "game/session.hpp"
 #include "tests/unit/render/analytic.hpp"
 
@@ -349,6 +350,72 @@ TEST(DnrtGpu, TenObjectsOverOnePixelAddUpToTenTimesOne) {
   EXPECT_GT(covered, 1000);
   EXPECT_GT(largest, 0.01f);
   EXPECT_LE(worstRatio, 1.0f);
+}
+
+// The self test (dnrt.frag): a draw gives no light to pixels whose entity is the object's own. Box A
+// of two-boxes.json is given the floor's entity id + 1 as its own, so the floor pixels A lights must
+// lose A's term exactly (equal to the image without DNRT, bit for bit) while box B's faces towards A
+// keep it and no other pixel changes; the id read from the normal's w (gbuffer.glsl, ids ≤ kEntityInNormalMax)
+// and the gbuffer.entity fetch (NodeSettings::selfInNormal off, the path of larger ids) must give
+// the same image, in each draw mode (box, full screen, clustered).
+TEST(DnrtGpu, SelfTestFromTheNormalsWRejectsExactlyTheObjectsOwnPixels) {
+  gpu::Context& ctx = gpu::testkit::sharedContext();
+  const fs::path levelPath = fs::path(BOUNCE_SOURCE_DIR) / "tests/data/dnrt/two-boxes.json";
+  game::Session session(ctx, game::loadLevelWithEffects(levelPath, std::nullopt));
+  session.update(0.0);
+  ref::ReferenceAssets assets;
+  assets.load(session.registry(), fs::path(BOUNCE_TEST_OUT) / "dnrt" / "cooked");
+  const auto frames = gpu::FrameRing::kDefaultFramesInFlight;
+  // Its own cache folder: RuntimeBakesThroughTheCache… empties its folder and may run in parallel.
+  Runtime dnrt(ctx, session.renderer().pipelines(), session.registry(), assets,
+               fs::path(BOUNCE_TEST_OUT) / "dnrt" / "self-cache", frames, session.level().background);
+  session.renderer().setNode("dnrt", dnrt.node());
+  renderOnce(session, ctx);  // extracts the world the objects are packed from
+  const std::vector<NodeObject> all = dnrt.objectsFor(session.world());
+  ASSERT_EQ(all.size(), 2u);
+  std::uint32_t floorId = 0;  // entity index + 1 (gbuffer.entity's encoding)
+  session.registry().view<scene::Name>().each([&](ecs::Entity e, scene::Name& n) {
+    if (n.id == "floor") floorId = e.index() + 1u;
+  });
+  ASSERT_NE(floorId, 0u);
+  ASSERT_LE(floorId, render::kEntityInNormalMax);
+  Node node(ctx, session.renderer().pipelines(), frames);
+  const auto renderWith = [&](NodeObject object, NodeSettings settings) {
+    session.renderer().setNode("dnrt", [&, object, settings](rg::RenderGraph& graph, render::PassContext& pc) {
+      node.addTo(graph, pc, {object}, settings);
+    });
+    return renderOnce(session, ctx).rgb;
+  };
+  session.renderer().setNode("dnrt", {});
+  const std::vector<float> without = renderOnce(session, ctx).rgb;
+  for (const Mode mode : {Mode::Box, Mode::FullScreen, Mode::Clustered}) {
+    NodeSettings normalW, entityImage;
+    normalW.mode = entityImage.mode = mode;
+    entityImage.selfInNormal = false;
+    NodeObject a = all[0];
+    a.data.ids.x = 0u;  // no own pixels
+    const std::vector<float> anonymous = renderWith(a, normalW);
+    a.data.ids.x = floorId;  // the floor's pixels count as A's own
+    const std::vector<float> fromNormal = renderWith(a, normalW), fromEntity = renderWith(a, entityImage);
+    ASSERT_EQ(fromNormal.size(), without.size());
+    EXPECT_EQ(fromNormal, fromEntity) << "normal's w and gbuffer.entity reject the same pixels";
+    int lit = 0, rejected = 0, otherwise = 0;
+    for (std::size_t i = 0; i < without.size(); ++i) {
+      if (anonymous[i] == without[i]) {
+        otherwise += fromNormal[i] != without[i] ? 1 : 0;  // unlit by A: stays unlit
+        continue;
+      }
+      ++lit;
+      if (fromNormal[i] == anonymous[i]) continue;  // not the floor's: keeps A's term
+      if (fromNormal[i] == without[i]) ++rejected;  // the floor's: A's term gone, exactly
+      else ++otherwise;
+    }
+    std::printf("self test (mode %d): %d channel values lit by A, %d of them on the floor rejected, %d changed "
+                "otherwise\n", int(mode), lit, rejected, otherwise);
+    EXPECT_GT(rejected, 1000);  // the floor around A at 160×120
+    EXPECT_GT(lit, rejected);   // box B's faces towards A keep A's term (21 channel values, measured)
+    EXPECT_EQ(otherwise, 0);
+  }
 }
 
 // Issue 15's clustered mode against the per-object box draws: box A (4 SH) and box B (9 SH) of
