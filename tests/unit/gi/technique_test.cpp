@@ -61,7 +61,6 @@ TEST(Techniques, NoneIsReservedAndRtfWithoutParticipantsSaysSo) {
   EXPECT_EQ(t->cacheKind(), "rtf");
   EXPECT_EQ(t->passes(), (std::vector<std::string>{"rtf.bounce", "rtf"}));
   EXPECT_EQ(gi::effectNote(*t, lc), "note: effect rtf is named but no entity takes part (no entity has an rtf component): no pass");
-  for (const gi::Technique* each : gi::techniques()) EXPECT_FALSE(each->reserved()) << each->name();
 }
 
 TEST(Techniques, NamedWithoutParticipantsGetsOneNote) {
@@ -190,7 +189,7 @@ TEST(Techniques, AccuracyRowsComeFromTheTable) {
   std::set<std::string> expected = {"direct"};
   // Every technique that adds passes.
   for (const gi::Technique* t : gi::techniques())
-    if (!t->reserved() && !t->passes().empty()) expected.insert(std::string(t->name()));
+    if (!t->passes().empty()) expected.insert(std::string(t->name()));
   EXPECT_EQ(fromRows, expected);
   // Every row's technique passes are the ones the technique says it adds.
   for (const auto& r : game::accuracyRows()) {

@@ -119,7 +119,6 @@ TEST(RtfComponent, BadInputIsOneLine) {
 
 TEST(RtfTechnique, TakesPartAndBakesOneEntryPerEntity) {
   const Technique& t = technique();
-  EXPECT_FALSE(t.reserved());
   EXPECT_EQ(t.cacheKind(), "rtf");
   Loaded none(writeLevel("rtf-none", R"({"id": "a", "dynamic": true, )" + mesh() + "}"));
   EXPECT_EQ(effectNote(t, none.context()),
