@@ -187,7 +187,10 @@ std::string jobLines(const scene::Level& level, const std::vector<gi::BakeJob>& 
            ", \"what\": " + jsonString(job.what) + ", \"command\": " + jsonString(jobCommand(level, job, cookCache)) +
            ", \"inputs\": [";
     for (std::size_t i = 0; i < job.inputs.size(); ++i) out += (i ? ", " : "") + jsonString(job.inputs[i].string());
-    out += "], \"output\": " + jsonString(job.output.string()) + "}\n";
+    out += "], \"output\": " + jsonString(job.output.string()) + ", \"extra_outputs\": [";
+    // The further entries the same run writes (BakeJob::extraOutputs; the plan's implicit outputs).
+    for (std::size_t i = 0; i < job.extraOutputs.size(); ++i) out += (i ? ", " : "") + jsonString(job.extraOutputs[i].string());
+    out += "]}\n";
   }
   return out;
 }

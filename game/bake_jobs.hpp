@@ -48,7 +48,8 @@ std::string jobCommand(const scene::Level& level, const gi::BakeJob& job, const 
 std::string ninjaPlan(const scene::Level& level, const std::vector<gi::BakeJob>& jobs,
                       const std::filesystem::path& cookCache);
 
-// One JSON object per line: {"key", "technique", "what", "command", "inputs", "output"}.
+// One JSON object per line: {"key", "technique", "what", "command", "inputs", "output", "extra_outputs"}
+// (extra_outputs: BakeJob::extraOutputs, [] when none; the Ninja plan's implicit outputs).
 std::string jobLines(const scene::Level& level, const std::vector<gi::BakeJob>& jobs,
                      const std::filesystem::path& cookCache);
 

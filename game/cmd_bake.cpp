@@ -4,8 +4,8 @@
 // job (what, how long, where). Needs no Vulkan device: the bakes run on the CPU with Embree.
 //   (no option)  run every job in this process, one after the other; cached entries are skipped
 //   --plan F     write a Ninja file, one edge per job: `ninja -f F -j N` bakes them in parallel
-//   --list-jobs  the same jobs as JSON lines (key, technique, what, command, inputs, output) for a
-//                job-array scheduler
+//   --list-jobs  the same jobs as JSON lines (key, technique, what, command, inputs, output,
+//                extra_outputs) for a job-array scheduler
 //   --job KEY    run the one job with content key KEY (the plan's command)
 //   --only T[:P] plan only technique T's jobs (or only its part P, e.g. dnrt:prop-truck): the plan's
 //                commands pass it so each job's process gathers only its own inputs

@@ -225,7 +225,7 @@ int runPlay(const cli::Args& args) {
     auto last = std::chrono::steady_clock::now();
     double simTime = 0.0;
     std::uint64_t simSteps = 0;
-    // Which effects this level can never run (reserved, or no entity takes part), with the reason:
+    // Which effects this level can never run (no entity takes part), with the reason:
     // the overlay disables their checkboxes. Fixed for the session (entities do not change).
     std::array<std::string, scene::kEffectCount> effectWhyOff;
     for (int i = 0; i < scene::kEffectCount; ++i) effectWhyOff[std::size_t(i)] = session.whyCannotRun(scene::Effect(i));

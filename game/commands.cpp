@@ -65,7 +65,7 @@ const std::vector<cli::CommandSpec>& commandSpecs() {
       {"bake", "LEVEL [options]", "precompute what the effects need (probes, DNRT fields) into the caches; one line per bake job",
        {effects, {"--force", "", "re-bake even when the cache holds a valid entry (to time a bake)"},
         {"--plan", "FILE", "write the jobs as a Ninja file (one edge per job): ninja -f FILE -j N bakes in parallel"},
-        {"--list-jobs", "", "print the jobs as JSON lines: key, technique, what, command, inputs, output"},
+        {"--list-jobs", "", "print the jobs as JSON lines: key, technique, what, command, inputs, output, extra_outputs"},
         {"--job", "KEY", "run the one job with this content key (the plan's command)"},
         {"--only", "TECHNIQUE[:PART]", "only this technique's jobs, or one part of it (e.g. dnrt:prop-truck); reference: the references bounce accuracy traces"}},
        1, 1},

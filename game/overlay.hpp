@@ -58,8 +58,7 @@ struct OverlayInfo {
   // Technique settings that change at run time (the panel's "techniques" section), each shown
   // only while its technique runs. THE HOOK for the next ones: SL and RTF (issues 13, 14) add
   // their fields here, their edits to OverlayActions and their block to layoutTechniques() in
-  // overlay.cpp once their runtimes have settings; until then they show nothing (a reserved
-  // effect has no runtime, so there is nothing a control could change).
+  // overlay.cpp once their runtimes have settings; until then they show nothing.
   bool dnrtRuns = false;        // the DNRT node runs (Session::runs(dnrt))
   int dnrtMode = 0;             // PlayState::dnrtMode: 0 each object's own, 1 full-screen, 2 clustered
   VlmControl vlmControl;        // tags (empty: no VLM runs) and live overrides, as the T ]/[ H keys

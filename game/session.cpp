@@ -82,18 +82,13 @@ std::string Session::whyCannotRun(scene::Effect e) {
   const gi::Technique* technique = gi::findTechnique(e);
   if (technique == nullptr) return {};
   const gi::LevelContext lc{level_, registry_, cookCacheDir()};
-  std::string why = gi::effectNote(*technique, lc).value_or(std::string());
-  if (why.empty())
-    for (const Slot& slot : slots_)
-      if (slot.technique == technique && slot.runtime != nullptr && !slot.runtime->drawsPasses())
-        why = std::string(technique->name()) + ": its GPU passes are not implemented yet (no pass)";
-  return why;
+  return gi::effectNote(*technique, lc).value_or(std::string());
 }
 
 bool Session::runs(scene::Effect e) const {
   if (e == scene::Effect::Direct || e == scene::Effect::Shadows) return true;
   for (const Slot& slot : slots_)
-    if (slot.technique->effect() == e) return slot.runtime != nullptr && slot.runtime->drawsPasses();
+    if (slot.technique->effect() == e) return slot.runtime != nullptr;
   return false;
 }
 

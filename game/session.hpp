@@ -31,8 +31,8 @@ class Session {
  public:
   // Builds, for every technique of the table (engine/gi/technique.hpp) whose effect the level names
   // AND in which an entity takes part, its runtime (baking through the cache what is missing) and
-  // its renderer node, in table order. A named effect that cannot run (reserved, or no entity takes
-  // part) gets one note on stderr (once per process) and in notes().
+  // its renderer node, in table order. A named effect that cannot run (no entity takes part) gets
+  // one note on stderr (once per process) and in notes().
   Session(gpu::Context& ctx, scene::Level level);
   // Waits for the GPU before the nodes, the scene and the renderer go (frames may still use them).
   ~Session();
@@ -65,8 +65,8 @@ class Session {
   bool runs(scene::Effect e) const;
   // The level's named effects that run (runs()): what the play overlay shows as on.
   scene::EffectSet runningEffects() const;
-  // Why effect `e` cannot run in this session, named or not — the technique table's note (reserved,
-  // or no entity takes part) — or empty when it can (direct and shadows always can). What the play
+  // Why effect `e` cannot run in this session, named or not — the technique table's note (no
+  // entity takes part) — or empty when it can (direct and shadows always can). What the play
   // overlay's disabled effect checkboxes show as their tooltip.
   std::string whyCannotRun(scene::Effect e);
   // The notes printed for named effects that do not run, in table order.

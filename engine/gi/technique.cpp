@@ -6,14 +6,8 @@
 
 namespace bounce::gi {
 
-bool ReservedTechnique::takesPart(const LevelContext&, std::string* why) const {
-  if (why) *why = "reserved (not implemented yet)";
-  return false;
-}
-
 std::optional<std::string> effectNote(const Technique& technique, const LevelContext& lc) {
   const std::string name(technique.name());
-  if (technique.reserved()) return "note: effect " + name + " is reserved (not implemented yet): no pass";
   std::string why;
   if (technique.takesPart(lc, &why)) return std::nullopt;
   return "note: effect " + name + " is named but no entity takes part (" + why + "): no pass";

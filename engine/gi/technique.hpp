@@ -138,9 +138,6 @@ class TechniqueRuntime {
   virtual render::Renderer::GraphNode node() = 0;
   // Lines `bounce profile` prints after the timing table (e.g. VLM's grid overflow).
   virtual std::vector<std::string> profileLines() const { return {}; }
-  // Whether node() adds any pass. False only while a technique's GPU passes are not written yet
-  // (SL today: baked and posed, nothing drawn), so the play overlay and keys never show it as on.
-  virtual bool drawsPasses() const { return true; }
 };
 
 class Technique {
@@ -148,8 +145,6 @@ class Technique {
   virtual ~Technique() = default;
   virtual scene::Effect effect() const = 0;
   std::string_view name() const { return scene::effectName(effect()); }
-  // A reserved effect: parsed, listed, not implemented yet (no runtime, no pass, no bake).
-  virtual bool reserved() const { return false; }
   // Whether some entity of the level takes part (the effect being named is checked by the caller).
   // When not, `why` (may be null) gets what is missing, e.g. "no entity has a dnrt component".
   virtual bool takesPart(const LevelContext& lc, std::string* why) const = 0;
@@ -170,29 +165,13 @@ class Technique {
   virtual std::vector<std::string> passes() const = 0;
 };
 
-// A listed effect whose technique is not written yet (sl, rtf): takes no part, builds nothing.
-class ReservedTechnique final : public Technique {
- public:
-  explicit ReservedTechnique(scene::Effect e) : effect_(e) {}
-  scene::Effect effect() const override { return effect_; }
-  bool reserved() const override { return true; }
-  bool takesPart(const LevelContext&, std::string* why) const override;
-  std::unique_ptr<TechniqueRuntime> create(SessionContext&) const override { return nullptr; }
-  void accuracyRows(std::vector<AccuracyRow>&) const override {}
-  std::vector<std::string> passes() const override { return {}; }
-
- private:
-  scene::Effect effect_;
-};
-
 // THE table (techniques.cpp), in node order: a node may read what an earlier one published ("ao.term")
 // and use an earlier one's Services (DNRT's c_j from the probes).
 const std::vector<const Technique*>& techniques();
 // The table's entry for an effect; null for direct and shadows (the renderer's own passes).
 const Technique* findTechnique(scene::Effect effect);
 
-// The one-line note for a technique whose effect is named but that will not run — reserved (no entry
-// of today's table is: the mechanism stays for the next technique), or no entity takes part — e.g.
+// The one-line note for a technique whose effect is named but that will not run (no entity takes part), e.g.
 // "note: effect rtf is named but no entity takes part (no entity has an rtf component): no pass";
 // nullopt when it runs.
 std::optional<std::string> effectNote(const Technique& technique, const LevelContext& lc);

@@ -534,7 +534,7 @@ int main(int argc, char** argv) {
     const int per = gi::rtf::samplesPerSphere(s);
     std::vector<glm::vec4> e3(gi::rtf::sampleCount(s)), sf(gi::rtf::sampleCount(s));
     for (int rest = 0; rest < per; ++rest) {
-      const glm::vec3 dir = pl.localToWorldRotation * gi::rtf::sampleDirection(s, std::size_t(rest));
+      const glm::vec3 dir = pl.localToWorldDirections() * gi::rtf::sampleDirection(s, std::size_t(rest));
       const glm::vec3 surf = light.indirect().radianceSH(pl.centreWorld + pl.radiusWorld * dir)[0] / at;
       for (int sphere = 0; sphere < s.spheres; ++sphere) {
         const glm::vec3 p = pl.centreWorld + pl.radiusWorld * gi::rtf::sphereRadius(s, sphere) * dir;
@@ -659,10 +659,10 @@ int main(int argc, char** argv) {
       const gi::rtf::Placement pl = gi::rtf::place(f, objects[k].world);
       const glm::vec3 q = (glm::vec3(pl.worldToLocal * glm::vec4(hit.position, 1.0f)) - f.centre) / f.radius;
       const gi::rtf::Lookup lk = gi::rtf::lookup(f.settings, q, objects[k].reach);
-      const glm::mat3 toLocal = glm::transpose(pl.localToWorldRotation);
+      const glm::mat3 toLocal = glm::transpose(pl.localToWorldDirections());
       const gi::rtf::ShRgb atO = gi::rtf::sourceRadiance(light.indirect(), pl.centreWorld);
       const glm::vec3 level = glm::vec3(atR[0]) / glm::max(glm::vec3(atO[0]), glm::vec3(1e-12f));
-      gi::rtf::ShRgb lights[3] = {gi::rtf::rotate(atR, toLocal), gi::rtf::rotate(atO, toLocal), {}};
+      gi::rtf::ShRgb lights[3] = {gi::rtf::toLocal(atR, pl), gi::rtf::toLocal(atO, pl), {}};
       lights[2] = lights[1];
       gi::rtf::ShRgb shapeO = lights[1];
       for (auto& c : shapeO) c *= level;

@@ -3,35 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
-#include <glm/gtc/quaternion.hpp>
-
 #include "engine/core/error.hpp"
 #include "engine/math/sh.hpp"
 
 namespace bounce::gi::dnrt {
-
-Placement place(const Field& field, const glm::mat4& world) {
-  Placement p;
-  const glm::mat3 m(world);
-  const glm::vec3 scale(glm::length(m[0]), glm::length(m[1]), glm::length(m[2]));
-  const float det = glm::determinant(m);
-  if (!std::isfinite(det) || std::abs(det) < 1e-30f || !(scale.x > 0 && scale.y > 0 && scale.z > 0))
-    throw InternalError("dnrt::place: singular object transform");
-  // Rotation from the normalised columns through a quaternion, which re-orthonormalises small
-  // shears and rounding so sh::Rotation accepts it.
-  glm::mat3 unit(m[0] / scale.x, m[1] / scale.y, m[2] / scale.z);
-  // A mirror (det < 0) is no rotation: quat_cast would return an unrelated one. Keep −unit (a
-  // rotation) and the flag; toLocal(c, Placement) applies the inversion's (−1)^l.
-  p.mirrored = det < 0.0f;
-  if (p.mirrored) unit = -unit;
-  p.localToWorldRotation = glm::mat3_cast(glm::normalize(glm::quat_cast(unit)));
-  p.worldToLocal = glm::inverse(world);
-  p.centreLocal = field.centre;
-  p.radiusLocal = field.radius;
-  p.centreWorld = glm::vec3(world * glm::vec4(field.centre, 1.0f));
-  p.radiusWorld = field.radius * std::max({scale.x, scale.y, scale.z});
-  return p;
-}
 
 std::array<glm::vec3, 9> toLocal(const std::array<glm::vec3, 9>& c, const glm::mat3& rot) {
   // sh::Rotation(R) maps f to g(ω) = f(Rᵀω); we want g(n) = f(rot·n), so R = rotᵀ.
@@ -42,10 +17,9 @@ std::array<glm::vec3, 9> toLocal(const std::array<glm::vec3, 9>& c, const glm::m
 }
 
 std::array<glm::vec3, 9> toLocal(const std::array<glm::vec3, 9>& c, const Placement& placement) {
-  std::array<glm::vec3, 9> parity = c;
-  if (placement.mirrored)
-    for (std::size_t j = 1; j < 4; ++j) parity[j] = -parity[j];  // band 1: (−1)^1; bands 0 and 2 even
-  return toLocal(parity, placement.localToWorldRotation);
+  std::array<glm::vec3, 9> out{};
+  gi::shToLocal<glm::vec3>(placement, std::span<const glm::vec3>(c), std::span<glm::vec3>(out));
+  return out;
 }
 
 void sampleField(const Field& f, glm::vec3 q, std::span<glm::vec3> out) {

@@ -19,30 +19,24 @@
 #include <glm/glm.hpp>
 
 #include "engine/gi/dnrt/field.hpp"
+#include "engine/gi/placement.hpp"
 
 namespace bounce::gi::dnrt {
 
-// One object's field placed in the world: local → world is `world` (rotation, uniform scale,
-// translation; a non-uniform scale uses its largest axis for R, an approximation).
-struct Placement {
-  glm::mat4 worldToLocal{1.0f};
-  glm::mat3 localToWorldRotation{1.0f};  // orthonormal, det +1
-  // det(world) < 0: local → world directions are n ↦ −localToWorldRotation·n (a reflection).
-  bool mirrored = false;
-  glm::vec3 centreWorld{0.0f};
-  float radiusWorld = 1.0f;
-  float radiusLocal = 1.0f;
-  glm::vec3 centreLocal{0.0f};
-};
+// One object's field placed in the world (engine/gi/placement.hpp, shared with RTF): local → world
+// is `world` (rotation, uniform scale, translation, a reflection allowed; a non-uniform scale uses
+// its largest axis for R, an approximation).
+using gi::Placement;
 // Throws InternalError when `world` is singular or not finite.
-Placement place(const Field& field, const glm::mat4& world);
+inline Placement place(const Field& field, const glm::mat4& world) {
+  return gi::place(field.centre, field.radius, world, "dnrt::place");
+}
 
 // c_j in the object's frame: the world irradiance SH (9 coefficients) rotated by the inverse of
 // the object's rotation, so Σ c_local_j Y_j(n_local) = Σ c_world_j Y_j(R n_local) (§5.2.1).
 std::array<glm::vec3, 9> toLocal(const std::array<glm::vec3, 9>& worldIrradiance, const glm::mat3& localToWorldRotation);
 // The same for a placement, mirrored ones included: Σ c_local_j Y_j(n) = Σ c_world_j Y_j(M n) with
-// M = world's normalised columns. A mirror is M = −R (R a rotation); E(−ω) has band l times (−1)^l,
-// so band 1 is negated, then rotated by R.
+// M = world's normalised columns (gi::shToLocal: for a mirror M = −R, band l times (−1)^l).
 std::array<glm::vec3, 9> toLocal(const std::array<glm::vec3, 9>& worldIrradiance, const Placement& placement);
 
 // Trilinear sample of the decoded field at q (local offset from o in units of R), clamped to the

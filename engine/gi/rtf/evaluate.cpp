@@ -4,8 +4,6 @@
 #include <cmath>
 #include <numeric>
 
-#include <glm/gtc/quaternion.hpp>
-
 #include "engine/core/error.hpp"
 #include "engine/math/sh.hpp"
 
@@ -45,31 +43,21 @@ void faceCoordinates(glm::vec3 d, int size, int& face, float& fx, float& fy) {
 
 }  // namespace
 
-Placement place(const Field& field, const glm::mat4& world) {
-  const glm::mat3 m(world);
-  const glm::vec3 scale(glm::length(m[0]), glm::length(m[1]), glm::length(m[2]));
-  const float det = glm::determinant(m);
-  if (!std::isfinite(det) || det == 0.0f || !(scale.x > 0 && scale.y > 0 && scale.z > 0))
-    throw InternalError("rtf::place: singular object transform");
-  Placement p;
-  // Rotation from the normalised columns through a quaternion (re-orthonormalises rounding).
-  const glm::mat3 unit(m[0] / scale.x, m[1] / scale.y, m[2] / scale.z);
-  p.localToWorldRotation = glm::mat3_cast(glm::normalize(glm::quat_cast(unit)));
-  p.worldToLocal = glm::inverse(world);
-  p.centreWorld = glm::vec3(world * glm::vec4(field.centre, 1.0f));
-  p.radiusWorld = field.radius * std::max({scale.x, scale.y, scale.z});
-  return p;
-}
-
-ShRgb rotate(const ShRgb& c, const glm::mat3& rotation) {
+ShRgb toWorld(const ShRgb& c, const Placement& p) {
   ShRgb out{};
-  sh::Rotationf::fromMatrix(rotation).apply<glm::vec3>(std::span<const glm::vec3>(c), std::span<glm::vec3>(out));
+  gi::shToWorld<glm::vec3>(p, std::span<const glm::vec3>(c), std::span<glm::vec3>(out));
   return out;
 }
 
-ShScalar rotate(const ShScalar& c, const glm::mat3& rotation) {
+ShScalar toWorld(const ShScalar& c, const Placement& p) {
   ShScalar out{};
-  sh::Rotationf::fromMatrix(rotation).apply<float>(std::span<const float>(c), std::span<float>(out));
+  gi::shToWorld<float>(p, std::span<const float>(c), std::span<float>(out));
+  return out;
+}
+
+ShRgb toLocal(const ShRgb& c, const Placement& p) {
+  ShRgb out{};
+  gi::shToLocal<glm::vec3>(p, std::span<const glm::vec3>(c), std::span<glm::vec3>(out));
   return out;
 }
 
@@ -225,12 +213,12 @@ Incident incidentRadiance(std::span<const Object> objects, std::span<const std::
     const Placement& p = placed[i];
     const glm::vec3 qLocal = (glm::vec3(p.worldToLocal * glm::vec4(q, 1.0f)) - f.centre) / f.radius;
     if (i < xi.size() && xi[i] != nullptr) {
-      const ShRgb I = rotate(interreflection(f, *xi[i], qLocal, objects[i].reach), p.localToWorldRotation);
+      const ShRgb I = toWorld(interreflection(f, *xi[i], qLocal, objects[i].reach), p);
       std::vector<glm::vec3> Vrgb(Vv.begin(), Vv.end());
       const auto lit = sh::product<glm::vec3>(std::span<const glm::vec3>(Vrgb), std::span<const glm::vec3>(I), kShOrder);
       for (int k = 0; k < kShCount; ++k) in.radiance[std::size_t(k)] += lit[std::size_t(k)];
     }
-    const ShScalar O = rotate(occlusion(f, qLocal, objects[i].reach), p.localToWorldRotation);
+    const ShScalar O = toWorld(occlusion(f, qLocal, objects[i].reach), p);
     Vv = sh::product<float>(std::span<const float>(Vv), std::span<const float>(O), kShOrder);
   }
   if (source != nullptr) {
@@ -260,11 +248,10 @@ BounceResult bounce(std::span<const Object> objects, const dnrt::IrradianceSourc
     for (std::size_t J = 0; J < n; ++J) {
       const Field& f = *objects[J].field;
       next[J].assign(f.proxies.size() * kShCount, glm::vec3(0.0f));
-      const glm::mat3 worldToLocalRotation = glm::transpose(placed[J].localToWorldRotation);
       for (std::size_t k = 0; k < f.proxies.size(); ++k) {
         const glm::vec3 chi = glm::vec3(objects[J].world * glm::vec4(f.proxies[k], 1.0f));
         const Incident in = incidentRadiance(objects, xiPtr, b == 0 ? &source : nullptr, chi, int(J));
-        const ShRgb local = rotate(in.radiance, worldToLocalRotation);
+        const ShRgb local = toLocal(in.radiance, placed[J]);
         std::copy(local.begin(), local.end(), next[J].begin() + std::ptrdiff_t(k * kShCount));
         energy += double(local[0].r + local[0].g + local[0].b) / 3.0;
       }

@@ -33,6 +33,7 @@
 #include <glm/glm.hpp>
 
 #include "engine/gi/dnrt/irradiance_source.hpp"
+#include "engine/gi/placement.hpp"
 #include "engine/gi/rtf/field.hpp"
 #include "engine/math/sampling.hpp"
 #include "engine/math/sh_eval.hpp"
@@ -46,18 +47,18 @@ using ShScalar = std::array<float, kShCount>;
 // and (1 − V)'s l = 0 coefficient is kUnitVisibility − V_0. rtf.glsl kRtfUnitVisibility, xi.comp's u_0.
 inline constexpr float kUnitVisibility = float(4.0 * math::kPi * sh::constants::kY00);
 
-struct Placement {
-  glm::mat4 worldToLocal{1.0f};
-  glm::mat3 localToWorldRotation{1.0f};  // orthonormal
-  glm::vec3 centreWorld{0.0f};
-  float radiusWorld = 1.0f;
-};
+// The object's placement (engine/gi/placement.hpp, shared with DNRT; a mirror included).
+using gi::Placement;
 // Throws InternalError when `world` is singular or not finite.
-Placement place(const Field& field, const glm::mat4& world);
+inline Placement place(const Field& field, const glm::mat4& world) {
+  return gi::place(field.centre, field.radius, world, "rtf::place");
+}
 
-// SH of a function rotated by `rotation`: g(rotation·ω) = f(ω) (sh_rotate.hpp).
-ShRgb rotate(const ShRgb& c, const glm::mat3& rotation);
-ShScalar rotate(const ShScalar& c, const glm::mat3& rotation);
+// SH of a local-frame function in the world, g(M n) = f(n), and back (gi::shToWorld / shToLocal;
+// M the placement's local → world directions, a reflection for a mirrored object).
+ShRgb toWorld(const ShRgb& local, const Placement& placement);
+ShScalar toWorld(const ShScalar& local, const Placement& placement);
+ShRgb toLocal(const ShRgb& world, const Placement& placement);
 
 // The 8 samples and weights of Eq. 10 for a local offset q in units of η. Weights sum to 1 up to
 // the outermost sphere and fade to 0 beyond it (header comment).
@@ -97,7 +98,7 @@ ShRgb interreflection(const Field& field, std::span<const glm::vec3> xi, glm::ve
 // The OOF at q (local, units of η), faded to V = 1 beyond the field.
 ShScalar occlusion(const Field& field, glm::vec3 q, float reach = 0.0f);
 
-// One object of the scene: its field placed by `world` (rotation, uniform scale, translation).
+// One object of the scene: its field placed by `world` (rotation, uniform scale, translation, a reflection allowed).
 struct Object {
   const Field* field = nullptr;
   glm::mat4 world{1.0f};

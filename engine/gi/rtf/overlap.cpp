@@ -20,7 +20,10 @@ std::vector<glm::vec4> sharedOcclusionScale(std::span<const Object> objects, std
     const Field* field;
     float reach;
     glm::mat4 worldToLocal;
-    sh::Rotationf toA;  // B's local frame → A's local frame
+    // B's local frame → A's local frame: directions M_A⁻¹ M_B = ±R_Aᵀ R_B (gi::Placement), the
+    // rotation R_Aᵀ R_B then the inversion (−1)^l when exactly one of the two is mirrored.
+    sh::Rotationf toA;
+    bool invert;
   };
   std::vector<Other> others;
   for (std::size_t b = 0; b < objects.size(); ++b) {
@@ -32,12 +35,13 @@ std::vector<glm::vec4> sharedOcclusionScale(std::span<const Object> objects, std
     const float reachB = pb.radiusWorld * std::max(sb.outerRadius + drb, objects[b].reach);
     if (glm::length(pa.centreWorld - pb.centreWorld) >= reachA + reachB) continue;  // no sample of A in B's field
     others.push_back({&fb, objects[b].reach, pb.worldToLocal,
-                      sh::Rotationf::fromMatrix(glm::transpose(pa.localToWorldRotation) * pb.localToWorldRotation)});
+                      sh::Rotationf::fromMatrix(glm::transpose(pa.localToWorldRotation) * pb.localToWorldRotation),
+                      pa.mirrored != pb.mirrored});
   }
   if (others.empty()) return out;
   const int per = samplesPerSphere(s);
   parallelFor(0, std::size_t(per), [&](std::size_t ray) {
-    const glm::vec3 dir = pa.localToWorldRotation * sampleDirection(s, ray);
+    const glm::vec3 dir = pa.localToWorldDirections() * sampleDirection(s, ray);
     for (int sphere = 0; sphere < s.spheres; ++sphere) {
       const std::size_t smp = std::size_t(sphere) * std::size_t(per) + ray;
       const float* oofA = f.oof.data() + smp * kShCount;
@@ -55,6 +59,7 @@ std::vector<glm::vec4> sharedOcclusionScale(std::span<const Object> objects, std
         if (vb == ShScalar{}) continue;
         ShScalar vbA{};
         o.toA.apply<float>(std::span<const float>(vb), std::span<float>(vbA));
+        if (o.invert) gi::invert<float>(std::span<float>(vbA));
         float dot = a0 * vbA[0];
         for (int j = 1; j < kShCount; ++j) dot -= oofA[j] * vbA[std::size_t(j)];  // (1 − V_A)_j = −oof_j for j > 0
         shared += std::clamp(dot / (a0 * u), 0.0f, 1.0f);

@@ -26,7 +26,9 @@ RtfObjectGpu packObject(const Field& f, const glm::mat4& world, const ShRgb& ind
     row.w -= f.centre[r];
     o.toQ[r] = row / f.radius;
   }
-  const glm::mat3 toLocal = glm::transpose(p.localToWorldRotation);
+  // World → local directions: Mᵀ, a reflection for a mirrored object (gi::Placement), so the normal
+  // rtf.frag rotates into the object frame is the local one.
+  const glm::mat3 toLocal = glm::transpose(p.localToWorldDirections());
   for (int r = 0; r < 3; ++r) o.toLocal[r] = glm::vec4(toLocal[0][r], toLocal[1][r], toLocal[2][r], 0.0f);
   const FieldSettings& s = f.settings;
   const float dr = (s.outerRadius - s.innerRadius) / float(s.spheres - 1);
@@ -36,7 +38,7 @@ RtfObjectGpu packObject(const Field& f, const glm::mat4& world, const ShRgb& ind
   o.grid = glm::vec4(float(s.spheres), float(s.faceSize), s.innerRadius, s.outerRadius);
   o.ids = glm::uvec4(entity + 1u, std::uint32_t(shCount), std::bit_cast<std::uint32_t>(tail ? reach : 0.0f), 0u);
   // T per channel in the object frame (Eq. 10's occlusion, shade() in evaluate.cpp).
-  const ShRgb L = rotate(indirect, toLocal);
+  const ShRgb L = rtf::toLocal(indirect, p);
   for (int c = 0; c < 3; ++c) {
     std::vector<float> Lc(kShCount);
     for (int k = 0; k < kShCount; ++k) Lc[std::size_t(k)] = L[std::size_t(k)][c];
@@ -57,7 +59,7 @@ std::vector<glm::vec4> blockedScale(const Field& f, const glm::mat4& world, cons
   const int per = samplesPerSphere(s);
   std::vector<glm::vec4> out(sampleCount(s), glm::vec4(1.0f));
   for (int rest = 0; rest < per; ++rest) {  // each ray from o, outward
-    const glm::vec3 dir = pl.localToWorldRotation * sampleDirection(s, std::size_t(rest));
+    const glm::vec3 dir = pl.localToWorldDirections() * sampleDirection(s, std::size_t(rest));
     float hidden = std::numeric_limits<float>::infinity();  // distance along the ray to static geometry
     if (staticScene) {
       ref::Hit hit;

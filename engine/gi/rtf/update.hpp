@@ -39,7 +39,7 @@ namespace bounce::gi::rtf {
 // which are cheaper than SSBOs: DESIGN.md "What costs what in a fragment shader on llvmpipe").
 struct RtfObjectGpu {
   glm::vec4 toQ[3];        // rows: q = toQ · (p, 1): the field's local offset from o in units of η
-  glm::vec4 toLocal[3];    // rows: world → object-frame rotation (normals)
+  glm::vec4 toLocal[3];    // rows: world → object-frame directions (normals; a reflection for a mirrored object)
   glm::vec4 centreWorld;   // xyz: o in the world; w: the field's radius R = (outer + Δr)·η, or its reach·η with a tail (m), the sphere rtf.vert covers
   glm::vec4 grid;          // spheres, face size, inner, outer (η)
   glm::uvec4 ids;          // x: entity index + 1 (its own pixels skip the field); y: SH count 4 or 9 (the pipeline); z: the reach (η, float bits; 0: no tail)

@@ -61,7 +61,6 @@ class SessionRuntime final : public TechniqueRuntime {
   // every SL).
   void enableGpu(SessionContext& sc);
   render::Renderer::GraphNode node() override;
-  bool drawsPasses() const override { return node_ != nullptr; }
   const std::vector<Participant>& participants() const { return participants_; }
   // "sl update: S spheres on E entities, CPU median X ms over F frames (§7.1 poses)": what
   // `bounce profile` prints after its table (the sl_update_ms).

@@ -61,7 +61,6 @@ TEST(Techniques, NoneIsReservedAndRtfWithoutParticipantsSaysSo) {
   EXPECT_EQ(t->cacheKind(), "rtf");
   EXPECT_EQ(t->passes(), (std::vector<std::string>{"rtf.bounce", "rtf"}));
   EXPECT_EQ(gi::effectNote(*t, lc), "note: effect rtf is named but no entity takes part (no entity has an rtf component): no pass");
-  for (const gi::Technique* each : gi::techniques()) EXPECT_FALSE(each->reserved()) << each->name();
 }
 
 TEST(Techniques, NamedWithoutParticipantsGetsOneNote) {
@@ -118,6 +117,47 @@ TEST(Techniques, BakeJobsOnePerCacheEntryWithDistinctKeys) {
   EXPECT_TRUE(game::levelJobs(l.level, game::cookCacheDir(), "dnrt:no-such-entity").jobs.empty());
 }
 
+// `bounce bake --list-jobs`: one JSON object per job, every field of the job in a fixed order, the
+// further entries a job writes (BakeJob::extraOutputs, the Ninja plan's implicit outputs) included.
+TEST(Techniques, ListJobsJsonHasEveryFieldExtraOutputsIncluded) {
+  const scene::Level level = scene::loadLevel(kCornell1);
+  gi::BakeJob withExtra, plain;
+  withExtra.technique = "dnrt";
+  withExtra.what = "dnrt box \"a\" + occlusion";
+  withExtra.part = "box";
+  withExtra.key = "0123456789abcdef";
+  withExtra.output = "/c/dnrt/0123456789abcdef.dnrt";
+  withExtra.extraOutputs = {"/c/dnrt/fedcba9876543210.dnrt", "/c/dnrt/x.dnrt"};
+  withExtra.inputs = {"/l/level.json", "/l/box.glb"};
+  plain.technique = "probes";
+  plain.what = "probes";
+  plain.key = "00000000000000ff";
+  plain.output = "/c/probes/00000000000000ff.probes";
+  const std::string cmdA = game::jobCommand(level, withExtra, game::cookCacheDir()),
+                    cmdB = game::jobCommand(level, plain, game::cookCacheDir());
+  ASSERT_EQ(cmdA.find_first_of("\"\\"), std::string::npos) << "no JSON escapes in " << cmdA;
+  ASSERT_EQ(cmdB.find_first_of("\"\\"), std::string::npos) << "no JSON escapes in " << cmdB;
+  EXPECT_EQ(game::jobLines(level, {withExtra, plain}, game::cookCacheDir()),
+            "{\"key\": \"0123456789abcdef\", \"technique\": \"dnrt\", \"what\": \"dnrt box \\\"a\\\" + occlusion\", "
+            "\"command\": \"" + cmdA + "\", \"inputs\": [\"/l/level.json\", \"/l/box.glb\"], "
+            "\"output\": \"/c/dnrt/0123456789abcdef.dnrt\", "
+            "\"extra_outputs\": [\"/c/dnrt/fedcba9876543210.dnrt\", \"/c/dnrt/x.dnrt\"]}\n"
+            "{\"key\": \"00000000000000ff\", \"technique\": \"probes\", \"what\": \"probes\", \"command\": \"" + cmdB +
+            "\", \"inputs\": [], \"output\": \"/c/probes/00000000000000ff.probes\", \"extra_outputs\": []}\n");
+  // A real one: cornell-1's DNRT objects leave the lights out of their anti-radiance, so each job also
+  // writes the occlusion-only field; --list-jobs names it as the plan does.
+  Loaded l(kCornell1);
+  const game::LevelJobs planned = game::levelJobs(l.level, game::cookCacheDir(), "dnrt");
+  ASSERT_FALSE(planned.jobs.empty());
+  for (const gi::BakeJob& job : planned.jobs) {
+    ASSERT_EQ(job.extraOutputs.size(), 1u) << job.what;
+    const std::string line = game::jobLines(l.level, {job}, game::cookCacheDir());
+    EXPECT_NE(line.find(", \"extra_outputs\": [\"" + job.extraOutputs[0].string() + "\"]}\n"), std::string::npos) << line;
+    EXPECT_NE(game::ninjaPlan(l.level, {job}, game::cookCacheDir()).find(" | " + job.extraOutputs[0].string() + ": bake"),
+              std::string::npos);
+  }
+}
+
 // Issue 11: DNRT jobs are keyed by the cooked asset's content key (objectSourceKey), without
 // decoding; the runtime, which keys the object scene it decoded (objectScene sets sourceKey), must
 // name the same entries, or a session would re-bake what `bounce bake` wrote.
@@ -149,7 +189,7 @@ TEST(Techniques, AccuracyRowsComeFromTheTable) {
   std::set<std::string> expected = {"direct"};
   // Every technique that adds passes.
   for (const gi::Technique* t : gi::techniques())
-    if (!t->reserved() && !t->passes().empty()) expected.insert(std::string(t->name()));
+    if (!t->passes().empty()) expected.insert(std::string(t->name()));
   EXPECT_EQ(fromRows, expected);
   // Every row's technique passes are the ones the technique says it adds.
   for (const auto& r : game::accuracyRows()) {

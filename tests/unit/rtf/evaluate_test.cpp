@@ -1,14 +1,18 @@
 // RTF evaluation (paper §5): the Eq. 10 lookup (receivers at the innermost sphere, between
 // spheres, beyond the outermost: continuous fade), the caches of Eq. 11–12 against the
 // uncompressed product, the bouncing step's convergence, scale invariance, the sphere closed form,
-// and overlapping / touching objects staying finite and bounded.
+// overlapping / touching objects staying finite and bounded, and a mirrored scene shading as the
+// mirror image of the scene.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
 
 #include "engine/gi/rtf/evaluate.hpp"
+#include "engine/gi/rtf/overlap.hpp"
 #include "engine/math/sh.hpp"
 #include "tests/unit/rtf/small_field.hpp"
 
@@ -298,6 +302,80 @@ TEST(RtfEvaluate, OverlappingAndTouchingObjectsStayFiniteAndBounded) {
     EXPECT_LE(s.blocked.r, 1.1f * 0.5f * L.r);
     EXPECT_GE(s.blocked.r, -0.1f * 0.5f * L.r);
     EXPECT_LE(s.interreflected.r, 1.1f * 0.5f * L.r * 4.0f);
+  }
+}
+
+// A source with the same 9 radiance coefficients everywhere, strong in bands 1 and 2 (negative lobes
+// too: nothing here needs L > 0), so a wrong rotation or reflection of the light shows.
+struct ShSky final : dnrt::IrradianceSource {
+  incident::RadianceSH L{};
+  incident::RadianceSH radianceSH(glm::vec3) const override { return L; }
+};
+
+// A sphere with two albedos (z > 0.1 red, below blue) off its bounding centre: no symmetry a mirror
+// could hide behind.
+const BakeResult& twoToneBake() {
+  static const BakeResult b = bake(dnrt::testing::twoToneSphere(glm::vec3(0.3f, -0.2f, 0.1f), 1.0f, glm::vec3(0.9f, 0.2f, 0.1f),
+                                                                glm::vec3(0.1f, 0.3f, 0.9f), 12),
+                                   testing::smallSettings());
+  return b;
+}
+
+// Issue 14 / session 12: a mirrored object (det(world) < 0). Mirroring the whole scene — both
+// objects, the light and the receivers — by G = T·R_q·X (X = diag(−1, 1, 1)) must shade every
+// mirrored receiver as the original one: the bouncing step (proxies' light into the local frame),
+// the shading step (ξ and OOF into the world) and the shared occlusion (B's frame into A's) all see
+// the world through each object's mirror. Before session 12 RTF's place() took quat_cast of the
+// reflection (an unrelated rotation).
+TEST(RtfEvaluate, MirroredSceneShadesAsTheMirrorImage) {
+  const Field& f = twoToneBake().field;
+  ShSky sky, mirroredSky;
+  const float v[9] = {3.0f, 0.8f, 1.4f, -0.6f, 0.5f, -0.9f, 0.7f, 0.4f, -1.1f};
+  for (int i = 0; i < 9; ++i) sky.L[std::size_t(i)] = v[i] * glm::vec3(1.0f, 0.7f + 0.05f * float(i), 0.5f);
+  const glm::quat q = glm::angleAxis(0.9f, glm::normalize(glm::vec3(0.4f, -1.0f, 0.3f)));
+  const glm::mat4 X = glm::scale(glm::mat4(1.0f), glm::vec3(-1.0f, 1.0f, 1.0f));
+  const glm::mat4 G = glm::translate(glm::mat4(1.0f), glm::vec3(1.0f, 0.5f, -2.0f)) * glm::mat4_cast(q) * X;
+  const glm::mat3 Glin(G);
+  // The mirrored light L'(ω) = L(G⁻¹ω) = L(X R_qᵀ ω): the reflection's sign per coefficient,
+  // Y_i(X d) = ±Y_i(d), read off at a generic direction (no placement code involved), then R_q.
+  {
+    const glm::vec3 d = glm::normalize(glm::vec3(0.3f, 0.5f, 0.8f));
+    const auto y = sh::evalBasis<float>(3, d), yx = sh::evalBasis<float>(3, glm::vec3(-d.x, d.y, d.z));
+    incident::RadianceSH reflected{};
+    for (std::size_t i = 0; i < 9; ++i) reflected[i] = (yx[i] * y[i] > 0.0f ? 1.0f : -1.0f) * sky.L[i];
+    sh::Rotationf::fromQuaternion(q).apply<glm::vec3>(std::span<const glm::vec3>(reflected), std::span<glm::vec3>(mirroredSky.L));
+  }
+  for (float gap : {0.4f, -0.2f}) {  // apart, and overlapping (sharedOcclusionScale acts)
+    const auto objects = pair(f, gap, 1.0f);
+    std::vector<Object> mirrored = objects;
+    for (Object& o : mirrored) o.world = G * o.world;
+    ASSERT_TRUE(place(f, mirrored[0].world).mirrored);
+    const BounceResult a = bounce(objects, sky, 2), b = bounce(mirrored, mirroredSky, 2);
+    float worst = 0.0f, largest = 0.0f;
+    struct Receiver {
+      glm::vec3 p, n;
+    };
+    for (const Receiver& r : {Receiver{{0.2f, 1.6f, 0.3f}, {0.1f, -1.0f, 0.2f}}, Receiver{{-1.3f, 0.2f, 1.9f}, {0.0f, 0.1f, -1.0f}},
+                              Receiver{{2.6f, 0.4f, -0.3f}, {-1.0f, 0.2f, 0.1f}}, Receiver{{-0.4f, -1.7f, -0.8f}, {0.3f, 1.0f, 0.4f}}}) {
+      const glm::vec3 n = glm::normalize(r.n);
+      const Shading want = shade(objects, a, sky, r.p, n, glm::vec3(0.6f), -1);
+      const Shading got = shade(mirrored, b, mirroredSky, glm::vec3(G * glm::vec4(r.p, 1.0f)), Glin * n, glm::vec3(0.6f), -1);
+      worst = std::max({worst, glm::length(got.interreflected - want.interreflected), glm::length(got.blocked - want.blocked)});
+      largest = std::max({largest, glm::length(want.interreflected), glm::length(want.blocked)});
+    }
+    ASSERT_GT(largest, 1e-3f);
+    EXPECT_LE(worst, 1e-3f * largest) << "gap " << gap << " largest " << largest;
+    // The shared occlusion per field sample is the same in each object's own frame.
+    for (std::size_t o = 0; o < 2; ++o) {
+      const auto sa = sharedOcclusionScale(objects, o), sb = sharedOcclusionScale(mirrored, o);
+      ASSERT_EQ(sa.size(), sb.size());
+      float diff = 0.0f, shared = 0.0f;
+      for (std::size_t i = 0; i < sa.size(); ++i) diff = std::max(diff, glm::length(sa[i] - sb[i])), shared += 1.0f - sa[i].x;
+      EXPECT_LE(diff, 1e-4f) << "gap " << gap << " object " << o;
+      if (gap < 0.0f) {
+        EXPECT_GT(shared, 0.0f) << "the overlapping pair shares occlusion";
+      }
+    }
   }
 }
 

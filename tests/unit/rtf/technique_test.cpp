@@ -4,6 +4,7 @@
 // records the shading pass reads) against evaluate.hpp.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -118,7 +119,6 @@ TEST(RtfComponent, BadInputIsOneLine) {
 
 TEST(RtfTechnique, TakesPartAndBakesOneEntryPerEntity) {
   const Technique& t = technique();
-  EXPECT_FALSE(t.reserved());
   EXPECT_EQ(t.cacheKind(), "rtf");
   Loaded none(writeLevel("rtf-none", R"({"id": "a", "dynamic": true, )" + mesh() + "}"));
   EXPECT_EQ(effectNote(t, none.context()),
@@ -368,6 +368,37 @@ TEST(RtfUpdate, BlockedScaleHoldsItsLastValueBehindStaticGeometry) {
   }
   EXPECT_GT(hidden, 20);
   EXPECT_GT(held, 5);  // rays that cross the floor between two spheres
+}
+
+// The GPU record of a mirrored object (det(world) < 0, gi::Placement): mirroring the object and its
+// light together by X = diag(−1, 1, 1) leaves what rtf.frag computes unchanged — the same q for the
+// mirrored point, the same local normal for the mirrored normal (toLocal is the reflection's
+// transpose, not a rotation), the same blocked light in the object's frame. Before session 12,
+// toLocal was quat_cast of the reflection: an unrelated rotation.
+TEST(RtfUpdate, MirroredRecordSeesTheWorldThroughItsMirror) {
+  const BlockedScaleCase c;
+  const glm::mat4 X = glm::scale(glm::mat4(1.0f), glm::vec3(-1.0f, 1.0f, 1.0f));
+  ShRgb L{}, mirroredL{};
+  const glm::vec3 d = glm::normalize(glm::vec3(0.3f, 0.5f, 0.8f));
+  const auto y = sh::evalBasis<float>(4, d), yx = sh::evalBasis<float>(4, glm::vec3(-d.x, d.y, d.z));
+  for (int i = 0; i < kShCount; ++i) {
+    L[std::size_t(i)] = glm::vec3(1.0f + 0.1f * float(i), 0.5f - 0.07f * float(i), 0.3f * float(i % 3) - 0.2f);
+    // L'(ω) = L(Xω): Y_i(X d) = ±Y_i(d), the sign read off at a generic direction.
+    mirroredL[std::size_t(i)] = (y[std::size_t(i)] * yx[std::size_t(i)] > 0.0f ? 1.0f : -1.0f) * L[std::size_t(i)];
+  }
+  const RtfObjectGpu a = packObject(c.field, c.world, L, 0u), b = packObject(c.field, X * c.world, mirroredL, 0u);
+  const glm::mat3 x(X);
+  auto rows = [](const glm::vec4 (&m)[3], glm::vec4 v) { return glm::vec3(glm::dot(m[0], v), glm::dot(m[1], v), glm::dot(m[2], v)); };
+  for (const glm::vec3 n : {glm::vec3(1, 0, 0), glm::vec3(0, 1, 0), glm::normalize(glm::vec3(0.3f, -1.0f, 0.4f)), glm::normalize(glm::vec3(-2, 1, 3))}) {
+    EXPECT_LT(glm::length(rows(b.toLocal, glm::vec4(x * n, 0.0f)) - rows(a.toLocal, glm::vec4(n, 0.0f))), 1e-5f);
+    const glm::vec3 p = c.o + 2.0f * n;
+    EXPECT_LT(glm::length(rows(b.toQ, glm::vec4(x * p, 1.0f)) - rows(a.toQ, glm::vec4(p, 1.0f))), 1e-5f);
+  }
+  float worst = 0.0f, largest = 0.0f;
+  for (int k = 0; k < kShCount * 9; ++k)
+    worst = std::max(worst, glm::length(b.blocked[k] - a.blocked[k])), largest = std::max(largest, glm::length(a.blocked[k]));
+  ASSERT_GT(largest, 0.1f);
+  EXPECT_LT(worst, 1e-5f * largest) << "largest " << largest;
 }
 
 }  // namespace

@@ -154,7 +154,6 @@ struct Loaded {
 
 TEST(SlTechnique, TakesPartAndBakesOneEntryPerEntity) {
   const Technique& t = technique();
-  EXPECT_FALSE(t.reserved());
   EXPECT_EQ(t.cacheKind(), "sl");
   Loaded none(writeLevel("sl-none", R"({"id": "a", "dynamic": true, )" + mesh() + "}"));
   EXPECT_EQ(effectNote(t, none.context()), "note: effect sl is named but no entity takes part (no entity has an sl "

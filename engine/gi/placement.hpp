@@ -1,0 +1,60 @@
+#pragma once
+// One object's baked frame placed in the world: what DNRT (§5.2.1 of its paper) and RTF (Pan et al.
+// 2007 §5: M, OOF and proxies in the object's local frame) both need to carry a field's positions,
+// directions and SH between the object's local frame and the world. One copy for both: RTF had its
+// own until session 12, which turned a mirrored object's reflection into an unrelated rotation.
+//
+// `world` is local → world: rotation, uniform scale, translation, and possibly a reflection
+// (det < 0). Its normalised columns M map local directions to world directions. M is a rotation R
+// (det +1) or a mirror M = −R (det −1, R = −M a rotation): sh::Rotation takes rotations only, so a
+// mirror keeps R and the flag, and the SH maps below add the inversion's parity (−1)^l on band l
+// (Y_lm(−ω) = (−1)^l Y_lm(ω)).
+#include <span>
+
+#include <glm/glm.hpp>
+
+#include "engine/core/error.hpp"
+#include "engine/math/sh_rotate.hpp"
+
+namespace bounce::gi {
+
+struct Placement {
+  glm::mat4 worldToLocal{1.0f};
+  glm::mat3 localToWorldRotation{1.0f};  // R: orthonormal, det +1
+  // det(world) < 0: local → world directions are n ↦ −R·n (a reflection).
+  bool mirrored = false;
+  glm::vec3 centreWorld{0.0f};
+  float radiusWorld = 1.0f;  // radiusLocal × the largest axis scale (a non-uniform scale: an approximation)
+  float radiusLocal = 1.0f;
+  glm::vec3 centreLocal{0.0f};
+  // M: local → world directions (normals, rays), ±R; orthonormal, det ±1. Its transpose is world → local.
+  glm::mat3 localToWorldDirections() const { return mirrored ? -localToWorldRotation : localToWorldRotation; }
+};
+
+// The placement of a field with bounding centre `centreLocal` and radius `radiusLocal` (local units).
+// Throws InternalError "<who>: singular object transform" when `world` is singular or not finite.
+Placement place(glm::vec3 centreLocal, float radiusLocal, const glm::mat4& world, const char* who);
+
+// Band l of c times (−1)^l in place: the SH of f(−ω) (an inversion). 1, 4, 9 or 16 coefficients.
+template <typename V>
+void invert(std::span<V> c) {
+  for (std::size_t l = 1; l * l < c.size(); l += 2)
+    for (std::size_t i = l * l; i < (l + 1) * (l + 1) && i < c.size(); ++i) c[i] = -c[i];
+}
+
+// SH of a local-frame function f (1, 4, 9 or 16 coefficients; V float or RGB) in the world:
+// g(M n) = f(n). A rotation by R (g'(ω) = f(Rᵀω), sh_rotate.hpp), then for a mirror the inversion
+// (g(ω) = g'(−ω) = f(−Rᵀω) = f(M⁻¹ω)).
+template <typename V>
+void shToWorld(const Placement& p, std::span<const V> local, std::span<V> world) {
+  sh::Rotationf::fromMatrix(p.localToWorldRotation).apply<V>(local, world);
+  if (p.mirrored) invert<V>(world.first(local.size()));
+}
+// SH of a world function g in the local frame: f(n) = g(M n), the inverse of shToWorld.
+template <typename V>
+void shToLocal(const Placement& p, std::span<const V> world, std::span<V> local) {
+  sh::Rotationf::fromMatrix(glm::transpose(p.localToWorldRotation)).apply<V>(world, local);
+  if (p.mirrored) invert<V>(local.first(world.size()));
+}
+
+}  // namespace bounce::gi
