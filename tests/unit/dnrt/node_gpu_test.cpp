@@ -8,7 +8,10 @@
 #include <bit>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
+#include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -18,9 +21,13 @@
 #include "engine/gi/dnrt/node.hpp"
 #include "engine/gi/dnrt/object_scene.hpp"
 #include "engine/gi/dnrt/runtime.hpp"
+#include "engine/gpu/commands.hpp"
+#include "engine/gpu/format.hpp"
+#include "engine/gpu/image.hpp"
 #include "engine/gpu/presenter_offscreen.hpp"
 #include "engine/gpu/testing.hpp"
 #include "engine/render/passes/gbuffer_pass.hpp"
+#include "engine/render/vk_backend.hpp"
 #include "game/session.hpp"
 #include "tests/unit/render/analytic.hpp"
 
@@ -352,12 +359,121 @@ TEST(DnrtGpu, TenObjectsOverOnePixelAddUpToTenTimesOne) {
   EXPECT_LE(worstRatio, 1.0f);
 }
 
+// Copies of this frame's "gbuffer.normal" (RGBA16F) and "gbuffer.entity" (R32_UINT), taken by a
+// transfer pass the test adds to the graph ahead of the node (the targets are transients), for
+// checking the normal's w encoding (shaders/common/gbuffer.glsl) texel by texel.
+struct GBufferCopy {
+  std::unique_ptr<gpu::Image> normal, entity;
+
+  // extent: the frame's (renderOnce's presenter).
+  void addTo(rg::RenderGraph& graph, const render::PassContext& pc, VkExtent2D extent) {
+    rg::Blackboard& bb = graph.blackboard();
+    const auto src = bb.get<rg::Texture>("gbuffer.normal");
+    const rg::TextureDesc nd{extent.width, extent.height, 1, 1, 1, rg::Format::RGBA16F, false};
+    const auto make = [&](std::unique_ptr<gpu::Image>& img, VkFormat format, const char* name) {
+      if (img) return;
+      gpu::ImageDesc d;
+      d.width = nd.width;
+      d.height = nd.height;
+      d.format = format;
+      d.usage = VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+      d.name = name;
+      img = std::make_unique<gpu::Image>(*pc.gpu, d);
+    };
+    make(normal, VK_FORMAT_R16G16B16A16_SFLOAT, "test.normal-copy");
+    make(entity, VK_FORMAT_R32_UINT, "test.entity-copy");
+    // Imported fresh each frame with their tracked layout: Undefined, or TransferSrc after a frame.
+    const auto state = [](const gpu::Image& img) {
+      rg::ResourceState s;
+      if (img.layout() != VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL) return s;
+      s.layout = rg::Layout::TransferSrc;
+      s.stages = rg::Stage::Transfer;
+      s.access = rg::Access::TransferWrite;
+      return s;
+    };
+    auto nDst = graph.importTexture("test.normal-copy", nd, state(*normal), pc.backend->importImage(*normal));
+    rg::TextureDesc ed = nd;
+    ed.format = rg::Format::R32_UINT;
+    auto eDst = graph.importTexture("test.entity-copy", ed, state(*entity), pc.backend->importImage(*entity));
+    struct Data {
+      rg::Handle<rg::Texture> normal, entity, normalOut, entityOut;
+    };
+    const render::PassContext* p = &pc;
+    const auto& data = graph.addPass<Data>(
+        "test.gbuffer-copy",
+        [&](rg::Builder& b, Data& d) {
+          d.normal = b.read(src, rg::Usage::TransferSrc);
+          d.entity = b.read(bb.get<rg::Texture>("gbuffer.entity"), rg::Usage::TransferSrc);
+          d.normalOut = b.write(nDst, rg::Usage::TransferDst);
+          d.entityOut = b.write(eDst, rg::Usage::TransferDst);
+        },
+        [p](const Data& d, const rg::PassResources& res, rg::CommandContext& c) {
+          VkCommandBuffer cmd = p->cmd(c);
+          const auto copy = [&](rg::Handle<rg::Texture> from, rg::Handle<rg::Texture> to) {
+            gpu::Image& a = p->backend->image(res.texture(from));
+            gpu::Image& b = p->backend->image(res.texture(to));
+            VkImageCopy region{};
+            region.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+            region.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+            region.extent = {a.desc().width, a.desc().height, 1};
+            vkCmdCopyImage(cmd, a.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, b.handle(),
+                           VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+          };
+          copy(d.normal, d.normalOut);
+          copy(d.entity, d.entityOut);
+        });
+    graph.markOutput(data.normalOut, rg::Usage::TransferSrc);
+    graph.markOutput(data.entityOut, rg::Usage::TransferSrc);
+  }
+};
+
+// Replaces "gbuffer.normal" after the lighting pass, ahead of the node, by `image` (RGBA16F, the
+// frame's size, uploaded in TRANSFER_SRC layout): a transfer pass copies it over the target and puts
+// the new version on the blackboard, so the node reads it. Lighting has already read the original.
+struct NormalOverride {
+  std::unique_ptr<gpu::Image> image;
+
+  void addTo(rg::RenderGraph& graph, const render::PassContext& pc, VkExtent2D extent) {
+    rg::Blackboard& bb = graph.blackboard();
+    const rg::TextureDesc nd{extent.width, extent.height, 1, 1, 1, rg::Format::RGBA16F, false};
+    rg::ResourceState state;  // after upload(…, TRANSFER_SRC_OPTIMAL), or after the last frame's copy
+    state.layout = rg::Layout::TransferSrc;
+    state.stages = rg::Stage::Transfer;
+    state.access = rg::Access::TransferWrite;
+    auto src = graph.importTexture("test.normal-override", nd, state, pc.backend->importImage(*image));
+    struct Data {
+      rg::Handle<rg::Texture> src, normal;
+    };
+    const render::PassContext* p = &pc;
+    const auto& data = graph.addPass<Data>(
+        "test.normal-override",
+        [&](rg::Builder& b, Data& d) {
+          d.src = b.read(src, rg::Usage::TransferSrc);
+          d.normal = b.write(bb.get<rg::Texture>("gbuffer.normal"), rg::Usage::TransferDst);
+        },
+        [p](const Data& d, const rg::PassResources& res, rg::CommandContext& c) {
+          gpu::Image& a = p->backend->image(res.texture(d.src));
+          gpu::Image& b = p->backend->image(res.texture(d.normal));
+          VkImageCopy region{};
+          region.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+          region.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+          region.extent = {a.desc().width, a.desc().height, 1};
+          vkCmdCopyImage(p->cmd(c), a.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, b.handle(),
+                         VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+        });
+    bb.put("gbuffer.normal", data.normal);
+  }
+};
+
 // The self test (dnrt.frag): a draw gives no light to pixels whose entity is the object's own. Box A
 // of two-boxes.json is given the floor's entity id + 1 as its own, so the floor pixels A lights must
 // lose A's term exactly (equal to the image without DNRT, bit for bit) while box B's faces towards A
 // keep it and no other pixel changes; the id read from the normal's w (gbuffer.glsl, ids ≤ kEntityInNormalMax)
 // and the gbuffer.entity fetch (NodeSettings::selfInNormal off, the path of larger ids) must give
-// the same image, in each draw mode (box, full screen, clustered).
+// the same image, in each draw mode (box, full screen, clustered). Equal images alone would also hold
+// if both settings took the fetch, so the test also checks the encoding texel by texel (w against a
+// copy of gbuffer.entity) and which path ran (the normal's w zeroed after lighting: only the w path
+// stops rejecting), and does the same for a clustered batch of two (the loop path, not kSingle).
 TEST(DnrtGpu, SelfTestFromTheNormalsWRejectsExactlyTheObjectsOwnPixels) {
   gpu::Context& ctx = gpu::testkit::sharedContext();
   const fs::path levelPath = fs::path(BOUNCE_SOURCE_DIR) / "tests/data/dnrt/two-boxes.json";
@@ -386,6 +502,66 @@ TEST(DnrtGpu, SelfTestFromTheNormalsWRejectsExactlyTheObjectsOwnPixels) {
     });
     return renderOnce(session, ctx).rgb;
   };
+  // The encoding the w path relies on, texel by texel: w = float(min(gbuffer.entity, kEntityInNormalMax + 1))
+  // (gbuffer.frag; gbuffer.entity = entity index + 1, 0 = background, whose cleared w is 0 too).
+  NormalOverride zeroW;  // this frame's normals with w = 0 everywhere ("no entity" for the w path)
+  {
+    GBufferCopy copy;
+    NodeObject a = all[0];
+    a.data.ids.x = floorId;
+    session.renderer().setNode("dnrt", [&, a](rg::RenderGraph& graph, render::PassContext& pc) {
+      copy.addTo(graph, pc, {160, 120});
+      node.addTo(graph, pc, {a});
+    });
+    renderOnce(session, ctx);
+    const std::vector<std::uint8_t> normalBytes = gpu::readback(ctx, *copy.normal);
+    const std::vector<std::uint8_t> entityBytes = gpu::readback(ctx, *copy.entity);
+    constexpr std::size_t kPixels = 160 * 120;
+    ASSERT_EQ(normalBytes.size(), kPixels * 8);
+    ASSERT_EQ(entityBytes.size(), kPixels * 4);
+    int mismatched = 0, drawn = 0, floorPixels = 0;
+    std::set<std::uint32_t> ids;
+    for (std::size_t i = 0; i < kPixels; ++i) {
+      std::uint16_t h;
+      std::memcpy(&h, &normalBytes[i * 8 + 6], 2);
+      std::uint32_t entity;
+      std::memcpy(&entity, &entityBytes[i * 4], 4);
+      const float w = gpu::halfToFloat(h);
+      const float want = float(std::min(entity, render::kEntityInNormalMax + 1u));
+      if (w != want && mismatched++ < 5)
+        ADD_FAILURE() << "pixel " << i << ": normal's w " << w << ", gbuffer.entity " << entity << " (expected w " << want
+                      << ")";
+      drawn += entity != 0u ? 1 : 0;
+      floorPixels += entity == floorId ? 1 : 0;
+      ids.insert(entity);
+    }
+    std::printf("normal's w: %d of %zu pixels differ from min(gbuffer.entity, %u); %d drawn, %d on the floor, %zu ids\n",
+                mismatched, kPixels, render::kEntityInNormalMax + 1u, drawn, floorPixels, ids.size());
+    EXPECT_EQ(mismatched, 0);
+    EXPECT_GT(floorPixels, 1000);   // the check covers the id the self test below compares
+    EXPECT_GT(drawn, floorPixels);  // and other entities' ids (the boxes)
+    EXPECT_GE(ids.size(), 3u);      // the floor and both boxes at least
+    std::vector<std::uint8_t> zeroed = normalBytes;
+    for (std::size_t i = 0; i < kPixels; ++i) zeroed[i * 8 + 6] = zeroed[i * 8 + 7] = 0;  // fp16 +0
+    gpu::ImageDesc d;
+    d.width = 160;
+    d.height = 120;
+    d.format = VK_FORMAT_R16G16B16A16_SFLOAT;
+    d.usage = VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    d.name = "test.normal-override";
+    zeroW.image = std::make_unique<gpu::Image>(ctx, d);
+    gpu::upload(ctx, *zeroW.image, zeroed, 0, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+  }
+  // Which path a draw took, seen in the image: with the normal's w zeroed after lighting (xyz kept),
+  // the w path finds no own pixel (A's image without an own id), the gbuffer.entity fetch still
+  // rejects the floor. So the w variant is the one used with selfInNormal on, and the fetch with it off.
+  const auto renderZeroW = [&](NodeObject object, NodeSettings settings) {
+    session.renderer().setNode("dnrt", [&, object, settings](rg::RenderGraph& graph, render::PassContext& pc) {
+      zeroW.addTo(graph, pc, {160, 120});
+      node.addTo(graph, pc, {object}, settings);
+    });
+    return renderOnce(session, ctx).rgb;
+  };
   session.renderer().setNode("dnrt", {});
   const std::vector<float> without = renderOnce(session, ctx).rgb;
   for (const Mode mode : {Mode::Box, Mode::FullScreen, Mode::Clustered}) {
@@ -399,6 +575,8 @@ TEST(DnrtGpu, SelfTestFromTheNormalsWRejectsExactlyTheObjectsOwnPixels) {
     const std::vector<float> fromNormal = renderWith(a, normalW), fromEntity = renderWith(a, entityImage);
     ASSERT_EQ(fromNormal.size(), without.size());
     EXPECT_EQ(fromNormal, fromEntity) << "normal's w and gbuffer.entity reject the same pixels";
+    EXPECT_EQ(renderZeroW(a, normalW), anonymous) << "selfInNormal on: the self test reads the normal's w";
+    EXPECT_EQ(renderZeroW(a, entityImage), fromEntity) << "selfInNormal off: the self test fetches gbuffer.entity";
     int lit = 0, rejected = 0, otherwise = 0;
     for (std::size_t i = 0; i < without.size(); ++i) {
       if (anonymous[i] == without[i]) {
@@ -416,6 +594,35 @@ TEST(DnrtGpu, SelfTestFromTheNormalsWRejectsExactlyTheObjectsOwnPixels) {
     EXPECT_GT(lit, rejected);   // box B's faces towards A keep A's term (21 channel values, measured)
     EXPECT_EQ(otherwise, 0);
   }
+  // The clustered loop path (two objects in one batch: clustered.frag's loop over the batch, not kSingle):
+  // A (the floor's id) and B (its own id) with the w path on and off give the same image bit for bit,
+  // and with w zeroed the w path rejects nothing (the image of both without an own id) while the fetch
+  // still does.
+  const auto renderSet = [&](std::vector<NodeObject> objects, NodeSettings settings, bool zeroed) {
+    session.renderer().setNode("dnrt", [&, objects, settings, zeroed](rg::RenderGraph& graph, render::PassContext& pc) {
+      if (zeroed) zeroW.addTo(graph, pc, {160, 120});
+      node.addTo(graph, pc, objects, settings);
+    });
+    return renderOnce(session, ctx).rgb;
+  };
+  NodeSettings on, off;
+  on.mode = off.mode = Mode::Clustered;
+  off.selfInNormal = false;
+  NodeObject a = all[0], b = all[1];
+  ASSERT_NE(b.data.ids.x, 0u);
+  ASSERT_LE(b.data.ids.x, render::kEntityInNormalMax);
+  a.data.ids.x = floorId;
+  NodeObject a0 = a, b0 = b;
+  a0.data.ids.x = b0.data.ids.x = 0u;
+  const std::vector<float> anonymous = renderSet({a0, b0}, on, false);
+  const std::vector<float> fromNormal = renderSet({a, b}, on, false), fromEntity = renderSet({a, b}, off, false);
+  EXPECT_EQ(fromNormal, fromEntity) << "clustered batch of two: normal's w and gbuffer.entity reject the same pixels";
+  int differ = 0;
+  for (std::size_t i = 0; i < anonymous.size(); ++i) differ += fromNormal[i] != anonymous[i] ? 1 : 0;
+  std::printf("clustered pair: %d channel values rejected as own\n", differ);
+  EXPECT_GT(differ, 1000);  // A's term on the floor at least
+  EXPECT_EQ(renderSet({a, b}, on, true), anonymous) << "clustered pair, selfInNormal on: reads the normal's w";
+  EXPECT_EQ(renderSet({a, b}, off, true), fromEntity) << "clustered pair, selfInNormal off: fetches gbuffer.entity";
 }
 
 // Issue 15's clustered mode against the per-object box draws: box A (4 SH) and box B (9 SH) of
