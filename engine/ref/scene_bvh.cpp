@@ -165,6 +165,9 @@ bool SceneBvh::intersect(const glm::vec3& o, const glm::vec3& d, float tMin, flo
   hit.shadingNormal = nsLength > 0.0f && std::isfinite(nsLength) ? ns / nsLength : hit.geometricNormal;
   hit.uv = mesh.uvs.empty() ? glm::vec2(0.0f) : w * mesh.uvs[tri[0]] + u * mesh.uvs[tri[1]] + v * mesh.uvs[tri[2]];
   hit.material = mesh.material;
+  hit.mesh = embree_->meshOfGeometry[rh.hit.geomID];
+  hit.triangle = rh.hit.primID;
+  hit.barycentric = glm::vec3(w, u, v);
   return true;
 }
 

@@ -106,6 +106,12 @@ struct Hit {
   glm::vec3 shadingNormal{0.0f};    // unit, interpolated vertex normals
   glm::vec2 uv{0.0f};
   std::uint32_t material = 0;
+  // The triangle hit, for per-vertex data interpolated as the rasteriser does (gi::rtf's bake):
+  // its mesh (index into SceneDesc::meshes), its corners RefMesh::indices[3·triangle + c], and
+  // their barycentric weights (sum 1; position = Σ_c barycentric[c]·positions[corner c]).
+  std::uint32_t mesh = 0;
+  std::uint32_t triangle = 0;
+  glm::vec3 barycentric{0.0f};
 };
 
 // Embree 3 BVH over every triangle of a SceneDesc (robust mode: closed meshes have no cracks).

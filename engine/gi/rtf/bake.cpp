@@ -5,7 +5,6 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
-#include <unordered_map>
 
 #include "engine/core/cache_entry.hpp"
 #include "engine/core/error.hpp"
@@ -25,11 +24,13 @@ namespace {
 // The object's vertices flattened over its meshes, with outward normals and albedo.
 struct Vertices {
   std::vector<glm::vec3> position, normal, albedo;
+  std::vector<std::uint32_t> meshOffset;  // a mesh's first vertex here
 };
 
 Vertices flatten(const ref::SceneDesc& o) {
   Vertices v;
   for (const auto& m : o.meshes) {
+    v.meshOffset.push_back(std::uint32_t(v.position.size()));
     const ref::RefMaterial* mat = m.material < o.materials.size() ? &o.materials[m.material] : nullptr;
     for (std::size_t i = 0; i < m.positions.size(); ++i) {
       v.position.push_back(m.positions[i]);
@@ -44,50 +45,21 @@ Vertices flatten(const ref::SceneDesc& o) {
   return v;
 }
 
-// Nearest vertex to a hit, preferring vertices facing the same way (split vertices on edges).
-class VertexGrid {
- public:
-  VertexGrid(const Vertices& v, glm::vec3 centre, float radius) : v_(v) {
-    lo_ = centre - glm::vec3(radius * 1.001f + 1e-30f);
-    const double cells = std::cbrt(std::max<double>(1.0, double(v.position.size()) / 4.0));
-    n_ = std::clamp(int(cells), 1, 96);
-    h_ = (2.0f * radius * 1.001f + 2e-30f) / float(n_);
-    for (std::size_t i = 0; i < v.position.size(); ++i) cells_[key(cell(v.position[i]))].push_back(std::uint32_t(i));
-  }
-  std::uint32_t nearest(glm::vec3 p, glm::vec3 n) const {
-    const glm::ivec3 c = cell(p);
-    std::uint32_t best = 0, bestAny = 0;
-    float bd = std::numeric_limits<float>::infinity(), bdAny = bd;
-    for (int ring = 0; ring <= n_; ++ring) {
-      for (int z = c.z - ring; z <= c.z + ring; ++z)
-        for (int y = c.y - ring; y <= c.y + ring; ++y)
-          for (int x = c.x - ring; x <= c.x + ring; ++x) {
-            if (std::max({std::abs(x - c.x), std::abs(y - c.y), std::abs(z - c.z)}) != ring) continue;
-            const auto it = cells_.find(key({x, y, z}));
-            if (it == cells_.end()) continue;
-            for (std::uint32_t i : it->second) {
-              const glm::vec3 d = v_.position[i] - p;
-              const float d2 = glm::dot(d, d);
-              if (d2 < bdAny) bdAny = d2, bestAny = i;
-              if (glm::dot(v_.normal[i], n) > 0.0f && d2 < bd) bd = d2, best = i;
-            }
-          }
-      // Every vertex within `ring` cells has been seen: done when the best lies inside that.
-      const float reach = float(ring) * h_;
-      if (std::isfinite(bd) && bd <= reach * reach) return best;
-    }
-    return std::isfinite(bd) ? best : bestAny;
-  }
-
- private:
-  glm::ivec3 cell(glm::vec3 p) const { return glm::clamp(glm::ivec3(glm::floor((p - lo_) / h_)), glm::ivec3(0), glm::ivec3(n_ - 1)); }
-  std::int64_t key(glm::ivec3 c) const { return (std::int64_t(c.z) * 4096 + c.y) * 4096 + c.x; }
-  const Vertices& v_;
-  glm::vec3 lo_{0.0f};
-  float h_ = 1.0f;
-  int n_ = 1;
-  std::unordered_map<std::int64_t, std::vector<std::uint32_t>> cells_;
+// The hit point's transfer as the renderer shades it: the rasteriser interpolates the per-vertex
+// transfer across a triangle (Sloan et al. 2002 §5, per-vertex PRT), so a ray's hit takes
+// Σ_c b_c t_{v_c} over its triangle's three corners with Embree's barycentrics b (Eq. 6–8 at the
+// hit point). Until session 12 the hit took its NEAREST vertex's t: piecewise constant in the
+// ray direction, which made M_q jump as a sample moved (README "CPCA: interpolated transfer").
+struct Corner {
+  std::uint32_t vertex;  // index into Vertices (flattened over the meshes)
+  float weight;          // barycentric b_c
 };
+std::array<Corner, 3> corners(const Vertices& v, const ref::SceneDesc& o, const ref::Hit& hit) {
+  const std::uint32_t* tri = &o.meshes[hit.mesh].indices[3 * std::size_t(hit.triangle)];
+  const std::uint32_t base = v.meshOffset[hit.mesh];
+  return {Corner{base + tri[0], hit.barycentric[0]}, Corner{base + tri[1], hit.barycentric[1]},
+          Corner{base + tri[2], hit.barycentric[2]}};
+}
 
 ref::SceneBvh makeBvh(const ref::SceneDesc& object) {
   ref::SceneDesc desc;
@@ -152,14 +124,12 @@ std::vector<glm::vec3> vertexTransfer(const ref::SceneDesc& object, std::span<co
                                       const FieldSettings& s) {
   const Vertices v = flatten(object);
   const ref::SceneBvh bvh = makeBvh(object);
-  const dnrt::BoundingSphere bs = dnrt::boundingSphere(object);
-  const VertexGrid grid(v, bs.centre, bs.radius);
   const std::size_t nv = v.position.size(), m = proxies.size(), stride = m * kShCount;
   const int spa = s.vertexRaysPerAxis;
   const double S = double(spa) * spa;
   const float tMin = 1e-4f * radius;
   std::vector<glm::vec3> direct(nv * stride, glm::vec3(0.0f));
-  std::vector<std::vector<std::uint32_t>> hits(nv);  // front-face hits' nearest vertices
+  std::vector<std::vector<Corner>> hits(nv);  // front-face hits' triangle corners
   Progress progress("rtf vertex transfer", nv);
   parallelFor(0, nv, [&](std::size_t p) {
     math::Pcg32 rng = math::Pcg32::fromIndex(p);
@@ -172,7 +142,7 @@ std::vector<glm::vec3> vertexTransfer(const ref::SceneDesc& object, std::span<co
         sh::evalBasis<double>(kShOrder, w, y);
         for (int j = 0; j < kShCount; ++j) sum[std::size_t(j)] += y[std::size_t(j)];
       } else if (glm::dot(glm::dvec3(hit.geometricNormal), w) < 0.0) {
-        hits[p].push_back(grid.nearest(hit.position, hit.geometricNormal));
+        for (const Corner& c : corners(v, object, hit)) hits[p].push_back(c);
       }  // a back face: light from inside the object, none
     }
     const std::vector<float> wk = proxyWeights(v.position[p], proxies, radius);
@@ -186,8 +156,8 @@ std::vector<glm::vec3> vertexTransfer(const ref::SceneDesc& object, std::span<co
   for (int b = 0; b < s.selfBounces; ++b) {
     std::vector<glm::vec3> next(nv * stride, glm::vec3(0.0f));
     parallelFor(0, nv, [&](std::size_t p) {
-      for (std::uint32_t x : hits[p])
-        for (std::size_t e = 0; e < stride; ++e) next[p * stride + e] += previous[std::size_t(x) * stride + e];
+      for (const Corner& c : hits[p])
+        for (std::size_t e = 0; e < stride; ++e) next[p * stride + e] += c.weight * previous[std::size_t(c.vertex) * stride + e];
       for (std::size_t e = 0; e < stride; ++e) next[p * stride + e] *= v.albedo[p] / float(S);
     }, 64);
     for (std::size_t e = 0; e < total.size(); ++e) total[e] += next[e];
@@ -212,7 +182,6 @@ BakeResult bake(const ref::SceneDesc& object, const FieldSettings& s) {
   const std::vector<glm::vec3> t = vertexTransfer(object, f.proxies, bs.radius, s);
 
   const ref::SceneBvh bvh = makeBvh(object);
-  const VertexGrid grid(v, bs.centre, bs.radius);
   const std::size_t N = sampleCount(s), D = itfDimension(s), m = std::size_t(s.proxies), stride = m * kShCount;
   const int perSphere = samplesPerSphere(s), n2 = s.faceSize * s.faceSize;
   // The projection directions: one cube map's texel centres with their exact solid angles (§4:
@@ -267,10 +236,12 @@ BakeResult bake(const ref::SceneDesc& object, const FieldSettings& s) {
           continue;
         }
         ++front;
-        const std::uint32_t vertex = grid.nearest(hit.position, hit.geometricNormal);
-        float* av = a.data() + std::size_t(vertex) * kShCount;
-        if (std::all_of(av, av + kShCount, [](float e) { return e == 0.0f; })) seen.push_back(vertex);
-        for (int i = 0; i < kShCount; ++i) av[i] += float(dir.y[std::size_t(i)] * dir.solidAngle);
+        for (const Corner& c : corners(v, object, hit)) {
+          if (!(c.weight > 0.0f)) continue;  // on the opposite edge
+          float* av = a.data() + std::size_t(c.vertex) * kShCount;
+          if (std::all_of(av, av + kShCount, [](float e) { return e == 0.0f; })) seen.push_back(c.vertex);
+          for (int i = 0; i < kShCount; ++i) av[i] += float(dir.y[std::size_t(i)] * dir.solidAngle * double(c.weight));
+        }
       }
       if (back > front) {
         inside[sample] = 1;  // M = 0, V = 0: no light reaches a point inside the object
@@ -316,7 +287,7 @@ BakeResult bake(const ref::SceneDesc& object, const FieldSettings& s) {
 
 std::string cacheKey(const ref::SceneDesc& object, const FieldSettings& s) {
   Hasher h;
-  h.str("rtf-field-v5");  // baker and file format version: bump when either changes (v2: cube-map projection directions; v3: warm-started CPCA; v4: CPCA on lines, k-means++ seeds, float products; v5: fp16 basis and α, file version 2)
+  h.str("rtf-field-v7");  // baker and file format version: bump when either changes (v2: cube-map projection directions; v3: warm-started CPCA; v4: CPCA on lines, k-means++ seeds, float products; v5: fp16 basis and α, file version 2; v6: burned by two unmerged session-11 experiments; v7: a hit's transfer interpolated over its triangle, not its nearest vertex's)
   h.pod(s.proxies).pod(s.spheres).pod(s.faceSize).pod(s.innerRadius).pod(s.outerRadius).pod(s.raysPerAxis);
   h.pod(s.vertexRaysPerAxis).pod(s.selfBounces).pod(s.clusters).pod(s.components);
   ref::hashGeometry(h, object);

@@ -9,11 +9,13 @@
 //     I_p = Σ_k Σ_j t_{p,k}^j l_{k,j} (RGB: ρ is RGB). Estimator (cosine-weighted rays, pdf cos/π):
 //       bounce 0: t⁰_{p,k}^j = ρ_p w_k(p) (1/S) Σ_{rays that escape} y_j(s)
 //       bounce b: t^b_{p,k}   = ρ_p (1/S) Σ_{rays that hit O's front faces} t^{b−1}_{x,k}
-//     t = Σ_{b ≤ selfBounces} t^b, x the mesh vertex nearest the hit (same facing) — the hit
-//     point's transfer is approximated by its nearest vertex (the ray tracer reports no triangle);
+//     t = Σ_{b ≤ selfBounces} t^b, t_x at the hit x interpolated over its triangle's corners with
+//     Embree's barycentrics, t_x = Σ_c b_c t_{v_c}, as the rasteriser interpolates per-vertex
+//     transfer (until session 12: the nearest vertex's t);
 //  3. at every sample q on the concentric spheres (field.hpp) the ITF (Eq. 6–7), over the texel
 //     directions ω of one cube map (face size raysPerAxis; the paper's 6×64×64, §4) weighted by
-//     their exact solid angles Δω: M^{ij}_{q,k} = Σ_{rays hitting p} Δω y_i(ω) t_{p,k}^j, and the
+//     their exact solid angles Δω: M^{ij}_{q,k} = Σ_{rays hitting p} Δω y_i(ω) t_{p,k}^j (t_p
+//     interpolated over p's triangle as in 2.), and the
 //     OOF V_q^i = Σ_{rays that miss} Δω y_i(ω). A sample inside the object (most hits are back
 //     faces) gets M = 0 and V = 0 (all light is blocked there);
 //  4. CPCA of the ITF vectors (Eq. 9, cpca.hpp), rounded to fp16 as the file stores it, its
