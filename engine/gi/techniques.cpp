@@ -18,7 +18,7 @@ const std::vector<const Technique*>& techniques() {
       &probes::technique(),  // the static indirect light; Services::probeVolume for the ones below
       &dnrt::technique(),    // what the dynamic objects add and take away (c_j from the probes)
       &vlm::technique(),
-      &sl::technique(),  // spherical lights (issue 13): bake + poses; passes not yet (it says so)
+      &sl::technique(),  // spherical lights (issue 13): bake, poses and the GPU passes
       &rtf::technique(),  // radiance transfer fields (issue 14): multi-bounce between the dynamic objects
   };
   return table;

@@ -2,7 +2,7 @@
 // read by rtf.vert, which passes it on as flat varyings).
 struct RtfObject {
   vec4 toQ[3];        // rows: q = toQ · (p, 1), the field's offset from o in units of η
-  vec4 toLocal[3];    // rows: world → object-frame rotation
+  vec4 toLocal[3];    // rows: world → object-frame orthonormal map (a reflection for a mirrored object, engine/gi/placement.hpp)
   vec4 centreWorld;   // xyz: o; w: the field's radius (outer + Δr)·η, or reach·η with a tail (m), the sphere rtf.vert covers
   vec4 grid;          // spheres, face size, inner, outer (η)
   uvec4 ids;          // x: entity + 1; y: SH count; z: the tail's reach (η, float bits; 0: none)

@@ -1,5 +1,5 @@
 // Session builds the table's techniques (engine/gi/technique.hpp): only named effects in which an
-// entity takes part run; reserved or unused ones are noted once and do not count as running (the
+// entity takes part run; unused ones are noted once and do not count as running (the
 // play overlay shows them off); an effect named later (a play key) is built then, nodes kept in
 // table order.
 #include <gtest/gtest.h>

@@ -1,5 +1,5 @@
 // The table of GI techniques (engine/gi/technique.hpp) on the CPU: one entry per technique effect,
-// reserved entries that say so, participation and its notes, bake jobs with content keys, and the
+// no reserved entries left (RTF took the last), participation and its notes, bake jobs with content keys, and the
 // accuracy rows gathered from the table.
 #include <gtest/gtest.h>
 
