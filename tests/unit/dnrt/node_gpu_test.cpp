@@ -54,6 +54,32 @@ Frame renderOnce(game::Session& session, gpu::Context& ctx) {
   return {session.renderer().readHdr(), session.renderer().executedPasses()};
 }
 
+// two-boxes.json in a session with its DNRT runtime (baked through a cache folder of the test's own:
+// RuntimeBakesThroughTheCache… empties its folder and tests may run in parallel), rendered once so
+// the world the objects are packed from is extracted; `objects` are its two drawn objects and `node`
+// a bare node the test drives with objects and settings of its choosing.
+struct TwoBoxes {
+  explicit TwoBoxes(const char* cacheName)
+      : session(ctx, game::loadLevelWithEffects(fs::path(BOUNCE_SOURCE_DIR) / "tests/data/dnrt/two-boxes.json",
+                                                std::nullopt)),
+        node(ctx, session.renderer().pipelines(), gpu::FrameRing::kDefaultFramesInFlight) {
+    session.update(0.0);
+    assets.load(session.registry(), fs::path(BOUNCE_TEST_OUT) / "dnrt" / "cooked");
+    runtime = std::make_unique<Runtime>(ctx, session.renderer().pipelines(), session.registry(), assets,
+                                        fs::path(BOUNCE_TEST_OUT) / "dnrt" / cacheName,
+                                        gpu::FrameRing::kDefaultFramesInFlight, session.level().background);
+    session.renderer().setNode("dnrt", runtime->node());
+    renderOnce(session, ctx);
+    objects = runtime->objectsFor(session.world());
+  }
+  gpu::Context& ctx = gpu::testkit::sharedContext();
+  game::Session session;
+  Node node;
+  ref::ReferenceAssets assets;
+  std::unique_ptr<Runtime> runtime;
+  std::vector<NodeObject> objects;
+};
+
 TEST(DnrtGpu, PropDarkensItsSurroundingsAndBrightensNothing) {
   gpu::Context& ctx = gpu::testkit::sharedContext();
   game::Session session(ctx, game::loadLevelWithEffects(fs::path(BOUNCE_SOURCE_DIR) / "content/levels/cornell-1.json",
@@ -308,21 +334,12 @@ TEST(DnrtGpu, RuntimeBakesThroughTheCacheAndOverlappingObjectsAdd) {
 // and equal within the rounding of the blends.
 TEST(DnrtGpu, TenObjectsOverOnePixelAddUpToTenTimesOne) {
   constexpr int kCopies = 10;
-  gpu::Context& ctx = gpu::testkit::sharedContext();
-  const fs::path levelPath = fs::path(BOUNCE_SOURCE_DIR) / "tests/data/dnrt/two-boxes.json";
-  game::Session session(ctx, game::loadLevelWithEffects(levelPath, std::nullopt));
-  session.update(0.0);
-  ref::ReferenceAssets assets;
-  assets.load(session.registry(), fs::path(BOUNCE_TEST_OUT) / "dnrt" / "cooked");
-  const auto frames = gpu::FrameRing::kDefaultFramesInFlight;
-  // Its own cache folder: RuntimeBakesThroughTheCache… empties its folder and may run in parallel.
-  Runtime dnrt(ctx, session.renderer().pipelines(), session.registry(), assets,
-               fs::path(BOUNCE_TEST_OUT) / "dnrt" / "many-cache", frames, session.level().background);
-  session.renderer().setNode("dnrt", dnrt.node());
-  renderOnce(session, ctx);  // extracts the world the objects are packed from
-  const std::vector<NodeObject> all = dnrt.objectsFor(session.world());
+  TwoBoxes boxes("many-cache");
+  gpu::Context& ctx = boxes.ctx;
+  game::Session& session = boxes.session;
+  const std::vector<NodeObject>& all = boxes.objects;
   ASSERT_EQ(all.size(), 2u);
-  Node node(ctx, session.renderer().pipelines(), frames);
+  Node& node = boxes.node;
   const auto renderWith = [&](std::vector<NodeObject> objects) {
     session.renderer().setNode("dnrt", [&, objects](rg::RenderGraph& graph, render::PassContext& pc) {
       node.addTo(graph, pc, objects);
@@ -475,19 +492,10 @@ struct NormalOverride {
 // copy of gbuffer.entity) and which path ran (the normal's w zeroed after lighting: only the w path
 // stops rejecting), and does the same for a clustered batch of two (the loop path, not kSingle).
 TEST(DnrtGpu, SelfTestFromTheNormalsWRejectsExactlyTheObjectsOwnPixels) {
-  gpu::Context& ctx = gpu::testkit::sharedContext();
-  const fs::path levelPath = fs::path(BOUNCE_SOURCE_DIR) / "tests/data/dnrt/two-boxes.json";
-  game::Session session(ctx, game::loadLevelWithEffects(levelPath, std::nullopt));
-  session.update(0.0);
-  ref::ReferenceAssets assets;
-  assets.load(session.registry(), fs::path(BOUNCE_TEST_OUT) / "dnrt" / "cooked");
-  const auto frames = gpu::FrameRing::kDefaultFramesInFlight;
-  // Its own cache folder: RuntimeBakesThroughTheCache… empties its folder and may run in parallel.
-  Runtime dnrt(ctx, session.renderer().pipelines(), session.registry(), assets,
-               fs::path(BOUNCE_TEST_OUT) / "dnrt" / "self-cache", frames, session.level().background);
-  session.renderer().setNode("dnrt", dnrt.node());
-  renderOnce(session, ctx);  // extracts the world the objects are packed from
-  const std::vector<NodeObject> all = dnrt.objectsFor(session.world());
+  TwoBoxes boxes("self-cache");
+  gpu::Context& ctx = boxes.ctx;
+  game::Session& session = boxes.session;
+  const std::vector<NodeObject>& all = boxes.objects;
   ASSERT_EQ(all.size(), 2u);
   std::uint32_t floorId = 0;  // entity index + 1 (gbuffer.entity's encoding)
   session.registry().view<scene::Name>().each([&](ecs::Entity e, scene::Name& n) {
@@ -495,7 +503,7 @@ TEST(DnrtGpu, SelfTestFromTheNormalsWRejectsExactlyTheObjectsOwnPixels) {
   });
   ASSERT_NE(floorId, 0u);
   ASSERT_LE(floorId, render::kEntityInNormalMax);
-  Node node(ctx, session.renderer().pipelines(), frames);
+  Node& node = boxes.node;
   const auto renderWith = [&](NodeObject object, NodeSettings settings) {
     session.renderer().setNode("dnrt", [&, object, settings](rg::RenderGraph& graph, render::PassContext& pc) {
       node.addTo(graph, pc, {object}, settings);
@@ -635,21 +643,13 @@ TEST(DnrtGpu, SelfTestFromTheNormalsWRejectsExactlyTheObjectsOwnPixels) {
 //   one step: |k_slot| / 255 per component (ρ_r (n_o·n_r)₊ s ≤ 1), per object.
 // The executed passes are exactly the box mode's (no pass is added; culling is unchanged).
 TEST(DnrtGpu, ClusteredModeDrawsThePerObjectImage) {
-  gpu::Context& ctx = gpu::testkit::sharedContext();
-  const fs::path levelPath = fs::path(BOUNCE_SOURCE_DIR) / "tests/data/dnrt/two-boxes.json";
-  game::Session session(ctx, game::loadLevelWithEffects(levelPath, std::nullopt));
-  session.update(0.0);
-  ref::ReferenceAssets assets;
-  assets.load(session.registry(), fs::path(BOUNCE_TEST_OUT) / "dnrt" / "cooked");
-  const auto frames = gpu::FrameRing::kDefaultFramesInFlight;
-  Runtime dnrt(ctx, session.renderer().pipelines(), session.registry(), assets,
-               fs::path(BOUNCE_TEST_OUT) / "dnrt" / "clustered-cache", frames, session.level().background);
-  session.renderer().setNode("dnrt", dnrt.node());
-  renderOnce(session, ctx);  // extracts the world the objects are packed from
-  const std::vector<NodeObject> all = dnrt.objectsFor(session.world());
+  TwoBoxes boxes("clustered-cache");
+  gpu::Context& ctx = boxes.ctx;
+  game::Session& session = boxes.session;
+  const std::vector<NodeObject>& all = boxes.objects;
   ASSERT_EQ(all.size(), 2u);
   ASSERT_NE(all[0].data.extents.z, all[1].data.extents.z) << "one 4-SH and one 9-SH field";
-  Node node(ctx, session.renderer().pipelines(), frames);
+  Node& node = boxes.node;
   const auto renderWith = [&](std::vector<NodeObject> objects, std::optional<Mode> mode) {
     session.renderer().setNode("dnrt", [&, objects, mode](rg::RenderGraph& graph, render::PassContext& pc) {
       node.addTo(graph, pc, objects, NodeSettings{mode});
@@ -714,20 +714,12 @@ TEST(DnrtGpu, ClusteredModeDrawsThePerObjectImage) {
 // are subsets of the CPU's, and on this level (camera above the floor, so each outer cube's screen hull
 // reaches beyond the cube's footprint on the floor) they are strictly smaller.
 TEST(DnrtGpu, TileCullKeepsTheClusteredImageAndOnlyClearsMaskBits) {
-  gpu::Context& ctx = gpu::testkit::sharedContext();
-  const fs::path levelPath = fs::path(BOUNCE_SOURCE_DIR) / "tests/data/dnrt/two-boxes.json";
-  game::Session session(ctx, game::loadLevelWithEffects(levelPath, std::nullopt));
-  session.update(0.0);
-  ref::ReferenceAssets assets;
-  assets.load(session.registry(), fs::path(BOUNCE_TEST_OUT) / "dnrt" / "cooked");
-  const auto frames = gpu::FrameRing::kDefaultFramesInFlight;
-  Runtime dnrt(ctx, session.renderer().pipelines(), session.registry(), assets,
-               fs::path(BOUNCE_TEST_OUT) / "dnrt" / "tile-cull-cache", frames, session.level().background);
-  session.renderer().setNode("dnrt", dnrt.node());
-  renderOnce(session, ctx);
-  const std::vector<NodeObject> all = dnrt.objectsFor(session.world());
+  TwoBoxes boxes("tile-cull-cache");
+  gpu::Context& ctx = boxes.ctx;
+  game::Session& session = boxes.session;
+  const std::vector<NodeObject>& all = boxes.objects;
   ASSERT_EQ(all.size(), 2u);
-  Node node(ctx, session.renderer().pipelines(), frames);
+  Node& node = boxes.node;
   const auto renderWith = [&](const std::vector<NodeObject>& objects, bool cull) {
     session.renderer().setNode("dnrt", [&, objects, cull](rg::RenderGraph& graph, render::PassContext& pc) {
       NodeSettings settings{Mode::Clustered};
