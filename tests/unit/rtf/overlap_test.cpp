@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -41,6 +42,38 @@ TEST(RtfOverlap, OneObjectAloneOrOutOfReachKeepsTheLightAtO) {
   for (const glm::vec4& s : sharedOcclusionScale(apart, 0)) EXPECT_EQ(s, glm::vec4(1.0f));
 }
 
+// Checks every sample of A (world wa) against B (world wb): s = 1 − ½ W_B(p)·(2·1.5 + lobe)/(2√(4π)) with
+// W_B(p) from B's lookup at p, `full` where W_B = 1, and all three kinds of sample (W_B = 1, its end, beyond).
+void expectShared(const Field& a, const glm::mat4& wa, const Field& b, const glm::mat4& wb, float lobe, float fullValue,
+                  const std::string& what) {
+  const std::vector<Object> objects = {{&a, wa, 0.0f}, {&b, wb, 0.0f}};
+  const std::vector<glm::vec4> s = sharedOcclusionScale(objects, 0);
+  ASSERT_EQ(s.size(), sampleCount(a.settings));
+  int full = 0, partial = 0, none = 0;
+  for (std::size_t r = 0; r < s.size(); ++r) {
+    const glm::vec3 p(wa * glm::vec4(a.radius * samplePosition(a.settings, r), 1.0f));
+    const glm::vec3 qb = glm::vec3(glm::inverse(wb) * glm::vec4(p, 1.0f)) / b.radius;
+    float w = 0.0f;
+    for (float x : lookup(b.settings, qb).weight) w += x;
+    const float want = 1.0f - 0.5f * w * (2.0f * 1.5f + lobe) / (2.0f * kU);
+    EXPECT_NEAR(s[r].x, want, 2e-5f) << what << " " << r;
+    EXPECT_EQ(s[r].x, s[r].y);
+    EXPECT_EQ(s[r].x, s[r].z);
+    EXPECT_EQ(s[r].w, 1.0f);
+    if (w > 1.0f - 1e-6f) {
+      ++full;
+      EXPECT_NEAR(s[r].x, fullValue, 2e-5f) << what << " " << r;
+    } else if (w > 0.0f) {
+      ++partial;
+    } else {
+      ++none;
+    }
+  }
+  EXPECT_GT(full, 0) << what;
+  EXPECT_GT(partial, 0) << what;
+  EXPECT_GT(none, 0) << what;
+}
+
 // B 1 m (2 η) from A along x, turned about x by 0, 90 and 180 degrees: its z lobe lands on world z, −y and
 // −z, so with A's lobe on z the l = 1 part of ∫(1 − V_A)(1 − V_B) is +0.8·0.6, 0 and −0.8·0.6; with A's lobe
 // on y (coefficient 1) and B turned 90 degrees, −0.8·0.6 (+0.48 if the rotation went the wrong way). Where
@@ -65,36 +98,41 @@ TEST(RtfOverlap, SharedPartIsHalfTheSphericalProductOverWhatAHides) {
                {&ay, 0.0f, x, 90.0f, x, -0.48f, 0.82228f},
                {&ay, 90.0f, xy, 90.0f, yz, 0.45941f, 0.75603f}};
   for (const auto& c : cases) {
-    const Field& a = *c.a;
     const glm::mat4 wa = glm::rotate(glm::mat4(1.0f), glm::radians(c.degreesA), c.axisA);
     const glm::mat4 wb = glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(1.0f, 0.0f, 0.0f)), glm::radians(c.degreesB), c.axisB);
-    const std::vector<Object> objects = {{&a, wa, 0.0f}, {&b, wb, 0.0f}};
-    const std::vector<glm::vec4> s = sharedOcclusionScale(objects, 0);
-    ASSERT_EQ(s.size(), sampleCount(a.settings));
-    int full = 0, partial = 0, none = 0;
-    for (std::size_t r = 0; r < s.size(); ++r) {
-      const glm::vec3 p(wa * glm::vec4(a.radius * samplePosition(a.settings, r), 1.0f));
-      const glm::vec3 qb = glm::vec3(glm::inverse(wb) * glm::vec4(p, 1.0f)) / b.radius;
-      float w = 0.0f;
-      for (float x : lookup(b.settings, qb).weight) w += x;
-      const float want = 1.0f - 0.5f * w * (2.0f * 1.5f + c.lobe) / (2.0f * kU);
-      EXPECT_NEAR(s[r].x, want, 2e-5f) << c.degreesA << " " << c.degreesB << " " << r;
-      EXPECT_EQ(s[r].x, s[r].y);
-      EXPECT_EQ(s[r].x, s[r].z);
-      EXPECT_EQ(s[r].w, 1.0f);
-      if (w > 1.0f - 1e-6f) {
-        ++full;
-        EXPECT_NEAR(s[r].x, c.full, 2e-5f) << c.degreesA << " " << c.degreesB << " " << r;
-      } else if (w > 0.0f) {
-        ++partial;
-      } else {
-        ++none;
-      }
-    }
-    // All three kinds of sample occur: inside B's field, in its end, beyond it.
-    EXPECT_GT(full, 0);
-    EXPECT_GT(partial, 0);
-    EXPECT_GT(none, 0);
+    expectShared(*c.a, wa, b, wb, c.lobe, c.full, std::to_string(c.degreesA) + " " + std::to_string(c.degreesB));
+  }
+}
+
+// A mirror among the two: B's local → A's local directions are M_A⁻¹M_B = s_A s_B R_Aᵀ R_B (gi::Placement),
+// so B's (1 − V_B) must be turned by R_Aᵀ R_B and inverted ((−1)^l) exactly when one of the two is mirrored.
+// Same A and B as above, B 1 m along x; X, Z flip world x, z (det −1; R = −X is 180 degrees about x, −Z 180 degrees about z).
+//  - B = T·X, both lobes z: X keeps z, lobe +0.48, s = 0.75458 (the turn R alone sends z to −z: −0.48).
+//  - A = Z, B = T, both lobes z: A's lobe on world −z, lobe −0.48, s = 0.82228 (without the inversion +0.48).
+//  - A = Z, B = T·Z: both lobes on world −z, lobe +0.48 (inverting whenever either is mirrored gives −0.48).
+//  - A's lobe y, B = T·rot(90°, x)·X, lobe z: z → z → −y, lobe −0.48 (without the inversion +0.48).
+//  - both lobes on coefficient 9, y(3x² − y²) (l = 3, even in x), B = T·X: lobe +0.48 (R alone flips y: −0.48).
+TEST(RtfOverlap, ExactlyOneMirroredInvertsTheOtherFieldsOcclusion) {
+  const Field az = handField(2.0f, 0.8f), ay = handField(2.0f, 0.8f, 1), a9 = handField(2.0f, 0.8f, 9);
+  const Field bz = handField(1.5f, 0.6f), b9 = handField(1.5f, 0.6f, 9);
+  const glm::mat4 id(1.0f), t = glm::translate(id, glm::vec3(1.0f, 0.0f, 0.0f));
+  const glm::mat4 flipX = glm::scale(id, glm::vec3(-1.0f, 1.0f, 1.0f)), flipZ = glm::scale(id, glm::vec3(1.0f, 1.0f, -1.0f));
+  const glm::mat4 turnX = glm::rotate(id, glm::radians(90.0f), glm::vec3(1.0f, 0.0f, 0.0f));
+  const struct {
+    const Field *a, *b;
+    glm::mat4 wa, wb;
+    float lobe, full;
+    bool mixed;
+    const char* what;
+  } cases[] = {{&az, &bz, id, t * flipX, 0.48f, 0.75458f, true, "B mirrored in x"},
+               {&az, &bz, flipZ, t, -0.48f, 0.82228f, true, "A mirrored in z"},
+               {&az, &bz, flipZ, t * flipZ, 0.48f, 0.75458f, false, "both mirrored in z"},
+               {&ay, &bz, id, t * turnX * flipX, -0.48f, 0.82228f, true, "B mirrored in x and turned"},
+               {&a9, &b9, id, t * flipX, 0.48f, 0.75458f, true, "B mirrored in x, l = 3 lobes"}};
+  for (const auto& c : cases) {
+    // The cases reach the branch they are about: one mirrored placement of the two, except the control.
+    ASSERT_EQ(place(*c.a, c.wa).mirrored != place(*c.b, c.wb).mirrored, c.mixed) << c.what;
+    expectShared(*c.a, c.wa, *c.b, c.wb, c.lobe, c.full, c.what);
   }
 }
 
