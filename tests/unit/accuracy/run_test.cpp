@@ -58,9 +58,10 @@ class AccuracyRun : public ::testing::Test {
     // cornell-1's box (split into one entity per wall), lamp and DNRT/SL prop, plus Virtual Light
     // Meshes: the one shipped level in which every technique's rows run.
     o.level = std::filesystem::path(BOUNCE_SOURCE_DIR) / "content/levels/cornell-vlm.json";
-    // One folder per process: ctest runs each TEST as its own process (--gtest_filter=AccuracyRun.X),
-    // two at a time, and each reruns this setup; with one folder a test could read back the other
-    // process's images. No test is current here, so the folder is named after the filter.
+    // One folder per process: ctest runs the suite as one process (entry `AccuracyRun`, so this
+    // setup runs once), but single TESTs may still be run side by side with --gtest_filter, each
+    // rerunning it; with one folder a process could read back the other's images. No test is
+    // current here, so the folder is named after the filter.
     std::string filter = GTEST_FLAG_GET(filter);
     for (char& c : filter)
       if (!std::isalnum(static_cast<unsigned char>(c)) && c != '.') c = '_';
