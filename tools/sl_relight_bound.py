@@ -21,6 +21,8 @@ pixels carry no error and their noise leaves the numerator: e*² = (‖t − r�
   A  hard:     SL's level row where w > 0, exact where w = 0
   B  blend:    exact weighted by 1 − w (SL today weighted by w): a continuous blend at the ball's edge
                (the transport would have to be exact, near field included, in the fade shell F/2..F)
+  H  first order: like B, with SL's own uncut field (the influence-12 row) in place of exact: probes
+               that reproduced only SL's first-order view of the spheres in the shell
   E  added:    SL today + (1 − w) × exact inside (the transport exact but seen with weight 1 − w on top
                of SL's own faded near field: the double counting the blend must avoid)
   C  + const:  A, plus inside the ball the least-squares constant (a room-wide level added everywhere
@@ -209,6 +211,12 @@ def main():
         k = int((np.abs(M[fit_on]).sum(0) > 0).sum())
         num = float(((t - r)[m3] ** 2).sum() - (n[m3 & ~fit3] ** 2).sum() - (1 - k / fit_on.sum()) * (n[fit3] ** 2).sum())
         print(f"  {name:36s} e* {math.sqrt(max(num, 0.0) / conv):.3f}  ({sp:g} m grid, {k} nodes, {int(fit_on.sum())} px fitted)")
+    # H: the shell given SL's own first-order field, uncut (the influence-12 row, ~ unfaded at F ≤ 6's
+    # shell), instead of the exact one: what probes that only reproduced SL's view of the spheres would add.
+    wide = "sl-spheres-level-order-4-influence-12-hierarchy-off-ref-all"
+    if a.influence != "12" and os.path.exists(f"{F}/image-{wide}.pfm"):
+        t = w3 * sl + (1 - w3) * effect(F, wide)
+        print(f"  H w·SL + (1 − w)·SL uncut (12) inside  e* {es(t, ins):.3f}")
     print(f"  E SL + (1 - w) exact inside          e* {es(sl + (1 - w3) * (r - n), ins):.3f}")
     if not terms:
         return 0
