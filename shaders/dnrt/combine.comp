@@ -15,7 +15,11 @@
 // own brick (objects share a field's brick in the RGBA8 atlas, not their c_j).
 #include "dnrt/dnrt.glsl"
 
-layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
+// 8 × 4 × 4: llvmpipe runs a workgroup as loops over y and z of x-rows of 8 lanes (its 256-bit
+// vectors hold 8 fp32), so a 4-wide x left half of every vector idle; 8-wide rows fill them. Measured
+// (README "DNRT cost, session 13"): the dispatch costs ~0.7× the 4³ one. engine/gi/dnrt/node.cpp
+// dispatches ceil(size / kCombineLocal) groups per axis.
+layout(local_size_x = 8, local_size_y = 4, local_size_z = 4) in;
 
 layout(constant_id = 0) const bool kSh9 = false;
 // A second term of the same object, read in the same dispatch: its occlusion-only field (−k_j) with

@@ -39,6 +39,9 @@ struct CombinePush {  // combine.comp's Push
   std::int32_t occlusionZ = 0;  // kOcclusion: its first z layer
 };
 
+// combine.comp's local size (why 8 wide in x: there).
+constexpr glm::uvec3 kCombineLocal(8, 4, 4);
+
 struct ClusterPush {  // clustered.frag's Push
   glm::vec4 invAtlasSize;
   std::uint32_t tileBase = 0, tilesX = 0, pad[2] = {0, 0};
@@ -395,8 +398,8 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
             w.update(ctx_, set);
             p.bindSet(cmd, 0, set);
             p.push(cmd, CombinePush{std::uint32_t(i), srcZ, dstZ, size, std::uint32_t(objects.size() + i), occlusionZ});
-            const auto groups = std::uint32_t(size + 3) / 4;  // local size 4³
-            vkCmdDispatch(cmd, groups, groups, groups);
+            const auto groups = [size](std::uint32_t local) { return (std::uint32_t(size) + local - 1) / local; };
+            vkCmdDispatch(cmd, groups(kCombineLocal.x), groups(kCombineLocal.y), groups(kCombineLocal.z));
           };
           for (std::size_t i = 0; i < objects.size(); ++i) {
             if (!d.volumes[i]) continue;
