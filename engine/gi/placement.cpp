@@ -17,12 +17,11 @@ Placement place(glm::vec3 centreLocal, float radiusLocal, const glm::mat4& world
     throw InternalError(std::string(who) + ": singular object transform");
   // Rotation from the normalised columns through a quaternion, which re-orthonormalises small
   // shears and rounding so sh::Rotation accepts it.
-  glm::mat3 unit(m[0] / scale.x, m[1] / scale.y, m[2] / scale.z);
   // A mirror (det < 0) is no rotation: quat_cast would return an unrelated one. Keep −unit (a
   // rotation) and the flag; shToWorld / shToLocal apply the inversion's (−1)^l.
-  p.mirrored = det < 0.0f;
-  if (p.mirrored) unit = -unit;
-  p.localToWorldRotation = glm::mat3_cast(glm::normalize(glm::quat_cast(unit)));
+  const SignedRotation unit = splitMirror(glm::mat3(m[0] / scale.x, m[1] / scale.y, m[2] / scale.z));
+  p.mirrored = unit.mirrored;
+  p.localToWorldRotation = glm::mat3_cast(glm::normalize(glm::quat_cast(unit.rotation)));
   p.worldToLocal = glm::inverse(world);
   p.centreLocal = centreLocal;
   p.radiusLocal = radiusLocal;
