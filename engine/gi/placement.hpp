@@ -32,7 +32,11 @@ struct Placement {
 };
 
 // The placement of a field with bounding centre `centreLocal` and radius `radiusLocal` (local units).
-// Throws InternalError "<who>: singular object transform" when `world` is singular or not finite.
+// Any finite `world` with non-zero axis scales places, however small the object: a uniform scale s
+// has det s³ (1e-30 at s = 1e-10), so the determinant and the inverse are taken in double, where
+// they stay normal down to s ≈ 1e-100. Throws InternalError "<who>: singular object transform" only
+// when an axis scale is 0, `world` is not finite, or worldToLocal overflows a float (an axis scale
+// under ~3e-39, below what a float scale can hold).
 Placement place(glm::vec3 centreLocal, float radiusLocal, const glm::mat4& world, const char* who);
 
 // An orthogonal M (det ±1: a placement's normalised columns, SL's closest-rotation pose) as M = R or
