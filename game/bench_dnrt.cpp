@@ -25,8 +25,6 @@
 namespace bounce::game {
 namespace {
 
-constexpr std::uint64_t kWarmupFrames = 5;  // first draws compile pipelines (DESIGN.md machine facts)
-constexpr double kFrameDt = 1.0 / 60.0;     // the levels' motion advanced as in `bounce profile`
 const double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // One session to measure: a level with its effects and DNRT settings applied.
@@ -227,14 +225,7 @@ DnrtBenchReport runDnrtBench(const DnrtBenchOptions& options) {
     TimingCollector timings;
     {
       Session session(ctx, job.configured);
-      const std::uint64_t total = std::uint64_t(options.frames) + kWarmupFrames;
-      for (std::uint64_t f = 0; f < total; ++f) {
-        session.update(double(f) * kFrameDt);
-        session.render(presenter, {});
-        timings.collect(session.renderer().frames(), kWarmupFrames);
-      }
-      session.renderer().frames().waitIdle();
-      timings.collect(session.renderer().frames(), kWarmupFrames);
+      timeFrames(session, presenter, options.frames, timings);
     }
     fillTimes(timings.stats(), row, job.dnrtEntities);
     report.rows.push_back(std::move(row));

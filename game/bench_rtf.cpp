@@ -122,11 +122,10 @@ int runBenchRtf(const cli::Args& args) {
   // GPU: the level with the first n of those objects carrying an `rtf` component at the settings
   // above (the fields just baked: same key), the others drawn without one, rendered with
   // direct,shadows,probes,rtf; medians of the "rtf.bounce" (ξ pass) and "rtf" (shading) scopes,
-  // and of the per-object shading scopes "rtf/<id>", over --frames after kWarmup frames.
+  // and of the per-object shading scopes "rtf/<id>", over --frames after kWarmupFrames (timeFrames).
   if (args.has("--no-gpu")) return 0;
   const auto res = args.resolution("--resolution").value_or(std::pair<int, int>{1280, 720});
   const int frames = intIn(args, "--frames", 30, 1, 100000);
-  constexpr int kWarmup = 5;  // the first draws compile pipelines (DESIGN.md machine facts)
   gpu::Context ctx({args.str("--device", "")});
   gpu::OffscreenPresenter presenter(ctx, {std::uint32_t(res.first), std::uint32_t(res.second)});
   for (std::size_t n = 1; n <= fields.size(); ++n) {
@@ -146,13 +145,7 @@ int runBenchRtf(const cli::Args& args) {
     TimingCollector timings;
     {
       Session session(ctx, configured);
-      for (int f = 0; f < frames + kWarmup; ++f) {
-        session.update(double(f) / 60.0);
-        session.render(presenter, {});
-        timings.collect(session.renderer().frames(), kWarmup);
-      }
-      session.renderer().frames().waitIdle();
-      timings.collect(session.renderer().frames(), kWarmup);
+      timeFrames(session, presenter, frames, timings);
     }
     double bounceGpu = 0.0, shade = 0.0, perObject = 0.0;
     std::size_t objectRows = 0, measured = 0;

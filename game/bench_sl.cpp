@@ -19,8 +19,6 @@
 namespace bounce::game {
 namespace {
 
-constexpr std::uint64_t kWarmupFrames = 5;  // first draws compile pipelines (DESIGN.md machine facts)
-constexpr double kFrameDt = 1.0 / 60.0;     // the level's motion advanced as in `bounce profile`
 
 }  // namespace
 
@@ -88,14 +86,7 @@ int runBenchSl(const cli::Args& args) {
       double updateMs = std::numeric_limits<double>::quiet_NaN();
       {
         Session session(ctx, configured);
-        const std::uint64_t total = std::uint64_t(frames) + kWarmupFrames;
-        for (std::uint64_t f = 0; f < total; ++f) {
-          session.update(double(f) * kFrameDt);
-          session.render(presenter, {});
-          timings.collect(session.renderer().frames(), kWarmupFrames);
-        }
-        session.renderer().frames().waitIdle();
-        timings.collect(session.renderer().frames(), kWarmupFrames);
+        timeFrames(session, presenter, frames, timings);
         if (const auto* rt = session.technique<gi::sl::SessionRuntime>("sl")) updateMs = rt->medianUpdateMs();
       }
       double slMs = 0.0;

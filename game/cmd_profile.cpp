@@ -15,8 +15,6 @@
 namespace bounce::game {
 
 namespace {
-constexpr std::uint64_t kWarmupFrames = 5;  // first draws compile pipelines (DESIGN.md machine facts)
-constexpr double kProfileDt = 1.0 / 60.0;
 }  // namespace
 
 int runProfile(const cli::Args& args) {
@@ -29,14 +27,7 @@ int runProfile(const cli::Args& args) {
   gpu::OffscreenPresenter presenter(ctx, {std::uint32_t(res.first), std::uint32_t(res.second)});
   TimingCollector timings;
   Progress progress("profile", std::size_t(frames) + kWarmupFrames);
-  for (std::uint64_t f = 0; f < std::uint64_t(frames) + kWarmupFrames; ++f) {
-    session.update(double(f) * kProfileDt);
-    session.render(presenter, {});
-    timings.collect(session.renderer().frames(), kWarmupFrames);
-    progress.advance();
-  }
-  session.renderer().frames().waitIdle();
-  timings.collect(session.renderer().frames(), kWarmupFrames);
+  timeFrames(session, presenter, frames, timings, &progress);
   progress.finish();
   const auto rows = timings.stats();
   std::string effects;

@@ -5,6 +5,9 @@
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
+#include "engine/core/progress.hpp"
+#include "game/session.hpp"
+
 namespace bounce::game {
 
 double percentile(std::vector<double> s, double q) {
@@ -79,6 +82,17 @@ std::string formatJson(const std::vector<PassStats>& rows) {
     passes.push_back({{"pass", r.pass}, {"object", r.object}, {"frames", r.frames}, {"median_ms", r.medianMs},
                       {"p95_ms", r.p95Ms}});
   return nlohmann::json{{"passes", passes}}.dump(2) + "\n";
+}
+
+void timeFrames(Session& session, gpu::Presenter& presenter, int frames, TimingCollector& timings, Progress* progress) {
+  for (std::uint64_t f = 0; f < std::uint64_t(frames) + kWarmupFrames; ++f) {
+    session.update(double(f) * kFrameDt);
+    session.render(presenter, {});
+    timings.collect(session.renderer().frames(), kWarmupFrames);
+    if (progress) progress->advance();
+  }
+  session.renderer().frames().waitIdle();
+  timings.collect(session.renderer().frames(), kWarmupFrames);
 }
 
 }  // namespace bounce::game

@@ -7,7 +7,16 @@
 
 #include "engine/gpu/frames.hpp"
 
+namespace bounce {
+class Progress;
+namespace gpu {
+class Presenter;
+}
+}  // namespace bounce
+
 namespace bounce::game {
+
+class Session;
 
 struct PassStats {
   std::string pass;
@@ -40,6 +49,15 @@ class TimingCollector {
   std::map<std::string, std::uint32_t> depth_;  // of each scope name (the same every frame)
   std::size_t frames_ = 0;
 };
+
+// The frames `bounce profile` and the benches time: kWarmupFrames first (their draws compile
+// pipelines: DESIGN.md machine facts), then `frames`, the level's motion advanced kFrameDt (s) each;
+// every frame but the warm-up ones lands in `timings` (the last after waiting for the device).
+// `progress`, when set, advances once a frame.
+inline constexpr std::uint64_t kWarmupFrames = 5;
+inline constexpr double kFrameDt = 1.0 / 60.0;
+void timeFrames(Session& session, gpu::Presenter& presenter, int frames, TimingCollector& timings,
+                Progress* progress = nullptr);
 
 std::string formatTable(const std::vector<PassStats>& rows);
 // CSV with the header exactly "pass,object,frames,median_ms,p95_ms".

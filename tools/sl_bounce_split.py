@@ -34,7 +34,6 @@ tool checks the two static references are equal.)
 usage: tools/sl_bounce_split.py FULL BLACK [--influence 6|12] [--level content/levels/characters.json]
        tools/sl_bounce_split.py --write-black LEVEL COPY
 """
-import argparse
 import json
 import math
 import os
@@ -44,7 +43,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from effect_noise import corrected, read_pfm as pfm  # noqa: E402
-from sl_parts import characters, effect, room_positions, segment_distance  # noqa: E402
+from sl_parts import arguments, pixel_groups, sl_parts  # noqa: E402
 
 
 def ref(d, part):
@@ -76,12 +75,7 @@ def main():
     if len(sys.argv) == 4 and sys.argv[1] == "--write-black":
         write_black(sys.argv[2], sys.argv[3])
         return 0
-    ap = argparse.ArgumentParser()
-    ap.add_argument("full")
-    ap.add_argument("black")
-    ap.add_argument("--influence", default="6", choices=["12", "6"])
-    ap.add_argument("--level", default="content/levels/characters.json")
-    a = ap.parse_args()
+    a = arguments("full", "black")
     F, B = a.full, a.black
     without = ref(F, "without")
     if np.abs(ref(B, "without") - without).max() > 0:
@@ -96,23 +90,8 @@ def main():
     mask = pfm(f"{F}/mask-indirect-only.pfm")[:, :, 0] > 0.5
     if (mask != (pfm(f"{B}/mask-indirect-only.pfm")[:, :, 0] > 0.5)).any():
         sys.exit("sl_bounce_split.py: the two folders' indirect-only masks differ (expected the same characters)")
-    base = f"sl-spheres-level-order-4-influence-{a.influence}"
-    both = effect(F, f"{base}-hierarchy-off-ref-all")
-    relight = effect(F, f"{base}-terms-none-ref-all")
-    sl_b = effect(F, f"{base}-terms-bounce-ref-all") - relight
-    sl_s = effect(F, f"{base}-terms-shadow-ref-all") - relight
-    level = json.load(open(a.level))
-    h, w = mask.shape
-    groups = [("indirect-only", mask)]
-    if any(e["id"] == "room-floor" for e in level["entities"]):  # the characters' room (sl_parts.py's bands)
-        pos = room_positions(level, h, w)
-        chars = characters(level)
-        dist = np.stack([segment_distance(pos, p, ht) for _, p, ht in chars], -1)
-        nearest, dmin = dist.argmin(-1), dist.min(-1)
-        for lo, hi in ((0.0, 0.5), (0.5, 1.0), (1.0, 2.0), (2.0, 99.0)):
-            groups.append((f"{lo:g}-{hi:g} m from a character", mask & (dmin >= lo) & (dmin < hi)))
-        for k, (name, _, _) in enumerate(chars):
-            groups.append((f"nearest {name}", mask & (nearest == k)))
+    both, relight, sl_b, sl_s = sl_parts(F, a.influence)
+    groups = pixel_groups(json.load(open(a.level)), mask)
     print(f"{F} + {B}, influence {a.influence}")
     for label, m in groups:
         if m.sum() < 16:

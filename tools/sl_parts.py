@@ -114,36 +114,54 @@ def table(label, parts, r, n, m):
     return conv
 
 
-def main():
+def arguments(*folders):
+    """The command line both SL tools take: the folders, then --influence and --level."""
     ap = argparse.ArgumentParser()
-    ap.add_argument("dir")
+    for name in folders:
+        ap.add_argument(name)
     ap.add_argument("--influence", default="6", choices=["12", "6"])  # the decomposition rows' cuts
     ap.add_argument("--level", default="content/levels/characters.json")
-    a = ap.parse_args()
+    return ap.parse_args()
+
+
+def sl_parts(d, influence):
+    """SL's row with both terms and its parts (module docstring): both, relight, bounce, shadow."""
+    base = f"sl-spheres-level-order-4-influence-{influence}"
+    both = effect(d, f"{base}-hierarchy-off-ref-all")
+    relight = effect(d, f"{base}-terms-none-ref-all")
+    bounce = effect(d, f"{base}-terms-bounce-ref-all") - relight
+    shadow = effect(d, f"{base}-terms-shadow-ref-all") - relight
+    return both, relight, bounce, shadow
+
+
+def pixel_groups(level, mask, indent=""):
+    """(label, pixel mask) pairs: the indirect-only pixels, and on the characters' room (the
+    "room-floor" … entities) the same split by distance from the nearer character and by character."""
+    groups = [("indirect-only", mask)]
+    if any(e["id"] == "room-floor" for e in level["entities"]):
+        pos = room_positions(level, *mask.shape)
+        chars = characters(level)
+        dist = np.stack([segment_distance(pos, p, ht) for _, p, ht in chars], -1)
+        nearest, dmin = dist.argmin(-1), dist.min(-1)
+        for lo, hi in ((0.0, 0.5), (0.5, 1.0), (1.0, 2.0), (2.0, 99.0)):
+            groups.append((f"{indent}{lo:g}-{hi:g} m from a character", mask & (dmin >= lo) & (dmin < hi)))
+        for k, (name, _, _) in enumerate(chars):
+            groups.append((f"{indent}nearest {name}", mask & (nearest == k)))
+    return groups
+
+
+def main():
+    a = arguments("dir")
     d, f = a.dir, a.influence
     level = json.load(open(a.level))
     r = pfm(f"{d}/reference-all-with.pfm") - pfm(f"{d}/reference-all-without.pfm")
     n = r - (pfm(f"{d}/reference-all-half-with.pfm") - pfm(f"{d}/reference-all-half-without.pfm"))
     mask = pfm(f"{d}/mask-indirect-only.pfm")[:, :, 0] > 0.5
-    base = f"sl-spheres-level-order-4-influence-{f}"
-    both = effect(d, f"{base}-hierarchy-off-ref-all")
-    relight = effect(d, f"{base}-terms-none-ref-all")
-    bounce = effect(d, f"{base}-terms-bounce-ref-all") - relight
-    shadow = effect(d, f"{base}-terms-shadow-ref-all") - relight
+    both, relight, bounce, shadow = sl_parts(d, f)
     mask3 = np.repeat(mask[:, :, None], 3, 2)
-    h, w = mask.shape
     print(f"{d}, influence {f}: parts of the row with both terms; sum − both: max "
           f"{np.abs(relight + bounce + shadow - both)[mask3].max():.2e}")
-    groups = [("indirect-only", mask)]
-    if any(e["id"] == "room-floor" for e in level["entities"]):  # the characters' room: bands and characters
-        pos = room_positions(level, h, w)
-        chars = characters(level)
-        dist = np.stack([segment_distance(pos, p, ht) for _, p, ht in chars], -1)
-        nearest, dmin = dist.argmin(-1), dist.min(-1)
-        for lo, hi in ((0.0, 0.5), (0.5, 1.0), (1.0, 2.0), (2.0, 99.0)):
-            groups.append((f"  {lo:g}-{hi:g} m from a character", mask & (dmin >= lo) & (dmin < hi)))
-        for k, (name, _, _) in enumerate(chars):
-            groups.append((f"  nearest {name}", mask & (nearest == k)))
+    groups = pixel_groups(level, mask, "  ")
     total = None
     for label, m in groups:
         m3 = np.repeat(m[:, :, None], 3, 2)

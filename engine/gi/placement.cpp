@@ -10,24 +10,30 @@ namespace bounce::gi {
 
 Placement place(glm::vec3 centreLocal, float radiusLocal, const glm::mat4& world, const char* who) {
   Placement p;
-  const glm::mat3 m(world);
-  const glm::vec3 scale(glm::length(m[0]), glm::length(m[1]), glm::length(m[2]));
-  const float det = glm::determinant(m);
-  if (!std::isfinite(det) || std::abs(det) < 1e-30f || !(scale.x > 0 && scale.y > 0 && scale.z > 0))
+  // In double: in float a uniform scale s has det s³ denormal below s ≈ 2e-13 and 0 below s ≈ 1e-15
+  // (the inverse turns to Inf), and the column lengths' squares underflow below s ≈ 1e-19.
+  const glm::dmat4 worldD(world);
+  const glm::dmat3 m(worldD);
+  const glm::dvec3 scale(glm::length(m[0]), glm::length(m[1]), glm::length(m[2]));
+  const double det = glm::determinant(m);
+  const glm::mat4 worldToLocal(glm::inverse(worldD));
+  bool finite = std::isfinite(det) && det != 0.0;
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r) finite = finite && std::isfinite(worldToLocal[c][r]) && std::isfinite(world[c][r]);
+  if (!finite || !(scale.x > 0 && scale.y > 0 && scale.z > 0))
     throw InternalError(std::string(who) + ": singular object transform");
   // Rotation from the normalised columns through a quaternion, which re-orthonormalises small
-  // shears and rounding so sh::Rotation accepts it.
-  glm::mat3 unit(m[0] / scale.x, m[1] / scale.y, m[2] / scale.z);
-  // A mirror (det < 0) is no rotation: quat_cast would return an unrelated one. Keep −unit (a
-  // rotation) and the flag; shToWorld / shToLocal apply the inversion's (−1)^l.
-  p.mirrored = det < 0.0f;
-  if (p.mirrored) unit = -unit;
-  p.localToWorldRotation = glm::mat3_cast(glm::normalize(glm::quat_cast(unit)));
-  p.worldToLocal = glm::inverse(world);
+  // shears and rounding so sh::Rotation accepts it. A mirror (det < 0) is no rotation: quat_cast
+  // would return an unrelated one. Keep −unit (a rotation) and the flag; shToWorld / shToLocal
+  // apply the inversion's (−1)^l.
+  const SignedRotation unit = splitMirror(glm::mat3(glm::dmat3(m[0] / scale.x, m[1] / scale.y, m[2] / scale.z)));
+  p.mirrored = unit.mirrored;
+  p.localToWorldRotation = glm::mat3_cast(glm::normalize(glm::quat_cast(unit.rotation)));
+  p.worldToLocal = worldToLocal;
   p.centreLocal = centreLocal;
   p.radiusLocal = radiusLocal;
   p.centreWorld = glm::vec3(world * glm::vec4(centreLocal, 1.0f));
-  p.radiusWorld = radiusLocal * std::max({scale.x, scale.y, scale.z});
+  p.radiusWorld = radiusLocal * float(std::max({scale.x, scale.y, scale.z}));
   return p;
 }
 

@@ -32,14 +32,33 @@ struct Placement {
 };
 
 // The placement of a field with bounding centre `centreLocal` and radius `radiusLocal` (local units).
-// Throws InternalError "<who>: singular object transform" when `world` is singular or not finite.
+// Any finite `world` with non-zero axis scales places, however small the object: a uniform scale s
+// has det s³ (1e-30 at s = 1e-10), so the determinant and the inverse are taken in double, where
+// they stay normal down to s ≈ 1e-100. Throws InternalError "<who>: singular object transform" only
+// when an axis scale is 0, `world` is not finite, or worldToLocal overflows a float (an axis scale
+// under ~3e-39, below what a float scale can hold).
 Placement place(glm::vec3 centreLocal, float radiusLocal, const glm::mat4& world, const char* who);
+
+// An orthogonal M (det ±1: a placement's normalised columns, SL's closest-rotation pose) as M = R or
+// M = −R with R a rotation (sh::Rotation takes rotations only); `mirrored` when det M < 0.
+struct SignedRotation {
+  glm::mat3 rotation{1.0f};
+  bool mirrored = false;
+};
+inline SignedRotation splitMirror(const glm::mat3& m) {
+  const bool mirrored = glm::determinant(m) < 0.0f;
+  return {mirrored ? -m : m, mirrored};
+}
+
+// The inversion's factor on SH band l for a mirrored frame, (−1)^l (Y_lm(−ω) = (−1)^l Y_lm(ω)); 1 otherwise.
+inline float bandSign(bool mirrored, int l) { return mirrored && l % 2 == 1 ? -1.0f : 1.0f; }
 
 // Band l of c times (−1)^l in place: the SH of f(−ω) (an inversion). 1, 4, 9 or 16 coefficients.
 template <typename V>
 void invert(std::span<V> c) {
-  for (std::size_t l = 1; l * l < c.size(); l += 2)
-    for (std::size_t i = l * l; i < (l + 1) * (l + 1) && i < c.size(); ++i) c[i] = -c[i];
+  for (std::size_t l = 1; l * l < c.size(); ++l)
+    if (bandSign(true, int(l)) < 0.0f)
+      for (std::size_t i = l * l; i < (l + 1) * (l + 1) && i < c.size(); ++i) c[i] = -c[i];
 }
 
 // SH of a local-frame function f (1, 4, 9 or 16 coefficients; V float or RGB) in the world:

@@ -12,6 +12,7 @@
 #include "engine/core/paths.hpp"
 #include "engine/gi/dnrt/bake.hpp"
 #include "engine/gi/dnrt/object_scene.hpp"
+#include "engine/gi/participants.hpp"
 #include "engine/gi/incident/session_light.hpp"
 #include "engine/gi/probes/bake.hpp"
 
@@ -131,18 +132,10 @@ class DnrtTechnique final : public Technique {
       job.inputs = inputs;
       job.inputs.push_back(ob->mesh.asset);
       job.cached = [ob, occlusionOutput]() -> std::optional<std::string> {
+        std::vector<std::filesystem::path> entries{ob->output};
+        if (occlusionOutput) entries.push_back(*occlusionOutput);
+        if (!gi::cacheEntriesLoad("dnrt", entries, [](const std::filesystem::path& p) { load(p); })) return std::nullopt;
         std::string line = describe(ob->name, ob->settings) + ": cached " + ob->output.string();
-        using Path = const std::filesystem::path*;
-        for (const Path path : {Path(&ob->output), occlusionOutput ? Path(&*occlusionOutput) : nullptr}) {
-          if (!path) continue;
-          if (!std::filesystem::exists(*path)) return std::nullopt;
-          try {
-            load(*path);
-          } catch (const InputError& err) {
-            log::warn(std::string("dnrt: re-baking a corrupt cache entry: ") + err.what());
-            return std::nullopt;
-          }
-        }
         if (occlusionOutput) line += ", " + occlusionOutput->string();
         return line;
       };

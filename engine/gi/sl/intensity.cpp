@@ -4,6 +4,7 @@
 #include <cstring>
 
 #include "engine/core/error.hpp"
+#include "engine/gi/placement.hpp"
 #include "engine/gi/sl/evaluate.hpp"
 #include "engine/gi/sl/local_light.hpp"
 #include "engine/gi/sl/shade.hpp"
@@ -243,16 +244,12 @@ void IntensityPass::setSpheres(std::span<const PosedSphere> posed, std::span<con
     const float rp = parentPosed_[objects[i]].radius;
     rec[0] = rp > 0.0f ? (posed[i].radius / rp) * (posed[i].radius / rp) : 0.0f;
     // A mirroring pose (closestRotation of an improper transform, det −1) is −Q with Q proper:
-    // band l of −Q's SH rotation is (−1)^l that of Q (Y_lm(−ω) = (−1)^l Y_lm(ω)).
-    glm::mat3 r = posed[i].rotation;
-    const bool mirrored = glm::determinant(r) < 0.0f;
-    if (mirrored) r = -r;
-    const sh::Rotationf rot = sh::Rotationf::fromMatrix(r);
+    // band l of −Q's SH rotation is (−1)^l that of Q, as for a mirrored DNRT / RTF placement.
+    const SignedRotation q = splitMirror(posed[i].rotation);
+    const sh::Rotationf rot = sh::Rotationf::fromMatrix(q.rotation);
     std::size_t at = 1;
-    for (int l = 1; l <= 3; ++l) {
-      const float sign = mirrored && (l % 2 == 1) ? -1.0f : 1.0f;
-      for (float m : rot.band(l)) rec[at++] = sign * m;
-    }
+    for (int l = 1; l <= 3; ++l)
+      for (float m : rot.band(l)) rec[at++] = bandSign(q.mirrored, l) * m;
   }
 }
 

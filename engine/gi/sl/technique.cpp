@@ -91,13 +91,8 @@ class SlTechnique final : public Technique {
       job.inputs = inputs;
       job.inputs.push_back(lc.registry.get<scene::MeshRef>(e).asset);
       job.cached = [ob]() -> std::optional<std::string> {
-        if (!std::filesystem::exists(ob->output)) return std::nullopt;
-        try {
-          load(ob->output);
-        } catch (const InputError& err) {
-          log::warn(std::string("sl: re-baking a corrupt cache entry: ") + err.what());
+        if (!gi::cacheEntriesLoad("sl", {ob->output}, [](const std::filesystem::path& p) { load(p); }))
           return std::nullopt;
-        }
         return describe(ob->name, ob->settings) + ": cached " + ob->output.string();
       };
       job.run = [ob] {

@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
+#include <string>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -110,6 +112,41 @@ TEST(DnrtEvaluate, ScaleInvariance) {
   const glm::quat q = glm::angleAxis(0.4f, glm::normalize(glm::vec3(0, 1, 1)));
   expectInvariant(q, glm::vec3(0.01f, 0.0f, -0.02f), 1e-3f);
   expectInvariant(q, glm::vec3(1000.0f, 50.0f, 0.0f), 1e3f);
+  expectInvariant(q, glm::vec3(0.0f), 1e-12f);  // det 1e-36: threw "singular" before session 13
+}
+
+// A tiny object is a valid object (gi::place): any uniform scale whose inverse a float holds places
+// as at unit scale — the same rotation and mirror flag, radius × s, worldToLocal the inverse —
+// where a float determinant (s³) underflowed below s ≈ 1e-10 and threw. Singular or non-finite
+// transforms and scales past the float range (the inverse overflows) still throw InternalError.
+TEST(DnrtPlacement, TinyUniformScalesPlaceAsAtUnitScale) {
+  const glm::quat q = glm::angleAxis(0.9f, glm::normalize(glm::vec3(0.4f, -1, 0.3f)));
+  const glm::vec3 centre(0.3f, -0.2f, 0.1f);
+  const auto world = [&](float s, float mirror) {
+    return glm::translate(glm::mat4(1.0f), s * glm::vec3(1, 0.5f, -2)) * glm::mat4_cast(q) *
+           glm::scale(glm::mat4(1.0f), s * glm::vec3(mirror, 1, 1));
+  };
+  for (const float mirror : {1.0f, -1.0f}) {
+    const Placement unit = gi::place(centre, 2.0f, world(1.0f, mirror), "test");
+    EXPECT_EQ(unit.mirrored, mirror < 0.0f);
+    for (const float s : {1e-10f, 1e-15f, 1e-20f, 1e-30f, 1e-37f}) {
+      const Placement p = gi::place(centre, 2.0f, world(s, mirror), "test");
+      const std::string at = "scale " + std::to_string(s) + " mirror " + std::to_string(mirror);
+      EXPECT_EQ(p.mirrored, unit.mirrored) << at;
+      for (int c = 0; c < 3; ++c) EXPECT_LE(glm::length(p.localToWorldRotation[c] - unit.localToWorldRotation[c]), 1e-6f) << at;
+      EXPECT_NEAR(p.radiusWorld / s, 2.0f, 2e-6f) << at;
+      EXPECT_LE(glm::length(p.centreWorld / s - unit.centreWorld), 1e-5f) << at;
+      const glm::mat4 id = p.worldToLocal * world(s, mirror);
+      for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r) EXPECT_NEAR(id[c][r], c == r ? 1.0f : 0.0f, 1e-5f) << at << " [" << c << "][" << r << "]";
+    }
+  }
+  const float inf = std::numeric_limits<float>::infinity();
+  EXPECT_THROW(gi::place(centre, 2.0f, world(1e-40f, 1.0f), "test"), InternalError);  // 1/s overflows a float
+  EXPECT_THROW(gi::place(centre, 2.0f, glm::scale(glm::mat4(1.0f), glm::vec3(1, 0, 1)), "test"), InternalError);
+  EXPECT_THROW(gi::place(centre, 2.0f, glm::scale(glm::mat4(1.0f), glm::vec3(1, inf, 1)), "test"), InternalError);
+  EXPECT_THROW(gi::place(centre, 2.0f, glm::translate(glm::mat4(1.0f), glm::vec3(std::nanf(""), 0, 0)), "test"),
+               InternalError);
 }
 
 TEST(DnrtEvaluate, FalloffIsContinuousAndMonotone) {

@@ -376,6 +376,18 @@ TEST(DnrtGpu, TenObjectsOverOnePixelAddUpToTenTimesOne) {
   EXPECT_LE(worstRatio, 1.0f);
 }
 
+// Records a copy of all of `from` (mip 0, layer 0, colour) over `to`, which has the same size and a
+// format of the same texel size; the graph has put `from` in TRANSFER_SRC and `to` in TRANSFER_DST.
+// The only image-to-image copies in the tests and engine are the two below.
+void copyWholeImage(VkCommandBuffer cmd, const gpu::Image& from, const gpu::Image& to) {
+  VkImageCopy region{};
+  region.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+  region.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+  region.extent = {from.desc().width, from.desc().height, 1};
+  vkCmdCopyImage(cmd, from.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, to.handle(),
+                 VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+}
+
 // Copies of this frame's "gbuffer.normal" (RGBA16F) and "gbuffer.entity" (R32_UINT), taken by a
 // transfer pass the test adds to the graph ahead of the node (the targets are transients), for
 // checking the normal's w encoding (shaders/common/gbuffer.glsl) texel by texel.
@@ -427,14 +439,7 @@ struct GBufferCopy {
         [p](const Data& d, const rg::PassResources& res, rg::CommandContext& c) {
           VkCommandBuffer cmd = p->cmd(c);
           const auto copy = [&](rg::Handle<rg::Texture> from, rg::Handle<rg::Texture> to) {
-            gpu::Image& a = p->backend->image(res.texture(from));
-            gpu::Image& b = p->backend->image(res.texture(to));
-            VkImageCopy region{};
-            region.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-            region.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-            region.extent = {a.desc().width, a.desc().height, 1};
-            vkCmdCopyImage(cmd, a.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, b.handle(),
-                           VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+            copyWholeImage(cmd, p->backend->image(res.texture(from)), p->backend->image(res.texture(to)));
           };
           copy(d.normal, d.normalOut);
           copy(d.entity, d.entityOut);
@@ -469,14 +474,8 @@ struct NormalOverride {
           d.normal = b.write(bb.get<rg::Texture>("gbuffer.normal"), rg::Usage::TransferDst);
         },
         [p](const Data& d, const rg::PassResources& res, rg::CommandContext& c) {
-          gpu::Image& a = p->backend->image(res.texture(d.src));
-          gpu::Image& b = p->backend->image(res.texture(d.normal));
-          VkImageCopy region{};
-          region.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-          region.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-          region.extent = {a.desc().width, a.desc().height, 1};
-          vkCmdCopyImage(p->cmd(c), a.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, b.handle(),
-                         VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+          copyWholeImage(p->cmd(c), p->backend->image(res.texture(d.src)),
+                         p->backend->image(res.texture(d.normal)));
         });
     bb.put("gbuffer.normal", data.normal);
   }

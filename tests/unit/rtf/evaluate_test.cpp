@@ -6,7 +6,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <string>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -324,6 +326,20 @@ const BakeResult& twoToneBake() {
   return b;
 }
 
+// The SH of c's function seen through G = T·R_q·X (X = diag(−1, 1, 1)): c'(ω) = c(G⁻¹ω) = c(X R_qᵀ ω).
+// The reflection's sign per coefficient, Y_i(X d) = ±Y_i(d), is read off at a generic direction (no
+// placement code involved), then R_q. N = 9 or 16 coefficients.
+template <typename V, std::size_t N>
+std::array<V, N> throughMirror(const std::array<V, N>& c, const glm::quat& q) {
+  const int order = N == 9 ? 3 : 4;
+  const glm::vec3 d = glm::normalize(glm::vec3(0.3f, 0.5f, 0.8f));
+  const auto y = sh::evalBasis<float>(order, d), yx = sh::evalBasis<float>(order, glm::vec3(-d.x, d.y, d.z));
+  std::array<V, N> reflected{}, out{};
+  for (std::size_t i = 0; i < N; ++i) reflected[i] = (yx[i] * y[i] > 0.0f ? 1.0f : -1.0f) * c[i];
+  sh::Rotationf::fromQuaternion(q).apply<V>(std::span<const V>(reflected), std::span<V>(out));
+  return out;
+}
+
 // Issue 14 / session 12: a mirrored object (det(world) < 0). Mirroring the whole scene — both
 // objects, the light and the receivers — by G = T·R_q·X (X = diag(−1, 1, 1)) must shade every
 // mirrored receiver as the original one: the bouncing step (proxies' light into the local frame),
@@ -339,15 +355,7 @@ TEST(RtfEvaluate, MirroredSceneShadesAsTheMirrorImage) {
   const glm::mat4 X = glm::scale(glm::mat4(1.0f), glm::vec3(-1.0f, 1.0f, 1.0f));
   const glm::mat4 G = glm::translate(glm::mat4(1.0f), glm::vec3(1.0f, 0.5f, -2.0f)) * glm::mat4_cast(q) * X;
   const glm::mat3 Glin(G);
-  // The mirrored light L'(ω) = L(G⁻¹ω) = L(X R_qᵀ ω): the reflection's sign per coefficient,
-  // Y_i(X d) = ±Y_i(d), read off at a generic direction (no placement code involved), then R_q.
-  {
-    const glm::vec3 d = glm::normalize(glm::vec3(0.3f, 0.5f, 0.8f));
-    const auto y = sh::evalBasis<float>(3, d), yx = sh::evalBasis<float>(3, glm::vec3(-d.x, d.y, d.z));
-    incident::RadianceSH reflected{};
-    for (std::size_t i = 0; i < 9; ++i) reflected[i] = (yx[i] * y[i] > 0.0f ? 1.0f : -1.0f) * sky.L[i];
-    sh::Rotationf::fromQuaternion(q).apply<glm::vec3>(std::span<const glm::vec3>(reflected), std::span<glm::vec3>(mirroredSky.L));
-  }
+  mirroredSky.L = throughMirror(sky.L, q);  // the mirrored light L'(ω) = L(G⁻¹ω)
   for (float gap : {0.4f, -0.2f}) {  // apart, and overlapping (sharedOcclusionScale acts)
     const auto objects = pair(f, gap, 1.0f);
     std::vector<Object> mirrored = objects;
@@ -379,6 +387,60 @@ TEST(RtfEvaluate, MirroredSceneShadesAsTheMirrorImage) {
         EXPECT_GT(shared, 0.0f) << "the overlapping pair shares occlusion";
       }
     }
+  }
+}
+
+// Algorithm 1 (incidentRadiance) with one mirrored and one unmirrored object, the case the
+// mirrored-scene test above does not reach: A mirrored in its own frame (world_A·X), B not. The
+// whole scene mirrored by G makes A unmirrored and B mirrored, and the incident light and the
+// visibility at G·q must be those at q seen through G — with the source and without (the objects'
+// RTFs alone), from every object and with each one skipped, at points near A, near B and between.
+// Fails when a mirrored placement is taken as a rotation (quat_cast of the reflection) or loses
+// its (−1)^l.
+TEST(RtfEvaluate, IncidentRadianceWithOneMirroredObjectMirrorsWithTheScene) {
+  const Field& f = twoToneBake().field;
+  ShSky sky, mirroredSky;
+  const float v[9] = {2.0f, -0.7f, 1.1f, 0.6f, -0.5f, 0.9f, -0.4f, 0.8f, 0.3f};
+  for (int i = 0; i < 9; ++i) sky.L[std::size_t(i)] = v[i] * glm::vec3(0.6f + 0.04f * float(i), 1.0f, 0.8f);
+  const glm::quat q = glm::angleAxis(-1.3f, glm::normalize(glm::vec3(0.2f, 0.7f, -0.5f)));
+  const glm::mat4 X = glm::scale(glm::mat4(1.0f), glm::vec3(-1.0f, 1.0f, 1.0f));
+  const glm::mat4 G = glm::translate(glm::mat4(1.0f), glm::vec3(-0.5f, 2.0f, 1.0f)) * glm::mat4_cast(q) * X;
+  mirroredSky.L = throughMirror(sky.L, q);
+  std::vector<Object> objects = pair(f, 0.4f, 1.0f);  // centres at x = ∓1.2
+  objects[0].world = objects[0].world * X;
+  std::vector<Object> mirrored = objects;
+  for (Object& o : mirrored) o.world = G * o.world;
+  ASSERT_TRUE(place(f, objects[0].world).mirrored);
+  ASSERT_FALSE(place(f, objects[1].world).mirrored);
+  ASSERT_FALSE(place(f, mirrored[0].world).mirrored);
+  ASSERT_TRUE(place(f, mirrored[1].world).mirrored);
+  const BounceResult a = bounce(objects, sky, 2), b = bounce(mirrored, mirroredSky, 2);
+  const std::vector<const std::vector<glm::vec3>*> xa{&a.xi[0], &a.xi[1]}, xb{&b.xi[0], &b.xi[1]};
+  for (const glm::vec3 p : {glm::vec3(-1.2f, 1.5f, 0.2f), glm::vec3(1.0f, -0.3f, 1.4f), glm::vec3(0.0f, 0.4f, -0.2f),
+                            glm::vec3(2.6f, 0.5f, -0.4f)}) {
+    const glm::vec3 pm(G * glm::vec4(p, 1.0f));
+    for (int skip : {-1, 0, 1})
+      for (bool withSource : {true, false}) {
+        const Incident want = incidentRadiance(objects, xa, withSource ? &sky : nullptr, p, skip);
+        const Incident got = incidentRadiance(mirrored, xb, withSource ? &mirroredSky : nullptr, pm, skip);
+        const ShRgb wantL = throughMirror(want.radiance, q);
+        const ShScalar wantV = throughMirror(want.visibility, q);
+        float worstL = 0.0f, largestL = 0.0f, worstV = 0.0f, largestV = 0.0f, directional = 0.0f;
+        for (std::size_t i = 0; i < std::size_t(kShCount); ++i) {
+          worstL = std::max(worstL, glm::length(got.radiance[i] - wantL[i]));
+          largestL = std::max(largestL, glm::length(wantL[i]));
+          worstV = std::max(worstV, std::abs(got.visibility[i] - wantV[i]));
+          largestV = std::max(largestV, std::abs(wantV[i]));
+          if (i > 0) directional = std::max(directional, std::abs(wantV[i]));
+        }
+        const std::string at = "p " + std::to_string(p.x) + " skip " + std::to_string(skip) + " source " + std::to_string(withSource);
+        ASSERT_GT(largestL, 1e-3f) << at;
+        EXPECT_LE(worstL, 1e-3f * largestL) << at << " largest " << largestL;
+        EXPECT_LE(worstV, 1e-3f * largestV) << at << " largest " << largestV;
+        if (skip == -1) {
+          EXPECT_GT(directional, 1e-2f * largestV) << at << ": the objects occlude (V is not constant)";
+        }
+      }
   }
 }
 
