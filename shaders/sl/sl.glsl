@@ -313,9 +313,9 @@ vec3 slIrradianceLive(vec3 p, vec3 n, uint count) {
       if (kPerObject) slObjOf[s] = slObject(i);
       slAverage[s] = slAverageRadiance(i, theta, dir);
       if (kOpenOnly) {
-        e += slAverage[s] * (exactOpen * 1.0);
+        e += slAverage[s] * exactOpen;  // fraction 1, as the general path's first turn
 #ifdef SL_OBJECT_TERMS
-        slObjectTerms[min(slObjOf[s], uint(SL_OBJECT_TERMS) - 1u)] += slAverage[s] * (exactOpen * 1.0);
+        slObjectTerms[min(slObjOf[s], uint(SL_OBJECT_TERMS) - 1u)] += slAverage[s] * exactOpen;  // fraction 1, as the general path's first turn
 #endif
       } else if (kPerObject) {
         // ⟨f⟩ over the cap = (f · K)/(√(4π) K_00) (evaluate.cpp capAverage), with K/s² kept.
