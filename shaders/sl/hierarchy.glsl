@@ -37,10 +37,7 @@ vec3 slParentTerm(uint o, vec3 p, vec3 n) {
   if (!slSeenFrom(i, p, n, cr, d)) return vec3(0.0);
   vec3 dir = (cr.xyz - p) / d;
   float sn = min(1.0, cr.w / d);
-  float ydir[16], yn[16], cap[16];
-  shEval16(dir, ydir);
-  shEval16(n, yn);
-  float open = slOpenCap(sn, ydir, yn, cap);
+  float open = slOpenCapExact(sn, dot(dir, n));
   return slAverageRadiance(i, asin(sn), dir) * open;
 }
 

@@ -19,8 +19,9 @@
 //     (channel c of L^c_2m, L^c_2m+1, pass 1, fp16);
 //     uint slObjectCount() (ids 0 … count − 1); vec4 slObjectCentre(uint o) (mean sphere centre, count);
 //   optionally SL_SINGLE_OBJECT (a bool constant): true where every SL that can reach the receiver
-//   belongs to one object (sl.frag's tiles of one object), so per-object blocking's exp of the
-//   closer objects is exp(0) and is not formed (llvmpipe runs every exp written, taken or not).
+//   belongs to one object (sl.frag's tiles of one object), so per-object blocking has no closer
+//   object: each SL's Ṽ is its exact open cap, and no log, rotated cap, exp or rank is formed
+//   (slIrradianceLive's kOpenOnly; llvmpipe runs every branch written, taken or not).
 // Includes sh.glsl and sl/gaunt.glsl (the SH square, generated from sh_product.hpp's tensor).
 #ifndef BOUNCE_SL_GLSL
 #define BOUNCE_SL_GLSL
@@ -160,18 +161,27 @@ void slExp(in float f[16], out float g[16]) {
   for (uint i = 0u; i < 16u; ++i) g[i] *= dc;
 }
 
-// The unoccluded cap's Ṽ of an SL of angular size sn = sin θ = r/d seen in direction ydir = Y(dir):
-// exact (the cap's closed-form ZH, the complement of sh_exp.hpp capVisibilityZonal: z_l = √(4π/(2l+1))
-// ∫_cap Y_l0). Every z_l has the factor 1 − P_l's neighbour, ∝ sin²θ: written with s² = sin²θ
-// factored out (1 − cos θ = s²/(1 + cos θ)) so small caps keep float precision. `cap` gets K/s²
-// rotated (per-object keeps it as the cap); returns the exact Ṽ = s² times its irradiance at yn = Y(n).
-float slOpenCap(float sn, in float ydir[16], in float yn[16], out float cap[16]) {
-  float s2 = sn * sn;
-  float t = sqrt(max(0.0, 1.0 - s2));
-  vec4 zs = vec4(sqrt(kSlPi) / (1.0 + t), 0.5 * sqrt(3.0 * kSlPi), 0.5 * sqrt(5.0 * kSlPi) * t,
-                 0.125 * sqrt(7.0 * kSlPi) * (5.0 * t * t - 1.0));
-  slRotateZonalY(zs, ydir, cap);
-  return s2 * slIrradianceY(cap, yn);
+// The unoccluded cap of an SL of angular size sn = sin θ = r/d, as a ZH over s² = sin²θ: the cap's
+// closed-form ZH (the complement of sh_exp.hpp capVisibilityZonal: z_l = √(4π/(2l+1)) ∫_cap Y_l0).
+// Every z_l has the factor 1 − P_l's neighbour, ∝ sin²θ: written with s² factored out
+// (1 − cos θ = s²/(1 + cos θ)) so small caps keep float precision. Rotated to the SL's direction
+// (slRotateZonalY) it is per-object's K/s², the cap's projected indicator.
+vec4 slOpenCapZonal(float sn) {
+  float t = sqrt(max(0.0, 1.0 - sn * sn));
+  return vec4(sqrt(kSlPi) / (1.0 + t), 0.5 * sqrt(3.0 * kSlPi), 0.5 * sqrt(5.0 * kSlPi) * t,
+              0.125 * sqrt(7.0 * kSlPi) * (5.0 * t * t - 1.0));
+}
+
+// The unoccluded cap's exact Ṽ: s² times the irradiance (sh_convolve.hpp evalIrradiance, Â_3 = 0) of
+// its ZH rotated to the unit direction dir, at normal n, cos γ = dir · n. By the addition theorem
+// (Σ_m Y_lm(dir) Y_lm(n) = (2l+1)/(4π) P_l(cos γ)) that irradiance is Σ_l Â_l z_l √((2l+1)/(4π)) P_l(cos γ),
+// P_0 = 1, P_1 = x, P_2 = (3x² − 1)/2: no Y(dir), Y(n) or rotation — a receiver that needs the cap for
+// nothing else (per-object blocking's nearest object, the hierarchy's parent) skips them.
+float slOpenCapExact(float sn, float cosg) {
+  vec4 zs = slOpenCapZonal(sn);
+  float x = clamp(cosg, -1.0, 1.0);
+  return sn * sn * (SH_A0 * 0.282094791773878143 * zs.x + SH_A1 * 0.488602511902919921 * zs.y * x +
+                    SH_A2 * 0.630783130505040012 * zs.z * (1.5 * x * x - 0.5));
 }
 
 // Eq. 16–18: L̃ of SL i (angular radius θ, unit direction dir from the receiver to its centre), the
@@ -267,6 +277,12 @@ vec3 slIrradianceLive(vec3 p, vec3 n, uint count) {
 #ifdef SL_OBJECT_TERMS
   for (uint o = 0u; o < uint(SL_OBJECT_TERMS); ++o) slObjectTerms[o] = vec3(0.0);
 #endif
+  // Per-object blocking where every live SL is one object's (the kSingleObject tiles): no object is
+  // closer, so E_o = exp(0) = 1 and Ṽ_i = X_i (the general path's first turn, fraction 1): an SL
+  // needs its exact open cap and L̃ only — not its log, its rotated cap, Y(dir), Y(n) or the ranks
+  // (Eq. 21's blocking is formed per object, and this object blocks nobody here).
+  const bool kOpenOnly = kPerObject && kSlSingleObject;
+  vec3 e = vec3(0.0);
   uint s = 0u;
   do {
     if (s < count) {
@@ -276,16 +292,18 @@ vec3 slIrradianceLive(vec3 p, vec3 n, uint count) {
       slSlotOf[min(slLive[s], kSpheres - 1u)] = s;
       float d = slDist[s];
       vec3 dir = (c - p) / d;
-      float theta = asin(min(1.0, r / d));
+      float sn = min(1.0, r / d);
+      float theta = asin(sn);
+      // The unoccluded cap's Ṽ: exact (slOpenCapExact) and, per-sphere, as Eq. 23 sees it (exp(0) − exp(G_i)).
+      float exactOpen = slOpenCapExact(sn, dot(dir, n));
+      slExactOpen[s] = exactOpen;
       float lg[16];
       float ydir[16];
-      shEval16(dir, ydir);
-      slRotateZonalY(slThetaRow(0, theta), ydir, lg);
-      for (uint k = 0u; k < 16u; ++k) slLogs[s * 16u + k] = lg[k];
-      // The unoccluded cap's Ṽ: exact (slOpenCap) and, per-sphere, as Eq. 23 sees it (exp(0) − exp(G_i)).
-      float cap[16];
-      float exactOpen = slOpenCap(min(1.0, r / d), ydir, yn, cap);
-      slExactOpen[s] = exactOpen;
+      if (!kOpenOnly) {
+        shEval16(dir, ydir);
+        slRotateZonalY(slThetaRow(0, theta), ydir, lg);
+        for (uint k = 0u; k < 16u; ++k) slLogs[s * 16u + k] = lg[k];
+      }
       // Eq. 18: the weight rotated to the SL-local direction from its centre to p (§7.1). Here, for
       // the live SLs only, and not in the walk (slWalk): there every candidate pays it (the
       // branch is not skipped), and the reads at the tile's index are no cheaper — measured by the
@@ -294,8 +312,15 @@ vec3 slIrradianceLive(vec3 p, vec3 n, uint count) {
       uint i = slLive[s];
       if (kPerObject) slObjOf[s] = slObject(i);
       slAverage[s] = slAverageRadiance(i, theta, dir);
-      if (kPerObject) {
+      if (kOpenOnly) {
+        e += slAverage[s] * exactOpen;  // fraction 1, as the general path's first turn
+#ifdef SL_OBJECT_TERMS
+        slObjectTerms[min(slObjOf[s], uint(SL_OBJECT_TERMS) - 1u)] += slAverage[s] * exactOpen;  // fraction 1, as the general path's first turn
+#endif
+      } else if (kPerObject) {
         // ⟨f⟩ over the cap = (f · K)/(√(4π) K_00) (evaluate.cpp capAverage), with K/s² kept.
+        float cap[16];
+        slRotateZonalY(slOpenCapZonal(sn), ydir, cap);
         for (uint k = 0u; k < 16u; ++k) slCaps[s * 16u + k] = cap[k];
       } else {
         // ρ_n · (exp(0) − exp(G_i)) with both exps in closed form: exp(0) is the OL table's first
@@ -315,6 +340,7 @@ vec3 slIrradianceLive(vec3 p, vec3 n, uint count) {
     }
     ++s;
   } while (s < count);
+  if (kOpenOnly) return e;
   // Per-object blocking (§7.2) visits objects nearest first, by the distance from p to the mean of
   // their (unadjusted) sphere centres, ties by id (evaluate.cpp sorts (dist, id)): each object's rank.
   uint rank[kSpheres];
@@ -354,7 +380,6 @@ vec3 slIrradianceLive(vec3 p, vec3 n, uint count) {
       ++t;
     } while (t < count);
   }
-  vec3 e = vec3(0.0);
   if (kPerObject) {
     // Per-object blocking, one exp per object (evaluate.hpp "Per-object blocking", which derives
     // it): Ṽ_i = X_i · clamp(⟨exp(C_o)⟩_i, 0, 1), C_o the closer objects' summed logs. No sort: an
@@ -365,6 +390,7 @@ vec3 slIrradianceLive(vec3 p, vec3 n, uint count) {
     // a pixel with no live SL runs one masked turn of each loop, its sums guarded.
     float closer[16] = zero;
     uint object = 0u, done = 0u;
+    bool firstTurn = true;
     t = 0u;
     do {
       if (t < count) object = t == 0u ? rank[t] : min(object, rank[t]);
@@ -372,14 +398,7 @@ vec3 slIrradianceLive(vec3 p, vec3 n, uint count) {
     } while (t < count);
     do {
       float expCloser[16];
-      if (kSlSingleObject) {
-        // No closer object: exp(0) as slExp forms it (the OL table's a at 0, no squarings), the
-        // same floats, so tiles of one object and of several meet without a seam.
-        for (uint k = 0u; k < 16u; ++k) expCloser[k] = 0.0;
-        expCloser[0] = slOl(0.0).x * kSlSqrt4Pi;
-      } else {
-        slExp(closer, expCloser);  // Eq. 21's exp of the closer objects, once for all of o's SLs
-      }
+      slExp(closer, expCloser);  // Eq. 21's exp of the closer objects, once for all of o's SLs
       uint next = 0xffffffffu;
       uint s = 0u;
       do {
@@ -389,7 +408,8 @@ vec3 slIrradianceLive(vec3 p, vec3 n, uint count) {
         float capE = 0.0;
         for (uint k = 0u; k < kSlCoeffs; ++k) capE += expCloser[k] * slCaps[sc * 16u + k];
         float area = max(kSlSqrt4Pi * slCaps[sc * 16u], 1e-30);
-        float fraction = clamp(capE / area, 0.0, 1.0);
+        // The first turn's object has no closer one: E_o = exp(0) = 1 exactly, as kOpenOnly takes it.
+        float fraction = firstTurn ? 1.0 : clamp(capE / area, 0.0, 1.0);
         if (mine) {
           e += slAverage[sc] * (slExactOpen[sc] * fraction);
 #ifdef SL_OBJECT_TERMS
@@ -401,6 +421,7 @@ vec3 slIrradianceLive(vec3 p, vec3 n, uint count) {
         ++s;
       } while (s < count);
       object = next;
+      firstTurn = false;
     } while (done < count);
     return e;
   }
