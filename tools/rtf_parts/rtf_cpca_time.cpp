@@ -2,7 +2,7 @@
 // README "Bake speed and CPCA, session 13"). A measurement: the field bake (33–59 s at 6·64²) is
 // done once by `dump`, then `run` compresses the same X at any settings and thread count.
 //   rtf_cpca_time dump LEVEL OBJECT PROXIES SPHERES FACE RAYS OUT   X (N·D floats, raw) to OUT
-//   rtf_cpca_time run FILE D CLUSTERS COMPONENTS THREADS [HASH]
+//   rtf_cpca_time run FILE D CLUSTERS COMPONENTS THREADS [HASH [ITERATIONS [POWER]]]
 // `run` prints wall and CPU seconds of compress(), the fp16 Frobenius error and stored ratio as
 // `bounce bench rtf` does, and (with HASH = 1) an FNV-1a hash of the basis, α and cluster ids:
 // the same bytes for any THREADS is the determinism the CPCA promises.
@@ -69,6 +69,8 @@ int main(int argc, char** argv) {
     tbb::global_control threads(tbb::global_control::max_allowed_parallelism, std::size_t(std::atoi(argv[6])));
     gi::rtf::CpcaSettings cs;
     cs.clusters = std::atoi(argv[4]), cs.components = std::atoi(argv[5]);
+    if (argc > 8) cs.iterations = std::atoi(argv[8]);
+    if (argc > 9) cs.powerIterations = std::atoi(argv[9]);
     const double c0 = cpuSeconds();
     const auto t0 = std::chrono::steady_clock::now();
     gi::rtf::Cpca c = gi::rtf::compress(X, D, cs);
@@ -76,7 +78,7 @@ int main(int argc, char** argv) {
     const double cpu = cpuSeconds() - c0;
     gi::rtf::roundToHalf(c);
     const gi::rtf::CpcaError e = gi::rtf::measure(c, X);
-    std::printf("clusters=%d components=%d threads=%s cpca_s=%.1f cpca_cpu_s=%.1f ratio=%.1f frobenius=%.4f", c.clusters,
+    std::printf("power=%d iterations=%d clusters=%d components=%d threads=%s cpca_s=%.1f cpca_cpu_s=%.1f ratio=%.1f frobenius=%.4f", cs.powerIterations, cs.iterations, c.clusters,
                 c.components, argv[6], wall, cpu, e.stored, e.frobenius);
     if (argc > 7 && std::atoi(argv[7]) == 1) {
       std::uint64_t h = 1469598103934665603ull;
