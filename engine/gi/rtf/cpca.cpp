@@ -17,16 +17,22 @@ namespace bounce::gi::rtf {
 namespace {
 
 constexpr std::size_t kBlock = 64;  // samples per task of the blocked products
+constexpr std::size_t kColumns = 512;  // columns per task of the subspace iteration's Yᵀ P
 // Reassignment tries the sample's own cluster and the clusters of its kNearestMeans nearest means
 // (SHHS03 tries all n_c). Trying all is n_c·(n_e+1)·D multiply-adds per sample — 82·10⁹ a round
 // at the paper's settings, more than the whole bake may take. Measured (textured box, 16 spheres ×
 // 6·8² samples, 32 × 16): all 32 → 5.70 %, these ≤ 5 → 5.71 %, at 61 % of the CPU time.
 constexpr int kNearestMeans = 4;
 
+// Four independent chains (a fixed order: the same bytes on every thread count): one chain was
+// bound by the add's latency, and Gram–Schmidt at n_e = 80 calls this 80² times per product.
 double dotd(const double* a, const double* b, std::size_t n) {
-  double s = 0.0;
-  for (std::size_t i = 0; i < n; ++i) s += a[i] * b[i];
-  return s;
+  double s[4] = {0.0, 0.0, 0.0, 0.0};
+  std::size_t i = 0;
+  for (; i + 4 <= n; i += 4)
+    for (int l = 0; l < 4; ++l) s[l] += a[i + std::size_t(l)] * b[i + std::size_t(l)];
+  for (; i < n; ++i) s[0] += a[i] * b[i];
+  return (s[0] + s[1]) + (s[2] + s[3]);
 }
 
 // One cluster's Eq. 9 basis, (ne+1) float rows of D: the mean E_h0, then E_h1..E_hne.
@@ -40,28 +46,36 @@ struct Basis {
 // `start` (optional): the cluster's previous basis: its rows start the iteration (a warm start:
 // a few products then suffice); rows that are zero there start random.
 Basis fitCluster(std::span<const float> data, std::size_t D, const std::vector<std::size_t>& members, int ne,
-                 int powerIterations, std::uint64_t seed, const Basis* start) {
+                 int powerIterations, std::uint64_t seed, const Basis* start, std::vector<float>& Y) {
   Basis out;
   out.rows.assign(std::size_t(ne + 1) * D, 0.0f);
   out.meanProj.assign(std::size_t(ne), 0.0f);
   if (members.empty()) return out;
   const std::size_t n = members.size();
   std::vector<double> mean(D, 0.0);
-  for (std::size_t r : members)
-    for (std::size_t d = 0; d < D; ++d) mean[d] += data[r * D + d];
+  parallelFor(0, (D + kColumns - 1) / kColumns, [&](std::size_t cb) {  // each column summed in member order
+    const std::size_t d0 = cb * kColumns, d1 = std::min(D, d0 + kColumns);
+    for (std::size_t r : members)
+      for (std::size_t d = d0; d < d1; ++d) mean[d] += data[r * D + d];
+  });
   for (std::size_t d = 0; d < D; ++d) out.rows[d] = float(mean[d] /= double(n));
   out.meanNorm2 = dense::dot(out.rows.data(), out.rows.data(), D);
   if (ne == 0) return out;
   // Centred rows Y (n × D), float: the products below are float, so the mean must not ride along.
-  std::vector<float> Y(n * D);
+  // Y is the caller's scratch (one buffer for all clusters: a fresh n·D allocation per fit spent
+  // ~10 % of the CPCA in page faults and zeroing at 6·64², session 13).
+  if (Y.size() < n * D) Y.resize(n * D);
   std::vector<const float*> yRows(n);
-  double energy = 0.0;  // ‖Y‖_F²
-  for (std::size_t i = 0; i < n; ++i) {
+  std::vector<double> rowEnergy(n);
+  parallelFor(0, n, [&](std::size_t i) {
     const float* x = data.data() + members[i] * D;
     float* y = Y.data() + i * D;
-    for (std::size_t d = 0; d < D; ++d) y[d] = float(double(x[d]) - mean[d]), energy += double(y[d]) * y[d];
-    yRows[i] = y;
-  }
+    double e = 0.0;
+    for (std::size_t d = 0; d < D; ++d) y[d] = float(double(x[d]) - mean[d]), e += double(y[d]) * y[d];
+    yRows[i] = y, rowEnergy[i] = e;
+  }, 16);
+  double energy = 0.0;  // ‖Y‖_F², summed in sample order (the same bytes on any thread count)
+  for (double e : rowEnergy) energy += e;
   // Start vectors: random (generic, so they are not orthogonal to the data's span).
   math::Pcg32 rng(seed);
   std::vector<double> V(std::size_t(ne) * D);
@@ -97,9 +111,20 @@ Basis fitCluster(std::span<const float> data, std::size_t D, const std::vector<s
   for (int it = 0; it < std::max(powerIterations, 1); ++it) {
     // P = Y Vᵀ (n × ne), then Wᵀ = Yᵀ P (ne rows of D): one product with Y Yᵀ's row space.
     std::transform(V.begin(), V.end(), Vf.begin(), [](double v) { return float(v); });
-    dense::dots(yRows.data(), n, Vf.data(), std::size_t(ne), D, P.data());
+    // Both products split among threads (a cluster can hold half the samples: the clusters alone
+    // left one core idle): P by blocks of rows, Wᵀ by blocks of columns. Every entry is summed in
+    // the same order whatever the split (dense.hpp), so the result does not depend on the threads.
+    parallelFor(0, (n + kBlock - 1) / kBlock, [&](std::size_t b) {
+      const std::size_t i0 = b * kBlock;
+      dense::dots(yRows.data() + i0, std::min(n, i0 + kBlock) - i0, Vf.data(), std::size_t(ne), D, P.data() + i0 * std::size_t(ne));
+    });
     std::fill(W.begin(), W.end(), 0.0f);
-    dense::addOuter(P.data(), yRows.data(), n, std::size_t(ne), D, W.data());
+    parallelFor(0, (D + kColumns - 1) / kColumns, [&](std::size_t cb) {
+      const std::size_t d0 = cb * kColumns;
+      std::vector<const float*> cols(n);
+      for (std::size_t i = 0; i < n; ++i) cols[i] = yRows[i] + d0;
+      dense::addOuter(P.data(), cols.data(), n, std::size_t(ne), std::min(D, d0 + kColumns) - d0, W.data() + d0, D);
+    });
     std::transform(W.begin(), W.end(), V.begin(), [](float w) { return double(w); });
     orthonormalize(V, true);
   }
@@ -250,14 +275,17 @@ Cpca compress(std::span<const float> data, std::size_t D, const CpcaSettings& s)
   // CPCA rounds: fit, then reassign by reconstruction error.
   std::vector<Basis> bases(static_cast<std::size_t>(nc));
   bool warm = false;  // after the first fit, each cluster starts from its previous basis
+  std::vector<float> scratch;  // the centred cluster, fitCluster's Y
   const auto fitAll = [&]() {
     std::vector<std::vector<std::size_t>> members(static_cast<std::size_t>(nc));
     for (std::size_t r = 0; r < N; ++r) members[assign[r]].push_back(r);
     const int iterations = warm ? std::max(3, s.powerIterations / 4) : s.powerIterations;
-    parallelFor(0, std::size_t(nc), [&](std::size_t h) {
+    // One cluster after the other, each fit's products split among the threads (fitCluster): with
+    // n_c = 8 and uneven clusters a loop over clusters left a core idle.
+    for (std::size_t h = 0; h < std::size_t(nc); ++h) {
       const Basis previous = bases[h];
-      bases[h] = fitCluster(data, D, members[h], ne, iterations, 0x5eed0000u + h, warm ? &previous : nullptr);
-    });
+      bases[h] = fitCluster(data, D, members[h], ne, iterations, 0x5eed0000u + h, warm ? &previous : nullptr, scratch);
+    }
     warm = true;
     return members;
   };

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <vector>
 
 namespace bounce::gi::rtf::dense {
 
@@ -12,7 +13,7 @@ constexpr std::size_t kChunk = 1024;  // floats of a row per pass: 2 + 4 rows ×
 
 #define BOUNCE_LOAD8(dst, ptr) std::memcpy(&(dst), (ptr), sizeof(V8))
 
-[[gnu::target_clones("arch=haswell", "default")]]
+[[gnu::target_clones("arch=x86-64-v3", "default")]]
 void dots(const float* const* a, std::size_t na, const float* b, std::size_t nb, std::size_t D, float* c) {
   std::fill(c, c + na * nb, 0.0f);
   for (std::size_t d0 = 0; d0 < D; d0 += kChunk) {
@@ -49,7 +50,7 @@ void dots(const float* const* a, std::size_t na, const float* b, std::size_t nb,
   }
 }
 
-[[gnu::target_clones("arch=haswell", "default")]]
+[[gnu::target_clones("arch=x86-64-v3", "default")]]
 float dot(const float* a, const float* b, std::size_t D) {
   V8 s0 = {}, s1 = {};
   std::size_t d = 0;
@@ -67,18 +68,58 @@ float dot(const float* a, const float* b, std::size_t D) {
   return r;
 }
 
-[[gnu::target_clones("arch=haswell", "default")]]
-void addOuter(const float* p, const float* const* y, std::size_t n, std::size_t k, std::size_t D, float* w) {
-  constexpr std::size_t kCols = 512;  // w's k rows × 2 KiB stay in L1/L2 while every y row passes
+[[gnu::target_clones("arch=x86-64-v3", "default")]]
+void addOuter(const float* p, const float* const* y, std::size_t n, std::size_t k, std::size_t D, float* w, std::size_t ldw) {
+  if (ldw == 0) ldw = D;
+  // Register tiles of 4 rows of w × 16 columns (8 accumulators) summed over a block of kRows y
+  // rows: per 8 FMAs 2 loads of y and 4 broadcasts of p, and w is read and written once per block
+  // instead of once per y row (the rank-1 form was L2-bound: 0.3 of dots()'s rate, session 13).
+  // Each w[j·D + d] adds its terms in i order whatever the blocking of d, so splitting the
+  // columns among threads gives the same bytes.
+  constexpr std::size_t kCols = 256, kRows = 128;  // a packed y block of 128 × 1 KiB stays in L2
+  thread_local std::vector<float> block(kRows * kCols);  // once per thread (the ITF bake calls this per sample)
+  const auto add = [](float* wj, const V8& a) {
+    for (int l = 0; l < 8; ++l) wj[l] += a[l];
+  };
   for (std::size_t d0 = 0; d0 < D; d0 += kCols) {
-    const std::size_t len = std::min(kCols, D - d0);
-    for (std::size_t i = 0; i < n; ++i) {
-      const float* __restrict yi = y[i] + d0;
-      for (std::size_t j = 0; j < k; ++j) {
-        const float pij = p[i * k + j];
-        if (pij == 0.0f) continue;
-        float* __restrict wj = w + j * D + d0;
-        for (std::size_t d = 0; d < len; ++d) wj[d] += pij * yi[d];
+    const std::size_t len = std::min(kCols, D - d0), len16 = len & ~std::size_t(15);
+    for (std::size_t i0 = 0; i0 < n; i0 += kRows) {
+      const std::size_t rowsHere = std::min(n, i0 + kRows) - i0;
+      // Packed in panels of 16 columns, rows consecutive (block[(d/16)·kRows·16 + i·16 + d%16]): the
+      // inner loop below reads one 64-byte line after the other (a 1 KiB row stride thrashed L1's sets).
+      for (std::size_t i = 0; i < rowsHere; ++i)
+        for (std::size_t d = 0; d < len16; d += 16)
+          std::memcpy(block.data() + d * kRows + i * 16, y[i0 + i] + d0 + d, 16 * sizeof(float));
+      for (std::size_t j = 0; j < k; j += 4) {
+        const std::size_t jn = std::min<std::size_t>(4, k - j);
+        const std::size_t j1 = j + std::min<std::size_t>(1, jn - 1), j2 = j + std::min<std::size_t>(2, jn - 1),
+                          j3 = j + std::min<std::size_t>(3, jn - 1);
+        for (std::size_t d = 0; d < len16; d += 16) {
+          V8 a00 = {}, a01 = {}, a10 = {}, a11 = {}, a20 = {}, a21 = {}, a30 = {}, a31 = {};
+          const float* yb = block.data() + d * kRows;
+          const float* pi = p + i0 * k;
+          for (std::size_t i = 0; i < rowsHere; ++i, yb += 16, pi += k) {
+            V8 y0, y1;
+            BOUNCE_LOAD8(y0, yb);
+            BOUNCE_LOAD8(y1, yb + 8);
+            const float p0 = pi[j], p1 = pi[j1], p2 = pi[j2], p3 = pi[j3];
+            a00 += p0 * y0, a01 += p0 * y1, a10 += p1 * y0, a11 += p1 * y1;
+            a20 += p2 * y0, a21 += p2 * y1, a30 += p3 * y0, a31 += p3 * y1;
+          }
+          float* w0 = w + j * ldw + d0 + d;
+          add(w0, a00), add(w0 + 8, a01);
+          if (jn > 1) add(w0 + ldw, a10), add(w0 + ldw + 8, a11);
+          if (jn > 2) add(w0 + 2 * ldw, a20), add(w0 + 2 * ldw + 8, a21);
+          if (jn > 3) add(w0 + 3 * ldw, a30), add(w0 + 3 * ldw + 8, a31);
+        }
+        for (std::size_t t = 0; t < jn; ++t) {  // the last len % 16 columns
+          float* wj = w + (j + t) * ldw + d0;
+          for (std::size_t d = len16; d < len; ++d) {
+            float a = 0.0f;
+            for (std::size_t i = 0; i < rowsHere; ++i) a += p[(i0 + i) * k + j + t] * y[i0 + i][d0 + d];
+            wj[d] += a;
+          }
+        }
       }
     }
   }

@@ -13,8 +13,11 @@ namespace bounce::gi::rtf::dense {
 void dots(const float* const* a, std::size_t na, const float* b, std::size_t nb, std::size_t D, float* c);
 // Σ_d a[d] · b[d]
 float dot(const float* a, const float* b, std::size_t D);
-// w[j·D + d] += Σ_i p[i·k + j] · y[i][d]   (i < n, j < k): Wᵀ += Yᵀ P, the second product of the
-// subspace iteration and the rank-k update of the ITF accumulation.
-void addOuter(const float* p, const float* const* y, std::size_t n, std::size_t k, std::size_t D, float* w);
+// w[j·ldw + d] += Σ_i p[i·k + j] · y[i][d]   (i < n, j < k, d < D; ldw = 0 means D): Wᵀ += Yᵀ P,
+// the second product of the subspace iteration and the rank-k update of the ITF accumulation.
+// Each w entry sums its terms in blocks of 128 i in order, whatever D: a caller may split the
+// columns among threads (in multiples of 256) and get the same bytes.
+void addOuter(const float* p, const float* const* y, std::size_t n, std::size_t k, std::size_t D, float* w,
+              std::size_t ldw = 0);
 
 }  // namespace bounce::gi::rtf::dense

@@ -111,5 +111,34 @@ TEST(RtfDense, AddOuterAccumulatesYTransposeP) {
     }
 }
 
+// The blocked kernel (session 13): 300 rows cross the 128-row blocks, k = 7 the 4-row tiles, D = 1037
+// the 256-column blocks and the 16-column panels; written with a row stride ldw > D, it matches a
+// double reference, leaves the padding alone, and a split of the columns at 512 gives the same bytes.
+TEST(RtfDense, AddOuterOnBlocksAndStridesMatchesAndSplitsExactly) {
+  const std::size_t n = 300, k = 7, D = 1037, ldw = D + 5;
+  math::Pcg32 rng(13);
+  std::vector<float> y(n * D), p(n * k), w(k * ldw, 0.5f);
+  for (float& v : y) v = rng.nextFloat() * 2.0f - 1.0f;
+  for (float& v : p) v = rng.nextFloat() * 2.0f - 1.0f;
+  std::vector<const float*> rows(n);
+  for (std::size_t i = 0; i < n; ++i) rows[i] = y.data() + i * D;
+  std::vector<float> split = w;
+  dense::addOuter(p.data(), rows.data(), n, k, D, w.data(), ldw);
+  for (std::size_t j = 0; j < k; ++j) {
+    for (std::size_t d = 0; d < D; ++d) {
+      double ref = 0.5, mag = 0.5;
+      for (std::size_t i = 0; i < n; ++i) ref += double(p[i * k + j]) * y[i * D + d], mag += std::abs(double(p[i * k + j]) * y[i * D + d]);
+      ASSERT_NEAR(w[j * ldw + d], ref, 1e-6 * mag) << j << " " << d;
+    }
+    for (std::size_t d = D; d < ldw; ++d) ASSERT_EQ(w[j * ldw + d], 0.5f) << j << " " << d;
+  }
+  for (std::size_t d0 = 0; d0 < D; d0 += 512) {
+    std::vector<const float*> cols(n);
+    for (std::size_t i = 0; i < n; ++i) cols[i] = rows[i] + d0;
+    dense::addOuter(p.data(), cols.data(), n, k, std::min<std::size_t>(512, D - d0), split.data() + d0, ldw);
+  }
+  EXPECT_EQ(split, w);
+}
+
 }  // namespace
 }  // namespace bounce::gi::rtf

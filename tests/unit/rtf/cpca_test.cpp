@@ -4,6 +4,8 @@
 
 #include <cmath>
 
+#include <tbb/global_control.h>
+
 #include "engine/core/error.hpp"
 #include "engine/gi/rtf/cpca.hpp"
 #include "engine/math/sampling.hpp"
@@ -102,6 +104,28 @@ TEST(RtfCpca, IsDeterministic) {
   EXPECT_EQ(a.basis, b.basis);
   EXPECT_EQ(a.alpha, b.alpha);
   EXPECT_EQ(a.cluster, b.cluster);
+}
+
+// The products are split among threads (by rows, by columns of 512, session 13): every entry is
+// still summed in one fixed order, so 1, 2 and 3 threads give the same bytes. Sizes cross the
+// splits: clusters of 150 > 64 rows, D = 1100 > 2 column blocks with a remainder.
+TEST(RtfCpca, SameBytesOnOneTwoAndThreeThreads) {
+  const std::size_t D = 1100;
+  const auto x = lowRank(2, 150, 6, D, 7);
+  CpcaSettings s;
+  s.clusters = 2;
+  s.components = 4;  // < rank: the subspace iteration has work to do, the reassignment a choice
+  const auto run = [&](int threads) {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
+    return compress(x, D, s);
+  };
+  const Cpca one = run(1);
+  for (int threads : {2, 3}) {
+    const Cpca c = run(threads);
+    EXPECT_EQ(one.basis, c.basis) << threads;
+    EXPECT_EQ(one.alpha, c.alpha) << threads;
+    EXPECT_EQ(one.cluster, c.cluster) << threads;
+  }
 }
 
 // fp16 storage (cpca.hpp roundToHalf, what the field file holds): every reconstructed entry moves
