@@ -32,11 +32,12 @@ struct Placement {
 };
 
 // The placement of a field with bounding centre `centreLocal` and radius `radiusLocal` (local units).
-// Any finite `world` with non-zero axis scales places, however small the object: a uniform scale s
-// has det s³ (1e-30 at s = 1e-10), so the determinant and the inverse are taken in double, where
-// they stay normal down to s ≈ 1e-100. Throws InternalError "<who>: singular object transform" only
-// when an axis scale is 0, `world` is not finite, or worldToLocal overflows a float (an axis scale
-// under ~3e-39, below what a float scale can hold).
+// Any finite `world` with non-zero axis scales places down to tiny objects: a uniform scale s has
+// det s³ (1e-30 at s = 1e-10), so the determinant and the inverse are taken in double. Throws
+// InternalError "<who>: singular object transform" when an axis scale is 0, `world` or radiusLocal
+// is not finite (or radiusLocal ≤ 0), or an entry of worldToLocal / radiusLocal exceeds kMaxToUnit
+// (a world radius s·R_local under ~1e-30: the float maps of its users would overflow, see place()).
+inline constexpr double kMaxToUnit = 1e30;
 Placement place(glm::vec3 centreLocal, float radiusLocal, const glm::mat4& world, const char* who);
 
 // An orthogonal M (det ±1: a placement's normalised columns, SL's closest-rotation pose) as M = R or

@@ -18,7 +18,9 @@ DnrtObjectGpu packObject(const Field& field, const glm::mat4& world, const std::
   // faces nearest the camera, and GREATER_OR_EQUAL against the scene's depth would reject every
   // receiver. Mirroring the unit cube back (it is symmetric, so it covers the same points) keeps
   // boxToWorld's determinant positive and its back faces back faces.
-  if (glm::determinant(glm::mat3(world)) < 0.0f) box[0] = -box[0];
+  // The placement's flag, not a float determinant of `world`: that is s³, 0 or denormal for the tiny
+  // scales place() accepts.
+  if (pl.mirrored) box[0] = -box[0];
   g.boxToWorld = world * box;
   g.centreWorld = glm::vec4(pl.centreWorld, pl.radiusWorld);
   g.centreLocal = glm::vec4(field.centre, field.radius);

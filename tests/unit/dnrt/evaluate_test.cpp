@@ -129,7 +129,7 @@ TEST(DnrtPlacement, TinyUniformScalesPlaceAsAtUnitScale) {
   for (const float mirror : {1.0f, -1.0f}) {
     const Placement unit = gi::place(centre, 2.0f, world(1.0f, mirror), "test");
     EXPECT_EQ(unit.mirrored, mirror < 0.0f);
-    for (const float s : {1e-10f, 1e-15f, 1e-20f, 1e-30f, 1e-37f}) {
+    for (const float s : {1e-10f, 1e-15f, 1e-20f, 1e-29f}) {
       const Placement p = gi::place(centre, 2.0f, world(s, mirror), "test");
       const std::string at = "scale " + std::to_string(s) + " mirror " + std::to_string(mirror);
       EXPECT_EQ(p.mirrored, unit.mirrored) << at;
@@ -142,6 +142,8 @@ TEST(DnrtPlacement, TinyUniformScalesPlaceAsAtUnitScale) {
     }
   }
   const float inf = std::numeric_limits<float>::infinity();
+  // A world radius 2s under 1e-30: the unit-frame map's entries 1/(2s) pass kMaxToUnit.
+  EXPECT_THROW(gi::place(centre, 2.0f, world(1e-31f, 1.0f), "test"), InternalError);
   EXPECT_THROW(gi::place(centre, 2.0f, world(1e-40f, 1.0f), "test"), InternalError);  // 1/s overflows a float
   EXPECT_THROW(gi::place(centre, 2.0f, glm::scale(glm::mat4(1.0f), glm::vec3(1, 0, 1)), "test"), InternalError);
   EXPECT_THROW(gi::place(centre, 2.0f, glm::scale(glm::mat4(1.0f), glm::vec3(1, inf, 1)), "test"), InternalError);
@@ -286,6 +288,11 @@ TEST(DnrtEvaluate, MirroredObjectSeesTheWorldThroughItsMirror) {
   const glm::mat3 M = glm::mat3(glm::mat4_cast(q)) * glm::mat3(glm::scale(glm::mat4(1.0f), glm::vec3(-1, 1, 1)));
   EXPECT_TRUE(place(r.field, world).mirrored);
   EXPECT_GT(glm::determinant(glm::mat3(g.boxToWorld)), 0.0f);
+  // The same at a scale place() accepts but whose float det(world) is 0 (1e-16³ underflows): the box
+  // flip follows the placement's flag, so the box's determinant (in double) stays positive.
+  const glm::mat4 tiny = world * glm::scale(glm::mat4(1.0f), glm::vec3(1e-16f));
+  ASSERT_EQ(glm::determinant(glm::mat3(tiny)), 0.0f);
+  EXPECT_GT(glm::determinant(glm::dmat3(glm::mat3(packObject(r.field, tiny, skyRadiance()).boxToWorld))), 0.0);
   float worst = 0.0f, largest = 0.0f;
   for (const glm::vec3 n : {glm::vec3(1, 0, 0), glm::vec3(0, 1, 0), glm::vec3(0, 0, 1), glm::normalize(glm::vec3(1, 2, -3)),
                             glm::normalize(glm::vec3(-2, 0.5f, 1)), glm::normalize(glm::vec3(0.3f, -1, -0.2f))}) {
