@@ -42,6 +42,7 @@
 #include "engine/gi/rtf/cpca.hpp"
 #include "engine/scene/components.hpp"
 #include "engine/scene/level.hpp"
+#include "tools/rtf_parts/tool_object.hpp"
 
 using namespace bounce;
 
@@ -83,17 +84,11 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "usage: rtf_cpca LEVEL OBJECT PROXIES SPHERES FACE RAYS CLUSTERS COMPONENTS[,COMPONENTS...]\n");
     return 2;
   }
-  const scene::Level level = scene::loadLevel(argv[1]);
-  const std::size_t index = std::size_t(std::atoi(argv[2]));
   gi::dnrt::LevelObjects objects;
-  gi::dnrt::loadLevelObjects(level, cacheDir("cooked"), objects);
-  if (index >= objects.entities.size()) {
-    std::fprintf(stderr, "rtf_cpca: object %zu of %zu\n", index, objects.entities.size());
-    return 2;
-  }
+  std::size_t index = 0;
   gi::rtf::FieldSettings s;
-  s.proxies = std::atoi(argv[3]), s.spheres = std::atoi(argv[4]), s.faceSize = std::atoi(argv[5]);
-  s.raysPerAxis = std::atoi(argv[6]), s.clusters = std::atoi(argv[7]);
+  if (!tools::loadToolObject("rtf_cpca", argv + 1, objects, index, s)) return 2;
+  s.clusters = std::atoi(argv[7]);
   std::vector<int> counts;
   std::stringstream list(argv[8]);
   for (std::string item; std::getline(list, item, ',');) counts.push_back(std::atoi(item.c_str()));

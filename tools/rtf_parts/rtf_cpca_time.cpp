@@ -21,6 +21,7 @@
 #include "engine/gi/rtf/cpca.hpp"
 #include "engine/scene/components.hpp"
 #include "engine/scene/level.hpp"
+#include "tools/rtf_parts/tool_object.hpp"
 
 using namespace bounce;
 
@@ -36,17 +37,10 @@ std::uint64_t fnv(const void* p, std::size_t n, std::uint64_t h) {
 int main(int argc, char** argv) {
   const std::string mode = argc > 1 ? argv[1] : "";
   if (mode == "dump" && argc == 9) {
-    const scene::Level level = scene::loadLevel(argv[2]);
-    const std::size_t index = std::size_t(std::atoi(argv[3]));
     gi::dnrt::LevelObjects objects;
-    gi::dnrt::loadLevelObjects(level, cacheDir("cooked"), objects);
-    if (index >= objects.entities.size()) {
-      std::fprintf(stderr, "rtf_cpca_time: object %zu of %zu\n", index, objects.entities.size());
-      return 2;
-    }
+    std::size_t index = 0;
     gi::rtf::FieldSettings s;
-    s.proxies = std::atoi(argv[4]), s.spheres = std::atoi(argv[5]), s.faceSize = std::atoi(argv[6]);
-    s.raysPerAxis = std::atoi(argv[7]);
+    if (!tools::loadToolObject("rtf_cpca_time", argv + 2, objects, index, s)) return 2;
     s.clusters = 1, s.components = 1;  // the bake's own CPCA is not what is measured here
     const ref::SceneDesc object = gi::dnrt::objectScene(objects.registry, objects.entities[index], objects.assets);
     const gi::rtf::BakeResult baked = gi::rtf::bake(object, s);
