@@ -40,9 +40,10 @@ def effect(d, row):
     return pfm(f"{d}/image-{row}.pfm") - pfm(f"{d}/without-{row}.pfm")
 
 
-def room_positions(level, h, w):
+def room_positions(level, h, w, walls=False):
     """World position of every pixel's first hit on the room's box (the static level is that box; the
-    characters are not in the indirect-only mask), from the level's camera (glTF: looks down −Z)."""
+    characters are not in the indirect-only mask), from the level's camera (glTF: looks down −Z); with
+    walls=True also the index of the wall hit (below)."""
     cam = next(e for e in level["entities"] if "camera" in e)
     t = cam["transform"]
     eye = np.array(t["translation"], float)
@@ -56,12 +57,19 @@ def room_positions(level, h, w):
     z = -np.ones_like(x)
     c, s = math.cos(pitch), math.sin(pitch)
     d = np.stack([x, c * y - s * z, s * y + c * z], -1)
-    # The room's box: cornell.gltf's walls (x ±0.278, y 0…0.5488, z ±0.2796) × the entities' scale.
-    scale = next(e for e in level["entities"] if e["id"] == "room-floor")["transform"]["scale"][0]
+    # The room's box: cornell.gltf's walls (x ±0.278, y 0…0.5488, z ±0.2796) × the entities' scale
+    # (characters.json's "room-floor" …; cornell-1's "cornell-box", unscaled). Its inner blocks are
+    # not in it: a pixel on a block gets the wall behind it.
+    room = next(e for e in level["entities"] if e["id"] in ("room-floor", "cornell-box"))
+    scale = room.get("transform", {}).get("scale", [1.0])[0]
     lo, hi = scale * np.array([-0.278, 0.0, -0.2796]), scale * np.array([0.278, 0.5488, 0.2796])
     with np.errstate(divide="ignore", invalid="ignore"):
         tx = np.where(d > 0, (hi - eye) / d, (lo - eye) / d)  # exit distance per axis (eye inside)
-    tt = np.nanmin(np.where(np.isfinite(tx), tx, np.inf), -1)
+    tx = np.where(np.isfinite(tx), tx, np.inf)
+    tt = tx.min(-1)
+    if walls:  # which wall: 0/1 left/right (x), 2/3 floor/ceiling (y), 4/5 back/front (z)
+        axis = tx.argmin(-1)
+        return eye + tt[..., None] * d, 2 * axis + (np.take_along_axis(d, axis[..., None], -1)[..., 0] > 0)
     return eye + tt[..., None] * d
 
 
