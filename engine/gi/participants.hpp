@@ -1,8 +1,10 @@
 #pragma once
 // What every baked technique's table entry asks of a level the same way (SL and RTF today): the
 // entities that take part (a technique component beside a mesh), their cooked meshes alone; and
-// (DNRT, SL, RTF) whether a bake job's cache entries can be used.
+// (DNRT, SL, RTF) whether a bake job's cache entries can be used; (DNRT, RTF) whether a field can be
+// placed at the level's start.
 #include <algorithm>
+#include <cstdio>
 #include <filesystem>
 #include <string>
 #include <string_view>
@@ -11,8 +13,11 @@
 #include "engine/core/error.hpp"
 #include "engine/core/log.hpp"
 #include "engine/ecs/registry.hpp"
+#include "engine/gi/placement.hpp"
 #include "engine/ref/reference_scene.hpp"
 #include "engine/scene/components.hpp"
+#include "engine/scene/json_reader.hpp"
+#include "engine/scene/level.hpp"
 
 namespace bounce::gi {
 
@@ -53,6 +58,34 @@ bool cacheEntriesLoad(std::string_view technique, const std::vector<std::filesys
     }
   }
   return true;
+}
+
+// At the session's start (the level's transforms, t = 0) a participant's field must be placeable: a
+// world scale so small that place() refuses it (placement.hpp: an entry of the unit-frame map above
+// kMaxToUnit, i.e. a smallest axis scale × the field's radius under ~1e-30) is the level's bad input,
+// one line at the entity's transform (its own or a parent's scale). A motion that reaches such a
+// scale later is no error: the techniques skip the object's GI for those frames (tryPlace).
+// Callers link bounce_gi_placement (DNRT, RTF).
+inline void checkPlaceable(const scene::Level& level, const ecs::Registry& registry, ecs::Entity e,
+                           std::string_view technique, glm::vec3 centreLocal, float radiusLocal) {
+  const auto* placed = registry.tryGet<scene::WorldTransform>(e);
+  if (!placed || tryPlace(centreLocal, radiusLocal, placed->matrix)) return;
+  const auto* name = registry.tryGet<scene::Name>(e);
+  const auto desc = std::find_if(level.entities.begin(), level.entities.end(),
+                                 [&](const scene::EntityDesc& d) { return name && d.id == name->id; });
+  if (desc == level.entities.end())
+    throw InternalError(std::string(technique) + ": an object's world transform cannot be placed");
+  const glm::dmat3 m{glm::dmat4(placed->matrix)};
+  const double scale = std::min({glm::length(m[0]), glm::length(m[1]), glm::length(m[2])});
+  auto num = [](double v) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.3g", v);
+    return std::string(text);
+  };
+  throwInputError(level.source.string(), desc->pointer + "/transform",
+                  std::string(technique) + " cannot place " + scene::json::inQuotes(desc->id) + ": smallest world axis scale " +
+                      num(scale) + " × field radius " + num(radiusLocal),
+                  "a finite transform whose smallest axis scale × the field radius is at least ~1e-30");
 }
 
 }  // namespace bounce::gi

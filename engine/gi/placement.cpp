@@ -9,6 +9,12 @@
 namespace bounce::gi {
 
 Placement place(glm::vec3 centreLocal, float radiusLocal, const glm::mat4& world, const char* who) {
+  std::optional<Placement> p = tryPlace(centreLocal, radiusLocal, world);
+  if (!p) throw InternalError(std::string(who) + ": singular object transform");
+  return *p;
+}
+
+std::optional<Placement> tryPlace(glm::vec3 centreLocal, float radiusLocal, const glm::mat4& world) {
   Placement p;
   // In double: in float a uniform scale s has det s³ denormal below s ≈ 2e-13 and 0 below s ≈ 1e-15
   // (the inverse turns to Inf), and the column lengths' squares underflow below s ≈ 1e-19.
@@ -26,8 +32,7 @@ Placement place(glm::vec3 centreLocal, float radiusLocal, const glm::mat4& world
   for (int c = 0; c < 4; ++c)
     for (int r = 0; r < 4; ++r)
       finite = finite && std::isfinite(world[c][r]) && std::abs(toUnit[c][r]) <= kMaxToUnit;
-  if (!finite || !(scale.x > 0 && scale.y > 0 && scale.z > 0))
-    throw InternalError(std::string(who) + ": singular object transform");
+  if (!finite || !(scale.x > 0 && scale.y > 0 && scale.z > 0)) return std::nullopt;
   // Rotation from the normalised columns through a quaternion, which re-orthonormalises small
   // shears and rounding so sh::Rotation accepts it. A mirror (det < 0) is no rotation: quat_cast
   // would return an unrelated one. Keep −unit (a rotation) and the flag; shToWorld / shToLocal

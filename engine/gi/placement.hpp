@@ -9,6 +9,7 @@
 // (det +1) or a mirror M = −R (det −1, R = −M a rotation): sh::Rotation takes rotations only, so a
 // mirror keeps R and the flag, and the SH maps below add the inversion's parity (−1)^l on band l
 // (Y_lm(−ω) = (−1)^l Y_lm(ω)).
+#include <optional>
 #include <span>
 
 #include <glm/glm.hpp>
@@ -39,6 +40,11 @@ struct Placement {
 // (a world radius s·R_local under ~1e-30: the float maps of its users would overflow, see place()).
 inline constexpr double kMaxToUnit = 1e30;
 Placement place(glm::vec3 centreLocal, float radiusLocal, const glm::mat4& world, const char* who);
+// place() without the throw: nullopt where place() refuses. Per frame, a technique skips such an
+// object's GI (a motion whose scale passes through 0 mid-run: the object adds and takes away nothing
+// that frame, as it has no size); at the session's start the level's transform is checked instead
+// (participants.hpp checkPlaceable: the level's bad input).
+std::optional<Placement> tryPlace(glm::vec3 centreLocal, float radiusLocal, const glm::mat4& world);
 
 // An orthogonal M (det ±1: a placement's normalised columns, SL's closest-rotation pose) as M = R or
 // M = −R with R a rotation (sh::Rotation takes rotations only); `mirrored` when det M < 0.

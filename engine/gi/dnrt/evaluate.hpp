@@ -14,6 +14,7 @@
 // s is the inverse-square law shifted to reach 0 at the outer boundary: continuous (1 at the inner
 // boundary, 0 at the outer one) and decreasing in between.
 #include <array>
+#include <optional>
 #include <span>
 
 #include <glm/glm.hpp>
@@ -30,6 +31,10 @@ using gi::Placement;
 // Throws InternalError when `world` is singular or not finite.
 inline Placement place(const Field& field, const glm::mat4& world) {
   return gi::place(field.centre, field.radius, world, "dnrt::place");
+}
+// nullopt where place() throws (gi::tryPlace): a frame skips such an object's GI.
+inline std::optional<Placement> tryPlace(const Field& field, const glm::mat4& world) {
+  return gi::tryPlace(field.centre, field.radius, world);
 }
 
 // c_j in the object's frame: the world irradiance SH (9 coefficients) rotated by the inverse of

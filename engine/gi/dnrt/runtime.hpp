@@ -61,6 +61,7 @@ class Runtime {
   NodeSettings& settings() { return settings_; }
   std::size_t objectCount() const { return objects_.size(); }
   const Field& field(std::size_t i) const { return objects_[i].field; }
+  ecs::Entity entity(std::size_t i) const { return objects_[i].entity; }
   // Baked this run (the others came from the cache).
   std::size_t bakedCount() const { return baked_; }
 

@@ -222,6 +222,9 @@ SessionRuntime::SessionRuntime(SessionContext& sc) {
   assets_.load(sc.registry, sc.cookCache);  // the bakes start from the CPU copies
   runtime_ = std::make_unique<Runtime>(sc.ctx, sc.renderer.pipelines(), sc.registry, assets_, cacheFolder(),
                                        sc.renderer.frames().framesInFlight(), sc.level.background);
+  for (std::size_t i = 0; i < runtime_->objectCount(); ++i)  // a level too small to place: bad input
+    checkPlaceable(sc.level, sc.registry, runtime_->entity(i), "dnrt", runtime_->field(i).centre,
+                   runtime_->field(i).radius);
   // c_j from the session's incident-light inputs: the probes (or the background) and light
   // visibility from the object's centre (and a disc around it) through the level's STATIC geometry.
   // Not the shadow map: the object occludes its own centre there (incident.hpp, SceneVisibility).

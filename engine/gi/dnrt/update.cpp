@@ -24,7 +24,11 @@ std::vector<NodeObject> Runtime::objectsFor(const render::RenderWorld& world) co
                                    [&](const render::DrawItem& d) { return d.entity == o.entity.index(); });
     const auto* placed = registry_.tryGet<scene::WorldTransform>(o.entity);
     if (!drawn || !placed) continue;
-    const Placement pl = place(o.field, placed->matrix);
+    // A world scale place() refuses (through 0 mid-motion, gi::tryPlace): the object has no size this
+    // frame, so its field adds and takes away nothing; no pass breaks.
+    const std::optional<Placement> maybe = tryPlace(o.field, placed->matrix);
+    if (!maybe) continue;
+    const Placement& pl = *maybe;
     const auto* component = registry_.tryGet<scene::Dnrt>(o.entity);
     // App. B.2's improved anti-radiance divides band 2 by Â_2 (×4) and so amplifies the ringing of
     // a lamp's truncated lobe: its fields get the lights' SH Hanning-windowed (incident.hpp). Not

@@ -27,6 +27,7 @@
 // there where the solid angle keeps 0.85, and on cornell-5 that band blocked 0.0042 where the OOF at
 // the receiver blocks 0.0179 and the path tracer 0.0158 — README "Sixth pass".)
 #include <array>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -52,6 +53,10 @@ using gi::Placement;
 // Throws InternalError when `world` is singular or not finite.
 inline Placement place(const Field& field, const glm::mat4& world) {
   return gi::place(field.centre, field.radius, world, "rtf::place");
+}
+// nullopt where place() throws (gi::tryPlace): a frame skips such an object's GI.
+inline std::optional<Placement> tryPlace(const Field& field, const glm::mat4& world) {
+  return gi::tryPlace(field.centre, field.radius, world);
 }
 
 // SH of a local-frame function in the world, g(M n) = f(n), and back (gi::shToWorld / shToLocal;

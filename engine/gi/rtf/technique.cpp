@@ -198,6 +198,7 @@ SessionRuntime::SessionRuntime(SessionContext& sc, const std::filesystem::path& 
         },
         [](const Field& f, const std::filesystem::path& path) { save(f, path); }, &cached);
     baked_ += cached ? 0 : 1;
+    checkPlaceable(sc.level, sc.registry, e, "rtf", p.field.centre, p.field.radius);  // too small to place: bad input
     p.reach = tailReach(p.field, c.tail);
     participants.push_back(std::move(p));
   }

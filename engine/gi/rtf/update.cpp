@@ -98,7 +98,9 @@ FrameObjects Update::frame(std::span<const render::LightGpu> lights) {
     const Participant& p = participants_[i];
     if (!registry_.valid(p.entity)) continue;
     const auto* placed = registry_.tryGet<scene::WorldTransform>(p.entity);
-    if (!placed) continue;
+    // A world scale place() refuses (through 0 mid-motion, gi::tryPlace): the object has no size this
+    // frame, so it neither bounces, blocks nor shades (as if absent); no pass breaks.
+    if (!placed || !tryPlace(p.field, placed->matrix)) continue;
     out.participant.push_back(i);
     objects.push_back({&p.field, placed->matrix, p.reach});
   }

@@ -4,6 +4,7 @@
 // table order.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
 
 #include "engine/core/error.hpp"
@@ -116,4 +117,79 @@ TEST(SessionLights, MoreShadowLayersThanTheLightingPassHoldsIsBadInput) {
     EXPECT_EQ(std::string(e.what()), over.string() + ": /entities: 33 lights with 198 shadow layers (expected at most 128 "
                                      "lights and 192 shadow layers; a point light with shadows takes 6, a spot 1)");
   }
+}
+
+// A box with a DNRT and an RTF field above a lit floor; `transform` and `motion` are the box's JSON.
+// Effects dnrt and rtf only (no direct light, black background): the HDR image holds the box's GI
+// terms alone. Tiny fields (grid 16, RTF's smallest settings): the bakes take well under a second.
+std::filesystem::path boxLevel(const std::string& name, const std::string& transform, const std::string& motion,
+                               const std::string& effects) {
+  const std::string src = BOUNCE_SOURCE_DIR;
+  const auto path = std::filesystem::path(BOUNCE_TEST_OUT) / "gi" / (name + ".json");
+  std::filesystem::create_directories(path.parent_path());
+  std::ofstream(path) << R"({"bounce_level": 1, "effects": )" + effects + R"(, "entities": [
+    {"id": "floor", "transform": {"scale": [4, 1, 4]}, "mesh": {"asset": ")" + src + R"(/tests/data/render/quad.gltf"}},
+    {"id": "camera", "transform": {"translation": [0, 1, 0], "rotation_euler_deg": [-90, 0, 0]},
+     "camera": {"yfov_deg": 60, "near": 0.05, "far": 5}},
+    {"id": "lamp", "transform": {"translation": [0, 2, 0]}, "light": {"type": "point", "intensity": 1}},
+    {"id": "box", "dynamic": true, "transform": )" + transform + motion + R"(,
+     "mesh": {"asset": ")" + src + R"(/content/src/BoxTextured/glTF-Draco-gltfpipeline/BoxTextured.gltf"},
+     "dnrt": {"sh": 4, "grid": 16, "rays": 64},
+     "rtf": {"proxies": 4, "bounces": 1, "spheres": 4, "face": 4, "rays": 8, "vertex_rays": 6, "clusters": 4,
+             "components": 4, "inner": 2.5, "outer": 5}}]})";
+  return path;
+}
+
+// A level transform whose scale place() refuses (gi/placement.hpp: smallest axis scale × field radius
+// under ~1e-30) is the level's bad input when the session is made, one line at the entity's
+// transform (exit 2 in the CLI), for DNRT and RTF alike; 1e-29 is placed.
+TEST(SessionPlacement, ScaleTooSmallToPlaceIsBadInputAtTheTransform) {
+  const std::string tiny = R"({"translation": [0, 0.12, 0], "scale": [1e-31, 1e-31, 1e-31]})";
+  for (const std::string technique : {"dnrt", "rtf"}) {
+    const auto path = boxLevel("tiny-" + technique, tiny, "", "[\"" + technique + "\"]");
+    try {
+      game::Session session(gpu::testkit::sharedContext(), scene::loadLevel(path));
+      ADD_FAILURE() << technique << ": scale 1e-31 was accepted";
+    } catch (const InputError& e) {
+      EXPECT_EQ(std::string(e.what()), path.string() + ": /entities/3/transform: " + technique +
+                                           " cannot place \"box\": smallest world axis scale 1e-31 × field radius 0.866 "
+                                           "(expected a finite transform whose smallest axis scale × the field radius is "
+                                           "at least ~1e-30)");
+    }
+  }
+  const auto placeable =
+      boxLevel("small", R"({"translation": [0, 0.12, 0], "scale": [1e-29, 1e-29, 1e-29]})", "", R"(["dnrt", "rtf"])");
+  EXPECT_NO_THROW(game::Session(gpu::testkit::sharedContext(), scene::loadLevel(placeable)));
+}
+
+// A motion whose scale passes through 0 (0.1 → −0.1 over 2 s: exactly 0 at t = 1) is no error: a
+// frame whose transform place() refuses skips the object's GI, so DNRT and RTF add nothing there
+// (every HDR value exactly 0, all finite) and the object's terms come back after it (mirrored).
+TEST(SessionPlacement, ScaleThroughZeroSkipsTheObjectsGiForThatFrame) {
+  const auto path = boxLevel("through-zero", R"({"translation": [0, 0.12, 0]})",
+                             R"(, "motion": {"keyframes": {"times": [0, 2], "scale": [[0.1, 0.1, 0.1], [-0.1, -0.1, -0.1]],
+                                 "mode": "once"}})",
+                             R"(["dnrt", "rtf"])");
+  game::Session session(gpu::testkit::sharedContext(), scene::loadLevel(path));
+  gpu::OffscreenPresenter presenter(gpu::testkit::sharedContext(), kExtent);
+  render::FrameSettings settings;
+  settings.keepHdr = true;
+  for (const double t : {0.0, 1.0, 2.0}) {
+    session.update(t);
+    ASSERT_NO_THROW(session.render(presenter, settings)) << "t = " << t;
+    const std::vector<float> hdr = session.renderer().readHdr();
+    ASSERT_EQ(hdr.size(), std::size_t(kExtent.width) * kExtent.height * 3);
+    float largest = 0.0f;
+    std::size_t nonFinite = 0;
+    for (float v : hdr) {
+      nonFinite += std::isfinite(v) ? 0 : 1;
+      largest = std::max(largest, std::abs(v));
+    }
+    EXPECT_EQ(nonFinite, 0u) << "t = " << t;
+    if (t == 1.0)
+      EXPECT_EQ(largest, 0.0f) << "the object's GI at scale 0";
+    else
+      EXPECT_GT(largest, 1e-4f) << "t = " << t << ": the object's GI (scale ±0.1)";
+  }
+  session.renderer().frames().waitIdle();
 }

@@ -20,6 +20,7 @@
 #include "engine/math/sh.hpp"
 #include "engine/scene/level.hpp"
 #include "engine/scene/systems.hpp"
+#include "tests/support/technique_level.hpp"
 
 namespace bounce::gi::rtf {
 namespace {
@@ -27,44 +28,17 @@ namespace {
 namespace fs = std::filesystem;
 const fs::path kSource = BOUNCE_SOURCE_DIR;
 fs::path outDir() { return fs::path(BOUNCE_TEST_OUT) / "rtf"; }
-fs::path cookCache() {
-  if (const char* env = std::getenv("BOUNCE_COOK_CACHE"); env && *env) return env;
-  return cacheDir("cooked");
+// The shared helpers (tests/support/technique_level.hpp) with this folder and the effects [direct, rtf].
+using testlevel::boxAsset, testlevel::cookCache, testlevel::Loaded;
+std::string mesh() { return testlevel::boxMesh(); }
+fs::path writeLevel(const std::string& name, const std::string& entities, const std::string& effects = R"(["direct", "rtf"])") {
+  return testlevel::writeLevel(outDir(), name, entities, effects);
 }
-std::string boxAsset() { return (kSource / "content/src/BoxTextured/glTF-Draco-gltfpipeline/BoxTextured.gltf").string(); }
-std::string mesh() { return R"("mesh": {"asset": ")" + boxAsset() + R"("})"; }
+std::string loadError(const std::string& name, const std::string& entity) {
+  return testlevel::loadError(outDir(), name, entity, R"(["direct", "rtf"])");
+}
 // Test-sized settings: a bake of the 24-vertex box in well under a second.
 const std::string kTiny = R"("proxies": 2, "spheres": 3, "face": 2, "rays": 4, "vertex_rays": 4, "clusters": 2, "components": 2)";
-
-fs::path writeLevel(const std::string& name, const std::string& entities, const std::string& effects = R"(["direct", "rtf"])") {
-  const fs::path path = outDir() / (name + ".json");
-  writeFileAtomic(path, R"({"bounce_level": 1, "effects": )" + effects + R"(, "entities": [)" + entities + "]}");
-  return path;
-}
-
-std::string loadError(const std::string& name, const std::string& entity) {
-  const fs::path path = writeLevel(name, entity);
-  try {
-    ecs::Registry r;
-    scene::instantiate(scene::loadLevel(path), r);
-  } catch (const InputError& e) {
-    std::string msg = e.what();
-    const std::string prefix = path.string() + ": ";
-    if (msg.rfind(prefix, 0) == 0) msg = "FILE: " + msg.substr(prefix.size());
-    return msg;
-  }
-  return "(no error)";
-}
-
-struct Loaded {
-  scene::Level level;
-  ecs::Registry registry;
-  explicit Loaded(const fs::path& path) : level(scene::loadLevel(path)) {
-    scene::instantiate(level, registry);
-    scene::transformSystem(registry);
-  }
-  LevelContext context() { return {level, registry, cookCache()}; }
-};
 
 TEST(RtfComponent, ParsesWithDefaults) {
   const fs::path path = writeLevel("rtf-ok", R"({"id": "a", "dynamic": true, )" + mesh() +

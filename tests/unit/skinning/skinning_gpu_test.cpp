@@ -59,6 +59,47 @@ fs::path writeLevel(const std::string& name, const std::string& effects, const s
 const std::string kCamera =
     R"({"id": "camera", "transform": {"translation": [0, 1, 3.2]}, "camera": {"yfov_deg": 50, "near": 0.05, "far": 20}})";
 
+// The CPU face of the session's last frame: the same registry, level and time extracted with GPU
+// skinning off (CPU skinning, morphs and subdivision fill posedVertices; no jobs are queued).
+render::RenderWorld cpuFace(game::Session& session) {
+  render::RenderWorld cpuWorld;
+  render::ExtractOptions options;
+  options.extent = {32, 32};
+  options.gpuSkinning = false;
+  session.gpuScene().extract(session.registry(), session.level(), options, cpuWorld);
+  return cpuWorld;
+}
+
+// One frame's CPU = GPU comparison of posed vertices (8 floats each: position, normal, uv): the worst
+// position distance relative to max(1, |p|), the worst normal distance, and the uv mismatches
+// (compared exactly: both faces copy the bind uv).
+struct PosedCompare {
+  float worstP = 0.0f, worstN = 0.0f;
+  std::size_t vertices = 0, uvMismatches = 0, firstUvMismatch = 0;
+
+  // Vertices [gpuBase, gpuBase + count) of `gpu` against [cpuBase, cpuBase + count) of `cpu`.
+  void add(const std::vector<float>& gpu, std::size_t gpuBase, const std::vector<float>& cpu, std::size_t cpuBase,
+           std::size_t count) {
+    for (std::size_t v = 0; v < count; ++v) {
+      const float* g = &gpu[(gpuBase + v) * 8];
+      const float* c = &cpu[(cpuBase + v) * 8];
+      const glm::vec3 gp(g[0], g[1], g[2]), cp(c[0], c[1], c[2]);
+      worstP = std::max(worstP, glm::distance(gp, cp) / std::max(1.0f, glm::length(cp)));
+      worstN = std::max(worstN, glm::distance(glm::vec3(g[3], g[4], g[5]), glm::vec3(c[3], c[4], c[5])));
+      if ((g[6] != c[6] || g[7] != c[7]) && uvMismatches++ == 0) firstUvMismatch = v;
+      ++vertices;
+    }
+  }
+  // The tolerances, and the worst values as the test's properties "<prefix>worst-position-rel-t<100 t>"
+  // and "<prefix>worst-normal-t<100 t>".
+  void expectWithin(float positionRelTol, float normalTol, const std::string& prefix, double t) const {
+    EXPECT_LE(worstP, positionRelTol);
+    EXPECT_LE(worstN, normalTol);
+    ::testing::Test::RecordProperty(prefix + "worst-position-rel-t" + std::to_string(int(t * 100)), sci(worstP));
+    ::testing::Test::RecordProperty(prefix + "worst-normal-t" + std::to_string(int(t * 100)), sci(worstN));
+  }
+};
+
 TEST(SkinningGpu, CpuEqualsGpuOnEveryVertexOfCesiumManAndFox) {
   gpu::Context& ctx = gpu::testkit::sharedContext();
   const fs::path level = writeLevel(
@@ -75,29 +116,14 @@ TEST(SkinningGpu, CpuEqualsGpuOnEveryVertexOfCesiumManAndFox) {
     session.render(presenter, {});
     const std::vector<float> gpuPosed = session.renderer().readPosedVertices();
     ASSERT_EQ(session.world().skinJobs.size(), 2u);  // both characters went through the pass
-    render::RenderWorld cpuWorld;
-    render::ExtractOptions cpuFace;
-    cpuFace.extent = {32, 32};
-    cpuFace.gpuSkinning = false;
-    session.gpuScene().extract(session.registry(), session.level(), cpuFace, cpuWorld);
+    const render::RenderWorld cpuWorld = cpuFace(session);
     ASSERT_TRUE(cpuWorld.skinJobs.empty());
     ASSERT_EQ(cpuWorld.posedVertices.size(), gpuPosed.size());
-    float worstP = 0.0f, worstN = 0.0f;
-    for (std::size_t v = 0; v < gpuPosed.size() / 8; ++v) {
-      const float* g = &gpuPosed[v * 8];
-      const float* c = &cpuWorld.posedVertices[v * 8];
-      const glm::vec3 gp(g[0], g[1], g[2]), cp(c[0], c[1], c[2]);
-      const float scale = std::max(1.0f, glm::length(cp));
-      worstP = std::max(worstP, glm::distance(gp, cp) / scale);
-      worstN = std::max(worstN, glm::distance(glm::vec3(g[3], g[4], g[5]), glm::vec3(c[3], c[4], c[5])));
-      ASSERT_EQ(g[6], c[6]) << "uv of vertex " << v;
-      ASSERT_EQ(g[7], c[7]) << "uv of vertex " << v;
-      ++checked;
-    }
-    EXPECT_LE(worstP, kPositionRelTol);
-    EXPECT_LE(worstN, kNormalTol);
-    RecordProperty("worst-position-rel-t" + std::to_string(int(t * 100)), sci(worstP));
-    RecordProperty("worst-normal-t" + std::to_string(int(t * 100)), sci(worstN));
+    PosedCompare cmp;
+    cmp.add(gpuPosed, 0, cpuWorld.posedVertices, 0, gpuPosed.size() / 8);
+    ASSERT_EQ(cmp.uvMismatches, 0u) << "uv of vertex " << cmp.firstUvMismatch;
+    checked += cmp.vertices;
+    cmp.expectWithin(kPositionRelTol, kNormalTol, "", t);
   }
   EXPECT_GT(checked, 4u * 4000u);  // CesiumMan 3273 + Fox 1728 vertices, every time
 }
@@ -129,11 +155,7 @@ TEST(SkinningGpu, MorphTargetsCpuEqualsGpuOnEveryVertex) {
     EXPECT_EQ(jobs[0].mesh->morphTargets, 3u);
     EXPECT_EQ(jobs[1].mesh->morphTargets, 3u);
     ASSERT_EQ(session.world().morphWeights.size(), 6u);
-    render::RenderWorld cpuWorld;
-    render::ExtractOptions cpuFace;
-    cpuFace.extent = {32, 32};
-    cpuFace.gpuSkinning = false;
-    session.gpuScene().extract(session.registry(), session.level(), cpuFace, cpuWorld);
+    const render::RenderWorld cpuWorld = cpuFace(session);
     ASSERT_TRUE(cpuWorld.skinJobs.empty());
     ASSERT_EQ(cpuWorld.posedVertices.size(), gpuPosed.size());
     ASSERT_EQ(cpuWorld.draws.size(), session.world().draws.size());
@@ -143,23 +165,13 @@ TEST(SkinningGpu, MorphTargetsCpuEqualsGpuOnEveryVertex) {
       EXPECT_LE(session.world().sceneMin[k], cpuWorld.sceneMin[k]) << "axis " << k;
       EXPECT_GE(session.world().sceneMax[k], cpuWorld.sceneMax[k]) << "axis " << k;
     }
-    float worstP = 0.0f, worstN = 0.0f;
-    for (std::size_t v = 0; v < gpuPosed.size() / 8; ++v) {
-      const float* g = &gpuPosed[v * 8];
-      const float* c = &cpuWorld.posedVertices[v * 8];
-      const glm::vec3 gp(g[0], g[1], g[2]), cp(c[0], c[1], c[2]);
-      worstP = std::max(worstP, glm::distance(gp, cp) / std::max(1.0f, glm::length(cp)));
-      worstN = std::max(worstN, glm::distance(glm::vec3(g[3], g[4], g[5]), glm::vec3(c[3], c[4], c[5])));
-      ASSERT_EQ(g[6], c[6]) << "uv of vertex " << v;
-      ASSERT_EQ(g[7], c[7]) << "uv of vertex " << v;
-      ++checked;
-    }
+    PosedCompare cmp;
+    cmp.add(gpuPosed, 0, cpuWorld.posedVertices, 0, gpuPosed.size() / 8);
+    ASSERT_EQ(cmp.uvMismatches, 0u) << "uv of vertex " << cmp.firstUvMismatch;
+    checked += cmp.vertices;
     // The sheet's bind pose is z = 0 everywhere: its posed |z| is how far the morph moved it.
     for (std::size_t v = 0; v < 32 * 32; ++v) largestMorph = std::max(largestMorph, std::abs(cpuWorld.posedVertices[v * 8 + 2]));
-    EXPECT_LE(worstP, kPositionRelTol);
-    EXPECT_LE(worstN, kNormalTol);
-    RecordProperty("morph-worst-position-rel-t" + std::to_string(int(t * 100)), sci(worstP));
-    RecordProperty("morph-worst-normal-t" + std::to_string(int(t * 100)), sci(worstN));
+    cmp.expectWithin(kPositionRelTol, kNormalTol, "morph-", t);
   }
   EXPECT_EQ(checked, 5u * 2u * 32u * 32u);
   EXPECT_GT(largestMorph, 0.15f);  // the bulge's weight reaches 1 (0.25 m) at t = 0.5 ± 0.2
@@ -202,33 +214,19 @@ TEST(SkinningGpu, SubdividedCagesCpuEqualsGpuOnEveryRefinedVertex) {
     const std::vector<float> gpuPosed = session.renderer().readPosedVertices();
     ASSERT_EQ(session.world().skinJobs.size(), 2u);
     ASSERT_EQ(session.world().subdivisionJobs.size(), 2u);
-    render::RenderWorld cpuWorld;
-    render::ExtractOptions cpuFace;
-    cpuFace.extent = {32, 32};
-    cpuFace.gpuSkinning = false;
-    session.gpuScene().extract(session.registry(), session.level(), cpuFace, cpuWorld);
+    const render::RenderWorld cpuWorld = cpuFace(session);
     ASSERT_TRUE(cpuWorld.subdivisionJobs.empty());
     const auto gpuRanges = posedRanges(session.world()), cpuRanges = posedRanges(cpuWorld);
     ASSERT_EQ(gpuRanges.size(), 2u);
     ASSERT_EQ(cpuRanges.size(), 2u);
-    float worstP = 0.0f, worstN = 0.0f;
+    PosedCompare cmp;
     for (std::size_t r = 0; r < 2; ++r) {
       ASSERT_EQ(gpuRanges[r].second, cpuRanges[r].second);
-      for (std::uint32_t v = 0; v < gpuRanges[r].second; ++v) {
-        const float* g = &gpuPosed[(gpuRanges[r].first + v) * 8];
-        const float* c = &cpuWorld.posedVertices[(cpuRanges[r].first + v) * 8];
-        const glm::vec3 gp(g[0], g[1], g[2]), cp(c[0], c[1], c[2]);
-        worstP = std::max(worstP, glm::distance(gp, cp) / std::max(1.0f, glm::length(cp)));
-        worstN = std::max(worstN, glm::distance(glm::vec3(g[3], g[4], g[5]), glm::vec3(c[3], c[4], c[5])));
-        ASSERT_EQ(g[6], c[6]) << "uv of refined vertex " << v;
-        ASSERT_EQ(g[7], c[7]) << "uv of refined vertex " << v;
-        ++checked;
-      }
+      cmp.add(gpuPosed, gpuRanges[r].first, cpuWorld.posedVertices, cpuRanges[r].first, gpuRanges[r].second);
+      ASSERT_EQ(cmp.uvMismatches, 0u) << "uv of refined vertex " << cmp.firstUvMismatch;
     }
-    EXPECT_LE(worstP, kRefinedPositionRelTol);
-    EXPECT_LE(worstN, kRefinedNormalTol);
-    RecordProperty("refined-worst-position-rel-t" + std::to_string(int(t * 100)), sci(worstP));
-    RecordProperty("refined-worst-normal-t" + std::to_string(int(t * 100)), sci(worstN));
+    checked += cmp.vertices;
+    cmp.expectWithin(kRefinedPositionRelTol, kRefinedNormalTol, "refined-", t);
   }
   EXPECT_GE(checked, 3u * 19965u);  // CesiumMan and Fox refined once (catmull-clark, 1 level): 19,965 vertices
 }
@@ -255,30 +253,17 @@ TEST(SkinningGpu, SubdividedMorphCagesCpuEqualsGpu) {
     const std::vector<float> gpuPosed = session.renderer().readPosedVertices();
     ASSERT_EQ(session.world().skinJobs.size(), 2u);
     ASSERT_EQ(session.world().subdivisionJobs.size(), 2u);
-    render::RenderWorld cpuWorld;
-    render::ExtractOptions cpuFace;
-    cpuFace.extent = {32, 32};
-    cpuFace.gpuSkinning = false;
-    session.gpuScene().extract(session.registry(), session.level(), cpuFace, cpuWorld);
+    const render::RenderWorld cpuWorld = cpuFace(session);
     const auto gpuRanges = posedRanges(session.world()), cpuRanges = posedRanges(cpuWorld);
     ASSERT_EQ(gpuRanges.size(), 2u);
     ASSERT_EQ(cpuRanges.size(), 2u);
-    float worstP = 0.0f, worstN = 0.0f;
+    PosedCompare cmp;
     for (std::size_t r = 0; r < 2; ++r) {
       ASSERT_EQ(gpuRanges[r].second, cpuRanges[r].second);
-      for (std::uint32_t v = 0; v < gpuRanges[r].second; ++v) {
-        const float* g = &gpuPosed[(gpuRanges[r].first + v) * 8];
-        const float* c = &cpuWorld.posedVertices[(cpuRanges[r].first + v) * 8];
-        const glm::vec3 gp(g[0], g[1], g[2]), cp(c[0], c[1], c[2]);
-        worstP = std::max(worstP, glm::distance(gp, cp) / std::max(1.0f, glm::length(cp)));
-        worstN = std::max(worstN, glm::distance(glm::vec3(g[3], g[4], g[5]), glm::vec3(c[3], c[4], c[5])));
-        ++checked;
-      }
+      cmp.add(gpuPosed, gpuRanges[r].first, cpuWorld.posedVertices, cpuRanges[r].first, gpuRanges[r].second);
     }
-    EXPECT_LE(worstP, kRefinedPositionRelTol);
-    EXPECT_LE(worstN, kRefinedNormalTol);
-    RecordProperty("morph-refined-worst-position-rel-t" + std::to_string(int(t * 100)), sci(worstP));
-    RecordProperty("morph-refined-worst-normal-t" + std::to_string(int(t * 100)), sci(worstN));
+    checked += cmp.vertices;
+    cmp.expectWithin(kRefinedPositionRelTol, kRefinedNormalTol, "morph-refined-", t);
   }
   EXPECT_GE(checked, 2u * 2u * 32u * 32u);  // refined: more vertices than the two 32×32 cages
 }

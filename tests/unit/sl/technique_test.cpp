@@ -21,6 +21,7 @@
 #include "engine/ref/reference_scene.hpp"
 #include "engine/scene/level.hpp"
 #include "engine/scene/systems.hpp"
+#include "tests/support/technique_level.hpp"
 
 namespace bounce::gi::sl {
 namespace {
@@ -28,34 +29,15 @@ namespace {
 namespace fs = std::filesystem;
 const fs::path kSource = BOUNCE_SOURCE_DIR;
 fs::path outDir() { return fs::path(BOUNCE_TEST_OUT) / "sl"; }
-fs::path cookCache() {
-  if (const char* env = std::getenv("BOUNCE_COOK_CACHE"); env && *env) return env;
-  return cacheDir("cooked");
+// The shared helpers (tests/support/technique_level.hpp) with this folder and the effects [direct, sl].
+using testlevel::boxAsset, testlevel::cookCache, testlevel::Loaded;
+std::string mesh() { return testlevel::boxMesh(); }
+fs::path writeLevel(const std::string& name, const std::string& entities, const std::string& effects = R"(["direct", "sl"])") {
+  return testlevel::writeLevel(outDir(), name, entities, effects);
 }
-std::string boxAsset() { return (kSource / "content/src/BoxTextured/glTF-Draco-gltfpipeline/BoxTextured.gltf").string(); }
-
-// A level with one entity `entity` (JSON object body), written to <name>.json.
-fs::path writeLevel(const std::string& name, const std::string& entity, const std::string& effects = R"(["direct", "sl"])") {
-  const fs::path path = outDir() / (name + ".json");
-  writeFileAtomic(path, R"({"bounce_level": 1, "effects": )" + effects + R"(, "entities": [)" + entity + "]}");
-  return path;
-}
-
 std::string loadError(const std::string& name, const std::string& entity) {
-  const fs::path path = writeLevel(name, entity);
-  try {
-    ecs::Registry r;
-    scene::instantiate(scene::loadLevel(path), r);
-  } catch (const InputError& e) {
-    std::string msg = e.what();
-    const std::string prefix = path.string() + ": ";
-    if (msg.rfind(prefix, 0) == 0) msg = "FILE: " + msg.substr(prefix.size());
-    return msg;
-  }
-  return "(no error)";
+  return testlevel::loadError(outDir(), name, entity, R"(["direct", "sl"])");
 }
-
-std::string mesh() { return R"("mesh": {"asset": ")" + boxAsset() + R"("})"; }
 
 TEST(SlComponent, ParsesWithDefaults) {
   const fs::path path = writeLevel("sl-ok", R"({"id": "a", "dynamic": true, )" + mesh() +
@@ -141,16 +123,6 @@ TEST(SlComponent, MeshWithoutTrianglesIsBadInput) {
     EXPECT_EQ(std::string(e.what()), stub + ": mesh: no triangles for the sl spheres of entity a (expected a mesh with triangles)");
   }
 }
-
-struct Loaded {
-  scene::Level level;
-  ecs::Registry registry;
-  explicit Loaded(const fs::path& path) : level(scene::loadLevel(path)) {
-    scene::instantiate(level, registry);
-    scene::transformSystem(registry);
-  }
-  LevelContext context() { return {level, registry, cookCache()}; }
-};
 
 TEST(SlTechnique, TakesPartAndBakesOneEntryPerEntity) {
   const Technique& t = technique();
