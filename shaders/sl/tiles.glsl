@@ -13,6 +13,40 @@ layout(push_constant) uniform Push {
 } pc;
 
 layout(location = 0) flat out uvec4 outCandidates;
+
+#ifdef SL_TILE_CUT
+// The tile's list cut by its receivers' world box (sl/tile_cut.glsl, which says why). The receivers
+// are reconstructed as sl/receiver.glsl does per pixel (the same G-buffer pixel, the same
+// worldFromDepth) — 256 texel reads per vertex, against a walk body per listed SL for every 8-pixel
+// block of the tile. The includer declares camera (frame.glsl), gDepth, sl_data.glsl (slSphere),
+// kInfluence and kStep (G-buffer pixels per target pixel per axis: the receiver of target pixel j is
+// G-buffer pixel min(kStep·j, size − 1)).
+#include "sl/tile_cut.glsl"
+
+uvec4 slCutTile(uvec2 tile, uvec4 mask) {
+  uvec2 extent = uvec2(round(1.0 / pc.invExtent));
+  uvec2 first = tile * pc.tileSize;
+  uvec2 last = min(first + pc.tileSize, extent);  // exclusive
+  ivec2 gmax = ivec2(camera.resolution.xy) - 1;
+  vec3 lo = vec3(3.0e38), hi = vec3(-3.0e38);  // empty: slBoxCut lists nothing
+  // One loop over the tile's pixels, do…while (README "Loop bodies III").
+  uint w = max(last.x, first.x + 1u) - first.x;
+  uint count = w * (max(last.y, first.y + 1u) - first.y);
+  uint k = 0u;
+  do {
+    uvec2 j = first + uvec2(k % w, k / w);
+    ivec2 pixel = kStep > 1u ? min(int(kStep) * ivec2(j), gmax) : ivec2(j);
+    float depth = texelFetch(gDepth, pixel, 0).r;
+    if (depth < 1.0 && all(lessThan(j, last))) {
+      vec3 p = worldFromDepth(camera.invViewProj, (vec2(pixel) + 0.5) * camera.resolution.zw, depth);
+      lo = min(lo, p);
+      hi = max(hi, p);
+    }
+    ++k;
+  } while (k < count);
+  return slBoxCut(lo, hi, mask);
+}
+#endif
 #ifdef SL_TILE_RATIOS
 // §7.3 hierarchy (hierarchy_tiles.vert): the tile's Eq. 25 t per object, 4 vec4 per tile record
 // (shaders/sl/hierarchy_ratio.comp wrote them), to sl_hierarchy.frag as flat varyings.
@@ -26,7 +60,11 @@ void main() {
   const uvec2 corners[6] = uvec2[6](uvec2(0, 0), uvec2(1, 0), uvec2(0, 1), uvec2(1, 0), uvec2(1, 1), uvec2(0, 1));
   vec2 pixel = vec2((tile.xy + corners[gl_VertexIndex]) * pc.tileSize);
   gl_Position = vec4(pixel * pc.invExtent * 2.0 - 1.0, 0.0, 1.0);
+#ifdef SL_TILE_CUT
+  outCandidates = slCutTile(tile.xy, slTiles[2 * gl_InstanceIndex + 1]);
+#else
   outCandidates = slTiles[2 * gl_InstanceIndex + 1];
+#endif
 #ifdef SL_TILE_RATIOS
   for (int o = 0; o < 4; ++o) outRatios[o] = slRatios[4 * gl_InstanceIndex + o];
 #endif
