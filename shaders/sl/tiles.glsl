@@ -29,12 +29,12 @@ uvec4 slCutTile(uvec2 tile, uvec4 mask) {
   uvec2 last = min(first + pc.tileSize, extent);  // exclusive
   ivec2 gmax = ivec2(camera.resolution.xy) - 1;
   vec3 lo = vec3(3.0e38), hi = vec3(-3.0e38);  // empty: slBoxCut lists nothing
-  // One loop over the tile's pixels, do…while (README "Loop bodies III").
-  uint w = max(last.x, first.x + 1u) - first.x;
-  uint count = w * (max(last.y, first.y + 1u) - first.y);
-  uint k = 0u;
+  // One loop over the tile's pixels, row by row, do…while (README "Loop bodies III"); the column
+  // and row are counters (a vector integer division is one scalar division per lane on llvmpipe).
+  uint w = max(last.x, first.x + 1u) - first.x, h = max(last.y, first.y + 1u) - first.y;
+  uint x = 0u, y = 0u;
   do {
-    uvec2 j = first + uvec2(k % w, k / w);
+    uvec2 j = first + uvec2(x, y);
     ivec2 pixel = kStep > 1u ? min(int(kStep) * ivec2(j), gmax) : ivec2(j);
     float depth = texelFetch(gDepth, pixel, 0).r;
     if (depth < 1.0 && all(lessThan(j, last))) {
@@ -42,8 +42,10 @@ uvec4 slCutTile(uvec2 tile, uvec4 mask) {
       lo = min(lo, p);
       hi = max(hi, p);
     }
-    ++k;
-  } while (k < count);
+    ++x;
+    y += x == w ? 1u : 0u;
+    x = x == w ? 0u : x;
+  } while (y < h);
   return slBoxCut(lo, hi, mask);
 }
 #endif
