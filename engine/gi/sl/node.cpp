@@ -76,9 +76,12 @@ Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t fra
   spheres_ = slots_[0].intensity->sphereCount();
   vert_ = gpu::ShaderModule(ctx, "sl/tiles.vert.spv");
   frag_ = gpu::ShaderModule(ctx, hierarchy ? "sl/sl_hierarchy.frag.spv" : "sl/sl.frag.spv");
-  if (hierarchy) hierarchyVert_ = gpu::ShaderModule(ctx, "sl/hierarchy_tiles.vert.spv");
+  if (hierarchy)
+    hierarchyVert_ = gpu::ShaderModule(ctx, "sl/hierarchy_tiles.vert.spv");
+  else
+    cutVert_ = gpu::ShaderModule(ctx, "sl/cut_tiles.vert.spv");
   gpu::GraphicsPipelineDesc d;
-  d.vertex = hierarchy ? &hierarchyVert_ : &vert_;
+  d.vertex = hierarchy ? &hierarchyVert_ : &cutVert_;
   d.fragment = &frag_;
   const std::uint32_t step = resolutionStep(resolution);
   const bool reduced = step > 1u;
@@ -312,6 +315,18 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::s
         // keeps its light.
         render::Attachment color{target.view(), resolution_ == Resolution::Full && res.keepsContents(d.hdr)};
         const VkExtent2D extent{target.desc().width, target.desc().height};
+        if (!hierarchy_) {
+          // cut_tiles.vert reads "gbuffer.depth" in the vertex stage (each tile's receivers,
+          // tiles.glsl slCutTile); the graph declares it sampled in the fragment stage, whose barrier
+          // (and layout transition) this chains: the stages that wrote or already read it, to the
+          // vertex shader.
+          VkMemoryBarrier depthToVertex{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
+                                        VK_ACCESS_SHADER_READ_BIT};
+          vkCmdPipelineBarrier(cmd,
+                               VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT |
+                                   VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                               VK_PIPELINE_STAGE_VERTEX_SHADER_BIT, 0, 1, &depthToVertex, 0, nullptr, 0, nullptr);
+        }
         render::beginRendering(ctx_, cmd, extent, {&color, 1}, nullptr);
         // Two triangles per tile with any SL; the other tiles' pixels do no work. Per-object: the
         // tiles of one object first, without the closer objects' exp.

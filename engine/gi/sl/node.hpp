@@ -84,7 +84,9 @@ class Node {
   gpu::PipelineLayout layout_;
   gpu::DescriptorSetLayout upsampleInputs_;  // at a reduced resolution only
   gpu::PipelineLayout upsampleLayout_;
-  gpu::ShaderModule vert_, frag_, upsampleFrag_, hierarchyVert_;  // hierarchyVert_: "sl" with the hierarchy
+  // vert_: the tiles as listed ("sl.upsample"); cutVert_: "sl" without the hierarchy, each tile's list cut
+  // by its receivers' world box (shaders/sl/tiles.glsl slCutTile); hierarchyVert_: "sl" with the hierarchy.
+  gpu::ShaderModule vert_, cutVert_, frag_, upsampleFrag_, hierarchyVert_;
   gpu::Pipeline pipeline_, upsample_;  // upsample_: at a reduced resolution only
   // Per-object blocking only: pass 2 for the tiles whose SLs all belong to one object (sl.frag
   // kSingleObject: no exp of closer objects, which is exp(0) there); pipeline_ draws the others.
