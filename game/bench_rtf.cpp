@@ -59,12 +59,29 @@ int runBenchRtf(const cli::Args& args) {
   const int bounces = intIn(args, "--bounces", 2, 1, 4);
   const int runs = intIn(args, "--runs", 3, 1, 1000);
   const int maxObjects = intIn(args, "--objects", 1000, 1, 1000);
+  // --object ID: one prop at its own settings (issue 14's goal per prop, README "CPCA on every prop,
+  // session 14"). The GPU rows put the fields on the level's first n objects, so only with --no-gpu.
+  const std::string only = args.str("--object", "");
+  if (args.has("--object") && (only.empty() || !args.has("--no-gpu")))
+    throwInputError("bounce bench rtf", "--object", only.empty() ? "no id" : "without --no-gpu",
+                    "--object ID --no-gpu, ID a dynamic entity's id");
   const scene::Level level = scene::loadLevel(benchLevelPath(args.str("--level", "cornell-5")));
 
   gi::dnrt::LevelObjects objects;
   gi::dnrt::loadLevelObjects(level, cookCacheDir(), objects);
   if (objects.entities.empty())
     throwInputError(args.str("--level", "cornell-5"), "/entities", "no dynamic object", "entities with a dnrt component");
+  if (!only.empty()) {
+    std::vector<ecs::Entity> kept;
+    std::string ids;
+    for (ecs::Entity e : objects.entities) {
+      const scene::Name* name = objects.registry.tryGet<scene::Name>(e);
+      if (name && name->id == only) kept.push_back(e);
+      if (name) ids += (ids.empty() ? "" : ", ") + name->id;
+    }
+    if (kept.empty()) throwInputError("bounce bench rtf", "--object", "'" + only + "' is no dynamic entity", "one of " + ids);
+    objects.entities = kept;
+  }
   std::vector<gi::rtf::Field> fields;
   std::vector<glm::mat4> worlds;
   for (ecs::Entity e : objects.entities) {

@@ -1,11 +1,13 @@
 // rtf_cpca_time: the CPCA (cpca.hpp, Eq. 9) alone on a stored ITF, timed (issue 14, session 13,
 // README "Bake speed and CPCA, session 13"). A measurement: the field bake (33–59 s at 6·64²) is
 // done once by `dump`, then `run` compresses the same X at any settings and thread count.
-//   rtf_cpca_time dump LEVEL OBJECT PROXIES SPHERES FACE RAYS OUT   X (N·D floats, raw) to OUT
+//   rtf_cpca_time dump LEVEL OBJECT PROXIES SPHERES FACE RAYS OUT [VERTEX_RAYS]   X (N·D floats, raw) to OUT
+//     (VERTEX_RAYS: the vertex transfer's rays per axis, Eq. 8; default FieldSettings' 16)
 //   rtf_cpca_time run FILE D CLUSTERS COMPONENTS THREADS [HASH [ITERATIONS [POWER]]]
 // `run` prints wall and CPU seconds of compress(), the fp16 Frobenius error and stored ratio as
 // `bounce bench rtf` does, and (with HASH = 1) an FNV-1a hash of the basis, α and cluster ids:
-// the same bytes for any THREADS is the determinism the CPCA promises.
+// the same bytes for any THREADS is the determinism the CPCA promises. With RTF_CPCA_GROUP=S set,
+// also the error's share per group of S samples (README "CPCA on every prop, session 14").
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -36,11 +38,16 @@ std::uint64_t fnv(const void* p, std::size_t n, std::uint64_t h) {
 
 int main(int argc, char** argv) {
   const std::string mode = argc > 1 ? argv[1] : "";
-  if (mode == "dump" && argc == 9) {
+  if (mode == "dump" && (argc == 9 || argc == 10)) {
     gi::dnrt::LevelObjects objects;
     std::size_t index = 0;
     gi::rtf::FieldSettings s;
     if (!tools::loadToolObject("rtf_cpca_time", argv + 2, objects, index, s)) return 2;
+    if (argc == 10) s.vertexRaysPerAxis = std::atoi(argv[9]);
+    if (s.vertexRaysPerAxis < 1 || s.vertexRaysPerAxis > 256) {
+      std::fprintf(stderr, "rtf_cpca_time: VERTEX_RAYS: %s out of range (expected 1..256)\n", argv[9]);
+      return 2;
+    }
     s.clusters = 1, s.components = 1;  // the bake's own CPCA is not what is measured here
     const ref::SceneDesc object = gi::dnrt::objectScene(objects.registry, objects.entities[index], objects.assets);
     const gi::rtf::BakeResult baked = gi::rtf::bake(object, s);
@@ -82,8 +89,27 @@ int main(int argc, char** argv) {
       std::printf(" hash=%016llx", static_cast<unsigned long long>(h));
     }
     std::printf("\n");
+    // RTF_CPCA_GROUP=S: the share of ‖X − X̂‖² and of ‖X‖² per group of S consecutive samples (S =
+    // 6·FACE², one sphere): where the error sits.
+    if (const char* g = std::getenv("RTF_CPCA_GROUP"); g && std::atoll(g) > 0) {
+      const std::size_t S = std::size_t(std::atoll(g)), N = c.samples();
+      std::vector<double> err((N + S - 1) / S, 0.0), norm(err.size(), 0.0);
+      std::vector<float> xr(D);
+      double errSum = 0.0, normSum = 0.0;
+      for (std::size_t r = 0; r < N; ++r) {
+        c.reconstruct(r, xr);
+        for (std::size_t d = 0; d < D; ++d) {
+          const double t = X[r * D + d];
+          err[r / S] += (t - xr[d]) * (t - xr[d]), norm[r / S] += t * t;
+        }
+      }
+      for (std::size_t k = 0; k < err.size(); ++k) errSum += err[k], normSum += norm[k];
+      for (std::size_t k = 0; k < err.size(); ++k)
+        std::printf("group=%zu err_share=%.4f norm_share=%.4f relative=%.4f\n", k, err[k] / errSum, norm[k] / normSum,
+                    norm[k] > 0.0 ? std::sqrt(err[k] / norm[k]) : 0.0);
+    }
     return 0;
   }
-  std::fprintf(stderr, "usage: rtf_cpca_time dump LEVEL OBJECT PROXIES SPHERES FACE RAYS OUT | run FILE D CLUSTERS COMPONENTS THREADS [HASH]\n");
+  std::fprintf(stderr, "usage: rtf_cpca_time dump LEVEL OBJECT PROXIES SPHERES FACE RAYS OUT [VERTEX_RAYS] | run FILE D CLUSTERS COMPONENTS THREADS [HASH]\n");
   return 2;
 }

@@ -27,6 +27,22 @@ TEST(RtfBenchCli, OutOfRangeSettingsAreOneLineAndExit2) {
   }
 }
 
+// --object: without --no-gpu, or an id the level's dynamic entities do not have.
+TEST(RtfBenchCli, BadObjectIsOneLineAndExit2) {
+  for (const auto& [args, what] : {std::pair<std::vector<std::string>, std::string>{{"--object", "prop-truck"}, "without --no-gpu"},
+                                   {{"--object", "no-such-prop", "--no-gpu"}, "'no-such-prop' is no dynamic entity"}}) {
+    std::vector<std::string> full{"bench", "rtf", "--level", "cornell-5"};
+    full.insert(full.end(), args.begin(), args.end());
+    const auto r = runBounce(full, kOut / ("object-" + args[1]));
+    EXPECT_EQ(r.code, 2) << what;
+    const auto err = lines(r.err);
+    ASSERT_EQ(err.size(), 1u) << r.err;
+    EXPECT_NE(err[0].find("--object: " + what), std::string::npos) << err[0];
+    EXPECT_NE(err[0].find("expected"), std::string::npos) << err[0];
+    EXPECT_TRUE(r.out.empty()) << "nothing baked or printed before the check";
+  }
+}
+
 TEST(RtfBenchCli, MissingLevelIsOneLineAndExit2) {
   const auto r = runBounce({"bench", "rtf", "--level", "no-such-level"}, kOut / "level");
   EXPECT_EQ(r.code, 2);
