@@ -59,6 +59,11 @@ class FrameRing {
   void deferDelete(std::function<void()> deleter);
   // Waits for every submitted frame (captures, resizes, shutdown); resolves their timings.
   void waitIdle();
+  // Drops the frame being recorded without submitting it, so that an error thrown while recording
+  // unwinds to a clean ring (waitIdle() and begin() work again) instead of ending in std::terminate
+  // from a destructor's waitIdle(). Its deletions still run when the slot is next retired; it has no
+  // timings. No-op when no frame is recording.
+  void abandon();
 
   // Timings of the most recently completed frame whose results were resolved.
   const std::vector<TimingResult>& lastTimings() const { return last_timings_; }

@@ -183,29 +183,36 @@ void Renderer::render(const RenderWorld& world, gpu::Presenter& presenter, const
   const VkExtent2D extent = presenter.extent();
   ensureTargets(extent);
   gpu::Frame& frame = frames_->begin();
-  backend_->beginFrame(frame.slot, frame.timestamps.get());
+  // An error while recording (a technique's update, a pass, the presenter) must leave the ring
+  // usable: the session's destructor waits for it, and a second throw there would terminate.
+  try {
+    backend_->beginFrame(frame.slot, frame.timestamps.get());
 
-  PassContext pc;
-  pc.gpu = &ctx_;
-  pc.backend = backend_.get();
-  pc.frames = frames_.get();
-  pc.samplers = samplers_.get();
-  pc.pipelines = pipelines_.get();
-  pc.world = &world;
-  pc.dummyShadowAtlas = dummyAtlas_.get();
-  pc.debugView = static_cast<int>(settings.debugView);
-  pc.exposure = settings.exposure;
-  writeFrameData(frame.slot, world, pc);
+    PassContext pc;
+    pc.gpu = &ctx_;
+    pc.backend = backend_.get();
+    pc.frames = frames_.get();
+    pc.samplers = samplers_.get();
+    pc.pipelines = pipelines_.get();
+    pc.world = &world;
+    pc.dummyShadowAtlas = dummyAtlas_.get();
+    pc.debugView = static_cast<int>(settings.debugView);
+    pc.exposure = settings.exposure;
+    writeFrameData(frame.slot, world, pc);
 
-  rg::RenderGraph graph;
-  buildGraph(graph, pc, extent, settings, backend_->importImage(*hdr_), backend_->importImage(*display_),
-             backend_->importBuffer(slots_[frame.slot].posedVertices));
-  executed_ = graph.compile().executedPasses;
-  VkCommandContext cc;
-  cc.cmd = frame.cmd;
-  cc.backend = backend_.get();
-  graph.execute(*backend_, cc);
-  presenter.present(*frames_, *display_);
+    rg::RenderGraph graph;
+    buildGraph(graph, pc, extent, settings, backend_->importImage(*hdr_), backend_->importImage(*display_),
+               backend_->importBuffer(slots_[frame.slot].posedVertices));
+    executed_ = graph.compile().executedPasses;
+    VkCommandContext cc;
+    cc.cmd = frame.cmd;
+    cc.backend = backend_.get();
+    graph.execute(*backend_, cc);
+    presenter.present(*frames_, *display_);
+  } catch (...) {
+    frames_->abandon();
+    throw;
+  }
 }
 
 std::string Renderer::graphDot(const RenderWorld& world, VkExtent2D extent, const FrameSettings& settings) {

@@ -69,3 +69,38 @@ TEST(Frames, DeferredDeletionRunsAfterTheFrameCompletes) {
   EXPECT_EQ(deleted, 1);
   frames.submit();
 }
+
+// An error thrown while a frame records (Renderer::render unwinds through abandon()) must leave the
+// ring usable: before abandon() existed, the destructor's waitIdle() threw "while a frame is
+// recording" and the program ended in std::terminate (exit 134) with the first error lost.
+TEST(Frames, AbandonedFrameLeavesTheRingUsable) {
+  Context& ctx = testkit::sharedContext();
+  Image target(ctx, {ImageType::Tex2D, VK_FORMAT_R16G16B16A16_SFLOAT, 16, 16, 1, 1, 1,
+                     VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT, VK_SAMPLE_COUNT_1_BIT, "abandoned target"});
+  testkit::SolidPipeline solid(ctx, VK_FORMAT_R16G16B16A16_SFLOAT);
+  FrameRing frames(ctx, 2);
+  int deleted = 0;
+  frames.begin();
+  frames.submit();  // frame 1, completes normally
+  Frame& f = frames.begin();  // frame 2: stopped inside a render pass, as an exception would leave it
+  frames.deferDelete([&] { ++deleted; });
+  testkit::beginColor(ctx, f.cmd, target, testkit::Color{0, 0, 0, 0});
+  solid.draw(f.cmd, {1, 1, 1, 1});
+  EXPECT_THROW(frames.waitIdle(), InternalError);  // the state abandon() exists for
+  frames.abandon();
+  EXPECT_FALSE(frames.current().recording);
+  frames.abandon();  // no frame recording: no-op
+  frames.waitIdle();  // returns: the abandoned slot's fence is signalled
+  EXPECT_EQ(deleted, 1);  // its deletion ran when the slot was retired
+  for (int frame = 0; frame < 3; ++frame) {  // the ring records and submits again, both slots
+    Frame& g = frames.begin();
+    testkit::beginColor(ctx, g.cmd, target, testkit::Color{0, 0, 0, 0});
+    solid.draw(g.cmd, {1, 1, 1, 1});
+    ctx.cmdEndRendering(g.cmd);
+    frames.submit();
+  }
+  frames.waitIdle();
+  if (frames.current().timestamps->supported()) {
+    EXPECT_EQ(frames.lastTimingsFrame(), 0u);  // no scope was opened in any frame
+  }
+}
