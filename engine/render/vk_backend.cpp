@@ -89,7 +89,7 @@ namespace {
 VkImageUsageFlags imageUsage(rg::UsageSet u, bool depth) {
   using U = rg::Usage;
   VkImageUsageFlags f = 0;
-  if (u.has(U::SampledFragment) || u.has(U::SampledCompute)) f |= VK_IMAGE_USAGE_SAMPLED_BIT;
+  if (u.has(U::SampledFragment) || u.has(U::SampledCompute) || u.has(U::SampledGraphics)) f |= VK_IMAGE_USAGE_SAMPLED_BIT;
   if (u.has(U::StorageRead) || u.has(U::StorageWrite)) f |= VK_IMAGE_USAGE_STORAGE_BIT;
   if (u.has(U::ColorAttachment)) f |= VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
   if (u.has(U::DepthAttachment) || u.has(U::DepthRead)) f |= VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT;

@@ -293,7 +293,10 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::s
   const auto& data = graph.addPass<Data>(
       "sl",
       [&](rg::Builder& b, Data& d) {
-        d.g = render::readDeferredInputs(b, bb);
+        // cut_tiles.vert reads "gbuffer.depth" in the vertex stage (each tile's receivers,
+        // tiles.glsl slCutTile), so the graph's barrier must reach the vertex shader.
+        d.g = render::readDeferredInputs(b, bb, false,
+                                         hierarchy_ ? rg::Usage::SampledFragment : rg::Usage::SampledGraphics);
         d.hdr = reduced ? b.write(b.create<rg::Texture>(reducedTargetName(step),
                                                         rg::TextureDesc{reducedExtent.x, reducedExtent.y, 1, 1, 1,
                                                                         rg::Format::RGBA16F, false}),
@@ -315,18 +318,6 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::s
         // keeps its light.
         render::Attachment color{target.view(), resolution_ == Resolution::Full && res.keepsContents(d.hdr)};
         const VkExtent2D extent{target.desc().width, target.desc().height};
-        if (!hierarchy_) {
-          // cut_tiles.vert reads "gbuffer.depth" in the vertex stage (each tile's receivers,
-          // tiles.glsl slCutTile); the graph declares it sampled in the fragment stage, whose barrier
-          // (and layout transition) this chains: the stages that wrote or already read it, to the
-          // vertex shader.
-          VkMemoryBarrier depthToVertex{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
-                                        VK_ACCESS_SHADER_READ_BIT};
-          vkCmdPipelineBarrier(cmd,
-                               VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT |
-                                   VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
-                               VK_PIPELINE_STAGE_VERTEX_SHADER_BIT, 0, 1, &depthToVertex, 0, nullptr, 0, nullptr);
-        }
         render::beginRendering(ctx_, cmd, extent, {&color, 1}, nullptr);
         // Two triangles per tile with any SL; the other tiles' pixels do no work. Per-object: the
         // tiles of one object first, without the closer objects' exp.

@@ -28,6 +28,7 @@ const char* usageName(Usage u) {
   switch (u) {
     case Usage::SampledFragment: return "SampledFragment";
     case Usage::SampledCompute: return "SampledCompute";
+    case Usage::SampledGraphics: return "SampledGraphics";
     case Usage::StorageRead: return "StorageRead";
     case Usage::StorageWrite: return "StorageWrite";
     case Usage::ColorAttachment: return "ColorAttachment";
@@ -122,6 +123,8 @@ ResourceState stateFor(Usage usage, ResourceKind kind, bool priorContents) {
       return {Layout::ShaderReadOnly, Stage::FragmentShader, Access::ShaderSampledRead};
     case Usage::SampledCompute:
       return {Layout::ShaderReadOnly, Stage::ComputeShader, Access::ShaderSampledRead};
+    case Usage::SampledGraphics:
+      return {Layout::ShaderReadOnly, Stage::VertexShader | Stage::FragmentShader, Access::ShaderSampledRead};
     case Usage::StorageRead:
       return {layout(Layout::General), Stage::ComputeShader, Access::ShaderStorageRead};
     case Usage::StorageWrite:

@@ -14,6 +14,7 @@ namespace bounce::rg {
 enum class Usage : std::uint8_t {
   SampledFragment,  // texture sampled in a fragment shader
   SampledCompute,   // texture sampled in a compute shader
+  SampledGraphics,  // texture sampled in the vertex and fragment shaders (e.g. a tile's vertices read depth)
   StorageRead,      // storage image / buffer read by a compute shader
   StorageWrite,     // storage image / buffer written by a compute shader (write)
   ColorAttachment,  // rendered to as a colour attachment (write)

@@ -47,11 +47,11 @@ const GBuffer& addGBufferPass(rg::RenderGraph& graph, const PassContext* pc, VkE
   return out;
 }
 
-DeferredInputs readDeferredInputs(rg::Builder& b, rg::Blackboard& bb, bool withEntity) {
+DeferredInputs readDeferredInputs(rg::Builder& b, rg::Blackboard& bb, bool withEntity, rg::Usage depthUsage) {
   DeferredInputs in;
   in.albedo = b.read(bb.get<rg::Texture>("gbuffer.albedo"), rg::Usage::SampledFragment);
   in.normal = b.read(bb.get<rg::Texture>("gbuffer.normal"), rg::Usage::SampledFragment);
-  in.depth = b.read(bb.get<rg::Texture>("gbuffer.depth"), rg::Usage::SampledFragment);
+  in.depth = b.read(bb.get<rg::Texture>("gbuffer.depth"), depthUsage);
   if (withEntity) in.entity = b.read(bb.get<rg::Texture>("gbuffer.entity"), rg::Usage::SampledFragment);
   return in;
 }

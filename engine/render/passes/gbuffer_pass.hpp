@@ -27,7 +27,9 @@ const GBuffer& addGBufferPass(rg::RenderGraph& graph, const PassContext* pc, VkE
 struct DeferredInputs {
   rg::Handle<rg::Texture> albedo, normal, depth, entity;  // entity: invalid unless asked for
 };
-DeferredInputs readDeferredInputs(rg::Builder& b, rg::Blackboard& bb, bool withEntity = false);
+// `depthUsage`: SampledGraphics where the pass's vertex stage reads depth too (sl's tile cut).
+DeferredInputs readDeferredInputs(rg::Builder& b, rg::Blackboard& bb, bool withEntity = false,
+                                  rg::Usage depthUsage = rg::Usage::SampledFragment);
 // Writes albedo, normal and depth at bindings 0, 1, 2 with the point sampler `point`, the opening of
 // every deferred GI pass's descriptor set (the bindings after them are the pass's own).
 // `depthLayout`: the depth's layout in the pass (DEPTH_READ_ONLY_OPTIMAL where the pass also tests
