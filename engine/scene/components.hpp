@@ -213,6 +213,11 @@ struct Sl {
   // characters: what the error is made of, session 11") clear a bit, so one render shows one term.
   // Needs the fused pass (probes on, hierarchy off, "fused" true).
   int terms = 3;
+  // "blocked_light": "receiver" (false, the default) or "sphere" (true): where pass 2's shadow on the
+  // probes' light reads the light the SLs block — the receiver's probe SH (Eq. 6), or each SL's own
+  // (the probes' SH at its posed centre, in the receiver → SL direction; engine/gi/sl/probe_shadow.hpp
+  // BlockedLight). Run time only. Not with "hierarchy".
+  bool blockedAtSphere = false;
   friend bool operator==(const Sl&, const Sl&) = default;
 };
 

@@ -187,10 +187,13 @@ void parseDnrt(const json::Node& node, EntityDesc& d, const ParseContext&) {
 }
 
 // "sl": {"spheres": 1..64, "order": 3|4, "blocking": "per-sphere"|"per-object", "influence": 0|3..1000,
-//        "resolution": "full"|"half"|"quarter", "local_lights": bool, "hierarchy": bool, "fused": bool} — every key optional (defaults 16, 4, per-sphere, 12, full, false, false, true). The sphere limit is gi::sl::kMaxSpheres
+//        "resolution": "full"|"half"|"quarter", "local_lights": bool, "hierarchy": bool, "fused": bool,
+//        "blocked_light": "receiver"|"sphere"} — every key optional (defaults 16, 4, per-sphere, 12, full, false, false, true,
+//        receiver); "sphere" with "hierarchy": true is refused. The sphere limit is gi::sl::kMaxSpheres
 //        (one uint64 mask).
 void parseSl(const json::Node& node, EntityDesc& d, const ParseContext&) {
-  const auto o = node.object({"spheres", "order", "blocking", "influence", "resolution", "local_lights", "hierarchy", "fused"});
+  const auto o = node.object(
+      {"spheres", "order", "blocking", "influence", "resolution", "local_lights", "hierarchy", "fused", "blocked_light"});
   Sl c;
   if (auto v = o.optional("spheres")) c.spheres = int(v->integer(1, 64));
   if (auto v = o.optional("order")) {
@@ -220,6 +223,13 @@ void parseSl(const json::Node& node, EntityDesc& d, const ParseContext&) {
   if (auto v = o.optional("local_lights")) c.localLights = v->boolean();
   if (auto v = o.optional("hierarchy")) c.hierarchy = v->boolean();
   if (auto v = o.optional("fused")) c.fused = v->boolean();
+  if (auto v = o.optional("blocked_light")) {
+    const std::string m = v->string();
+    if (m != "receiver" && m != "sphere") v->fail("unknown blocked_light " + json::inQuotes(m), "receiver or sphere");
+    c.blockedAtSphere = m == "sphere";
+    if (c.blockedAtSphere && c.hierarchy)
+      v->fail("blocked_light \"sphere\" with \"hierarchy\": true", "\"receiver\" with the hierarchy (its parents read the receiver's SH)");
+  }
   d.sl = c;
 }
 

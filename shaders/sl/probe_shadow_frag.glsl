@@ -23,6 +23,9 @@ layout(constant_id = 2) const uint kSpheres = 64u;
 layout(constant_id = 3) const float kInfluence = 0.0;
 layout(constant_id = 4) const int kCoeffs = 9;  // the probes' order²: 4 or 9
 layout(constant_id = 5) const uint kStep = 1u;
+// "blocked_light": "sphere" (scene::Sl::blockedAtSphere): the blocked light read at each SL's centre
+// (sl/probe_shadow.glsl); false ("receiver", the default): the receiver's SH. Not with the hierarchy.
+layout(constant_id = 6) const bool kBlockedAtSphere = false;
 
 #include "frame.glsl"
 #include "sh.glsl"
@@ -42,6 +45,7 @@ layout(push_constant) uniform Push {
 #include "probes/probe_sh.glsl"
 #define SL_SET 1
 #define SL_BINDING 7  // binding 6: the tiles (sl/tiles.glsl)
+#define SL_INDIRECT_BINDING 11  // binding 10: the hierarchy's τ (shadow_hierarchy_tiles.vert)
 #include "sl/sl_data.glsl"
 #include "sl/sl.glsl"
 #include "sl/probe_shadow.glsl"
@@ -74,7 +78,7 @@ void main() {
   // §7.3 for the shadow (sl/hierarchy_shadow.glsl): the cut SLs' ΔE plus each listed parent's share.
   vec3 delta = ao * slShadowHierarchyAt(x, n, L, inCandidates, inRatios, slProbeShadow(x, n, L, inCandidates));
 #else
-  vec3 delta = ao * slProbeShadow(x, n, L, inCandidates);
+  vec3 delta = ao * slProbeShadow(x, n, L, inCandidates, kBlockedAtSphere);
 #endif
   outRadiance = vec4(kStep > 1u ? delta : albedo * kInvPi * delta, 0.0);
 }

@@ -37,4 +37,19 @@ uvec4 slIntersecting(uint i) { return slIntersectMasks[i]; }
 // Channel c of L^c_2m and L^c_2m+1 of SL i (m a loop counter: the component index folds to a constant).
 vec2 slIntensityPair(uint i, uint c, uint m) { return unpackHalf2x16(slIntensityWords[6u * i + 2u * c + m / 4u][m % 4u]); }
 
+// "blocked_light": "sphere" (sl/probe_shadow.glsl, engine/gi/sl/probe_shadow.hpp): the probes' radiance
+// SH at each SL's posed centre (pass 1's `indirect`, engine/gi/sl/shade.hpp ShadeData::setSpheres), in
+// its own uniform block at binding SL_INDIRECT_BINDING when the includer defines it (sl.shadow and the
+// fused pass; not pass 1 nor sl.local). fp16, 16 words per SL (4 uvec4): half h = 3k + c (coefficient k
+// < 9, channel c) in word h / 2, low half first (packHalf2x16); half 27 is 0. 128 · 64 B = 8 KiB.
+#ifdef SL_INDIRECT_BINDING
+layout(std140, set = SL_SET, binding = SL_INDIRECT_BINDING) uniform SlIndirect { uvec4 slIndirectWords[kSlMaxLights * 4u]; };
+float slIndirectHalf(uint i, uint h) {
+  vec2 pair = unpackHalf2x16(slIndirectWords[4u * i + h / 8u][(h / 2u) % 4u]);
+  return (h % 2u) == 0u ? pair.x : pair.y;
+}
+// Coefficient k (W/(m²·sr) per channel) of the radiance SH at SL i's posed centre (k a loop counter).
+vec3 slIndirect(uint i, uint k) { return vec3(slIndirectHalf(i, 3u * k), slIndirectHalf(i, 3u * k + 1u), slIndirectHalf(i, 3u * k + 2u)); }
+#endif
+
 #endif  // BOUNCE_SL_DATA_GLSL

@@ -11,7 +11,8 @@
 // pixel j of "sl.half" / "sl.quarter" takes G-buffer pixel kStep·j and writes E + ao · ΔE
 // ("sl.upsample" applies ρ/π).
 // Bindings and push block are sl.shadow's (probe_shadow_frag.glsl, sl/shadow_tiles.vert);
-// specialization: sl.glsl's ids 0–3, kCoeffs (4), kStep (5), kTerms (6), kSingleObject (7, sl_frag.glsl's).
+// specialization: sl.glsl's ids 0–3, kCoeffs (4), kStep (5), kTerms (6), kSingleObject (7, sl_frag.glsl's),
+// kBlockedAtSphere (8).
 layout(constant_id = 0) const uint kOrder = 4u;
 layout(constant_id = 1) const bool kPerObject = false;
 layout(constant_id = 2) const uint kSpheres = 64u;
@@ -23,6 +24,7 @@ layout(constant_id = 5) const uint kStep = 1u;  // G-buffer pixels per sample pe
 layout(constant_id = 6) const uint kTerms = 3u;
 layout(constant_id = 7) const bool kSingleObject = false;  // per-object: tiles whose SLs are one object's
 #define SL_SINGLE_OBJECT kSingleObject
+layout(constant_id = 8) const bool kBlockedAtSphere = false;  // probe_shadow_frag.glsl's (constant_id 6 there)
 
 #include "frame.glsl"
 #include "sh.glsl"
@@ -42,6 +44,7 @@ layout(push_constant) uniform Push {
 #include "probes/probe_sh.glsl"
 #define SL_SET 1
 #define SL_BINDING 7  // binding 6: the tiles (sl/tiles.glsl)
+#define SL_INDIRECT_BINDING 11  // probe_shadow_frag.glsl's
 #include "sl/sl_data.glsl"
 #include "sl/sl.glsl"
 #include "sl/probe_shadow.glsl"
@@ -66,7 +69,7 @@ void main() {
   vec3 L[9];
   probeRadianceSh(p, n, normalize(camera.position.xyz - p), L);
   float ao = pc.bias.w > 0.5 ? texelFetch(aoTerm, pixel, 0).r : 1.0;
-  vec3 delta = (kTerms & 2u) != 0u ? ao * slProbeShadowLive(p, n, L, alive) : vec3(0.0);
+  vec3 delta = (kTerms & 2u) != 0u ? ao * slProbeShadowLive(p, n, L, alive, kBlockedAtSphere) : vec3(0.0);
   // Each pass's own output, then summed (fp32): the terms as the two passes write them.
   outRadiance = vec4(kStep > 1u ? e + delta : albedo * kInvPi * e + albedo * kInvPi * delta, 0.0);
 }

@@ -55,7 +55,7 @@ std::vector<gpu::Binding> upsampleBindings() {
 
 Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t framesInFlight,
            std::span<const SphereSet* const> sets, int order, Blocking blocking, float influence, Resolution resolution,
-           ProbeLight probes, bool localLights, bool hierarchy, bool fuse, std::uint32_t terms)
+           ProbeLight probes, bool localLights, bool hierarchy, bool fuse, std::uint32_t terms, bool blockedAtSphere)
     : ctx_(ctx),
       order_(order),
       blocking_(blocking),
@@ -128,7 +128,7 @@ Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t fra
     throw InternalError("sl::Node: one term alone needs the fused pass (probes, \"fused\", no hierarchy)");
   if (probes && spheres_ > 0)
     shadow_ = std::make_unique<ProbeShadowPass>(ctx, shared, probes, order, blocking, spheres_, influence, step, hierarchy, fuse,
-                                                terms);
+                                                terms, blockedAtSphere);
   if (localLights && spheres_ > 0)
     local_ = std::make_unique<LocalLightPass>(ctx, shared, order, blocking, spheres_, influence);
   if (hierarchy) {
@@ -162,7 +162,7 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::s
   if (recording) {
     // CPU writes of this slot's host-visible blocks: the ring waited for the slot's last frame.
     slot.intensity->setSpheres(posed, indirect);
-    slot.shade->setSpheres(shaded, parents);
+    slot.shade->setSpheres(shaded, parents, indirect);  // indirect: SlIndirect ("blocked_light": "sphere")
   }
   std::vector<ShadedSphere> binned = shaded;
   for (std::size_t o = 0; o < parents.size(); ++o)

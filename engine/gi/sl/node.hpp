@@ -49,7 +49,9 @@ class Node {
   Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t framesInFlight,
        std::span<const SphereSet* const> sets, int order, Blocking blocking, float influence,
        Resolution resolution = Resolution::Full, ProbeLight probes = {}, bool localLights = false,
-       bool hierarchy = false, bool fuse = true, std::uint32_t terms = 3u);
+       bool hierarchy = false, bool fuse = true, std::uint32_t terms = 3u, bool blockedAtSphere = false);
+  // `blockedAtSphere` (level "blocked_light": "sphere", probe_shadow.hpp BlockedLight::Sphere): the
+  // shadow on the probes' light reads the blocked light at each SL's centre (addTo's `indirect`).
   // `fuse` (level "fused", default true): with "sl.shadow" running and the hierarchy off, one pass
   // "sl" walks each tile's candidates once for both terms (ProbeShadowPass::addFused). `terms`
   // (scene::Sl::terms, a diagnostic): bit 0 the SLs' bounce E, bit 1 the shadow on the probes' light;

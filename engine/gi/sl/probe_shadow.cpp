@@ -30,15 +30,24 @@ ProbeShadow probeShadow(std::span<const Light> lights, const glm::dvec3& p, cons
   const auto y = sh::evalBasis<double>(3, n);
   for (int l = 0; l < 3; ++l)
     for (int m = -l; m <= l; ++m) lobe[std::size_t(sh::index(l, m))] = sh::cosineLobeBand(l) * y[std::size_t(sh::index(l, m))];
-  const std::vector<double> transfer = sh::product<double>(v, lobe, lOrder);
-  glm::dvec3 shadowed(0.0);
-  for (std::size_t j = 0; j < radiance.size(); ++j) shadowed += radiance[j] * transfer[j];
+  const bool atSphere = settings.blocked == BlockedLight::Sphere;
+  if (atSphere && settings.sphereRadiance.size() != lights.size())
+    throw InternalError("sl::probeShadow: blocked light read at the spheres needs one radiance SH per light");
+  glm::dvec3 shadowed = out.unshadowed;  // atSphere: E_u − E_s is set below
+  if (!atSphere) {
+    const std::vector<double> transfer = sh::product<double>(v, lobe, lOrder);
+    shadowed = glm::dvec3(0.0);
+    for (std::size_t j = 0; j < radiance.size(); ++j) shadowed += radiance[j] * transfer[j];
+  }
+  // BlockedLight::Sphere: Σ X_j L_j(d_j) and Σ u_o X_j L_j(d_j) (probe_shadow.hpp).
+  glm::dvec3 readExact(0.0), readShared(0.0), sphereBlocked(0.0);
 
-  if (settings.form == ShadowForm::Ratio) {
+  if (settings.form == ShadowForm::Ratio || atSphere) {
     // k = Σ X_j / Σ A_j over the blockers left after the receiver rules (probe_shadow.hpp).
     const sh::ExpTables& tables = sh::expTables(order, settings.log);
     double exact = kShadowEpsilon, shared = kShadowEpsilon, approx = kShadowEpsilon;
-    for (const Light& l : lights) {
+    for (std::size_t li = 0; li < lights.size(); ++li) {
+      const Light& l = lights[li];
       const Adjusted a = adjustForReceiver(l.sphere, p, n, settings.influence);
       const double d = glm::length(a.sphere.centre - p);
       if (a.culled || !(d > 0.0)) continue;
@@ -52,6 +61,16 @@ ProbeShadow probeShadow(std::span<const Light> lights, const glm::dvec3& p, cons
       const double x = silhouette * math::kPi * s * s * std::max(0.0, glm::dot(n, dir));
       exact += x;
       shared += share * x;
+      if (atSphere) {
+        const std::vector<glm::dvec3>& Lj = settings.sphereRadiance[li];
+        if (Lj.size() != 9) throw InternalError("sl::probeShadow: a sphere's radiance SH needs 9 coefficients");
+        const auto yd = sh::evalBasis<double>(3, dir);
+        glm::dvec3 read(0.0);
+        for (std::size_t k = 0; k < 9; ++k) read += Lj[k] * yd[k];
+        read = glm::max(read, glm::dvec3(0.0));
+        readExact += x * read;
+        readShared += share * x * read;
+      }
       const auto one = sh::expHybrid(tables.logBlocker(std::asin(s), dir), nullptr, settings.log);
       approx += math::kPi - sh::evalIrradiance<double, double>(std::span<const double>(one), n);
     }
@@ -60,9 +79,10 @@ ProbeShadow probeShadow(std::span<const Light> lights, const glm::dvec3& p, cons
     const double blockedUniform = math::kPi - std::inner_product(v.begin(), v.begin() + 9, lobe.begin(), 0.0);
     out.additive = std::sqrt(std::clamp((blockedUniform + kShadowEpsilon) / approx, 0.0, 1.0));
     const double target = out.additive * shared + (1.0 - out.additive) * exact;
-    out.ratio = std::clamp(target / approx, 1.0 / kShadowMaxRatio, kShadowMaxRatio);
+    if (settings.form == ShadowForm::Ratio) out.ratio = std::clamp(target / approx, 1.0 / kShadowMaxRatio, kShadowMaxRatio);
+    if (atSphere) sphereBlocked = blockedUniform * (out.additive * readShared + (1.0 - out.additive) * readExact) / target;
   }
-  const glm::dvec3 blocked = out.unshadowed - shadowed;
+  const glm::dvec3 blocked = atSphere ? sphereBlocked : out.unshadowed - shadowed;
   for (int c = 0; c < 3; ++c)
     out.delta[c] = std::clamp(-out.ratio * blocked[c], -std::max(out.unshadowed[c], 0.0), 0.0);
   return out;

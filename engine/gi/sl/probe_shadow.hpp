@@ -43,6 +43,22 @@
 // 34 % with σ² and a near shadow quartered without σ). Measured in README Results "SL".
 // Every X_j is also multiplied by its set's shadow scale (bounce_scale.hpp: the mesh's silhouette
 // over the spheres' union, baked), settings.objectSilhouette / sl_data.glsl slSilhouette.
+//
+// Where the blocked light is read (BlockedLight, level key "sl": {"blocked_light": …}; issue 13's
+// cornell-1 goal, README "SL: the blocked light read at the spheres, session 14"). Receiver (the
+// default, above): E_u − E_s from the receiver's SH L. A receiver's order-3 SH spreads a small, bright
+// source (cornell-1's ceiling hot spot above the lamp) over a wide lobe, so it misplaces the light an
+// SL actually stands in front of. Sphere (ours, after DNRT's anti-radiance, which reads the radiance at
+// the object): the amount stays the Ratio form's, and the radiance is read at each SL's centre
+// in the direction it blocks:
+//   E_u − E_s  →  B = (π − ρ_n·V) · Σ_j w_j max(0, L_j(d_j)) / Σ_j w_j,   w_j = (σ u_o + 1 − σ) X_j
+// with L_j the probes' radiance SH at SL j's posed centre (settings.sphereRadiance, pass 1's
+// `indirect`), evaluated in the receiver → SL direction d_j (the light arriving at the SL from behind
+// it, which it keeps from the receiver), clamped ≥ 0 (a blocker adds no light). π − ρ_n·V is exp's
+// blocked amount under uniform unit radiance, so k·B is the Ratio form's ΔE under uniform light
+// exactly: a probe field uniform in direction and constant in space gives both modes the same ΔE.
+// One small sphere: σ = 1, k(π − ρ_n·V) = X, so ΔE = −X L(d) (the cap's exact amount × the radiance
+// behind it). The clamps to [−max(E_u, 0), 0] are kept (E_u the receiver's).
 #include <span>
 #include <vector>
 
@@ -53,6 +69,8 @@
 namespace bounce::gi::sl {
 
 enum class ShadowForm { Ratio, Eq6 };
+// Where the light the SLs block is read (header): the receiver's SH or each SL's own.
+enum class BlockedLight { Receiver, Sphere };
 
 inline constexpr double kShadowEpsilon = 1e-9;  // sr; ε of k above
 inline constexpr double kShadowMaxRatio = 4.0;  // k is clamped to [1/4, 4]: a bound, not reached by one cap
@@ -67,6 +85,10 @@ struct ShadowSettings {
   // s_shadow per Light::object (SlSphere::shadowScale, bounce_scale.hpp; missing ids: 1): every
   // cap's exact amount X_j is multiplied by it (Ratio form only).
   std::vector<double> objectSilhouette;
+  BlockedLight blocked = BlockedLight::Receiver;
+  // BlockedLight::Sphere: the probes' radiance SH (9 RGB coefficients, W/(m²·sr)) at the posed centre
+  // of lights[i], one per light.
+  std::vector<std::vector<glm::dvec3>> sphereRadiance;
 };
 
 // u_o of one object's spheres (any frame: a rigid motion or uniform scale leaves it unchanged):

@@ -17,6 +17,7 @@ constexpr VkFormat kHdrFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 constexpr std::uint32_t kTilesBinding = 6;                     // tiles.vert: SlTiles
 constexpr std::uint32_t kFirstShadeBinding = 7;                // probe_shadow.frag: SL_BINDING
 constexpr std::uint32_t kRatiosBinding = 10;                   // shadow_hierarchy_tiles.vert: SlRatios
+constexpr std::uint32_t kIndirectBinding = 11;                 // probe_shadow_frag.glsl: SL_INDIRECT_BINDING
 
 // probe_shadow_ratio.comp's set 1 and push block.
 std::vector<gpu::Binding> ratioBindings() {
@@ -33,7 +34,8 @@ struct RatioPush {
 std::vector<gpu::Binding> inputBindings(bool hierarchy) {
   // G-buffer albedo, normal, depth; probe SH, moments; "ao.term"; the tiles.
   std::vector<gpu::Binding> b = {{0, kSampled}, {1, kSampled}, {2, kSampled}, {3, kSampled}, {4, kSampled}, {5, kSampled},
-                                 {kTilesBinding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}};
+                                 {kTilesBinding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                                 {kIndirectBinding, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER}};
   for (const gpu::Binding& s : ShadeData::bindings(kFirstShadeBinding)) b.push_back(s);
   if (hierarchy) b.push_back({kRatiosBinding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
   return b;
@@ -42,7 +44,7 @@ std::vector<gpu::Binding> inputBindings(bool hierarchy) {
 
 ProbeShadowPass::ProbeShadowPass(gpu::Context& ctx, const render::Pipelines& shared, ProbeLight probes, int order,
                                  Blocking blocking, std::uint32_t spheres, float influence, std::uint32_t step,
-                                 bool hierarchy, bool fuse, std::uint32_t terms)
+                                 bool hierarchy, bool fuse, std::uint32_t terms, bool blockedAtSphere)
     : ctx_(ctx),
       probes_(probes),
       reduced_(checkedStep(step) > 1u),  // 1, 2 or 4 only (resolution.hpp)
@@ -61,6 +63,9 @@ ProbeShadowPass::ProbeShadowPass(gpu::Context& ctx, const render::Pipelines& sha
   d.specialization = ShadeData::specialization(order, blocking, spheres, influence);
   d.specialization.push_back(std::uint32_t(probes.volume->coeffs()));  // probe_shadow.frag kCoeffs
   d.specialization.push_back(step);                                     // probe_shadow.frag kStep
+  if (blockedAtSphere && hierarchy)
+    throw InternalError("sl::ProbeShadowPass: the blocked light read at the spheres is not built for the hierarchy");
+  d.specialization.push_back(blockedAtSphere ? 1u : 0u);                // probe_shadow.frag kBlockedAtSphere (6)
   const bool reduced = reduced_;
   d.name = std::string("sl.shadow") + (reduced ? ".step" + std::to_string(step) : "") + (hierarchy ? ".hierarchy" : "");
   pipeline_ = gpu::createGraphicsPipeline(ctx, layout_, d);
@@ -70,12 +75,13 @@ ProbeShadowPass::ProbeShadowPass(gpu::Context& ctx, const render::Pipelines& sha
     gpu::ShaderModule fusedFrag(ctx, "sl/sl_shadow.frag.spv");
     d.fragment = &fusedFrag;
     d.blend = reduced ? gpu::Blend::None : gpu::Blend::Additive;
-    d.specialization.push_back(terms);  // sl_shadow.frag kTerms (constant_id 6): Node's `terms`
+    d.specialization.back() = terms;    // sl_shadow.frag kTerms (constant_id 6): Node's `terms`
     d.specialization.push_back(0u);     // sl_shadow.frag kSingleObject (constant_id 7)
+    d.specialization.push_back(blockedAtSphere ? 1u : 0u);  // sl_shadow.frag kBlockedAtSphere (constant_id 8)
     d.name = std::string("sl+shadow") + (reduced ? ".step" + std::to_string(step) : "");
     fused_ = gpu::createGraphicsPipeline(ctx, layout_, d);
     if (blocking == Blocking::PerObject) {
-      d.specialization.back() = 1u;
+      d.specialization[7] = 1u;  // kSingleObject
       d.name += ".single-object";
       fusedSingle_ = gpu::createGraphicsPipeline(ctx, layout_, d);
     }
@@ -180,6 +186,7 @@ VkDescriptorSet ProbeShadowPass::writeInputs(const render::PassContext* pc, cons
       .sampledImage(5, pc->backend->image(res.texture(ao)).view(), point);
   w.buffer(kTilesBinding, tiles);
   shade.write(w, kFirstShadeBinding, intensity, point);
+  shade.writeIndirect(w, kIndirectBinding);
   if (hierarchy_) w.buffer(kRatiosBinding, *ratios);
   w.update(ctx_, inputs);
   return inputs;

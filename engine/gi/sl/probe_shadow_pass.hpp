@@ -40,10 +40,12 @@ class ProbeShadowPass {
  public:
   // `probes` (not owned) must outlive the pass; order, blocking, spheres and influence as the SL
   // pass's pipeline (ShadeData::specialization); `step` (resolution.hpp): 1 full resolution, 2 or 4:
-  // write ao · ΔE at G-buffer pixel step·j into "sl.half" / "sl.quarter".
+  // write ao · ΔE at G-buffer pixel step·j into "sl.half" / "sl.quarter". `blockedAtSphere`
+  // ("blocked_light": "sphere", probe_shadow.hpp BlockedLight::Sphere; not with the hierarchy): the
+  // blocked light read from ShadeData's SlIndirect block.
   ProbeShadowPass(gpu::Context& ctx, const render::Pipelines& shared, ProbeLight probes, int order, Blocking blocking,
                   std::uint32_t spheres, float influence, std::uint32_t step, bool hierarchy = false, bool fuse = false,
-                  std::uint32_t terms = 3u);
+                  std::uint32_t terms = 3u, bool blockedAtSphere = false);
   // Adds the pass when "probes" runs this frame; `shade` and `intensity` as the SL pass binds them.
   // Full resolution: blends into "lighting.hdr" and publishes it; half / quarter: into `reducedTarget`
   // ("sl.half" / "sl.quarter", which the SL pass cleared) and returns its new version. Returns

@@ -1,6 +1,9 @@
 #include "engine/gi/sl/shade.hpp"
 
+#include <algorithm>
 #include <cstring>
+
+#include <glm/gtc/packing.hpp>
 
 #include "engine/core/error.hpp"
 #include "engine/gpu/commands.hpp"
@@ -41,11 +44,27 @@ ShadeData::ShadeData(gpu::Context& ctx, int order) : ctx_(ctx), order_(order) {
   spheres_ = gpu::Buffer(ctx, {(1 + 6 * std::size_t(kMaxShadedSpheres)) * sizeof(glm::vec4), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                                gpu::MemoryUsage::Upload, "sl.spheres"});
   std::memset(spheres_.mapped(), 0, spheres_.size());
+  indirect_ = gpu::Buffer(ctx, {kIndirectBlockBytes, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::MemoryUsage::Upload, "sl.indirect"});
+  std::memset(indirect_.mapped(), 0, indirect_.size());
 }
 
-void ShadeData::setSpheres(std::span<const ShadedSphere> spheres, std::span<const PosedSphere> parents) {
+void ShadeData::setSpheres(std::span<const ShadedSphere> spheres, std::span<const PosedSphere> parents,
+                           std::span<const incident::RadianceSH> indirect) {
   if (spheres.size() + parents.size() > kMaxShadedSpheres)
     throw InternalError("sl::ShadeData: more SLs (and parents) than the uniform block holds");
+  if (!indirect.empty() && indirect.size() != spheres.size())
+    throw InternalError("sl::ShadeData: one indirect SH per SL or none");
+  {  // SlIndirect (sl_data.glsl): half h = 3k + c in word h / 2, low half first.
+    std::vector<std::uint32_t> words(kIndirectBlockBytes / 4, 0u);
+    for (std::size_t i = 0; i < indirect.size(); ++i) {
+      float halves[2 * kIndirectWordsPerSl] = {};
+      for (std::size_t k = 0; k < 9; ++k)
+        for (int c = 0; c < 3; ++c) halves[3 * k + std::size_t(c)] = std::clamp(indirect[i][k][c], -65504.0f, 65504.0f);
+      for (std::size_t w = 0; w < kIndirectWordsPerSl; ++w)
+        words[kIndirectWordsPerSl * i + w] = glm::packHalf2x16(glm::vec2(halves[2 * w], halves[2 * w + 1]));
+    }
+    std::memcpy(indirect_.mapped(), words.data(), kIndirectBlockBytes);
+  }
   std::vector<glm::vec4> v(1 + 6 * std::size_t(kMaxShadedSpheres), glm::vec4(0.0f));
   count_ = std::uint32_t(spheres.size());
   std::uint32_t objects = 0;
@@ -99,6 +118,10 @@ void ShadeData::write(gpu::DescriptorWriter& w, std::uint32_t first, const gpu::
   w.sampledImage(first, tables_.view(), nearest)
       .buffer(first + 1, spheres_, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER)
       .buffer(first + 2, intensity, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 0, kIntensityBlockBytes);
+}
+
+void ShadeData::writeIndirect(gpu::DescriptorWriter& w, std::uint32_t binding) const {
+  w.buffer(binding, indirect_, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER);
 }
 
 std::vector<gpu::Binding> ShadeData::bindings(std::uint32_t first) {

@@ -13,6 +13,7 @@
 
 #include <glm/glm.hpp>
 
+#include "engine/gi/incident/incident.hpp"
 #include "engine/gi/sl/evaluate.hpp"
 #include "engine/gi/sl/intensity_words.hpp"
 #include "engine/gi/sl/update.hpp"
@@ -29,6 +30,9 @@ inline constexpr std::uint32_t kMaxShadedSpheres = 128;
 // Bytes of the intensity uniform block (fp16 pairs, intensity_words.hpp): IntensityPass allocates at
 // least this.
 inline constexpr std::size_t kIntensityBlockBytes = std::size_t(kMaxShadedSpheres) * kIntensityWordsPerSl * 4;
+// Bytes of sl_data.glsl's SlIndirect block ("blocked_light": "sphere"): 16 words (27 fp16) per SL, 8 KiB.
+inline constexpr std::size_t kIndirectWordsPerSl = 16;
+inline constexpr std::size_t kIndirectBlockBytes = std::size_t(kMaxShadedSpheres) * kIndirectWordsPerSl * 4;
 
 // One SL as pass 2 reads it.
 struct ShadedSphere {
@@ -47,13 +51,18 @@ class ShadeData {
   // This frame's SLs (host-visible: read at the next submitted use). At most kMaxShadedSpheres.
   // `parents` (§7.3 hierarchy, sl/hierarchy.glsl): object o's parent SL at index count() + o (header.z
   // = their count), world frame; they take no part in the means or overlap masks.
-  void setSpheres(std::span<const ShadedSphere> spheres, std::span<const PosedSphere> parents = {});
+  // `indirect` (empty, or one per sphere): the probes' radiance SH at each SL's posed centre, for
+  // sl_data.glsl's SlIndirect ("blocked_light": "sphere"), packed to fp16; empty leaves zeros.
+  void setSpheres(std::span<const ShadedSphere> spheres, std::span<const PosedSphere> parents = {},
+                  std::span<const incident::RadianceSH> indirect = {});
   std::uint32_t count() const { return count_; }
   // Writes the three sl_data.glsl bindings first … first + 2 (intensity: pass 1's buffer, ≥
   // kIntensityBlockBytes).
   void write(gpu::DescriptorWriter& w, std::uint32_t first, const gpu::Buffer& intensity, VkSampler nearest) const;
   // The bindings' types, for a set layout.
   static std::vector<gpu::Binding> bindings(std::uint32_t first);
+  // sl_data.glsl's SlIndirect block (SL_INDIRECT_BINDING) at `binding`.
+  void writeIndirect(gpu::DescriptorWriter& w, std::uint32_t binding) const;
   // Constant ids 0–3 of sl.glsl's includers: kOrder, kPerObject, kSpheres (the per-receiver
   // arrays' size: the SL count rounded up to a multiple of 8, at least 8), kInfluence (F, 0: off).
   static gpu::SpecConstants specialization(int order, Blocking blocking, std::uint32_t spheres, float influence = 0.0f);
@@ -64,6 +73,7 @@ class ShadeData {
   std::uint32_t count_ = 0;
   gpu::Image tables_;
   gpu::Buffer spheres_;
+  gpu::Buffer indirect_;
 };
 
 }  // namespace bounce::gi::sl

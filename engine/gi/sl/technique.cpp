@@ -137,6 +137,11 @@ class SlTechnique final : public Technique {
         throw InputError(sc.level.source.string() + ": " + e.pointer + "/sl/blocking: \"" + blockingName(*e.sl) +
                          "\" differs from entity \"" + first->id + "\"'s \"" + blockingName(*first->sl) +
                          "\" (expected one blocking for every sl entity of a level: pass 2 shades them in one draw)");
+      if (e.sl->blockedAtSphere != first->sl->blockedAtSphere)
+        throw InputError(sc.level.source.string() + ": " + e.pointer + "/sl/blocked_light: \"" +
+                         (e.sl->blockedAtSphere ? "sphere" : "receiver") + "\" differs from entity \"" + first->id + "\"'s \"" +
+                         (first->sl->blockedAtSphere ? "sphere" : "receiver") +
+                         "\" (expected one blocked_light for every sl entity of a level: pass 2 shades them in one draw)");
       if (e.sl->influence != first->sl->influence)
         throw InputError(sc.level.source.string() + ": " + e.pointer + "/sl/influence: " + num(e.sl->influence) +
                          " differs from entity \"" + first->id + "\"'s " + num(first->sl->influence) +
@@ -248,6 +253,9 @@ class SlTechnique final : public Technique {
               e.sl->order = 4;
               e.sl->influence = influence;
               e.sl->hierarchy = hierarchy;
+              // "blocked_light": "sphere" is not built with the hierarchy (level.cpp refuses the pair):
+              // its rows read the receiver's SH.
+              if (hierarchy) e.sl->blockedAtSphere = false;
               e.sl->localLights = false;
             }
         };
@@ -439,7 +447,8 @@ void SessionRuntime::enableGpu(SessionContext& sc) {
                                  ProbeLight{sc.services.probeVolume, sc.services.probeSh, sc.services.probeMoments},
                                  participants_.front().component.localLights,
                                  participants_.front().component.hierarchy, participants_.front().component.fused,
-                                 std::uint32_t(participants_.front().component.terms));
+                                 std::uint32_t(participants_.front().component.terms),
+                                 participants_.front().component.blockedAtSphere);
 }
 
 render::Renderer::GraphNode SessionRuntime::node() {

@@ -323,3 +323,80 @@ TEST(SlProbeShadow, OverlappingSpheresOfOneObjectDarkenLikeTheirUnion) {
     std::printf("order %d: a limb's shadow vs its union's (share %.3f): worst relative error %.3f\n", order, u, worst);
   }
 }
+
+// "blocked_light": "sphere" (probe_shadow.hpp BlockedLight::Sphere) against "receiver" where they must
+// agree: a probe field constant in space and uniform in direction, so the light behind every SL is
+// the receiver's. Two objects (overlapping spheres with a union share and a shadow scale, and a
+// single sphere), receivers on a plane: ΔE the same within the ε of k (1e-9 sr over Σ w_j ≳ 1e-4 sr).
+// With a directional field, still constant in space, the two differ only by where the cap's light
+// is read — L(d_j) at the cap's centre direction against the receiver's blurred integral of L over
+// the cap — printed, and bounded by kDirectional.
+TEST(SlProbeShadow, BlockedLightAtTheSpheresEqualsTheReceiversUnderAFieldConstantInSpace) {
+  constexpr double kUniform = 1e-6;      // relative to E_u: ε only
+  // Relative to E_u. Measured worst 0.050 at both orders (printed; on the overlapping object, where
+  // the lobe is brightest behind the caps and the receiver's order-3 read of the union differs most).
+  constexpr double kDirectional = 0.06;
+  std::vector<Light> lights = {blocker({-0.3, 0.0, 0.6}, 0.25, 0), blocker({-0.1, 0.1, 0.75}, 0.2, 0),
+                               blocker({0.1, 0.15, 0.9}, 0.18, 0), blocker({0.5, -0.6, 0.4}, 0.2, 1)};
+  for (int order : {3, 4}) {
+    double worstDirectional = 0.0;
+    int shadowed = 0;
+    for (const bool uniform : {true, false}) {
+      const std::vector<glm::dvec3> L = uniform ? uniformRadiance(1.5) : lobeRadiance(glm::normalize(glm::dvec3(0.3, -0.2, 1.0)));
+      ShadowSettings receiver = shadowSettings(order);
+      receiver.objectShare = {0.6};
+      receiver.objectSilhouette = {0.7};
+      ShadowSettings sphere = receiver;
+      sphere.blocked = BlockedLight::Sphere;
+      sphere.sphereRadiance.assign(lights.size(), L);
+      for (int y = 0; y < 9; ++y)
+        for (int x = 0; x < 9; ++x) {
+          const glm::dvec3 p(-0.9 + 1.8 * x / 8.0, -0.9 + 1.8 * y / 8.0, 0.0), n(0, 0, 1);
+          const ProbeShadow a = probeShadow(lights, p, n, L, receiver);
+          const ProbeShadow b = probeShadow(lights, p, n, L, sphere);
+          const double scale = glm::length(a.unshadowed);
+          shadowed += uniform && glm::length(a.delta) > 1e-2 * scale;
+          for (int c = 0; c < 3; ++c) {
+            const double err = std::abs(a.delta[c] - b.delta[c]) / scale;
+            if (!uniform) worstDirectional = std::max(worstDirectional, err);
+            EXPECT_LE(err, uniform ? kUniform : kDirectional) << "order " << order << " uniform " << uniform << " at " << x << ","
+                                                                << y << " channel " << c;
+          }
+        }
+    }
+    EXPECT_GT(shadowed, 20);  // the plane is shadowed by > 1 % at a good share of its 81 receivers
+    std::printf("order %d: sphere vs receiver under a directional field constant in space, worst |ΔE diff| / E_u = %.4f\n",
+                order, worstDirectional);
+  }
+}
+
+// One sphere whose light differs from the receiver's: the receiver sees uniform radiance 2, the sphere
+// a lobe field (lobeRadiance, in closed form f(ω) = (1 + a·ω)²/4 · (2, 1, 0.5) + (0.1, 0.2, 0.3)).
+// "sphere" mode then takes away exactly the cap's cosine-weighted solid angle times the radiance
+// behind the sphere in the receiver → sphere direction d: ΔE = −π sin²θ cos β · f(d) (σ = 1 and
+// k(π − ρ_n·V) = X for one blocker), times the set's shadow scale.
+TEST(SlProbeShadow, BlockedLightAtTheSphereIsTheCapTimesTheRadianceBehindIt) {
+  constexpr double kTol = 1e-6;  // relative: ε over the exp's blocked amount (≥ 1e-3 sr here)
+  const glm::dvec3 a = glm::normalize(glm::dvec3(0.5, 0.2, 1.0));
+  const auto f = [&](const glm::dvec3& w) {
+    const double t = (1.0 + glm::dot(a, w)) * (1.0 + glm::dot(a, w)) / 4.0;
+    return glm::dvec3(2.0, 1.0, 0.5) * t + glm::dvec3(0.1, 0.2, 0.3);
+  };
+  for (int order : {3, 4})
+    for (double silhouette : {1.0, 0.45})
+      for (double d : {1.2, 2.0, 4.0, 8.0})
+        for (double beta : {0.0, 0.4, 0.8}) {
+          const double theta = std::asin(1.0 / d);
+          if (beta + theta >= 0.5 * kPi) continue;
+          const glm::dvec3 dir(std::sin(beta), 0.0, std::cos(beta));
+          const Light l = blocker(d * dir, 1.0);
+          ShadowSettings s = shadowSettings(order);
+          s.objectSilhouette = {silhouette};
+          s.blocked = BlockedLight::Sphere;
+          s.sphereRadiance = {lobeRadiance(a)};
+          const ProbeShadow got = probeShadow(std::span<const Light>(&l, 1), glm::dvec3(0.0), {0, 0, 1}, uniformRadiance(2.0), s);
+          const glm::dvec3 want = -silhouette * kPi * std::sin(theta) * std::sin(theta) * std::cos(beta) * f(dir);
+          for (int c = 0; c < 3; ++c)
+            EXPECT_NEAR(got.delta[c], want[c], kTol * std::abs(want[c])) << order << " d " << d << " β " << beta << " c " << c;
+        }
+}

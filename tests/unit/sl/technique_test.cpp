@@ -53,6 +53,11 @@ TEST(SlComponent, ParsesWithDefaults) {
   EXPECT_EQ(quarter.entities[0].sl->step, 4);
   EXPECT_EQ(gi::sl::resolutionStep(gi::sl::resolutionFromStep(std::uint32_t(quarter.entities[0].sl->step))), 4u);
   EXPECT_FALSE(level.entities[0].sl->localLights);
+  EXPECT_FALSE(level.entities[0].sl->blockedAtSphere);  // "blocked_light": "receiver" unless asked
+  EXPECT_TRUE(scene::loadLevel(writeLevel("sl-sphere", R"({"id": "a", "dynamic": true, )" + mesh() +
+                                                           R"(, "sl": {"blocked_light": "sphere"}})"))
+                  .entities[0]
+                  .sl->blockedAtSphere);
   EXPECT_EQ(settingsFrom(*level.entities[0].sl).spheres, 32);
   EXPECT_EQ(settingsFrom(*level.entities[0].sl).order, 3);
 }
@@ -96,6 +101,11 @@ TEST(SlComponent, BadInputIsOneLine) {
             "FILE: /entities/0/sl/local_lights: wrong type: integer (expected true or false)");
   EXPECT_EQ(loadError("sl-hierarchy", dyn + R"(, "sl": {"hierarchy": "on"}})"),
             "FILE: /entities/0/sl/hierarchy: wrong type: string (expected true or false)");
+  EXPECT_EQ(loadError("sl-blocked", dyn + R"(, "sl": {"blocked_light": "object"}})"),
+            "FILE: /entities/0/sl/blocked_light: unknown blocked_light \"object\" (expected receiver or sphere)");
+  EXPECT_EQ(loadError("sl-blocked-hierarchy", dyn + R"(, "sl": {"hierarchy": true, "blocked_light": "sphere"}})"),
+            "FILE: /entities/0/sl/blocked_light: blocked_light \"sphere\" with \"hierarchy\": true (expected \"receiver\" "
+            "with the hierarchy (its parents read the receiver's SH))");
   EXPECT_EQ(loadError("light-radius", R"({"id": "l", "light": {"type": "point", "radius": -1}})"),
             "FILE: /entities/0/light/radius: -1 is out of range (expected a number in [0, 100])");
   EXPECT_EQ(loadError("light-radius-sun", R"({"id": "l", "light": {"type": "directional", "radius": 1}})"),
