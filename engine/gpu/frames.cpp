@@ -124,22 +124,28 @@ void FrameRing::waitIdle() {
   }
 }
 
-void FrameRing::abandon() {
+void FrameRing::abandon() noexcept {
   Frame& f = frames_[current_];
   if (!f.recording) return;
   f.recording = false;
   f.retired = true;  // its timestamp queries were never written: nothing to resolve
+  // No check(): this runs while another error unwinds, and a second throw would replace its message.
   // Resetting the pool is valid for a buffer still in the recording state (even inside a render
   // pass, where vkEndCommandBuffer would not be); nothing of it was submitted.
-  check(vkResetCommandPool(ctx_.device(), f.pool, 0), "vkResetCommandPool");
+  vkResetCommandPool(ctx_.device(), f.pool, 0);
   // begin() reset the fence and nothing will signal it: replace it by a signalled one so that
-  // waitIdle() and the slot's next begin() do not wait forever.
-  vkDestroyFence(ctx_.device(), f.fence, nullptr);
-  f.fence = VK_NULL_HANDLE;
+  // waitIdle() and the slot's next begin() do not wait forever. (If even that fails the device is
+  // lost or out of memory, and the old fence stays.)
   VkFenceCreateInfo fi{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
   fi.flags = VK_FENCE_CREATE_SIGNALED_BIT;
-  check(vkCreateFence(ctx_.device(), &fi, nullptr, &f.fence), "vkCreateFence");
-  ctx_.setName(VK_OBJECT_TYPE_FENCE, f.fence, "frame " + std::to_string(f.slot) + " fence");
+  VkFence fresh = VK_NULL_HANDLE;
+  if (vkCreateFence(ctx_.device(), &fi, nullptr, &fresh) != VK_SUCCESS) return;
+  vkDestroyFence(ctx_.device(), f.fence, nullptr);
+  f.fence = fresh;
+  try {
+    ctx_.setName(VK_OBJECT_TYPE_FENCE, f.fence, "frame " + std::to_string(f.slot) + " fence");
+  } catch (...) {  // a debug name only
+  }
 }
 
 }  // namespace bounce::gpu

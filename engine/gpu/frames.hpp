@@ -60,10 +60,12 @@ class FrameRing {
   // Waits for every submitted frame (captures, resizes, shutdown); resolves their timings.
   void waitIdle();
   // Drops the frame being recorded without submitting it, so that an error thrown while recording
-  // unwinds to a clean ring (waitIdle() and begin() work again) instead of ending in std::terminate
+  // unwinds to a ring that shuts down cleanly (waitIdle() returns) instead of ending in std::terminate
   // from a destructor's waitIdle(). Its deletions still run when the slot is next retired; it has no
-  // timings. No-op when no frame is recording.
-  void abandon();
+  // timings. No-op when no frame is recording. The ring itself records again afterwards, but the
+  // renderer's images keep the layouts its recorded barriers named, so a session does not render
+  // after an abandoned frame: the error ends it.
+  void abandon() noexcept;
 
   // Timings of the most recently completed frame whose results were resolved.
   const std::vector<TimingResult>& lastTimings() const { return last_timings_; }
