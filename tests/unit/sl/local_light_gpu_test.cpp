@@ -13,6 +13,7 @@
 #include "engine/gpu/descriptors.hpp"
 #include "engine/gpu/pipeline.hpp"
 #include "engine/gpu/testing.hpp"
+#include "shade_selftest.hpp"
 
 using namespace bounce;
 using namespace bounce::gi::sl;
@@ -34,38 +35,9 @@ std::vector<float> runShader(gpu::Context& ctx, const std::vector<ShadedSphere>&
   data.setSpheres(spheres);
   gpu::Buffer intensity(ctx, {kIntensityBlockBytes, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::MemoryUsage::Upload, "sl.test.intensity"});
   std::memset(intensity.mapped(), 0, intensity.size());
-  std::vector<std::uint8_t> in(16 + receivers.size_bytes(), 0);
-  const std::uint32_t count = std::uint32_t(receivers.size());
-  std::memcpy(in.data(), &count, 4);
-  std::memcpy(in.data() + 16, receivers.data(), receivers.size_bytes());
-  gpu::Buffer inBuf(ctx, {in.size(), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::Upload, "sl.test.receivers"});
-  std::memcpy(inBuf.mapped(), in.data(), in.size());
-  gpu::Buffer outBuf(ctx, {receivers.size() * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::Readback, "sl.test.out"});
-  std::vector<gpu::Binding> b = ShadeData::bindings(0);
-  b.push_back({3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
-  b.push_back({4, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
-  gpu::DescriptorSetLayout layout(ctx, b, "sl.local.test");
-  gpu::PipelineLayout pipelineLayout(ctx, {layout.handle()}, {}, "sl.local.test");
-  gpu::SpecConstants spec = ShadeData::specialization(4, Blocking::PerObject, std::uint32_t(spheres.size()), 0.0f);
-  gpu::Pipeline pipeline = gpu::createComputePipeline(
-      ctx, pipelineLayout, gpu::ShaderModule(ctx, "sl/local_light_selftest.comp.spv"), "sl.local.test", nullptr, spec);
-  gpu::SamplerCache samplers(ctx);
-  gpu::SamplerDesc nearest;
-  nearest.filter = VK_FILTER_NEAREST;
-  nearest.mipmap = VK_SAMPLER_MIPMAP_MODE_NEAREST;
-  gpu::DescriptorAllocator descriptors(ctx);
-  VkDescriptorSet set = descriptors.allocate(layout);
-  gpu::DescriptorWriter w;
-  data.write(w, 0, intensity, samplers.get(nearest));
-  w.buffer(3, inBuf).buffer(4, outBuf).update(ctx, set);
-  gpu::submitAndWait(ctx, [&](VkCommandBuffer cmd) {
-    pipeline.bind(cmd);
-    pipeline.bindSet(cmd, 0, set);
-    vkCmdDispatch(cmd, (count + 63) / 64, 1, 1);
-  });
-  const auto bytes = gpu::readback(ctx, outBuf);
-  std::vector<glm::vec4> out(count);
-  std::memcpy(out.data(), bytes.data(), count * sizeof(glm::vec4));
+  const gpu::SpecConstants spec = ShadeData::specialization(4, Blocking::PerObject, std::uint32_t(spheres.size()), 0.0f);
+  const std::vector<glm::vec4> out =
+      sltest::runShadeSelfTest<glm::vec4, Receiver>(ctx, data, intensity, "sl/local_light_selftest.comp.spv", spec, receivers);
   std::vector<float> v;
   for (const glm::vec4& x : out) v.push_back(x.x);
   return v;

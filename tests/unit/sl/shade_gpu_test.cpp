@@ -19,6 +19,7 @@
 #include "engine/gpu/descriptors.hpp"
 #include "engine/gpu/pipeline.hpp"
 #include "engine/gpu/testing.hpp"
+#include "shade_selftest.hpp"
 #include "engine/math/sampling.hpp"
 #include "engine/math/sh_exp.hpp"
 
@@ -105,40 +106,10 @@ std::vector<glm::vec3> runShader(gpu::Context& ctx, const Scene& s, std::span<co
     const auto words = packIntensity(std::span(s.intensity).subspan(i * 16, 16));
     std::memcpy(intensity.mapped() + i * sizeof words, words.data(), sizeof words);
   }
-  std::vector<std::uint8_t> in(16 + receivers.size_bytes(), 0);
-  const std::uint32_t count = std::uint32_t(receivers.size());
-  std::memcpy(in.data(), &count, 4);
-  std::memcpy(in.data() + 16, receivers.data(), receivers.size_bytes());
-  gpu::Buffer inBuf(ctx, {in.size(), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::Upload, "sl.test.receivers"});
-  std::memcpy(inBuf.mapped(), in.data(), in.size());
-  gpu::Buffer outBuf(ctx, {receivers.size() * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::Readback, "sl.test.out"});
-  std::vector<gpu::Binding> b = ShadeData::bindings(0);
-  b.push_back({3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
-  b.push_back({4, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
-  gpu::DescriptorSetLayout layout(ctx, b, "sl.test");
-  gpu::PipelineLayout pipelineLayout(ctx, {layout.handle()}, {}, "sl.test");
   gpu::SpecConstants spec = ShadeData::specialization(order, blocking, std::uint32_t(s.shaded.size()), influence);
   spec.push_back(singleObject ? 1u : 0u);  // evaluate_selftest.comp kSingleObject
-  gpu::Pipeline pipeline =
-      gpu::createComputePipeline(ctx, pipelineLayout, gpu::ShaderModule(ctx, "sl/evaluate_selftest.comp.spv"), "sl.test",
-                                 nullptr, spec);
-  gpu::SamplerCache samplers(ctx);
-  gpu::SamplerDesc nearest;
-  nearest.filter = VK_FILTER_NEAREST;
-  nearest.mipmap = VK_SAMPLER_MIPMAP_MODE_NEAREST;
-  gpu::DescriptorAllocator descriptors(ctx);
-  VkDescriptorSet set = descriptors.allocate(layout);
-  gpu::DescriptorWriter w;
-  data.write(w, 0, intensity, samplers.get(nearest));
-  w.buffer(3, inBuf).buffer(4, outBuf).update(ctx, set);
-  gpu::submitAndWait(ctx, [&](VkCommandBuffer cmd) {
-    pipeline.bind(cmd);
-    pipeline.bindSet(cmd, 0, set);
-    vkCmdDispatch(cmd, (count + 63) / 64, 1, 1);
-  });
-  const auto bytes = gpu::readback(ctx, outBuf);
-  std::vector<glm::vec4> out(count);
-  std::memcpy(out.data(), bytes.data(), count * sizeof(glm::vec4));
+  const std::vector<glm::vec4> out =
+      sltest::runShadeSelfTest<glm::vec4, Receiver>(ctx, data, intensity, "sl/evaluate_selftest.comp.spv", spec, receivers);
   std::vector<glm::vec3> e;
   for (const glm::vec4& v : out) e.emplace_back(v);
   return e;

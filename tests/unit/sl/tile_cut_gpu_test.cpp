@@ -11,6 +11,7 @@
 #include "engine/gpu/descriptors.hpp"
 #include "engine/gpu/pipeline.hpp"
 #include "engine/gpu/testing.hpp"
+#include "shade_selftest.hpp"
 
 using namespace bounce;
 using namespace bounce::gi::sl;
@@ -30,42 +31,11 @@ std::vector<glm::uvec4> runCut(gpu::Context& ctx, const std::vector<ShadedSphere
   data.setSpheres(spheres);
   gpu::Buffer intensity(ctx, {kIntensityBlockBytes, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::MemoryUsage::Upload, "sl.test.intensity"});
   std::memset(intensity.mapped(), 0, intensity.size());
-  const std::uint32_t count = std::uint32_t(boxes.size());
-  std::vector<std::uint8_t> in(16 + boxes.size() * sizeof(Box), 0);
-  std::memcpy(in.data(), &count, 4);
-  std::memcpy(in.data() + 16, boxes.data(), boxes.size() * sizeof(Box));
-  gpu::Buffer inBuf(ctx, {in.size(), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::Upload, "sl.test.boxes"});
-  std::memcpy(inBuf.mapped(), in.data(), in.size());
-  gpu::Buffer outBuf(ctx, {boxes.size() * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::Readback, "sl.test.kept"});
-  std::vector<gpu::Binding> b = ShadeData::bindings(0);
-  b.push_back({3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
-  b.push_back({4, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
-  gpu::DescriptorSetLayout layout(ctx, b, "sl.test.cut");
-  gpu::PipelineLayout pipelineLayout(ctx, {layout.handle()}, {}, "sl.test.cut");
   gpu::SpecConstants spec;
   std::uint32_t f;
   std::memcpy(&f, &influence, 4);
   spec.push_back(f);  // tile_cut_selftest.comp kInfluence
-  gpu::Pipeline pipeline = gpu::createComputePipeline(
-      ctx, pipelineLayout, gpu::ShaderModule(ctx, "sl/tile_cut_selftest.comp.spv"), "sl.test.cut", nullptr, spec);
-  gpu::SamplerCache samplers(ctx);
-  gpu::SamplerDesc nearest;
-  nearest.filter = VK_FILTER_NEAREST;
-  nearest.mipmap = VK_SAMPLER_MIPMAP_MODE_NEAREST;
-  gpu::DescriptorAllocator descriptors(ctx);
-  VkDescriptorSet set = descriptors.allocate(layout);
-  gpu::DescriptorWriter w;
-  data.write(w, 0, intensity, samplers.get(nearest));
-  w.buffer(3, inBuf).buffer(4, outBuf).update(ctx, set);
-  gpu::submitAndWait(ctx, [&](VkCommandBuffer cmd) {
-    pipeline.bind(cmd);
-    pipeline.bindSet(cmd, 0, set);
-    vkCmdDispatch(cmd, (count + 63) / 64, 1, 1);
-  });
-  const auto bytes = gpu::readback(ctx, outBuf);
-  std::vector<glm::uvec4> out(count);
-  std::memcpy(out.data(), bytes.data(), count * sizeof(glm::uvec4));
-  return out;
+  return sltest::runShadeSelfTest<glm::uvec4, Box>(ctx, data, intensity, "sl/tile_cut_selftest.comp.spv", spec, boxes);
 }
 
 glm::uvec4 bits(std::initializer_list<std::uint32_t> ids) {
