@@ -58,6 +58,20 @@ void addSphere(Fixture& f, glm::vec3 c, float r, int object) {
   f.shaded.push_back({c, r, glm::mat3(1.0f), std::uint32_t(object), f.share(object), f.silhouette(object)});
 }
 
+// Two objects above z = 0 (a chain of overlapping spheres and a cluster of three), as SlShadeGpu's,
+// with their union shares and their sets' shadow scales (bounce_scale.hpp).
+void addTwoObjects(Fixture& f) {
+  f.shares = {0.55, 0.8};
+  f.silhouettes = {0.45, 0.7};
+  addSphere(f, {-0.3f, 0.0f, 0.6f}, 0.25f, 0);
+  addSphere(f, {-0.1f, 0.1f, 0.75f}, 0.2f, 0);
+  addSphere(f, {0.1f, 0.15f, 0.9f}, 0.18f, 0);
+  addSphere(f, {0.3f, 0.1f, 1.05f}, 0.15f, 0);
+  addSphere(f, {0.5f, -0.6f, 0.4f}, 0.2f, 1);
+  addSphere(f, {0.7f, -0.5f, 0.45f}, 0.15f, 1);
+  addSphere(f, {0.55f, -0.3f, 0.7f}, 0.12f, 1);
+}
+
 // A 5×5×4 volume over [−1, 1]² × [−0.2, 1]: smooth, non-negative radiance lobes varying over the grid
 // (so the trilinear lookup matters), every probe valid, moments far beyond any receiver (Chebyshev 1).
 gi::probes::ProbeVolume volume(int order) {
@@ -203,16 +217,7 @@ double expectMatches(const Fixture& f, const gi::probes::ProbeVolume& vol, std::
 TEST(SlProbeShadowGpu, GlslEqualsProbeShadowOnAPlaneInsideAndUnderACluster) {
   gpu::Context& ctx = gpu::testkit::sharedContext();
   Fixture f;
-  f.shares = {0.55, 0.8};  // the union shares of the first two objects (the column's: 1)
-  f.silhouettes = {0.45, 0.7};  // their sets' shadow scales (bounce_scale.hpp; the column's: 1)
-  // Two objects above z = 0 (a chain of overlapping spheres and a cluster of three), as SlShadeGpu's.
-  addSphere(f, {-0.3f, 0.0f, 0.6f}, 0.25f, 0);
-  addSphere(f, {-0.1f, 0.1f, 0.75f}, 0.2f, 0);
-  addSphere(f, {0.1f, 0.15f, 0.9f}, 0.18f, 0);
-  addSphere(f, {0.3f, 0.1f, 1.05f}, 0.15f, 0);
-  addSphere(f, {0.5f, -0.6f, 0.4f}, 0.2f, 1);
-  addSphere(f, {0.7f, -0.5f, 0.45f}, 0.15f, 1);
-  addSphere(f, {0.55f, -0.3f, 0.7f}, 0.12f, 1);
+  addTwoObjects(f);  // the column below adds objects with share 1 and shadow scale 1
   // A dense column of 16 large spheres over (−0.6, 0.6): the summed logs need squarings there.
   for (int i = 0; i < 16; ++i) {
     const float a = 0.5236f * std::sqrt((float(i) + 0.5f) / 16.0f), phi = 2.39996f * float(i);
@@ -295,15 +300,7 @@ TEST(SlProbeShadowGpu, OneSphereDarkensAReceiverByTheCapsClosedForm) {
 TEST(SlProbeShadowGpu, GlslEqualsProbeShadowWithTheBlockedLightReadAtTheSpheres) {
   gpu::Context& ctx = gpu::testkit::sharedContext();
   Fixture f;
-  f.shares = {0.55, 0.8};
-  f.silhouettes = {0.45, 0.7};
-  addSphere(f, {-0.3f, 0.0f, 0.6f}, 0.25f, 0);
-  addSphere(f, {-0.1f, 0.1f, 0.75f}, 0.2f, 0);
-  addSphere(f, {0.1f, 0.15f, 0.9f}, 0.18f, 0);
-  addSphere(f, {0.3f, 0.1f, 1.05f}, 0.15f, 0);
-  addSphere(f, {0.5f, -0.6f, 0.4f}, 0.2f, 1);
-  addSphere(f, {0.7f, -0.5f, 0.45f}, 0.15f, 1);
-  addSphere(f, {0.55f, -0.3f, 0.7f}, 0.12f, 1);
+  addTwoObjects(f);
   std::vector<gi::incident::RadianceSH> sphereL;
   for (std::size_t i = 0; i < f.shaded.size(); ++i) {
     const glm::vec3 d = glm::vec3(math::fibonacciSphere(int(i), int(f.shaded.size())));
