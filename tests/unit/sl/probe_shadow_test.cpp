@@ -30,6 +30,20 @@ Light blocker(glm::dvec3 c, double r, int object = 0) {
   return l;
 }
 
+// One unit sphere at distance d along a direction β from the normal +Z, for d in {1.2, 2, 4, 8} and
+// β in {0, 0.4, 0.8}, wherever its cap (angular radius θ = asin(1/d)) lies fully above the horizon:
+// each(d, β, θ, dir, sphere).
+template <class Each>
+void forEachCapAboveTheHorizon(Each each) {
+  for (double d : {1.2, 2.0, 4.0, 8.0})
+    for (double beta : {0.0, 0.4, 0.8}) {
+      const double theta = std::asin(1.0 / d);
+      if (beta + theta >= 0.5 * kPi) continue;
+      const glm::dvec3 dir(std::sin(beta), 0.0, std::cos(beta));
+      each(d, beta, theta, dir, blocker(d * dir, 1.0));
+    }
+}
+
 std::vector<glm::dvec3> uniformRadiance(double L) {
   std::vector<glm::dvec3> s(9, glm::dvec3(0.0));
   s[0] = glm::dvec3(L * std::sqrt(4.0 * kPi));
@@ -90,12 +104,7 @@ TEST(SlProbeShadow, OneSphereUnderUniformLightDarkensByTheCapsFormFactor) {
   constexpr double kTol = 1e-9;  // relative to E_u: double rounding only
   for (int order : {3, 4}) {
     double worstEq6 = 0.0;
-    for (double d : {1.2, 2.0, 4.0, 8.0})
-      for (double beta : {0.0, 0.4, 0.8}) {
-        const double theta = std::asin(1.0 / d);
-        if (beta + theta >= 0.5 * kPi) continue;
-        const glm::dvec3 dir(std::sin(beta), 0.0, std::cos(beta));
-        const Light l = blocker(d * dir, 1.0);
+    forEachCapAboveTheHorizon([&](double d, double beta, double theta, const glm::dvec3&, const Light& l) {
         const auto L = uniformRadiance(2.0);
         const ProbeShadow s = probeShadow(std::span<const Light>(&l, 1), glm::dvec3(0.0), {0, 0, 1}, L, shadowSettings(order));
         const double want = -std::sin(theta) * std::sin(theta) * std::cos(beta);
@@ -111,7 +120,7 @@ TEST(SlProbeShadow, OneSphereUnderUniformLightDarkensByTheCapsFormFactor) {
         const ProbeShadow e6 =
             probeShadow(std::span<const Light>(&l, 1), glm::dvec3(0.0), {0, 0, 1}, L, shadowSettings(order, ShadowForm::Eq6));
         worstEq6 = std::max(worstEq6, std::abs(e6.delta.x / e6.unshadowed.x - want) / -want);
-      }
+      });
     std::printf("order %d: the plain Eq. 6 shadow misses the cap's darkening by up to %.3f (relative)\n", order, worstEq6);
   }
 }
@@ -384,12 +393,7 @@ TEST(SlProbeShadow, BlockedLightAtTheSphereIsTheCapTimesTheRadianceBehindIt) {
   };
   for (int order : {3, 4})
     for (double silhouette : {1.0, 0.45})
-      for (double d : {1.2, 2.0, 4.0, 8.0})
-        for (double beta : {0.0, 0.4, 0.8}) {
-          const double theta = std::asin(1.0 / d);
-          if (beta + theta >= 0.5 * kPi) continue;
-          const glm::dvec3 dir(std::sin(beta), 0.0, std::cos(beta));
-          const Light l = blocker(d * dir, 1.0);
+      forEachCapAboveTheHorizon([&](double d, double beta, double theta, const glm::dvec3& dir, const Light& l) {
           ShadowSettings s = shadowSettings(order);
           s.objectSilhouette = {silhouette};
           s.blocked = BlockedLight::Sphere;
@@ -398,5 +402,5 @@ TEST(SlProbeShadow, BlockedLightAtTheSphereIsTheCapTimesTheRadianceBehindIt) {
           const glm::dvec3 want = -silhouette * kPi * std::sin(theta) * std::sin(theta) * std::cos(beta) * f(dir);
           for (int c = 0; c < 3; ++c)
             EXPECT_NEAR(got.delta[c], want[c], kTol * std::abs(want[c])) << order << " d " << d << " β " << beta << " c " << c;
-        }
+      });
 }
