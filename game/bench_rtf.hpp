@@ -6,7 +6,8 @@
 // (bake_s=0 cached=1 when the field came from cache/rtf; --radii INNER,OUTER sets the spheres' radii in η,
 // as a level component's inner/outer), then the bouncing step (§5, Algorithm 1)
 // and the shading step on the CPU (engine/gi/rtf/evaluate.hpp, the test reference) for scenes of
-// 1…N of those objects (--objects N: only the first N), one line per scene size:
+// 1…N of those objects (--objects N: only the first N; --object ID with --no-gpu: only that entity,
+// any with a mesh, at the settings above), one line per scene size:
 //   objects=N bounces=B rtf_bounce_cpu_ms=… rtf_shade_cpu_us_per_receiver=… runs=…
 // medians over --runs (the light: a uniform environment of radiance 1; the source's cost is not what
 // is measured). Then on the GPU (unless --no-gpu), the level rendered with direct,shadows,probes,rtf

@@ -119,8 +119,8 @@ const std::vector<cli::CommandSpec>& commandSpecs() {
         {"--clusters", "N", "rtf: CPCA clusters (default 32)"},
         {"--components", "N", "rtf: CPCA components per cluster (default 16)"},
         {"--bounces", "N", "rtf: inter-object bounces 1..4 (default 2)"},
-        {"--objects", "N", "rtf: only the level's first N dynamic objects (default all)"},
-        {"--object", "ID", "rtf: only the dynamic entity with this id (needs --no-gpu)"},
+        {"--objects", "N", "rtf: only the level's first N entities with a dnrt component (default all)"},
+        {"--object", "ID", "rtf: only the entity with this id (any entity with a mesh), baked at this command's settings, not its rtf component's (needs --no-gpu)"},
         // bench sl (game/bench_sl.hpp); --level (default characters), --resolution (default 1280x720) and --frames (default 3) above also apply
         {"--influence", "F", "sl: every sl component's influence (0 = off, else 3..1000 radii; default the level's)"},
         {"--sl-resolution", "LIST", "sl: pass 2's resolution, full, half, quarter or a list such as full,half,quarter (default full); sl_ms then adds sl.upsample"},

@@ -62,9 +62,9 @@ class FrameRing {
   // Drops the frame being recorded without submitting it, so that an error thrown while recording
   // unwinds to a ring that shuts down cleanly (waitIdle() returns) instead of ending in std::terminate
   // from a destructor's waitIdle(). Its deletions still run when the slot is next retired; it has no
-  // timings. No-op when no frame is recording. The ring itself records again afterwards, but the
-  // renderer's images keep the layouts its recorded barriers named, so a session does not render
-  // after an abandoned frame: the error ends it.
+  // timings. No-op when no frame is recording. The ring records again afterwards; the renderer
+  // also rolls back the layouts its graph's barriers recorded (VkBackend::abandonFrame), so its next
+  // frame renders as before (RenderUnwind test). Images a pass transitions by itself are not rolled back.
   void abandon() noexcept;
 
   // Timings of the most recently completed frame whose results were resolved.

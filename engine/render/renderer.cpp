@@ -184,7 +184,9 @@ void Renderer::render(const RenderWorld& world, gpu::Presenter& presenter, const
   ensureTargets(extent);
   gpu::Frame& frame = frames_->begin();
   // An error while recording (a technique's update, a pass, the presenter) must leave the ring
-  // usable: the session's destructor waits for it, and a second throw there would terminate.
+  // usable: the session's destructor waits for it, and a second throw there would terminate. The
+  // graph's barriers already moved the tracked layouts of the images they name; put them back to
+  // what the GPU holds so that the next frame renders (tests/unit/render/frame_unwind_test.cpp).
   try {
     backend_->beginFrame(frame.slot, frame.timestamps.get());
 
@@ -210,6 +212,7 @@ void Renderer::render(const RenderWorld& world, gpu::Presenter& presenter, const
     graph.execute(*backend_, cc);
     presenter.present(*frames_, *display_);
   } catch (...) {
+    backend_->abandonFrame();
     frames_->abandon();
     throw;
   }

@@ -128,8 +128,14 @@ void VkBackend::beginFrame(std::uint32_t slot, gpu::TimestampPool* timestamps) {
   timestamps_ = timestamps;
   imported_images_.clear();
   imported_buffers_.clear();
+  layout_journal_.clear();
   for (auto& p : slots_[slot_].images) p.inUse = false;
   for (auto& p : slots_[slot_].buffers) p.inUse = false;
+}
+
+void VkBackend::abandonFrame() noexcept {
+  for (auto it = layout_journal_.rbegin(); it != layout_journal_.rend(); ++it) it->first->setLayout(it->second);
+  layout_journal_.clear();
 }
 
 rg::PhysicalId VkBackend::importImage(gpu::Image& image) {
@@ -235,6 +241,7 @@ void VkBackend::barrier(rg::CommandContext& base, std::span<const rg::Barrier> b
       m.image = img.handle();
       m.subresourceRange = img.fullRange();
       images.push_back(m);
+      layout_journal_.emplace_back(&img, img.layout());
       img.setLayout(m.newLayout);
     } else {
       gpu::Buffer& buf = buffer(b.physical);

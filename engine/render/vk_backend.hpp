@@ -11,6 +11,7 @@
 #include <deque>
 #include <map>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "engine/gpu/buffer.hpp"
@@ -40,6 +41,11 @@ class VkBackend final : public rg::Backend {
 
   // Call once per frame before the graph executes: selects the slot's pool and timestamp pool.
   void beginFrame(std::uint32_t slot, gpu::TimestampPool* timestamps);
+  // The frame begun last will not be submitted (FrameRing::abandon): puts back the tracked layout
+  // (gpu::Image::layout()) of every image this frame's barriers changed, so that the next frame's
+  // first barriers start from what the GPU holds. Images a pass transitions itself (gpu::transition
+  // in an execute callback) are not tracked here.
+  void abandonFrame() noexcept;
 
   // Registers an image / buffer owned elsewhere (swapchain copy source, persistent fields) for
   // RenderGraph::importTexture/importBuffer. Valid until the next beginFrame().
@@ -87,6 +93,9 @@ class VkBackend final : public rg::Backend {
   gpu::TimestampPool* timestamps_ = nullptr;
   std::vector<gpu::Image*> imported_images_;
   std::vector<gpu::Buffer*> imported_buffers_;
+  // Since beginFrame(): each image barrier's image and the layout tracked before it, oldest first
+  // (abandonFrame() restores them newest first, so the first one's wins).
+  std::vector<std::pair<gpu::Image*, VkImageLayout>> layout_journal_;
   std::size_t created_images_ = 0;
 };
 

@@ -27,7 +27,7 @@ scene::EffectSet effects(std::initializer_list<scene::Effect> list) {
   return s;
 }
 
-TEST(SessionTechniques, ReservedAndUnusedEffectsAreNotedAndDoNotRun) {
+TEST(SessionTechniques, UnusedEffectsAreNotedAndDoNotRun) {
   game::Session session(gpu::testkit::sharedContext(),
                         game::loadLevelWithEffects(kCornell, std::vector<std::string>{"direct", "vlm", "sl", "rtf"}));
   EXPECT_EQ(session.notes(),
@@ -55,7 +55,7 @@ TEST(SessionTechniques, ReservedAndUnusedEffectsAreNotedAndDoNotRun) {
 // The play overlay's disabled checkboxes: whyCannotRun gives the table's note for an effect this level
 // can never run, named or not, and nothing for one it can (the renderer's own passes, a technique
 // with a participant even when not named).
-TEST(SessionTechniques, WhyCannotRunNamesReservedAndUnusedEffectsOnly) {
+TEST(SessionTechniques, WhyCannotRunNamesUnusedEffectsOnly) {
   game::Session session(gpu::testkit::sharedContext(),
                         game::loadLevelWithEffects(kCornell, std::vector<std::string>{"direct"}));
   EXPECT_EQ(session.whyCannotRun(scene::Effect::Direct), "");

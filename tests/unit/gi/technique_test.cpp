@@ -1,5 +1,5 @@
-// The table of GI techniques (engine/gi/technique.hpp) on the CPU: one entry per technique effect,
-// no reserved entries left (RTF took the last), participation and its notes, bake jobs with content keys, and the
+// The table of GI techniques (engine/gi/technique.hpp) on the CPU: one entry per technique effect
+// (every effect but direct and shadows), participation and its notes, bake jobs with content keys, and the
 // accuracy rows gathered from the table.
 #include <gtest/gtest.h>
 
@@ -49,9 +49,9 @@ TEST(Techniques, OneEntryPerTechniqueEffectInNodeOrder) {
   }
 }
 
-// RTF (issue 14) took the last reserved entry: no technique of the table is reserved any more, and
-// a level naming rtf without an rtf entity gets the table's "no entity takes part" note.
-TEST(Techniques, NoneIsReservedAndRtfWithoutParticipantsSaysSo) {
+// RTF's entry (issue 14): on a level naming rtf without an rtf entity it takes no part, plans no
+// bake, and the level gets the table's "no entity takes part" note.
+TEST(Techniques, RtfWithoutParticipantsSaysSo) {
   Loaded l(kCornell1, "direct,rtf");
   const auto lc = l.context();
   const gi::Technique* t = gi::findTechnique(scene::Effect::Rtf);

@@ -27,10 +27,13 @@ TEST(RtfBenchCli, OutOfRangeSettingsAreOneLineAndExit2) {
   }
 }
 
-// --object: without --no-gpu, or an id the level's dynamic entities do not have.
+// --object: without --no-gpu, an id the level does not have, or an entity without a mesh (the
+// camera). Checked against the level file, before anything is cooked.
 TEST(RtfBenchCli, BadObjectIsOneLineAndExit2) {
-  for (const auto& [args, what] : {std::pair<std::vector<std::string>, std::string>{{"--object", "prop-truck"}, "without --no-gpu"},
-                                   {{"--object", "no-such-prop", "--no-gpu"}, "'no-such-prop' is no dynamic entity"}}) {
+  for (const auto& [args, what] :
+       {std::pair<std::vector<std::string>, std::string>{{"--object", "prop-truck"}, "without --no-gpu"},
+        {{"--object", "no-such-prop", "--no-gpu"}, "'no-such-prop' is no entity of cornell-5"},
+        {{"--object", "camera", "--no-gpu"}, "'camera' has no mesh"}}) {
     std::vector<std::string> full{"bench", "rtf", "--level", "cornell-5"};
     full.insert(full.end(), args.begin(), args.end());
     const auto r = runBounce(full, kOut / ("object-" + args[1]));
@@ -41,6 +44,26 @@ TEST(RtfBenchCli, BadObjectIsOneLineAndExit2) {
     EXPECT_NE(err[0].find("expected"), std::string::npos) << err[0];
     EXPECT_TRUE(r.out.empty()) << "nothing baked or printed before the check";
   }
+}
+
+// --object takes any entity with a mesh, not only one with a dnrt component: cornell-5's room has
+// neither a dnrt nor an rtf component. Baked at the command's settings (the smallest field there
+// is, < 1 s), which its line reports; then one CPU bounce row for the one object.
+TEST(RtfBenchCli, ObjectIsAnyEntityWithAMesh) {
+  const std::filesystem::path dir = kOut / "object-room";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir / "cache");
+  const auto r = bounce::testcli::runShell(
+      bounce::testcli::bounceCommand({"bench", "rtf", "--level", "cornell-5", "--no-gpu", "--object", "cornell-box",
+                                      "--runs", "1", "--proxies", "1", "--spheres", "2", "--face", "1", "--rays", "1",
+                                      "--vertex-rays", "1", "--clusters", "1", "--components", "1"},
+                                     "BOUNCE_CACHE=" + bounce::testcli::quote((dir / "cache").string()) + " "),
+      dir / "stdout.txt", dir / "stderr.txt");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto out = lines(r.out);
+  ASSERT_EQ(out.size(), 2u) << r.out;
+  EXPECT_EQ(out[0].rfind("object=cornell-box proxies=1 clusters=1 components=1 ", 0), 0u) << out[0];
+  EXPECT_EQ(out[1].rfind("objects=1 bounces=2 ", 0), 0u) << out[1];
 }
 
 TEST(RtfBenchCli, MissingLevelIsOneLineAndExit2) {
