@@ -78,9 +78,12 @@ double compressionRatio(const Cpca& cpca);
 // sample's tail α with one fp32 scale per sample (scale = max_{j>ne−n₈} |α_j(r)| / 127), so each
 // value moves by at most scale/2. Why per sample and not per component: the samples along a ray
 // differ by (η/d)² (a factor ≈ 100, cpca.cpp "lines"), so a per-component scale is set by the
-// samples next to the surface and drowns the far ones (animated box, 8 × 96, all α in 8 bits:
-// 2.3 % per component against 1.6 % per sample). Why only the tail: the head components hold most of
-// the energy (the first 16 ≈ 95 %), and 8 bits there cost more error than the components they buy.
+// samples next to the surface and drowns the far ones (animated box, 8 × 128 at 6·64² rays, every α
+// in 8 bits, basis fp16: 2.2 % per component against 1.6 % per sample; fp16 0.57 %). Why only the
+// tail: the head components carry most of the energy, and 8 bits there cost more error than the
+// components they buy (same prop, 8 × 112 predicted: all in 8 bits 3.2 % at 70.6:1, the first 16 in
+// fp16 0.92 % at 62.0:1, the first 24 0.81 % at 58.5:1; tools/rtf_parts/rtf_cpca_tail.py, README
+// "CPCA: the tail in 8 bits, session 15").
 // quantize(c, n₈) rounds in place, so the Cpca in memory is exactly what the file holds and
 // measure() after it gives the stored field's error. Throws InternalError when n₈ is not in
 // 0..components or some |value| would round past the largest half (65504).
