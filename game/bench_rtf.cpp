@@ -45,6 +45,7 @@ int runBenchRtf(const cli::Args& args) {
   s.vertexRaysPerAxis = intIn(args, "--vertex-rays", s.vertexRaysPerAxis, 1, 256);
   s.clusters = intIn(args, "--clusters", s.clusters, 1, 4096);
   s.components = intIn(args, "--components", s.components, 1, 256);
+  if (args.has("--byte-components")) s.byteComponents = intIn(args, "--byte-components", 0, 1, s.components);
   if (args.has("--radii")) {  // "INNER,OUTER" in units of η (a level component's inner/outer)
     const std::string v = args.str("--radii");
     const std::size_t comma = v.find(',');
@@ -109,7 +110,8 @@ int runBenchRtf(const cli::Args& args) {
     const double cpuSeconds = cached ? 0.0 : double(std::clock() - cpu0) / CLOCKS_PER_SEC;
     const gi::rtf::Field& f = fields.back();
     // ratio= is the STORED ratio: fp32 bytes of the ITF / bytes of the file's CPCA (fp16 basis and
-    // α, uint32 cluster ids); frobenius= the error after that rounding (bake.cpp). The float ratio
+    // α, the last --byte-components of them as 8-bit codes and fp32 scales, uint32 cluster ids:
+    // cpca.hpp storedBytes); frobenius= the error after that rounding (bake.cpp). The float ratio
     // (what the ξ pass's fp32 buffers hold) is compressionRatio(f.itf), about half of it.
     const double ratio = gi::rtf::storedRatio(f.itf);
     const double rawMb = double(gi::rtf::sampleCount(s)) * double(gi::rtf::itfDimension(s)) * 4.0 / 1e6;

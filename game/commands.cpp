@@ -118,6 +118,7 @@ const std::vector<cli::CommandSpec>& commandSpecs() {
         {"--vertex-rays", "N", "rtf: vertex transfer rays per axis (default 16)"},
         {"--clusters", "N", "rtf: CPCA clusters (default 32)"},
         {"--components", "N", "rtf: CPCA components per cluster (default 16)"},
+        {"--byte-components", "N", "rtf: the last N components stored in 8 bits (default 0: all fp16)"},
         {"--bounces", "N", "rtf: inter-object bounces 1..4 (default 2)"},
         {"--objects", "N", "rtf: only the level's first N entities with a dnrt component (default all)"},
         {"--object", "ID", "rtf: only the entity with this id (any entity with a mesh), baked at this command's settings, not its rtf component's (needs --no-gpu)"},

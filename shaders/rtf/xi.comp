@@ -6,10 +6,14 @@
 //  stage 1, Eq. 11: ξ_{r,i} = u_{h(r),0,i} + Σ_e α_e(r) u_{h(r),e,i}, one invocation per
 //           (sample r, coefficient i), stored in the ξ image; with it X (below) and its range;
 //  stage 2: X encoded into the 8-bit image the shading step reads (below).
-// Data (std430, bytes): basis = n_c·(n_e+1)·D halves, D = m·16·16·3, element
-// ((k·16 + i)·16 + j)·3 + c of a component (field.hpp itfIndex); alpha = N·n_e halves; both as the
-// field file stores them (cpca.hpp roundToHalf), two to a uint (packHalf2x16: element 2w in word w's
-// low half, xi_pass.cpp halfWords): half the bytes to upload and read of fp32 buffers, same values;
+// Data (std430, bytes), as the field file stores it (cpca.hpp quantize / storedParts), with
+// n₈ = byteComponents and n_h = n_e − n₈: basis = n_c·(n_h+1)·D halves (per cluster the mean and
+// E_1..E_{n_h}), D = m·16·16·3, element ((k·16 + i)·16 + j)·3 + c of a component (field.hpp
+// itfIndex); alpha = N·n_h halves; both two to a uint (packHalf2x16: element 2w in word w's low
+// half, xi_pass.cpp halfWords): half the bytes to upload and read of fp32 buffers, same values;
+// basisCodes = n_c·n₈·D and alphaCodes = N·n₈ signed 8-bit codes, four to a uint (xi_pass.cpp
+// byteWords); scales = n_c·n₈ row scales then N sample scales: E_h(n_h+t) = scales[h·n₈ + t−1]·code,
+// α_(n_h+t)(r) = scales[n_c·n₈ + r]·code (the decoded values of the C++ Cpca, evaluate.cpp);
 // cluster = uint[N]; light = vec4[m·16] (rgb: L_{k,j}, proxies' light in the object's frame);
 // eigen = vec4[n_c·(n_e+1)·16] (rgb: u).
 // ξ image: rgba32f 2D array, layer = sphere·16 + i, texel (face·n_r + x, y) for sample
@@ -45,8 +49,14 @@ layout(std430, binding = 9) buffer Net { vec4 netValue[]; };    // X per (sample
 // The per-sample factor of the blocked term (overlap.hpp sharedOcclusionScale: the share of the
 // directions this object hides that no other object's term already takes off; 1 where one object acts).
 layout(std430, binding = 10) readonly buffer BlockedScale { vec4 blockedScale[]; };
+layout(std430, binding = 11) readonly buffer BasisCodes { uint basisCodes[]; };  // 4 codes a word
+layout(std430, binding = 12) readonly buffer AlphaCodes { uint alphaCodes[]; };  // 4 codes a word
+layout(std430, binding = 13) readonly buffer Scales { float scales[]; };
 
-// α_e(r) at n = r·n_e + e − 1 (n_e may be odd: a row can start in a word's high half).
+// Code n of a 4-to-a-word buffer word, sign-extended (two's complement int8).
+float codeAt(uint word, uint n) { return float(bitfieldExtract(int(word), int(8u * (n & 3u)), 8)); }
+
+// α_e(r), e ≤ n_h, at n = r·n_h + e − 1 (n_h may be odd: a row can start in a word's high half).
 float alphaAt(uint n) {
   vec2 pair = unpackHalf2x16(alpha[n >> 1u]);
   return (n & 1u) == 0u ? pair.x : pair.y;
@@ -62,6 +72,7 @@ layout(push_constant) uniform Push {
   uint components;  // n_e
   uint samples;     // N
   uint faceSize;    // n_r
+  uint byteComponents;  // n₈: the last n₈ of the n_e components in 8-bit codes
 } pc;
 
 // Stage 2: after every X and its slot's range are known, one invocation per (sample, texel k < 7).
@@ -94,16 +105,33 @@ void main() {
     if (t >= count) return;
     uint he = t / 16u, i = t % 16u;
     uint D = pc.proxies * 768u;
+    uint nh = pc.components - pc.byteComponents, h = he / (pc.components + 1u), e = he % (pc.components + 1u);
     vec3 u = vec3(0.0);
     // do…while with a guarded body: llvmpipe runs a `for` body once more with every lane masked
     // (README "Loop bodies III"): 2 bodies of 16 multiply-adds for one proxy, not 1.
     uint k = 0u;
+    if (e > nh) {  // an 8-bit row: Σ code·L, then × the row's scale
+      uint row = (h * pc.byteComponents + e - nh - 1u) * D;
+      do {
+        if (k < pc.proxies)
+          for (uint j = 0u; j < 16u; ++j) {
+            uint n = row + (k * 16u + i) * 48u + j * 3u;  // element (j, c) of the row's (k, i) block
+            vec3 q = vec3(codeAt(basisCodes[n >> 2u], n), codeAt(basisCodes[(n + 1u) >> 2u], n + 1u),
+                          codeAt(basisCodes[(n + 2u) >> 2u], n + 2u));
+            u += q * light[k * 16u + j].rgb;
+          }
+        ++k;
+      } while (k < pc.proxies);
+      eigen[t] = vec4(scales[h * pc.byteComponents + e - nh - 1u] * u, 0.0);
+      return;
+    }
+    uint hh = h * (nh + 1u) + e;  // the row among the half rows
     do {
       if (k < pc.proxies)
         // E[i][j].rgb for j = 2jj, 2jj + 1: 6 halves in 3 words (the row of 48 halves starts at an
         // even element: D and 48 are even).
         for (uint jj = 0u; jj < 8u; ++jj) {
-          uint w = (he * D + (k * 16u + i) * 48u) / 2u + jj * 3u;
+          uint w = (hh * D + (k * 16u + i) * 48u) / 2u + jj * 3u;
           vec2 a = unpackHalf2x16(basis[w]), b = unpackHalf2x16(basis[w + 1u]), c = unpackHalf2x16(basis[w + 2u]);
           u += vec3(a.x, a.y, b.x) * light[k * 16u + 2u * jj].rgb;
           u += vec3(b.y, c.x, c.y) * light[k * 16u + 2u * jj + 1u].rgb;
@@ -116,11 +144,21 @@ void main() {
     uint r = t / 16u, i = t % 16u;
     uint base = cluster[r] * (pc.components + 1u) * 16u;
     vec3 x = eigen[base + i].rgb;
+    uint nh = pc.components - pc.byteComponents;
     uint e = 1u;
     do {  // do…while, guarded, as stage 0's loop
-      if (e <= pc.components) x += alphaAt(r * pc.components + e - 1u) * eigen[base + e * 16u + i].rgb;
+      if (e <= nh) x += alphaAt(r * nh + e - 1u) * eigen[base + e * 16u + i].rgb;
       ++e;
-    } while (e <= pc.components);
+    } while (e <= nh);
+    if (pc.byteComponents > 0u) {  // α = scale·code: the products in fp32 as the C++ decode (field.cpp)
+      float s = scales[pc.clusters * pc.byteComponents + r];
+      e = nh + 1u;  // the loop above ran its body once even for n_h = 0
+      do {
+        uint n = r * pc.byteComponents + e - nh - 1u;
+        if (e <= pc.components) x += (s * codeAt(alphaCodes[n >> 2u], n)) * eigen[base + e * 16u + i].rgb;
+        ++e;
+      } while (e <= pc.components);
+    }
     uint n2 = pc.faceSize * pc.faceSize, per = 6u * n2;
     uint sphere = r / per, rest = r % per, face = rest / n2;
     uint px = rest % pc.faceSize, py = (rest % n2) / pc.faceSize;

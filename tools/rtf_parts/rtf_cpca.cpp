@@ -1,6 +1,6 @@
 // rtf_cpca: the CPCA error–ratio curve of one prop's RTF with the bases and coefficients stored as
 // fp16 (issue 14, README Results "RTF", "Fourth pass": CPCA). A measurement. Since session 9 the
-// field files hold the fp16 rounding (cpca.hpp roundToHalf; `bounce bench rtf`'s ratio= is the
+// field files hold the fp16 rounding (cpca.hpp quantize with no 8-bit components; `bounce bench rtf`'s ratio= is the
 // stored ratio below), so the fp32 column comes from a compression of its own here.
 //
 // Bakes the level's dynamic object OBJECT (0-based, cornell-5's props as `bounce bench rtf` takes
@@ -9,7 +9,7 @@
 //   norm   = ‖X − X̂‖_F / ‖X‖_F      (`frobenius=`: the paper's "Frobenius norm of the difference", relative)
 //   energy = norm²                   (relative squared error, what SHHS03 plots)
 //   ratio  = N·D floats / (basis + α + cluster id) floats — what the GPU holds (fp32)
-// then the same after rounding every basis entry and α to fp16 (cpca.hpp roundToHalf) — the error
+// then the same after rounding every basis entry and α to fp16 (cpca.hpp quantize with no 8-bit components) — the error
 // measured AFTER quantization — with stored_ratio = 4·N·D bytes / (2·(basis + α) + 4·N) bytes.
 //
 // Per-cluster component counts chosen by error (the LAST count in the list is the most any cluster
@@ -134,7 +134,7 @@ int main(int argc, char** argv) {
     const gi::rtf::Cpca full = gi::rtf::compress(baked.itf, D, cs);  // fp32 (baked.field.itf is rounded)
     const gi::rtf::CpcaError e = gi::rtf::measure(full, baked.itf);
     gi::rtf::Cpca c = full;
-    gi::rtf::roundToHalf(c);
+    gi::rtf::quantize(c, 0);
     const gi::rtf::CpcaError h = gi::rtf::measure(c, baked.itf);
     const double stored = h.stored;
     std::printf("clusters=%d components=%d fp32: ratio=%.1f norm=%.4f energy=%.5f | fp16: stored_ratio=%.1f norm=%.4f "
@@ -144,7 +144,7 @@ int main(int argc, char** argv) {
     if (refRays > 0) {
       const double vsRef = againstReference([&](std::size_t r, std::span<float> out) { c.reconstruct(r, out); });
       gi::rtf::Cpca cr = gi::rtf::compress(reference, D, cs);
-      gi::rtf::roundToHalf(cr);
+      gi::rtf::quantize(cr, 0);
       const double refOwn = gi::rtf::measure(cr, reference).frobenius;
       std::printf("clusters=%d components=%d fp16: vs_ref=%.4f (CPCA of X against X_ref) ref_norm=%.4f (CPCA of X_ref)\n",
                   c.clusters, ne, vsRef, refOwn);

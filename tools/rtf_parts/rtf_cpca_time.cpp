@@ -4,7 +4,7 @@
 //   rtf_cpca_time dump LEVEL OBJECT PROXIES SPHERES FACE RAYS OUT [VERTEX_RAYS]   X (N·D floats, raw) to OUT
 //     (VERTEX_RAYS: the vertex transfer's rays per axis, Eq. 8; default FieldSettings' 16)
 //   rtf_cpca_time run FILE D CLUSTERS COMPONENTS THREADS [HASH [ITERATIONS [POWER]]]
-// `run` prints wall and CPU seconds of compress(), the fp16 Frobenius error and stored ratio as
+// `run` prints wall and CPU seconds of compress(), the stored field's Frobenius error and stored ratio as
 // `bounce bench rtf` does, and (with HASH = 1) an FNV-1a hash of the basis, α and cluster ids:
 // the same bytes for any THREADS is the determinism the CPCA promises. With RTF_CPCA_GROUP=S set,
 // also the error's share per group of S samples (README "CPCA on every prop, session 14").
@@ -13,6 +13,7 @@
 #include <cstdlib>
 #include <ctime>
 #include <fstream>
+#include <string>
 #include <vector>
 
 #include <tbb/global_control.h>
@@ -77,10 +78,22 @@ int main(int argc, char** argv) {
     gi::rtf::Cpca c = gi::rtf::compress(X, D, cs);
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const double cpu = cpuSeconds() - c0;
-    gi::rtf::roundToHalf(c);
+    // RTF_CPCA_BYTE_COMPONENTS=n₈: the last n₈ components stored in 8 bits (cpca.hpp quantize), as
+    // `bounce bench rtf --byte-components` (README "CPCA: the tail in 8 bits, session 15").
+    const char* n8 = std::getenv("RTF_CPCA_BYTE_COMPONENTS");
+    gi::rtf::quantize(c, n8 ? std::atoi(n8) : 0);
     const gi::rtf::CpcaError e = gi::rtf::measure(c, X);
     std::printf("power=%d iterations=%d clusters=%d components=%d threads=%s cpca_s=%.1f cpca_cpu_s=%.1f ratio=%.1f frobenius=%.4f", cs.powerIterations, cs.iterations, c.clusters,
                 c.components, argv[6], wall, cpu, e.stored, e.frobenius);
+    // RTF_CPCA_SAVE=PREFIX: the (stored: quantize) α and cluster ids to PREFIX.alpha (N·ne floats) and
+    // PREFIX.cluster (N uint32), the basis to PREFIX.basis (n_c·(n_e+1)·D floats): to study α's quantisation offline (README "CPCA: α in 8 bits, session 15").
+    if (const char* save = std::getenv("RTF_CPCA_SAVE"); save && *save) {
+      std::ofstream a(std::string(save) + ".alpha", std::ios::binary), k(std::string(save) + ".cluster", std::ios::binary);
+      a.write(reinterpret_cast<const char*>(c.alpha.data()), std::streamsize(c.alpha.size() * sizeof(float)));
+      k.write(reinterpret_cast<const char*>(c.cluster.data()), std::streamsize(c.cluster.size() * sizeof(std::uint32_t)));
+      std::ofstream b(std::string(save) + ".basis", std::ios::binary);
+      b.write(reinterpret_cast<const char*>(c.basis.data()), std::streamsize(c.basis.size() * sizeof(float)));
+    }
     if (argc > 7 && std::atoi(argv[7]) == 1) {
       std::uint64_t h = 1469598103934665603ull;
       h = fnv(c.basis.data(), c.basis.size() * sizeof(float), h);

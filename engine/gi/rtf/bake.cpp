@@ -274,7 +274,7 @@ BakeResult bake(const ref::SceneDesc& object, const FieldSettings& s) {
   cs.clusters = s.clusters;
   cs.components = s.components;
   f.itf = compress(result.itf, D, cs);
-  roundToHalf(f.itf);  // what the field file holds; the error below is the stored field's
+  quantize(f.itf, s.byteComponents);  // what the field file holds; the error below is the stored field's
   const CpcaError e = measure(f.itf, result.itf);
   f.frobenius = e.frobenius;
   result.stats.frobenius = e.frobenius;
@@ -287,9 +287,9 @@ BakeResult bake(const ref::SceneDesc& object, const FieldSettings& s) {
 
 std::string cacheKey(const ref::SceneDesc& object, const FieldSettings& s) {
   Hasher h;
-  h.str("rtf-field-v7");  // baker and file format version: bump when either changes (v2: cube-map projection directions; v3: warm-started CPCA; v4: CPCA on lines, k-means++ seeds, float products; v5: fp16 basis and α, file version 2; v6: burned by two unmerged session-11 experiments; v7: a hit's transfer interpolated over its triangle, not its nearest vertex's)
+  h.str("rtf-field-v8");  // baker and file format version: bump when either changes (v2: cube-map projection directions; v3: warm-started CPCA; v4: CPCA on lines, k-means++ seeds, float products; v5: fp16 basis and α, file version 2; v6: burned by two unmerged session-11 experiments; v7: a hit's transfer interpolated over its triangle, not its nearest vertex's; v8: byteComponents, file version 3)
   h.pod(s.proxies).pod(s.spheres).pod(s.faceSize).pod(s.innerRadius).pod(s.outerRadius).pod(s.raysPerAxis);
-  h.pod(s.vertexRaysPerAxis).pod(s.selfBounces).pod(s.clusters).pod(s.components);
+  h.pod(s.vertexRaysPerAxis).pod(s.selfBounces).pod(s.clusters).pod(s.components).pod(s.byteComponents);
   ref::hashGeometry(h, object);
   return h.hex();
 }

@@ -417,27 +417,107 @@ CpcaError measure(const Cpca& c, std::span<const float> data) {
 namespace {
 constexpr float kHalfMax = 65504.0f;  // the largest finite half
 float toHalf(float x) { return glm::unpackHalf1x16(glm::packHalf1x16(x)); }
+
+// The 8-bit code of v under scale (0 for a zero scale: the row or sample is all zeros).
+float code(float v, float scale) { return scale > 0.0f ? std::nearbyint(v / scale) : 0.0f; }
+// max |v| / 127 over [first, last): the scale that maps the largest value to code ±127.
+float byteScale(const float* first, const float* last) {
+  float m = 0.0f;
+  for (const float* v = first; v != last; ++v) m = std::max(m, std::abs(*v));
+  return m / 127.0f;
+}
 }  // namespace
 
-void roundToHalf(Cpca& c) {
-  for (std::vector<float>* v : {&c.basis, &c.alpha})
-    for (float& x : *v) {
-      const float h = toHalf(x);
-      if (!(std::abs(h) <= kHalfMax)) throw InternalError("rtf::roundToHalf: a CPCA value beyond fp16's range (65504)");
-      x = h;
+void quantize(Cpca& c, int n8) {
+  const int ne = c.components;
+  if (n8 < 0 || n8 > ne) throw InternalError("rtf::quantize: byteComponents must be in 0..components");
+  const std::size_t D = std::size_t(c.dimension), N = c.samples(), nc = std::size_t(c.clusters);
+  const std::size_t head = std::size_t(ne - n8) + 1;  // rows 0 (mean) .. ne − n₈ of each cluster: halves
+  c.byteComponents = n8;
+  c.basisScale.assign(nc * std::size_t(n8), 0.0f);
+  c.alphaScale.assign(n8 > 0 ? N : 0, 0.0f);
+  const auto half = [](float& x) {
+    const float h = toHalf(x);
+    if (!(std::abs(h) <= kHalfMax)) throw InternalError("rtf::quantize: a CPCA value beyond fp16's range (65504)");
+    x = h;
+  };
+  const auto bytes = [](float* first, float* last, float& scale) {
+    scale = byteScale(first, last);
+    for (float* v = first; v != last; ++v) *v = scale * code(*v, scale);
+  };
+  for (std::size_t h = 0; h < nc; ++h)
+    for (std::size_t j = 0; j <= std::size_t(ne); ++j) {
+      float* row = c.basis.data() + (h * std::size_t(ne + 1) + j) * D;
+      if (j < head) std::for_each(row, row + D, half);
+      else bytes(row, row + D, c.basisScale[h * std::size_t(n8) + j - head]);
     }
+  for (std::size_t r = 0; r < N; ++r) {
+    float* a = c.alpha.data() + r * std::size_t(ne);
+    std::for_each(a, a + (head - 1), half);
+    if (n8 > 0) bytes(a + (head - 1), a + ne, c.alphaScale[r]);
+  }
 }
 
-bool isHalf(const Cpca& c) {
-  for (const std::vector<float>* v : {&c.basis, &c.alpha})
-    for (float x : *v)
-      if (!(toHalf(x) == x)) return false;  // NaN too
+bool isQuantized(const Cpca& c) {
+  const int ne = c.components, n8 = c.byteComponents;
+  const std::size_t D = std::size_t(c.dimension), N = c.samples(), nc = std::size_t(c.clusters);
+  if (n8 < 0 || n8 > ne || c.basisScale.size() != nc * std::size_t(n8) || c.alphaScale.size() != (n8 > 0 ? N : 0))
+    return false;
+  const std::size_t head = std::size_t(ne - n8) + 1;
+  const auto isHalf = [](float x) { return toHalf(x) == x; };  // NaN fails
+  const auto isCoded = [](const float* first, const float* last, float scale) {
+    if (!(scale >= 0.0f) || !std::isfinite(scale)) return false;
+    for (const float* v = first; v != last; ++v) {
+      const float q = code(*v, scale);
+      if (!(std::abs(q) <= 127.0f) || !(scale * q == *v)) return false;
+    }
+    return true;
+  };
+  for (std::size_t h = 0; h < nc; ++h)
+    for (std::size_t j = 0; j <= std::size_t(ne); ++j) {
+      const float* row = c.basis.data() + (h * std::size_t(ne + 1) + j) * D;
+      if (j < head ? !std::all_of(row, row + D, isHalf) : !isCoded(row, row + D, c.basisScale[h * std::size_t(n8) + j - head]))
+        return false;
+    }
+  for (std::size_t r = 0; r < N; ++r) {
+    const float* a = c.alpha.data() + r * std::size_t(ne);
+    if (!std::all_of(a, a + (head - 1), isHalf)) return false;
+    if (n8 > 0 && !isCoded(a + (head - 1), a + ne, c.alphaScale[r])) return false;
+  }
   return true;
+}
+
+CpcaParts storedParts(const Cpca& c) {
+  if (!isQuantized(c)) throw InternalError("rtf::storedParts: CPCA not quantized (rtf::quantize)");
+  const std::size_t D = std::size_t(c.dimension), N = c.samples(), nc = std::size_t(c.clusters);
+  const std::size_t ne = std::size_t(c.components), n8 = std::size_t(c.byteComponents), head = ne - n8;
+  CpcaParts p;
+  const auto codes = [](const float* first, const float* last, float scale, std::vector<std::int8_t>& out) {
+    for (const float* v = first; v != last; ++v) out.push_back(std::int8_t(code(*v, scale)));
+  };
+  for (std::size_t h = 0; h < nc; ++h) {
+    const float* b = c.basis.data() + h * (ne + 1) * D;
+    p.basisHalves.insert(p.basisHalves.end(), b, b + (head + 1) * D);
+    for (std::size_t t = 0; t < n8; ++t) codes(b + (head + 1 + t) * D, b + (head + 2 + t) * D, c.basisScale[h * n8 + t], p.basisCodes);
+  }
+  for (std::size_t r = 0; r < N; ++r) {
+    const float* a = c.alpha.data() + r * ne;
+    p.alphaHalves.insert(p.alphaHalves.end(), a, a + head);
+    if (n8 > 0) codes(a + head, a + ne, c.alphaScale[r], p.alphaCodes);
+  }
+  return p;
+}
+
+double storedBytes(std::size_t N, std::size_t D, int nc, int ne, int n8) {
+  const double halves = double(nc) * double(ne - n8 + 1) * double(D) + double(N) * double(ne - n8);
+  const double codes = double(nc) * double(n8) * double(D) + double(N) * double(n8);
+  const double scales = n8 > 0 ? double(nc) * double(n8) + double(N) : 0.0;
+  return 2.0 * halves + codes + 4.0 * scales + 4.0 * double(N);
 }
 
 double storedRatio(const Cpca& c) {
   const double N = double(c.samples());
-  return 4.0 * N * double(c.dimension) / (2.0 * double(c.basis.size() + c.alpha.size()) + 4.0 * N);
+  return 4.0 * N * double(c.dimension) / storedBytes(c.samples(), std::size_t(c.dimension), c.clusters, c.components, c.byteComponents);
 }
 
 double compressionRatio(const Cpca& c) {

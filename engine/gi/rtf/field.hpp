@@ -19,9 +19,11 @@
 //  - the object occlusion field (OOF, Zhou et al. 2005): the SH projection (16 coefficients, not
 //    compressed) of the visibility V_q(ω) = 1 where the ray from q along ω misses the object.
 //
-// File (version 2): "BRTFFLD\0", version, settings, centre, radius, proxies, CPCA (basis as fp16,
-// per-sample cluster id as uint32, α as fp16: cpca.hpp roundToHalf), OOF (fp32), the CPCA error
-// measured after the fp16 rounding, then a 64-bit checksum of every byte before it. load validates
+// File (version 3): "BRTFFLD\0", version, settings, centre, radius, proxies, CPCA (cpca.hpp quantize:
+// the means and the first ne − n₈ basis rows as fp16, the last n₈ rows as int8 codes, their fp32
+// scales, per-sample cluster id as uint32, the first ne − n₈ α as fp16, the last n₈ as int8 codes,
+// the per-sample fp32 scales), OOF (fp32), the CPCA error
+// measured after that rounding, then a 64-bit checksum of every byte before it. load validates
 // every count, index and value (an inf or NaN half included) and throws InputError naming the file.
 #include <cstdint>
 #include <filesystem>
@@ -49,6 +51,7 @@ struct FieldSettings {
   int selfBounces = 2;         // self-interreflection bounces in the vertex transfer (Eq. 8)
   int clusters = 32;           // CPCA n_c (paper 32)
   int components = 16;         // CPCA n_e (paper 16)
+  int byteComponents = 0;      // n₈: the last n₈ components stored in 8 bits (cpca.hpp quantize), 0..components
 };
 // Throws InternalError when a setting is out of range (callers validate user input first).
 void checkSettings(const FieldSettings& s);

@@ -21,7 +21,7 @@ gpu::Buffer storage(gpu::Context& ctx, const std::vector<T>& data, const std::st
   return b;
 }
 
-// xi.comp's basis and α: the Cpca's values (halves already: cpca.hpp roundToHalf, so packing loses
+// xi.comp's half basis rows and α (cpca.hpp storedParts): halves already (cpca.hpp quantize, so packing loses
 // nothing) two to a uint as GLSL's packHalf2x16 lays them out, element 2w in the low 16 bits of word
 // w; an odd count ends with a zero half.
 std::vector<std::uint32_t> halfWords(const std::vector<float>& v) {
@@ -29,8 +29,16 @@ std::vector<std::uint32_t> halfWords(const std::vector<float>& v) {
   for (std::size_t i = 0; i < v.size(); i += 2) {
     const glm::vec2 pair(v[i], i + 1 < v.size() ? v[i + 1] : 0.0f);
     w[i / 2] = glm::packHalf2x16(pair);
-    if (glm::unpackHalf2x16(w[i / 2]) != pair) throw InternalError("rtf::XiPass: CPCA not rounded to fp16 (rtf::roundToHalf)");
+    if (glm::unpackHalf2x16(w[i / 2]) != pair) throw InternalError("rtf::XiPass: CPCA not rounded to fp16 (rtf::quantize)");
   }
+  return w;
+}
+
+// xi.comp's 8-bit codes, four to a uint, element 4w + b in bits 8b..8b+7 of word w (two's
+// complement, read with bitfieldExtract); a count not a multiple of 4 ends with zero bytes.
+std::vector<std::uint32_t> byteWords(const std::vector<std::int8_t>& q) {
+  std::vector<std::uint32_t> w((q.size() + 3) / 4, 0u);
+  for (std::size_t i = 0; i < q.size(); ++i) w[i / 4] |= std::uint32_t(std::uint8_t(q[i])) << (8 * (i % 4));
   return w;
 }
 
@@ -50,15 +58,24 @@ XiPass::XiPass(gpu::Context& ctx, const Field& f)
                   {7, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
                   {8, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                   {9, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                  {10, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}},
+                  {10, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                  {11, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                  {12, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                  {13, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}},
                  "rtf.xi"),
       layout_(ctx, {setLayout_.handle()}, {{VK_SHADER_STAGE_ALL, 0, sizeof(Push)}}, "rtf.xi"),
       descriptors_(ctx) {
   const FieldSettings& s = f.settings;
   push_ = {0, std::uint32_t(s.proxies), std::uint32_t(f.itf.clusters), std::uint32_t(f.itf.components),
-           std::uint32_t(sampleCount(s)), std::uint32_t(s.faceSize)};
-  basis_ = storage(ctx, halfWords(f.itf.basis), "rtf.basis");
-  alpha_ = storage(ctx, halfWords(f.itf.alpha), "rtf.alpha");
+           std::uint32_t(sampleCount(s)), std::uint32_t(s.faceSize), std::uint32_t(f.itf.byteComponents)};
+  const CpcaParts parts = storedParts(f.itf);
+  basis_ = storage(ctx, halfWords(parts.basisHalves), "rtf.basis");
+  alpha_ = storage(ctx, halfWords(parts.alphaHalves), "rtf.alpha");
+  basisCodes_ = storage(ctx, byteWords(parts.basisCodes), "rtf.basis_codes");
+  alphaCodes_ = storage(ctx, byteWords(parts.alphaCodes), "rtf.alpha_codes");
+  std::vector<float> scales = f.itf.basisScale;  // xi.comp `scales`: n_c·n₈ row scales, then N sample scales
+  scales.insert(scales.end(), f.itf.alphaScale.begin(), f.itf.alphaScale.end());
+  codeScales_ = storage(ctx, scales, "rtf.code_scales");
   cluster_ = storage(ctx, f.itf.cluster, "rtf.cluster");
   // Written by vkCmdUpdateBuffer in record(): ordered in the command stream, so a frame in flight
   // never sees the next frame's light (m·16·16 bytes ≤ 16 KiB < the command's 64 KiB limit).
@@ -120,6 +137,9 @@ XiPass::XiPass(gpu::Context& ctx, const Field& f)
       .buffer(8, range_)
       .buffer(9, netValue_)
       .buffer(10, scaleBuffer_)
+      .buffer(11, basisCodes_)
+      .buffer(12, alphaCodes_)
+      .buffer(13, codeScales_)
       .update(ctx, set_);
   blocked_.assign(kShCount * 9, glm::vec4(0.0f));
   std::vector<glm::vec3> zero(std::size_t(s.proxies) * kShCount, glm::vec3(0.0f));

@@ -50,12 +50,12 @@ class XiPass {
 
  private:
   struct Push {
-    std::uint32_t stage, proxies, clusters, components, samples, faceSize;
+    std::uint32_t stage, proxies, clusters, components, samples, faceSize, byteComponents;
   };
   gpu::Context& ctx_;
   FieldSettings settings_;
   Push push_{};
-  gpu::Buffer basis_, alpha_, cluster_, light_, eigen_;
+  gpu::Buffer basis_, alpha_, cluster_, light_, eigen_, basisCodes_, alphaCodes_, codeScales_;
   std::vector<glm::vec4> pending_;  // the light record() writes: m·16 proxy light, then 144 of T'
   std::vector<glm::vec4> blocked_;
   std::vector<glm::vec4> scale_;  // N, or empty: ones

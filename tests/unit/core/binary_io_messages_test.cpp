@@ -60,10 +60,10 @@ TEST(BinaryIoMessages, DnrtField) {
 }
 
 TEST(BinaryIoMessages, RtfField) {
-  expectMessages(gi::rtf::deserialize, "BRTFFLD\0", 2,
+  expectMessages(gi::rtf::deserialize, "BRTFFLD\0", 3,
                  {"f.bin: header: truncated (expected a complete RTF field file)",
                   "f.bin: header: not an RTF field (expected magic BRTFFLD)",
-                  "f.bin: version: version 9 (expected version 2)",
+                  "f.bin: version: version 10 (expected version 3)",
                   "f.bin: proxies: truncated (expected a complete RTF field file)"});
 }
 

@@ -181,9 +181,9 @@ TEST(RtfBake, ReportedCpcaErrorIsTheFieldsErrorAndShrinksWithComponents) {
   EXPECT_DOUBLE_EQ(many.field.frobenius, measure(many.field.itf, many.itf).frobenius);
   EXPECT_DOUBLE_EQ(few.field.frobenius, few.stats.frobenius);
   EXPECT_GT(few.stats.frobenius, many.stats.frobenius);
-  // Exact in fp32 (< 1e-5, float rounding); the field holds the fp16 rounding (roundToHalf), whose
+  // Exact in fp32 (< 1e-5, float rounding); the field holds the fp16 rounding (quantize), whose
   // per-entry bound (half_bound.hpp, from the stored values) bounds the rest of the norm.
-  EXPECT_TRUE(isHalf(many.field.itf));
+  EXPECT_TRUE(isQuantized(many.field.itf));
   const std::size_t D = std::size_t(many.field.itf.dimension);
   double bound2 = 0.0, norm2 = 0.0;
   for (std::size_t r = 0; r < many.field.itf.samples(); ++r)
@@ -242,7 +242,7 @@ TEST(RtfBake, CachedBakeIsReusedAndACorruptCacheIsRebaked) {
   const Field c = bakeCached(s, fs, dir, &cached);
   EXPECT_FALSE(cached);
   EXPECT_EQ(serialize(c), serialize(a));  // deterministic bake
-  // A file of the format before fp16 storage (version 1) found at the key's path: re-baked as well
+  // A file of an older format (version 1: fp32 CPCA) found at the key's path: re-baked as well
   // (its own key, rtf-field-v4, already misses; this is the path for a file copied over).
   auto old = serialize(a);
   const std::uint32_t v1 = 1;
@@ -251,7 +251,7 @@ TEST(RtfBake, CachedBakeIsReusedAndACorruptCacheIsRebaked) {
   const Field d = bakeCached(s, fs, dir, &cached);
   EXPECT_FALSE(cached);
   EXPECT_EQ(serialize(d), serialize(a));
-  EXPECT_EQ(load(path).itf.basis, a.itf.basis);  // the cache entry is version 2 again
+  EXPECT_EQ(load(path).itf.basis, a.itf.basis);  // the cache entry is version 3 again
   FieldSettings other = fs;
   other.proxies = 3;
   EXPECT_NE(cacheKey(s, fs), cacheKey(s, other));

@@ -15,7 +15,7 @@ const std::filesystem::path kOut = std::filesystem::path(BOUNCE_TEST_OUT) / "rtf
 
 TEST(RtfBenchCli, OutOfRangeSettingsAreOneLineAndExit2) {
   for (const auto& [option, value] : {std::pair<std::string, std::string>{"--bounces", "5"}, {"--proxies", "65"},
-                                      {"--spheres", "1"}, {"--components", "0"}, {"--radii", "4,2"},
+                                      {"--spheres", "1"}, {"--components", "0"}, {"--byte-components", "17"}, {"--radii", "4,2"},
                                       {"--radii", "0.5"}, {"--radii", "0,4"}}) {
     const auto r = runBounce({"bench", "rtf", option, value}, kOut / (option.substr(2) + "-" + value));
     EXPECT_EQ(r.code, 2) << option;

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include <glm/gtc/packing.hpp>
 #include <tbb/global_control.h>
 
 #include "engine/core/error.hpp"
@@ -128,7 +129,7 @@ TEST(RtfCpca, SameBytesOnOneTwoAndThreeThreads) {
   }
 }
 
-// fp16 storage (cpca.hpp roundToHalf, what the field file holds): every reconstructed entry moves
+// fp16 storage (cpca.hpp quantize with n₈ = 0, what the field file holds): every reconstructed entry moves
 // by no more than half_bound.hpp's bound, derived from the half's 11-bit significand; the rounding
 // is idempotent; the stored ratio counts 2 bytes per basis entry and α and 4 per cluster id.
 TEST(RtfCpca, Fp16RoundingMovesEveryEntryWithinItsBound) {
@@ -140,11 +141,11 @@ TEST(RtfCpca, Fp16RoundingMovesEveryEntryWithinItsBound) {
   s.components = rank;
   const Cpca f = compress(x, D, s);
   Cpca h = f;
-  roundToHalf(h);
-  EXPECT_FALSE(isHalf(f));
-  EXPECT_TRUE(isHalf(h));
+  quantize(h, 0);
+  EXPECT_FALSE(isQuantized(f));
+  EXPECT_TRUE(isQuantized(h));
   Cpca again = h;
-  roundToHalf(again);
+  quantize(again, 0);
   EXPECT_EQ(again.basis, h.basis);
   EXPECT_EQ(again.alpha, h.alpha);
   EXPECT_EQ(h.cluster, f.cluster);
@@ -169,6 +170,58 @@ TEST(RtfCpca, Fp16RoundingMovesEveryEntryWithinItsBound) {
   EXPECT_DOUBLE_EQ(storedRatio(h), storedRatio(f));  // a count of bytes, not of the values
 }
 
+// The 8-bit tail (cpca.hpp quantize, n₈ = 2 of 3 components): each tail basis entry and α moves
+// from the float compression's by at most half its scale's step (plus the step's own float
+// rounding), the scale maps the largest |value| of each row / sample to code ±127, the head stays
+// fp16, the rounding is idempotent, isQuantized sees one value off a code, and the stored bytes
+// are 2 per half, 1 per code, 4 per scale and cluster id.
+TEST(RtfCpca, ByteTailMovesEachValueWithinHalfAStep) {
+  const std::size_t D = 48;
+  const int clusters = 4, per = 50, rank = 3, n8 = 2;
+  const auto x = lowRank(clusters, per, rank, D, 5);
+  CpcaSettings s;
+  s.clusters = clusters;
+  s.components = rank;
+  const Cpca f = compress(x, D, s);
+  Cpca q = f;
+  EXPECT_THROW(quantize(q, rank + 1), InternalError);
+  quantize(q, n8);
+  ASSERT_TRUE(isQuantized(q));
+  ASSERT_EQ(q.basisScale.size(), std::size_t(clusters * n8));
+  ASSERT_EQ(q.alphaScale.size(), f.samples());
+  const std::size_t head = std::size_t(rank - n8);
+  for (int h = 0; h < clusters; ++h)
+    for (int t = 0; t < n8; ++t) {
+      const float sc = q.basisScale[std::size_t(h * n8 + t)];
+      const std::size_t row = (std::size_t(h) * (rank + 1) + head + 1 + std::size_t(t)) * D;
+      float top = 0.0f;
+      for (std::size_t d = 0; d < D; ++d) {
+        ASSERT_LE(std::abs(q.basis[row + d] - f.basis[row + d]), 0.5f * sc * (1.0f + 1e-5f)) << h << " " << t << " " << d;
+        top = std::max(top, std::abs(q.basis[row + d]));
+      }
+      EXPECT_FLOAT_EQ(top, 127.0f * sc);  // the largest entry is code ±127 (a unit row: sc > 0)
+    }
+  for (std::size_t r = 0; r < f.samples(); ++r) {
+    const float sc = q.alphaScale[r];
+    for (std::size_t j = head; j < std::size_t(rank); ++j)
+      ASSERT_LE(std::abs(q.alpha[r * rank + j] - f.alpha[r * rank + j]), 0.5f * sc * (1.0f + 1e-5f) + 1e-30f) << r << " " << j;
+    for (std::size_t j = 0; j < head; ++j) EXPECT_EQ(q.alpha[r * rank + j], glm::unpackHalf1x16(glm::packHalf1x16(f.alpha[r * rank + j])));
+  }
+  Cpca again = q;
+  quantize(again, n8);
+  EXPECT_EQ(again.basis, q.basis);
+  EXPECT_EQ(again.alpha, q.alpha);
+  Cpca off = q;
+  off.alpha[std::size_t(rank) - 1] += 0.25f * off.alphaScale[0];  // between two codes
+  EXPECT_FALSE(isQuantized(off));
+  const double N = clusters * per;
+  const double halves = clusters * (rank - n8 + 1) * double(D) + N * (rank - n8);
+  const double codes = clusters * n8 * double(D) + N * n8;
+  const double expected = 4.0 * N * D / (2.0 * halves + codes + 4.0 * (clusters * n8 + N) + 4.0 * N);
+  EXPECT_DOUBLE_EQ(storedRatio(q), expected);
+  EXPECT_DOUBLE_EQ(measure(q, x).stored, expected);
+}
+
 TEST(RtfCpca, Fp16RoundingRejectsValuesPastTheLargestHalf) {
   const std::size_t D = 8;
   const auto x = lowRank(1, 10, 1, D, 6);
@@ -178,10 +231,10 @@ TEST(RtfCpca, Fp16RoundingRejectsValuesPastTheLargestHalf) {
   Cpca c = compress(x, D, s);
   c.basis[0] = 65519.0f;  // rounds down to 65504, the largest half (the spacing there is 32)
   Cpca ok = c;
-  roundToHalf(ok);
+  quantize(ok, 0);
   EXPECT_EQ(ok.basis[0], 65504.0f);
   c.alpha[3] = -65520.0f;  // rounds to −inf
-  EXPECT_THROW(roundToHalf(c), InternalError);
+  EXPECT_THROW(quantize(c, 0), InternalError);
 }
 
 }  // namespace

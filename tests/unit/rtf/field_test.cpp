@@ -19,6 +19,16 @@ const Field& baked() {
   return f;
 }
 
+// The same object with its last 2 of 4 components in 8 bits (cpca.hpp quantize).
+const Field& bakedBytes() {
+  static const Field f = [] {
+    FieldSettings s = testing::smallSettings();
+    s.byteComponents = 2;
+    return bake(testing::unitSphere(glm::vec3(0.6f, 0.5f, 0.4f), 8), s).field;
+  }();
+  return f;
+}
+
 void resign(std::vector<std::uint8_t>& b) {  // recompute the trailing checksum after an edit
   const std::uint64_t h = hashBytes(std::span<const std::uint8_t>(b.data(), b.size() - 8));
   std::memcpy(b.data() + b.size() - 8, &h, 8);
@@ -33,7 +43,7 @@ std::string errorOf(const std::vector<std::uint8_t>& b) {
   return "";
 }
 
-// The bake rounds the CPCA to fp16 (cpca.hpp roundToHalf), so the file's halves reload as exactly
+// The bake rounds the CPCA to fp16 (cpca.hpp quantize), so the file's halves reload as exactly
 // the field in memory; its error bound is tested in RtfCpca.Fp16Rounding* and RtfBake.
 TEST(RtfField, RoundTripIsExact) {
   const Field& f = baked();
@@ -47,11 +57,58 @@ TEST(RtfField, RoundTripIsExact) {
   EXPECT_EQ(g.frobenius, f.frobenius);
   EXPECT_EQ(g.proxies.size(), 2u);
   EXPECT_EQ(g.oof.size(), sampleCount(g.settings) * kShCount);
-  // Version 2's layout, byte for byte: header 12, settings 10·4, centre + radius 16, proxies 12·m,
-  // cluster count 4, basis 2·n_c·(n_e+1)·D, ids 4·N, α 2·N·n_e, OOF 4·16·N, error 8, checksum 8.
+  // Version 3's layout with n₈ = 0, byte for byte: header 12, settings 11·4, centre + radius 16,
+  // proxies 12·m, cluster count 4, basis 2·n_c·(n_e+1)·D, ids 4·N, α 2·N·n_e, OOF 4·16·N, error 8,
+  // checksum 8.
   const std::size_t N = sampleCount(f.settings), D = itfDimension(f.settings), ne = std::size_t(f.itf.components);
-  EXPECT_EQ(bytes.size(), 12 + 40 + 16 + 12 * f.proxies.size() + 4 + 2 * std::size_t(f.itf.clusters) * (ne + 1) * D + 4 * N +
+  EXPECT_EQ(bytes.size(), 12 + 44 + 16 + 12 * f.proxies.size() + 4 + 2 * std::size_t(f.itf.clusters) * (ne + 1) * D + 4 * N +
                               2 * N * ne + 4 * kShCount * N + 8 + 8);
+}
+
+// With n₈ = 2 of n_e = 4 components in 8 bits: the decoded values reload exactly, and the layout is
+// header 12, settings 44, centre + radius 16, proxies 12·m, count 4, half rows 2·n_c·(n_e−n₈+1)·D,
+// code rows n_c·n₈·D, row scales 4·n_c·n₈, ids 4·N, half α 2·N·(n_e−n₈), α codes N·n₈, sample
+// scales 4·N, OOF 4·16·N, error 8, checksum 8.
+TEST(RtfField, ByteTailRoundTripIsExact) {
+  const Field& f = bakedBytes();
+  ASSERT_EQ(f.itf.byteComponents, 2);
+  const auto bytes = serialize(f);
+  const Field g = deserialize(bytes, "obj.field");
+  EXPECT_EQ(serialize(g), bytes);
+  EXPECT_EQ(g.itf.basis, f.itf.basis);
+  EXPECT_EQ(g.itf.alpha, f.itf.alpha);
+  EXPECT_EQ(g.itf.basisScale, f.itf.basisScale);
+  EXPECT_EQ(g.itf.alphaScale, f.itf.alphaScale);
+  EXPECT_EQ(g.settings.byteComponents, 2);
+  const std::size_t N = sampleCount(f.settings), D = itfDimension(f.settings), nc = std::size_t(f.itf.clusters);
+  EXPECT_EQ(bytes.size(), 12 + 44 + 16 + 12 * f.proxies.size() + 4 + 2 * nc * 3 * D + nc * 2 * D + 4 * nc * 2 + 4 * N + 2 * N * 2 +
+                              N * 2 + 4 * N + 4 * kShCount * N + 8 + 8);
+  Field h = f;
+  h.settings.byteComponents = 1;  // the Cpca's storage must be the settings'
+  EXPECT_THROW(serialize(h), InternalError);
+}
+
+// The 8-bit tail's bad input, correctly checksummed: n₈ past n_e, a negative sample scale, a code −128.
+TEST(RtfField, ByteTailBadSettingsScalesAndCodesAreRejected) {
+  const Field& f = bakedBytes();
+  const auto bytes = serialize(f);
+  const std::size_t N = sampleCount(f.settings);
+  auto b = bytes;
+  const std::int32_t tooMany = f.settings.components + 1;
+  std::memcpy(b.data() + 12 + 40, &tooMany, 4);  // byteComponents, the 11th setting
+  resign(b);
+  EXPECT_NE(errorOf(b).find("settings"), std::string::npos);
+  const std::size_t alphaScales = bytes.size() - 8 - 8 - N * kShCount * 4 - N * 4;
+  b = bytes;
+  const float negative = -1.0f;
+  std::memcpy(b.data() + alphaScales, &negative, 4);
+  resign(b);
+  EXPECT_NE(errorOf(b).find("cpca scales"), std::string::npos);
+  b = bytes;
+  b[alphaScales - 1] = 0x80;  // the last α code: −128
+  resign(b);
+  EXPECT_NE(errorOf(b).find("cpca codes"), std::string::npos);
+  EXPECT_EQ(errorOf(b).find('\n'), std::string::npos) << "one line";
 }
 
 TEST(RtfField, ACpcaNotRoundedToFp16IsNotSaved) {
@@ -103,7 +160,7 @@ TEST(RtfField, BadMagicVersionSettingsChecksumAndIndicesAreRejected) {
   resign(b);
   EXPECT_NE(errorOf(b).find("non-finite"), std::string::npos);
   // An infinite half (0x7c00) as the first basis entry, and a NaN half (0x7e00) as the last α.
-  const std::size_t basisStart = 12 + 40 + 16 + 12 * f.proxies.size() + 4;
+  const std::size_t basisStart = 12 + 44 + 16 + 12 * f.proxies.size() + 4;
   for (const std::size_t at : {basisStart, clusterIds + 4 * N + 2 * N * std::size_t(f.settings.components) - 2}) {
     b = bytes;
     const std::uint16_t h = at == basisStart ? 0x7c00 : 0x7e00;

@@ -1,5 +1,5 @@
 #pragma once
-// The bound on what fp16 storage of the CPCA (cpca.hpp roundToHalf) may move one reconstructed
+// The bound on what fp16 storage of the CPCA (cpca.hpp quantize, n₈ = 0) may move one reconstructed
 // entry x̂_r[d] of Eq. 9 by.
 //
 // Each stored value v (a basis entry E_j[d] or a coefficient α_j) becomes v̂ = v + δ with

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstring>
 #include <string>
+#include <utility>
 
 #include "engine/gi/rtf/evaluate.hpp"
 #include "engine/gi/rtf/xi_pass.hpp"
@@ -19,17 +20,22 @@
 namespace bounce::gi::rtf {
 namespace {
 
-// The pass reads the basis and α as packHalf2x16 words (xi_pass.cpp halfWords): n_e = 3 makes every
-// other sample's α row start in a word's high half (n_e = 4: rows start word-aligned).
+// The pass reads the half basis and α as packHalf2x16 words (xi_pass.cpp halfWords): n_e = 3 makes
+// every other sample's α row start in a word's high half (n_e = 4: rows start word-aligned). The
+// 8-bit tail (cpca.hpp quantize, n₈ components) as four codes a word (xi_pass.cpp byteWords): n₈ = 3
+// and 2 start the sample's code rows at every byte of a word; n₈ = n_e leaves no half α at all.
 TEST(RtfXiGpu, ComputePassEqualsTheCpuCaches) {
   gpu::Context& ctx = gpu::testkit::sharedContext();
-  for (const int components : {4, 3}) {
-    SCOPED_TRACE("components " + std::to_string(components));
+  for (const auto& [components, byteComponents] : {std::pair{4, 0}, std::pair{3, 0}, std::pair{3, 3}, std::pair{5, 2}}) {
+    SCOPED_TRACE("components " + std::to_string(components) + " byteComponents " + std::to_string(byteComponents));
     FieldSettings fs = testing::smallSettings();
     fs.components = components;
+    fs.byteComponents = byteComponents;
     const BakeResult b = bake(testing::unitSphere(glm::vec3(0.8f, 0.6f, 0.4f), 8), fs);
     const Field& f = b.field;
     const FieldSettings& s = f.settings;
+    ASSERT_EQ(f.itf.byteComponents, byteComponents);
+    ASSERT_EQ(f.itf.alphaScale.size(), byteComponents > 0 ? sampleCount(s) : 0u);
     math::Pcg32 rng(5);
     std::vector<glm::vec3> L(std::size_t(s.proxies) * kShCount);
     for (auto& l : L) l = rng.nextFloat3() * 2.0f - 1.0f;
