@@ -116,7 +116,7 @@ class Node {
   struct Variant {
     bool intrusion = false, fullScreen = false;
     bool selfInNormal = false;  // the object's entity id + 1 ≤ render::kEntityInNormalMax (dnrt.frag)
-    std::uint32_t step = 1;     // NodeSettings::step (dnrt.frag kStep; below 1: no depth attachment)
+    std::uint32_t step = 1;     // NodeSettings::step (dnrt.frag kStep; above 1: no depth attachment)
   };
   const gpu::Pipeline& pipeline(const Variant& v);
 
