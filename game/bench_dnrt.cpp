@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <functional>
 #include <limits>
+#include <string_view>
 
 #include "engine/core/error.hpp"
 #include "engine/core/paths.hpp"
@@ -38,6 +39,7 @@ struct Job {
 struct Variant {
   const char* setting;
   std::function<void(scene::Dnrt&)> apply;
+  std::uint32_t step = 1;  // the level's "dnrt": {"resolution"} (scene::DnrtConfig::step)
 };
 const std::vector<Variant>& variants() {
   static const std::vector<Variant> v = {
@@ -48,6 +50,7 @@ const std::vector<Variant>& variants() {
       {"intrusion=on", [](scene::Dnrt& d) { d.intrusion = true; }},
       {"mode=fullscreen", [](scene::Dnrt& d) { d.mode = scene::DnrtMode::FullScreen; }},
       {"mode=clustered", [](scene::Dnrt& d) { d.mode = scene::DnrtMode::Clustered; }},
+      {"resolution=half", [](scene::Dnrt&) {}, 2},  // the draw at half resolution + its upsample
   };
   return v;
 }
@@ -85,7 +88,7 @@ void bakeMissing(const scene::Level& level, DnrtBenchRow& row) {
 void fillTimes(const std::vector<PassStats>& stats, DnrtBenchRow& row, int dnrtEntities) {
   row.frameMs = row.dnrtMs = row.ssaoMs = row.hbaoMs = kNaN;
   row.cubeMs = 0.0;
-  double perObject = 0.0, combineMs = 0.0;
+  double perObject = 0.0, combineMs = 0.0, upsampleMs = 0.0;
   for (const PassStats& s : stats) {
     if (s.pass == "frame") row.frameMs = s.medianMs;
     if (s.depth != 0 && s.pass == "dnrt" && !s.object.empty()) perObject += s.medianMs, ++row.objects;
@@ -95,10 +98,13 @@ void fillTimes(const std::vector<PassStats>& stats, DnrtBenchRow& row, int dnrtE
     }
     if (s.pass == "dnrt") row.dnrtMs = s.medianMs;
     if (s.pass == "dnrt.combine") combineMs = s.medianMs;
+    if (s.pass == "dnrt.upsample") upsampleMs = s.medianMs;
     if (s.pass == "ssao") row.ssaoMs = s.medianMs;
     if (s.pass == "hbao") row.hbaoMs = s.medianMs;
   }
-  row.dnrtMs += combineMs;  // the draws' Σ_j c_j M_j per grid vertex (combine.comp) is part of DNRT's cost
+  // The draws' Σ_j c_j M_j per grid vertex (combine.comp) and, below full resolution, the upsample
+  // (dnrt/upsample.frag) are part of DNRT's cost.
+  row.dnrtMs += combineMs + upsampleMs;
   row.perObjectMs = row.objects > 0 ? perObject / row.objects : kNaN;
   if (row.objects == 0) row.objects = dnrtEntities;  // clustered: one draw for all, no scope per object
 }
@@ -113,15 +119,24 @@ const DnrtBenchRow* findRow(const DnrtBenchReport& r, const std::string& table, 
 void addRatios(DnrtBenchReport& report, const DnrtBenchOptions& options) {
   auto& out = report.ratios;
   // Table 8: the level with the fewest and the most objects, in the levels' own modes ("all") and
-  // all clustered ("clustered", issue 15's goals 0.05 and 4).
-  for (const bool clustered : {false, true}) {
+  // all clustered ("clustered", issue 15's goals 0.05 and 4); at half resolution ("half", "clustered
+  // half") only DNRT(1)/SSAO, with the same goals.
+  for (const char* setting : {"all", "clustered", "half", "clustered half"}) {
+    const bool clustered = std::string_view(setting).starts_with("clustered");
+    const bool half = std::string_view(setting).ends_with("half");
     const DnrtBenchRow *fewest = nullptr, *most = nullptr;
     for (const auto& row : report.rows) {
-      if (row.table != "8" || row.objects == 0 || (row.setting == "clustered") != clustered) continue;
+      if (row.table != "8" || row.objects == 0 || row.setting != setting) continue;
       if (!fewest || row.objects < fewest->objects) fewest = &row;
       if (!most || row.objects > most->objects) most = &row;
     }
-    const std::string tag = clustered ? " clustered" : "";
+    const std::string tag = std::string(clustered ? " clustered" : "") + (half ? " half" : "");
+    if (half) {
+      if (fewest)
+        out.push_back({"DNRT(" + std::to_string(fewest->objects) + " obj)" + tag + " / SSAO, " + fewest->level,
+                       fewest->dnrtMs / fewest->ssaoMs, fewest->objects == 1 ? (clustered ? 0.05 : 0.1) : 0.0});
+      continue;
+    }
     if (fewest) {
       const bool one = fewest->objects == 1;
       out.push_back({"DNRT(" + std::to_string(fewest->objects) + " obj)" + tag + " / SSAO, " + fewest->level,
@@ -158,6 +173,7 @@ void addRatios(DnrtBenchReport& report, const DnrtBenchOptions& options) {
     ratio("mode=clustered", "clustered / box", 0.0, false);
     ratio("grid=16", "grid 16 / grid 32", 0.0, false);
     ratio("grid=64", "grid 64 / grid 32", 0.0, false);
+    ratio("resolution=half", "half / full resolution", 0.0, false);
   }
 }
 
@@ -192,8 +208,13 @@ DnrtBenchReport runDnrtBench(const DnrtBenchOptions& options) {
     forEachDnrt(level, [&](scene::Dnrt&) { ++entities; });
     scene::Level clustered = level;
     forEachDnrt(clustered, [](scene::Dnrt& d) { d.mode = scene::DnrtMode::Clustered; });
+    // Both again with the draw at half resolution ("dnrt": {"resolution": "half"}; issue 15 part 3).
+    scene::Level half = level, clusteredHalf = clustered;
+    half.dnrt.step = clusteredHalf.dnrt.step = 2;
     jobs.push_back({"8", path.stem().string(), "all", std::move(level), entities});
     jobs.push_back({"8", path.stem().string(), "clustered", std::move(clustered), entities});
+    jobs.push_back({"8", path.stem().string(), "half", std::move(half), entities});
+    jobs.push_back({"8", path.stem().string(), "clustered half", std::move(clusteredHalf), entities});
   }
   for (const auto& path : options.variantLevels) {
     const scene::Level level = scene::loadLevel(path);
@@ -201,6 +222,7 @@ DnrtBenchReport runDnrtBench(const DnrtBenchOptions& options) {
       throwInputError(path.string(), "/effects", "does not name dnrt", "a level whose effects name dnrt");
     for (const Variant& v : variants()) {
       scene::Level configured = level;
+      configured.dnrt.step = v.step;
       forEachDnrt(configured, [&](scene::Dnrt& d) {
         d.shCount = 4, d.grid = 32, d.intrusion = false, d.mode = scene::DnrtMode::Box;  // the paper's standard
         if (options.raysPerVertex) d.samplesPerAxis = *options.raysPerVertex;

@@ -7,17 +7,21 @@
 //    all on (the level's effects plus ssao, hbao), so the three methods' costs are measured side
 //    by side over the same frames: frame ms, DNRT ms (the "dnrt" pass), mean per-object DNRT ms,
 //    SSAO ms, HBAO ms. Each level twice: in its own modes ("all") and with every object in the
-//    clustered draw ("clustered", issue 15), which has no per-object scopes (objects = the level's).
+//    clustered draw ("clustered", issue 15), which has no per-object scopes (objects = the level's);
+//    and both again with the draw at half resolution ("half", "clustered half": the level's "dnrt":
+//    {"resolution": "half"}, issue 15 part 3).
 //  - Tables 6 and 7 and the grid and mode comparisons, per variant level (default cornell-1,
 //    cornell-10): DNRT alone (the level's effects), once with the paper's standard configuration
 //    (sh=4, grid=32, intrusion off; the outer-cube raster) and once per changed setting: sh=9
 //    (Table 7), grid=16 and grid=64, intrusion=on (Table 6: its cube maps are the "dnrt.cube"
 //    passes, reported apart from the shader), mode=fullscreen (the paper's full-screen pass),
-//    mode=clustered (one draw for all objects, issue 15).
+//    mode=clustered (one draw for all objects, issue 15), resolution=half (the draw at half
+//    resolution and its upsample).
 //    Settings reach every `dnrt` entity as in `bounce accuracy` (accuracy_rows.cpp).
 //  - The goal ratios of issue #4: DNRT(1 object)/SSAO ≤ 0.1, DNRT(10)/DNRT(1) ≤ 5, 9 SH/4 SH ≤ 1.5;
-//    of issue 15 for the clustered rows: DNRT(1)/SSAO ≤ 0.05, DNRT(10)/DNRT(1) ≤ 4; and for
-//    reference intrusion/basic, fullscreen/box, clustered/box and grid 16, 64 against 32.
+//    of issue 15 for the clustered rows: DNRT(1)/SSAO ≤ 0.05, DNRT(10)/DNRT(1) ≤ 4; DNRT(1)/SSAO at
+//    half resolution (box and clustered, the same goals); and for reference intrusion/basic,
+//    fullscreen/box, clustered/box, grid 16, 64 against 32 and half / full resolution.
 //
 // Fields are baked through the DNRT cache (<build>/dnrt) before each session; the seconds spent
 // baking are reported per row, apart from the timings. Timings are not tested (DESIGN.md): the
@@ -43,10 +47,10 @@ struct DnrtBenchOptions {
 struct DnrtBenchRow {
   std::string table;    // "8" (all methods) or "variant"
   std::string level;    // the level file's stem
-  std::string setting;  // Table 8: "all" or "clustered"; variants: "basic" or the changed setting ("sh=9", …)
+  std::string setting;  // Table 8: "all", "clustered", "half" or "clustered half"; variants: "basic" or the changed setting ("sh=9", …)
   int objects = 0;      // DNRT objects timed (per-object scopes seen; clustered: the level's dnrt entities)
   double frameMs = 0.0;
-  double dnrtMs = 0.0;       // the "dnrt" pass (every object's draw inside it) + "dnrt.combine"
+  double dnrtMs = 0.0;       // the "dnrt" pass (every object's draw inside it) + "dnrt.combine" (+ "dnrt.upsample")
   double perObjectMs = 0.0;  // mean of the per-object "dnrt/<object>" medians (NaN when clustered)
   double cubeMs = 0.0;       // the intrusion maps: sum of the "dnrt.cube/<object>" passes (0 when off)
   double ssaoMs = 0.0, hbaoMs = 0.0;

@@ -7,7 +7,7 @@
 #include <unordered_map>
 
 #include "engine/core/error.hpp"
-#include "engine/gi/sl/resolution.hpp"  // header only: the "sl" "resolution" names, one table
+#include "engine/gi/sl/resolution.hpp"  // header only: the "sl" and "dnrt" "resolution" names, one table
 #include "engine/scene/json_reader.hpp"
 #include "engine/scene/motion.hpp"
 #include "engine/scene/systems.hpp"
@@ -462,7 +462,7 @@ Level levelFromJson(const nlohmann::json& doc, const std::filesystem::path& path
   if (doc.is_object() && doc.contains("bounce_capture") && !doc.contains("bounce_level"))
     throwInputError(file, "/bounce_capture", "this is a capture script, not a level",
                     "a level (\"bounce_level\": 1); run a capture script with 'bounce capture SCRIPT --out DIR'");
-  const auto o = root.object({"bounce_level", "name", "effects", "background", "probes", "vlm", "entities"});
+  const auto o = root.object({"bounce_level", "name", "effects", "background", "probes", "dnrt", "vlm", "entities"});
 
   const auto version = o.required("bounce_level", "the format version 1");
   if (const auto v = version.integer(0, 1 << 30); v != 1)
@@ -492,6 +492,18 @@ Level levelFromJson(const nlohmann::json& doc, const std::filesystem::path& path
       if (root * root != rays || root % 8 != 0)
         v->fail(std::to_string(rays) + " rays", "a square whose root is a multiple of 8 (64, 256, 576, 1024, ...)");
       level.probes.rays = std::uint32_t(rays);
+    }
+  }
+
+  // "dnrt": {"resolution": "full"|"half"|"quarter"} — the DNRT draw's resolution for every object (the
+  // same names and steps as SL pass 2's, gi/sl/resolution.hpp; default full).
+  if (auto p = o.optional("dnrt")) {
+    const auto dobj = p->object({"resolution"});
+    if (auto v = dobj.optional("resolution")) {
+      const std::string m = v->string();
+      const std::optional<std::uint32_t> step = gi::sl::parseResolution(m);
+      if (!step) v->fail("unknown resolution " + json::inQuotes(m), gi::sl::kResolutionNames);
+      level.dnrt.step = *step;
     }
   }
 

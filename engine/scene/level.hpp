@@ -78,6 +78,14 @@ struct ProbesConfig {
   bool relight = false;
 };
 
+// The level's "dnrt" object (used when effects name `dnrt`; the per-entity fields are each entity's
+// own "dnrt"): the resolution of the DNRT draw, as G-buffer pixels per shaded sample along each axis —
+// 1 (full, default), 2 (half) or 4 (quarter); below full the draw shades a reduced target and
+// "dnrt.upsample" spreads it over every pixel (engine/gi/dnrt/node.hpp).
+struct DnrtConfig {
+  std::uint32_t step = 1;
+};
+
 // The level's "vlm" object (used when effects name `vlm`): the acceleration grid (thesis ch. 4):
 // cells per axis over the scene bounds, candidates per cell K and the active-hemisphere range.
 // Per-tag artistic overrides (§3.5, thesis Fig. 5.5): every virtual light with tag `t` emits
@@ -104,6 +112,7 @@ struct Level {
   EffectSet effects;
   glm::vec3 background{0.0f};
   ProbesConfig probes;
+  DnrtConfig dnrt;
   VlmConfig vlm;
   std::vector<EntityDesc> entities;
   std::filesystem::path source;  // the level file, absolute

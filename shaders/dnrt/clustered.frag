@@ -24,6 +24,7 @@
 #include "frame.glsl"
 #include "dnrt/dnrt.glsl"
 #include "gbuffer.glsl"
+#include "upsample.glsl"
 
 // A batch of exactly one object (node.cpp): record 0, no loops. The loops' per-pixel index makes
 // every record field a per-lane load, and a loop body costs about twice the same code straight
@@ -34,6 +35,10 @@ layout(constant_id = 0) const bool kSingle = false;
 // test reads the normal's w (gbuffer.glsl: exact there, and no larger id rounds onto it) instead of
 // fetching gbuffer.entity (dnrt.frag does the same; node.cpp clusteredPipeline()).
 layout(constant_id = 1) const bool kSelfInNormal = false;
+// kStep: 1 (full), 2 (half), 4 (quarter) G-buffer pixels per shaded sample along each axis, as
+// dnrt.frag's: below full, sample j of the reduced target shades G-buffer pixel kStep·j (its tile's
+// mask is that pixel's) and writes the sum without ρ_r for dnrt/upsample.frag.
+layout(constant_id = 2) const uint kStep = 1u;
 
 layout(set = 0, binding = 0) uniform FrameUbo { Camera camera; };
 layout(set = 1, binding = 0) uniform sampler2D gAlbedo;
@@ -98,7 +103,8 @@ vec3 dnrtClusterTerm(int i, vec4 r, vec3 nr, out bool exact) {
 }
 
 void main() {
-  ivec2 pixel = ivec2(gl_FragCoord.xy);
+  ivec2 pixel = kStep == 1u ? ivec2(gl_FragCoord.xy)
+                            : reducedSamplePixel(ivec2(gl_FragCoord.xy), int(kStep), ivec2(camera.resolution.xy));
   uint mask = tileMasks[pc.tileBase + uint(pixel.y >> kDnrtClusterTileShift) * pc.tilesX +
                         uint(pixel.x >> kDnrtClusterTileShift)];
   if (mask == 0u) discard;
@@ -111,7 +117,7 @@ void main() {
 
   if (kSingle) {  // a specialization constant: the loops below are compiled out, and vice versa
     if (!dnrtClusterReaches(0, r, nr, entity)) discard;
-    vec3 albedo = texelFetch(gAlbedo, pixel, 0).rgb;
+    vec3 albedo = kStep == 1u ? texelFetch(gAlbedo, pixel, 0).rgb : vec3(1.0);  // reduced: ρ_r at the upsample
     bool exact;
     outRadiance = vec4(albedo * dnrtClusterTerm(0, r, nr, exact), 0.0);
     return;
@@ -139,6 +145,6 @@ void main() {
     if (m != 0u && exact) total += term;
     m &= m - 1u;
   } while (m != 0u);
-  vec3 albedo = texelFetch(gAlbedo, pixel, 0).rgb;
+  vec3 albedo = kStep == 1u ? texelFetch(gAlbedo, pixel, 0).rgb : vec3(1.0);  // reduced: ρ_r at the upsample
   outRadiance = vec4(albedo * total, 0.0);
 }

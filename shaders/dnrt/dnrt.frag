@@ -8,12 +8,20 @@
 #include "dnrt/dnrt.glsl"
 #include "dnrt/intrusion.glsl"
 #include "gbuffer.glsl"
+#include "upsample.glsl"
 
 layout(constant_id = 0) const bool kIntrusion = false;
 // kSelfInNormal: the object's entity id + 1 is ≤ kEntityInNormalMax, so the self test compares it with
 // the normal's w (gbuffer.glsl) instead of fetching gbuffer.entity: one G-buffer fetch of four less
 // per reached pixel, the same pixels rejected (node.cpp pipeline()).
 layout(constant_id = 2) const bool kSelfInNormal = false;
+// kStep: G-buffer pixels per shaded sample along each axis — 1 (full), 2 (half), 4 (quarter); the level's
+// "dnrt": {"resolution"} (node.cpp). Below full the draw covers the reduced target "dnrt.half" /
+// "dnrt.quarter": sample j shades G-buffer pixel kStep·j (reducedSamplePixel) and writes Eq. 16 without
+// ρ_r, (n_o·n_r)₊ s(r) Σ_j c_j M_j(r), which dnrt/upsample.frag spreads over every pixel (depth- and
+// normal-aware, upsample.glsl) and multiplies by ρ_r there. That target has no depth attachment, so
+// the early depth test below rejects nothing then; s(r) > 0 keeps the same receivers.
+layout(constant_id = 3) const uint kStep = 1u;
 
 // The box's depth test (GREATER_OR_EQUAL against the G-buffer's depth, no depth write: node.cpp
 // pipeline()) before the shader: a pixel whose surface lies behind the box's exit face never runs
@@ -39,7 +47,8 @@ layout(location = 5) flat in uint self;
 layout(location = 0) out vec4 outRadiance;
 
 void main() {
-  ivec2 pixel = ivec2(gl_FragCoord.xy);
+  ivec2 pixel = kStep == 1u ? ivec2(gl_FragCoord.xy)
+                            : reducedSamplePixel(ivec2(gl_FragCoord.xy), int(kStep), ivec2(camera.resolution.xy));
   float depth = texelFetch(gDepth, pixel, 0).r;
   if (depth >= 1.0) discard;
   vec4 r = vec4(worldFromDepth(camera.invViewProj, (vec2(pixel) + 0.5) * camera.resolution.zw, depth), 1.0);
@@ -68,6 +77,6 @@ void main() {
   vec3 uvw = dnrtUvw(q, extents.x, extents.w);
   // Σ_j c_j M_j(r) (§5.1.2's dot products, done per grid vertex by combine.comp), trilinear.
   vec3 sum = texture(combined, uvw).rgb;
-  vec3 albedo = texelFetch(gAlbedo, pixel, 0).rgb;
+  vec3 albedo = kStep == 1u ? texelFetch(gAlbedo, pixel, 0).rgb : vec3(1.0);  // reduced: ρ_r at the upsample
   outRadiance = vec4(albedo * (lamb * s) * sum, 0.0);
 }

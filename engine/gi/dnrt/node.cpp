@@ -9,6 +9,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "engine/core/error.hpp"
+#include "engine/gi/sl/resolution.hpp"  // header only: the resolution steps and the reduced size
 #include "engine/gpu/commands.hpp"
 #include "engine/render/mesh_gpu.hpp"
 #include "engine/render/passes/rendering.hpp"
@@ -59,6 +60,9 @@ struct CubePush {
   glm::vec4 origin;
   std::uint32_t instance = 0, pad[3] = {0, 0, 0};
 };
+
+// Pipeline-array index of a resolution step (NodeSettings::step): 1, 2, 4 → 0, 1, 2.
+std::size_t stepIndex(std::uint32_t step) { return sl::checkedStep(step) == 4u ? 2u : step == 2u ? 1u : 0u; }
 
 // Face frames as intrusion.glsl: forward and up hint.
 constexpr float kFaces[6][6] = {{1, 0, 0, 0, -1, 0}, {-1, 0, 0, 0, -1, 0}, {0, 1, 0, 0, 0, 1},
@@ -116,7 +120,9 @@ Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t fra
                              "dnrt.combine"),
       cullLayout_(ctx, {{0, kSampled}, {1, kStorage}, {2, kUniform}}, "dnrt.cull"),  // depth, masks, records
       cullPipelineLayout_(ctx, {cullLayout_.handle()}, {VkPushConstantRange{VK_SHADER_STAGE_ALL, 0, sizeof(CullPush)}},
-                          "dnrt.cull") {
+                          "dnrt.cull"),
+      upsampleInputs_(ctx, {{0, kSampled}, {1, kSampled}, {2, kSampled}, {3, kSampled}}, "dnrt.upsample.inputs"),
+      upsampleLayout_(ctx, {shared.frameLayout.handle(), upsampleInputs_.handle()}, {}, "dnrt.upsample") {
   {
     gpu::ShaderModule cull(ctx, "dnrt/tile_cull.comp.spv");
     cull_ = gpu::createComputePipeline(ctx, cullPipelineLayout_, cull, "dnrt.tile-cull");
@@ -160,43 +166,66 @@ Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t fra
 }
 
 const gpu::Pipeline& Node::pipeline(const Variant& v) {
-  const int key = (v.intrusion ? 1 : 0) | (v.fullScreen ? 2 : 0) | (v.selfInNormal ? 4 : 0);
-  gpu::Pipeline& p = variants_[std::size_t(key)];
+  const std::size_t key = (v.intrusion ? 1u : 0u) | (v.fullScreen ? 2u : 0u) | (v.selfInNormal ? 4u : 0u) |
+                          stepIndex(v.step) << 3;
+  gpu::Pipeline& p = variants_[key];
   if (p.handle()) return p;
   gpu::GraphicsPipelineDesc d;
   d.vertex = &vert_;
   d.fragment = &frag_;
-  d.colorFormats = {kHdrFormat};
+  d.colorFormats = {kHdrFormat};  // "lighting.hdr", or "dnrt.half" / "dnrt.quarter" (the same format)
   d.blend = gpu::Blend::Additive;
   // Box: back faces of the cube, each covered pixel once, inside or out. Full screen: one triangle.
   d.cull = v.fullScreen ? VK_CULL_MODE_NONE : VK_CULL_MODE_FRONT_BIT;
   // The box's back face against the scene's depth (the G-buffer's, read-only): a pixel whose surface
   // lies behind where its view ray leaves the cube is outside the cube (s = 0), so it fails the test
   // before the fragment shader runs; a surface inside the cube, or in front of it, passes.
-  d.depthFormat = kDepthFormat;
-  d.depthTest = !v.fullScreen;
+  // Below full resolution the reduced target has no depth of its size: no test (s(r) in the shader
+  // keeps the same receivers; the box still bounds the shaded samples).
+  const bool reduced = v.step > 1u;
+  d.depthFormat = reduced ? VK_FORMAT_UNDEFINED : kDepthFormat;
+  d.depthTest = !v.fullScreen && !reduced;
   d.depthWrite = false;
   d.depthCompare = VK_COMPARE_OP_GREATER_OR_EQUAL;
-  // dnrt.frag id 0 and 2, dnrt.vert id 1
-  d.specialization = {v.intrusion ? 1u : 0u, v.fullScreen ? 1u : 0u, v.selfInNormal ? 1u : 0u};
+  // dnrt.frag id 0, 2 and 3, dnrt.vert id 1
+  d.specialization = {v.intrusion ? 1u : 0u, v.fullScreen ? 1u : 0u, v.selfInNormal ? 1u : 0u, v.step};
   d.name = std::string("dnrt.") + (v.fullScreen ? "fullscreen" : "box") + (v.intrusion ? ".intrusion" : "") +
-           (v.selfInNormal ? "" : ".entity");
+           (v.selfInNormal ? "" : ".entity") + (reduced ? ".step" + std::to_string(v.step) : "");
   p = gpu::createGraphicsPipeline(ctx_, layout_, d);
   return p;
 }
 
-const gpu::Pipeline& Node::clusteredPipeline(bool single, bool selfInNormal) {
-  gpu::Pipeline& p = clustered_[(single ? 1 : 0) | (selfInNormal ? 2 : 0)];
+const gpu::Pipeline& Node::clusteredPipeline(bool single, bool selfInNormal, std::uint32_t step) {
+  gpu::Pipeline& p = clustered_[(single ? 1u : 0u) | (selfInNormal ? 2u : 0u) | stepIndex(step) << 2];
   if (p.handle()) return p;
   gpu::GraphicsPipelineDesc d;
   d.vertex = &fullscreenVert_;
   d.fragment = &clusterFrag_;
   d.colorFormats = {kHdrFormat};
   d.blend = gpu::Blend::Additive;
-  d.depthFormat = kDepthFormat;  // the dnrt pass's read-only depth attachment (not tested here)
-  d.specialization = {single ? 1u : 0u, selfInNormal ? 1u : 0u};  // clustered.frag kSingle, kSelfInNormal
-  d.name = std::string("dnrt.clustered") + (single ? ".single" : "") + (selfInNormal ? "" : ".entity");
+  // The dnrt pass's read-only depth attachment (not tested here); none on a reduced target.
+  d.depthFormat = step > 1u ? VK_FORMAT_UNDEFINED : kDepthFormat;
+  // clustered.frag kSingle, kSelfInNormal, kStep
+  d.specialization = {single ? 1u : 0u, selfInNormal ? 1u : 0u, step};
+  d.name = std::string("dnrt.clustered") + (single ? ".single" : "") + (selfInNormal ? "" : ".entity") +
+           (step > 1u ? ".step" + std::to_string(step) : "");
   p = gpu::createGraphicsPipeline(ctx_, clusterPipelineLayout_, d);
+  return p;
+}
+
+const gpu::Pipeline& Node::upsamplePipeline(std::uint32_t step) {
+  if (stepIndex(step) == 0) throw InternalError("dnrt: no upsample at full resolution");
+  gpu::Pipeline& p = upsample_[stepIndex(step) - 1];
+  if (p.handle()) return p;
+  if (!upsampleFrag_.handle()) upsampleFrag_ = gpu::ShaderModule(ctx_, "dnrt/upsample.frag.spv");
+  gpu::GraphicsPipelineDesc d;
+  d.vertex = &fullscreenVert_;
+  d.fragment = &upsampleFrag_;
+  d.colorFormats = {kHdrFormat};
+  d.blend = gpu::Blend::Additive;  // added to "lighting.hdr", as the full-resolution draw
+  d.specialization = {step};       // upsample.frag kStep
+  d.name = "dnrt.upsample.step" + std::to_string(step);
+  p = gpu::createGraphicsPipeline(ctx_, upsampleLayout_, d);
   return p;
 }
 
@@ -436,20 +465,32 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
     std::optional<rg::Handle<rg::Texture>> atlas;
   };
   const bool cullsTiles = !cluster.empty() && settings.tileCull;
+  // Full resolution: the draws add to "lighting.hdr". Half, quarter: they add into the transient
+  // "dnrt.half" / "dnrt.quarter" (⌈size/step⌉, cleared) and "dnrt.upsample" below adds it to "lighting.hdr".
+  const std::uint32_t step = sl::checkedStep(settings.step);
+  const bool reduced = step > 1u;
+  const glm::uvec2 fullSize(std::uint32_t(pc->world->camera.resolution.x), std::uint32_t(pc->world->camera.resolution.y));
+  const glm::uvec2 reducedExtent = sl::reducedSize(fullSize, step);
+  // The depth's layout in the pass: read-only attachment and sampled at full resolution; sampled only below.
+  const VkImageLayout depthLayout = reduced ? VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL : kDepthReadOnly;
   const auto& data = graph.addPass<Data>(
       "dnrt",
       [&](rg::Builder& b, Data& d) {
         d.g = render::readDeferredInputs(b, bb, /*withEntity=*/true);
-        d.hdr = b.write(bb.get<rg::Texture>("lighting.hdr"), rg::Usage::ColorAttachment);
+        d.hdr = reduced ? b.write(b.create<rg::Texture>(std::string("dnrt.") + sl::resolutionName(step),
+                                                        rg::TextureDesc{reducedExtent.x, reducedExtent.y, 1, 1, 1,
+                                                                        rg::Format::RGBA16F, false}),
+                                  rg::Usage::ColorAttachment)
+                        : b.write(bb.get<rg::Texture>("lighting.hdr"), rg::Usage::ColorAttachment);
         for (const auto& m : maps) d.maps.push_back(m ? std::optional(b.read(*m, rg::Usage::SampledFragment)) : std::nullopt);
         for (const auto& v : volumes)
           d.volumes.push_back(v ? std::optional(b.read(*v, rg::Usage::SampledFragment)) : std::nullopt);
         if (combinedAtlas) d.atlas = b.read(*combinedAtlas, rg::Usage::SampledFragment);
         if (cullsTiles) b.read(d.g.depth, rg::Usage::SampledCompute);  // tile_cull.comp
-        b.read(d.g.depth, rg::Usage::DepthRead);  // the box draws' depth test, read-only (pipeline())
+        if (!reduced) b.read(d.g.depth, rg::Usage::DepthRead);  // the box draws' depth test, read-only (pipeline())
       },
       [this, pc, objects = std::move(objects), cluster = std::move(cluster), clustered = std::move(clustered),
-       tileCull = settings.tileCull, selfInNormalAllowed = settings.selfInNormal,
+       tileCull = settings.tileCull, selfInNormalAllowed = settings.selfInNormal, step, reduced, fullSize, depthLayout,
        modeOf = [mode = settings.mode](const NodeObject& o) { return mode.value_or(o.mode); }](
           const Data& d, const rg::PassResources& res, rg::CommandContext& c) {
         VkCommandBuffer cmd = pc->cmd(c);
@@ -460,13 +501,15 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
         auto view = [&](rg::Handle<rg::Texture> h) { return pc->backend->image(res.texture(h)).view(); };
         VkDescriptorSet inputs = pc->frame().descriptors->allocate(inputLayout_);
         gpu::DescriptorWriter writer;
-        render::writeDeferredInputs(writer, d.g, *pc, res, point, kDepthReadOnly)
+        render::writeDeferredInputs(writer, d.g, *pc, res, point, depthLayout)
             .buffer(3, buffer)
             .sampledImage(4, view(d.g.entity), point)
             .update(ctx_, inputs);
 
         gpu::Image& target = pc->backend->image(res.texture(d.hdr));
-        render::Attachment color{target.view(), res.keepsContents(d.hdr)};
+        // "dnrt.half" / "dnrt.quarter" starts at zero (samples no object reaches stay 0); "lighting.hdr"
+        // keeps its light.
+        render::Attachment color{target.view(), !reduced && res.keepsContents(d.hdr)};
         const VkExtent2D extent{target.desc().width, target.desc().height};
         // Clustered draws (cluster.hpp): this frame's tile masks and records, one draw per 32 objects
         // below, the masks first cut by each tile's depth range (tile_cull.comp, one dispatch a batch;
@@ -478,7 +521,7 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
         if (!cluster.empty()) {
           std::vector<glm::mat4> boxes;
           for (const ClusterItem& item : cluster) boxes.push_back(objects[item.object].data.boxToWorld);
-          const glm::uvec2 resolution(extent.width, extent.height);
+          const glm::uvec2 resolution = fullSize;  // tiles of G-buffer pixels, at any step
           clusterGrid = tileGrid(resolution);
           const TileGrid& grid = *clusterGrid;
           const std::vector<std::uint32_t> masks = binObjects(pc->world->camera.viewProj, resolution, boxes);
@@ -503,7 +546,7 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
           }
           clusterInputs = pc->frame().descriptors->allocate(inputLayout_);
           gpu::DescriptorWriter writer;
-          render::writeDeferredInputs(writer, d.g, *pc, res, point, kDepthReadOnly)
+          render::writeDeferredInputs(writer, d.g, *pc, res, point, depthLayout)
               .buffer(3, tiles)
               .sampledImage(4, view(d.g.entity), point)
               .update(ctx_, clusterInputs);
@@ -511,7 +554,7 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
           for (std::size_t b = 0; tileCull && b < batches; ++b) {
             VkDescriptorSet set = pc->frame().descriptors->allocate(cullLayout_);
             gpu::DescriptorWriter w;
-            w.sampledImage(0, view(d.g.depth), point, kDepthReadOnly);
+            w.sampledImage(0, view(d.g.depth), point, depthLayout);
             w.buffer(1, tiles);
             w.buffer(2, *records, kUniform, b * kClusterBatchBytes, kClusterBatchBytes);
             w.update(ctx_, set);
@@ -531,7 +574,7 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
 
         render::Attachment depth{view(d.g.depth)};
         depth.readOnly = true;
-        render::beginRendering(ctx_, cmd, extent, {&color, 1}, &depth);
+        render::beginRendering(ctx_, cmd, extent, {&color, 1}, reduced ? nullptr : &depth);
         gpu::TimestampPool* ts = pc->frame().timestamps.get();
         const gpu::Pipeline* bound = nullptr;
         for (std::size_t i = 0; i < objects.size(); ++i) {
@@ -539,7 +582,7 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
           const bool full = modeOf(objects[i]) == Mode::FullScreen;
           // The self test from the normal's w where the object's id fits it exactly (dnrt.frag).
           const bool selfInNormal = selfInNormalAllowed && objects[i].data.ids.x <= render::kEntityInNormalMax;
-          const gpu::Pipeline& p = pipeline({objects[i].intrusion, full, selfInNormal});
+          const gpu::Pipeline& p = pipeline({objects[i].intrusion, full, selfInNormal, step});
           if (bound != &p) {  // bind on a change of variant (per object: intrusion, "mode", id size)
             p.bind(cmd);
             p.bindSet(cmd, 0, pc->frameSet);
@@ -570,7 +613,7 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
             bool selfInNormal = selfInNormalAllowed;
             for (std::size_t k = b * kClusterBatch; k < end; ++k)
               selfInNormal = selfInNormal && objects[cluster[k].object].data.ids.x <= render::kEntityInNormalMax;
-            const gpu::Pipeline& p = clusteredPipeline(end - b * kClusterBatch == 1, selfInNormal);
+            const gpu::Pipeline& p = clusteredPipeline(end - b * kClusterBatch == 1, selfInNormal, step);
             p.bind(cmd);
             p.bindSet(cmd, 0, pc->frameSet);
             p.bindSet(cmd, 1, clusterInputs);
@@ -586,7 +629,47 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
         }
         ctx_.cmdEndRendering(cmd);
       });
-  bb.put("lighting.hdr", data.hdr);
+  if (!reduced) {
+    bb.put("lighting.hdr", data.hdr);
+    return;
+  }
+
+  // The reduced target's upsample over every pixel: ρ_r times the depth- and normal-aware blend of the
+  // 4 nearest samples (shaders/dnrt/upsample.frag, common/upsample.glsl), added to "lighting.hdr".
+  struct UpData {
+    render::DeferredInputs g;
+    rg::Handle<rg::Texture> reduced, hdr;
+  };
+  const rg::Handle<rg::Texture> reducedTarget = data.hdr;
+  const auto& up = graph.addPass<UpData>(
+      "dnrt.upsample",
+      [&](rg::Builder& b, UpData& d) {
+        d.g = render::readDeferredInputs(b, bb);
+        d.reduced = b.read(reducedTarget, rg::Usage::SampledFragment);
+        d.hdr = b.write(bb.get<rg::Texture>("lighting.hdr"), rg::Usage::ColorAttachment);
+      },
+      [this, pc, step](const UpData& d, const rg::PassResources& res, rg::CommandContext& c) {
+        VkCommandBuffer cmd = pc->cmd(c);
+        VkSampler point = pc->samplers->get({VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST});
+        VkDescriptorSet inputs = pc->frame().descriptors->allocate(upsampleInputs_);
+        gpu::DescriptorWriter w;
+        // Linear: a variant of upsample.frag may filter the reduced target in one tap; texelFetch (the
+        // edge-aware blend's) ignores the filter.
+        VkSampler linear = pc->samplers->get({VK_FILTER_LINEAR, VK_SAMPLER_MIPMAP_MODE_NEAREST});
+        render::writeDeferredInputs(w, d.g, *pc, res, point)
+            .sampledImage(3, pc->backend->image(res.texture(d.reduced)).view(), linear)
+            .update(ctx_, inputs);
+        gpu::Image& target = pc->backend->image(res.texture(d.hdr));
+        render::Attachment color{target.view(), res.keepsContents(d.hdr)};
+        render::beginRendering(ctx_, cmd, {target.desc().width, target.desc().height}, {&color, 1}, nullptr);
+        const gpu::Pipeline& p = upsamplePipeline(step);
+        p.bind(cmd);
+        p.bindSet(cmd, 0, pc->frameSet);
+        p.bindSet(cmd, 1, inputs);
+        vkCmdDraw(cmd, 3, 1, 0, 0);
+        ctx_.cmdEndRendering(cmd);
+      });
+  bb.put("lighting.hdr", up.hdr);
 }
 
 std::vector<std::uint32_t> Node::lastTileMasks() const {

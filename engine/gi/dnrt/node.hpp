@@ -83,6 +83,13 @@ struct NodeSettings {
   // id of the batch) fits it (render::kEntityInNormalMax). Off: every draw fetches gbuffer.entity, the
   // path of larger ids (same image; tests compare them).
   bool selfInNormal = true;
+  // G-buffer pixels per shaded sample along each axis: 1 (full), 2 (half), 4 (quarter) — the level's
+  // "dnrt": {"resolution"} (scene::DnrtConfig; names and checks gi/sl/resolution.hpp). Below full, the
+  // box, full-screen and clustered draws shade the transient "dnrt.half" / "dnrt.quarter"
+  // (⌈size/step⌉, cleared to 0, no depth attachment) at G-buffer pixel step·j, without ρ_r, and the pass
+  // "dnrt.upsample" (shaders/dnrt/upsample.frag) adds ρ_r times its depth- and normal-aware upsample
+  // (SL's weights, gi/upsample.hpp) to "lighting.hdr" at every pixel.
+  std::uint32_t step = 1;
 };
 
 // View-projection of cube face `face` (0..5: +X, −X, +Y, −Y, +Z, −Z) seen from `origin`, 90° square,
@@ -109,6 +116,7 @@ class Node {
   struct Variant {
     bool intrusion = false, fullScreen = false;
     bool selfInNormal = false;  // the object's entity id + 1 ≤ render::kEntityInNormalMax (dnrt.frag)
+    std::uint32_t step = 1;     // NodeSettings::step (dnrt.frag kStep; above 1: no depth attachment)
   };
   const gpu::Pipeline& pipeline(const Variant& v);
 
@@ -122,7 +130,9 @@ class Node {
   };
   // The atlas holding `objects`' fields (grown if needed); brick index per object, -1 = no room.
   std::vector<int> atlasFor(const std::vector<const FieldTextures*>& textures);
-  const gpu::Pipeline& clusteredPipeline(bool single, bool selfInNormal);
+  const gpu::Pipeline& clusteredPipeline(bool single, bool selfInNormal, std::uint32_t step);
+  // "dnrt.upsample"'s pipeline for step 2 or 4 (made on first use).
+  const gpu::Pipeline& upsamplePipeline(std::uint32_t step);
   // This frame slot's buffer of folded records (DnrtShaderObject per object), written now.
   gpu::Buffer& objectBuffer(std::uint32_t slot, const std::vector<NodeObject>& objects);
 
@@ -130,14 +140,15 @@ class Node {
   gpu::DescriptorSetLayout inputLayout_, fieldLayout_;
   gpu::PipelineLayout layout_, cubeLayout_;
   gpu::ShaderModule vert_, frag_;
-  std::array<gpu::Pipeline, 8> variants_;  // index: intrusion | fullScreen << 1 | selfInNormal << 2
+  // index: intrusion | fullScreen << 1 | selfInNormal << 2 | stepIndex << 3 (step 1, 2, 4: 0, 1, 2)
+  std::array<gpu::Pipeline, 24> variants_;
   gpu::Pipeline cube_;
   std::unique_ptr<gpu::Image> noIntrusion_;  // 1×1×6 R32F "nothing nearer than 1e30 m"
   std::vector<gpu::Buffer> objectBuffers_;  // per frame slot, DnrtObjectGpu[]
   gpu::DescriptorSetLayout clusterLayout_;
   gpu::PipelineLayout clusterPipelineLayout_;
   gpu::ShaderModule fullscreenVert_, clusterFrag_;
-  std::array<gpu::Pipeline, 4> clustered_;  // index: single | selfInNormal << 1 (clustered.frag)
+  std::array<gpu::Pipeline, 12> clustered_;  // index: single | selfInNormal << 1 | stepIndex << 2 (clustered.frag)
   Atlas atlas_;
   std::vector<gpu::Buffer> tileBuffers_, clusterObjectBuffers_;  // per frame slot: masks, DnrtClusterObject[]
   // combine.comp: Σ_j c_j M_j per grid vertex for the box and full-screen draws (index: sh9 |
@@ -149,6 +160,11 @@ class Node {
   gpu::DescriptorSetLayout cullLayout_;
   gpu::PipelineLayout cullPipelineLayout_;
   gpu::Pipeline cull_;
+  // "dnrt.upsample" (step 2, 4): G-buffer albedo, normal, depth and the reduced target.
+  gpu::DescriptorSetLayout upsampleInputs_;
+  gpu::PipelineLayout upsampleLayout_;
+  gpu::ShaderModule upsampleFrag_;
+  std::array<gpu::Pipeline, 2> upsample_;  // index: step 2, 4
   std::size_t lastTileSlot_ = 0, lastTileCount_ = 0;  // lastTileMasks: the buffer and its masks
 };
 

@@ -18,7 +18,7 @@ namespace bounce::gi::sl {
 enum class Resolution { Full, Half, Quarter };
 
 // The only steps: 1, 2 and 4. Powers of two on purpose — the upsample's bilinear fraction is an exact
-// ldexp by −log2(step) (shaders/sl/upsample.glsl slUpsampleTaps) — and one name each below.
+// ldexp by −log2(step) (shaders/common/upsample.glsl upsampleTaps) — and one name each below.
 inline bool isResolutionStep(std::uint32_t step) { return step == 1u || step == 2u || step == 4u; }
 // Throws InternalError unless `step` is 1, 2 or 4 (a bug: the level and `bounce bench` parse names).
 inline std::uint32_t checkedStep(std::uint32_t step) {

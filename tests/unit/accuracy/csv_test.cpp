@@ -71,7 +71,9 @@ TEST(AccuracyRows, EffectNamesValidSettingsUniqueAndCommaFree) {
   EXPECT_EQ(direct, 3u);  // against the bounces-0, the full and the one-bounce reference
   EXPECT_EQ(probes, 4u);  // two spacings × two SH orders
   EXPECT_EQ(ao, 2u);      // SSAO and HBAO over probes (the DNRT paper's baselines)
-  EXPECT_EQ(dnrt, 24u);   // {4, 9} SH × grid {16, 32, 64} × intrusion {off, on} × anti-radiance {paper, improved}
+  // {4, 9} SH × grid {16, 32, 64} × intrusion {off, on} × anti-radiance {paper, improved}, + the shipped
+  // setting at half and quarter resolution
+  EXPECT_EQ(dnrt, 26u);
   EXPECT_EQ(vlm, 16u);    // range {1.5, 2.5, 3.5, 4.5} × K {10, 20, 30, 60}, against one bounce
   EXPECT_EQ(rtf, 4u);     // bounces {1, 2} with 9 SH, 2 bounces with 4 SH, 2 bounces with the tail τ = 0.01; full reference
 }

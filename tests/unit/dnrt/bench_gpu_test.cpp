@@ -21,14 +21,15 @@ TEST(DnrtBench, ReportHasEveryRowTimedAndFiniteRatios) {
   o.raysPerVertex = 2;  // 4 rays per vertex: the 64³ field bakes in about a second
   const DnrtBenchReport r = runDnrtBench(o);
 
-  const std::vector<std::string> settings = {"all",          "clustered",       "basic",         "sh=9",   "grid=16",
-                                             "grid=64",      "intrusion=on",    "mode=fullscreen", "mode=clustered"};
+  const std::vector<std::string> settings = {"all",           "clustered",      "half",           "clustered half",
+                                             "basic",         "sh=9",           "grid=16",        "grid=64",
+                                             "intrusion=on",  "mode=fullscreen", "mode=clustered", "resolution=half"};
   ASSERT_EQ(r.rows.size(), settings.size());
   for (std::size_t i = 0; i < r.rows.size(); ++i) {
     const DnrtBenchRow& row = r.rows[i];
     EXPECT_EQ(row.setting, settings[i]);
-    EXPECT_EQ(row.table, i < 2 ? "8" : "variant");
-    const bool clustered = row.setting == "clustered" || row.setting == "mode=clustered";
+    EXPECT_EQ(row.table, i < 4 ? "8" : "variant");
+    const bool clustered = row.setting.starts_with("clustered") || row.setting == "mode=clustered";
     EXPECT_EQ(row.level, "cornell-1");
     EXPECT_EQ(row.objects, 1) << row.setting << ": the prop is drawn in every frame";
     EXPECT_GT(row.frameMs, 0.0) << row.setting;
@@ -54,7 +55,9 @@ TEST(DnrtBench, ReportHasEveryRowTimedAndFiniteRatios) {
   const std::vector<std::pair<std::string, double>> goals = {
       {"DNRT(1 obj) / SSAO, cornell-1", 0.1},          {"DNRT(1 obj) clustered / SSAO, cornell-1", 0.05},
       {"9 SH / 4 SH, cornell-1", 1.5},                  {"fullscreen / box, cornell-1", 0.0},
-      {"clustered / box, cornell-1", 0.0}};
+      {"clustered / box, cornell-1", 0.0},
+      {"DNRT(1 obj) half / SSAO, cornell-1", 0.1},     {"DNRT(1 obj) clustered half / SSAO, cornell-1", 0.05},
+      {"half / full resolution, cornell-1", 0.0}};
   for (const auto& [name, goal] : goals) {
     bool found = false;
     for (const DnrtBenchRatio& q : r.ratios)
@@ -64,8 +67,8 @@ TEST(DnrtBench, ReportHasEveryRowTimedAndFiniteRatios) {
       }
     EXPECT_TRUE(found) << name;
   }
-  // DNRT/SSAO, DNRT/HBAO, clustered DNRT/SSAO (one Table 8 level) + 8 per variant level
-  EXPECT_EQ(r.ratios.size(), 3u + 8u);
+  // DNRT/SSAO, DNRT/HBAO, clustered DNRT/SSAO, both at half (one Table 8 level) + 9 per variant level
+  EXPECT_EQ(r.ratios.size(), 5u + 9u);
   for (const DnrtBenchRatio& q : r.ratios) EXPECT_TRUE(std::isfinite(q.value) && q.value > 0.0) << q.name;
 
   std::istringstream csv(formatDnrtBenchCsv(r));

@@ -104,6 +104,42 @@ TEST(DnrtLevel, RejectsBadSettingsWithOneLine) {
   EXPECT_THROW(scene::loadLevel(writeLevel("dnrt-static.json", "{}", false)), InputError);
 }
 
+// The level's own "dnrt": {"resolution"} (beside the entities' fields): the draw's step, default full
+// (1) — cornell-1 ships none — "half" 2, "quarter" 4; anything else is one line at its place, and
+// the bad-input path of the `bounce` binary (exit 2) is the same InputError.
+TEST(DnrtLevel, ResolutionKeyAndItsBadInput) {
+  const fs::path asset = fs::path(BOUNCE_SOURCE_DIR) / "content/src/BoxTextured/glTF-Draco-gltfpipeline/BoxTextured.gltf";
+  const auto levelWith = [&](const std::string& name, const std::string& dnrtLevelJson) {
+    const fs::path path = outDir() / name;
+    std::ofstream(path) << R"({"bounce_level": 1, "effects": ["direct", "dnrt"], "dnrt": )" << dnrtLevelJson
+                        << R"(, "entities": [{"id": "prop", "dynamic": true, "mesh": {"asset": ")"
+                        << fs::relative(asset, outDir()).generic_string() << R"("}, "dnrt": {}}]})";
+    return path;
+  };
+  EXPECT_EQ(scene::loadLevel(fs::path(BOUNCE_SOURCE_DIR) / "content/levels/cornell-1.json").dnrt.step, 1u);
+  EXPECT_EQ(scene::loadLevel(levelWith("dnrt-res-default.json", "{}")).dnrt.step, 1u);
+  EXPECT_EQ(scene::loadLevel(levelWith("dnrt-res-full.json", R"({"resolution": "full"})")).dnrt.step, 1u);
+  EXPECT_EQ(scene::loadLevel(levelWith("dnrt-res-half.json", R"({"resolution": "half"})")).dnrt.step, 2u);
+  EXPECT_EQ(scene::loadLevel(levelWith("dnrt-res-quarter.json", R"({"resolution": "quarter"})")).dnrt.step, 4u);
+  const std::pair<const char*, std::string> cases[] = {
+      {R"({"resolution": "eighth"})", ": /dnrt/resolution: unknown resolution \"eighth\" (expected full, half or quarter)"},
+      {R"({"resolution": 2})", ": /dnrt/resolution: wrong type: integer (expected a string)"},
+      {R"({"step": 2})", ": /dnrt/step: "},
+      {R"("half")", ": /dnrt: "},
+  };
+  for (const auto& [json, want] : cases) {
+    const fs::path path = levelWith("dnrt-res-bad.json", json);
+    try {
+      scene::loadLevel(path);
+      ADD_FAILURE() << json;
+    } catch (const InputError& e) {
+      const std::string what = e.what();
+      EXPECT_EQ(what.rfind(path.string() + want, 0), 0u) << what;
+      EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+    }
+  }
+}
+
 TEST(DnrtLevel, ObjectSceneIsTheEntityInItsLocalFrame) {
   LevelObjects objects;  // cornell-1 and its one DNRT prop, as bounce bake loads them
   loadLevelObjects(scene::loadLevel(fs::path(BOUNCE_SOURCE_DIR) / "content/levels/cornell-1.json"), outDir() / "cooked",

@@ -10,8 +10,11 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <map>
 #include <memory>
+#include <regex>
 #include <set>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -21,6 +24,7 @@
 #include "engine/gi/dnrt/node.hpp"
 #include "engine/gi/dnrt/object_scene.hpp"
 #include "engine/gi/dnrt/runtime.hpp"
+#include "engine/gi/upsample.hpp"
 #include "engine/gpu/commands.hpp"
 #include "engine/gpu/format.hpp"
 #include "engine/gpu/image.hpp"
@@ -955,6 +959,143 @@ TEST(DnrtGpu, LightsOutOfTheAntiRadianceWithoutRelitProbesWarnsOnce) {
     if (!c.named.empty()) {
       EXPECT_EQ(warnings[0].rfind("warning: ", 0), 0u) << warnings[0];
       EXPECT_NE(warnings[0].find(c.named), std::string::npos) << warnings[0];
+    }
+  }
+}
+
+
+// The graph's passes as its DOT text (rg::RenderGraph::toDot) names them: per pass, the names of the
+// resources it reads and writes, and each resource's "WxH FORMAT" detail.
+struct DotGraph {
+  std::map<std::string, std::set<std::string>> reads, writes;
+  std::map<std::string, std::string> detail;
+};
+DotGraph parseDot(const std::string& dot) {
+  DotGraph g;
+  std::map<std::string, std::string> passOf, resourceOf;
+  const std::regex pass(R"re(^\s+(p\d+) \[label="([^"]*)", shape=box)re");
+  const std::regex version(R"re(^\s+(r\d+_v\d+) \[label="([^"\\]*)\\nv\d+\\n([^"]*)")re");
+  const std::regex read(R"re(^\s+(r\d+_v\d+) -> (p\d+) \[label=)re"), write(R"re(^\s+(p\d+) -> (r\d+_v\d+) \[label=)re");
+  std::istringstream in(dot);
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  std::smatch m;
+  for (const std::string& line : lines)
+    if (std::regex_search(line, m, pass)) passOf[m[1]] = m[2];
+    else if (std::regex_search(line, m, version)) {
+      resourceOf[m[1]] = m[2];
+      g.detail[m[2]] = m[3];
+    }
+  for (const std::string& line : lines)
+    if (std::regex_search(line, m, read)) g.reads[passOf[m[2]]].insert(resourceOf[m[1]]);
+    else if (std::regex_search(line, m, write)) g.writes[passOf[m[1]]].insert(resourceOf[m[2]]);
+  return g;
+}
+
+// "dnrt": {"resolution": "half" | "quarter"} (NodeSettings::step), box and clustered draws, on the
+// floor of floor-box.json (a plane seen straight down; the HDR image IS L_DNRT):
+// - structure: "dnrt" writes the transient "dnrt.half" / "dnrt.quarter" of ⌈size/step⌉ (98×94 →
+//   49×47 / 25×24) and not "lighting.hdr"; "dnrt.upsample" reads it with the G-buffer and writes
+//   "lighting.hdr"; at full resolution neither exists and "dnrt" writes "lighting.hdr";
+// - values: on a plane every receiver matches every sample (tangent-plane distance 0, n·n_q = 1), so
+//   the upsample is exactly the bilinear blend (gi::upsampleTaps' fractions) of the full-resolution
+//   image at the samples' G-buffer pixels step·j (the same shader arithmetic there, ρ_r applied
+//   after the blend: equal for a constant albedo), to fp16 rounding (kUpsampleTol); pixels whose
+//   taps see the box are skipped.
+TEST(DnrtGpu, ReducedResolutionIsTheBilinearUpsampleOfTheFullImageOnAPlane) {
+  gpu::Context& ctx = gpu::testkit::sharedContext();
+  const fs::path levelPath = fs::path(BOUNCE_SOURCE_DIR) / "tests/data/dnrt/floor-box.json";
+  game::Session session(ctx, game::loadLevelWithEffects(levelPath, std::nullopt));
+  session.update(0.0);
+  ecs::Registry& reg = session.registry();
+  ref::ReferenceAssets assets;
+  assets.load(reg, fs::path(BOUNCE_TEST_OUT) / "dnrt" / "cooked");
+  ecs::Entity box;
+  reg.view<scene::Dnrt>().each([&](ecs::Entity e, scene::Dnrt&) { box = e; });
+  ASSERT_FALSE(box.isNull());
+  FieldSettings fieldSettings = settingsFrom(reg.get<scene::Dnrt>(box));
+  fieldSettings.shCount = 4;
+  const BakeResult baked = bake(objectScene(reg, box, assets), fieldSettings);
+  const FieldTextures textures(ctx, baked.field, "box");
+  Node node(ctx, session.renderer().pipelines(), gpu::FrameRing::kDefaultFramesInFlight);
+  std::array<glm::vec3, 9> sky{};
+  const float v[9] = {3.0f, 0.8f, 1.4f, -0.6f, 0.5f, -0.9f, 0.7f, 0.4f, -1.1f};
+  for (int i = 0; i < 9; ++i) sky[std::size_t(i)] = v[i] * glm::vec3(1.0f, 0.8f, 0.6f);
+  const NodeObject object{&textures, packObject(baked.field, reg.get<scene::WorldTransform>(box).matrix, sky), "box"};
+  constexpr std::uint32_t kW = 98, kH = 94;  // odd multiples of 2: the reduced size rounds up
+  // fp16: the reduced target's E and the two images each round to 2⁻¹¹ relative; 2e-3 of the largest
+  // |tap| covers the three roundings and the blend's float weights.
+  constexpr float kUpsampleTol = 2e-3f;
+  const auto render = [&](std::uint32_t step, Mode mode) {
+    NodeSettings settings;
+    settings.step = step;
+    settings.mode = mode;
+    session.renderer().setNode("dnrt", [&, settings](rg::RenderGraph& graph, render::PassContext& pc) {
+      node.addTo(graph, pc, {object}, settings);
+    });
+    gpu::OffscreenPresenter presenter(ctx, {kW, kH});
+    render::FrameSettings frame;
+    frame.keepHdr = true;
+    session.render(presenter, frame);
+    return Frame{session.renderer().readHdr(), session.renderer().executedPasses()};
+  };
+  const rtest::FloorScene floor = rtest::readFloorScene(session.level());
+  const auto nearBox = [&](std::uint32_t x, std::uint32_t y) {
+    const auto p = rtest::floorPoint(floor, kW, kH, x, y);
+    return !p || glm::length(glm::vec2(p->x - 0.05f, p->z + 0.03f)) < 0.16f;  // as the test above, + 1 px
+  };
+  for (const Mode mode : {Mode::Box, Mode::Clustered}) {
+    const Frame full = render(1, mode);
+    {
+      const DotGraph g = parseDot(session.renderer().graphDot(session.world(), {kW, kH}, {}));
+      EXPECT_EQ(g.writes.at("dnrt"), std::set<std::string>{"lighting.hdr"});
+      EXPECT_EQ(g.reads.count("dnrt.upsample"), 0u);
+      EXPECT_EQ(g.detail.count("dnrt.half") + g.detail.count("dnrt.quarter"), 0u);
+      EXPECT_EQ(std::count(full.passes.begin(), full.passes.end(), "dnrt.upsample"), 0);
+    }
+    for (const std::uint32_t step : {2u, 4u}) {
+      const Frame reduced = render(step, mode);
+      const std::string target = step == 2u ? "dnrt.half" : "dnrt.quarter";
+      const DotGraph g = parseDot(session.renderer().graphDot(session.world(), {kW, kH}, {}));
+      EXPECT_EQ(g.writes.at("dnrt"), std::set<std::string>{target});
+      EXPECT_EQ(g.detail.at(target), step == 2u ? "49x47 RGBA16F" : "25x24 RGBA16F");
+      EXPECT_EQ(g.reads.at("dnrt.upsample"),
+                (std::set<std::string>{target, "gbuffer.albedo", "gbuffer.normal", "gbuffer.depth"}));
+      EXPECT_EQ(g.writes.at("dnrt.upsample"), std::set<std::string>{"lighting.hdr"});
+      ASSERT_EQ(std::count(reduced.passes.begin(), reduced.passes.end(), "dnrt.upsample"), 1);
+      EXPECT_LT(std::find(reduced.passes.begin(), reduced.passes.end(), "dnrt") - reduced.passes.begin(),
+                std::find(reduced.passes.begin(), reduced.passes.end(), "dnrt.upsample") - reduced.passes.begin());
+
+      const glm::ivec2 size{int(kW), int(kH)};
+      const glm::ivec2 reducedSize = (size + int(step) - 1) / int(step);
+      int compared = 0;
+      float worstRatio = 0.0f, largest = 0.0f;
+      for (std::uint32_t y = 0; y < kH; ++y)
+        for (std::uint32_t x = 0; x < kW; ++x) {
+          const UpsampleTaps t = upsampleTaps({int(x), int(y)}, int(step), reducedSize, size);
+          bool skip = nearBox(x, y);
+          for (const glm::ivec2& q : t.q) skip = skip || nearBox(std::uint32_t(q.x), std::uint32_t(q.y));
+          if (skip) continue;
+          for (int ch = 0; ch < 3; ++ch) {
+            double want = 0.0, tap = 0.0;
+            for (int k = 0; k < 4; ++k) {
+              const glm::ivec2 q = t.q[std::size_t(k)];
+              const double f = full.rgb[(std::size_t(q.y) * kW + std::size_t(q.x)) * 3 + std::size_t(ch)];
+              want += ((k & 1) ? t.f.x : 1.0 - t.f.x) * ((k >> 1) ? t.f.y : 1.0 - t.f.y) * f;
+              tap = std::max(tap, std::abs(f));
+            }
+            const double got = reduced.rgb[(std::size_t(y) * kW + x) * 3 + std::size_t(ch)];
+            largest = std::max(largest, float(std::abs(want)));
+            worstRatio = std::max(worstRatio, float(std::abs(got - want) / (kUpsampleTol * tap + 1e-7)));
+          }
+          ++compared;
+        }
+      std::printf("dnrt %s at step %u vs the bilinear blend of the full image: %d floor pixels, largest %.4f, worst "
+                  "difference %.2f of its bound\n",
+                  mode == Mode::Box ? "box" : "clustered", step, compared, largest, worstRatio);
+      EXPECT_GT(compared, 4000);
+      EXPECT_GT(largest, 0.01f);
+      EXPECT_LE(worstRatio, 1.0f) << "step " << step;
     }
   }
 }

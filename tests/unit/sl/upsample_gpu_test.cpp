@@ -1,5 +1,5 @@
-// SL pass 2's edge-aware upsample (shaders/sl/upsample.glsl via upsample_selftest.comp, the code
-// upsample.frag runs) against its C++ reference sl::upsampleTaps / sl::upsampleBlend (double): the
+// SL pass 2's edge-aware upsample (shaders/common/upsample.glsl via upsample_selftest.comp, the code
+// upsample.frag runs) against its C++ reference gi::upsampleTaps / gi::upsampleBlend (double): the
 // taps of every pixel of odd-sized images at half and quarter resolution exactly, the blend within a
 // bound derived from fp32 rounding and GLSL's exp/pow precision, and no light across a depth
 // discontinuity or a crease (exact zeros on the GPU).
@@ -12,12 +12,12 @@
 #include <vector>
 
 #include "engine/gi/sl/resolution.hpp"
-#include "engine/gi/sl/upsample.hpp"
+#include "engine/gi/upsample.hpp"
 #include "engine/gpu/testing.hpp"
 #include "tests/support/compute_selftest.hpp"
 
 using namespace bounce;
-using namespace bounce::gi::sl;
+using namespace bounce::gi;
 
 namespace {
 
@@ -92,7 +92,7 @@ TEST(SlUpsampleGpu, TapsOfEveryPixelMatchTheReference) {
   std::vector<Case> cases;
   for (const int step : {2, 4})
     for (const glm::ivec2 full : {glm::ivec2(37, 23), glm::ivec2(64, 48)}) {
-      const glm::ivec2 reduced = glm::ivec2(reducedSize(glm::uvec2(full), std::uint32_t(step)));
+      const glm::ivec2 reduced = glm::ivec2(sl::reducedSize(glm::uvec2(full), std::uint32_t(step)));
       for (int y = 0; y < full.y; ++y)
         for (int x = 0; x < full.x; ++x) {
           Case c;

@@ -1,9 +1,9 @@
-#include "engine/gi/sl/upsample.hpp"
+#include "engine/gi/upsample.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-namespace bounce::gi::sl {
+namespace bounce::gi {
 
 UpsampleTaps upsampleTaps(glm::ivec2 pixel, int step, glm::ivec2 reduced, glm::ivec2 full) {
   UpsampleTaps t;
@@ -41,4 +41,4 @@ glm::dvec3 upsampleBlend(const glm::dvec3& p, const glm::dvec3& n, double eye, g
   return weight > kUpsampleMinWeight ? sum / weight : best;
 }
 
-}  // namespace bounce::gi::sl
+}  // namespace bounce::gi

@@ -1,7 +1,9 @@
 #pragma once
-// C++ reference of SL pass 2's edge-aware upsample (shaders/sl/upsample.glsl, the same operations in
-// the same order, in double): the reduced target ("sl.half" / "sl.quarter", engine/gi/sl/resolution.hpp)
-// holds E at G-buffer pixel step·j; a full-resolution pixel blends its 4 nearest samples with bilinear
+// C++ reference of the edge-aware upsample of a reduced-resolution irradiance target
+// (shaders/common/upsample.glsl, the same operations in the same order, in double), shared by SL pass 2
+// ("sl.half" / "sl.quarter", shaders/sl/upsample.frag) and DNRT at reduced resolution ("dnrt.half" /
+// "dnrt.quarter", shaders/dnrt/upsample.frag): the reduced target holds E at G-buffer pixel step·j
+// (engine/gi/sl/resolution.hpp); a full-resolution pixel blends its 4 nearest samples with bilinear
 // weights times a receiver match — exp(−(|n·(p_q − p)| / (eye · kUpsamplePlaneScale))²), the sample's
 // distance from this pixel's tangent plane relative to the eye distance, times max(0, n·n_q)^8 —
 // so light does not cross depth or crease edges; all samples rejected (Σ weight ≤ kUpsampleMinWeight):
@@ -10,13 +12,13 @@
 
 #include <glm/glm.hpp>
 
-namespace bounce::gi::sl {
+namespace bounce::gi {
 
-inline constexpr double kUpsamplePlaneScale = 0.01;  // upsample.glsl kSlUpPlaneScale
-inline constexpr double kUpsampleNormalPower = 8.0;  // kSlUpNormalPower
-inline constexpr double kUpsampleMinWeight = 1e-4;   // kSlUpMinWeight
+inline constexpr double kUpsamplePlaneScale = 0.01;  // upsample.glsl kUpPlaneScale
+inline constexpr double kUpsampleNormalPower = 8.0;  // kUpNormalPower
+inline constexpr double kUpsampleMinWeight = 1e-4;   // kUpMinWeight
 
-// slUpsampleTaps: the 4 reduced samples j (clamped to `reduced`), the G-buffer pixels q = min(step·j,
+// upsampleTaps: the 4 reduced samples j (clamped to `reduced`), the G-buffer pixels q = min(step·j,
 // full − 1) they hold, and the bilinear fractions f = (pixel − step·⌊pixel/step⌋) / step.
 struct UpsampleTaps {
   std::array<glm::ivec2, 4> j{}, q{};
@@ -30,10 +32,10 @@ struct UpsampleSample {
   bool valid = true;  // false: background (depth 1), never matched
   glm::dvec3 e{0.0};  // W/m²
 };
-// slUpsampleMatch.
+// upsampleMatch.
 double upsampleMatch(const glm::dvec3& p, const glm::dvec3& n, double eye, const UpsampleSample& s);
-// slUpsampleBlend: this pixel's receiver (p, n, eye distance) and f; taps in slUpsampleTaps' order.
+// upsampleBlend: this pixel's receiver (p, n, eye distance) and f; taps in upsampleTaps' order.
 glm::dvec3 upsampleBlend(const glm::dvec3& p, const glm::dvec3& n, double eye, glm::dvec2 f,
                          const std::array<UpsampleSample, 4>& taps);
 
-}  // namespace bounce::gi::sl
+}  // namespace bounce::gi
