@@ -2,8 +2,8 @@
 // Pass `sl.relight_bounce` (engine/gi/sl/node.cpp; level `"probes": {"sl_bounce": true}`): the
 // irradiance the posed SLs send each of relight's surfels (engine/gi/probes/relight.hpp), E_SL(s) =
 // slIrradianceAt(p_s, n_s) — Eq. 14, the same sl.glsl function pass 2 evaluates per pixel, with pass
-// 1's intensities and the SLs' own blocking, uncut (kInfluence 0: the surfels are the room's
-// receivers, so every one of them takes the SLs' first bounce). `probes.relight` adds it to the
+// 1's intensities, the SLs' own blocking and pass 2's cut (kInfluence: the room carries on the first
+// bounce pass 2 shows; engine/gi/sl/node.cpp enableRelightBounce says why). `probes.relight` adds it to the
 // surfels' ΔE (relight.comp surfelStage), so the room's bounce iterations carry the prop's bounce on:
 // the probes hold its 2nd+ bounces, the 1st stays pass 2's at the receiver (README "SL's bounce in
 // relight's transport, session 15").

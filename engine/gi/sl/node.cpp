@@ -152,10 +152,13 @@ void Node::enableRelightBounce(probes::RelightPass& relight) {
   bounceInputs_ = gpu::DescriptorSetLayout(ctx_, b, "sl.relight_bounce.inputs");
   bounceLayout_ = gpu::PipelineLayout(ctx_, {bounceInputs_.handle()}, {VkPushConstantRange{VK_SHADER_STAGE_ALL, 0, sizeof(glm::uvec4)}},
                                       "sl.relight_bounce");
-  // Uncut (F = 0): the surfels are the room's receivers, each takes the SLs' whole first bounce.
+  // Pass 2's cut (rule 0's F, in sphere radii): the room carries on the first bounce that pass 2
+  // shows, no more. Uncut here against a cut pass 2 measured worse on cornell-1 (0.592 → 0.785 at 12:
+  // the full 2nd bounce against a faded bounce and shadow; README "SL's bounce in relight's
+  // transport, session 15"). An uncut level is uncut in both.
   bouncePipeline_ = gpu::createComputePipeline(ctx_, bounceLayout_, gpu::ShaderModule(ctx_, "sl/relight_bounce.comp.spv"),
                                                "sl.relight_bounce", nullptr,
-                                               ShadeData::specialization(order_, blocking_, spheres_, 0.0f));
+                                               ShadeData::specialization(order_, blocking_, spheres_, influence_));
 }
 
 void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::span<const PosedSphere> posed,
@@ -251,8 +254,11 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::s
 
   // The SLs' bounce at relight's surfels (enableRelightBounce), after pass 1 (its barrier makes L^c
   // visible to compute), for the next frame's "probes.relight". Skipped for `terms` rows without the
-  // bounce (the buffer keeps 0 from the start: those sessions never write it).
-  if (relightBounce_ && (terms_ & 1u) != 0u) {
+  // bounce, and with local lights: their objects leave the lights' shadow maps, so relight carries
+  // none of their shadow, and their bounce alone would be one side of their effect on the room
+  // (measured on cornell-1 uncut: the local-lights rows 0.65–0.82 → 0.99–1.02). The buffer keeps 0
+  // from the start: those sessions never write it.
+  if (relightBounce_ && (terms_ & 1u) != 0u && !local_) {
     graph.addPass<IntensityData>(
         "sl.relight_bounce", [&](rg::Builder& b, IntensityData&) { b.sideEffect(); },
         [this, pc, &slot](const IntensityData&, const rg::PassResources&, rg::CommandContext& c) {

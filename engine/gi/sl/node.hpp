@@ -68,8 +68,9 @@ class Node {
   // Level `"probes": {"relight": true, "sl_bounce": true}`: each frame, after "sl.intensity", pass
   // "sl.relight_bounce" (shaders/sl/relight_bounce.comp) writes the posed SLs' irradiance at each of
   // `relight`'s surfels into relight.slBounce(), which the next "probes.relight" adds to the surfels'
-  // ΔE (relight_pass.hpp setSlBounce). Not with `terms` lacking the bounce bit: those diagnostic rows
-  // leave the SLs' bounce out, its 2nd+ bounces too. `relight` must outlive the node.
+  // ΔE (relight_pass.hpp setSlBounce). Not with `terms` lacking the bounce bit (those diagnostic rows
+  // leave the SLs' bounce out, its 2nd+ bounces too), nor with local lights (relight carries none of
+  // those objects' shadow). `relight` must outlive the node.
   void enableRelightBounce(probes::RelightPass& relight);
 
  private:
