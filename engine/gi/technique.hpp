@@ -36,6 +36,7 @@ namespace bounce::gi {
 
 namespace probes {
 struct ProbeVolume;
+class RelightPass;
 }
 namespace incident {
 class SessionLight;
@@ -103,6 +104,9 @@ struct Services {
   // the way the probes pass does (sl.shadow) — bound, not uploaded again.
   const gpu::Image* probeSh = nullptr;
   const gpu::Image* probeMoments = nullptr;
+  // Pass "probes.relight" when the level relights the probes with "sl_bounce" (relight_pass.hpp
+  // setSlBounce): the SL node writes its surfels' E_SL into it (pass "sl.relight_bounce").
+  probes::RelightPass* relightSlBounce = nullptr;
   // The incident-light service's session inputs (incident/session_light.hpp: the indirect source
   // and the static scene's light visibility), created by the first technique that asks through
   // incident::sessionLight(sc); shared_ptr so this header needs no complete type.

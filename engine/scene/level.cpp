@@ -478,8 +478,12 @@ Level levelFromJson(const nlohmann::json& doc, const std::filesystem::path& path
   level.effects = parseEffects(effects);
   if (auto b = o.optional("background")) level.background = b->vec3(json::Range::atLeast(0));
   if (auto p = o.optional("probes")) {
-    const auto po = p->object({"spacing", "order", "rays", "relight"});
+    const auto po = p->object({"spacing", "order", "rays", "relight", "sl_bounce"});
     if (auto v = po.optional("relight")) level.probes.relight = v->boolean();
+    if (auto v = po.optional("sl_bounce")) {
+      level.probes.slBounce = v->boolean();
+      if (level.probes.slBounce && !level.probes.relight) v->fail("sl_bounce without relight", "\"relight\": true with it");
+    }
     if (auto v = po.optional("spacing")) level.probes.spacing = float(v->real(json::Range::closed(1e-3, 1e3)));
     if (auto v = po.optional("order")) {
       level.probes.order = int(v->integer(0, 16));

@@ -76,6 +76,11 @@ struct ProbesConfig {
   // Relit each frame (engine/gi/probes/relight.hpp): the dynamic objects' shadows on the static
   // surfels reach the probes' light. Off by default.
   bool relight = false;
+  // "sl_bounce" (needs relight and the `sl` effect to do anything): the relit surfels also take the
+  // SLs' bounce (pass "sl.relight_bounce", relight_pass.hpp setSlBounce), so the room carries the
+  // SL objects' bounce on to its 2nd+ bounces. Off by default (README "SL's bounce in relight's
+  // transport, session 15").
+  bool slBounce = false;
 };
 
 // The level's "dnrt" object (used when effects name `dnrt`; the per-entity fields are each entity's

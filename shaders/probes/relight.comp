@@ -4,8 +4,9 @@
 // dynamic objects make to them this frame, written in the probes pass's own uniform-block format.
 // Three stages (push constant `stage`), each a dispatch, barriers between them:
 //  0  one invocation per surfel: ΔE = Σ_l relightDirectLoss(V_now from the shadow atlas — it holds
-//     the dynamic objects —, V_static baked) + the irradiance of the previous iteration's ΔSH at the
-//     surfel (probe_weights.glsl, the volume's own weights and visibility), ΔL = ρ/π ΔE;
+//     the dynamic objects —, V_static baked) [+ E_SL, the SLs' bounce at the surfel] + the irradiance
+//     of the previous iteration's ΔSH at the surfel (probe_weights.glsl, the volume's own weights and
+//     visibility), ΔL = ρ/π ΔE;
 //  1  one invocation per probe: ΔSH = 4π/R Σ_dirs Y(ω) ΔL(hit surfel) (relightGatherAdd);
 //  2  one invocation per probe: baked + ΔSH packed as engine/gi/probes/node.cpp shPackedWords does
 //     (L_0 halves, scale s rounded up to a half, L_i/(s·L_0) as snorm bytes), into the buffer the
@@ -43,6 +44,7 @@ layout(std430, binding = 10) readonly buffer Valid { uint validFlags[]; };    //
 layout(std430, binding = 11) readonly buffer Moments { vec2 momentsBuf[]; };  // probe·64 + bin (m, m²)
 layout(std430, binding = 12) readonly buffer TestVis { float vTest[]; };      // surfel·lightCount + l (tests)
 layout(std430, binding = 13) writeonly buffer Texels { vec4 texels[]; };      // probe·kTexels + t: the image's texels
+layout(std430, binding = 14) readonly buffer SlBounce { vec4 slBounce[]; };   // surfel: E_SL rgb (sl.relight_bounce)
 
 layout(push_constant) uniform Push {
   vec4 originSpacing;  // xyz: probe (0,0,0), w: spacing (m)
@@ -50,7 +52,7 @@ layout(push_constant) uniform Push {
   vec4 params;         // x: normal bias (m), y: Chebyshev variance floor (m²), z: 4π/R
   uvec4 sizes;         // x: surfels, y: probes, z: R, w: lights
   uvec4 flags;         // x: stage, y: shadows on, z: V_now from vTest (tests), w: feedback on
-  uvec4 outputs;       // stage 2 writes: x: the packed block, y: the image's texels
+  uvec4 outputs;       // stage 2 writes: x: the packed block, y: the image's texels; z: stage 0 adds E_SL
 } pc;
 
 #include "probes/relight.glsl"
@@ -75,6 +77,10 @@ void surfelStage(uint s) {
     float vNow = pc.flags.z != 0u ? vTest[idx] : (pc.flags.y != 0u ? shadowVisibility(lights[l], p, n, dist) : 1.0);
     e += relightDirectLoss(lights[l], p, n, vNow, vStatic[idx]);
   }
+  // Level "probes": {"sl_bounce": true}: the irradiance the posed SLs send the surfel (their first
+  // bounce, Eq. 14, written by sl.relight_bounce from pass 1's intensities). The surfel re-emits it,
+  // so the probes carry the SLs' 2nd+ bounces; pass 2 keeps the 1st at the receiver.
+  if (pc.outputs.z != 0u) e += slBounce[s].rgb;
   if (pc.flags.w != 0u) {  // the room's bounce: the previous iteration's ΔSH at the surfel
     int probe[8];
     float weight[8];

@@ -365,11 +365,15 @@ void gatherProbe(const RelightData& data, std::size_t probe, std::span<const glm
 
 void relightReference(const RelightData& data, const ProbeVolume& volume, std::span<const render::LightGpu> lights,
                       std::span<const float> vNow, std::span<const float> vStatic, int iterations,
-                      std::vector<glm::vec3>& delta, std::vector<glm::vec3>* surfelRadiance) {
+                      std::vector<glm::vec3>& delta, std::vector<glm::vec3>* surfelRadiance,
+                      std::span<const glm::vec3> slBounce) {
   const std::size_t probes = volume.grid.probeCount();
   delta.resize(probes * 9, glm::vec3(0.0f));
   std::vector<glm::vec3> direct(data.surfels.size()), radiance(data.surfels.size());
-  for (std::size_t s = 0; s < data.surfels.size(); ++s) direct[s] = surfelDirectLoss(data.surfels[s], s, lights, vNow, vStatic);
+  for (std::size_t s = 0; s < data.surfels.size(); ++s) {
+    direct[s] = surfelDirectLoss(data.surfels[s], s, lights, vNow, vStatic);
+    if (s < slBounce.size()) direct[s] += slBounce[s];  // relight.comp: ΔE += E_SL (sl.relight_bounce)
+  }
   ProbeVolume dv = volume;  // the lookup of ΔSH: the volume's grid, weights and visibility, ΔSH as its SH
   dv.order = 3;
   for (int it = 0; it < iterations; ++it) {

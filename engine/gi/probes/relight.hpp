@@ -108,8 +108,11 @@ void gatherProbe(const RelightData& data, std::size_t probe, std::span<const glm
 // `iterations` steps from ΔSH = `delta` (probes × 9; updated): surfel ΔE = direct loss + the
 // irradiance of ΔSH through `volume`'s lookup (its weights, visibility and grid), ΔL = ρ/π ΔE,
 // then the gather. Invalid probes stay 0. `surfelRadiance` (optional) gets the last step's ΔL.
+// `slBounce` (optional, per surfel, W/m²): the SLs' irradiance E_SL added to every step's ΔE
+// (level `"probes": {"sl_bounce": true}`, RelightPass::setSlBounce).
 void relightReference(const RelightData& data, const ProbeVolume& volume, std::span<const render::LightGpu> lights,
                       std::span<const float> vNow, std::span<const float> vStatic, int iterations,
-                      std::vector<glm::vec3>& delta, std::vector<glm::vec3>* surfelRadiance = nullptr);
+                      std::vector<glm::vec3>& delta, std::vector<glm::vec3>* surfelRadiance = nullptr,
+                      std::span<const glm::vec3> slBounce = {});
 
 }  // namespace bounce::gi::probes

@@ -53,7 +53,8 @@ RelightPass::RelightPass(gpu::Context& ctx, const ProbeVolume& volume, RelightDa
                   {10, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                   {11, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                   {12, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                  {13, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}},
+                  {13, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                  {14, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}},
                  "probes.relight"),
       layout_(ctx, {setLayout_.handle()}, {{VK_SHADER_STAGE_ALL, 0, sizeof(Push)}}, "probes.relight") {
   const std::size_t probes = volume.grid.probeCount();
@@ -80,6 +81,8 @@ RelightPass::RelightPass(gpu::Context& ctx, const ProbeVolume& volume, RelightDa
   moments_ = deviceBuffer(ctx, volume.moments, "probes.relight.moments");
   radiance_ = deviceBuffer(ctx, std::vector<glm::vec4>(data_.surfels.size(), glm::vec4(0.0f)), "probes.relight.radiance");
   delta_ = deviceBuffer(ctx, std::vector<glm::vec4>(probes * 9, glm::vec4(0.0f)), "probes.relight.delta");
+  // E_SL per surfel (setSlBounce): written by "sl.relight_bounce", 0 until its first frame.
+  slBounce_ = deviceBuffer(ctx, std::vector<glm::vec4>(data_.surfels.size(), glm::vec4(0.0f)), "probes.relight.sl_bounce");
   const std::size_t visCount = std::max<std::size_t>(data_.surfels.size() * render::kMaxLights, 4);
   vStatic_ = gpu::Buffer(ctx, {visCount * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::Upload,
                                "probes.relight.vstatic"});
@@ -144,6 +147,7 @@ void RelightPass::record(VkCommandBuffer cmd, gpu::DescriptorAllocator& descript
       .buffer(11, moments_)
       .buffer(12, vTest_)
       .buffer(13, texels_)
+      .buffer(14, slBounce_)
       .update(ctx_, set);
   // The lights whose V_static is set (setLights) and the block's count must agree: use the fewer.
   push_.sizes.w = std::min(lightCount, lightCount_);

@@ -50,6 +50,17 @@ class RelightPass {
   bool readDelta(std::uint32_t slot, std::vector<glm::vec3>& out) const;
   // Zero ΔSH (the next frame restarts the series).
   void reset();
+  // Level `"probes": {"sl_bounce": true}`: the surfel stage adds slBounce() (E_SL per surfel, vec4
+  // rgb, W/m²) to ΔE, so the room's iterations carry the SLs' bounce on. The SL node writes it
+  // (pass "sl.relight_bounce", after "sl.intensity"); the effects run probes before sl, so this
+  // frame's relight reads the E_SL of the previous frame's poses and intensities (one frame late;
+  // ΔSH itself converges over frames). The buffer starts at 0.
+  void setSlBounce(bool on) { push_.outputs.z = on ? 1u : 0u; }
+  bool slBounceOn() const { return push_.outputs.z != 0u; }
+  const gpu::Buffer& slBounce() const { return slBounce_; }
+  gpu::Buffer& slBounce() { return slBounce_; }  // tests upload E_SL into it
+  const gpu::Buffer& surfelBuffer() const { return surfels_; }  // relight.comp's Surfel: 3 vec4 each
+  std::uint32_t surfelCount() const { return std::uint32_t(data_.surfels.size()); }
 
   const RelightData& data() const { return data_; }
   const gpu::Buffer& delta() const { return delta_; }                  // probe·9 + i: vec4 (rgb)
@@ -76,7 +87,7 @@ class RelightPass {
   bool testVis_ = false;
   std::vector<gpu::Buffer> readback_;  // per frame slot: ΔSH copied after the pack stage
   std::vector<bool> readbackWritten_;
-  gpu::Buffer surfels_, rays_, vStatic_, radiance_, delta_, baked_, valid_, moments_, vTest_;
+  gpu::Buffer surfels_, rays_, vStatic_, radiance_, delta_, baked_, valid_, moments_, vTest_, slBounce_;
   gpu::DescriptorSetLayout setLayout_;
   gpu::PipelineLayout layout_;
   gpu::Pipeline pipeline_;

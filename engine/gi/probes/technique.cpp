@@ -96,6 +96,10 @@ class ProbesTechnique final : public Technique {
       RelightData data = loadOrBakeRelight(input, node->volume().grid, cacheFolder());
       const ref::SceneBvh& bvh = incident::sessionLight(sc).lightVisibility().bvh();
       node->enableRelight(sc.ctx, std::move(data), bvh);
+      if (sc.level.probes.slBounce) {
+        node->relight()->setSlBounce(true);
+        sc.services.relightSlBounce = node->relight();
+      }
     }
     return node;
   }

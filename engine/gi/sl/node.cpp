@@ -7,6 +7,7 @@
 #include "engine/core/error.hpp"
 #include "engine/gi/sl/tiles.hpp"
 #include "engine/gi/sl/probe_shadow.hpp"
+#include "engine/gi/probes/relight_pass.hpp"
 #include "engine/render/passes/rendering.hpp"
 #include "engine/render/passes/gbuffer_pass.hpp"
 
@@ -142,6 +143,24 @@ Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t fra
   }
 }
 
+void Node::enableRelightBounce(probes::RelightPass& relight) {
+  if (spheres_ == 0) return;
+  relightBounce_ = &relight;
+  std::vector<gpu::Binding> b = ShadeData::bindings(0);
+  b.push_back({3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
+  b.push_back({4, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
+  bounceInputs_ = gpu::DescriptorSetLayout(ctx_, b, "sl.relight_bounce.inputs");
+  bounceLayout_ = gpu::PipelineLayout(ctx_, {bounceInputs_.handle()}, {VkPushConstantRange{VK_SHADER_STAGE_ALL, 0, sizeof(glm::uvec4)}},
+                                      "sl.relight_bounce");
+  // Pass 2's cut (rule 0's F, in sphere radii): the room carries on the first bounce that pass 2
+  // shows, no more. Uncut here against a cut pass 2 measured worse on cornell-1 (0.592 → 0.785 at 12:
+  // the full 2nd bounce against a faded bounce and shadow; README "SL's bounce in relight's
+  // transport, session 15"). An uncut level is uncut in both.
+  bouncePipeline_ = gpu::createComputePipeline(ctx_, bounceLayout_, gpu::ShaderModule(ctx_, "sl/relight_bounce.comp.spv"),
+                                               "sl.relight_bounce", nullptr,
+                                               ShadeData::specialization(order_, blocking_, spheres_, influence_));
+}
+
 void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::span<const PosedSphere> posed,
                  std::span<const std::uint32_t> objects, std::span<const incident::RadianceSH> indirect) {
   if (spheres_ == 0) return;
@@ -232,6 +251,39 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::s
                                     true, local_ != nullptr);
         slot.intensity->record(cmd);
       });
+
+  // The SLs' bounce at relight's surfels (enableRelightBounce), after pass 1 (its barrier makes L^c
+  // visible to compute), for the next frame's "probes.relight". Skipped for `terms` rows without the
+  // bounce, and with local lights: their objects leave the lights' shadow maps, so relight carries
+  // none of their shadow, and their bounce alone would be one side of their effect on the room
+  // (measured on cornell-1 uncut: the local-lights rows 0.65–0.82 → 0.99–1.02). The buffer keeps 0
+  // from the start: those sessions never write it.
+  if (relightBounce_ && (terms_ & 1u) != 0u && !local_) {
+    graph.addPass<IntensityData>(
+        "sl.relight_bounce", [&](rg::Builder& b, IntensityData&) { b.sideEffect(); },
+        [this, pc, &slot](const IntensityData&, const rg::PassResources&, rg::CommandContext& c) {
+          VkCommandBuffer cmd = pc->cmd(c);
+          VkSampler point = pc->samplers->get({VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST});
+          VkDescriptorSet set = pc->frame().descriptors->allocate(bounceInputs_);
+          gpu::DescriptorWriter w;
+          slot.shade->write(w, 0, slot.intensity->intensity(), point);
+          w.buffer(3, relightBounce_->surfelBuffer()).buffer(4, relightBounce_->slBounce());
+          w.update(ctx_, set);
+          // The previous frame's "probes.relight" read the buffer this dispatch rewrites (write after
+          // read); its next one reads it after the barrier below (read after write).
+          VkMemoryBarrier before{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_SHADER_READ_BIT, VK_ACCESS_SHADER_WRITE_BIT};
+          vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &before, 0,
+                               nullptr, 0, nullptr);
+          const glm::uvec4 push(relightBounce_->surfelCount(), 0u, 0u, 0u);
+          bouncePipeline_.bind(cmd);
+          bouncePipeline_.bindSet(cmd, 0, set);
+          bouncePipeline_.push(cmd, push);
+          vkCmdDispatch(cmd, (push.x + 63) / 64, 1, 1);
+          VkMemoryBarrier done{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_SHADER_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT};
+          vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &done, 0,
+                               nullptr, 0, nullptr);
+        });
+  }
 
   if (hierarchy_) {
     // §7.3 Eq. 25 per drawn tile (hierarchy_ratio.comp), after pass 1's parents, before "sl".

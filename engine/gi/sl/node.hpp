@@ -39,6 +39,10 @@
 #include "engine/render/graph/render_graph.hpp"
 #include "engine/render/pass_context.hpp"
 
+namespace bounce::gi::probes {
+class RelightPass;
+}
+
 namespace bounce::gi::sl {
 
 class Node {
@@ -61,6 +65,13 @@ class Node {
              std::span<const std::uint32_t> objects, std::span<const incident::RadianceSH> indirect);
   std::uint32_t sphereCount() const { return spheres_; }
   bool hierarchy() const { return hierarchy_; }
+  // Level `"probes": {"relight": true, "sl_bounce": true}`: each frame, after "sl.intensity", pass
+  // "sl.relight_bounce" (shaders/sl/relight_bounce.comp) writes the posed SLs' irradiance at each of
+  // `relight`'s surfels into relight.slBounce(), which the next "probes.relight" adds to the surfels'
+  // ΔE (relight_pass.hpp setSlBounce). Not with `terms` lacking the bounce bit (those diagnostic rows
+  // leave the SLs' bounce out, its 2nd+ bounces too), nor with local lights (relight carries none of
+  // those objects' shadow). `relight` must outlive the node.
+  void enableRelightBounce(probes::RelightPass& relight);
 
  private:
   struct Slot;
@@ -103,6 +114,11 @@ class Node {
   gpu::DescriptorSetLayout ratioInputs_;
   gpu::PipelineLayout ratioLayout_;
   gpu::Pipeline ratioPipeline_;
+  // "sl.relight_bounce" (enableRelightBounce): relight's surfels as SL receivers.
+  probes::RelightPass* relightBounce_ = nullptr;
+  gpu::DescriptorSetLayout bounceInputs_;
+  gpu::PipelineLayout bounceLayout_;
+  gpu::Pipeline bouncePipeline_;
 };
 
 // Objects (sets) one hierarchy serves: sl/hierarchy.glsl kSlHierObjects.

@@ -449,6 +449,7 @@ void SessionRuntime::enableGpu(SessionContext& sc) {
                                  participants_.front().component.hierarchy, participants_.front().component.fused,
                                  std::uint32_t(participants_.front().component.terms),
                                  participants_.front().component.blockedAtSphere);
+  if (sc.services.relightSlBounce) node_->enableRelightBounce(*sc.services.relightSlBounce);
 }
 
 render::Renderer::GraphNode SessionRuntime::node() {

@@ -319,6 +319,10 @@ TEST(Level, ProbesSettingsParseWithDefaults) {
   const auto relit = writeTemp("probes-relight.json", R"({"bounce_level": 1, "effects": ["probes"],
       "probes": {"relight": true}, "entities": []})");
   EXPECT_TRUE(loadLevel(relit).probes.relight);
+  EXPECT_FALSE(loadLevel(relit).probes.slBounce);  // off unless asked
+  const auto slBounce = writeTemp("probes-sl-bounce.json", R"({"bounce_level": 1, "effects": ["probes"],
+      "probes": {"relight": true, "sl_bounce": true}, "entities": []})");
+  EXPECT_TRUE(loadLevel(slBounce).probes.slBounce);
 }
 
 TEST(LevelErrors, ProbesSettings) {
@@ -331,8 +335,10 @@ TEST(LevelErrors, ProbesSettings) {
   EXPECT_EQ(loadError("probes-spacing", with(R"({"spacing": 0})")),
             "FILE: /probes/spacing: 0 is out of range (expected a number in [0.001, 1000])");
   EXPECT_EQ(loadError("probes-key", with(R"({"spacng": 0.2})")),
-            "FILE: /probes/spacng: unknown key \"spacng\", did you mean \"spacing\"? (expected one of: spacing, order, rays, relight)");
+            "FILE: /probes/spacng: unknown key \"spacng\", did you mean \"spacing\"? (expected one of: spacing, order, rays, relight, sl_bounce)");
   EXPECT_EQ(loadError("probes-relight", with(R"({"relight": 1})")), "FILE: /probes/relight: wrong type: integer (expected true or false)");
+  EXPECT_EQ(loadError("probes-sl-bounce", with(R"({"sl_bounce": true})")),
+            "FILE: /probes/sl_bounce: sl_bounce without relight (expected \"relight\": true with it)");
 }
 
 // The "vlm" component (virtual lights, engine/gi/vlm) and "vlm_tag" (real geometry's id, thesis
