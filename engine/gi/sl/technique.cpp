@@ -261,6 +261,29 @@ class SlTechnique final : public Technique {
         };
         rows.push_back(std::move(r));
       }
+    // Uncut (influence 0), without and with the SLs' bounce in relight's transport ("probes":
+    // {"sl_bounce": true}; README "SL's bounce in relight's transport, session 15"): the setting is built
+    // for pass 2 uncut — at the cut it unbalances bounce and shadow, so only these rows turn it on. On a
+    // level without "probes": {"relight": true} the two rows are the same image.
+    for (const bool slBounce : {false, true}) {
+      AccuracyRow r;
+      r.technique = "sl";
+      r.setting = std::string("spheres=level;order=4;influence=0;sl_bounce=") + (slBounce ? "on" : "off") + ";ref=all";
+      r.effects = {"direct", "shadows", "probes", "sl"};
+      r.passes = {"shadow", "lighting", "probes", "sl.intensity", "sl"};
+      r.optionalPasses = {"sl.shadow", "sl.relight_bounce"};
+      r.configure = [=](scene::Level& level) {
+        level.probes.slBounce = slBounce;
+        for (auto& e : level.entities)
+          if (e.sl) {
+            e.sl->order = 4;
+            e.sl->influence = 0.0f;
+            e.sl->hierarchy = false;
+            e.sl->localLights = false;
+          }
+      };
+      rows.push_back(std::move(r));
+    }
     // Pass 2's resolution (README "SL at quarter resolution, session 10"): the level's own spheres,
     // blocking and influence, order 4, at full, half and quarter resolution with the edge-aware upsample.
     for (const int step : {1, 2, 4}) {
