@@ -4,9 +4,10 @@
 // pixel (DESIGN.md: flat varyings are the cheapest per-pixel constants on llvmpipe). Tiles no SL
 // covers are not drawn, so their pixels do no work. Included by tiles.vert (push block at offset 0:
 // sl.upsample), cut_tiles.vert (offset 0: sl without the hierarchy, with SL_TILE_CUT: the list cut by
-// the tile's receivers), hierarchy_tiles.vert, local_tiles.vert and shadow_tiles.vert (after the
-// fragment shader's probe block: sl.shadow), with SL_TILE_PUSH_OFFSET defined first (bytes;
-// engine/gi/sl/tiles.hpp TilePush).
+// the tile's receivers), hierarchy_tiles.vert, local_tiles.vert, shadow_cut_tiles.vert (after the
+// fragment shader's probe block: sl.shadow and the fused sl + sl.shadow, with SL_TILE_CUT) and
+// shadow_tiles.vert (the same uncut: scene::Sl::tileCut false, a test's), with SL_TILE_PUSH_OFFSET
+// defined first (bytes; engine/gi/sl/tiles.hpp TilePush). tiles.vert also draws "sl" uncut then.
 // Tile records (std430): tiles[2t] = (tile x, tile y, 0, 0), tiles[2t + 1] = the 4 mask words.
 layout(std430, set = 1, binding = 6) readonly buffer SlTiles { uvec4 slTiles[]; };
 layout(push_constant) uniform Push {
