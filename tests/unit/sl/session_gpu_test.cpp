@@ -512,7 +512,7 @@ TEST(SlSession, OneWalkForBothTermsMatchesTheTwoPasses) {
 // rule 0 culls at every receiver of the tile, so every term is the same float sum and the frame the
 // same bits as with the uncut lists (scene::Sl::tileCut false): the shipped fused pass at full
 // resolution, and "sl" + "sl.shadow" unfused at half (both cut vertex shaders; kStep 2, the reduced
-// target's screen-edge tiles). With the cut's ball halved (a wrong cut) 367 and 57 values differ.
+// target's screen-edge tiles). With the cut's ball halved (a wrong cut) 204 and 70 values differ.
 TEST(SlSession, TileCutByTheReceiversLeavesEveryFrameBitIdentical) {
   struct Case {
     const char* name;
