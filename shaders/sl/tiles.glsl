@@ -31,7 +31,7 @@ layout(location = 0) flat out uvec4 outCandidates;
 // tiles run on every core); its saving is at most one walk body per dropped SL for each of the
 // tile's 32 8-pixel blocks. Measured (session 15, README "Tile lists cut …, session 15"): on
 // cornell-1 (8 SLs, full resolution, nearly every tile drawn) cutting every tile made "sl" 7–20 %
-// slower than main's uncut lists; the characters (up to 32 listed) gained. A tile listing fewer
+// slower than main's uncut lists; at 128 SLs (bench sl --fused) both blockings gained. A tile listing fewer
 // than kSlCutMinListed keeps its list (exact either way: the cut only drops SLs rule 0 culls).
 const uint kSlCutMinListed = 9u;
 
