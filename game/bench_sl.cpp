@@ -68,19 +68,22 @@ int runBenchSl(const cli::Args& args) {
     steps.push_back(int(*step));
   }
 
+  const bool fused = args.has("--fused");
   gpu::Context ctx({args.str("--device")});
   gpu::OffscreenPresenter presenter(ctx, {std::uint32_t(res.first), std::uint32_t(res.second)});
   for (int n : counts)
     for (int step : steps)
       for (bool perObject : {false, true}) {
       scene::Level configured = level;
-      scene::overrideEffects(configured, "direct,shadows,sl");
+      // --fused: with the probes, "sl" is the shipped levels' one walk for both terms (sl_shadow.frag).
+      scene::overrideEffects(configured, fused ? "direct,shadows,probes,sl" : "direct,shadows,sl");
       for (auto& e : configured.entities)
         if (e.sl) {
           e.sl->spheres = n / entities;
           e.sl->perObject = perObject;
           if (influence) e.sl->influence = *influence;
           e.sl->step = step;
+          if (fused) e.sl->fused = true;
         }
       TimingCollector timings;
       double updateMs = std::numeric_limits<double>::quiet_NaN();
@@ -102,9 +105,9 @@ int runBenchSl(const cli::Args& args) {
       float f = 0.0f;
       for (const auto& e : configured.entities)
         if (e.sl) f = e.sl->influence;
-      std::printf("spheres=%d blocking=%s %dx%d sl_ms=%.3f sl_update_ms=%.3f frames=%zu influence=%g resolution=%s\n", n,
+      std::printf("spheres=%d blocking=%s %dx%d sl_ms=%.3f sl_update_ms=%.3f frames=%zu influence=%g resolution=%s%s\n", n,
                   perObject ? "per-object" : "per-sphere", res.first, res.second, slMs, updateMs, timed, double(f),
-                  gi::sl::resolutionName(std::uint32_t(step)));
+                  gi::sl::resolutionName(std::uint32_t(step)), fused ? " fused" : "");
       std::fflush(stdout);
     }
   return 0;

@@ -125,6 +125,7 @@ const std::vector<cli::CommandSpec>& commandSpecs() {
         // bench sl (game/bench_sl.hpp); --level (default characters), --resolution (default 1280x720) and --frames (default 3) above also apply
         {"--influence", "F", "sl: every sl component's influence (0 = off, else 3..1000 radii; default the level's)"},
         {"--sl-resolution", "LIST", "sl: pass 2's resolution, full, half, quarter or a list such as full,half,quarter (default full); sl_ms then adds sl.upsample"},
+        {"--fused", "", "sl: run the probes too, so pass 2 is the shipped levels' one walk for sl and sl.shadow (sl_ms holds both terms)"},
         {"--radii", "INNER,OUTER", "rtf: innermost and outermost sphere radii in units of the bounding radius (default 0.1,8)"},
         {"--no-gpu", "", "rtf: only the bake and CPU lines"},
         {"--only", "TEXT", "skinning: only the models whose name contains TEXT (e.g. +subdiv)"}},

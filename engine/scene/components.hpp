@@ -218,6 +218,10 @@ struct Sl {
   // (the probes' SH at its posed centre, in the receiver → SL direction; engine/gi/sl/probe_shadow.hpp
   // BlockedLight). Run time only. Not with "hierarchy".
   bool blockedAtSphere = false;
+  // Whether pass 2's tiles ("sl", "sl.shadow" and the two in one walk, without the hierarchy) cut
+  // each tile's SL list by its receivers' world box (shaders/sl/tile_cut.glsl): not a level key,
+  // only tests clear it to draw the uncut lists, which give the same image (SlSession.TileCut…).
+  bool tileCut = true;
   friend bool operator==(const Sl&, const Sl&) = default;
 };
 

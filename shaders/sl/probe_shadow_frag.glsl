@@ -10,7 +10,7 @@
 // since ΔE is clamped at −E_u of the SH, not of the tiles, a fully shadowed pixel's indirect sum can
 // go below 0 by up to that much (E_tiles < E_sh there). Not clamped here: this pass never sees the
 // tile value; the frame's negative channels end at tonemap.frag's max(c, 0), after the direct light.
-// Background pixels (depth 1) receive nothing. Drawn as the SL pass's tiles (sl/shadow_tiles.vert):
+// Background pixels (depth 1) receive nothing. Drawn as the SL pass's tiles (sl/shadow_cut_tiles.vert):
 // a pixel visits only its tile's SLs; tiles no SL's influence reaches are not drawn (ΔE = 0 there).
 // Specialization constants: sl.glsl's (ids 0–3, engine/gi/sl/shade.hpp), the probes' SH count
 // (id 4) and kStep (id 5, G-buffer pixels per sample per axis: 1, 2, 4): pixel j of the reduced

@@ -4,9 +4,10 @@
 // pixel (DESIGN.md: flat varyings are the cheapest per-pixel constants on llvmpipe). Tiles no SL
 // covers are not drawn, so their pixels do no work. Included by tiles.vert (push block at offset 0:
 // sl.upsample), cut_tiles.vert (offset 0: sl without the hierarchy, with SL_TILE_CUT: the list cut by
-// the tile's receivers), hierarchy_tiles.vert, local_tiles.vert and shadow_tiles.vert (after the
-// fragment shader's probe block: sl.shadow), with SL_TILE_PUSH_OFFSET defined first (bytes;
-// engine/gi/sl/tiles.hpp TilePush).
+// the tile's receivers), hierarchy_tiles.vert, local_tiles.vert, shadow_cut_tiles.vert (after the
+// fragment shader's probe block: sl.shadow and the fused sl + sl.shadow, with SL_TILE_CUT) and
+// shadow_tiles.vert (the same uncut: scene::Sl::tileCut false, a test's), with SL_TILE_PUSH_OFFSET
+// defined first (bytes; engine/gi/sl/tiles.hpp TilePush). tiles.vert also draws "sl" uncut then.
 // Tile records (std430): tiles[2t] = (tile x, tile y, 0, 0), tiles[2t + 1] = the 4 mask words.
 layout(std430, set = 1, binding = 6) readonly buffer SlTiles { uvec4 slTiles[]; };
 layout(push_constant) uniform Push {
@@ -25,7 +26,18 @@ layout(location = 0) flat out uvec4 outCandidates;
 // G-buffer pixel min(kStep·j, size − 1)).
 #include "sl/tile_cut.glsl"
 
+// The cut pays only where the tile lists enough SLs. Its cost is fixed per tile: 256 receivers
+// rebuilt per vertex batch, in llvmpipe's vertex stage, which runs on one thread (the fragment
+// tiles run on every core); its saving is at most one walk body per dropped SL for each of the
+// tile's 32 8-pixel blocks. Measured (session 15, README "Tile lists cut …, session 15"): on
+// cornell-1 (8 SLs, full resolution, nearly every tile drawn) cutting every tile made "sl" 7–20 %
+// slower than main's uncut lists; at 128 SLs (bench sl --fused) both blockings gained. A tile listing fewer
+// than kSlCutMinListed keeps its list (exact either way: the cut only drops SLs rule 0 culls).
+const uint kSlCutMinListed = 9u;
+
 uvec4 slCutTile(uvec2 tile, uvec4 mask) {
+  uvec4 listed = uvec4(bitCount(mask));
+  if (listed.x + listed.y + listed.z + listed.w < kSlCutMinListed) return mask;
   uvec2 extent = uvec2(round(1.0 / pc.invExtent));
   uvec2 first = tile * pc.tileSize;
   uvec2 last = min(first + pc.tileSize, extent);  // exclusive

@@ -56,7 +56,7 @@ std::vector<gpu::Binding> upsampleBindings() {
 
 Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t framesInFlight,
            std::span<const SphereSet* const> sets, int order, Blocking blocking, float influence, Resolution resolution,
-           ProbeLight probes, bool localLights, bool hierarchy, bool fuse, std::uint32_t terms, bool blockedAtSphere)
+           ProbeLight probes, bool localLights, bool hierarchy, bool fuse, std::uint32_t terms, bool blockedAtSphere, bool tileCut)
     : ctx_(ctx),
       order_(order),
       blocking_(blocking),
@@ -77,12 +77,13 @@ Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t fra
   spheres_ = slots_[0].intensity->sphereCount();
   vert_ = gpu::ShaderModule(ctx, "sl/tiles.vert.spv");
   frag_ = gpu::ShaderModule(ctx, hierarchy ? "sl/sl_hierarchy.frag.spv" : "sl/sl.frag.spv");
+  tileCut_ = tileCut && !hierarchy;
   if (hierarchy)
     hierarchyVert_ = gpu::ShaderModule(ctx, "sl/hierarchy_tiles.vert.spv");
-  else
+  else if (tileCut_)
     cutVert_ = gpu::ShaderModule(ctx, "sl/cut_tiles.vert.spv");
   gpu::GraphicsPipelineDesc d;
-  d.vertex = hierarchy ? &hierarchyVert_ : &cutVert_;
+  d.vertex = hierarchy ? &hierarchyVert_ : (tileCut_ ? &cutVert_ : &vert_);
   d.fragment = &frag_;
   const std::uint32_t step = resolutionStep(resolution);
   const bool reduced = step > 1u;
@@ -129,7 +130,7 @@ Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t fra
     throw InternalError("sl::Node: one term alone needs the fused pass (probes, \"fused\", no hierarchy)");
   if (probes && spheres_ > 0)
     shadow_ = std::make_unique<ProbeShadowPass>(ctx, shared, probes, order, blocking, spheres_, influence, step, hierarchy, fuse,
-                                                terms, blockedAtSphere);
+                                                terms, blockedAtSphere, tileCut_);
   if (localLights && spheres_ > 0)
     local_ = std::make_unique<LocalLightPass>(ctx, shared, order, blocking, spheres_, influence);
   if (hierarchy) {
@@ -348,7 +349,7 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::s
         // cut_tiles.vert reads "gbuffer.depth" in the vertex stage (each tile's receivers,
         // tiles.glsl slCutTile), so the graph's barrier must reach the vertex shader.
         d.g = render::readDeferredInputs(b, bb, false,
-                                         hierarchy_ ? rg::Usage::SampledFragment : rg::Usage::SampledGraphics);
+                                         tileCut_ ? rg::Usage::SampledGraphics : rg::Usage::SampledFragment);
         d.hdr = reduced ? b.write(b.create<rg::Texture>(reducedTargetName(step),
                                                         rg::TextureDesc{reducedExtent.x, reducedExtent.y, 1, 1, 1,
                                                                         rg::Format::RGBA16F, false}),

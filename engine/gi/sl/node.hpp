@@ -53,7 +53,10 @@ class Node {
   Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t framesInFlight,
        std::span<const SphereSet* const> sets, int order, Blocking blocking, float influence,
        Resolution resolution = Resolution::Full, ProbeLight probes = {}, bool localLights = false,
-       bool hierarchy = false, bool fuse = true, std::uint32_t terms = 3u, bool blockedAtSphere = false);
+       bool hierarchy = false, bool fuse = true, std::uint32_t terms = 3u, bool blockedAtSphere = false,
+       bool tileCut = true);
+  // `tileCut` (scene::Sl::tileCut; true but in tests): without the hierarchy, "sl", "sl.shadow" and
+  // the fused pass cut each tile's list by its receivers (cut_tiles.vert, shadow_cut_tiles.vert).
   // `blockedAtSphere` (level "blocked_light": "sphere", probe_shadow.hpp BlockedLight::Sphere): the
   // shadow on the probes' light reads the blocked light at each SL's centre (addTo's `indirect`).
   // `fuse` (level "fused", default true): with "sl.shadow" running and the hierarchy off, one pass
@@ -110,6 +113,7 @@ class Node {
   std::vector<float> silhouette_;  // per object (set): its shadow scale (SlSphere::shadowScale)
   // §7.3 hierarchy (sl/hierarchy.glsl): the tile pass's layout and pipeline.
   bool hierarchy_ = false;
+  bool tileCut_ = true;  // the constructor's tileCut, false with the hierarchy: cut_tiles.vert draws "sl"
   std::uint32_t terms_ = 3u;  // the constructor's `terms`: addTo refuses a partial mask unfused
   gpu::DescriptorSetLayout ratioInputs_;
   gpu::PipelineLayout ratioLayout_;

@@ -44,7 +44,7 @@ std::vector<gpu::Binding> inputBindings(bool hierarchy) {
 
 ProbeShadowPass::ProbeShadowPass(gpu::Context& ctx, const render::Pipelines& shared, ProbeLight probes, int order,
                                  Blocking blocking, std::uint32_t spheres, float influence, std::uint32_t step,
-                                 bool hierarchy, bool fuse, std::uint32_t terms, bool blockedAtSphere)
+                                 bool hierarchy, bool fuse, std::uint32_t terms, bool blockedAtSphere, bool tileCut)
     : ctx_(ctx),
       probes_(probes),
       reduced_(checkedStep(step) > 1u),  // 1, 2 or 4 only (resolution.hpp)
@@ -53,7 +53,9 @@ ProbeShadowPass::ProbeShadowPass(gpu::Context& ctx, const render::Pipelines& sha
       layout_(ctx, {shared.frameLayout.handle(), inputLayout_.handle()},
               {{VK_SHADER_STAGE_ALL, 0, sizeof(probes::ProbePush) + sizeof(TilePush)}}, "sl.shadow") {
   hierarchy_ = hierarchy;
-  gpu::ShaderModule vert(ctx, hierarchy ? "sl/shadow_hierarchy_tiles.vert.spv" : "sl/shadow_tiles.vert.spv");
+  tileCut_ = tileCut && !hierarchy;
+  gpu::ShaderModule vert(ctx, hierarchy ? "sl/shadow_hierarchy_tiles.vert.spv"
+                                        : (tileCut_ ? "sl/shadow_cut_tiles.vert.spv" : "sl/shadow_tiles.vert.spv"));
   gpu::ShaderModule frag(ctx, hierarchy ? "sl/probe_shadow_hierarchy.frag.spv" : "sl/probe_shadow.frag.spv");
   gpu::GraphicsPipelineDesc d;
   d.vertex = &vert;
@@ -151,7 +153,8 @@ rg::Handle<rg::Texture> ProbeShadowPass::addTo(rg::RenderGraph& graph, const ren
   const auto& data = graph.addPass<Data>(
       "sl.shadow",
       [&](rg::Builder& b, Data& d) {
-        d.g = render::readDeferredInputs(b, bb);
+        // shadow_cut_tiles.vert reads "gbuffer.depth" in the vertex stage (tiles.glsl slCutTile).
+        d.g = render::readDeferredInputs(b, bb, false, depthUsage());
         d.target = b.write(reduced_ ? reducedTarget : bb.get<rg::Texture>("lighting.hdr"), rg::Usage::ColorAttachment);
         if (withAo) d.ao = b.read(bb.get<rg::Texture>("ao.term"), rg::Usage::SampledFragment);
       },
@@ -221,7 +224,7 @@ rg::Handle<rg::Texture> ProbeShadowPass::addFused(rg::RenderGraph& graph, const 
   const auto& data = graph.addPass<Data>(
       "sl",
       [&](rg::Builder& b, Data& d) {
-        d.g = render::readDeferredInputs(b, bb);
+        d.g = render::readDeferredInputs(b, bb, false, depthUsage());
         d.target = reduced_ ? b.write(b.create<rg::Texture>(reducedTargetName(step_),
                                                             rg::TextureDesc{reducedExtent.x, reducedExtent.y, 1, 1, 1,
                                                                             rg::Format::RGBA16F, false}),

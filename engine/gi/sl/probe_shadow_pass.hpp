@@ -42,10 +42,11 @@ class ProbeShadowPass {
   // pass's pipeline (ShadeData::specialization); `step` (resolution.hpp): 1 full resolution, 2 or 4:
   // write ao · ΔE at G-buffer pixel step·j into "sl.half" / "sl.quarter". `blockedAtSphere`
   // ("blocked_light": "sphere", probe_shadow.hpp BlockedLight::Sphere; not with the hierarchy): the
-  // blocked light read from ShadeData's SlIndirect block.
+  // blocked light read from ShadeData's SlIndirect block. `tileCut` (Node's; ignored with the
+  // hierarchy): each tile's list cut by its receivers (shaders/sl/shadow_cut_tiles.vert).
   ProbeShadowPass(gpu::Context& ctx, const render::Pipelines& shared, ProbeLight probes, int order, Blocking blocking,
                   std::uint32_t spheres, float influence, std::uint32_t step, bool hierarchy = false, bool fuse = false,
-                  std::uint32_t terms = 3u, bool blockedAtSphere = false);
+                  std::uint32_t terms = 3u, bool blockedAtSphere = false, bool tileCut = true);
   // Adds the pass when "probes" runs this frame; `shade` and `intensity` as the SL pass binds them.
   // Full resolution: blends into "lighting.hdr" and publishes it; half / quarter: into `reducedTarget`
   // ("sl.half" / "sl.quarter", which the SL pass cleared) and returns its new version. Returns
@@ -67,6 +68,8 @@ class ProbeShadowPass {
                                    glm::uvec2 reducedExtent);
 
  private:
+  // "gbuffer.depth"'s read: the vertex stage too when the tiles are cut (slCutTile reads it there).
+  rg::Usage depthUsage() const { return tileCut_ ? rg::Usage::SampledGraphics : rg::Usage::SampledFragment; }
   // Set 1 of sl.shadow and the fused pass (probe_shadow_frag.glsl's bindings), and their push block.
   VkDescriptorSet writeInputs(const render::PassContext* pc, const rg::PassResources& res, const render::DeferredInputs& g,
                               rg::Handle<rg::Texture> ao, const ShadeData& shade, const gpu::Buffer& intensity,
@@ -82,6 +85,7 @@ class ProbeShadowPass {
   gpu::Pipeline pipeline_;
   gpu::Pipeline fused_, fusedSingle_;  // with `fuse`: sl_shadow.frag, kSingleObject off / on (per-object)
   bool hierarchy_ = false;
+  bool tileCut_ = true;  // `tileCut` without the hierarchy: shadow_cut_tiles.vert reads the depth per tile
   gpu::DescriptorSetLayout ratioInputs_;
   gpu::PipelineLayout ratioLayout_;
   gpu::Pipeline ratioPipeline_;

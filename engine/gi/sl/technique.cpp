@@ -471,7 +471,8 @@ void SessionRuntime::enableGpu(SessionContext& sc) {
                                  participants_.front().component.localLights,
                                  participants_.front().component.hierarchy, participants_.front().component.fused,
                                  std::uint32_t(participants_.front().component.terms),
-                                 participants_.front().component.blockedAtSphere);
+                                 participants_.front().component.blockedAtSphere,
+                                 participants_.front().component.tileCut);
   if (sc.services.relightSlBounce) node_->enableRelightBounce(*sc.services.relightSlBounce);
 }
 

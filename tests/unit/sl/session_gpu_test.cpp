@@ -507,6 +507,46 @@ TEST(SlSession, OneWalkForBothTermsMatchesTheTwoPasses) {
   }
 }
 
+// Pass 2's tile lists cut by each tile's receivers (cut_tiles.vert for "sl", shadow_cut_tiles.vert
+// for "sl.shadow" and for both in one walk; tiles.glsl slCutTile, tile_cut.glsl) drop only SLs that
+// rule 0 culls at every receiver of the tile, so every term is the same float sum and the frame the
+// same bits as with the uncut lists (scene::Sl::tileCut false): the shipped fused pass at full
+// resolution, and "sl" + "sl.shadow" unfused at half (both cut vertex shaders; kStep 2, the reduced
+// target's screen-edge tiles). With the cut's ball halved (a wrong cut) 204 and 70 values differ.
+TEST(SlSession, TileCutByTheReceiversLeavesEveryFrameBitIdentical) {
+  struct Case {
+    const char* name;
+    bool fused;
+    int step;
+  };
+  std::vector<Frame> cutFrames;
+  for (const Case& k : {Case{"fused, full", true, 1}, Case{"sl + sl.shadow, half", false, 2}}) {
+    const auto frame = [&k](bool cut) {
+      scene::Level level =
+          game::loadLevelWithEffects(kCharacters, std::vector<std::string>{"direct", "shadows", "probes", "sl"});
+      for (scene::EntityDesc& e : level.entities)
+        if (e.sl) {
+          e.sl->step = k.step;
+          e.sl->fused = k.fused;
+          e.sl->tileCut = cut;
+        }
+      game::Session s(gpu::testkit::sharedContext(), level);
+      return oneFrame(s);
+    };
+    const Frame cut = frame(true), uncut = frame(false);
+    SCOPED_TRACE(k.name);
+    EXPECT_EQ(cut.passes, uncut.passes);
+    EXPECT_EQ(std::count(cut.passes.begin(), cut.passes.end(), "sl.shadow"), k.fused ? 0 : 1);
+    ASSERT_EQ(cut.rgb.size(), uncut.rgb.size());
+    int unequal = 0;
+    for (std::size_t i = 0; i < cut.rgb.size(); ++i) unequal += cut.rgb[i] != uncut.rgb[i];
+    EXPECT_EQ(unequal, 0);
+    cutFrames.push_back(cut);
+  }
+  // Not vacuous: pass 2's term is in the frame — full and half resolution render other images.
+  EXPECT_NE(cutFrames[0].rgb, cutFrames[1].rgb);
+}
+
 // The shadow on the probes' light never leaves a pixel's indirect light below zero where the probes
 // pass taps its irradiance tiles (on whenever the SH fit its uniform block: probes.frag kTiles). The
 // shadow is computed from the probe SH (E_u) and clamped at ΔE ≥ −E_u, while the probes pass adds
