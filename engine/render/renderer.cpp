@@ -212,7 +212,10 @@ void Renderer::render(const RenderWorld& world, gpu::Presenter& presenter, const
     graph.execute(*backend_, cc);
     presenter.present(*frames_, *display_);
   } catch (...) {
-    backend_->abandonFrame();
+    // Only an unsubmitted frame's barriers are undone: a presenter that throws after
+    // FrameRing::submit (a present error, the capture's waitIdle) leaves them to the GPU, which
+    // runs them, so the tracked layouts are already true.
+    if (frames_->current().recording) backend_->abandonFrame();
     frames_->abandon();
     throw;
   }

@@ -123,12 +123,12 @@ VkBackend::VkBackend(gpu::Context& ctx, std::uint32_t frameSlots) : ctx_(ctx), s
 VkBackend::~VkBackend() = default;
 
 void VkBackend::beginFrame(std::uint32_t slot, gpu::TimestampPool* timestamps) {
+  layout_journal_.clear();  // first: abandonFrame() after a throw below must not replay the last frame
   if (slot >= slots_.size()) throw InternalError("render: frame slot out of range");
   slot_ = slot;
   timestamps_ = timestamps;
   imported_images_.clear();
   imported_buffers_.clear();
-  layout_journal_.clear();
   for (auto& p : slots_[slot_].images) p.inUse = false;
   for (auto& p : slots_[slot_].buffers) p.inUse = false;
 }

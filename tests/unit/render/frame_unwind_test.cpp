@@ -99,4 +99,62 @@ TEST(RenderUnwind, FrameThatThrowsIsDroppedAndTheNextRendersTheSameImage) {
   }
 }
 
+// A presenter that submits the frame (OffscreenPresenter's present) and then throws, as a present
+// error or the capture's waitIdle can: the frame's barriers ran on the GPU, so Renderer::render's
+// catch must keep the layouts they tracked instead of rolling them back.
+class ThrowAfterSubmit final : public gpu::Presenter {
+ public:
+  explicit ThrowAfterSubmit(gpu::OffscreenPresenter& inner) : inner_(inner) {}
+  VkExtent2D extent() const override { return inner_.extent(); }
+  bool present(gpu::FrameRing& frames, gpu::Image& source) override {
+    inner_.present(frames, source);
+    throw std::runtime_error("test: thrown after the frame was submitted");
+  }
+
+ private:
+  gpu::OffscreenPresenter& inner_;
+};
+
+// The first frame of a session starts its targets from UNDEFINED, so a wrong roll-back shows: the
+// tracked layouts would go back to UNDEFINED while the GPU holds the frame's final ones.
+TEST(RenderUnwind, FrameThatThrowsAfterSubmitKeepsItsLayouts) {
+  gpu::Context& ctx = gpu::testkit::sharedContext();
+  const auto level = std::filesystem::path(BOUNCE_SOURCE_DIR) / "tests/data/render/plane-point.json";
+  // The layouts and image of one normal first frame, from a session of its own.
+  VkImageLayout hdrLayout{}, displayLayout{};
+  std::vector<std::uint8_t> reference;
+  {
+    game::Session normal(ctx, scene::loadLevel(level));
+    normal.update(0.0);
+    gpu::OffscreenPresenter presenter(ctx, {kWidth, kHeight});
+    normal.render(presenter, render::FrameSettings{});
+    normal.renderer().frames().waitIdle();
+    hdrLayout = normal.renderer().hdrImage().layout();
+    displayLayout = normal.renderer().displayImage().layout();
+    reference = gpu::readback(ctx, normal.renderer().displayImage());
+  }
+  ASSERT_NE(hdrLayout, VK_IMAGE_LAYOUT_UNDEFINED);
+  ASSERT_NE(displayLayout, VK_IMAGE_LAYOUT_UNDEFINED);
+
+  game::Session session(ctx, scene::loadLevel(level));
+  session.update(0.0);
+  gpu::OffscreenPresenter inner(ctx, {kWidth, kHeight});
+  ThrowAfterSubmit presenter(inner);
+  render::Renderer& renderer = session.renderer();
+  try {
+    session.render(presenter, render::FrameSettings{});
+    FAIL() << "the presenter did not throw";
+  } catch (const std::runtime_error& e) {
+    EXPECT_STREQ(e.what(), "test: thrown after the frame was submitted");
+  }
+  renderer.frames().waitIdle();
+  EXPECT_EQ(renderer.hdrImage().layout(), hdrLayout);
+  EXPECT_EQ(renderer.displayImage().layout(), displayLayout);
+  EXPECT_EQ(gpu::readback(ctx, renderer.displayImage()), reference);  // the submitted frame ran
+  // The next frame, presented normally, renders the same image.
+  session.render(inner, render::FrameSettings{});
+  renderer.frames().waitIdle();
+  EXPECT_EQ(gpu::readback(ctx, renderer.displayImage()), reference);
+}
+
 }  // namespace
