@@ -5,8 +5,9 @@
 // (G-buffer pixels per sample per axis: 1, 2 or 4).
 #ifndef BOUNCE_SL_RECEIVER_GLSL
 #define BOUNCE_SL_RECEIVER_GLSL
+#include "upsample.glsl"  // reducedSamplePixel: the one mapping of a reduced sample to its G-buffer pixel
 bool slReceiver(out ivec2 pixel, out vec3 p, out vec3 n) {
-  pixel = kStep > 1u ? min(int(kStep) * ivec2(gl_FragCoord.xy), ivec2(camera.resolution.xy) - 1) : ivec2(gl_FragCoord.xy);
+  pixel = kStep > 1u ? reducedSamplePixel(ivec2(gl_FragCoord.xy), int(kStep), ivec2(camera.resolution.xy)) : ivec2(gl_FragCoord.xy);
   float depth = texelFetch(gDepth, pixel, 0).r;
   if (depth >= 1.0) return false;
   n = texelFetch(gNormal, pixel, 0).xyz;

@@ -24,6 +24,7 @@ layout(location = 0) flat out uvec4 outCandidates;
 // block of the tile. The includer declares camera (frame.glsl), gDepth, sl_data.glsl (slSphere),
 // kInfluence and kStep (G-buffer pixels per target pixel per axis: the receiver of target pixel j is
 // G-buffer pixel min(kStep·j, size − 1)).
+#include "upsample.glsl"  // reducedSamplePixel: the one mapping of a reduced sample to its G-buffer pixel
 #include "sl/tile_cut.glsl"
 
 // The cut pays only where the tile lists enough SLs. Its cost is fixed per tile: 256 receivers
@@ -49,7 +50,7 @@ uvec4 slCutTile(uvec2 tile, uvec4 mask) {
   uint x = 0u, y = 0u;
   do {
     uvec2 j = first + uvec2(x, y);
-    ivec2 pixel = kStep > 1u ? min(int(kStep) * ivec2(j), gmax) : ivec2(j);
+    ivec2 pixel = kStep > 1u ? reducedSamplePixel(ivec2(j), int(kStep), gmax + 1) : ivec2(j);
     float depth = texelFetch(gDepth, pixel, 0).r;
     if (depth < 1.0 && all(lessThan(j, last))) {
       vec3 p = worldFromDepth(camera.invViewProj, (vec2(pixel) + 0.5) * camera.resolution.zw, depth);
