@@ -161,6 +161,7 @@ void addRatios(DnrtBenchReport& report, const DnrtBenchOptions& options) {
     if (!basic) continue;
     const auto ratio = [&](const char* setting, const std::string& name, double goal, bool withCube) {
       const DnrtBenchRow* v = findRow(report, "variant", level, setting);
+      if (!v && std::ranges::find(options.skipSettings, setting) != options.skipSettings.end()) return;  // left out
       const double num = v ? v->dnrtMs + (withCube ? v->cubeMs : 0.0) : kNaN;
       out.push_back({name + ", " + level, num / basic->dnrtMs, goal});
     };
@@ -233,6 +234,8 @@ DnrtBenchReport runDnrtBench(const DnrtBenchOptions& options) {
       jobs.push_back({"variant", path.stem().string(), v.setting, std::move(configured), entities});
     }
   }
+
+  std::erase_if(jobs, [&](const Job& j) { return std::ranges::find(options.skipSettings, j.setting) != options.skipSettings.end(); });
 
   // 2. One session per job, all on one device and one presenter.
   DnrtBenchReport report;

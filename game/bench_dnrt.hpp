@@ -41,6 +41,9 @@ struct DnrtBenchOptions {
   int frames = 30;                  // measured frames per session
   std::optional<int> raysPerVertex;  // a square; empty: each entity's own "rays"
   std::string device;
+  // Settings (DnrtBenchRow::setting) whose sessions are left out, with their ratios: the test's way
+  // to keep the report's structure checked at fewer sessions (CI time). Empty for the command.
+  std::vector<std::string> skipSettings;
 };
 
 // One measured session. Times are medians in ms; NaN where the pass did not run.

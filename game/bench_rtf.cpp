@@ -26,8 +26,10 @@ double secondsSince(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
+// Parsed as a non-negative integer so that lo = 0 can be given (--byte-components 0 = none in 8 bits,
+// the default); the range check names the option's own bounds.
 int intIn(const cli::Args& args, const char* option, int fallback, int lo, int hi) {
-  const int v = args.positiveInt(option, fallback);
+  const int v = args.nonNegativeInt(option, fallback);
   if (v < lo || v > hi)
     throwInputError("bounce bench rtf", option, std::to_string(v) + " out of range",
                     std::to_string(lo) + ".." + std::to_string(hi));
@@ -45,7 +47,7 @@ int runBenchRtf(const cli::Args& args) {
   s.vertexRaysPerAxis = intIn(args, "--vertex-rays", s.vertexRaysPerAxis, 1, 256);
   s.clusters = intIn(args, "--clusters", s.clusters, 1, 4096);
   s.components = intIn(args, "--components", s.components, 1, 256);
-  if (args.has("--byte-components")) s.byteComponents = intIn(args, "--byte-components", 0, 1, s.components);
+  if (args.has("--byte-components")) s.byteComponents = intIn(args, "--byte-components", 0, 0, s.components);
   if (args.has("--radii")) {  // "INNER,OUTER" in units of η (a level component's inner/outer)
     const std::string v = args.str("--radii");
     const std::size_t comma = v.find(',');
@@ -117,9 +119,9 @@ int runBenchRtf(const cli::Args& args) {
     const double rawMb = double(gi::rtf::sampleCount(s)) * double(gi::rtf::itfDimension(s)) * 4.0 / 1e6;
     const scene::Name* name = objects.registry.tryGet<scene::Name>(e);
     const std::string id = name ? name->id : std::to_string(e.index());
-    std::printf("object=%s proxies=%d clusters=%d components=%d ratio=%.1f frobenius=%.4f bake_s=%.1f bake_cpu_s=%.1f raw_mb=%.1f "
+    std::printf("object=%s proxies=%d clusters=%d components=%d byte_components=%d ratio=%.1f frobenius=%.4f bake_s=%.1f bake_cpu_s=%.1f raw_mb=%.1f "
                 "compressed_mb=%.2f%s\n",
-                id.c_str(), s.proxies, f.itf.clusters, f.itf.components, ratio, f.frobenius, seconds, cpuSeconds, rawMb,
+                id.c_str(), s.proxies, f.itf.clusters, f.itf.components, f.itf.byteComponents, ratio, f.frobenius, seconds, cpuSeconds, rawMb,
                 rawMb / ratio, cached ? " cached=1" : "");
     std::fflush(stdout);
     worlds.push_back(objects.registry.get<scene::WorldTransform>(e).matrix);

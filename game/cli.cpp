@@ -28,9 +28,12 @@ std::string Args::str(const std::string& option, const std::string& fallback) co
   return it == values.end() ? fallback : it->second;
 }
 
-int Args::positiveInt(const std::string& option, int fallback) const {
-  auto it = values.find(option);
-  if (it == values.end()) return fallback;
+namespace {
+// The one integer reader behind positiveInt and nonNegativeInt: the whole value must be a decimal
+// integer in [lo, INT_MAX], else one line naming the command and option.
+int intAtLeast(const Args& a, const std::string& option, int fallback, int lo, const char* expected) {
+  auto it = a.values.find(option);
+  if (it == a.values.end()) return fallback;
   const std::string& v = it->second;
   std::size_t used = 0;
   long long n = 0;
@@ -39,9 +42,18 @@ int Args::positiveInt(const std::string& option, int fallback) const {
   } catch (...) {
     used = 0;
   }
-  if (used != v.size() || v.empty() || n < 1 || n > INT_MAX)
-    fail(command, option, "'" + v + "' is not a valid count", "a positive integer");
+  if (used != v.size() || v.empty() || n < lo || n > INT_MAX)
+    fail(a.command, option, "'" + v + "' is not a valid count", expected);
   return static_cast<int>(n);
+}
+}  // namespace
+
+int Args::positiveInt(const std::string& option, int fallback) const {
+  return intAtLeast(*this, option, fallback, 1, "a positive integer");
+}
+
+int Args::nonNegativeInt(const std::string& option, int fallback) const {
+  return intAtLeast(*this, option, fallback, 0, "a non-negative integer");
 }
 
 std::optional<std::pair<int, int>> Args::resolution(const std::string& option) const {

@@ -34,6 +34,7 @@ class Args {
   std::string str(const std::string& option, const std::string& fallback = {}) const;
   // Typed getters validate and throw InputError naming the command and option.
   int positiveInt(const std::string& option, int fallback) const;
+  int nonNegativeInt(const std::string& option, int fallback) const;  // 0 allowed (e.g. "none")
   // "WxH" with 1 ≤ W, H ≤ 16384.
   std::optional<std::pair<int, int>> resolution(const std::string& option) const;
   // Comma-separated list; empty items are an error.

@@ -80,13 +80,24 @@ int main(int argc, char** argv) {
     const double cpu = cpuSeconds() - c0;
     // RTF_CPCA_BYTE_COMPONENTS=n₈: the last n₈ components stored in 8 bits (cpca.hpp quantize), as
     // `bounce bench rtf --byte-components` (README "CPCA: the tail in 8 bits, session 15").
+    // Checked here, not by quantize (an out-of-range n₈ is an InternalError there): one line, exit 2.
     const char* n8 = std::getenv("RTF_CPCA_BYTE_COMPONENTS");
-    gi::rtf::quantize(c, n8 ? std::atoi(n8) : 0);
+    long byteComponents = 0;
+    if (n8 && *n8) {
+      char* end = nullptr;
+      byteComponents = std::strtol(n8, &end, 10);
+      if (*end != '\0' || byteComponents < 0 || byteComponents > c.components) {
+        std::fprintf(stderr, "rtf_cpca_time: RTF_CPCA_BYTE_COMPONENTS: '%s' is not a component count (expected an integer 0..%d)\n",
+                     n8, c.components);
+        return 2;
+      }
+    }
+    gi::rtf::quantize(c, int(byteComponents));
     const gi::rtf::CpcaError e = gi::rtf::measure(c, X);
     std::printf("power=%d iterations=%d clusters=%d components=%d threads=%s cpca_s=%.1f cpca_cpu_s=%.1f ratio=%.1f frobenius=%.4f", cs.powerIterations, cs.iterations, c.clusters,
                 c.components, argv[6], wall, cpu, e.stored, e.frobenius);
     // RTF_CPCA_SAVE=PREFIX: the (stored: quantize) α and cluster ids to PREFIX.alpha (N·ne floats) and
-    // PREFIX.cluster (N uint32), the basis to PREFIX.basis (n_c·(n_e+1)·D floats): to study α's quantisation offline (README "CPCA: α in 8 bits, session 15").
+    // PREFIX.cluster (N uint32), the basis to PREFIX.basis (n_c·(n_e+1)·D floats): to study α's quantisation offline (README "CPCA: the tail in 8 bits, session 15").
     if (const char* save = std::getenv("RTF_CPCA_SAVE"); save && *save) {
       std::ofstream a(std::string(save) + ".alpha", std::ios::binary), k(std::string(save) + ".cluster", std::ios::binary);
       a.write(reinterpret_cast<const char*>(c.alpha.data()), std::streamsize(c.alpha.size() * sizeof(float)));

@@ -653,11 +653,10 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
         VkSampler point = pc->samplers->get({VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST});
         VkDescriptorSet inputs = pc->frame().descriptors->allocate(upsampleInputs_);
         gpu::DescriptorWriter w;
-        // Linear: a variant of upsample.frag may filter the reduced target in one tap; texelFetch (the
-        // edge-aware blend's) ignores the filter.
-        VkSampler linear = pc->samplers->get({VK_FILTER_LINEAR, VK_SAMPLER_MIPMAP_MODE_NEAREST});
+        // The reduced target is read by texelFetch only (upsample.frag's edge-aware blend), which
+        // ignores the sampler: the point one, as the G-buffer's.
         render::writeDeferredInputs(w, d.g, *pc, res, point)
-            .sampledImage(3, pc->backend->image(res.texture(d.reduced)).view(), linear)
+            .sampledImage(3, pc->backend->image(res.texture(d.reduced)).view(), point)
             .update(ctx_, inputs);
         gpu::Image& target = pc->backend->image(res.texture(d.hdr));
         render::Attachment color{target.view(), res.keepsContents(d.hdr)};

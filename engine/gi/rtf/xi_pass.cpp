@@ -98,6 +98,15 @@ XiPass::XiPass(gpu::Context& ctx, const Field& f)
   nd.depth = std::uint32_t(s.spheres * kNetTexels);
   nd.name = "rtf.net";
   net_ = gpu::Image(ctx, nd);
+  // ξ and X stay in GENERAL for the pass's life (written as storage images, sampled in GENERAL).
+  // The one move out of UNDEFINED happens here, in a one-time submit, not in the first frame's
+  // command buffer: a layout change recorded by a pass is outside the render graph's layout journal,
+  // so a first frame abandoned after recording it would leave the tracked layout at GENERAL while
+  // the GPU still holds UNDEFINED (review 15, item 2).
+  gpu::submitAndWait(ctx, [&](VkCommandBuffer cmd) {
+    gpu::transition(cmd, xi_, VK_IMAGE_LAYOUT_GENERAL);
+    gpu::transition(cmd, net_, VK_IMAGE_LAYOUT_GENERAL);
+  });
   // Read by xi.comp (atomicMax, then the encoding) and by the shading pass as a uniform block.
   range_ = gpu::Buffer(ctx, {kNetTexels * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT |
                                                    VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
@@ -186,8 +195,6 @@ void XiPass::record(VkCommandBuffer cmd) {
                            VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT};  // the atomics read and write
   vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &uploaded, 0, nullptr,
                        0, nullptr);
-  if (xi_.layout() != VK_IMAGE_LAYOUT_GENERAL) gpu::transition(cmd, xi_, VK_IMAGE_LAYOUT_GENERAL);
-  if (net_.layout() != VK_IMAGE_LAYOUT_GENERAL) gpu::transition(cmd, net_, VK_IMAGE_LAYOUT_GENERAL);
   pipeline_.bind(cmd);
   pipeline_.bindSet(cmd, 0, set_);
   Push p = push_;

@@ -22,8 +22,8 @@ class XiPass {
   // The proxies' incident light, m·16 RGB in the object's frame: record() writes it into the
   // command buffer (vkCmdUpdateBuffer), so it takes effect at the next record().
   void setProxyLight(std::span<const glm::vec3> light);
-  // Both dispatches with the barriers they need; ξ ends in GENERAL layout, its writes made
-  // visible to later compute and fragment reads.
+  // Both dispatches with the barriers they need; ξ is in GENERAL layout from construction on (no
+  // layout change is recorded here), its writes made visible to later compute and fragment reads.
   void record(VkCommandBuffer cmd);
   // The shading step's blocked light folded per sample (xi.comp: X_i = Â_l/π ξ_i − Σ_j T'_ij (u − V)_j):
   // T'_ij = blocked[j·9 + i].rgb (update.hpp RtfObjectGpu::blocked), 144 entries; zero until set.
@@ -36,7 +36,7 @@ class XiPass {
   void setBlockedScale(std::span<const glm::vec4> scale);
   // X for i < 9 in 8 bits (xi.comp): RGBA8 UNORM 3D, texel (face·n_r + x, y, k·spheres + sphere) for
   // texel k < kNetTexels in DNRT's Table 2 order; slot k·4 + c holds t = X/(2m) + ½ with m =
-  // netRange()'s slot (float max |X| this frame), so X = m(2t − 1). GENERAL layout after record().
+  // netRange()'s slot (float max |X| this frame), so X = m(2t − 1). GENERAL layout from construction on.
   static constexpr std::uint32_t kNetTexels = 7;
   // The slot (texel k · 4 + component) of channel c's X_i, i < 9 (xi.comp rtfNetSlot).
   static constexpr int netSlot(int c, int i) { return i < 8 ? ((i / 4) * 3 + c) * 4 + i % 4 : 24 + c; }

@@ -39,6 +39,22 @@ TEST(Cli, ParsesValuesFlagsAndPositionals) {
   EXPECT_EQ(a.positiveInt("--absent", 7), 7);
 }
 
+// nonNegativeInt: the same reader with 0 allowed (a count whose default is none, such as bench rtf's
+// --byte-components); below 0 or not a number is one line.
+TEST(Cli, NonNegativeIntTakesZeroAndRejectsBelow) {
+  EXPECT_EQ(run({"l.json", "--frames", "0"}).nonNegativeInt("--frames", 5), 0);
+  EXPECT_EQ(run({"l.json"}).nonNegativeInt("--frames", 5), 5);
+  for (const char* bad : {"-1", "x", "3.5", ""}) {
+    std::string e;
+    try {
+      run({"l.json", "--frames", bad}).nonNegativeInt("--frames", 5);
+    } catch (const InputError& x) {
+      e = x.what();
+    }
+    EXPECT_EQ(e, std::string("bounce profile: --frames: '") + bad + "' is not a valid count (expected a non-negative integer)");
+  }
+}
+
 TEST(Cli, BadInputIsOneLineNamingCommandAndOption) {
   EXPECT_EQ(errorOf({"l.json", "--frames", "0"}),
             "bounce profile: --frames: '0' is not a valid count (expected a positive integer)");

@@ -15,7 +15,7 @@ const std::filesystem::path kOut = std::filesystem::path(BOUNCE_TEST_OUT) / "rtf
 
 TEST(RtfBenchCli, OutOfRangeSettingsAreOneLineAndExit2) {
   for (const auto& [option, value] : {std::pair<std::string, std::string>{"--bounces", "5"}, {"--proxies", "65"},
-                                      {"--spheres", "1"}, {"--components", "0"}, {"--byte-components", "17"}, {"--radii", "4,2"},
+                                      {"--spheres", "1"}, {"--components", "0"}, {"--byte-components", "17"}, {"--byte-components", "-1"}, {"--radii", "4,2"},
                                       {"--radii", "0.5"}, {"--radii", "0,4"}}) {
     const auto r = runBounce({"bench", "rtf", option, value}, kOut / (option.substr(2) + "-" + value));
     EXPECT_EQ(r.code, 2) << option;
@@ -48,7 +48,8 @@ TEST(RtfBenchCli, BadObjectIsOneLineAndExit2) {
 
 // --object takes any entity with a mesh, not only one with a dnrt component: cornell-5's room has
 // neither a dnrt nor an rtf component. Baked at the command's settings (the smallest field there
-// is, < 1 s), which its line reports; then one CPU bounce row for the one object.
+// is, < 1 s), which its line reports; then one CPU bounce row for the one object. --byte-components 0
+// is the default (all fp16) and must be accepted as such; the line reports n₈.
 TEST(RtfBenchCli, ObjectIsAnyEntityWithAMesh) {
   const std::filesystem::path dir = kOut / "object-room";
   std::filesystem::remove_all(dir);
@@ -56,13 +57,13 @@ TEST(RtfBenchCli, ObjectIsAnyEntityWithAMesh) {
   const auto r = bounce::testcli::runShell(
       bounce::testcli::bounceCommand({"bench", "rtf", "--level", "cornell-5", "--no-gpu", "--object", "cornell-box",
                                       "--runs", "1", "--proxies", "1", "--spheres", "2", "--face", "1", "--rays", "1",
-                                      "--vertex-rays", "1", "--clusters", "1", "--components", "1"},
+                                      "--vertex-rays", "1", "--clusters", "1", "--components", "1", "--byte-components", "0"},
                                      "BOUNCE_CACHE=" + bounce::testcli::quote((dir / "cache").string()) + " "),
       dir / "stdout.txt", dir / "stderr.txt");
   ASSERT_EQ(r.code, 0) << r.err;
   const auto out = lines(r.out);
   ASSERT_EQ(out.size(), 2u) << r.out;
-  EXPECT_EQ(out[0].rfind("object=cornell-box proxies=1 clusters=1 components=1 ", 0), 0u) << out[0];
+  EXPECT_EQ(out[0].rfind("object=cornell-box proxies=1 clusters=1 components=1 byte_components=0 ", 0), 0u) << out[0];
   EXPECT_EQ(out[1].rfind("objects=1 bounces=2 ", 0), 0u) << out[1];
 }
 

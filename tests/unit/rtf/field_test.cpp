@@ -111,6 +111,47 @@ TEST(RtfField, ByteTailBadSettingsScalesAndCodesAreRejected) {
   EXPECT_EQ(errorOf(b).find('\n'), std::string::npos) << "one line";
 }
 
+// More of the 8-bit tail's hostile input (review 15, item 6), each one line naming the file: a NaN and
+// an +inf basis-row scale, a finite row scale whose decoded entries overflow (3e38 · a code of ±127),
+// and a file cut inside the basis codes.
+TEST(RtfField, ByteTailNonFiniteScalesOverflowAndCutCodesAreRejected) {
+  const Field& f = bakedBytes();
+  const auto bytes = serialize(f);
+  const std::size_t D = itfDimension(f.settings), nc = std::size_t(f.itf.clusters);
+  const std::size_t ne = std::size_t(f.settings.components), n8 = std::size_t(f.settings.byteComponents);
+  ASSERT_GT(n8, 0u);
+  // Header 12, settings 44, centre + radius 16, proxies, the cluster count; then the halves and codes.
+  const std::size_t codes = 12 + 44 + 16 + 12 * f.proxies.size() + 4 + 2 * nc * (ne - n8 + 1) * D;
+  const std::size_t rowScales = codes + nc * n8 * D;
+  float stored = 0.0f;
+  std::memcpy(&stored, bytes.data() + rowScales, 4);
+  ASSERT_EQ(stored, f.itf.basisScale[0]) << "the first basis-row scale is where this test thinks";
+  for (const float bad : {std::nanf(""), INFINITY}) {
+    auto b = bytes;
+    std::memcpy(b.data() + rowScales, &bad, 4);
+    resign(b);
+    const std::string e = errorOf(b);
+    EXPECT_NE(e.find("obj.field: cpca scales: negative or non-finite scale"), std::string::npos) << e;
+    EXPECT_EQ(e.find('\n'), std::string::npos) << "one line";
+  }
+  {
+    auto b = bytes;
+    const float huge = 3e38f;  // finite, but 3e38 · 127 is not
+    std::memcpy(b.data() + rowScales, &huge, 4);
+    resign(b);
+    const std::string e = errorOf(b);
+    EXPECT_NE(e.find("obj.field: data: non-finite value"), std::string::npos) << e;
+  }
+  for (const std::size_t n : {codes + 1, codes + nc * n8 * D / 2, rowScales - 1}) {
+    const std::vector<std::uint8_t> cut(bytes.begin(), bytes.begin() + std::ptrdiff_t(n));
+    const std::string e = errorOf(cut);
+    EXPECT_NE(e.find("obj.field"), std::string::npos) << n;
+    EXPECT_NE(e.find("cpca basis codes"), std::string::npos) << e;
+    EXPECT_NE(e.find("truncated"), std::string::npos) << e;
+    EXPECT_EQ(e.find('\n'), std::string::npos) << "one line";
+  }
+}
+
 TEST(RtfField, ACpcaNotRoundedToFp16IsNotSaved) {
   Field f = baked();
   f.itf.basis[1] += 1e-4f * std::abs(f.itf.basis[1]) + 1e-7f;  // between two halves

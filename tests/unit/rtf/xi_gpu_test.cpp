@@ -49,6 +49,11 @@ TEST(RtfXiGpu, ComputePassEqualsTheCpuCaches) {
     const std::vector<glm::vec3> scale = xiCache(absField, absL);
 
     XiPass pass(ctx, f);
+    // ξ and X leave UNDEFINED when the pass is built (a one-time submit), not inside a frame, whose
+    // layout changes by passes the render graph's journal does not roll back (review 15, item 2);
+    // record() then changes no layout, which validation checks against the GPU's layout.
+    EXPECT_EQ(pass.xi().layout(), VK_IMAGE_LAYOUT_GENERAL);
+    EXPECT_EQ(pass.net().layout(), VK_IMAGE_LAYOUT_GENERAL);
     pass.setProxyLight(L);
     gpu::submitAndWait(ctx, [&](VkCommandBuffer cmd) { pass.record(cmd); });
     const auto bytes = gpu::readback(ctx, pass.xi());
