@@ -84,6 +84,24 @@ struct TwoBoxes {
   std::vector<NodeObject> objects;
 };
 
+// floor-box.json (a box above a floor, camera straight down) in a session, its meshes loaded for the
+// bake, and the DNRT entity: the setup of the tests that compare the floor with a CPU figure.
+struct FloorBox {
+  FloorBox()
+      : session(ctx, game::loadLevelWithEffects(fs::path(BOUNCE_SOURCE_DIR) / "tests/data/dnrt/floor-box.json",
+                                                std::nullopt)),
+        reg(session.registry()) {
+    session.update(0.0);
+    assets.load(reg, fs::path(BOUNCE_TEST_OUT) / "dnrt" / "cooked");
+    reg.view<scene::Dnrt>().each([&](ecs::Entity e, scene::Dnrt&) { box = e; });
+  }
+  gpu::Context& ctx = gpu::testkit::sharedContext();
+  game::Session session;
+  ecs::Registry& reg;
+  ref::ReferenceAssets assets;
+  ecs::Entity box;
+};
+
 TEST(DnrtGpu, PropDarkensItsSurroundingsAndBrightensNothing) {
   gpu::Context& ctx = gpu::testkit::sharedContext();
   game::Session session(ctx, game::loadLevelWithEffects(fs::path(BOUNCE_SOURCE_DIR) / "content/levels/cornell-1.json",
@@ -165,16 +183,13 @@ TEST(DnrtGpu, PropDarkensItsSurroundingsAndBrightensNothing) {
 // matters), no other light: the HDR image IS L_DNRT. Camera straight down; floor points from the
 // level file (tests/unit/render/analytic.hpp).
 TEST(DnrtGpu, ShaderMatchesCpuEvaluationOnTheFloor) {
-  gpu::Context& ctx = gpu::testkit::sharedContext();
-  const fs::path levelPath = fs::path(BOUNCE_SOURCE_DIR) / "tests/data/dnrt/floor-box.json";
-  game::Session session(ctx, game::loadLevelWithEffects(levelPath, std::nullopt));
-  session.update(0.0);
-  ecs::Registry& reg = session.registry();
-  ref::ReferenceAssets assets;
-  assets.load(reg, fs::path(BOUNCE_TEST_OUT) / "dnrt" / "cooked");
-  ecs::Entity box;
-  reg.view<scene::Dnrt>().each([&](ecs::Entity e, scene::Dnrt&) { box = e; });
-  ASSERT_FALSE(box.isNull());
+  FloorBox f;
+  ASSERT_FALSE(f.box.isNull());
+  gpu::Context& ctx = f.ctx;
+  game::Session& session = f.session;
+  ecs::Registry& reg = f.reg;
+  ref::ReferenceAssets& assets = f.assets;
+  const ecs::Entity box = f.box;
   // The level's 9-SH field (7 slots) and the same box at 4 SH (3 slots): combine.comp's two variants.
   for (const int shCount : {9, 4}) {
     FieldSettings fieldSettings = settingsFrom(reg.get<scene::Dnrt>(box));
@@ -1003,16 +1018,13 @@ DotGraph parseDot(const std::string& dot) {
 //   after the blend: equal for a constant albedo), to fp16 rounding (kUpsampleTol); pixels whose
 //   taps see the box are skipped.
 TEST(DnrtGpu, ReducedResolutionIsTheBilinearUpsampleOfTheFullImageOnAPlane) {
-  gpu::Context& ctx = gpu::testkit::sharedContext();
-  const fs::path levelPath = fs::path(BOUNCE_SOURCE_DIR) / "tests/data/dnrt/floor-box.json";
-  game::Session session(ctx, game::loadLevelWithEffects(levelPath, std::nullopt));
-  session.update(0.0);
-  ecs::Registry& reg = session.registry();
-  ref::ReferenceAssets assets;
-  assets.load(reg, fs::path(BOUNCE_TEST_OUT) / "dnrt" / "cooked");
-  ecs::Entity box;
-  reg.view<scene::Dnrt>().each([&](ecs::Entity e, scene::Dnrt&) { box = e; });
-  ASSERT_FALSE(box.isNull());
+  FloorBox f;
+  ASSERT_FALSE(f.box.isNull());
+  gpu::Context& ctx = f.ctx;
+  game::Session& session = f.session;
+  ecs::Registry& reg = f.reg;
+  ref::ReferenceAssets& assets = f.assets;
+  const ecs::Entity box = f.box;
   FieldSettings fieldSettings = settingsFrom(reg.get<scene::Dnrt>(box));
   fieldSettings.shCount = 4;
   const BakeResult baked = bake(objectScene(reg, box, assets), fieldSettings);
