@@ -1,5 +1,5 @@
 // Fuzz target: bytes → cooked-format reader. Half of the inputs get their checksum fixed up first
-// (chosen by the first byte), so mutations reach the section parsers and validate() instead of
+// (withChecksumFixedUp), so mutations reach the section parsers and validate() instead of
 // stopping at the checksum.
 #include "engine/asset/cook.hpp"
 #include "engine/asset/cooked_format.hpp"
@@ -12,11 +12,7 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   bounce::log::setLevel(bounce::log::Level::Quiet);
-  std::vector<std::uint8_t> bytes(data, data + size);
-  if (size > 8 && (data[size / 2] & 1) == 0) {
-    const std::uint64_t sum = bounce::hashBytes(std::span(bytes.data(), size - 8));
-    std::memcpy(bytes.data() + size - 8, &sum, 8);
-  }
+  const std::vector<std::uint8_t> bytes = withChecksumFixedUp(data, size);
   try {
     const bounce::asset::CookedAsset a = bounce::asset::parseCooked(bytes, "fuzz.bcook");
     // Whatever parses must be consistent enough to write back byte for byte.

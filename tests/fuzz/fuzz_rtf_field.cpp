@@ -16,11 +16,7 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   bounce::log::setLevel(bounce::log::Level::Quiet);
-  std::vector<std::uint8_t> bytes(data, data + size);
-  if (size > 8 && (data[size / 2] & 1) == 0) {
-    const std::uint64_t sum = bounce::hashBytes(std::span(bytes.data(), size - 8));
-    std::memcpy(bytes.data() + size - 8, &sum, 8);
-  }
+  const std::vector<std::uint8_t> bytes = withChecksumFixedUp(data, size);
   try {
     const bounce::gi::rtf::Field f = bounce::gi::rtf::deserialize(bytes, "fuzz.field");
     const std::vector<std::uint8_t> saved = bounce::gi::rtf::serialize(f);
