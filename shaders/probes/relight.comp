@@ -23,11 +23,7 @@
 
 layout(local_size_x = 64) in;
 
-struct Surfel {
-  vec4 position;  // xyz world (m)
-  vec4 normal;    // xyz unit
-  vec4 albedo;    // rgb
-};
+#include "probes/surfel.glsl"
 
 layout(std430, binding = 0) readonly buffer Surfels { Surfel surfels[]; };
 layout(std430, binding = 1) readonly buffer Rays { vec4 rays[]; };           // probe·R + k: xyz dir, w surfel bits

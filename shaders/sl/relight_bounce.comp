@@ -22,11 +22,7 @@ layout(constant_id = 3) const float kInfluence = 0.0;
 #include "sl/sl_data.glsl"
 #include "sl/sl.glsl"
 
-struct Surfel {
-  vec4 position;  // xyz world (m)
-  vec4 normal;    // xyz unit
-  vec4 albedo;    // rgb
-};
+#include "probes/surfel.glsl"
 layout(std430, binding = 3) readonly buffer Surfels { Surfel surfels[]; };
 layout(std430, binding = 4) writeonly buffer SlBounce { vec4 slBounce[]; };  // E_SL rgb (W/m²)
 
