@@ -8,7 +8,7 @@
 #include "engine/core/error.hpp"
 #include "engine/core/paths.hpp"
 #include "engine/core/progress.hpp"
-#include "engine/gi/sl/resolution.hpp"
+#include "engine/gi/resolution.hpp"
 #include "engine/gi/sl/sphere_set.hpp"
 #include "engine/gi/sl/technique.hpp"
 #include "engine/gpu/presenter_offscreen.hpp"
@@ -59,9 +59,9 @@ int runBenchSl(const cli::Args& args) {
     influence = float(f);
   }
 
-  std::vector<int> steps;  // pass 2's G-buffer pixels per sample per axis (engine/gi/sl/resolution.hpp)
+  std::vector<int> steps;  // pass 2's G-buffer pixels per sample per axis (engine/gi/resolution.hpp)
   for (const std::string& r : args.list("--sl-resolution").value_or(std::vector<std::string>{"full"})) {
-    const std::optional<std::uint32_t> step = gi::sl::parseResolution(r);
+    const std::optional<std::uint32_t> step = gi::parseResolution(r);
     if (!step)
       throwInputError("bounce bench", "--sl-resolution", "'" + r + "' is not a resolution",
                       "full, half, quarter or a list: full,half,quarter");
@@ -107,7 +107,7 @@ int runBenchSl(const cli::Args& args) {
         if (e.sl) f = e.sl->influence;
       std::printf("spheres=%d blocking=%s %dx%d sl_ms=%.3f sl_update_ms=%.3f frames=%zu influence=%g resolution=%s%s\n", n,
                   perObject ? "per-object" : "per-sphere", res.first, res.second, slMs, updateMs, timed, double(f),
-                  gi::sl::resolutionName(std::uint32_t(step)), fused ? " fused" : "");
+                  gi::resolutionName(std::uint32_t(step)), fused ? " fused" : "");
       std::fflush(stdout);
     }
   return 0;

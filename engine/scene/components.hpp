@@ -193,7 +193,7 @@ struct Sl {
   // from F/2); 0 = every SL at every pixel. Run time only (pass 2), the bake is the same.
   float influence = 12.0f;
   // "resolution": "full" (1, the default), "half" (2) or "quarter" (4): pass 2 shades one pixel in
-  // step × step and an edge-aware upsample fills the rest (engine/gi/sl/resolution.hpp). Run time only.
+  // step × step and an edge-aware upsample fills the rest (engine/gi/resolution.hpp). Run time only.
   int step = 1;
   // "local_lights": the level's point and spot lights become SLs of their own radius (Light::radius)
   // in pass 2 (§7.3): this object's shadow on them is the SLs' SH-exponentiated visibility of the

@@ -7,7 +7,7 @@
 #include <unordered_map>
 
 #include "engine/core/error.hpp"
-#include "engine/gi/sl/resolution.hpp"  // header only: the "sl" and "dnrt" "resolution" names, one table
+#include "engine/gi/resolution.hpp"  // header only: the "sl" and "dnrt" "resolution" names, one table
 #include "engine/scene/json_reader.hpp"
 #include "engine/scene/motion.hpp"
 #include "engine/scene/systems.hpp"
@@ -216,8 +216,8 @@ void parseSl(const json::Node& node, EntityDesc& d, const ParseContext&) {
   }
   if (auto v = o.optional("resolution")) {
     const std::string m = v->string();
-    const std::optional<std::uint32_t> step = gi::sl::parseResolution(m);
-    if (!step) v->fail("unknown resolution " + json::inQuotes(m), gi::sl::kResolutionNames);
+    const std::optional<std::uint32_t> step = gi::parseResolution(m);
+    if (!step) v->fail("unknown resolution " + json::inQuotes(m), gi::kResolutionNames);
     c.step = int(*step);
   }
   if (auto v = o.optional("local_lights")) c.localLights = v->boolean();
@@ -500,13 +500,13 @@ Level levelFromJson(const nlohmann::json& doc, const std::filesystem::path& path
   }
 
   // "dnrt": {"resolution": "full"|"half"|"quarter"} — the DNRT draw's resolution for every object (the
-  // same names and steps as SL pass 2's, gi/sl/resolution.hpp; default full).
+  // same names and steps as SL pass 2's, gi/resolution.hpp; default full).
   if (auto p = o.optional("dnrt")) {
     const auto dobj = p->object({"resolution"});
     if (auto v = dobj.optional("resolution")) {
       const std::string m = v->string();
-      const std::optional<std::uint32_t> step = gi::sl::parseResolution(m);
-      if (!step) v->fail("unknown resolution " + json::inQuotes(m), gi::sl::kResolutionNames);
+      const std::optional<std::uint32_t> step = gi::parseResolution(m);
+      if (!step) v->fail("unknown resolution " + json::inQuotes(m), gi::kResolutionNames);
       level.dnrt.step = *step;
     }
   }

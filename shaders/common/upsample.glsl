@@ -4,7 +4,7 @@
 // (shaders/dnrt/upsample.frag); C++ reference engine/gi/upsample.hpp (gi::upsampleTaps,
 // gi::upsampleBlend), the same operations in the same order.
 // A joint bilateral upsample: the reduced target ("sl.half" / "sl.quarter", "dnrt.half" / "dnrt.quarter") holds E at G-buffer pixel
-// step·j (engine/gi/sl/resolution.hpp); a full-resolution pixel blends its up to 4 nearest samples with
+// step·j (engine/gi/resolution.hpp); a full-resolution pixel blends its up to 4 nearest samples with
 // bilinear weights times how well each sample's receiver matches its own — the distance of the sample's
 // point from this pixel's tangent plane relative to the distance from the eye (Gaussian, e^-1 at
 // kUpPlaneScale) and the normals' agreement (max(0, n·n_j)^kUpNormalPower) — so light does not
@@ -21,10 +21,10 @@ const float kUpMinWeight = 1e-4;   // below: the best-matching sample alone
 // pixel / step (integer), clamped to the reduced size; the G-buffer pixel q = min(step·j, full − 1)
 // each holds; f = (pixel − step·j0) / step, the bilinear fractions — exact: step is a power of two
 // and the division an ldexp (a float division may round on llvmpipe, which multiplies by a reciprocal).
-// Only right for powers of two: the C++ side admits steps 1, 2 and 4 alone (sl::checkedStep,
-// engine/gi/sl/resolution.hpp, where every step enters: the level, `bounce bench`, the passes).
+// Only right for powers of two: the C++ side admits steps 1, 2 and 4 alone (gi::checkedStep,
+// engine/gi/resolution.hpp, where every step enters: the level, `bounce bench`, the passes).
 // The G-buffer pixel that reduced sample j stands for: step·j, clamped to the image (the reduced size
-// is ⌈full/step⌉, engine/gi/sl/resolution.hpp reducedSize). The passes that shade a reduced target
+// is ⌈full/step⌉, engine/gi/resolution.hpp reducedSize). The passes that shade a reduced target
 // (DNRT's dnrt.frag / clustered.frag with kStep) and upsampleTaps share this one mapping.
 ivec2 reducedSamplePixel(ivec2 j, int step, ivec2 full) { return min(step * j, full - 1); }
 

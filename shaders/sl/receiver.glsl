@@ -1,5 +1,5 @@
 // The receiver of SL pass 2's fragment shaders (sl, sl.shadow, and both in one walk): this pixel, or at
-// half or quarter resolution the G-buffer pixel kStep·j it stands for (engine/gi/sl/resolution.hpp),
+// half or quarter resolution the G-buffer pixel kStep·j it stands for (engine/gi/resolution.hpp),
 // its world position p and normal n. False on the background (depth 1), where the pass writes 0. The
 // includer declares camera (frame.glsl), gDepth, gNormal and the specialization constant kStep
 // (G-buffer pixels per sample per axis: 1, 2 or 4).

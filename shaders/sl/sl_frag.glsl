@@ -6,7 +6,7 @@
 // visits only its tile's SLs, those whose influence bound covers the tile. Order, blocking, the
 // per-receiver array size and the resolution are specialization constants
 // (engine/gi/sl/shade.hpp ShadeData::specialization, kStep: engine/gi/sl/node.cpp).
-// Half or quarter resolution (kStep 2 or 4, engine/gi/sl/resolution.hpp): pixel j of the reduced
+// Half or quarter resolution (kStep 2 or 4, engine/gi/resolution.hpp): pixel j of the reduced
 // target shades the G-buffer's pixel kStep·j and writes E itself (W/m², no albedo) into "sl.half" /
 // "sl.quarter"; shaders/sl/upsample.frag spreads it over the full resolution with depth and normal
 // weights and applies each full pixel's own albedo.

@@ -9,7 +9,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "engine/core/error.hpp"
-#include "engine/gi/sl/resolution.hpp"  // header only: the resolution steps and the reduced size
+#include "engine/gi/resolution.hpp"  // header only: the resolution steps and the reduced size
 #include "engine/gpu/commands.hpp"
 #include "engine/render/mesh_gpu.hpp"
 #include "engine/render/passes/rendering.hpp"
@@ -62,7 +62,7 @@ struct CubePush {
 };
 
 // Pipeline-array index of a resolution step (NodeSettings::step): 1, 2, 4 → 0, 1, 2.
-std::size_t stepIndex(std::uint32_t step) { return sl::checkedStep(step) == 4u ? 2u : step == 2u ? 1u : 0u; }
+std::size_t stepIndex(std::uint32_t step) { return gi::checkedStep(step) == 4u ? 2u : step == 2u ? 1u : 0u; }
 
 // Face frames as intrusion.glsl: forward and up hint.
 constexpr float kFaces[6][6] = {{1, 0, 0, 0, -1, 0}, {-1, 0, 0, 0, -1, 0}, {0, 1, 0, 0, 0, 1},
@@ -467,17 +467,17 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
   const bool cullsTiles = !cluster.empty() && settings.tileCull;
   // Full resolution: the draws add to "lighting.hdr". Half, quarter: they add into the transient
   // "dnrt.half" / "dnrt.quarter" (⌈size/step⌉, cleared) and "dnrt.upsample" below adds it to "lighting.hdr".
-  const std::uint32_t step = sl::checkedStep(settings.step);
+  const std::uint32_t step = gi::checkedStep(settings.step);
   const bool reduced = step > 1u;
   const glm::uvec2 fullSize(std::uint32_t(pc->world->camera.resolution.x), std::uint32_t(pc->world->camera.resolution.y));
-  const glm::uvec2 reducedExtent = sl::reducedSize(fullSize, step);
+  const glm::uvec2 reducedExtent = gi::reducedSize(fullSize, step);
   // The depth's layout in the pass: read-only attachment and sampled at full resolution; sampled only below.
   const VkImageLayout depthLayout = reduced ? VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL : kDepthReadOnly;
   const auto& data = graph.addPass<Data>(
       "dnrt",
       [&](rg::Builder& b, Data& d) {
         d.g = render::readDeferredInputs(b, bb, /*withEntity=*/true);
-        d.hdr = reduced ? b.write(b.create<rg::Texture>(std::string("dnrt.") + sl::resolutionName(step),
+        d.hdr = reduced ? b.write(b.create<rg::Texture>(std::string("dnrt.") + gi::resolutionName(step),
                                                         rg::TextureDesc{reducedExtent.x, reducedExtent.y, 1, 1, 1,
                                                                         rg::Format::RGBA16F, false}),
                                   rg::Usage::ColorAttachment)

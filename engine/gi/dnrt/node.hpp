@@ -84,7 +84,7 @@ struct NodeSettings {
   // path of larger ids (same image; tests compare them).
   bool selfInNormal = true;
   // G-buffer pixels per shaded sample along each axis: 1 (full), 2 (half), 4 (quarter) — the level's
-  // "dnrt": {"resolution"} (scene::DnrtConfig; names and checks gi/sl/resolution.hpp). Below full, the
+  // "dnrt": {"resolution"} (scene::DnrtConfig; names and checks gi/resolution.hpp). Below full, the
   // box, full-screen and clustered draws shade the transient "dnrt.half" / "dnrt.quarter"
   // (⌈size/step⌉, cleared to 0, no depth attachment) at G-buffer pixel step·j, without ρ_r, and the pass
   // "dnrt.upsample" (shaders/dnrt/upsample.frag) adds ρ_r times its depth- and normal-aware upsample

@@ -15,7 +15,7 @@
 #include "engine/gi/participants.hpp"
 #include "engine/gi/incident/session_light.hpp"
 #include "engine/gi/probes/bake.hpp"
-#include "engine/gi/sl/resolution.hpp"  // header only: the resolution names
+#include "engine/gi/resolution.hpp"  // header only: the resolution names
 
 namespace bounce::gi::dnrt {
 namespace {
@@ -215,7 +215,7 @@ class DnrtTechnique final : public Technique {
     for (const std::uint32_t step : {2u, 4u}) {
       AccuracyRow r;
       r.technique = "dnrt";
-      r.setting = std::string("resolution=") + sl::resolutionName(step) +
+      r.setting = std::string("resolution=") + gi::resolutionName(step) +
                   ";sh=4;grid=32;intrusion=off;anti_radiance=paper;ref=all";
       r.effects = {"direct", "shadows", "probes", "dnrt"};
       r.passes = {"shadow", "lighting", "probes", "dnrt.combine", "dnrt", "dnrt.upsample"};

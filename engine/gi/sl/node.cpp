@@ -5,6 +5,7 @@
 #include <tuple>
 
 #include "engine/core/error.hpp"
+#include "engine/gi/sl/resolution.hpp"
 #include "engine/gi/sl/tiles.hpp"
 #include "engine/gi/sl/probe_shadow.hpp"
 #include "engine/gi/probes/relight_pass.hpp"

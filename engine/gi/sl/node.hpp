@@ -34,7 +34,7 @@
 #include "engine/gi/sl/intensity.hpp"
 #include "engine/gi/sl/local_light_pass.hpp"
 #include "engine/gi/sl/probe_shadow_pass.hpp"
-#include "engine/gi/sl/resolution.hpp"
+#include "engine/gi/resolution.hpp"
 #include "engine/gi/sl/shade.hpp"
 #include "engine/render/graph/render_graph.hpp"
 #include "engine/render/pass_context.hpp"

@@ -4,6 +4,7 @@
 
 #include "engine/core/error.hpp"
 #include "engine/gi/probes/node.hpp"
+#include "engine/gi/sl/resolution.hpp"
 #include "engine/gi/sl/tiles.hpp"
 #include "engine/render/passes/rendering.hpp"
 #include "engine/render/passes/gbuffer_pass.hpp"

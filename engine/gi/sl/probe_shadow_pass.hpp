@@ -11,7 +11,7 @@
 // It binds the probes node's device images of the volume (gi::Services::probeSh / probeMoments:
 // the layout probes/probe_sh.glsl reads); before, it uploaded a copy of its own.
 #include "engine/gi/probes/probe_volume.hpp"
-#include "engine/gi/sl/resolution.hpp"
+#include "engine/gi/resolution.hpp"
 #include "engine/gi/sl/shade.hpp"
 #include "engine/gpu/image.hpp"
 #include "engine/render/graph/render_graph.hpp"

@@ -13,7 +13,7 @@
 #include "engine/gi/participants.hpp"
 #include "engine/gi/dnrt/object_scene.hpp"
 #include "engine/gi/incident/session_light.hpp"
-#include "engine/gi/sl/resolution.hpp"
+#include "engine/gi/resolution.hpp"
 #include "engine/scene/components.hpp"
 
 namespace bounce::gi::sl {

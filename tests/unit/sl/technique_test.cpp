@@ -47,11 +47,11 @@ TEST(SlComponent, ParsesWithDefaults) {
   ASSERT_EQ(level.entities.size(), 2u);
   EXPECT_EQ(level.entities[0].sl, (scene::Sl{32, 3, true, 0.0f, 2}));
   EXPECT_EQ(level.entities[1].sl, (scene::Sl{16, 4, false, 12.0f, 1}));
-  // "quarter": one pass-2 sample per 4 × 4 G-buffer pixels (engine/gi/sl/resolution.hpp).
+  // "quarter": one pass-2 sample per 4 × 4 G-buffer pixels (engine/gi/resolution.hpp).
   const scene::Level quarter = scene::loadLevel(
       writeLevel("sl-quarter", R"({"id": "a", "dynamic": true, )" + mesh() + R"(, "sl": {"resolution": "quarter"}})"));
   EXPECT_EQ(quarter.entities[0].sl->step, 4);
-  EXPECT_EQ(gi::sl::resolutionStep(gi::sl::resolutionFromStep(std::uint32_t(quarter.entities[0].sl->step))), 4u);
+  EXPECT_EQ(gi::resolutionStep(gi::resolutionFromStep(std::uint32_t(quarter.entities[0].sl->step))), 4u);
   EXPECT_FALSE(level.entities[0].sl->localLights);
   EXPECT_FALSE(level.entities[0].sl->blockedAtSphere);  // "blocked_light": "receiver" unless asked
   EXPECT_TRUE(scene::loadLevel(writeLevel("sl-sphere", R"({"id": "a", "dynamic": true, )" + mesh() +
@@ -62,7 +62,7 @@ TEST(SlComponent, ParsesWithDefaults) {
   EXPECT_EQ(settingsFrom(*level.entities[0].sl).order, 3);
 }
 
-// One table of pass 2's steps (engine/gi/sl/resolution.hpp): names and steps round-trip, every other
+// One table of pass 2's steps (engine/gi/resolution.hpp): names and steps round-trip, every other
 // step is refused (the upsample's ldexp fraction is exact only for powers of two, and 3 must not
 // silently become full resolution), and the level, `bounce bench` and the accuracy rows read it.
 TEST(SlResolution, OneNameForEachOfTheStepsOneTwoFour) {

@@ -11,7 +11,7 @@
 #include <random>
 #include <vector>
 
-#include "engine/gi/sl/resolution.hpp"
+#include "engine/gi/resolution.hpp"
 #include "engine/gi/upsample.hpp"
 #include "engine/gpu/testing.hpp"
 #include "tests/support/compute_selftest.hpp"
@@ -92,7 +92,7 @@ TEST(SlUpsampleGpu, TapsOfEveryPixelMatchTheReference) {
   std::vector<Case> cases;
   for (const int step : {2, 4})
     for (const glm::ivec2 full : {glm::ivec2(37, 23), glm::ivec2(64, 48)}) {
-      const glm::ivec2 reduced = glm::ivec2(sl::reducedSize(glm::uvec2(full), std::uint32_t(step)));
+      const glm::ivec2 reduced = glm::ivec2(gi::reducedSize(glm::uvec2(full), std::uint32_t(step)));
       for (int y = 0; y < full.y; ++y)
         for (int x = 0; x < full.x; ++x) {
           Case c;
