@@ -31,7 +31,11 @@ replaced by the best scaling.
 the level's with " (black)" added, so its static reference is rendered again under its own key: the
 tool checks the two static references are equal.)
 
-usage: tools/sl_bounce_split.py FULL BLACK [--influence 6|12] [--level content/levels/characters.json]
+  tools/sl_bounce_split.py FULL BLACK --influence 0 --sl-bounce on
+(uncut, session 16: FULL from `--rows sl`, whose rows "influence=0;terms=…;sl_bounce=off|on" hold the
+uncut parts; README "SL's bounce on the characters, session 16")
+
+usage: tools/sl_bounce_split.py FULL BLACK [--influence 6|12|0] [--sl-bounce off|on] [--level content/levels/characters.json]
        tools/sl_bounce_split.py --write-black LEVEL COPY
 """
 import json
@@ -90,9 +94,9 @@ def main():
     mask = pfm(f"{F}/mask-indirect-only.pfm")[:, :, 0] > 0.5
     if (mask != (pfm(f"{B}/mask-indirect-only.pfm")[:, :, 0] > 0.5)).any():
         sys.exit("sl_bounce_split.py: the two folders' indirect-only masks differ (expected the same characters)")
-    both, relight, sl_b, sl_s = sl_parts(F, a.influence)
+    both, relight, sl_b, sl_s = sl_parts(F, a.influence, a.sl_bounce)
     groups = pixel_groups(json.load(open(a.level)), mask)
-    print(f"{F} + {B}, influence {a.influence}")
+    print(f"{F} + {B}, influence {a.influence}, sl_bounce {a.sl_bounce}")
     for label, m in groups:
         if m.sum() < 16:
             continue

@@ -22,7 +22,7 @@ level camera; the characters are vertical segments at their t = 0 orbit position
 character is nearest (only for a level whose room is the "room-floor" … entities, characters.json;
 other levels get the indirect-only line alone).
 
-usage: tools/sl_parts.py DIR [--influence 12|6] [--level content/levels/characters.json]
+usage: tools/sl_parts.py DIR [--influence 12|6|0] [--sl-bounce off|on] [--level content/levels/characters.json]
 """
 import argparse
 import json
@@ -127,14 +127,26 @@ def arguments(*folders):
     ap = argparse.ArgumentParser()
     for name in folders:
         ap.add_argument(name)
-    ap.add_argument("--influence", default="6", choices=["12", "6"])  # the decomposition rows' cuts
+    ap.add_argument("--influence", default="6", choices=["12", "6", "0"])  # the decomposition rows' cuts (0: uncut)
+    # uncut only: the bounce part with the relit probes carrying SL's bounce ("probes": {"sl_bounce": true})
+    ap.add_argument("--sl-bounce", default="off", choices=["off", "on"])
     ap.add_argument("--level", default="content/levels/characters.json")
     return ap.parse_args()
 
 
-def sl_parts(d, influence):
-    """SL's row with both terms and its parts (module docstring): both, relight, bounce, shadow."""
+def sl_parts(d, influence, sl_bounce="off"):
+    """SL's row with both terms and its parts (module docstring): both, relight, bounce, shadow. Uncut
+    (influence "0") from the rows "influence=0;[terms=…;]sl_bounce=off|on" (engine/gi/sl/technique.cpp):
+    only the bounce part changes with sl_bounce (the relit probes then carry it on)."""
     base = f"sl-spheres-level-order-4-influence-{influence}"
+    if influence == "0":
+        both = effect(d, f"{base}-sl_bounce-{sl_bounce}-ref-all")
+        relight = effect(d, f"{base}-terms-none-sl_bounce-off-ref-all")
+        bounce = effect(d, f"{base}-terms-bounce-sl_bounce-{sl_bounce}-ref-all") - relight
+        shadow = effect(d, f"{base}-terms-shadow-sl_bounce-off-ref-all") - relight
+        return both, relight, bounce, shadow
+    if sl_bounce != "off":
+        sys.exit("sl_parts.py: --sl-bounce on needs --influence 0 (the only rows with it)")
     both = effect(d, f"{base}-hierarchy-off-ref-all")
     relight = effect(d, f"{base}-terms-none-ref-all")
     bounce = effect(d, f"{base}-terms-bounce-ref-all") - relight
@@ -165,7 +177,7 @@ def main():
     r = pfm(f"{d}/reference-all-with.pfm") - pfm(f"{d}/reference-all-without.pfm")
     n = r - (pfm(f"{d}/reference-all-half-with.pfm") - pfm(f"{d}/reference-all-half-without.pfm"))
     mask = pfm(f"{d}/mask-indirect-only.pfm")[:, :, 0] > 0.5
-    both, relight, bounce, shadow = sl_parts(d, f)
+    both, relight, bounce, shadow = sl_parts(d, f, a.sl_bounce)
     mask3 = np.repeat(mask[:, :, None], 3, 2)
     print(f"{d}, influence {f}: parts of the row with both terms; sum − both: max "
           f"{np.abs(relight + bounce + shadow - both)[mask3].max():.2e}")

@@ -332,6 +332,35 @@ class SlTechnique final : public Technique {
         };
         rows.push_back(std::move(r));
       }
+    // The same parts uncut (influence 0), and the bounce part once more with "sl_bounce" (README "SL's
+    // bounce on the characters, session 16"): tools/sl_bounce_split.py --influence 0 [--sl-bounce on]
+    // splits the rows "influence=0;sl_bounce=off|on" above into relight, bounce and shadow against the
+    // black-character reference's parts. Only a row with the bounce bit runs sl.relight_bounce
+    // (Node::addTo), so "terms=none" and "terms=shadow" are the same images with it on: not repeated.
+    // All four carry "sl_bounce=" so AccuracyRun leaves them out (uncut pass 2's cost in CI).
+    for (const auto& [name, terms, slBounce] : {std::tuple{"none", 0, false}, {"bounce", 1, false}, {"shadow", 2, false},
+                                                 {"bounce", 1, true}}) {
+      AccuracyRow r;
+      r.technique = "sl";
+      r.setting = std::string("spheres=level;order=4;influence=0;terms=") + name + ";sl_bounce=" + (slBounce ? "on" : "off") +
+                  ";ref=all";
+      r.effects = {"direct", "shadows", "probes", "sl"};
+      r.passes = {"shadow", "lighting", "probes", "sl.intensity", "sl"};
+      r.optionalPasses = {"sl.shadow", "sl.relight_bounce"};
+      r.configure = [=, terms = terms, slBounce = slBounce](scene::Level& level) {
+        level.probes.slBounce = slBounce;
+        for (auto& e : level.entities)
+          if (e.sl) {
+            e.sl->order = 4;
+            e.sl->influence = 0.0f;
+            e.sl->hierarchy = false;
+            e.sl->fused = true;
+            e.sl->localLights = false;
+            e.sl->terms = terms;
+          }
+      };
+      rows.push_back(std::move(r));
+    }
   }
   // "sl.shadow" runs only beside "probes" (its light is what it shadows), as its own pass only with the
   // hierarchy or "fused": false (else "sl" holds it: README "SL: one walk for sl and sl.shadow").

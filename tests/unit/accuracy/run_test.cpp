@@ -51,8 +51,9 @@ std::vector<AccuracyRow> testRows() {
   // DNRT at reduced resolution: half runs (the draw, dnrt.upsample and the row's pass list end to
   // end); quarter is the same code path with another step, left out to keep the run short.
   std::erase_if(rows, [](const AccuracyRow& r) { return r.setting.starts_with("resolution=quarter;"); });
-  // SL uncut with and without sl_bounce: pass 2 over every receiver costs 1.4–2.3× the cut one; the
-  // bounce pass itself is covered by SlRelightBounceGpu.*, so the run leaves the two rows out (CI time).
+  // SL uncut with and without sl_bounce, and its uncut parts (terms=…;sl_bounce=…): pass 2 over every
+  // receiver costs 1.4–2.3× the cut one; the bounce pass itself is covered by SlRelightBounceGpu.*, so
+  // the run leaves those six rows out (CI time).
   std::erase_if(rows, [](const AccuracyRow& r) { return r.setting.find("sl_bounce=") != std::string::npos; });
   return rows;
 }
