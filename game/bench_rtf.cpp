@@ -174,6 +174,7 @@ int runBenchRtf(const cli::Args& args) {
       scene::Rtf c;
       c.proxies = s.proxies, c.bounces = bounces, c.spheres = s.spheres, c.face = s.faceSize, c.rays = s.raysPerAxis;
       c.vertexRays = s.vertexRaysPerAxis, c.clusters = s.clusters, c.components = s.components;
+      c.byteComponents = s.byteComponents;  // else the GPU rows would bake (and time) a field without the 8-bit tail
       c.inner = s.innerRadius, c.outer = s.outerRadius;
       e.rtf = c;
     }

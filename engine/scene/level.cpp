@@ -234,11 +234,12 @@ void parseSl(const json::Node& node, EntityDesc& d, const ParseContext&) {
 }
 
 // "rtf": {"proxies": 1..64, "bounces": 1..4, "spheres": 2..64, "face": 1..64, "rays": 1..256,
-//         "vertex_rays": 1..256, "clusters": 1..4096, "components": 0..256, "inner": η, "outer": η,
-//         "sh": 4|9, "tail": [0, 1)} — every key optional (defaults in components.hpp Rtf); 0 < inner < outer ≤ 100.
+//         "vertex_rays": 1..256, "clusters": 1..4096, "components": 0..256, "byte_components": 0..components,
+//         "inner": η, "outer": η, "sh": 4|9, "tail": [0, 1)} — every key optional (defaults in components.hpp
+//         Rtf); 0 < inner < outer ≤ 100.
 void parseRtf(const json::Node& node, EntityDesc& d, const ParseContext&) {
   const auto o = node.object({"proxies", "bounces", "spheres", "face", "rays", "vertex_rays", "clusters", "components",
-                              "inner", "outer", "sh", "tail"});
+                              "byte_components", "inner", "outer", "sh", "tail"});
   Rtf c;
   if (auto v = o.optional("proxies")) c.proxies = int(v->integer(1, 64));
   if (auto v = o.optional("bounces")) c.bounces = int(v->integer(1, 4));
@@ -248,6 +249,12 @@ void parseRtf(const json::Node& node, EntityDesc& d, const ParseContext&) {
   if (auto v = o.optional("vertex_rays")) c.vertexRays = int(v->integer(1, 256));
   if (auto v = o.optional("clusters")) c.clusters = int(v->integer(1, 4096));
   if (auto v = o.optional("components")) c.components = int(v->integer(0, 256));
+  if (auto v = o.optional("byte_components")) {
+    c.byteComponents = int(v->integer(0, 256));
+    if (c.byteComponents > c.components)
+      v->fail(std::to_string(c.byteComponents) + " is above components " + std::to_string(c.components),
+              "an integer in [0, components]: the 8-bit tail is part of the components");
+  }
   if (auto v = o.optional("inner")) c.inner = v->real(json::Range::openClosed(0.0, 100.0));
   if (auto v = o.optional("outer")) c.outer = v->real(json::Range::openClosed(0.0, 100.0));
   if (auto v = o.optional("sh")) {

@@ -26,7 +26,9 @@ std::string describe(const std::string& name, const FieldSettings& s) {
   char text[256];
   std::snprintf(text, sizeof text, "rtf     %s: %d proxies, %d spheres x 6x%dx%d, %d x %d CPCA", name.c_str(), s.proxies,
                 s.spheres, s.faceSize, s.faceSize, s.clusters, s.components);
-  return text;
+  std::string line = text;
+  if (s.byteComponents > 0) line += " (last " + std::to_string(s.byteComponents) + " in 8 bits)";
+  return line;
 }
 
 std::string nameOf(ecs::Registry& registry, ecs::Entity e) {
@@ -166,6 +168,7 @@ FieldSettings settingsFrom(const scene::Rtf& c) {
   s.vertexRaysPerAxis = c.vertexRays;
   s.clusters = c.clusters;
   s.components = c.components;
+  s.byteComponents = c.byteComponents;
   s.innerRadius = c.inner;
   s.outerRadius = c.outer;
   checkSettings(s);

@@ -48,7 +48,7 @@ TEST(RtfComponent, ParsesWithDefaults) {
                                                  {"id": "b", "dynamic": true, )" + mesh() + R"(, "rtf": {}})");
   const scene::Level level = scene::loadLevel(path);
   ASSERT_EQ(level.entities.size(), 2u);
-  EXPECT_EQ(level.entities[0].rtf, (scene::Rtf{12, 3, 6, 4, 16, 6, 5, 0, 0.25f, 6.0f, 4, 0.02f}));
+  EXPECT_EQ(level.entities[0].rtf, (scene::Rtf{12, 3, 6, 4, 16, 6, 5, 0, 0, 0.25f, 6.0f, 4, 0.02f}));
   EXPECT_EQ(level.entities[1].rtf, scene::Rtf{});
   EXPECT_EQ(level.entities[1].rtf->sh, 9);
   EXPECT_EQ(level.entities[1].rtf->tail, 0.0f);  // no tail: the field ends at r_N + Δr
@@ -84,6 +84,14 @@ TEST(RtfComponent, BadInputIsOneLine) {
             "FILE: /entities/0/rtf/tail: 1 is out of range (expected a number in [0, 1))");
   EXPECT_EQ(loadError("rtf-tail-neg", dyn + R"(, "rtf": {"tail": -0.1}})"),
             "FILE: /entities/0/rtf/tail: -0.1 is out of range (expected a number in [0, 1))");
+  EXPECT_EQ(loadError("rtf-bytes", dyn + R"(, "rtf": {"components": 8, "byte_components": 9}})"),
+            "FILE: /entities/0/rtf/byte_components: 9 is above components 8 (expected an integer in [0, components]: the 8-bit "
+            "tail is part of the components)");
+  EXPECT_EQ(loadError("rtf-bytes-default", dyn + R"(, "rtf": {"byte_components": 5}})"),
+            "FILE: /entities/0/rtf/byte_components: 5 is above components 4 (expected an integer in [0, components]: the 8-bit "
+            "tail is part of the components)");  // components' default (4) bounds it too
+  EXPECT_EQ(loadError("rtf-bytes-neg", dyn + R"(, "rtf": {"byte_components": -1}})"),
+            "FILE: /entities/0/rtf/byte_components: -1 is out of range (expected an integer in [0, 256])");
   EXPECT_EQ(loadError("rtf-key", dyn + R"(, "rtf": {"proxy": 8}})").rfind("FILE: /entities/0/rtf/proxy: unknown key", 0), 0u);
   EXPECT_EQ(loadError("rtf-static", R"({"id": "a", )" + mesh() + R"(, "rtf": {}})"),
             "FILE: /entities/0/rtf: a radiance transfer field on a static entity (expected \"dynamic\": true or a motion)");
@@ -133,6 +141,35 @@ TEST(RtfTechnique, TakesPartAndBakesOneEntryPerEntity) {
   // A corrupt entry is not "cached" (it is re-baked).
   writeFileAtomic(job.output, std::string("BRTFFLD garbage"));
   EXPECT_EQ(job.cached(), std::nullopt);
+  fs::remove(job.output);
+}
+
+// "byte_components" (the CPCA's 8-bit tail, n₈) reaches the bake from the level: its own cache entry,
+// a field file whose CPCA stores that many components in 8 bits, and the job's line says so.
+TEST(RtfTechnique, ByteComponentsReachTheBakeAndTheCacheKey) {
+  const Technique& t = technique();
+  // Its own settings (vertex_rays 3, 3 components): no other test's entry is shared or removed.
+  const std::string kSmall = R"("proxies": 2, "spheres": 3, "face": 2, "rays": 4, "vertex_rays": 3, "clusters": 2, "components": 3)";
+  Loaded plain(writeLevel("rtf-box-n0", R"({"id": "box", "dynamic": true, )" + mesh() + R"(, "rtf": {)" + kSmall + "}}"));
+  Loaded zero(writeLevel("rtf-box-n0b", R"({"id": "box", "dynamic": true, )" + mesh() + R"(, "rtf": {)" + kSmall +
+                                             R"(, "byte_components": 0}})"));
+  Loaded bytes(writeLevel("rtf-box-n2", R"({"id": "box", "dynamic": true, )" + mesh() + R"(, "rtf": {)" + kSmall +
+                                             R"(, "byte_components": 2}})"));
+  EXPECT_EQ(plain.level.entities[0].rtf->byteComponents, 0);
+  EXPECT_EQ(bytes.level.entities[0].rtf->byteComponents, 2);
+  EXPECT_EQ(settingsFrom(*bytes.level.entities[0].rtf).byteComponents, 2);
+  const BakeJob job0 = t.bakeJobs(plain.context(), {}).at(0);
+  EXPECT_EQ(t.bakeJobs(zero.context(), {}).at(0).key, job0.key);  // 0 is the default: the same entry
+  const BakeJob job = t.bakeJobs(bytes.context(), {}).at(0);
+  EXPECT_NE(job.key, job0.key);
+  fs::remove(job.output);
+  const std::string line = job.run();
+  EXPECT_EQ(line.rfind("rtf     box: 2 proxies, 3 spheres x 6x2x2, 2 x 3 CPCA (last 2 in 8 bits): ", 0), 0u) << line;
+  const Field f = load(job.output);
+  EXPECT_EQ(f.settings.byteComponents, 2);
+  EXPECT_EQ(f.itf.components, 3);
+  EXPECT_EQ(f.itf.byteComponents, 2);
+  EXPECT_TRUE(isQuantized(f.itf));
   fs::remove(job.output);
 }
 
