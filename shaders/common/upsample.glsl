@@ -12,6 +12,7 @@
 // feature between samples) the best-matching sample alone is used. One code path for step 2 and 4.
 #ifndef BOUNCE_UPSAMPLE_GLSL
 #define BOUNCE_UPSAMPLE_GLSL
+#include "frame.glsl"  // worldFromDepth, for upsampleReceivers
 
 const float kUpPlaneScale = 0.01;  // plane distance / eye distance at which the weight is e^-1
 const float kUpNormalPower = 8.0;  // written out as three squarings in upsampleMatch
@@ -34,6 +35,20 @@ void upsampleTaps(ivec2 pixel, int step, ivec2 reducedSize, ivec2 full, out ivec
   for (int k = 0; k < 4; ++k) {
     j[k] = min(j0 + ivec2(k & 1, k >> 1), reducedSize - 1);
     q[k] = reducedSamplePixel(j[k], step, full);
+  }
+}
+
+// The 4 taps' receivers, as the upsample's fragment shaders read them from the G-buffer (one copy for
+// SL's and DNRT's): tap k's world point pq (m) from the depth at G-buffer pixel q[k] (worldFromDepth,
+// frame.glsl, at the pixel's centre; invResolution = 1 / full size), its normal nq, and valid = not
+// background (depth < 1, the cleared far plane).
+void upsampleReceivers(sampler2D depthTex, sampler2D normalTex, mat4 invViewProj, vec2 invResolution, ivec2 q[4],
+                       out vec3 pq[4], out vec3 nq[4], out bool valid[4]) {
+  for (int k = 0; k < 4; ++k) {
+    float dq = texelFetch(depthTex, q[k], 0).r;
+    nq[k] = texelFetch(normalTex, q[k], 0).xyz;
+    pq[k] = worldFromDepth(invViewProj, (vec2(q[k]) + 0.5) * invResolution, dq);
+    valid[k] = dq < 1.0;
   }
 }
 

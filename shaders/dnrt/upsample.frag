@@ -36,11 +36,6 @@ void main() {
   float eye = max(length(p - camera.position.xyz), 1e-6);
   vec3 pq[4], nq[4];
   bool valid[4];
-  for (int k = 0; k < 4; ++k) {
-    float dq = texelFetch(gDepth, q[k], 0).r;
-    nq[k] = texelFetch(gNormal, q[k], 0).xyz;
-    pq[k] = worldFromDepth(camera.invViewProj, (vec2(q[k]) + 0.5) * camera.resolution.zw, dq);
-    valid[k] = dq < 1.0;
-  }
+  upsampleReceivers(gDepth, gNormal, camera.invViewProj, camera.resolution.zw, q, pq, nq, valid);
   outRadiance = vec4(texelFetch(gAlbedo, pixel, 0).rgb * upsampleBlend(p, n, eye, f, pq, nq, valid, e), 0.0);
 }

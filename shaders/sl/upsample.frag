@@ -34,12 +34,7 @@ void main() {
   upsampleTaps(pixel, int(kStep), textureSize(slReduced, 0), ivec2(camera.resolution.xy), j, q, f);
   vec3 pq[4], nq[4], e[4];
   bool valid[4];
-  for (int k = 0; k < 4; ++k) {
-    float dq = texelFetch(gDepth, q[k], 0).r;
-    nq[k] = texelFetch(gNormal, q[k], 0).xyz;
-    pq[k] = worldFromDepth(camera.invViewProj, (vec2(q[k]) + 0.5) * camera.resolution.zw, dq);
-    valid[k] = dq < 1.0;
-    e[k] = texelFetch(slReduced, j[k], 0).rgb;
-  }
+  for (int k = 0; k < 4; ++k) e[k] = texelFetch(slReduced, j[k], 0).rgb;
+  upsampleReceivers(gDepth, gNormal, camera.invViewProj, camera.resolution.zw, q, pq, nq, valid);
   outRadiance = vec4(texelFetch(gAlbedo, pixel, 0).rgb * kInvPi * upsampleBlend(p, n, eye, f, pq, nq, valid, e), 0.0);
 }

@@ -3,20 +3,28 @@
 tail in 8 bits, session 15"). A measurement, offline, on one `rtf_cpca_time run` saved with
 RTF_CPCA_SAVE=PREFIX (fp16 α, cluster ids, basis) and its X:
 
-  rtf_cpca_tail.py PREFIX X_FILE COMPONENTS FROBENIUS
+  rtf_cpca_tail.py PREFIX X_FILE COMPONENTS FROBENIUS [D]
 
+D: floats per sample row of X (and per basis row), the run's proxies × 768 (16 × 16 directions × RGB,
+xi.comp's (k·16+i)·48 + 3j + c); default 6144 (8 proxies, the runs in README).
 FROBENIUS is the run's printed error (fp16, all components). Predicted error of a shape that keeps
 the first k components in fp16 and the next ne' − k in 8 bits (cpca.hpp quantize):
   e² = e_run² + Σ_{j>ne'} ‖α_j‖² (truncation: the basis is orthonormal, so dropping component j adds
        its α energy) + ‖α̃ − α‖² (the tail α rounded to 8 bits, one scale per sample)
        + Σ_h Σ_j ‖α_hj‖² ‖Ẽ_hj − E_hj‖² (each 8-bit basis row's rounding, weighted by its α energy),
-relative to ‖X‖². Bytes as cpca.hpp storedBytes (D = 6144: 8 proxies)."""
+relative to ‖X‖². Bytes as cpca.hpp storedBytes."""
 import sys
 import numpy as np
 
+if len(sys.argv) not in (5, 6):
+    sys.exit(__doc__)
 pre, xfile, ne, frob = sys.argv[1], sys.argv[2], int(sys.argv[3]), float(sys.argv[4])
-D = 6144
+D = int(sys.argv[5]) if len(sys.argv) == 6 else 6144
 X = np.memmap(xfile, dtype=np.float32, mode='r')
+if D <= 0 or X.size % D != 0:
+    print(f'{xfile}: size: {X.size} floats is not a whole number of rows of D = {D} (expected a multiple of D; '
+          f'pass the run\'s proxies × 768 as D)', file=sys.stderr)
+    sys.exit(2)
 nx2 = float(sum(np.dot(c.astype(np.float64), c.astype(np.float64)) for c in np.array_split(np.asarray(X), 64)))
 N = X.size // D
 A = np.fromfile(pre + '.alpha', dtype=np.float32).reshape(-1, ne).astype(np.float64)

@@ -85,11 +85,18 @@ TEST(Suggest, NearestNameWithinATypo) {
   const std::vector<std::string> effects{"direct", "shadows", "probes", "dnrt", "vlm", "sl", "rtf", "ssao", "hbao"};
   EXPECT_EQ(editDistance("shdaows", "shadows"), 1u);
   EXPECT_EQ(editDistance("Probes", "probes"), 0u);
+  // Optimal string alignment: "ca" → "abc" is 3 (a swap is not followed by an insertion between
+  // the swapped pair); the empty string is as far as the other's length.
+  EXPECT_EQ(editDistance("ca", "abc"), 3u);
+  EXPECT_EQ(editDistance("", "rtf"), 3u);
+  EXPECT_EQ(editDistance("kitten", "sitting"), 3u);
   EXPECT_EQ(nearestName("shadow", effects), "shadows");
   EXPECT_EQ(nearestName("prboes", effects), "probes");
   EXPECT_EQ(nearestName("dnr", effects), "dnrt");
   EXPECT_EQ(nearestName("bloom", effects), std::nullopt);
   EXPECT_EQ(nearestName("x", effects), std::nullopt);
+  // A 1 MB name: as far from every candidate as its length says, so none is suggested.
+  EXPECT_EQ(nearestName(std::string(1u << 20, 's'), effects), std::nullopt);
   EXPECT_EQ(didYouMean("captur", {"play", "capture", "profile"}), ", did you mean \"capture\"?");
   EXPECT_EQ(didYouMean("zzz", {"play", "capture"}), "");
 }
