@@ -277,12 +277,14 @@ DnrtBenchReport runDnrtBench(const DnrtBenchOptions& options) {
   }
   progress.finish();
   // The fused rows' DNRT: their probes pass carries the term, so its share is the probes pass's time over
-  // the same level's "all" session (the same pixels and passes, the term drawn by "dnrt" there): a
-  // marginal cost, measured in this run.
+  // the same level's "all" session's (the same pixels and passes, the term drawn by "dnrt" there): a
+  // marginal cost, measured in this run. The two sessions run minutes apart, so the "all" session's
+  // probes time is taken in units of its SSAO (probes_all · ssao_fused / ssao_all): the goal's own
+  // currency, in which a host-load change between the sessions cancels to first order.
   for (DnrtBenchRow& row : report.rows) {
     if (row.setting != "fused") continue;
     const DnrtBenchRow* box = findRow(report, "8", row.level, "all");
-    row.dnrtMs += box ? row.probesMs - box->probesMs : kNaN;
+    row.dnrtMs += box ? row.probesMs - box->probesMs * (row.ssaoMs / box->ssaoMs) : kNaN;
   }
   addRatios(report, options);
   return report;

@@ -55,7 +55,8 @@ struct DnrtBenchRow {
   double frameMs = 0.0;
   double dnrtMs = 0.0;       // the "dnrt" pass (every object's draw inside it) + "dnrt.combine" (+ "dnrt.upsample");
                              // "fused": "dnrt.combine" + "dnrt" (objects left to it) + this row's "probes" − the
-                             // level's "all" row's (the term's marginal cost in the probes pass; NaN without that row)
+                             // level's "all" row's scaled by the rows' SSAO ratio (the term's marginal cost in the
+                             // probes pass; NaN without that row)
   double perObjectMs = 0.0;  // mean of the per-object "dnrt/<object>" medians (NaN when clustered)
   double cubeMs = 0.0;       // the intrusion maps: sum of the "dnrt.cube/<object>" passes (0 when off)
   double ssaoMs = 0.0, hbaoMs = 0.0;
