@@ -50,13 +50,17 @@ struct DnrtBenchOptions {
 struct DnrtBenchRow {
   std::string table;    // "8" (all methods) or "variant"
   std::string level;    // the level file's stem
-  std::string setting;  // Table 8: "all", "clustered", "half" or "clustered half"; variants: "basic" or the changed setting ("sh=9", …)
+  std::string setting;  // Table 8: "all", "clustered", "half", "clustered half" or "fused"; variants: "basic" or the changed setting ("sh=9", …)
   int objects = 0;      // DNRT objects timed (per-object scopes seen; clustered: the level's dnrt entities)
   double frameMs = 0.0;
-  double dnrtMs = 0.0;       // the "dnrt" pass (every object's draw inside it) + "dnrt.combine" (+ "dnrt.upsample")
+  double dnrtMs = 0.0;       // the "dnrt" pass (every object's draw inside it) + "dnrt.combine" (+ "dnrt.upsample");
+                             // "fused": "dnrt.combine" + "dnrt" (objects left to it) + this row's "probes" − the
+                             // level's "all" row's scaled by the rows' SSAO ratio (the term's marginal cost in the
+                             // probes pass; NaN without that row)
   double perObjectMs = 0.0;  // mean of the per-object "dnrt/<object>" medians (NaN when clustered)
   double cubeMs = 0.0;       // the intrusion maps: sum of the "dnrt.cube/<object>" passes (0 when off)
   double ssaoMs = 0.0, hbaoMs = 0.0;
+  double probesMs = 0.0;     // the "probes" pass (NaN when the level has no probes; "fused": with the object's term)
   int fieldsBaked = 0;       // fields missing from the cache before this session
   double bakeSeconds = 0.0;  // time spent baking them
 };

@@ -37,6 +37,7 @@ namespace bounce::gi {
 namespace probes {
 struct ProbeVolume;
 class RelightPass;
+class ProbeNode;
 }
 namespace incident {
 class SessionLight;
@@ -104,6 +105,8 @@ struct Services {
   // the way the probes pass does (sl.shadow) — bound, not uploaded again.
   const gpu::Image* probeSh = nullptr;
   const gpu::Image* probeMoments = nullptr;
+  // The probes node itself, for DNRT's fused mode (ProbeNode::setFusedDnrt: its term in the probes pass).
+  probes::ProbeNode* probeNode = nullptr;
   // Pass "probes.relight" when the level relights the probes with "sl_bounce" (relight_pass.hpp
   // setSlBounce): the SL node writes its surfels' E_SL into it (pass "sl.relight_bounce").
   probes::RelightPass* relightSlBounce = nullptr;

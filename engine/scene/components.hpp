@@ -162,7 +162,8 @@ struct Dynamic {};
 // per object ("fullscreen", §5.2.2, for comparison), or in the clustered draw ("clustered": one
 // full-screen pass for all such objects in which each pixel reads the G-buffer once and visits only
 // the objects whose outer cube covers its screen tile; issue 15). All three give the same image.
-enum class DnrtMode : std::uint8_t { Box, FullScreen, Clustered };
+// Fused (issue 15): the object's term added by the probes pass (gi/dnrt/runtime.hpp Runtime::addFused).
+enum class DnrtMode : std::uint8_t { Box, FullScreen, Clustered, Fused };
 
 // A DNRT transfer field request (engine/gi/dnrt; level key "dnrt", README "Level format").
 // Extents are half-sizes of cubes about the bounding-sphere centre, in units of its radius R.

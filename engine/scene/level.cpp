@@ -143,7 +143,7 @@ void parseLight(const json::Node& node, EntityDesc& d, const ParseContext&) {
 
 // "dnrt": {"sh": 4|9, "grid": 16|32|64, "inner": 3, "outer": 6, "intrusion": false,
 //          "anti_radiance": "paper"|"improved", "lights_in_anti_radiance": true, "rays": 256,
-//          "mode": "box"|"fullscreen"|"clustered"} — every key
+//          "mode": "box"|"fullscreen"|"clustered"|"fused"} — every key
 //          optional (defaults above).
 void parseDnrt(const json::Node& node, EntityDesc& d, const ParseContext&) {
   const auto o =
@@ -179,9 +179,12 @@ void parseDnrt(const json::Node& node, EntityDesc& d, const ParseContext&) {
   }
   if (auto v = o.optional("mode")) {
     const std::string m = v->string();
-    if (m != "box" && m != "fullscreen" && m != "clustered")
-      v->fail("unknown mode " + json::inQuotes(m), "box, fullscreen or clustered");
-    c.mode = m == "fullscreen" ? DnrtMode::FullScreen : m == "clustered" ? DnrtMode::Clustered : DnrtMode::Box;
+    if (m != "box" && m != "fullscreen" && m != "clustered" && m != "fused")
+      v->fail("unknown mode " + json::inQuotes(m), "box, fullscreen, clustered or fused");
+    c.mode = m == "fullscreen"  ? DnrtMode::FullScreen
+             : m == "clustered" ? DnrtMode::Clustered
+             : m == "fused"     ? DnrtMode::Fused
+                                : DnrtMode::Box;
   }
   d.dnrt = c;
 }

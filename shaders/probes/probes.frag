@@ -10,6 +10,7 @@
 // costs what on lavapipe"). The SH order is a specialization constant so the loops unroll.
 #include "frame.glsl"
 #include "sh.glsl"
+#include "dnrt/dnrt.glsl"
 
 layout(constant_id = 0) const int kCoeffs = 9;  // order²: 4 or 9
 // The SH from the uniform block below instead of the image when the volume fits it (node.cpp
@@ -22,6 +23,11 @@ layout(constant_id = 2) const bool kMomentsInUbo = false;
 // E(n) from the probes' irradiance tiles (pass `probes.tiles`, probes/probe_tiles.glsl): one
 // bilinear tap a probe instead of its SH words; set with kShInUbo when the tile image fits.
 layout(constant_id = 3) const bool kTiles = false;
+// DNRT's fused mode ("dnrt": {"mode": "fused"}, engine/gi/probes/node.hpp FusedDnrt): this pass also
+// adds one dynamic object's L_DNRT (Eq. 16, dnrt.glsl dnrtFusedTerm) at the pixel it already reads —
+// no second raster, G-buffer fetch or blend. Same sum as the "dnrt" pass's box draw up to one fp16
+// blend rounding (the two terms are summed in fp32, blended once).
+layout(constant_id = 4) const bool kDnrt = false;
 
 layout(set = 0, binding = 0) uniform FrameUbo { Camera camera; };
 layout(set = 1, binding = 0) uniform sampler2D gAlbedo;
@@ -34,11 +40,17 @@ layout(std140, set = 1, binding = 5) uniform ProbeShBlock { uvec4 probeShUbo[409
 layout(set = 1, binding = 6) uniform sampler2D aoTerm;  // "ao.term" (1 = unoccluded) when bias.w = 1
 layout(std140, set = 1, binding = 7) uniform ProbeMomentsBlock { uvec4 probeMomentsUbo[4096]; };  // word 64·p + bin
 layout(set = 1, binding = 8) uniform sampler2D probeTiles;  // RGBA16F, bilinear (kTiles)
+// kDnrt: the object's Σ_j c_j M_j volume this frame (pass dnrt.combine, RGBA16F, trilinear); a 1³ dummy otherwise.
+layout(set = 1, binding = 9) uniform sampler3D dnrtCombined;
 
 layout(push_constant) uniform Push {
   vec4 originSpacing;  // xyz: probe (0,0,0) position, w: spacing (m)
   ivec4 countOrder;    // xyz: probes per axis, w: SH order (2 or 3)
   vec4 bias;           // x: normal bias (m), y: view bias (m), z: Chebyshev variance floor (m²), w: 1 = multiply by aoTerm
+  // kDnrt: the object's record (dnrt.glsl dnrtFusedTerm; node.hpp FusedDnrtPush): 128 bytes in all.
+  vec4 dnrtWorldToQ[3];
+  vec4 dnrtCentreWorld;  // xyz o (m), w R (m)
+  vec4 dnrtExtents;      // x inner, y outer (units of R), z entity id + 1 (0 = none), w grid N
 } pc;
 
 #define PROBE_SH_UBO  // probe_sh.glsl: read kShInUbo's probeShUbo
@@ -58,11 +70,14 @@ void main() {
     return;
   }
   vec3 albedo = texelFetch(gAlbedo, pixel, 0).rgb;
-  vec3 n = texelFetch(gNormal, pixel, 0).xyz;
+  vec4 normal = texelFetch(gNormal, pixel, 0);
+  vec3 n = normal.xyz;
   vec3 x = worldFromDepth(camera.invViewProj, (vec2(pixel) + 0.5) * camera.resolution.zw, depth);
   vec3 L[9];
   probeRadianceSh(x, n, normalize(camera.position.xyz - x), L);
   float ao = pc.bias.w > 0.5 ? texelFetch(aoTerm, pixel, 0).r : 1.0;
   vec3 e = kTiles ? L[0] : shIrradiance9(L, n);  // probeRadianceSh: with kTiles, L[0] is E(n)
-  outRadiance = vec4(albedo * kInvPi * ao * max(e, vec3(0.0)), 0.0);
+  vec3 radiance = albedo * kInvPi * ao * max(e, vec3(0.0));
+  if (kDnrt) radiance += albedo * dnrtFusedTerm(x, normal, pc.dnrtWorldToQ, pc.dnrtCentreWorld, pc.dnrtExtents, dnrtCombined);
+  outRadiance = vec4(radiance, 0.0);
 }

@@ -106,6 +106,7 @@ Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t fra
       cubeLayout_(ctx, {shared.frameLayout.handle()}, {VkPushConstantRange{VK_SHADER_STAGE_ALL, 0, sizeof(CubePush)}},
                   "dnrt.cube"),
       objectBuffers_(framesInFlight),
+      fusedBuffers_(framesInFlight),
       clusterLayout_(ctx, {{0, kUniform}, {1, kSampled}}, "dnrt.cluster"),  // records, combined atlas
       clusterPipelineLayout_(ctx, {shared.frameLayout.handle(), inputLayout_.handle(), clusterLayout_.handle()},
                              {VkPushConstantRange{VK_SHADER_STAGE_ALL, 0, sizeof(ClusterPush)}}, "dnrt.clustered"),
@@ -230,10 +231,15 @@ const gpu::Pipeline& Node::upsamplePipeline(std::uint32_t step) {
 }
 
 gpu::Buffer& Node::objectBuffer(std::uint32_t slot, const std::vector<NodeObject>& objects) {
+  return objectBuffer(objectBuffers_, slot, objects);
+}
+
+gpu::Buffer& Node::objectBuffer(std::vector<gpu::Buffer>& ring, std::uint32_t slot,
+                                const std::vector<NodeObject>& objects) {
   // This slot's object records (the ring waited for the slot's fence before the frame began). The
   // combine pass and the draw pass both call this in one frame; the second writes the same bytes.
   // Record i: object i; record objects.size() + i: its occlusion term (NodeObject::occlusion), if any.
-  gpu::Buffer& buffer = objectBuffers_[slot % objectBuffers_.size()];
+  gpu::Buffer& buffer = ring[slot % ring.size()];
   const VkDeviceSize bytes = 2 * objects.size() * sizeof(DnrtShaderObject);
   if (!buffer || buffer.size() < bytes)
     buffer = gpu::Buffer(ctx_, {bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::Upload, "dnrt.objects"});
@@ -245,6 +251,64 @@ gpu::Buffer& Node::objectBuffer(std::uint32_t slot, const std::vector<NodeObject
                 sizeof(DnrtShaderObject));
   }
   return buffer;
+}
+
+void Node::recordCombine(VkCommandBuffer cmd, const render::PassContext& pc, gpu::Buffer& records, std::size_t count,
+                         const NodeObject& object, std::size_t i, const Slots& slot, const Slots* occlusionSlot,
+                         VkImageView target, std::int32_t srcZ, std::int32_t occlusionZ, std::int32_t dstZ,
+                         std::int32_t size) {
+  VkSampler point = pc.samplers->get({VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST});
+  const gpu::Pipeline& p = combine_[(object.data.extents.z > 4.5f ? 1 : 0) | (occlusionSlot ? 2 : 0)];
+  p.bind(cmd);
+  VkDescriptorSet set = pc.frame().descriptors->allocate(combineLayout_);
+  gpu::DescriptorWriter w;
+  w.buffer(0, records);
+  for (int s = 0; s < 7; ++s) {
+    w.sampledImage(std::uint32_t(s + 1), slot(s), point);
+    w.sampledImage(std::uint32_t(s + 9), occlusionSlot ? (*occlusionSlot)(s) : slot(s), point);
+  }
+  w.storageImage(8, target);
+  w.update(ctx_, set);
+  p.bindSet(cmd, 0, set);
+  p.push(cmd, CombinePush{std::uint32_t(i), srcZ, dstZ, size, std::uint32_t(count + i), occlusionZ});
+  const auto groups = [size](std::uint32_t local) { return (std::uint32_t(size) + local - 1) / local; };
+  vkCmdDispatch(cmd, groups(kCombineLocal.x), groups(kCombineLocal.y), groups(kCombineLocal.z));
+}
+
+probes::FusedDnrt Node::addFused(rg::RenderGraph& graph, const render::PassContext& pcIn, const NodeObject& object) {
+  if (!object.textures) throw InternalError("dnrt: object '" + object.name + "' has no field textures");
+  const render::PassContext* pc = &pcIn;
+  struct CombineData {
+    rg::Handle<rg::Texture> volume;
+  };
+  const auto n = std::uint32_t(object.data.extents.w);
+  // The same pass name as addTo's: it is the same work (one dispatch for this object), and `profile`
+  // and `bench dnrt` count DNRT as dnrt.combine + dnrt (+ the fused term's share of probes).
+  const auto& combine = graph.addPass<CombineData>(
+      "dnrt.combine",
+      [&](rg::Builder& b, CombineData& d) {
+        d.volume = b.write(b.create<rg::Texture>("dnrt.combined." + object.name,
+                                                 rg::TextureDesc{n, n, n, 1, 1, rg::Format::RGBA16F, false}),
+                           rg::Usage::StorageWrite);
+      },
+      [this, pc, objects = std::vector<NodeObject>{object}](const CombineData& d, const rg::PassResources& res,
+                                                            rg::CommandContext& c) {
+        VkCommandBuffer cmd = pc->cmd(c);
+        gpu::Buffer& buffer = objectBuffer(fusedBuffers_, pc->frame().slot, objects);
+        const FieldTextures* field = objects[0].textures;
+        const FieldTextures* occlusion = objects[0].occlusion;
+        const Slots fieldSlot = [field](int s) { return field->view(s); };
+        const Slots occlusionSlot = [occlusion](int s) { return occlusion->view(s); };
+        recordCombine(cmd, *pc, buffer, 1, objects[0], 0, fieldSlot, occlusion ? &occlusionSlot : nullptr,
+                      pc->backend->image(res.texture(d.volume)).view(), 0, 0, 0, std::int32_t(objects[0].data.extents.w));
+      });
+  const DnrtShaderObject folded = fold(object.data);
+  probes::FusedDnrt out;
+  out.volume = combine.volume;
+  for (int r = 0; r < 3; ++r) out.push.worldToQ[r] = folded.worldToQ[r];
+  out.push.centreWorld = folded.centreWorld;
+  out.push.extents = glm::vec4(folded.extents.x, folded.extents.y, float(folded.ids.x), folded.extents.w);
+  return out;
 }
 
 std::vector<int> Node::atlasFor(const std::vector<const FieldTextures*>& textures) {
@@ -408,27 +472,10 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
           VkCommandBuffer cmd = pc->cmd(c);
           gpu::Buffer& buffer = objectBuffer(pc->frame().slot, objects);
           VkSampler point = pc->samplers->get({VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST});
-          // Object i's vertices [0, size)³ from its slots at layer srcZ into `target` at layer dstZ, and
-          // with an occlusion term (`occlusionSlot` non-null; record objects.size() + i) that term's
-          // vertices from its slots at layer occlusionZ, summed in the same dispatch.
-          using Slots = std::function<VkImageView(int)>;
           const auto dispatch = [&](std::size_t i, const Slots& slot, const Slots* occlusionSlot, VkImageView target,
                                     std::int32_t srcZ, std::int32_t occlusionZ, std::int32_t dstZ, std::int32_t size) {
-            const gpu::Pipeline& p = combine_[(objects[i].data.extents.z > 4.5f ? 1 : 0) | (occlusionSlot ? 2 : 0)];
-            p.bind(cmd);
-            VkDescriptorSet set = pc->frame().descriptors->allocate(combineLayout_);
-            gpu::DescriptorWriter w;
-            w.buffer(0, buffer);
-            for (int s = 0; s < 7; ++s) {
-              w.sampledImage(std::uint32_t(s + 1), slot(s), point);
-              w.sampledImage(std::uint32_t(s + 9), occlusionSlot ? (*occlusionSlot)(s) : slot(s), point);
-            }
-            w.storageImage(8, target);
-            w.update(ctx_, set);
-            p.bindSet(cmd, 0, set);
-            p.push(cmd, CombinePush{std::uint32_t(i), srcZ, dstZ, size, std::uint32_t(objects.size() + i), occlusionZ});
-            const auto groups = [size](std::uint32_t local) { return (std::uint32_t(size) + local - 1) / local; };
-            vkCmdDispatch(cmd, groups(kCombineLocal.x), groups(kCombineLocal.y), groups(kCombineLocal.z));
+            recordCombine(cmd, *pc, buffer, objects.size(), objects[i], i, slot, occlusionSlot, target, srcZ,
+                          occlusionZ, dstZ, size);
           };
           for (std::size_t i = 0; i < objects.size(); ++i) {
             if (!d.volumes[i]) continue;

@@ -22,6 +22,7 @@
 // into six 90° views (distance from o, R32F, 128² per face); the object's term then reaches r only
 // if nothing lies between o and r (shaders/dnrt/intrusion.glsl).
 #include <array>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -30,6 +31,7 @@
 #include "engine/gi/dnrt/cluster.hpp"
 #include "engine/gi/dnrt/field.hpp"
 #include "engine/gi/dnrt/gpu_object.hpp"
+#include "engine/gi/probes/node.hpp"
 #include "engine/gpu/buffer.hpp"
 #include "engine/gpu/descriptors.hpp"
 #include "engine/gpu/image.hpp"
@@ -110,6 +112,13 @@ class Node {
   // Empty before a clustered draw. For tests.
   std::vector<std::uint32_t> lastTileMasks() const;
 
+  // The fused mode ("dnrt": {"mode": "fused"}; runtime.hpp Runtime::addFused): adds pass
+  // "dnrt.combine" for `object` alone (its own record buffer: the box draws' buffer may hold other
+  // objects this frame) and returns its volume and the record the probes pass adds its term with
+  // (probes.frag kDnrt). The object has no intrusion and its entity id + 1 ≤ kEntityInNormalMax (the
+  // self test reads the normal's w); full resolution only.
+  probes::FusedDnrt addFused(rg::RenderGraph& graph, const render::PassContext& pc, const NodeObject& object);
+
  private:
   // A shader variant: specialization constants of dnrt.vert/.frag (one pipeline each, made on first use).
   // No SH-count variant: the draw reads this frame's combined volume (combine.comp) for 4 and 9 SH.
@@ -135,6 +144,16 @@ class Node {
   const gpu::Pipeline& upsamplePipeline(std::uint32_t step);
   // This frame slot's buffer of folded records (DnrtShaderObject per object), written now.
   gpu::Buffer& objectBuffer(std::uint32_t slot, const std::vector<NodeObject>& objects);
+  // The same into `ring` (objectBuffers_, or fusedBuffers_ for addFused).
+  gpu::Buffer& objectBuffer(std::vector<gpu::Buffer>& ring, std::uint32_t slot, const std::vector<NodeObject>& objects);
+  // Object i's combine.comp dispatch (pass dnrt.combine): its vertices [0, size)³ from `slot`'s views at
+  // layer srcZ into `target` at layer dstZ, with its occlusion term (`occlusionSlot` non-null; record
+  // count + i) from layer occlusionZ summed in the same dispatch. `records`: objectBuffer's, `count` objects.
+  using Slots = std::function<VkImageView(int)>;
+  void recordCombine(VkCommandBuffer cmd, const render::PassContext& pc, gpu::Buffer& records, std::size_t count,
+                     const NodeObject& object, std::size_t i, const Slots& slot, const Slots* occlusionSlot,
+                     VkImageView target, std::int32_t srcZ, std::int32_t occlusionZ, std::int32_t dstZ,
+                     std::int32_t size);
 
   gpu::Context& ctx_;
   gpu::DescriptorSetLayout inputLayout_, fieldLayout_;
@@ -145,6 +164,7 @@ class Node {
   gpu::Pipeline cube_;
   std::unique_ptr<gpu::Image> noIntrusion_;  // 1×1×6 R32F "nothing nearer than 1e30 m"
   std::vector<gpu::Buffer> objectBuffers_;  // per frame slot, DnrtObjectGpu[]
+  std::vector<gpu::Buffer> fusedBuffers_;   // per frame slot, the fused object's records (addFused)
   gpu::DescriptorSetLayout clusterLayout_;
   gpu::PipelineLayout clusterPipelineLayout_;
   gpu::ShaderModule fullscreenVert_, clusterFrag_;

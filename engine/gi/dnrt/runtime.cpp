@@ -4,6 +4,7 @@
 
 #include "engine/gi/dnrt/bake.hpp"
 #include "engine/gi/dnrt/object_scene.hpp"
+#include "engine/render/passes/gbuffer_pass.hpp"  // kEntityInNormalMax
 
 namespace bounce::gi::dnrt {
 
@@ -43,8 +44,38 @@ void Runtime::setIrradianceSource(const IrradianceSource* source) {
 
 render::Renderer::GraphNode Runtime::node() {
   return [this](rg::RenderGraph& graph, render::PassContext& pc) {
-    node_->addTo(graph, pc, objectsFor(*pc.world), settings_);
+    std::vector<NodeObject> objects;
+    if (fusedFrame_) {  // the probes pass adds that one's term
+      objects = std::move(fusedFrame_->objects);
+      objects.erase(objects.begin() + std::ptrdiff_t(fusedFrame_->fused));
+    } else {
+      objects = objectsFor(*pc.world);
+    }
+    fusedFrame_.reset();
+    node_->addTo(graph, pc, std::move(objects), settings_);
   };
+}
+
+std::optional<probes::FusedDnrt> Runtime::addFused(rg::RenderGraph& graph, const render::PassContext& pc) {
+  fusedFrame_.reset();
+  if (!pc.world->has("dnrt") || settings_.step != 1u) return std::nullopt;
+  const auto modeOf = [&](Mode m) { return settings_.mode.value_or(m); };
+  // objectsFor (c_j per object) only when some object asks for the mode.
+  const bool any = std::any_of(objects_.begin(), objects_.end(), [&](const Object& o) {
+    const auto* c = registry_.tryGet<scene::Dnrt>(o.entity);
+    return modeOf(c ? c->mode : Mode::Box) == Mode::Fused;
+  });
+  if (!any) return std::nullopt;
+  std::vector<NodeObject> objects = objectsFor(*pc.world);
+  for (std::size_t i = 0; i < objects.size(); ++i) {
+    const NodeObject& o = objects[i];
+    if (modeOf(o.mode) != Mode::Fused || o.intrusion || o.data.ids.x == 0u || o.data.ids.x > render::kEntityInNormalMax)
+      continue;
+    probes::FusedDnrt fused = node_->addFused(graph, pc, o);
+    fusedFrame_ = FusedFrame{std::move(objects), i};
+    return fused;
+  }
+  return std::nullopt;
 }
 
 }  // namespace bounce::gi::dnrt

@@ -67,8 +67,17 @@ class Runtime {
 
   // The frame's visible objects, packed for the node (textures owned by this runtime).
   std::vector<NodeObject> objectsFor(const render::RenderWorld& world) const;
-  // For Renderer::setNode("dnrt", …): adds the node for the visible objects of the frame.
+  // For Renderer::setNode("dnrt", …): adds the node for the visible objects of the frame (but the
+  // one addFused gave the probes pass this frame).
   render::Renderer::GraphNode node();
+  // The fused mode ("dnrt": {"mode": "fused"}, or NodeSettings::mode): for probes::ProbeNode::setFusedDnrt,
+  // called while the probes node adds its pass (before this runtime's node, table order). The first
+  // visible object in that mode with no intrusion whose entity id + 1 fits the normal's w (the self
+  // test there) gets its dnrt.combine added now and its term in the probes pass (probes.frag kDnrt);
+  // node() then leaves it out. Nothing (all drawn by node(), a fused object as a box) when the frame's
+  // effects do not name dnrt, below full resolution, or no object qualifies; without the probes
+  // effect this is never called and node() draws fused objects as boxes.
+  std::optional<probes::FusedDnrt> addFused(rg::RenderGraph& graph, const render::PassContext& pc);
 
  private:
   struct Object {
@@ -87,6 +96,12 @@ class Runtime {
   std::vector<Object> objects_;
   std::unique_ptr<Node> node_;
   std::size_t baked_ = 0;
+  // This frame's objects when addFused took one (index `fused`), for node() in the same frame.
+  struct FusedFrame {
+    std::vector<NodeObject> objects;
+    std::size_t fused = 0;
+  };
+  std::optional<FusedFrame> fusedFrame_;
 };
 
 }  // namespace bounce::gi::dnrt

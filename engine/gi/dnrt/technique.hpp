@@ -23,7 +23,8 @@ class SessionRuntime final : public TechniqueRuntime {
 
  private:
   ref::ReferenceAssets assets_;
-  std::unique_ptr<Runtime> runtime_;
+  // Shared: the probes node's fused-mode hook holds a weak reference (either runtime may go first).
+  std::shared_ptr<Runtime> runtime_;
 };
 
 }  // namespace bounce::gi::dnrt

@@ -256,7 +256,8 @@ ProbeNode::ProbeNode(gpu::Context& ctx, const render::Pipelines& pipelines, Prob
                   {5, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
                   {6, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                   {7, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
-                  {8, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}},
+                  {8, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+                  {9, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}},
                  "probes") {
   {
     const std::vector<std::uint32_t> words = shPackedWords(volume_);
@@ -300,7 +301,19 @@ ProbeNode::ProbeNode(gpu::Context& ctx, const render::Pipelines& pipelines, Prob
     }
   }
   layout_ = gpu::PipelineLayout(ctx, {pipelines.frameLayout.handle(), setLayout_.handle()},
-                                {{VK_SHADER_STAGE_ALL, 0, sizeof(ProbePush)}}, "probes");
+                                {{VK_SHADER_STAGE_ALL, 0, sizeof(ProbePush) + sizeof(FusedDnrtPush)}}, "probes");
+  {
+    // Binding 9 when no fused DNRT object reads it (probes.frag kDnrt false): one zero texel.
+    gpu::ImageDesc d;
+    d.type = gpu::ImageType::Tex3D;
+    d.format = VK_FORMAT_R16G16B16A16_SFLOAT;
+    d.width = d.height = d.depth = 1;
+    d.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    d.name = "probes.no-dnrt";
+    noDnrt_ = std::make_unique<gpu::Image>(ctx, d);
+    const std::uint8_t zero[8] = {};
+    gpu::upload(ctx, *noDnrt_, zero);
+  }
   gpu::ShaderModule vert(ctx, "passes/fullscreen.vert.spv");
   gpu::ShaderModule frag(ctx, "probes/probes.frag.spv");
   gpu::GraphicsPipelineDesc d;
@@ -308,8 +321,9 @@ ProbeNode::ProbeNode(gpu::Context& ctx, const render::Pipelines& pipelines, Prob
   d.fragment = &frag;
   d.colorFormats = {VK_FORMAT_R16G16B16A16_SFLOAT};
   d.blend = gpu::Blend::Additive;
-  d.specialization = {std::uint32_t(volume_.coeffs()), shInUbo_ ? 1u : 0u, momentsInUbo_ ? 1u : 0u,
-                      tiles_ ? 1u : 0u};  // probes.frag kCoeffs, kShInUbo, kMomentsInUbo, kTiles
+  specialization_ = {std::uint32_t(volume_.coeffs()), shInUbo_ ? 1u : 0u, momentsInUbo_ ? 1u : 0u,
+                     tiles_ ? 1u : 0u};  // probes.frag kCoeffs, kShInUbo, kMomentsInUbo, kTiles
+  d.specialization = specialization_;
   d.name = "probes";
   pipeline_ = gpu::createGraphicsPipeline(ctx, layout_, d);
 }
@@ -361,7 +375,7 @@ void ProbeNode::addPasses(rg::RenderGraph& graph, const render::PassContext* pc)
   if (relight_) block = addRelightPass(graph, pc);
   struct Data {
     render::DeferredInputs g;
-    rg::Handle<rg::Texture> hdr, ao, tiles;
+    rg::Handle<rg::Texture> hdr, ao, tiles, dnrt;
   };
   auto& bb = graph.blackboard();
   // This frame's irradiance tiles (tiles.comp), after probes.relight rewrote the block (its final
@@ -418,6 +432,9 @@ void ProbeNode::addPasses(rg::RenderGraph& graph, const render::PassContext* pc)
   // multiplied by it, the way the DNRT paper's baselines use AO (§6.4). Without one, binding 6
   // repeats the albedo and the shader ignores it.
   const bool withAo = bb.contains("ao.term");
+  // DNRT's fused mode: its combine pass first, then this pass adds the object's term (probes.frag kDnrt).
+  std::optional<FusedDnrt> fused;
+  if (fusedDnrt_) fused = fusedDnrt_(graph, *pc);
   const auto& data = graph.addPass<Data>(
       "probes",
       [&](rg::Builder& b, Data& d) {
@@ -426,8 +443,9 @@ void ProbeNode::addPasses(rg::RenderGraph& graph, const render::PassContext* pc)
         if (withAo) d.ao = b.read(bb.get<rg::Texture>("ao.term"), rg::Usage::SampledFragment);
         if (tiles) d.tiles = b.read(*tiles, rg::Usage::SampledFragment);
         if (block) b.read(*block, rg::Usage::UniformBuffer);  // bound either way (with tiles unread)
+        if (fused) d.dnrt = b.read(fused->volume, rg::Usage::SampledFragment);
       },
-      [this, pc, withAo](const Data& d, const rg::PassResources& res, rg::CommandContext& c) {
+      [this, pc, withAo, fused](const Data& d, const rg::PassResources& res, rg::CommandContext& c) {
         VkCommandBuffer cmd = pc->cmd(c);
         VkSampler point = pc->samplers->get({VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST});
         auto view = [&](rg::Handle<rg::Texture> h) { return pc->backend->image(res.texture(h)).view(); };
@@ -442,15 +460,36 @@ void ProbeNode::addPasses(rg::RenderGraph& graph, const render::PassContext* pc)
             // bilinear: one tap a probe (probe_tiles.glsl); without tiles the shader ignores it
             .sampledImage(8, tiles_ ? view(d.tiles) : sh_->view(),
                           tiles_ ? pc->samplers->get({VK_FILTER_LINEAR, VK_SAMPLER_MIPMAP_MODE_NEAREST}) : point)
+            // trilinear, as the "dnrt" pass's box draw reads the same volume
+            .sampledImage(9, fused ? view(d.dnrt) : noDnrt_->view(),
+                          pc->samplers->get({VK_FILTER_LINEAR, VK_SAMPLER_MIPMAP_MODE_NEAREST}))
             .update(*pc->gpu, set);
         gpu::Image& target = pc->backend->image(res.texture(d.hdr));
         render::Attachment color{target.view(), true};  // additive: keep the direct light
         const VkExtent2D extent{target.desc().width, target.desc().height};
         render::beginRendering(*pc->gpu, cmd, extent, {&color, 1}, nullptr);
-        pipeline_.bind(cmd);
-        pipeline_.bindSet(cmd, 0, pc->frameSet);
-        pipeline_.bindSet(cmd, 1, set);
-        pipeline_.push(cmd, probePush(volume_, withAo ? 1.0f : 0.0f));
+        if (fused && fusedPipeline_.handle() == VK_NULL_HANDLE) {
+          gpu::ShaderModule vert(*pc->gpu, "passes/fullscreen.vert.spv");
+          gpu::ShaderModule frag(*pc->gpu, "probes/probes.frag.spv");
+          gpu::GraphicsPipelineDesc pd;
+          pd.vertex = &vert;
+          pd.fragment = &frag;
+          pd.colorFormats = {VK_FORMAT_R16G16B16A16_SFLOAT};
+          pd.blend = gpu::Blend::Additive;
+          pd.specialization = specialization_;
+          pd.specialization.push_back(1u);  // kDnrt
+          pd.name = "probes.fused-dnrt";
+          fusedPipeline_ = gpu::createGraphicsPipeline(*pc->gpu, layout_, pd);
+        }
+        const gpu::Pipeline& p = fused ? fusedPipeline_ : pipeline_;
+        p.bind(cmd);
+        p.bindSet(cmd, 0, pc->frameSet);
+        p.bindSet(cmd, 1, set);
+        struct {
+          ProbePush probes;
+          FusedDnrtPush dnrt;
+        } push{probePush(volume_, withAo ? 1.0f : 0.0f), fused ? fused->push : FusedDnrtPush{}};
+        p.push(cmd, push);
         vkCmdDraw(cmd, 3, 1, 0, 0);
         pc->gpu->cmdEndRendering(cmd);
       });

@@ -3,7 +3,9 @@
 // every drawn surface, static or dynamic, added to "lighting.hdr" (shaders/probes/probes.frag).
 // The volume is uploaded once, as two images read with texelFetch (SH with the valid flag,
 // visibility moments): storage-buffer reads are what made this pass slow on lavapipe.
+#include <functional>
 #include <memory>
+#include <optional>
 
 #include "engine/gi/probes/probe_volume.hpp"
 #include "engine/gi/probes/relight_pass.hpp"
@@ -28,6 +30,24 @@ struct ProbePush {
   glm::vec4 bias;
 };
 ProbePush probePush(const ProbeVolume& v, float flag);
+
+// DNRT's fused mode ("dnrt": {"mode": "fused"}; gi/dnrt/runtime.hpp Runtime::addFused): one dynamic
+// object's L_DNRT added by the probes pass itself (probes.frag kDnrt, dnrt.glsl dnrtFusedTerm) at the
+// pixels it already shades, instead of a "dnrt" pass of its own. probes.frag's push block past
+// ProbePush (128 bytes in all, the Vulkan minimum of maxPushConstantsSize).
+struct FusedDnrtPush {
+  glm::vec4 worldToQ[3]{};      // rows of r ↦ q (units of R), DnrtShaderObject's
+  glm::vec4 centreWorld{0.0f};  // xyz o (m), w R (m)
+  glm::vec4 extents{0.0f};      // x inner, y outer (units of R), z entity id + 1 (0 = none), w grid N
+};
+static_assert(sizeof(ProbePush) + sizeof(FusedDnrtPush) == 128, "probes.frag's push block");
+struct FusedDnrt {
+  rg::Handle<rg::Texture> volume;  // this frame's Σ_j c_j M_j (pass dnrt.combine), read trilinear
+  FusedDnrtPush push;
+};
+// Called by the probes node before it adds its pass; adds what the fused term reads (dnrt.combine) and
+// returns it, or nothing (no fused object this frame: the plain pipeline).
+using FusedDnrtHook = std::function<std::optional<FusedDnrt>(rg::RenderGraph&, const render::PassContext&)>;
 
 // The largest |E| change per channel (W/m², E as sh::evalIrradiance) that the uniform block's 8-bit
 // L_1/L_2 fractions of L_0 make at any receiver (node.cpp shPackedWords; derivation there): the
@@ -72,6 +92,9 @@ class ProbeNode final : public TechniqueRuntime {
   const gpu::Image& shImage() const { return *sh_; }
   gpu::Image& shImage() { return *sh_; }  // tests read it back (TRANSFER_SRC usage)
   const gpu::Image& momentsImage() const { return *moments_; }
+  // DNRT's fused mode (FusedDnrtHook); an empty function removes it. The hook's owner must outlive the
+  // node's frames or remove it first.
+  void setFusedDnrt(FusedDnrtHook hook) { fusedDnrt_ = std::move(hook); }
 
  private:
   ProbeVolume volume_;
@@ -89,6 +112,11 @@ class ProbeNode final : public TechniqueRuntime {
   gpu::DescriptorSetLayout setLayout_;
   gpu::PipelineLayout layout_;
   gpu::Pipeline pipeline_;
+  // probes.frag with kDnrt (FusedDnrt), made on first use; the dummy volume binding 9 holds otherwise.
+  gpu::Pipeline fusedPipeline_;
+  std::vector<std::uint32_t> specialization_;  // kCoeffs, kShInUbo, kMomentsInUbo, kTiles
+  std::unique_ptr<gpu::Image> noDnrt_;  // 1³ RGBA16F zero
+  FusedDnrtHook fusedDnrt_;
   // Pass `probes.tiles` (shaders/probes/tiles.comp): each probe's E(n) over its octahedral tile,
   // every frame after `probes.relight` into a graph texture only the probes pass reads; without
   // relight no pass: bakedTiles_.

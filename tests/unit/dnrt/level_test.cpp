@@ -72,7 +72,8 @@ TEST(DnrtLevel, ParsesEverySetting) {
 
 TEST(DnrtLevel, ParsesEveryMode) {
   const std::pair<const char*, scene::DnrtMode> cases[] = {
-      {"box", scene::DnrtMode::Box}, {"fullscreen", scene::DnrtMode::FullScreen}, {"clustered", scene::DnrtMode::Clustered}};
+      {"box", scene::DnrtMode::Box}, {"fullscreen", scene::DnrtMode::FullScreen}, {"clustered", scene::DnrtMode::Clustered},
+      {"fused", scene::DnrtMode::Fused}};
   for (const auto& [name, mode] : cases) {
     const scene::Level level = scene::loadLevel(writeLevel("dnrt-mode.json", std::string(R"({"mode": ")") + name + "\"}"));
     ASSERT_TRUE(level.entities[0].dnrt);

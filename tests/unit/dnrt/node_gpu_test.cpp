@@ -726,6 +726,66 @@ TEST(DnrtGpu, ClusteredModeDrawsThePerObjectImage) {
 }
 
 
+// The fused mode ("dnrt": {"mode": "fused"}): the probes pass adds the object's term (probes.frag
+// kDnrt) instead of a "dnrt" pass. floor-box.json with the probes, 160×120:
+// - structure: the passes are the box mode's without "dnrt", its "dnrt.combine" before "probes";
+//   without the probes effect the object is drawn as a box (the box mode's passes); without the dnrt
+//   effect neither DNRT pass runs;
+// - image: the box mode's within fp16 rounding. The box mode rounds lighting.hdr after the probes'
+//   blend and after DNRT's, the fused mode once after their fp32 sum, so a channel value moves by at
+//   most those roundings: 3 half-ulps (2⁻¹¹ relative each) of the larger of the box value and the term.
+TEST(DnrtGpu, FusedModeIsTheBoxImageInsideTheProbesPass) {
+  gpu::Context& ctx = gpu::testkit::sharedContext();
+  const auto render = [&](std::vector<std::string> effects, Mode mode) {
+    scene::Level level = game::loadLevelWithEffects(fs::path(BOUNCE_SOURCE_DIR) / "tests/data/dnrt/floor-box.json", effects);
+    for (auto& e : level.entities)
+      if (e.dnrt) e.dnrt->mode = mode;
+    game::Session session(ctx, std::move(level));
+    session.update(0.0);
+    return renderOnce(session, ctx);
+  };
+  const std::vector<std::string> all = {"direct", "probes", "dnrt"};
+  const Frame box = render(all, Mode::Box), fused = render(all, Mode::Fused);
+  const Frame probesOnly = render({"direct", "probes"}, Mode::Fused);
+  const auto at = [](const Frame& f, const char* pass) {
+    return std::find(f.passes.begin(), f.passes.end(), pass) - f.passes.begin();
+  };
+  ASSERT_LT(at(box, "dnrt"), std::ptrdiff_t(box.passes.size())) << "the box mode draws";
+  std::vector<std::string> expected;
+  for (const std::string& p : box.passes) {
+    if (p == "dnrt" || p == "dnrt.combine") continue;
+    if (p == "probes") expected.push_back("dnrt.combine");
+    expected.push_back(p);
+  }
+  EXPECT_EQ(fused.passes, expected);
+  EXPECT_EQ(render({"direct", "dnrt"}, Mode::Fused).passes, render({"direct", "dnrt"}, Mode::Box).passes)
+      << "without the probes pass the fused object is drawn as a box";
+  EXPECT_EQ(std::count(probesOnly.passes.begin(), probesOnly.passes.end(), "dnrt.combine"), 0);
+  EXPECT_EQ(std::count(probesOnly.passes.begin(), probesOnly.passes.end(), "dnrt"), 0);
+
+  ASSERT_EQ(fused.rgb.size(), box.rgb.size());
+  ASSERT_EQ(probesOnly.rgb.size(), box.rgb.size());
+  constexpr float kHalfUlp = 1.0f / 2048.0f;
+  float largest = 0.0f, worstRatio = 0.0f, worstAbs = 0.0f;
+  int covered = 0, equal = 0;
+  for (std::size_t i = 0; i < box.rgb.size(); ++i) {
+    ASSERT_TRUE(std::isfinite(fused.rgb[i])) << i;
+    const float term = box.rgb[i] - probesOnly.rgb[i];  // DNRT's term (box mode)
+    const float tolerance = 3.0f * kHalfUlp * std::max(std::abs(box.rgb[i]), std::abs(term)) + 1e-7f;
+    worstRatio = std::max(worstRatio, std::abs(fused.rgb[i] - box.rgb[i]) / tolerance);
+    worstAbs = std::max(worstAbs, std::abs(fused.rgb[i] - box.rgb[i]));
+    largest = std::max(largest, std::abs(term));
+    covered += term != 0.0f ? 1 : 0;
+    equal += fused.rgb[i] == box.rgb[i] ? 1 : 0;
+  }
+  std::printf("fused vs box: %d channel values carry DNRT's term, %d of %zu equal, largest |term| %.4f, worst "
+              "difference %.3g (%.3f of its tolerance)\n",
+              covered, equal, box.rgb.size(), largest, worstAbs, worstRatio);
+  EXPECT_GT(covered, 1000);
+  EXPECT_GT(largest, 0.005f);
+  EXPECT_LE(worstRatio, 1.0f);
+}
+
 // Clustered mode's tile cull (tile_cull.comp): each tile's CPU screen-hull mask cut by the depth range of
 // the tile's pixels. It may only narrow which objects a pixel visits, never what a pixel adds
 // (clustered.frag tests every pixel exactly), so the image is the uncut one bit for bit; the cut masks
