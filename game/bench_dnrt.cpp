@@ -92,6 +92,7 @@ void fillTimes(const std::vector<PassStats>& stats, DnrtBenchRow& row, int dnrtE
   if (row.setting == "fused") row.dnrtMs = 0.0;
   row.cubeMs = 0.0;
   double perObject = 0.0, combineMs = 0.0, upsampleMs = 0.0;
+  int fusedObjects = 0;
   for (const PassStats& s : stats) {
     if (s.pass == "frame") row.frameMs = s.medianMs;
     if (s.depth != 0 && s.pass == "dnrt" && !s.object.empty()) perObject += s.medianMs, ++row.objects;
@@ -100,7 +101,8 @@ void fillTimes(const std::vector<PassStats>& stats, DnrtBenchRow& row, int dnrtE
       continue;
     }
     if (s.pass == "dnrt") row.dnrtMs = s.medianMs;
-    if (s.pass == "dnrt.combine") combineMs = s.medianMs;
+    if (s.pass == "dnrt.combine" || s.pass == "dnrt.combine.fused") combineMs += s.medianMs;
+    if (s.pass == "dnrt.combine.fused") ++fusedObjects;  // one object in the probes pass, no scope of its own
     if (s.pass == "dnrt.upsample") upsampleMs = s.medianMs;
     if (s.pass == "ssao") row.ssaoMs = s.medianMs;
     if (s.pass == "hbao") row.hbaoMs = s.medianMs;
@@ -110,6 +112,7 @@ void fillTimes(const std::vector<PassStats>& stats, DnrtBenchRow& row, int dnrtE
   // (dnrt/upsample.frag) are part of DNRT's cost.
   row.dnrtMs += combineMs + upsampleMs;
   row.perObjectMs = row.objects > 0 ? perObject / row.objects : kNaN;
+  row.objects += fusedObjects;
   if (row.objects == 0) row.objects = dnrtEntities;  // clustered: one draw for all, no scope per object
 }
 
@@ -141,7 +144,10 @@ void addRatios(DnrtBenchReport& report, const DnrtBenchOptions& options) {
         out.push_back({"DNRT(" + std::to_string(fewest->objects) + " obj) fused / SSAO, " + fewest->level,
                        fewest->dnrtMs / fewest->ssaoMs, fewest->objects == 1 ? 0.1 : 0.0});
         const DnrtBenchRow* box = findRow(report, "8", fewest->level, "all");
-        out.push_back({"fused / box, " + fewest->level, box ? fewest->dnrtMs / box->dnrtMs : kNaN, 0.0});
+        // In SSAO units: the two sessions run minutes apart, and the fused row's ms are already in its own
+        // session's SSAO units (the marginal above), so the box row's must be too.
+        out.push_back({"fused / box (in SSAO units), " + fewest->level,
+                       box ? (fewest->dnrtMs / fewest->ssaoMs) / (box->dnrtMs / box->ssaoMs) : kNaN, 0.0});
       }
       continue;
     }

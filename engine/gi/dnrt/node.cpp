@@ -282,10 +282,11 @@ probes::FusedDnrt Node::addFused(rg::RenderGraph& graph, const render::PassConte
     rg::Handle<rg::Texture> volume;
   };
   const auto n = std::uint32_t(object.data.extents.w);
-  // The same pass name as addTo's: it is the same work (one dispatch for this object), and `profile`
-  // and `bench dnrt` count DNRT as dnrt.combine + dnrt (+ the fused term's share of probes).
+  // Its own pass name: addTo's "dnrt.combine" may run in the same frame for the other objects (the graph
+  // takes each name once). `profile` shows both; `bench dnrt` counts DNRT as dnrt.combine +
+  // dnrt.combine.fused + dnrt (+ the fused term's share of probes).
   const auto& combine = graph.addPass<CombineData>(
-      "dnrt.combine",
+      "dnrt.combine.fused",
       [&](rg::Builder& b, CombineData& d) {
         d.volume = b.write(b.create<rg::Texture>("dnrt.combined." + object.name,
                                                  rg::TextureDesc{n, n, n, 1, 1, rg::Format::RGBA16F, false}),
