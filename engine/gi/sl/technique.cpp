@@ -279,6 +279,7 @@ class SlTechnique final : public Technique {
             e.sl->order = 4;
             e.sl->influence = 0.0f;
             e.sl->hierarchy = false;
+            e.sl->fused = true;  // as the "terms=" rows below, whose parts must add up to these rows
             e.sl->localLights = false;
           }
       };
