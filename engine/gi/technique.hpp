@@ -107,6 +107,10 @@ struct Services {
   const gpu::Image* probeMoments = nullptr;
   // The probes node itself, for DNRT's fused mode (ProbeNode::setFusedDnrt: its term in the probes pass).
   probes::ProbeNode* probeNode = nullptr;
+  // DNRT's fused mode from the other side: set by DNRT's runtime, called by the probes' runtime on its
+  // node when the probes are created after DNRT (`bounce play` turning probes on later), so the hook
+  // reaches the probes node whichever runtime comes first.
+  std::function<void(probes::ProbeNode&)> attachFusedDnrt;
   // Pass "probes.relight" when the level relights the probes with "sl_bounce" (relight_pass.hpp
   // setSlBounce): the SL node writes its surfels' E_SL into it (pass "sl.relight_bounce").
   probes::RelightPass* relightSlBounce = nullptr;

@@ -248,14 +248,16 @@ SessionRuntime::SessionRuntime(SessionContext& sc) {
   assets_.load(sc.registry, sc.cookCache);  // the bakes start from the CPU copies
   runtime_ = std::make_shared<Runtime>(sc.ctx, sc.renderer.pipelines(), sc.registry, assets_, cacheFolder(),
                                        sc.renderer.frames().framesInFlight(), sc.level.background);
-  // The fused mode: the probes node (earlier in the table) adds the object's term in its pass.
-  if (sc.services.probeNode)
-    sc.services.probeNode->setFusedDnrt(
-        [weak = std::weak_ptr<Runtime>(runtime_)](rg::RenderGraph& graph,
-                                                  const render::PassContext& pc) -> std::optional<probes::FusedDnrt> {
+  // The fused mode: the probes node adds the object's term in its pass — now if the probes run already,
+  // else when they are created (Services::attachFusedDnrt).
+  sc.services.attachFusedDnrt = [weak = std::weak_ptr<Runtime>(runtime_)](probes::ProbeNode& probeNode) {
+    probeNode.setFusedDnrt(
+        [weak](rg::RenderGraph& graph, const render::PassContext& pc) -> std::optional<probes::FusedDnrt> {
           const std::shared_ptr<Runtime> runtime = weak.lock();
           return runtime ? runtime->addFused(graph, pc) : std::nullopt;
         });
+  };
+  if (sc.services.probeNode) sc.services.attachFusedDnrt(*sc.services.probeNode);
   runtime_->settings().step = sc.level.dnrt.step;  // "dnrt": {"resolution"}: the draw's step (node.hpp)
   for (std::size_t i = 0; i < runtime_->objectCount(); ++i)  // a level too small to place: bad input
     checkPlaceable(sc.level, sc.registry, runtime_->entity(i), "dnrt", runtime_->field(i).centre,

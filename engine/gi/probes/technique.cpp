@@ -88,6 +88,7 @@ class ProbesTechnique final : public Technique {
     sc.services.probeSh = &node->shImage();
     sc.services.probeMoments = &node->momentsImage();
     sc.services.probeNode = node.get();
+    if (sc.services.attachFusedDnrt) sc.services.attachFusedDnrt(*node);  // DNRT was created first
     if (sc.level.probes.relight) {
       // The relight bake (cached under its own key next to the volume) and the static scene's BVH
       // the session already builds for the incident-light service (V_static is traced against it).

@@ -815,6 +815,21 @@ TEST(DnrtGpu, FusedModeIsTheBoxImageInsideTheProbesPass) {
   std::printf("two boxes, one fused: largest |term| %.4f, worst difference %.3g\n", twoLargest, twoWorst);
   EXPECT_GT(twoLargest, 0.005f);
   EXPECT_LE(twoWorst, 0.01f * twoLargest);
+
+  // The probes turned on after DNRT's runtime exists (`bounce play`'s keys): the hook still reaches the
+  // probes node (Services::attachFusedDnrt), so the next frame is the fused one, not a box.
+  {
+    scene::Level level = game::loadLevelWithEffects(fs::path(BOUNCE_SOURCE_DIR) / "tests/data/dnrt/floor-box.json",
+                                                    std::vector<std::string>{"direct", "dnrt"});
+    for (auto& e : level.entities)
+      if (e.dnrt) e.dnrt->mode = Mode::Fused;
+    game::Session session(ctx, std::move(level));
+    session.update(0.0);
+    EXPECT_EQ(count(renderOnce(session, ctx), "dnrt"), 1) << "no probes yet: a box";
+    session.level().effects.add(scene::Effect::Probes);
+    const Frame later = renderOnce(session, ctx);
+    EXPECT_EQ(later.passes, fused.passes);
+  }
 }
 
 // Clustered mode's tile cull (tile_cull.comp): each tile's CPU screen-hull mask cut by the depth range of
