@@ -16,21 +16,45 @@ relative to ‖X‖². Bytes as cpca.hpp storedBytes."""
 import sys
 import numpy as np
 
-if len(sys.argv) not in (5, 6):
-    sys.exit(__doc__)
-pre, xfile, ne, frob = sys.argv[1], sys.argv[2], int(sys.argv[3]), float(sys.argv[4])
-D = int(sys.argv[5]) if len(sys.argv) == 6 else 6144
-X = np.memmap(xfile, dtype=np.float32, mode='r')
-if D <= 0 or X.size % D != 0:
-    print(f'{xfile}: size: {X.size} floats is not a whole number of rows of D = {D} (expected a multiple of D; '
-          f'pass the run\'s proxies × 768 as D)', file=sys.stderr)
+
+
+def fail(where, what):  # bad input: one line naming the file and place, exit 2
+    print(f'rtf_cpca_tail.py: {where}: {what}', file=sys.stderr)
     sys.exit(2)
-nx2 = float(sum(np.dot(c.astype(np.float64), c.astype(np.float64)) for c in np.array_split(np.asarray(X), 64)))
+
+
+if len(sys.argv) not in (5, 6):
+    fail('arguments', f'{len(sys.argv) - 1} given (expected PREFIX X_FILE COMPONENTS FROBENIUS [D])')
+pre, xfile = sys.argv[1], sys.argv[2]
+try:
+    ne, frob = int(sys.argv[3]), float(sys.argv[4])
+    D = int(sys.argv[5]) if len(sys.argv) == 6 else 6144
+except ValueError as e:
+    fail('arguments', f'{e} (expected integer COMPONENTS and D, a number FROBENIUS)')
+if ne <= 0:
+    fail('COMPONENTS', f'{ne} (expected > 0)')
+try:
+    X = np.memmap(xfile, dtype=np.float32, mode='r')
+    a_raw = np.fromfile(pre + '.alpha', dtype=np.float32)
+    K = np.fromfile(pre + '.cluster', dtype=np.uint32)
+    b_raw = np.fromfile(pre + '.basis', dtype=np.float32)
+except (OSError, ValueError) as e:
+    fail(xfile if 'X' not in locals() else pre, str(e))
+if D <= 0 or X.size % D != 0:
+    fail(f'{xfile}: size', f'{X.size} floats is not a whole number of rows of D = {D} (expected a multiple of D; '
+         f'pass the run\'s proxies × 768 as D)')
 N = X.size // D
-A = np.fromfile(pre + '.alpha', dtype=np.float32).reshape(-1, ne).astype(np.float64)
-K = np.fromfile(pre + '.cluster', dtype=np.uint32)
-B = np.fromfile(pre + '.basis', dtype=np.float32).reshape(-1, ne + 1, D).astype(np.float64)
-nc = B.shape[0]
+if a_raw.size != N * ne:
+    fail(pre + '.alpha', f'{a_raw.size} floats (expected N × COMPONENTS = {N} × {ne})')
+if K.size != N or (N and int(K.max()) >= 1 << 16):
+    fail(pre + '.cluster', f'{K.size} ids (expected N = {N}, each a small cluster index)')
+nc = int(K.max()) + 1 if N else 0
+if b_raw.size != nc * (ne + 1) * D:
+    fail(pre + '.basis', f'{b_raw.size} floats (expected clusters × (COMPONENTS + 1) × D = {nc} × {ne + 1} × {D}; '
+         'a wrong D or COMPONENTS)')
+nx2 = float(sum(np.dot(c.astype(np.float64), c.astype(np.float64)) for c in np.array_split(np.asarray(X), 64)))
+A = a_raw.reshape(-1, ne).astype(np.float64)
+B = b_raw.reshape(-1, ne + 1, D).astype(np.float64)
 err2 = frob ** 2 * nx2
 
 
