@@ -472,7 +472,6 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
         [this, pc, objects, cluster](const CombineData& d, const rg::PassResources& res, rg::CommandContext& c) {
           VkCommandBuffer cmd = pc->cmd(c);
           gpu::Buffer& buffer = objectBuffer(pc->frame().slot, objects);
-          VkSampler point = pc->samplers->get({VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST});
           const auto dispatch = [&](std::size_t i, const Slots& slot, const Slots* occlusionSlot, VkImageView target,
                                     std::int32_t srcZ, std::int32_t occlusionZ, std::int32_t dstZ, std::int32_t size) {
             recordCombine(cmd, *pc, buffer, objects.size(), objects[i], i, slot, occlusionSlot, target, srcZ,
