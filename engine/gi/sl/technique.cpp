@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdio>
 #include <limits>
+#include <optional>
 
 #include "engine/anim/pose.hpp"
 #include "engine/core/error.hpp"
@@ -18,6 +19,21 @@
 
 namespace bounce::gi::sl {
 namespace {
+
+// The uncut accuracy rows' SLs (influence 0, order 4, fused walk, no hierarchy or local lights), with the
+// SLs' bounce in relight's transport on or off and, for the split rows, pass 2's terms.
+void configureUncut(scene::Level& level, bool slBounce, std::optional<int> terms) {
+  level.probes.slBounce = slBounce;
+  for (auto& e : level.entities)
+    if (e.sl) {
+      e.sl->order = 4;
+      e.sl->influence = 0.0f;
+      e.sl->hierarchy = false;
+      e.sl->fused = true;  // the "terms=" rows' parts must add up to the rows without them
+      e.sl->localLights = false;
+      if (terms) e.sl->terms = *terms;
+    }
+}
 
 constexpr std::string_view kCacheKind = "sl";
 
@@ -272,17 +288,7 @@ class SlTechnique final : public Technique {
       r.effects = {"direct", "shadows", "probes", "sl"};
       r.passes = {"shadow", "lighting", "probes", "sl.intensity", "sl"};
       r.optionalPasses = {"sl.shadow", "sl.relight_bounce"};
-      r.configure = [=](scene::Level& level) {
-        level.probes.slBounce = slBounce;
-        for (auto& e : level.entities)
-          if (e.sl) {
-            e.sl->order = 4;
-            e.sl->influence = 0.0f;
-            e.sl->hierarchy = false;
-            e.sl->fused = true;  // as the "terms=" rows below, whose parts must add up to these rows
-            e.sl->localLights = false;
-          }
-      };
+      r.configure = [=](scene::Level& level) { configureUncut(level, slBounce, std::nullopt); };
       rows.push_back(std::move(r));
     }
     // Pass 2's resolution (README "SL at quarter resolution, session 10"): the level's own spheres,
@@ -348,18 +354,7 @@ class SlTechnique final : public Technique {
       r.effects = {"direct", "shadows", "probes", "sl"};
       r.passes = {"shadow", "lighting", "probes", "sl.intensity", "sl"};
       r.optionalPasses = {"sl.shadow", "sl.relight_bounce"};
-      r.configure = [=, terms = terms, slBounce = slBounce](scene::Level& level) {
-        level.probes.slBounce = slBounce;
-        for (auto& e : level.entities)
-          if (e.sl) {
-            e.sl->order = 4;
-            e.sl->influence = 0.0f;
-            e.sl->hierarchy = false;
-            e.sl->fused = true;
-            e.sl->localLights = false;
-            e.sl->terms = terms;
-          }
-      };
+      r.configure = [terms = terms, slBounce = slBounce](scene::Level& level) { configureUncut(level, slBounce, terms); };
       rows.push_back(std::move(r));
     }
   }
