@@ -60,13 +60,12 @@ layout(location = 0) out vec4 outRadiance;
 // Object i reaches the receiver r (world position, w = 1) with normal nr: dnrt.frag's discards
 // (s(r) > 0, r not at the centre, (n_o·n_r)₊ > 0, not the object's own pixel). kSingle's test.
 bool dnrtClusterReaches(int i, vec4 r, vec3 nr, uint entity) {
-  vec3 q = vec3(dot(objects[i].worldToQ[0], r), dot(objects[i].worldToQ[1], r), dot(objects[i].worldToQ[2], r));
+  vec3 q = dnrtQ(objects[i].worldToQ, r);
   float s = dnrtFalloff(q, objects[i].extents.x, objects[i].extents.y);
   vec3 toO = objects[i].centreWorld.xyz - r.xyz;
   float len = length(toO);
   uint self = objects[i].ids.x;
-  return s > 0.0 && len > 1e-6 * objects[i].centreWorld.w && max(dot(toO / len, nr), 0.0) > 0.0 &&
-         !(self != 0u && entity == self);
+  return dnrtReaches(s, len, objects[i].centreWorld.w, dnrtLambert(toO, len, nr)) && !(self != 0u && entity == self);
 }
 
 // The loops' first test: a superset of dnrtClusterReaches without its divisions, square root and
@@ -78,7 +77,7 @@ bool dnrtClusterReaches(int i, vec4 r, vec3 nr, uint entity) {
 // guard of the second loop's sum (dnrtClusterTerm, the same arithmetic as dnrtClusterReaches), so
 // the objects summed, their order and the image are those of the exact test.
 bool dnrtClusterMayReach(int i, vec4 r, vec3 nr, uint entity) {
-  vec3 q = vec3(dot(objects[i].worldToQ[0], r), dot(objects[i].worldToQ[1], r), dot(objects[i].worldToQ[2], r));
+  vec3 q = dnrtQ(objects[i].worldToQ, r);
   vec3 a = abs(q);
   vec3 toO = objects[i].centreWorld.xyz - r.xyz;
   uint self = objects[i].ids.x;
@@ -90,14 +89,14 @@ bool dnrtClusterMayReach(int i, vec4 r, vec3 nr, uint entity) {
 // `exact` is dnrtClusterReaches' s(r), centre and (n_o·n_r)₊ conditions on the same values (the
 // loops' own-pixel test is already exact).
 vec3 dnrtClusterTerm(int i, vec4 r, vec3 nr, out bool exact) {
-  vec3 q = vec3(dot(objects[i].worldToQ[0], r), dot(objects[i].worldToQ[1], r), dot(objects[i].worldToQ[2], r));
+  vec3 q = dnrtQ(objects[i].worldToQ, r);
   vec4 ext = objects[i].extents;
   float s = dnrtFalloff(q, ext.x, ext.y);
   vec4 centre = objects[i].centreWorld;
   vec3 toO = centre.xyz - r.xyz;
   float len = length(toO);
-  float lamb = max(dot(toO / len, nr), 0.0);
-  exact = s > 0.0 && len > 1e-6 * centre.w && lamb > 0.0;
+  float lamb = dnrtLambert(toO, len, nr);
+  exact = dnrtReaches(s, len, centre.w, lamb);
   vec3 uvw = (dnrtGrid(q, ext.x, ext.w) + objects[i].atlas.xyz) * pc.invAtlasSize.xyz;
   return (lamb * s) * texture(combined, uvw).rgb;
 }

@@ -52,7 +52,7 @@ void main() {
   float depth = texelFetch(gDepth, pixel, 0).r;
   if (depth >= 1.0) discard;
   vec4 r = vec4(worldFromDepth(camera.invViewProj, (vec2(pixel) + 0.5) * camera.resolution.zw, depth), 1.0);
-  vec3 q = vec3(dot(worldToQ[0], r), dot(worldToQ[1], r), dot(worldToQ[2], r));
+  vec3 q = dnrtQ(worldToQ, r);
   float s = dnrtFalloff(q, extents.x, extents.y);
   if (s <= 0.0) discard;
   vec3 toO = centreWorld.xyz - r.xyz;
@@ -66,7 +66,7 @@ void main() {
   }
   vec4 normal = texelFetch(gNormal, pixel, 0);
   vec3 nr = normal.xyz;
-  float lamb = max(dot(toO / len, nr), 0.0);
+  float lamb = dnrtLambert(toO, len, nr);
   if (lamb <= 0.0) discard;
   // The object's own surface: its field holds filled (interior) values there, not a transfer.
   if (kSelfInNormal) {

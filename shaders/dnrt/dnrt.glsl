@@ -56,6 +56,14 @@ vec3 dnrtGrid(vec3 q, float inner, float n) { return (clamp(q / inner, -1.0, 1.0
 // Texture coordinate of a local offset q (units of R): texel centres on grid vertices.
 vec3 dnrtUvw(vec3 q, float inner, float n) { return (dnrtGrid(q, inner, n) + 0.5) / n; }
 
+// The receiver r (world, w = 1) in the object's frame q (units of R): the rows of DnrtObject's worldToQ.
+vec3 dnrtQ(vec4 worldToQ[3], vec4 r) { return vec3(dot(worldToQ[0], r), dot(worldToQ[1], r), dot(worldToQ[2], r)); }
+// (n_o·n_r)₊ of Eq. 16 with n_o = toO / len, the direction from r to the object's centre o.
+float dnrtLambert(vec3 toO, float len, vec3 nr) { return max(dot(toO / len, nr), 0.0); }
+// Eq. 16's receiver conditions: s(r) > 0, r not at o (n_o undefined there; R the object's radius, m)
+// and (n_o·n_r)₊ > 0. False for NaN, as every caller's discards and masks need.
+bool dnrtReaches(float s, float len, float radius, float lamb) { return s > 0.0 && len > 1e-6 * radius && lamb > 0.0; }
+
 // Eq. 16 without ρ_r for one object at receiver r (world, m) with G-buffer normal `normal` (xyz unit,
 // w the entity id + 1, gbuffer.glsl): (n_o·n_r)₊ s(r) Σ_j c_j M_j(r), and 0 wherever dnrt.frag
 // discards (s ≤ 0, r at o, Lambert ≤ 0, the object's own pixel; no intrusion). The fused mode's form
@@ -64,14 +72,13 @@ vec3 dnrtUvw(vec3 q, float inner, float n) { return (dnrtGrid(q, inner, n) + 0.5
 // `worldToQ`, `centreWorld`: DnrtObject's; `extents`: x inner, y outer (units of R), z the entity id
 // + 1 (0 = none, ≤ kEntityInNormalMax), w grid N; `combined`: this frame's Σ_j c_j M_j volume.
 vec3 dnrtFusedTerm(vec3 r, vec4 normal, vec4 worldToQ[3], vec4 centreWorld, vec4 extents, sampler3D combined) {
-  vec4 r1 = vec4(r, 1.0);
-  vec3 q = vec3(dot(worldToQ[0], r1), dot(worldToQ[1], r1), dot(worldToQ[2], r1));
+  vec3 q = dnrtQ(worldToQ, vec4(r, 1.0));
   float s = dnrtFalloff(q, extents.x, extents.y);
   vec3 toO = centreWorld.xyz - r;
   float len = length(toO);
-  float lamb = max(dot(toO / len, normal.xyz), 0.0);
+  float lamb = dnrtLambert(toO, len, normal.xyz);
   bool self = extents.z != 0.0 && normal.w == extents.z;
-  if (!(s > 0.0) || !(len > 1e-6 * centreWorld.w) || !(lamb > 0.0) || self) return vec3(0.0);
+  if (!dnrtReaches(s, len, centreWorld.w, lamb) || self) return vec3(0.0);
   // One mip level: textureLod filters as dnrt.frag's texture() does, without implicit derivatives
   // in this (non-uniform) branch.
   return (lamb * s) * textureLod(combined, dnrtUvw(q, extents.x, extents.w), 0.0).rgb;
