@@ -832,6 +832,63 @@ TEST(DnrtGpu, FusedModeIsTheBoxImageInsideTheProbesPass) {
   }
 }
 
+// The fused mode with an occlusion term: two-boxes-lamp.json's box-a says "lights_in_anti_radiance":
+// false, so its combined volume sums its field and its occlusion-only field (−k_j, the lamp's c_j
+// negated; combine.comp kOcclusion) — in dnrt.combine for the box mode and in dnrt.combine.fused for
+// the probes pass. box-b is left out (one object: the bound of FusedModeIsTheBoxImageInsideTheProbesPass
+// holds as it stands, half-ulps of |probesOnly| + 2|box|). The occlusion term must change the image:
+// the same object with the lamp in its anti-radiance (no occlusion field) differs by more than the bound.
+TEST(DnrtGpu, FusedModeWithAnOcclusionTermIsTheBoxImage) {
+  gpu::Context& ctx = gpu::testkit::sharedContext();
+  const auto render = [&](std::vector<std::string> effects, Mode mode, bool lightsIn = false) {
+    scene::Level level = game::loadLevelWithEffects(fs::path(BOUNCE_SOURCE_DIR) / "tests/data/dnrt/two-boxes-lamp.json",
+                                                    effects);
+    std::erase_if(level.entities, [](const scene::EntityDesc& e) { return e.id == "box-b"; });
+    for (auto& e : level.entities)
+      if (e.dnrt) {
+        EXPECT_FALSE(e.dnrt->lightsInAntiRadiance) << "the level's box-a carries an occlusion term";
+        e.dnrt->mode = mode;
+        e.dnrt->lightsInAntiRadiance = lightsIn;
+      }
+    game::Session session(ctx, std::move(level));
+    session.update(0.0);
+    return renderOnce(session, ctx);
+  };
+  const std::vector<std::string> all = {"direct", "probes", "dnrt"};
+  const Frame box = render(all, Mode::Box), fused = render(all, Mode::Fused);
+  const Frame probesOnly = render({"direct", "probes"}, Mode::Fused);
+  const Frame lightsIn = render(all, Mode::Fused, true);
+  const auto count = [](const Frame& f, const char* pass) { return std::count(f.passes.begin(), f.passes.end(), pass); };
+  EXPECT_EQ(count(box, "dnrt"), 1);
+  EXPECT_EQ(count(fused, "dnrt"), 0);
+  EXPECT_EQ(count(fused, "dnrt.combine.fused"), 1);
+  EXPECT_EQ(fused.passes, lightsIn.passes);
+
+  ASSERT_EQ(fused.rgb.size(), box.rgb.size());
+  ASSERT_EQ(probesOnly.rgb.size(), box.rgb.size());
+  ASSERT_EQ(lightsIn.rgb.size(), box.rgb.size());
+  constexpr float kHalfUlp = 1.0f / 2048.0f;
+  float largest = 0.0f, worstRatio = 0.0f, worstAbs = 0.0f, occlusionRatio = 0.0f;
+  int covered = 0;
+  for (std::size_t i = 0; i < box.rgb.size(); ++i) {
+    ASSERT_TRUE(std::isfinite(fused.rgb[i])) << i;
+    const float term = box.rgb[i] - probesOnly.rgb[i];  // DNRT's term with its occlusion part (box mode)
+    const float tolerance = kHalfUlp * (std::abs(probesOnly.rgb[i]) + 2.0f * std::abs(box.rgb[i])) + 1e-7f;
+    worstRatio = std::max(worstRatio, std::abs(fused.rgb[i] - box.rgb[i]) / tolerance);
+    worstAbs = std::max(worstAbs, std::abs(fused.rgb[i] - box.rgb[i]));
+    occlusionRatio = std::max(occlusionRatio, std::abs(lightsIn.rgb[i] - fused.rgb[i]) / tolerance);
+    largest = std::max(largest, std::abs(term));
+    covered += term != 0.0f ? 1 : 0;
+  }
+  std::printf("fused vs box with an occlusion term: %d channel values carry DNRT's term, largest |term| %.4f, worst "
+              "difference %.3g (%.3f of its tolerance); lamp in the anti-radiance instead: %.1f× the tolerance\n",
+              covered, largest, worstAbs, worstRatio, occlusionRatio);
+  EXPECT_GT(covered, 1000);
+  EXPECT_GT(largest, 0.005f);
+  EXPECT_LE(worstRatio, 1.0f);
+  EXPECT_GT(occlusionRatio, 10.0f) << "the occlusion term shows in the fused image";
+}
+
 // Clustered mode's tile cull (tile_cull.comp): each tile's CPU screen-hull mask cut by the depth range of
 // the tile's pixels. It may only narrow which objects a pixel visits, never what a pixel adds
 // (clustered.frag tests every pixel exactly), so the image is the uncut one bit for bit; the cut masks
