@@ -42,10 +42,17 @@ void Runtime::setIrradianceSource(const IrradianceSource* source) {
   incident_.setIndirect(source ? source : &background_);
 }
 
+namespace {
+// Put on the graph's blackboard by addFused: the graph is built anew every frame, so node() finds
+// it only in the frame whose probes node took the object. A frame that threw between the probes
+// node and DNRT's leaves fusedFrame_ set, and the next frame may have no probes pass.
+constexpr const char* kFusedThisFrame = "dnrt.fused.volume";
+}  // namespace
+
 render::Renderer::GraphNode Runtime::node() {
   return [this](rg::RenderGraph& graph, render::PassContext& pc) {
     std::vector<NodeObject> objects;
-    if (fusedFrame_) {  // the probes pass adds that one's term
+    if (fusedFrame_ && graph.blackboard().contains(kFusedThisFrame)) {  // the probes pass adds that one's term
       objects = std::move(fusedFrame_->objects);
       objects.erase(objects.begin() + std::ptrdiff_t(fusedFrame_->fused));
     } else {
@@ -72,6 +79,7 @@ std::optional<probes::FusedDnrt> Runtime::addFused(rg::RenderGraph& graph, const
     if (modeOf(o.mode) != Mode::Fused || o.intrusion || o.data.ids.x == 0u || o.data.ids.x > render::kEntityInNormalMax)
       continue;
     probes::FusedDnrt fused = node_->addFused(graph, pc, o);
+    graph.blackboard().put(kFusedThisFrame, fused.volume);
     fusedFrame_ = FusedFrame{std::move(objects), i};
     return fused;
   }

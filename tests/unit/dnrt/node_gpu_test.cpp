@@ -15,6 +15,7 @@
 #include <regex>
 #include <set>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -887,6 +888,39 @@ TEST(DnrtGpu, FusedModeWithAnOcclusionTermIsTheBoxImage) {
   EXPECT_GT(largest, 0.005f);
   EXPECT_LE(worstRatio, 1.0f);
   EXPECT_GT(occlusionRatio, 10.0f) << "the occlusion term shows in the fused image";
+}
+
+// A frame that throws after the probes node handed the fused object to the probes pass
+// (Runtime::addFused) and before DNRT's node ran leaves that frame's objects behind; the next frame,
+// here one without the probes effect, must not take them (node() takes them only when the graph's
+// blackboard has the entry addFused put there, i.e. in the same frame): its DNRT node draws the
+// object as a box, the image and passes of the frame before the throw.
+TEST(DnrtGpu, FusedObjectOfAFrameThatThrewIsNotTheNextFrames) {
+  gpu::Context& ctx = gpu::testkit::sharedContext();
+  scene::Level level = game::loadLevelWithEffects(fs::path(BOUNCE_SOURCE_DIR) / "tests/data/dnrt/floor-box.json",
+                                                  std::vector<std::string>{"direct", "dnrt"});
+  for (auto& e : level.entities)
+    if (e.dnrt) e.dnrt->mode = Mode::Fused;
+  game::Session session(ctx, std::move(level));
+  session.update(0.0);
+  Runtime* dnrt = session.dnrt();
+  ASSERT_NE(dnrt, nullptr);
+  session.renderer().setNode("dnrt", dnrt->node());
+  const Frame before = renderOnce(session, ctx);
+  ASSERT_EQ(std::count(before.passes.begin(), before.passes.end(), "dnrt"), 1) << "no probes: a box";
+
+  bool handed = false;
+  session.renderer().setNode("dnrt", [&](rg::RenderGraph& graph, render::PassContext& pc) {
+    handed = dnrt->addFused(graph, pc).has_value();
+    throw std::runtime_error("test: thrown between the probes and DNRT nodes");
+  });
+  EXPECT_THROW(renderOnce(session, ctx), std::runtime_error);
+  EXPECT_TRUE(handed) << "the object went to the probes pass in the frame that threw";
+
+  session.renderer().setNode("dnrt", dnrt->node());
+  const Frame after = renderOnce(session, ctx);
+  EXPECT_EQ(after.passes, before.passes);
+  EXPECT_EQ(after.rgb, before.rgb) << "the object's term is drawn, as before the throw";
 }
 
 // Clustered mode's tile cull (tile_cull.comp): each tile's CPU screen-hull mask cut by the depth range of
