@@ -370,7 +370,7 @@ TEST(SlBake, NearFieldShadowOnTheFloorVsTheMesh) {
     const int a1 = (ch.up + 1) % 3, a2 = (ch.up + 2) % 3;
     const double bands[] = {0.0, 0.25, 0.5, 1.0, 2.0};
     double meshB[4] = {}, unionB[4] = {}, slB[4] = {}, slNoShareB[4] = {};
-    int nB[4] = {};
+    int nB[4] = {}, clampedB[4] = {};  // receivers whose k sits at its floor 1/kShadowMaxRatio
     constexpr int kRays = 2048;
     for (int ring = 1; ring <= 20; ++ring)
       for (int az = 0; az < 16; ++az) {
@@ -408,23 +408,24 @@ TEST(SlBake, NearFieldShadowOnTheFloorVsTheMesh) {
         unionB[b] += ou;
         slB[b] += -ps.delta.x;
         slNoShareB[b] += slNoShare;
+        clampedB[b] += ps.ratio <= 1.0 / kShadowMaxRatio + 1e-12 ? 1 : 0;
         ++nB[b];
       }
     std::printf("%s: 16 spheres, overshoot %.2f, union share %.3f, shadow scale %.3f\n", ch.rel, set.volumeOvershoot,
                 ss.objectShare[0], ss.objectSilhouette[0]);
     for (int b = 0; b < 4; ++b) {
       if (nB[b] == 0) continue;
-      std::printf("  %.2f-%.2f m, %3d receivers: mesh %.4f sr, union/mesh %.3f, SL/mesh %.3f, SL(s=1)/union %.3f, SL/(s·union) %.3f\n",
+      std::printf("  %.2f-%.2f m, %3d receivers: mesh %.4f sr, union/mesh %.3f, SL/mesh %.3f, SL(s=1)/union %.3f, SL/(s·union) %.3f, k at 1/4: %d\n",
                   bands[b], bands[b + 1], nB[b], meshB[b] / nB[b], unionB[b] / meshB[b], slB[b] / meshB[b],
-                  slNoShareB[b] / unionB[b], slB[b] / (ss.objectSilhouette[0] * unionB[b]));
+                  slNoShareB[b] / unionB[b], slB[b] / (ss.objectSilhouette[0] * unionB[b]), clampedB[b]);
       // The spheres bound the surface: a ray that meets the mesh meets a sphere first (coverage 0).
       EXPECT_GE(unionB[b], 0.98 * meshB[b]) << ch.rel << " band " << b;
       // Within 0.5 m the baked shadow scale and k already bring the union's 1.7–2.4× down to the
       // mesh's amount (measured 0.85–1.09): under uniform light SL's near-field shadow is NOT too
       // strong, so the 1.5× excess measured in the level (README "SL's near-field shadow, session
-      // 17") is not the sphere set's overshoot. (Beyond 1 m the Fox's reads 2.0×: there the scale
-      // 0.575 changes SL by 0.98× only — k's clamp to ≥ 1/4 is the likely cause, not checked; not
-      // asserted.)
+      // 17") is not the sphere set's overshoot. (Beyond 1 m the Fox's reads 2.0×: there k sits at
+      // its floor 1/kShadowMaxRatio on every receiver (printed: 160 of 160; CesiumMan 111 of 160), so
+      // the shadow scale 0.575 changes SL by 0.98× only. Not asserted: a finding, not a contract.)
       if (b < 2) EXPECT_NEAR(slB[b] / meshB[b], 1.0, 0.3) << ch.rel << " band " << b;
     }
   }
