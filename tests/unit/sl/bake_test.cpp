@@ -319,3 +319,114 @@ TEST(SlBake, UniformlyLitCharacterSlsVsItsMesh) {
     }
   }
 }
+
+// Issue 13, session 17: where SL's near-field shadow on the probes' light is too strong. Under
+// uniform unit radiance the true darkening of a floor receiver by a character is the MESH's
+// cosine-weighted solid angle Ω_mesh (rays against the mesh), and sl.shadow's (the C++ reference
+// sl::probeShadow, the level's settings uncut: 16 spheres, order 4, influence 0, the baked union share and
+// shadow scale) should equal it. Three numbers per distance band split SL/mesh into its factors:
+//   union/mesh: the spheres' union Ω_union over Ω_mesh (geometry: the set bounds the surface);
+//   s_shadow: the baked scale, fitted on shells at 1.1 and 2 bounding radii (bounce_scale.cpp);
+//   SL/(s·union): what the Ratio form's k and σ do on top (overlaps, exp).
+// Characters in metres and standing on the floor (CesiumMan is Z-up in its mesh frame, the Fox
+// Y-up at the level's scale 0.006); receivers on the floor at 16 azimuths and 0.1…2 m from the
+// bounding centre's vertical axis, those under the body (Ω_mesh > π/2) left out. Bind pose.
+TEST(SlBake, NearFieldShadowOnTheFloorVsTheMesh) {
+  struct Character {
+    const char* rel;
+    int up;
+    float scale;
+  };
+  for (const Character ch : {Character{"content/src/CesiumMan/glTF-Binary/CesiumMan.glb", 2, 1.0f},
+                             Character{"content/src/Fox/glTF-Binary/Fox.glb", 1, 0.006f}}) {
+    auto mesh = loadMesh(std::filesystem::path(BOUNCE_SOURCE_DIR) / ch.rel);
+    float floorH = std::numeric_limits<float>::max();
+    for (auto& m : mesh.meshes)
+      for (auto& v : m.positions) {
+        v *= ch.scale;
+        floorH = std::min(floorH, v[ch.up]);
+      }
+    BakeSettings bs;  // the level's: 16 spheres, order 4, default fit
+    const SphereSet set = bake(mesh, bs);
+    std::vector<Light> lights;
+    std::vector<Sphere> raw;
+    for (const SlSphere& s : set.spheres) {
+      Light l;
+      l.sphere = {glm::dvec3(s.centre), double(s.radius)};
+      l.object = 0;
+      lights.push_back(l);
+      raw.push_back(l.sphere);
+    }
+    ShadowSettings ss;
+    ss.order = 4;
+    ss.influence = 0.0;  // uncut, as the split's rows (influence=0)
+    ss.objectShare = {unionShare(raw)};
+    ss.objectSilhouette = {double(set.spheres[0].shadowScale)};
+    std::vector<glm::dvec3> radiance(9, glm::dvec3(0.0));
+    radiance[0] = glm::dvec3(2.0 * std::sqrt(math::kPi));  // L ≡ 1: L_00 = ∫ Y_00 = 2√π, E_u = π
+    const ref::SceneBvh bvh(mesh);
+    glm::dvec3 up(0.0);
+    up[ch.up] = 1.0;
+    const int a1 = (ch.up + 1) % 3, a2 = (ch.up + 2) % 3;
+    const double bands[] = {0.0, 0.25, 0.5, 1.0, 2.0};
+    double meshB[4] = {}, unionB[4] = {}, slB[4] = {}, slNoShareB[4] = {};
+    int nB[4] = {}, clampedB[4] = {};  // receivers whose k sits at its floor 1/kShadowMaxRatio
+    constexpr int kRays = 2048;
+    for (int ring = 1; ring <= 20; ++ring)
+      for (int az = 0; az < 16; ++az) {
+        const double r = 0.1 * ring, phi = 2.0 * math::kPi * (az + 0.5) / 16.0;
+        glm::dvec3 p(set.boundCentre);
+        p[ch.up] = double(floorH) + 1e-3;
+        p[a1] += r * std::cos(phi);
+        p[a2] += r * std::sin(phi);
+        double om = 0.0, ou = 0.0;
+        for (int i = 0; i < kRays; ++i) {
+          const glm::dvec3 d = math::fibonacciSphere(i, kRays);
+          const double cs = glm::dot(d, up);
+          if (cs <= 0.0) continue;
+          if (bvh.occluded(glm::vec3(p), glm::vec3(d), 1e-5f, 1e30f)) om += cs * 4.0 * math::kPi / kRays;
+          for (const Sphere& s : raw) {
+            const glm::dvec3 oc = s.centre - p;
+            const double b = glm::dot(oc, d);
+            if (b > 0.0 && glm::dot(oc, oc) - b * b < s.radius * s.radius) {
+              ou += cs * 4.0 * math::kPi / kRays;
+              break;
+            }
+          }
+        }
+        if (om > 0.5 * math::kPi) continue;  // under the body
+        const ProbeShadow ps = probeShadow(lights, p, up, radiance, ss);
+        ASSERT_TRUE(std::isfinite(ps.delta.x));
+        EXPECT_LE(ps.delta.x, 0.0);
+        EXPECT_GE(ps.delta.x, -ps.unshadowed.x - 1e-9);
+        ShadowSettings noShare = ss;
+        noShare.objectSilhouette = {1.0};
+        const double slNoShare = -probeShadow(lights, p, up, radiance, noShare).delta.x;
+        int b = 0;
+        while (b < 3 && r > bands[b + 1]) ++b;
+        meshB[b] += om;
+        unionB[b] += ou;
+        slB[b] += -ps.delta.x;
+        slNoShareB[b] += slNoShare;
+        clampedB[b] += ps.ratio <= 1.0 / kShadowMaxRatio + 1e-12 ? 1 : 0;
+        ++nB[b];
+      }
+    std::printf("%s: 16 spheres, overshoot %.2f, union share %.3f, shadow scale %.3f\n", ch.rel, set.volumeOvershoot,
+                ss.objectShare[0], ss.objectSilhouette[0]);
+    for (int b = 0; b < 4; ++b) {
+      if (nB[b] == 0) continue;
+      std::printf("  %.2f-%.2f m, %3d receivers: mesh %.4f sr, union/mesh %.3f, SL/mesh %.3f, SL(s=1)/union %.3f, SL/(s·union) %.3f, k at 1/4: %d\n",
+                  bands[b], bands[b + 1], nB[b], meshB[b] / nB[b], unionB[b] / meshB[b], slB[b] / meshB[b],
+                  slNoShareB[b] / unionB[b], slB[b] / (ss.objectSilhouette[0] * unionB[b]), clampedB[b]);
+      // The spheres bound the surface: a ray that meets the mesh meets a sphere first (coverage 0).
+      EXPECT_GE(unionB[b], 0.98 * meshB[b]) << ch.rel << " band " << b;
+      // Within 0.5 m the baked shadow scale and k already bring the union's 1.7–2.4× down to the
+      // mesh's amount (measured 0.85–1.09): under uniform light SL's near-field shadow is NOT too
+      // strong, so the 1.5× excess measured in the level (README "SL's near-field shadow, session
+      // 17") is not the sphere set's overshoot. (Beyond 1 m the Fox's reads 2.0×: there k sits at
+      // its floor 1/kShadowMaxRatio on every receiver (printed: 160 of 160; CesiumMan 111 of 160), so
+      // the shadow scale 0.575 changes SL by 0.98× only. Not asserted: a finding, not a contract.)
+      if (b < 2) EXPECT_NEAR(slB[b] / meshB[b], 1.0, 0.3) << ch.rel << " band " << b;
+    }
+  }
+}
