@@ -22,7 +22,7 @@ import numpy as np
 
 from effect_noise import read_pfm
 
-WHATIFS = ("albedo", "lampvis", "both", "shadowed", "shadowed-lampvis")
+WHATIFS = ("albedo", "lampvis", "both", "shadowed", "shadowed-lampvis", "lampray", "shadowed-lampray")  # lampray*: -b1 only
 
 
 def fail(path, what, expected):

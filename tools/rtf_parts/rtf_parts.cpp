@@ -714,6 +714,32 @@ int main(int argc, char** argv) {
   const ExactProxySource shadowedSource(lit, light.indirect(), proxyScaleShadowed), shadowedLampSource(lampVis, light.indirect(), proxyScaleShadowed);
   const gi::rtf::BounceResult bouncedShadowed = gi::rtf::bounce(objects, shadowedSource, 2), bouncedShadowedLamp = gi::rtf::bounce(objects, shadowedLampSource, 2);
   const gi::rtf::BounceResult bouncedShadowedLamp1 = gi::rtf::bounce(objects, shadowedLampSource, 1);  // the same at 1 bounce (-b1)
+  //   lampray-b1: what the engine's form of lampvis would give (1 bounce): Algorithm 1's OOF product on the
+  //            probes' part only, the lamp added after it with the ray's visibility through the level without J
+  //            (so the lamp is not occluded twice, by the ray and by the OOFs); shadowed-lampray-b1: with the
+  //            probes' part scaled as `shadowed`.
+  struct NoLight final : gi::incident::IndirectSource {
+    gi::incident::RadianceSH radianceSH(glm::vec3) const override { return {}; }
+  };
+  const NoLight noLight;
+  LampVisSource lampOnly(noLight, lights);
+  lampOnly.at = lampVis.at;
+  const ExactProxySource shadowedProbes(light.indirect(), light.indirect(), proxyScaleShadowed);
+  const auto withLampRay = [&](const gi::incident::IndirectSource& probesPart) {
+    gi::rtf::BounceResult r = gi::rtf::bounce(objects, probesPart, 1);
+    r.xi.clear();
+    for (std::size_t J = 0; J < objects.size(); ++J) {
+      const gi::rtf::Placement pl = gi::rtf::place(*objects[J].field, objects[J].world);
+      for (std::size_t k = 0; k < objects[J].field->proxies.size(); ++k) {
+        const glm::vec3 chi = glm::vec3(objects[J].world * glm::vec4(objects[J].field->proxies[k], 1.0f));
+        const gi::rtf::ShRgb l = gi::rtf::toLocal(gi::rtf::sourceRadiance(lampOnly, chi), pl);
+        for (int j = 0; j < gi::rtf::kShCount; ++j) r.proxyLight[J][k * gi::rtf::kShCount + std::size_t(j)] += l[std::size_t(j)];
+      }
+      r.xi.push_back(gi::rtf::xiCache(*objects[J].field, r.proxyLight[J]));
+    }
+    return r;
+  };
+  const gi::rtf::BounceResult lampRay1 = withLampRay(light.indirect()), shadowedLampRay1 = withLampRay(shadowedProbes);
   for (std::size_t J = 0; J < objects.size(); ++J) {
     for (glm::vec3& x : bouncedAlbedo.xi[J]) x *= albedoScale[J];
     for (glm::vec3& x : bouncedBoth.xi[J]) x *= albedoScale[J];
@@ -767,13 +793,13 @@ int main(int argc, char** argv) {
     scalesEq3.push_back(std::move(e3));
     scalesSurf.push_back(std::move(sf));
   }
-  enum { kInter, kBlocked, kRoom, kBlockedProbes, kRtfInter, kRtfBlocked, kField, kAtR, kShapeO, kAtO, kGpu, kOofAtR, kOofNoFade, kOofShExactCos, kVisExactCos, kEq3, kSurf, kLevel, kViaOther, kViaSelf, kRtfInter1, kRtfInter3, kRtfInter4, kExact1, kExact2, kHidden, kAlbedo, kLampVis, kBoth, kShadowed, kShadowedLamp, kShadowedLamp1, kParts };
+  enum { kInter, kBlocked, kRoom, kBlockedProbes, kRtfInter, kRtfBlocked, kField, kAtR, kShapeO, kAtO, kGpu, kOofAtR, kOofNoFade, kOofShExactCos, kVisExactCos, kEq3, kSurf, kLevel, kViaOther, kViaSelf, kRtfInter1, kRtfInter3, kRtfInter4, kExact1, kExact2, kHidden, kAlbedo, kLampVis, kBoth, kShadowed, kShadowedLamp, kShadowedLamp1, kLampRay1, kShadowedLampRay1, kParts };
   const char* names[kParts] = {"ref-interreflected", "ref-blocked", "ref-room", "blocked-probes", "rtf-interreflected",
                                "rtf-blocked", "field", "blocked-receiver", "blocked-shape-o", "blocked-at-o", "blocked-gpu",
                                "blocked-oof-at-r", "blocked-oof-at-r-nofade", "blocked-oofsh-exactcos", "blocked-vis-exactcos", "blocked-eq3", "blocked-surface", "blocked-level",
                                "ref-via-other", "ref-via-self", "rtf-interreflected-b1",
                                "rtf-interreflected-b3", "rtf-interreflected-b4",
-                               "rtf-interreflected-exact1", "rtf-interreflected-exact2", "ref-interreflected-hidden", "rtf-interreflected-albedo", "rtf-interreflected-lampvis", "rtf-interreflected-both", "rtf-interreflected-shadowed", "rtf-interreflected-shadowed-lampvis", "rtf-interreflected-shadowed-lampvis-b1"};
+                               "rtf-interreflected-exact1", "rtf-interreflected-exact2", "ref-interreflected-hidden", "rtf-interreflected-albedo", "rtf-interreflected-lampvis", "rtf-interreflected-both", "rtf-interreflected-shadowed", "rtf-interreflected-shadowed-lampvis", "rtf-interreflected-shadowed-lampvis-b1", "rtf-interreflected-lampray-b1", "rtf-interreflected-shadowed-lampray-b1"};
   std::vector<gpu::FloatImage> images(kParts);
   for (auto& im : images) im.width = W, im.height = H, im.rgb.assign(std::size_t(W) * H * 3, 0.0f);
   parallelFor(0, std::size_t(W) * H, [&](std::size_t pixel) {
@@ -867,6 +893,8 @@ int main(int argc, char** argv) {
     put(kShadowed, gi::rtf::shade(objects, bouncedShadowed, light.indirect(), hit.position, n, rho, -1, 9).interreflected);
     put(kShadowedLamp, gi::rtf::shade(objects, bouncedShadowedLamp, light.indirect(), hit.position, n, rho, -1, 9).interreflected);
     put(kShadowedLamp1, gi::rtf::shade(objects, bouncedShadowedLamp1, light.indirect(), hit.position, n, rho, -1, 9).interreflected);
+    put(kLampRay1, gi::rtf::shade(objects, lampRay1, light.indirect(), hit.position, n, rho, -1, 9).interreflected);
+    put(kShadowedLampRay1, gi::rtf::shade(objects, shadowedLampRay1, light.indirect(), hit.position, n, rho, -1, 9).interreflected);
     for (std::size_t k = 0; k < objects.size(); ++k) {
       const std::span<const gi::rtf::Object> one(&objects[k], 1);
       auto& po = perObject[pixel * objects.size() + k];
