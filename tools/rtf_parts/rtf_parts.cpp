@@ -42,6 +42,13 @@
 // there, the weight Eq. 10 puts on another object's samples inside it (V ≡ 0), and the room's traced l = 0
 // (the level without any object) against the probes' there and at χ moved towards o
 // (RTF_PARTS_PROXIES_ONLY=1: stop after those lines).
+// ref-interreflected-hidden (issue 14, session 17): ρ·E[L_obj(ω)·1(ω hits an object behind the room's
+//   first hit)]: the light objects send towards r that the room's geometry hides in the reference; RTF's field
+//   has no room visibility and adds it (traced from just before the object's surface, its own random stream).
+// RTF_PARTS_FACES=N (issue 14, session 17): per object and face class, the light the objects' vertices send
+//   out, RTF's transfer × the proxies' bounce-0 light (its lamp part and probes part) against the reference's
+//   (direct and indirect, N cosine paths a vertex), and the albedo per vertex against the area mean
+//   (RTF_PARTS_FACES_ONLY=1: stop after those lines).
 // RTF_PARTS_TAP="J k B" (issue 14, ninth pass): at proxy k of object J, object B's Eq. 10 lookup tap by tap
 // (sphere, weight, B's ξ l = 0 from its field and from a fresh uncompressed bake, V_0, the reference's l = 0
 // from B at the sample's world position), per sphere Σ|ξ_0| uncompressed against the field's, and at tap 2
@@ -49,7 +56,7 @@
 //
 // usage: rtf_parts LEVEL WIDTH HEIGHT DIRS_PER_AXIS OUT_DIR [FRAME [TAIL]]   (TAIL: scene::Rtf::tail τ for every object)
 //   writes OUT_DIR/{ref-interreflected,ref-blocked,ref-room,blocked-probes,rtf-interreflected,
-//   rtf-blocked,field}.pfm (outgoing radiance, rows top to bottom as bounce accuracy's images).
+//   rtf-blocked,field,ref-interreflected-hidden,…}.pfm (outgoing radiance, rows top to bottom as bounce accuracy's images).
 // A diagnostic, not a test: run by hand, numbers read with tools/rtf_parts.py.
 #include <array>
 #include <cstdio>
@@ -263,13 +270,155 @@ int main(int argc, char** argv) {
                    with.registry.get<scene::Name>(rtfEntities[a]).id.c_str(), e0, e1, e1 / std::max(e0, 1e-30));
     }
   }
+  // RTF_PARTS_FACES=N (issue 14, session 17: where the first order is too bright): at every vertex p of
+  // every rtf object, the light the object sends out, RTF's against the reference's, before any field:
+  //   RTF  B_p = Σ_k Σ_j t_{p,k}^j L_k^j  (bake.hpp vertexTransfer with self-interreflection, Eq. 8 then
+  //        Eq. 3's proxy weights; L_k = Algorithm 1's bounce-0 light at the proxies, the session's source:
+  //        the probes' SH plus the lamp projected into the same 9 coefficients, occluded by the others' OOFs),
+  //        split into the lamp's part (source − probes only) and the probes' part;
+  //   ref  ρ_p/π E_lamp max(n·l, 0) V (shadow ray through the level) + ρ_p E[L_with] over N cosine paths
+  //        (unlimited bounces, the level with every object): the reference's radiance leaving p.
+  // Summed per object and face class (n·up > 0.5 up, < −0.5 down, else side; RGB mean, per vertex);
+  // vertices within 2 mm of the floor plane y = 0 are left out (a face on the floor sends nothing).
+  // Also per object the albedo two ways: the mean of the vertices' ρ (what the transfer holds) and the
+  // area mean of the surface's ρ (the texture over each triangle, what the path tracer sees).
+  // An object's albedo two ways (RGB mean): the mean of its vertices' ρ (the texture at each vertex's uv: what
+  // bake.cpp's transfer holds) and the area mean of its surface's ρ (the texture over each triangle, 64 points
+  // each: what the path tracer sees).
+  const auto albedoMeans = [](const ref::SceneDesc& d) {
+    double perVertex = 0.0, vertices = 0.0, areaRho = 0.0, area = 0.0;
+    for (std::size_t mi = 0; mi < d.meshes.size(); ++mi) {
+      const ref::RefMesh& m = d.meshes[mi];
+      const ref::RefMaterial* mat = m.material < d.materials.size() ? &d.materials[m.material] : nullptr;
+      const bool hasUv = m.uvs.size() == m.positions.size();
+      const auto rhoAt = [&](glm::vec2 uv) {
+        glm::vec3 a = mat ? mat->albedo : glm::vec3(1.0f);
+        if (hasUv && mat && mat->albedoTexture >= 0 && std::size_t(mat->albedoTexture) < d.textures.size())
+          a *= d.textures[std::size_t(mat->albedoTexture)].sample(uv);
+        a = glm::clamp(a, glm::vec3(0.0f), glm::vec3(1.0f));
+        return double(a.x + a.y + a.z) / 3.0;
+      };
+      for (std::size_t i = 0; i < m.positions.size(); ++i) perVertex += rhoAt(hasUv ? m.uvs[i] : glm::vec2(0.0f)), vertices += 1.0;
+      math::Pcg32 rng = math::Pcg32::fromIndex(4242 + mi);
+      for (std::size_t t = 0; t + 2 < m.indices.size(); t += 3) {
+        const std::uint32_t a = m.indices[t], b = m.indices[t + 1], c = m.indices[t + 2];
+        const double A = 0.5 * double(glm::length(glm::cross(m.positions[b] - m.positions[a], m.positions[c] - m.positions[a])));
+        double sum = 0.0;
+        for (int q = 0; q < 64; ++q) {
+          float u = rng.nextFloat(), v = rng.nextFloat();
+          if (u + v > 1.0f) u = 1.0f - u, v = 1.0f - v;
+          sum += rhoAt(hasUv ? (1.0f - u - v) * m.uvs[a] + u * m.uvs[b] + v * m.uvs[c] : glm::vec2(0.0f));
+        }
+        areaRho += A * sum / 64.0, area += A;
+      }
+    }
+    return std::array<double, 2>{perVertex / std::max(vertices, 1.0), areaRho / std::max(area, 1e-30)};
+  };
+  if (const char* fenv = std::getenv("RTF_PARTS_FACES")) {
+    const int paths = std::max(1, std::atoi(fenv));
+    const gi::rtf::BounceResult probesOnly = gi::rtf::bounce(objects, light.indirect(), 1);
+    for (std::size_t J = 0; J < objects.size(); ++J) {
+      const gi::rtf::Field& f = *objects[J].field;
+      const ref::SceneDesc od = gi::dnrt::objectScene(with.registry, rtfEntities[J], with.assets);
+      const ref::SceneDesc& wd = alone[J]->desc;  // the same meshes posed in the world
+      const std::vector<glm::vec3> tv = gi::rtf::vertexTransfer(od, f.proxies, f.radius, f.settings);
+      const std::size_t stride = f.proxies.size() * gi::rtf::kShCount;
+      std::vector<glm::vec3> P, Nw, rhoV;
+      for (std::size_t mi = 0; mi < wd.meshes.size() && mi < od.meshes.size(); ++mi) {
+        const ref::RefMesh& m = wd.meshes[mi];
+        const ref::RefMaterial* mat = m.material < wd.materials.size() ? &wd.materials[m.material] : nullptr;
+        const auto rhoAt = [&](glm::vec2 uv, bool hasUv) {
+          glm::vec3 a = mat ? mat->albedo : glm::vec3(1.0f);
+          if (hasUv && mat && mat->albedoTexture >= 0 && std::size_t(mat->albedoTexture) < wd.textures.size())
+            a *= wd.textures[std::size_t(mat->albedoTexture)].sample(uv);
+          return glm::clamp(a, glm::vec3(0.0f), glm::vec3(1.0f));
+        };
+        const bool hasUv = m.uvs.size() == m.positions.size();
+        for (std::size_t i = 0; i < m.positions.size(); ++i) {
+          P.push_back(m.positions[i]);
+          Nw.push_back(glm::normalize(i < m.normals.size() ? m.normals[i] : glm::vec3(0, 1, 0)));
+          rhoV.push_back(rhoAt(hasUv ? m.uvs[i] : glm::vec2(0.0f), hasUv));
+        }
+      }
+      if (tv.size() != P.size() * stride) {
+        std::fprintf(stderr, "rtf_parts: faces: object %zu: %zu transfer rows against %zu world vertices, skipped\n", J, tv.size() / stride, P.size());
+        continue;
+      }
+      // classes: 0 up, 1 side, 2 down; parts: rtf lamp, rtf probes, ref direct, ref indirect, count
+      double acc[3][5] = {};
+      std::vector<std::array<double, 4>> perV(P.size());
+      parallelFor(0, P.size(), [&](std::size_t p) {
+        double rl = 0.0, rp = 0.0;
+        for (std::size_t k = 0; k < f.proxies.size(); ++k)
+          for (int j = 0; j < gi::rtf::kShCount; ++j) {
+            const std::size_t e = k * gi::rtf::kShCount + std::size_t(j);
+            const glm::vec3 all = bounced1.proxyLight[J][e], pr = probesOnly.proxyLight[J][e], t = tv[p * stride + e];
+            rl += double(glm::dot(t, all - pr)) / 3.0, rp += double(glm::dot(t, pr)) / 3.0;
+          }
+        const glm::vec3 n = Nw[p], o = P[p] + 1e-4f * std::max(1.0f, glm::length(P[p])) * n;
+        double dir = 0.0;
+        for (const ref::RefLight& l : with.desc.lights) {
+          glm::vec3 toL;
+          float dist = 0.0f;
+          const glm::vec3 E = gi::incident::lightIrradiance(lightGpu(l), P[p], toL, dist);
+          const float c = glm::dot(n, toL);
+          if (c <= 0.0f || bvhWith.occluded(o, toL, 0.0f, dist * (1.0f - 1e-4f))) continue;
+          dir += double(glm::dot(rhoV[p], E)) / 3.0 * double(c) / math::kPi;
+        }
+        math::Pcg32 rng = math::Pcg32::fromIndex(777000 + J * 100000 + p);
+        std::uint64_t rays = 0;
+        glm::dvec3 ind(0.0);
+        const int spa = int(std::ceil(std::sqrt(double(paths))));
+        const auto dirs = math::stratified2D(spa, rng);
+        for (const glm::dvec2& u : dirs)
+          ind += ref::tracePathFrom(bvhWith, o, glm::vec3(math::cosineHemisphere(u, glm::dvec3(n))), 0.0f, 1e30f, ref::kUnlimitedBounces, rng, rays);
+        ind /= double(dirs.size());
+        perV[p] = {rl, rp, dir, glm::dot(glm::dvec3(rhoV[p]), ind) / 3.0};
+      }, 1);
+      for (std::size_t p = 0; p < P.size(); ++p) {
+        if (P[p].y < 0.002f) continue;
+        const int cls = Nw[p].y > 0.5f ? 0 : Nw[p].y < -0.5f ? 2 : 1;
+        for (int i = 0; i < 4; ++i) acc[cls][i] += perV[p][std::size_t(i)];
+        acc[cls][4] += 1.0;
+      }
+      // The lamp's visibility (lights[0]): at the proxies as the bouncing step takes it (the session's light
+      // visibility, static geometry, one ray), and at the vertices through the static level and through the
+      // level with every object (the reference's shadow ray).
+      double vProxy = 0.0, vStatic = 0.0, vFull = 0.0;
+      for (const glm::vec3& c : f.proxies)
+        vProxy += double(light.lightVisibility().visible(lights[0], glm::vec3(objects[J].world * glm::vec4(c, 1.0f)), 0.0f));
+      for (std::size_t p = 0; p < P.size(); ++p) {
+        const glm::vec3 o = P[p] + 1e-4f * std::max(1.0f, glm::length(P[p])) * Nw[p];
+        const glm::vec3 d = with.desc.lights[0].position - o;
+        const float len = glm::length(d);
+        vStatic += bvhWithout.occluded(o, d / len, 0.0f, len * (1.0f - 1e-4f)) ? 0.0 : 1.0;
+        vFull += bvhWith.occluded(o, d / len, 0.0f, len * (1.0f - 1e-4f)) ? 0.0 : 1.0;
+      }
+      std::fprintf(stderr, "rtf_parts: faces: object %zu: lamp visibility, mean over the proxies (static, bouncing step) %.3f; over the vertices static %.3f, with the objects %.3f\n", J,
+                   vProxy / double(f.proxies.size()), vStatic / double(P.size()), vFull / double(P.size()));
+      const std::array<double, 2> am = albedoMeans(wd);
+      std::fprintf(stderr, "rtf_parts: faces: object %zu (%s): albedo per vertex %.4f, area mean %.4f (%.3f)\n", J,
+                   with.registry.get<scene::Name>(rtfEntities[J]).id.c_str(), am[0], am[1], am[0] / std::max(am[1], 1e-30));
+      const char* cname[3] = {"up", "side", "down"};
+      const auto ratio = [](double a, double b) { return b > 1e-9 ? a / b : std::nan(""); };  // nan: the reference has none
+      for (int c = 0; c < 3; ++c) {
+        if (acc[c][4] == 0.0) continue;
+        const double nn = acc[c][4], rt = (acc[c][0] + acc[c][1]) / nn, rf = (acc[c][2] + acc[c][3]) / nn;
+        std::fprintf(stderr,
+                     "rtf_parts: faces: object %zu %-4s %3.0f vertices: RTF %.4g (lamp %.4g, probes %.4g) ref %.4g (direct %.4g, indirect %.4g) RTF/ref %.3f, lamp/direct %.3f, probes/indirect %.3f\n",
+                     J, cname[c], nn, rt, acc[c][0] / nn, acc[c][1] / nn, rf, acc[c][2] / nn, acc[c][3] / nn, ratio(rt, rf), ratio(acc[c][0], acc[c][2]),
+                     ratio(acc[c][1], acc[c][3]));
+      }
+    }
+    if (std::getenv("RTF_PARTS_FACES_ONLY") != nullptr) return 0;
+  }
   // At each object J's proxies χ_k, the reference's radiance from the OTHER objects (the level without J,
   // 6·16² cube directions, 4 paths each, unlimited bounces; the part whose first hit is another object):
   // its l = 0 coefficient against RTF's second bounce (2 bounces − 1) at the same proxies (Σ over proxies, RGB mean).
   // The source with each proxy's room light (the probes' part) scaled to the traced one (a what-if:
   // Algorithm 1 with exact proxy light; rtf-interreflected-exact1/-exact2).
   struct ProxyScale { glm::vec3 at; double ratio; };
-  std::vector<ProxyScale> proxyScale;
+  std::vector<ProxyScale> proxyScale, proxyScaleShadowed;
   for (std::size_t J = 0; J < objects.size(); ++J) {
     scene::Level minusJ = level;
     minusJ.entities.clear();
@@ -281,6 +430,7 @@ int main(int argc, char** argv) {
     const ref::SceneBvh bvhJ(pj.desc);
     const gi::rtf::Field& f = *objects[J].field;
     std::vector<double> refOther(f.proxies.size(), 0.0), rtfOther(f.proxies.size(), 0.0), rtfOther4(f.proxies.size(), 0.0), refRoom(f.proxies.size(), 0.0), probeRoom(f.proxies.size(), 0.0);
+    std::vector<double> refRoomShadowed(f.proxies.size(), 0.0);  // the room's l = 0 traced in the level without J, other objects' first hits left out
     std::vector<std::array<double, 4>> probeToward(f.proxies.size());
     // RTF_PARTS_TAP="J k B": proxy k of object J, object B's Eq. 10 lookup there, tap by tap: the sphere, the
     // weight, B's bounce-1 ξ l = 0 (RTF's light from B at the sample, Algorithm 1 with 1 bounce), V's l = 0 and
@@ -404,17 +554,19 @@ int main(int argc, char** argv) {
       const glm::vec3 chi = glm::mix(glm::vec3(objects[J].world * glm::vec4(f.proxies[k], 1.0f)), o, 0.01f);
       math::Pcg32 rng = math::Pcg32::fromIndex(J * 1000 + k);
       std::uint64_t rays = 0;
-      double acc = 0.0, room = 0.0;
+      double acc = 0.0, room = 0.0, shadowed = 0.0;
       for (const Dir& d : oofDirs)
         for (int path = 0; path < 4; ++path) {
           ref::Hit first;
           bool any = false;
           const glm::dvec3 L = ref::tracePathFrom(bvhJ, chi, d.w, 0.0f, 1e30f, ref::kUnlimitedBounces, rng, rays, &first, &any);
           if (any && objectHit(chi, d.w, first.t, int(J)) >= 0) acc += (L.x + L.y + L.z) / 3.0 * 0.28209479 * d.solidAngle / 4.0;
+          else shadowed += (L.x + L.y + L.z) / 3.0 * 0.28209479 * d.solidAngle / 4.0;
           const glm::dvec3 L0 = ref::tracePathFrom(bvhWithout, chi, d.w, 0.0f, 1e30f, ref::kUnlimitedBounces, rng, rays);
           room += (L0.x + L0.y + L0.z) / 3.0 * 0.28209479 * d.solidAngle / 4.0;
         }
       refOther[k] = acc;
+      refRoomShadowed[k] = shadowed;
       // The room's light at χ without any object (the traced l = 0) against the probes' there: the source
       // light Algorithm 1's bounce 0 starts from.
       const glm::vec3 pr = light.indirect().radianceSH(chi)[0];
@@ -464,13 +616,20 @@ int main(int argc, char** argv) {
     }
     std::string rooms;
     for (std::size_t k = 0; k < f.proxies.size(); ++k)
-      proxyScale.push_back({glm::vec3(objects[J].world * glm::vec4(f.proxies[k], 1.0f)), probeRoom[k] > 1e-6 ? refRoom[k] / probeRoom[k] : 1.0});
+      proxyScale.push_back({glm::vec3(objects[J].world * glm::vec4(f.proxies[k], 1.0f)), probeRoom[k] > 1e-6 ? refRoom[k] / probeRoom[k] : 1.0}),
+      proxyScaleShadowed.push_back({proxyScale.back().at, probeRoom[k] > 1e-6 ? refRoomShadowed[k] / probeRoom[k] : 1.0});
     for (std::size_t k = 0; k < f.proxies.size(); ++k) {
       char buf[48];
       std::snprintf(buf, sizeof buf, " %.3g/%.3g", refRoom[k], probeRoom[k]);
       rooms += buf;
     }
     std::fprintf(stderr, "rtf_parts: object %zu: the room's L_00 at the proxies, traced without the objects / the probes':%s\n", J, rooms.c_str());
+    {
+      double t0 = 0.0, t1 = 0.0, pr = 0.0;
+      for (std::size_t k = 0; k < f.proxies.size(); ++k) t0 += refRoom[k], t1 += refRoomShadowed[k], pr += probeRoom[k];
+      std::fprintf(stderr, "rtf_parts: object %zu: the room's L_00 summed over the proxies: probes %.4g, traced without any object %.4g, traced with the other objects (their shadows; directions onto them left out) %.4g\n",
+                   J, pr, t0, t1);
+    }
     {
       double e[4] = {}, tr = 0.0;
       for (std::size_t k = 0; k < f.proxies.size(); ++k) {
@@ -502,6 +661,89 @@ int main(int argc, char** argv) {
     }
   };
   const ExactProxySource exactSource(lit, light.indirect(), proxyScale);
+  // Session 17 what-ifs on the objects' first order (rtf-interreflected-albedo / -lampvis / -both, 2 bounces):
+  //   albedo:  each object's ξ scaled by its area-mean ρ over its per-vertex mean ρ (albedoMeans; the transfer is
+  //            linear in the first reflection's ρ, the self bounces' ρ² is left as is);
+  //   lampvis: the bouncing step's source with the lamp's visibility at each proxy of J traced through the level
+  //            without J (the other objects included: the textured box under the lamp shadows the truck, which the
+  //            OOFs cannot: a point light, and 6.4 η away, beyond its field) instead of the static level alone.
+  std::vector<float> albedoScale;
+  for (std::size_t J = 0; J < objects.size(); ++J) {
+    const std::array<double, 2> am = albedoMeans(alone[J]->desc);
+    albedoScale.push_back(float(am[1] / std::max(am[0], 1e-30)));
+    std::fprintf(stderr, "rtf_parts: object %zu: albedo per vertex %.4f, area mean %.4f: what-if scale %.3f\n", J, am[0], am[1], albedoScale.back());
+  }
+  std::vector<std::unique_ptr<Posed>> minusPosed;
+  std::vector<std::unique_ptr<ref::SceneBvh>> minusBvh;
+  for (std::size_t J = 0; J < objects.size(); ++J) {
+    scene::Level minusJ = level;
+    minusJ.entities.clear();
+    for (const auto& ent : level.entities)
+      if (ent.id != with.registry.get<scene::Name>(rtfEntities[J]).id) minusJ.entities.push_back(ent);
+    minusPosed.push_back(std::make_unique<Posed>());
+    pose(minusJ, time, cooked, *minusPosed.back());
+    minusBvh.push_back(std::make_unique<ref::SceneBvh>(minusPosed.back()->desc));
+  }
+  struct LampVisSource final : gi::incident::IndirectSource {
+    const gi::incident::IndirectSource& probes;
+    std::vector<std::pair<glm::vec3, const ref::SceneBvh*>> at;  // each proxy's world position and its level without J
+    std::span<const render::LightGpu> lights;
+    gi::incident::RadianceSH radianceSH(glm::vec3 p) const override {
+      gi::incident::RadianceSH L = probes.radianceSH(p);
+      const ref::SceneBvh* bvh = nullptr;
+      for (const auto& a : at)
+        if (glm::length(a.first - p) < 1e-5f * std::max(1.0f, glm::length(p))) bvh = a.second;
+      for (const render::LightGpu& l : lights) {
+        const glm::vec3 d = glm::vec3(l.positionType) - p;
+        const float len = glm::length(d);
+        const bool seen = !bvh || !(len > 0.0f) || !bvh->occluded(p, d / len, 0.0f, len * (1.0f - 1e-4f));
+        if (seen) gi::incident::addLight(l, p, 0.0f, 1.0f, L);
+      }
+      return L;
+    }
+    LampVisSource(const gi::incident::IndirectSource& pr, std::span<const render::LightGpu> ls) : probes(pr), lights(ls) {}
+  };
+  LampVisSource lampVis(light.indirect(), lights);
+  for (std::size_t J = 0; J < objects.size(); ++J)
+    for (const glm::vec3& c : objects[J].field->proxies) lampVis.at.push_back({glm::vec3(objects[J].world * glm::vec4(c, 1.0f)), minusBvh[J].get()});
+  const gi::rtf::BounceResult bouncedLamp = gi::rtf::bounce(objects, lampVis, 2);
+  gi::rtf::BounceResult bouncedAlbedo = bounced, bouncedBoth = bouncedLamp;
+  //   shadowed: each proxy's probe part scaled to the room's l = 0 traced at it in the level without J (the other
+  //            objects' shadows in it; exact1's trace had no object at all), lamp as shipped; shadowed-lampvis: with
+  //            the lampvis source.
+  const ExactProxySource shadowedSource(lit, light.indirect(), proxyScaleShadowed), shadowedLampSource(lampVis, light.indirect(), proxyScaleShadowed);
+  const gi::rtf::BounceResult bouncedShadowed = gi::rtf::bounce(objects, shadowedSource, 2), bouncedShadowedLamp = gi::rtf::bounce(objects, shadowedLampSource, 2);
+  const gi::rtf::BounceResult bouncedShadowedLamp1 = gi::rtf::bounce(objects, shadowedLampSource, 1);  // the same at 1 bounce (-b1)
+  //   lampray-b1: what the engine's form of lampvis would give (1 bounce): Algorithm 1's OOF product on the
+  //            probes' part only, the lamp added after it with the ray's visibility through the level without J
+  //            (so the lamp is not occluded twice, by the ray and by the OOFs); shadowed-lampray-b1: with the
+  //            probes' part scaled as `shadowed`.
+  struct NoLight final : gi::incident::IndirectSource {
+    gi::incident::RadianceSH radianceSH(glm::vec3) const override { return {}; }
+  };
+  const NoLight noLight;
+  LampVisSource lampOnly(noLight, lights);
+  lampOnly.at = lampVis.at;
+  const ExactProxySource shadowedProbes(light.indirect(), light.indirect(), proxyScaleShadowed);
+  const auto withLampRay = [&](const gi::incident::IndirectSource& probesPart) {
+    gi::rtf::BounceResult r = gi::rtf::bounce(objects, probesPart, 1);
+    r.xi.clear();
+    for (std::size_t J = 0; J < objects.size(); ++J) {
+      const gi::rtf::Placement pl = gi::rtf::place(*objects[J].field, objects[J].world);
+      for (std::size_t k = 0; k < objects[J].field->proxies.size(); ++k) {
+        const glm::vec3 chi = glm::vec3(objects[J].world * glm::vec4(objects[J].field->proxies[k], 1.0f));
+        const gi::rtf::ShRgb l = gi::rtf::toLocal(gi::rtf::sourceRadiance(lampOnly, chi), pl);
+        for (int j = 0; j < gi::rtf::kShCount; ++j) r.proxyLight[J][k * gi::rtf::kShCount + std::size_t(j)] += l[std::size_t(j)];
+      }
+      r.xi.push_back(gi::rtf::xiCache(*objects[J].field, r.proxyLight[J]));
+    }
+    return r;
+  };
+  const gi::rtf::BounceResult lampRay1 = withLampRay(light.indirect()), shadowedLampRay1 = withLampRay(shadowedProbes);
+  for (std::size_t J = 0; J < objects.size(); ++J) {
+    for (glm::vec3& x : bouncedAlbedo.xi[J]) x *= albedoScale[J];
+    for (glm::vec3& x : bouncedBoth.xi[J]) x *= albedoScale[J];
+  }
   const gi::rtf::BounceResult exact1 = gi::rtf::bounce(objects, exactSource, 1), exact2 = gi::rtf::bounce(objects, exactSource, 2);
   // Algorithm 1's energy per bounce (evaluate.hpp BounceResult::bounceEnergy): what a second
   // inter-object bounce can add at all, against the first.
@@ -551,13 +793,13 @@ int main(int argc, char** argv) {
     scalesEq3.push_back(std::move(e3));
     scalesSurf.push_back(std::move(sf));
   }
-  enum { kInter, kBlocked, kRoom, kBlockedProbes, kRtfInter, kRtfBlocked, kField, kAtR, kShapeO, kAtO, kGpu, kOofAtR, kOofNoFade, kOofShExactCos, kVisExactCos, kEq3, kSurf, kLevel, kViaOther, kViaSelf, kRtfInter1, kRtfInter3, kRtfInter4, kExact1, kExact2, kParts };
+  enum { kInter, kBlocked, kRoom, kBlockedProbes, kRtfInter, kRtfBlocked, kField, kAtR, kShapeO, kAtO, kGpu, kOofAtR, kOofNoFade, kOofShExactCos, kVisExactCos, kEq3, kSurf, kLevel, kViaOther, kViaSelf, kRtfInter1, kRtfInter3, kRtfInter4, kExact1, kExact2, kHidden, kAlbedo, kLampVis, kBoth, kShadowed, kShadowedLamp, kShadowedLamp1, kLampRay1, kShadowedLampRay1, kParts };
   const char* names[kParts] = {"ref-interreflected", "ref-blocked", "ref-room", "blocked-probes", "rtf-interreflected",
                                "rtf-blocked", "field", "blocked-receiver", "blocked-shape-o", "blocked-at-o", "blocked-gpu",
                                "blocked-oof-at-r", "blocked-oof-at-r-nofade", "blocked-oofsh-exactcos", "blocked-vis-exactcos", "blocked-eq3", "blocked-surface", "blocked-level",
                                "ref-via-other", "ref-via-self", "rtf-interreflected-b1",
                                "rtf-interreflected-b3", "rtf-interreflected-b4",
-                               "rtf-interreflected-exact1", "rtf-interreflected-exact2"};
+                               "rtf-interreflected-exact1", "rtf-interreflected-exact2", "ref-interreflected-hidden", "rtf-interreflected-albedo", "rtf-interreflected-lampvis", "rtf-interreflected-both", "rtf-interreflected-shadowed", "rtf-interreflected-shadowed-lampvis", "rtf-interreflected-shadowed-lampvis-b1", "rtf-interreflected-lampray-b1", "rtf-interreflected-shadowed-lampray-b1"};
   std::vector<gpu::FloatImage> images(kParts);
   for (auto& im : images) im.width = W, im.height = H, im.rgb.assign(std::size_t(W) * H * 3, 0.0f);
   parallelFor(0, std::size_t(W) * H, [&](std::size_t pixel) {
@@ -573,7 +815,8 @@ int main(int argc, char** argv) {
     if (glm::dot(ng, cam.direction) > 0.0f) ng = -ng;
     const auto probeSh = light.indirect().radianceSH(hit.position);
     math::Pcg32 rng = math::Pcg32::fromIndex(pixel);
-    glm::dvec3 sum[6] = {};
+    glm::dvec3 sum[7] = {};
+    math::Pcg32 rngHidden = math::Pcg32::fromIndex((std::uint64_t(1) << 40) + pixel);  // its own stream: the other parts stay as before
     std::array<glm::dvec3, 8> objInter{}, objOther{};
     std::uint64_t rays = 0;
     const auto dirs = math::stratified2D(spa, rng);
@@ -619,6 +862,12 @@ int main(int argc, char** argv) {
         sum[3] += lp;
       } else {
         sum[2] += lw - lo;
+        // ref-interreflected-hidden (session 17): an object on this ray that the room hides from r. RTF's
+        // field has no room visibility, so it sends r the light the object sends along −ω all the same:
+        // traced from just before the object's surface (its outgoing radiance towards r).
+        ref::Hit hp;
+        if (bvhProps.intersect(o, w, 0.0f, 1e30f, hp))
+          sum[6] += ref::tracePathFrom(bvhWith, o + w * (hp.t * (1.0f - 1e-4f)), w, 0.0f, 1e30f, ref::kUnlimitedBounces, rngHidden, rays);
       }
     }
     const double inv = 1.0 / double(dirs.size());
@@ -632,11 +881,20 @@ int main(int argc, char** argv) {
     put(kBlockedProbes, rho * glm::vec3(sum[3] * inv));
     put(kViaOther, rho * glm::vec3(sum[4] * inv));
     put(kViaSelf, rho * glm::vec3(sum[5] * inv));
+    put(kHidden, rho * glm::vec3(sum[6] * inv));
     put(kRtfInter1, gi::rtf::shade(objects, bounced1, light.indirect(), hit.position, n, rho, -1, 9).interreflected);
     put(kRtfInter3, gi::rtf::shade(objects, bounced3, light.indirect(), hit.position, n, rho, -1, 9).interreflected);
     put(kRtfInter4, gi::rtf::shade(objects, bounced4, light.indirect(), hit.position, n, rho, -1, 9).interreflected);
     put(kExact1, gi::rtf::shade(objects, exact1, light.indirect(), hit.position, n, rho, -1, 9).interreflected);
     put(kExact2, gi::rtf::shade(objects, exact2, light.indirect(), hit.position, n, rho, -1, 9).interreflected);
+    put(kAlbedo, gi::rtf::shade(objects, bouncedAlbedo, light.indirect(), hit.position, n, rho, -1, 9).interreflected);
+    put(kLampVis, gi::rtf::shade(objects, bouncedLamp, light.indirect(), hit.position, n, rho, -1, 9).interreflected);
+    put(kBoth, gi::rtf::shade(objects, bouncedBoth, light.indirect(), hit.position, n, rho, -1, 9).interreflected);
+    put(kShadowed, gi::rtf::shade(objects, bouncedShadowed, light.indirect(), hit.position, n, rho, -1, 9).interreflected);
+    put(kShadowedLamp, gi::rtf::shade(objects, bouncedShadowedLamp, light.indirect(), hit.position, n, rho, -1, 9).interreflected);
+    put(kShadowedLamp1, gi::rtf::shade(objects, bouncedShadowedLamp1, light.indirect(), hit.position, n, rho, -1, 9).interreflected);
+    put(kLampRay1, gi::rtf::shade(objects, lampRay1, light.indirect(), hit.position, n, rho, -1, 9).interreflected);
+    put(kShadowedLampRay1, gi::rtf::shade(objects, shadowedLampRay1, light.indirect(), hit.position, n, rho, -1, 9).interreflected);
     for (std::size_t k = 0; k < objects.size(); ++k) {
       const std::span<const gi::rtf::Object> one(&objects[k], 1);
       auto& po = perObject[pixel * objects.size() + k];
