@@ -24,10 +24,14 @@ layout(constant_id = 2) const bool kMomentsInUbo = false;
 // bilinear tap a probe instead of its SH words; set with kShInUbo when the tile image fits.
 layout(constant_id = 3) const bool kTiles = false;
 // DNRT's fused mode ("dnrt": {"mode": "fused"}, engine/gi/probes/node.hpp FusedDnrt): this pass also
-// adds one dynamic object's L_DNRT (Eq. 16, dnrt.glsl dnrtFusedTerm) at the pixel it already reads —
-// no second raster, G-buffer fetch or blend. Same sum as the "dnrt" pass's box draw up to one fp16
-// blend rounding (the two terms are summed in fp32, blended once).
-layout(constant_id = 4) const bool kDnrt = false;
+// adds the dynamic objects' L_DNRT (Eq. 16) at the pixel it already reads — no second raster,
+// G-buffer fetch or blend. 0: none. 1: one object (dnrt.glsl dnrtFusedTerm, its record in the push
+// block, no loop; the same sum as the "dnrt" pass's box draw up to one fp16 blend rounding: the two
+// terms are summed in fp32, blended once). 2: several (up to kDnrtClusterBatch): the clustered
+// mode's visit of the pixel's 16×16 tile mask (dnrt/cluster.glsl, its records in the Objects block,
+// Σ_j c_j M_j in the combined atlas), the clustered draw's sum added here instead of in a pass of its
+// own. A specialization constant, not a branch: llvmpipe runs both sides of a branch (DESIGN.md).
+layout(constant_id = 4) const int kDnrt = 0;
 
 layout(set = 0, binding = 0) uniform FrameUbo { Camera camera; };
 layout(set = 1, binding = 0) uniform sampler2D gAlbedo;
@@ -40,14 +44,21 @@ layout(std140, set = 1, binding = 5) uniform ProbeShBlock { uvec4 probeShUbo[409
 layout(set = 1, binding = 6) uniform sampler2D aoTerm;  // "ao.term" (1 = unoccluded) when bias.w = 1
 layout(std140, set = 1, binding = 7) uniform ProbeMomentsBlock { uvec4 probeMomentsUbo[4096]; };  // word 64·p + bin
 layout(set = 1, binding = 8) uniform sampler2D probeTiles;  // RGBA16F, bilinear (kTiles)
-// kDnrt: the object's Σ_j c_j M_j volume this frame (pass dnrt.combine, RGBA16F, trilinear); a 1³ dummy otherwise.
+// kDnrt 1: the object's Σ_j c_j M_j volume this frame (pass dnrt.combine.fused, RGBA16F, trilinear);
+// kDnrt 2: the combined atlas, a padded brick per object (the same pass); a 1³ dummy otherwise.
 layout(set = 1, binding = 9) uniform sampler3D dnrtCombined;
+// kDnrt 2: this frame's tile masks (bit i: record i may reach a pixel of the tile; the CPU's screen
+// hulls cut by the tiles' depth ranges, tile_cull.comp) and the objects' records (std140, the
+// clustered draw's). Dummies otherwise.
+layout(std430, set = 1, binding = 10) readonly buffer DnrtTiles { uint dnrtTileMasks[]; };
+layout(std140, set = 1, binding = 11) uniform DnrtObjects { DnrtClusterObject objects[kDnrtClusterBatch]; };
 
 layout(push_constant) uniform Push {
   vec4 originSpacing;  // xyz: probe (0,0,0) position, w: spacing (m)
   ivec4 countOrder;    // xyz: probes per axis, w: SH order (2 or 3)
   vec4 bias;           // x: normal bias (m), y: view bias (m), z: Chebyshev variance floor (m²), w: 1 = multiply by aoTerm
-  // kDnrt: the object's record (dnrt.glsl dnrtFusedTerm; node.hpp FusedDnrtPush): 128 bytes in all.
+  // kDnrt 1: the object's record (dnrt.glsl dnrtFusedTerm; node.hpp FusedDnrtPush): 128 bytes in all.
+  // kDnrt 2: dnrtCentreWorld xyz 1 / the atlas's texels per axis, w the tiles per row (an integer).
   vec4 dnrtWorldToQ[3];
   vec4 dnrtCentreWorld;  // xyz o (m), w R (m)
   vec4 dnrtExtents;      // x inner, y outer (units of R), z entity id + 1 (0 = none), w grid N
@@ -56,6 +67,7 @@ layout(push_constant) uniform Push {
 #define PROBE_SH_UBO  // probe_sh.glsl: read kShInUbo's probeShUbo
 #define PROBE_TILES   // … and kTiles' probeTiles
 #include "probes/probe_sh.glsl"
+#include "dnrt/cluster.glsl"  // after `objects`, which it reads
 
 layout(location = 0) in vec2 inUv;
 layout(location = 0) out vec4 outRadiance;
@@ -78,6 +90,14 @@ void main() {
   float ao = pc.bias.w > 0.5 ? texelFetch(aoTerm, pixel, 0).r : 1.0;
   vec3 e = kTiles ? L[0] : shIrradiance9(L, n);  // probeRadianceSh: with kTiles, L[0] is E(n)
   vec3 radiance = albedo * kInvPi * ao * max(e, vec3(0.0));
-  if (kDnrt) radiance += albedo * dnrtFusedTerm(x, normal, pc.dnrtWorldToQ, pc.dnrtCentreWorld, pc.dnrtExtents, dnrtCombined);
+  if (kDnrt == 1) radiance += albedo * dnrtFusedTerm(x, normal, pc.dnrtWorldToQ, pc.dnrtCentreWorld, pc.dnrtExtents, dnrtCombined);
+  if (kDnrt == 2) {
+    // The self test reads the normal's w: every fused object's entity id + 1 fits it (gi/dnrt/runtime.cpp).
+    uint mask = dnrtTileMasks[uint(pixel.y >> kDnrtClusterTileShift) * uint(pc.dnrtCentreWorld.w) +
+                              uint(pixel.x >> kDnrtClusterTileShift)];
+    vec4 r = vec4(x, 1.0);
+    uint live = dnrtClusterLive(mask, r, n, uint(normal.w));
+    radiance += albedo * dnrtClusterSum(live, r, n, dnrtCombined, pc.dnrtCentreWorld.xyz);
+  }
   outRadiance = vec4(radiance, 0.0);
 }

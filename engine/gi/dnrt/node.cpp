@@ -107,6 +107,8 @@ Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t fra
                   "dnrt.cube"),
       objectBuffers_(framesInFlight),
       fusedBuffers_(framesInFlight),
+      fusedTileBuffers_(framesInFlight),
+      fusedClusterBuffers_(framesInFlight),
       clusterLayout_(ctx, {{0, kUniform}, {1, kSampled}}, "dnrt.cluster"),  // records, combined atlas
       clusterPipelineLayout_(ctx, {shared.frameLayout.handle(), inputLayout_.handle(), clusterLayout_.handle()},
                              {VkPushConstantRange{VK_SHADER_STAGE_ALL, 0, sizeof(ClusterPush)}}, "dnrt.clustered"),
@@ -310,6 +312,134 @@ probes::FusedDnrt Node::addFused(rg::RenderGraph& graph, const render::PassConte
   out.push.centreWorld = folded.centreWorld;
   out.push.extents = glm::vec4(folded.extents.x, folded.extents.y, float(folded.ids.x), folded.extents.w);
   return out;
+}
+
+std::optional<probes::FusedDnrt> Node::addFusedCluster(rg::RenderGraph& graph, const render::PassContext& pcIn,
+                                                       const std::vector<NodeObject>& objectsIn, bool tileCull,
+                                                       std::vector<bool>& taken) {
+  taken.assign(objectsIn.size(), false);
+  if (objectsIn.empty()) return std::nullopt;
+  if (objectsIn.size() > kClusterBatch) throw InternalError("dnrt: more fused objects than one batch");
+  for (const NodeObject& o : objectsIn)
+    if (!o.textures || o.intrusion || o.data.ids.x > render::kEntityInNormalMax)
+      throw InternalError("dnrt: object '" + o.name + "' cannot be fused");
+  const render::PassContext* pc = &pcIn;
+  // The atlas bricks, as addTo's clustered objects (its field, then its occlusion field if any).
+  std::vector<const FieldTextures*> textures;
+  for (const NodeObject& o : objectsIn) {
+    textures.push_back(o.textures);
+    if (o.occlusion) textures.push_back(o.occlusion);
+  }
+  const std::vector<int> bricks = atlasFor(textures);
+  struct Item {
+    int brick = 0, occlusionBrick = -1;
+    std::uint32_t z = 0;  // the object's brick in this frame's combined atlas
+  };
+  std::vector<NodeObject> objects;
+  std::vector<Item> items;
+  glm::uvec3 size(0u);
+  std::size_t t = 0;
+  for (std::size_t i = 0; i < objectsIn.size(); ++i) {
+    const int brick = bricks[t++];
+    const int occlusionBrick = objectsIn[i].occlusion ? bricks[t++] : -1;
+    const auto side = std::uint32_t(objectsIn[i].data.extents.w) + 2u;  // a padded brick (cluster.hpp)
+    if (brick < 0 || (objectsIn[i].occlusion && occlusionBrick < 0) || size.z + side > ctx_.limits().maxImageDimension3D)
+      continue;  // no room: the caller draws it
+    taken[i] = true;
+    objects.push_back(objectsIn[i]);
+    items.push_back({brick, occlusionBrick, size.z});
+    size = glm::uvec3(std::max(size.x, side), std::max(size.y, side), size.z + side);
+  }
+  if (objects.empty()) return std::nullopt;
+  const glm::uvec2 resolution(std::uint32_t(pc->world->camera.resolution.x), std::uint32_t(pc->world->camera.resolution.y));
+  const TileGrid grid = tileGrid(resolution);
+
+  struct CombineData {
+    rg::Handle<rg::Texture> atlas, depth;
+  };
+  auto& bb = graph.blackboard();
+  // addFused's pass name: one fused combine a frame, whichever form (`bench dnrt` counts it as DNRT).
+  const auto& combine = graph.addPass<CombineData>(
+      "dnrt.combine.fused",
+      [&](rg::Builder& b, CombineData& d) {
+        d.atlas = b.write(b.create<rg::Texture>("dnrt.combined.fused-atlas",
+                                                rg::TextureDesc{size.x, size.y, size.z, 1, 1, rg::Format::RGBA16F, false}),
+                          rg::Usage::StorageWrite);
+        if (tileCull) d.depth = b.read(bb.get<rg::Texture>("gbuffer.depth"), rg::Usage::SampledCompute);
+      },
+      [this, pc, objects, items, grid, resolution, tileCull](const CombineData& d, const rg::PassResources& res,
+                                                             rg::CommandContext& c) {
+        VkCommandBuffer cmd = pc->cmd(c);
+        const std::size_t slot = pc->frame().slot % fusedTileBuffers_.size();
+        // 1. Σ_j c_j M_j per grid vertex into each object's brick (combine.comp), as addTo's clustered objects.
+        gpu::Buffer& buffer = objectBuffer(fusedBuffers_, pc->frame().slot, objects);
+        const VkImageView target = pc->backend->image(res.texture(d.atlas)).view();
+        const auto atlasSlot = [this](int s) {
+          return atlas_.slots[std::size_t(s) < atlas_.slots.size() ? std::size_t(s) : 0]->view();
+        };
+        const Slots slots = atlasSlot;
+        for (std::size_t i = 0; i < objects.size(); ++i) {
+          const bool occlusion = items[i].occlusionBrick >= 0;  // both bricks in the one atlas
+          recordCombine(cmd, *pc, buffer, objects.size(), objects[i], i, slots, occlusion ? &slots : nullptr, target,
+                        std::int32_t(atlas_.layout.z0[std::size_t(items[i].brick)]),
+                        occlusion ? std::int32_t(atlas_.layout.z0[std::size_t(items[i].occlusionBrick)]) : 0,
+                        std::int32_t(items[i].z), std::int32_t(objects[i].data.extents.w) + 2);
+        }
+        // 2. The records (clustered.frag's, std140) and the tile masks (the screen hulls, one batch).
+        gpu::Buffer& records = fusedClusterBuffers_[slot];
+        if (!records)
+          records = gpu::Buffer(ctx_, {kClusterBatchBytes, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::MemoryUsage::Upload,
+                                       "dnrt.fused-cluster-objects"});
+        std::memset(records.mapped(), 0, kClusterBatchBytes);
+        std::vector<glm::mat4> boxes;
+        for (std::size_t i = 0; i < objects.size(); ++i) {
+          const DnrtClusterObject rec = clusterObject(fold(objects[i].data), items[i].z);
+          std::memcpy(records.mapped() + i * sizeof(DnrtClusterObject), &rec, sizeof rec);
+          boxes.push_back(objects[i].data.boxToWorld);
+        }
+        const std::vector<std::uint32_t> masks = binObjects(pc->world->camera.viewProj, resolution, boxes);
+        gpu::Buffer& tiles = fusedTileBuffers_[slot];
+        const VkDeviceSize tileBytes = masks.size() * sizeof(std::uint32_t);
+        if (!tiles || tiles.size() < tileBytes)
+          tiles = gpu::Buffer(ctx_, {tileBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::Upload,
+                                     "dnrt.fused-tiles"});
+        std::memcpy(tiles.mapped(), masks.data(), tileBytes);
+        lastFusedTileSlot_ = slot;
+        lastFusedTileCount_ = masks.size();
+        if (!tileCull) return;
+        // 3. The masks cut by each tile's depth range (tile_cull.comp), then visible to the probes pass.
+        VkSampler point = pc->samplers->get({VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST});
+        cull_.bind(cmd);
+        VkDescriptorSet set = pc->frame().descriptors->allocate(cullLayout_);
+        gpu::DescriptorWriter w;
+        w.sampledImage(0, pc->backend->image(res.texture(d.depth)).view(), point);
+        w.buffer(1, tiles);
+        w.buffer(2, records, kUniform, 0, kClusterBatchBytes);
+        w.update(ctx_, set);
+        cull_.bindSet(cmd, 0, set);
+        cull_.push(cmd, CullPush{pc->world->camera.invViewProj, 1.0f / glm::vec2(resolution), 0u, grid.tilesX, grid.tilesY});
+        vkCmdDispatch(cmd, (grid.tilesX + 7) / 8, (grid.tilesY + 7) / 8, 1);  // local size 8×8, a tile each
+        // The probes pass reads the masks (outside the graph: a buffer of this node's).
+        VkMemoryBarrier written{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_SHADER_WRITE_BIT,
+                                VK_ACCESS_SHADER_READ_BIT};
+        vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, 0, 1,
+                             &written, 0, nullptr, 0, nullptr);
+      });
+  probes::FusedDnrt out;
+  out.volume = combine.atlas;
+  out.push.centreWorld = glm::vec4(1.0f / glm::vec3(size), float(grid.tilesX));
+  out.bindCluster = [this](gpu::DescriptorWriter& w, const render::PassContext& p) {
+    const std::size_t slot = p.frame().slot % fusedTileBuffers_.size();
+    w.buffer(10, fusedTileBuffers_[slot]);
+    w.buffer(11, fusedClusterBuffers_[slot], kUniform, 0, kClusterBatchBytes);
+  };
+  return out;
+}
+
+std::vector<std::uint32_t> Node::lastFusedTileMasks() const {
+  if (lastFusedTileCount_ == 0) return {};
+  const auto* m = reinterpret_cast<const std::uint32_t*>(fusedTileBuffers_[lastFusedTileSlot_].mapped());
+  return std::vector<std::uint32_t>(m, m + lastFusedTileCount_);
 }
 
 std::vector<int> Node::atlasFor(const std::vector<const FieldTextures*>& textures) {

@@ -118,6 +118,17 @@ class Node {
   // (probes.frag kDnrt). The object has no intrusion and its entity id + 1 ≤ kEntityInNormalMax (the
   // self test reads the normal's w); full resolution only.
   probes::FusedDnrt addFused(rg::RenderGraph& graph, const render::PassContext& pc, const NodeObject& object);
+  // The fused mode with several objects (probes.frag kDnrt 2): the clustered mode's per-pixel visit
+  // inside the probes pass. Adds pass "dnrt.combine.fused" for `objects` (at most kClusterBatch, each as
+  // addFused asks): their bricks of a combined atlas (combine.comp), this frame's tile masks (the CPU's
+  // screen hulls, cut by tile_cull.comp when `tileCull`) and records. `taken[i]`: object i is in the
+  // probes pass (false: its field has no room in the atlas; draw it with addTo). Nothing when none is.
+  std::optional<probes::FusedDnrt> addFusedCluster(rg::RenderGraph& graph, const render::PassContext& pc,
+                                                   const std::vector<NodeObject>& objects, bool tileCull,
+                                                   std::vector<bool>& taken);
+  // The tile masks the last addFusedCluster's probes pass read (after tile_cull.comp when on), as
+  // lastTileMasks. For tests.
+  std::vector<std::uint32_t> lastFusedTileMasks() const;
 
  private:
   // A shader variant: specialization constants of dnrt.vert/.frag (one pipeline each, made on first use).
@@ -165,6 +176,10 @@ class Node {
   std::unique_ptr<gpu::Image> noIntrusion_;  // 1×1×6 R32F "nothing nearer than 1e30 m"
   std::vector<gpu::Buffer> objectBuffers_;  // per frame slot, DnrtObjectGpu[]
   std::vector<gpu::Buffer> fusedBuffers_;   // per frame slot, the fused object's records (addFused)
+  // Per frame slot, addFusedCluster's tile masks and DnrtClusterObject records (the probes pass's
+  // bindings 10 and 11; apart from the clustered draw's, which may run in the same frame).
+  std::vector<gpu::Buffer> fusedTileBuffers_, fusedClusterBuffers_;
+  std::size_t lastFusedTileSlot_ = 0, lastFusedTileCount_ = 0;
   gpu::DescriptorSetLayout clusterLayout_;
   gpu::PipelineLayout clusterPipelineLayout_;
   gpu::ShaderModule fullscreenVert_, clusterFrag_;

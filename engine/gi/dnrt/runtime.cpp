@@ -52,9 +52,9 @@ constexpr const char* kFusedThisFrame = "dnrt.fused.volume";
 render::Renderer::GraphNode Runtime::node() {
   return [this](rg::RenderGraph& graph, render::PassContext& pc) {
     std::vector<NodeObject> objects;
-    if (fusedFrame_ && graph.blackboard().contains(kFusedThisFrame)) {  // the probes pass adds that one's term
-      objects = std::move(fusedFrame_->objects);
-      objects.erase(objects.begin() + std::ptrdiff_t(fusedFrame_->fused));
+    if (fusedFrame_ && graph.blackboard().contains(kFusedThisFrame)) {  // the probes pass adds those objects' terms
+      for (std::size_t i = 0; i < fusedFrame_->objects.size(); ++i)
+        if (!fusedFrame_->fused[i]) objects.push_back(std::move(fusedFrame_->objects[i]));
     } else {
       objects = objectsFor(*pc.world);
     }
@@ -74,16 +74,32 @@ std::optional<probes::FusedDnrt> Runtime::addFused(rg::RenderGraph& graph, const
   });
   if (!any) return std::nullopt;
   std::vector<NodeObject> objects = objectsFor(*pc.world);
-  for (std::size_t i = 0; i < objects.size(); ++i) {
+  // The visible objects in the mode that qualify, up to one clustered batch (the rest: boxes).
+  std::vector<std::size_t> chosen;
+  for (std::size_t i = 0; i < objects.size() && chosen.size() < kClusterBatch; ++i) {
     const NodeObject& o = objects[i];
     if (modeOf(o.mode) != Mode::Fused || o.intrusion || o.data.ids.x == 0u || o.data.ids.x > render::kEntityInNormalMax)
       continue;
-    probes::FusedDnrt fused = node_->addFused(graph, pc, o);
-    graph.blackboard().put(kFusedThisFrame, fused.volume);
-    fusedFrame_ = FusedFrame{std::move(objects), i};
-    return fused;
+    chosen.push_back(i);
   }
-  return std::nullopt;
+  if (chosen.empty()) return std::nullopt;
+  std::vector<bool> fused(objects.size(), false);
+  std::optional<probes::FusedDnrt> out;
+  if (chosen.size() == 1) {  // one object: its record in the push block, no loop (probes.frag kDnrt 1)
+    out = node_->addFused(graph, pc, objects[chosen[0]]);
+    fused[chosen[0]] = true;
+  } else {  // several: the clustered visit of the pixel's tile (kDnrt 2)
+    std::vector<NodeObject> subset;
+    for (std::size_t i : chosen) subset.push_back(objects[i]);
+    std::vector<bool> taken;
+    out = node_->addFusedCluster(graph, pc, subset, settings_.tileCull, taken);
+    for (std::size_t k = 0; k < chosen.size(); ++k) fused[chosen[k]] = taken[k];
+  }
+  if (out) {
+    graph.blackboard().put(kFusedThisFrame, out->volume);
+    fusedFrame_ = FusedFrame{std::move(objects), std::move(fused)};
+  }
+  return out;
 }
 
 }  // namespace bounce::gi::dnrt

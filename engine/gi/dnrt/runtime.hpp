@@ -71,10 +71,11 @@ class Runtime {
   // one addFused gave the probes pass this frame).
   render::Renderer::GraphNode node();
   // The fused mode ("dnrt": {"mode": "fused"}, or NodeSettings::mode): for probes::ProbeNode::setFusedDnrt,
-  // called while the probes node adds its pass (before this runtime's node, table order). The first
+  // called while the probes node adds its pass (before this runtime's node, table order). Every
   // visible object in that mode with no intrusion whose entity id + 1 fits the normal's w (the self
-  // test there) gets its dnrt.combine added now and its term in the probes pass (probes.frag kDnrt);
-  // node() then leaves it out. Nothing (all drawn by node(), a fused object as a box) when the frame's
+  // test there), up to kClusterBatch, gets its term in the probes pass: one object as its record in
+  // the push block (Node::addFused, probes.frag kDnrt 1), several as the clustered mode's visit of the
+  // pixel's tile mask (Node::addFusedCluster, kDnrt 2); node() then leaves them out. Nothing (all drawn by node(), a fused object as a box) when the frame's
   // effects do not name dnrt, below full resolution, or no object qualifies; without the probes
   // effect this is never called and node() draws fused objects as boxes.
   std::optional<probes::FusedDnrt> addFused(rg::RenderGraph& graph, const render::PassContext& pc);
@@ -96,10 +97,11 @@ class Runtime {
   std::vector<Object> objects_;
   std::unique_ptr<Node> node_;
   std::size_t baked_ = 0;
-  // This frame's objects when addFused took one (index `fused`), for node() in the same frame.
+  // This frame's objects when addFused took some (`fused[i]`: object i is in the probes pass), for
+  // node() in the same frame.
   struct FusedFrame {
     std::vector<NodeObject> objects;
-    std::size_t fused = 0;
+    std::vector<bool> fused;
   };
   std::optional<FusedFrame> fusedFrame_;
 };

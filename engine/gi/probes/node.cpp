@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <optional>
 
@@ -154,6 +155,9 @@ constexpr VkDeviceSize kShUboBytes = 4096 * 16;
 // probes.frag's ProbeMomentsBlock, the same 64 KiB: 256 B a probe, so up to 256 probes (cornell-1's
 // 0.25 m volume, 6³ = 216, fits; the 0.125 m one, 9³, keeps the image).
 constexpr VkDeviceSize kMomentsUboBytes = 4096 * 16;
+// probes.frag's DnrtObjects block: kDnrtClusterBatch (32) DnrtClusterObject records of 240 bytes (std140;
+// gi/dnrt/gpu_object.hpp, which this module does not include: DNRT builds on the probes, not back).
+constexpr VkDeviceSize kDnrtObjectsBytes = 32 * 240;
 
 }  // namespace
 
@@ -257,7 +261,9 @@ ProbeNode::ProbeNode(gpu::Context& ctx, const render::Pipelines& pipelines, Prob
                   {6, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                   {7, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
                   {8, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-                  {9, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}},
+                  {9, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+                  {10, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                  {11, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER}},
                  "probes") {
   {
     const std::vector<std::uint32_t> words = shPackedWords(volume_);
@@ -313,6 +319,13 @@ ProbeNode::ProbeNode(gpu::Context& ctx, const render::Pipelines& pipelines, Prob
     noDnrt_ = std::make_unique<gpu::Image>(ctx, d);
     const std::uint8_t zero[8] = {};
     gpu::upload(ctx, *noDnrt_, zero);
+    // Bindings 10 and 11 without several fused objects (kDnrt 2 reads them): a zero mask, and zero
+    // records as long as the block probes.frag declares (DnrtClusterObject[32], std140).
+    noDnrtTiles_ = gpu::Buffer(ctx, {4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::Upload, "probes.no-dnrt-tiles"});
+    noDnrtObjects_ = gpu::Buffer(ctx, {kDnrtObjectsBytes, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::MemoryUsage::Upload,
+                                       "probes.no-dnrt-objects"});
+    std::memset(noDnrtTiles_.mapped(), 0, 4);
+    std::memset(noDnrtObjects_.mapped(), 0, kDnrtObjectsBytes);
   }
   gpu::ShaderModule vert(ctx, "passes/fullscreen.vert.spv");
   gpu::ShaderModule frag(ctx, "probes/probes.frag.spv");
@@ -462,13 +475,19 @@ void ProbeNode::addPasses(rg::RenderGraph& graph, const render::PassContext* pc)
                           tiles_ ? pc->samplers->get({VK_FILTER_LINEAR, VK_SAMPLER_MIPMAP_MODE_NEAREST}) : point)
             // trilinear, as the "dnrt" pass's box draw reads the same volume
             .sampledImage(9, fused ? view(d.dnrt) : noDnrt_->view(),
-                          pc->samplers->get({VK_FILTER_LINEAR, VK_SAMPLER_MIPMAP_MODE_NEAREST}))
-            .update(*pc->gpu, set);
+                          pc->samplers->get({VK_FILTER_LINEAR, VK_SAMPLER_MIPMAP_MODE_NEAREST}));
+        const bool several = fused && fused->bindCluster;
+        if (several)
+          fused->bindCluster(writer, *pc);
+        else
+          writer.buffer(10, noDnrtTiles_).buffer(11, noDnrtObjects_, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER);
+        writer.update(*pc->gpu, set);
         gpu::Image& target = pc->backend->image(res.texture(d.hdr));
         render::Attachment color{target.view(), true};  // additive: keep the direct light
         const VkExtent2D extent{target.desc().width, target.desc().height};
         render::beginRendering(*pc->gpu, cmd, extent, {&color, 1}, nullptr);
-        if (fused && fusedPipeline_.handle() == VK_NULL_HANDLE) {
+        gpu::Pipeline& fusedPipeline = fusedPipelines_[several ? 1 : 0];
+        if (fused && fusedPipeline.handle() == VK_NULL_HANDLE) {
           gpu::ShaderModule vert(*pc->gpu, "passes/fullscreen.vert.spv");
           gpu::ShaderModule frag(*pc->gpu, "probes/probes.frag.spv");
           gpu::GraphicsPipelineDesc pd;
@@ -477,11 +496,11 @@ void ProbeNode::addPasses(rg::RenderGraph& graph, const render::PassContext* pc)
           pd.colorFormats = {VK_FORMAT_R16G16B16A16_SFLOAT};
           pd.blend = gpu::Blend::Additive;
           pd.specialization = specialization_;
-          pd.specialization.push_back(1u);  // kDnrt
-          pd.name = "probes.fused-dnrt";
-          fusedPipeline_ = gpu::createGraphicsPipeline(*pc->gpu, layout_, pd);
+          pd.specialization.push_back(several ? 2u : 1u);  // kDnrt
+          pd.name = several ? "probes.fused-dnrt.cluster" : "probes.fused-dnrt";
+          fusedPipeline = gpu::createGraphicsPipeline(*pc->gpu, layout_, pd);
         }
-        const gpu::Pipeline& p = fused ? fusedPipeline_ : pipeline_;
+        const gpu::Pipeline& p = fused ? fusedPipeline : pipeline_;
         p.bind(cmd);
         p.bindSet(cmd, 0, pc->frameSet);
         p.bindSet(cmd, 1, set);

@@ -3,6 +3,7 @@
 // every drawn surface, static or dynamic, added to "lighting.hdr" (shaders/probes/probes.frag).
 // The volume is uploaded once, as two images read with texelFetch (SH with the valid flag,
 // visibility moments): storage-buffer reads are what made this pass slow on lavapipe.
+#include <array>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -35,6 +36,8 @@ ProbePush probePush(const ProbeVolume& v, float flag);
 // object's L_DNRT added by the probes pass itself (probes.frag kDnrt, dnrt.glsl dnrtFusedTerm) at the
 // pixels it already shades, instead of a "dnrt" pass of its own. probes.frag's push block past
 // ProbePush (128 bytes in all, the Vulkan minimum of maxPushConstantsSize).
+// One object (probes.frag kDnrt 1): its record. Several (kDnrt 2): centreWorld holds 1 / the combined
+// atlas's texels per axis (xyz) and the tiles per row (w); the records are in FusedDnrt::bindCluster's block.
 struct FusedDnrtPush {
   glm::vec4 worldToQ[3]{};      // rows of r ↦ q (units of R), DnrtShaderObject's
   glm::vec4 centreWorld{0.0f};  // xyz o (m), w R (m)
@@ -42,8 +45,14 @@ struct FusedDnrtPush {
 };
 static_assert(sizeof(ProbePush) + sizeof(FusedDnrtPush) == 128, "probes.frag's push block");
 struct FusedDnrt {
-  rg::Handle<rg::Texture> volume;  // this frame's Σ_j c_j M_j (pass dnrt.combine), read trilinear
+  // One object: this frame's Σ_j c_j M_j (pass dnrt.combine.fused), read trilinear. Several: the
+  // combined atlas of the same pass, a padded brick per object (gi/dnrt/cluster.hpp).
+  rg::Handle<rg::Texture> volume;
   FusedDnrtPush push;
+  // Several objects (probes.frag kDnrt 2, the clustered mode's per-pixel visit): writes this frame's
+  // tile masks (binding 10, storage) and object records (binding 11, uniform) into the probes pass's
+  // set when it records; empty for one object (kDnrt 1).
+  std::function<void(gpu::DescriptorWriter&, const render::PassContext&)> bindCluster;
 };
 // Called by the probes node before it adds its pass; adds what the fused term reads (dnrt.combine) and
 // returns it, or nothing (no fused object this frame: the plain pipeline).
@@ -112,10 +121,12 @@ class ProbeNode final : public TechniqueRuntime {
   gpu::DescriptorSetLayout setLayout_;
   gpu::PipelineLayout layout_;
   gpu::Pipeline pipeline_;
-  // probes.frag with kDnrt (FusedDnrt), made on first use; the dummy volume binding 9 holds otherwise.
-  gpu::Pipeline fusedPipeline_;
+  // probes.frag with kDnrt 1 (one object) and 2 (several; FusedDnrt), made on first use; the dummy
+  // volume (binding 9), tile masks (10) and records (11) hold otherwise.
+  std::array<gpu::Pipeline, 2> fusedPipelines_;
   std::vector<std::uint32_t> specialization_;  // kCoeffs, kShInUbo, kMomentsInUbo, kTiles
   std::unique_ptr<gpu::Image> noDnrt_;  // 1³ RGBA16F zero
+  gpu::Buffer noDnrtTiles_, noDnrtObjects_;  // one zero mask; kDnrtObjectsBytes of zeros
   FusedDnrtHook fusedDnrt_;
   // Pass `probes.tiles` (shaders/probes/tiles.comp): each probe's E(n) over its octahedral tile,
   // every frame after `probes.relight` into a graph texture only the probes pass reads; without
