@@ -28,6 +28,11 @@ layout(constant_id = 3) const bool kTiles = false;
 // no second raster, G-buffer fetch or blend. Same sum as the "dnrt" pass's box draw up to one fp16
 // blend rounding (the two terms are summed in fp32, blended once).
 layout(constant_id = 4) const bool kDnrt = false;
+// With kDnrt, the level's "dnrt": {"resolution"} (engine/gi/resolution.hpp step): 1 evaluates the
+// term exactly here; 2 or 4 takes its position-only factor from pass dnrt.fused.reduced's target
+// (binding 10) by one bilinear tap (dnrt.glsl dnrtFusedReducedTerm; README "DNRT's fused term at
+// reduced resolution, session 17").
+layout(constant_id = 5) const int kDnrtStep = 1;
 
 layout(set = 0, binding = 0) uniform FrameUbo { Camera camera; };
 layout(set = 1, binding = 0) uniform sampler2D gAlbedo;
@@ -42,6 +47,8 @@ layout(std140, set = 1, binding = 7) uniform ProbeMomentsBlock { uvec4 probeMome
 layout(set = 1, binding = 8) uniform sampler2D probeTiles;  // RGBA16F, bilinear (kTiles)
 // kDnrt: the object's Σ_j c_j M_j volume this frame (pass dnrt.combine, RGBA16F, trilinear); a 1³ dummy otherwise.
 layout(set = 1, binding = 9) uniform sampler3D dnrtCombined;
+// kDnrtStep > 1: (w·s Σ_j c_j M_j, w) at G-buffer pixel step·j (RGBA16F, bilinear); unread otherwise.
+layout(set = 1, binding = 10) uniform sampler2D dnrtReduced;
 
 layout(push_constant) uniform Push {
   vec4 originSpacing;  // xyz: probe (0,0,0) position, w: spacing (m)
@@ -78,6 +85,9 @@ void main() {
   float ao = pc.bias.w > 0.5 ? texelFetch(aoTerm, pixel, 0).r : 1.0;
   vec3 e = kTiles ? L[0] : shIrradiance9(L, n);  // probeRadianceSh: with kTiles, L[0] is E(n)
   vec3 radiance = albedo * kInvPi * ao * max(e, vec3(0.0));
-  if (kDnrt) radiance += albedo * dnrtFusedTerm(x, normal, pc.dnrtWorldToQ, pc.dnrtCentreWorld, pc.dnrtExtents, dnrtCombined);
+  if (kDnrt && kDnrtStep > 1)
+    radiance += albedo * dnrtFusedReducedTerm(x, normal, pixel, pc.dnrtCentreWorld, pc.dnrtExtents, dnrtReduced, kDnrtStep);
+  else if (kDnrt)
+    radiance += albedo * dnrtFusedTerm(x, normal, pc.dnrtWorldToQ, pc.dnrtCentreWorld, pc.dnrtExtents, dnrtCombined);
   outRadiance = vec4(radiance, 0.0);
 }

@@ -58,7 +58,7 @@ render::Renderer::GraphNode Runtime::node() {
 
 std::optional<probes::FusedDnrt> Runtime::addFused(rg::RenderGraph& graph, const render::PassContext& pc) {
   fusedFrame_.reset();
-  if (!pc.world->has("dnrt") || settings_.step != 1u) return std::nullopt;
+  if (!pc.world->has("dnrt")) return std::nullopt;
   const auto modeOf = [&](Mode m) { return settings_.mode.value_or(m); };
   // objectsFor (c_j per object) only when some object asks for the mode.
   const bool any = std::any_of(objects_.begin(), objects_.end(), [&](const Object& o) {
@@ -71,7 +71,8 @@ std::optional<probes::FusedDnrt> Runtime::addFused(rg::RenderGraph& graph, const
     const NodeObject& o = objects[i];
     if (modeOf(o.mode) != Mode::Fused || o.intrusion || o.data.ids.x == 0u || o.data.ids.x > render::kEntityInNormalMax)
       continue;
-    probes::FusedDnrt fused = node_->addFused(graph, pc, o);
+    // Below full resolution the term's position-only factor comes from pass dnrt.fused.reduced.
+    probes::FusedDnrt fused = node_->addFused(graph, pc, o, settings_.step);
     fusedFrame_ = FusedFrame{std::move(objects), i};
     return fused;
   }

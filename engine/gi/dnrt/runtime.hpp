@@ -74,9 +74,10 @@ class Runtime {
   // called while the probes node adds its pass (before this runtime's node, table order). The first
   // visible object in that mode with no intrusion whose entity id + 1 fits the normal's w (the self
   // test there) gets its dnrt.combine added now and its term in the probes pass (probes.frag kDnrt);
-  // node() then leaves it out. Nothing (all drawn by node(), a fused object as a box) when the frame's
-  // effects do not name dnrt, below full resolution, or no object qualifies; without the probes
-  // effect this is never called and node() draws fused objects as boxes.
+  // node() then leaves it out. Below full resolution (settings().step 2, 4) the term's position-only
+  // factor comes from pass dnrt.fused.reduced (Node::addFused). Nothing (all drawn by node(), a fused
+  // object as a box) when the frame's effects do not name dnrt or no object qualifies; without the
+  // probes effect this is never called and node() draws fused objects as boxes.
   std::optional<probes::FusedDnrt> addFused(rg::RenderGraph& graph, const render::PassContext& pc);
 
  private:

@@ -257,7 +257,8 @@ ProbeNode::ProbeNode(gpu::Context& ctx, const render::Pipelines& pipelines, Prob
                   {6, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                   {7, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
                   {8, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-                  {9, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}},
+                  {9, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+                  {10, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}},
                  "probes") {
   {
     const std::vector<std::uint32_t> words = shPackedWords(volume_);
@@ -375,7 +376,7 @@ void ProbeNode::addPasses(rg::RenderGraph& graph, const render::PassContext* pc)
   if (relight_) block = addRelightPass(graph, pc);
   struct Data {
     render::DeferredInputs g;
-    rg::Handle<rg::Texture> hdr, ao, tiles, dnrt;
+    rg::Handle<rg::Texture> hdr, ao, tiles, dnrt, dnrtReduced;
   };
   auto& bb = graph.blackboard();
   // This frame's irradiance tiles (tiles.comp), after probes.relight rewrote the block (its final
@@ -444,6 +445,7 @@ void ProbeNode::addPasses(rg::RenderGraph& graph, const render::PassContext* pc)
         if (tiles) d.tiles = b.read(*tiles, rg::Usage::SampledFragment);
         if (block) b.read(*block, rg::Usage::UniformBuffer);  // bound either way (with tiles unread)
         if (fused) d.dnrt = b.read(fused->volume, rg::Usage::SampledFragment);
+        if (fused && fused->reduced) d.dnrtReduced = b.read(*fused->reduced, rg::Usage::SampledFragment);
       },
       [this, pc, withAo, fused](const Data& d, const rg::PassResources& res, rg::CommandContext& c) {
         VkCommandBuffer cmd = pc->cmd(c);
@@ -463,12 +465,19 @@ void ProbeNode::addPasses(rg::RenderGraph& graph, const render::PassContext* pc)
             // trilinear, as the "dnrt" pass's box draw reads the same volume
             .sampledImage(9, fused ? view(d.dnrt) : noDnrt_->view(),
                           pc->samplers->get({VK_FILTER_LINEAR, VK_SAMPLER_MIPMAP_MODE_NEAREST}))
+            // bilinear: the fused term's one tap below full resolution; the albedo when unread (kDnrtStep 1)
+            .sampledImage(10, view(fused && fused->reduced ? d.dnrtReduced : d.g.albedo),
+                          pc->samplers->get({VK_FILTER_LINEAR, VK_SAMPLER_MIPMAP_MODE_NEAREST}))
             .update(*pc->gpu, set);
         gpu::Image& target = pc->backend->image(res.texture(d.hdr));
         render::Attachment color{target.view(), true};  // additive: keep the direct light
         const VkExtent2D extent{target.desc().width, target.desc().height};
         render::beginRendering(*pc->gpu, cmd, extent, {&color, 1}, nullptr);
-        if (fused && fusedPipeline_.handle() == VK_NULL_HANDLE) {
+        const std::size_t stepIndex = !fused || fused->step == 1u ? 0u : fused->step == 2u ? 1u : 2u;
+        if (fused && fused->step != 1u && fused->step != 2u && fused->step != 4u)
+          throw InternalError("probes: fused DNRT step " + std::to_string(fused->step) + " (expected 1, 2 or 4)");
+        gpu::Pipeline& fusedPipeline = fusedPipelines_[stepIndex];
+        if (fused && fusedPipeline.handle() == VK_NULL_HANDLE) {
           gpu::ShaderModule vert(*pc->gpu, "passes/fullscreen.vert.spv");
           gpu::ShaderModule frag(*pc->gpu, "probes/probes.frag.spv");
           gpu::GraphicsPipelineDesc pd;
@@ -477,11 +486,12 @@ void ProbeNode::addPasses(rg::RenderGraph& graph, const render::PassContext* pc)
           pd.colorFormats = {VK_FORMAT_R16G16B16A16_SFLOAT};
           pd.blend = gpu::Blend::Additive;
           pd.specialization = specialization_;
-          pd.specialization.push_back(1u);  // kDnrt
-          pd.name = "probes.fused-dnrt";
-          fusedPipeline_ = gpu::createGraphicsPipeline(*pc->gpu, layout_, pd);
+          pd.specialization.push_back(1u);           // kDnrt
+          pd.specialization.push_back(fused->step);  // kDnrtStep
+          pd.name = "probes.fused-dnrt" + (fused->step > 1u ? ".step" + std::to_string(fused->step) : std::string());
+          fusedPipeline = gpu::createGraphicsPipeline(*pc->gpu, layout_, pd);
         }
-        const gpu::Pipeline& p = fused ? fusedPipeline_ : pipeline_;
+        const gpu::Pipeline& p = fused ? fusedPipeline : pipeline_;
         p.bind(cmd);
         p.bindSet(cmd, 0, pc->frameSet);
         p.bindSet(cmd, 1, set);

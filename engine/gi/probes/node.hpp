@@ -3,6 +3,7 @@
 // every drawn surface, static or dynamic, added to "lighting.hdr" (shaders/probes/probes.frag).
 // The volume is uploaded once, as two images read with texelFetch (SH with the valid flag,
 // visibility moments): storage-buffer reads are what made this pass slow on lavapipe.
+#include <array>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -44,6 +45,11 @@ static_assert(sizeof(ProbePush) + sizeof(FusedDnrtPush) == 128, "probes.frag's p
 struct FusedDnrt {
   rg::Handle<rg::Texture> volume;  // this frame's Σ_j c_j M_j (pass dnrt.combine), read trilinear
   FusedDnrtPush push;
+  // Below full resolution (the level's "dnrt": {"resolution"}; step 2 or 4): pass dnrt.fused.reduced's
+  // (w·s Σ_j c_j M_j, w) at G-buffer pixel step·j, read bilinear (probes.frag kDnrtStep, binding 10;
+  // README "DNRT's fused term at reduced resolution, session 17"). Unset at step 1.
+  std::optional<rg::Handle<rg::Texture>> reduced;
+  std::uint32_t step = 1;
 };
 // Called by the probes node before it adds its pass; adds what the fused term reads (dnrt.combine) and
 // returns it, or nothing (no fused object this frame: the plain pipeline).
@@ -112,8 +118,9 @@ class ProbeNode final : public TechniqueRuntime {
   gpu::DescriptorSetLayout setLayout_;
   gpu::PipelineLayout layout_;
   gpu::Pipeline pipeline_;
-  // probes.frag with kDnrt (FusedDnrt), made on first use; the dummy volume binding 9 holds otherwise.
-  gpu::Pipeline fusedPipeline_;
+  // probes.frag with kDnrt (FusedDnrt), made on first use, per kDnrtStep 1, 2, 4; the dummy volume
+  // binding 9 holds otherwise.
+  std::array<gpu::Pipeline, 3> fusedPipelines_;
   std::vector<std::uint32_t> specialization_;  // kCoeffs, kShInUbo, kMomentsInUbo, kTiles
   std::unique_ptr<gpu::Image> noDnrt_;  // 1³ RGBA16F zero
   FusedDnrtHook fusedDnrt_;
