@@ -9,7 +9,9 @@
 //    SSAO ms, HBAO ms. Each level twice: in its own modes ("all") and with every object in the
 //    clustered draw ("clustered", issue 15), which has no per-object scopes (objects = the level's);
 //    and both again with the draw at half resolution ("half", "clustered half": the level's "dnrt":
-//    {"resolution": "half"}, issue 15 part 3).
+//    {"resolution": "half"}, issue 15 part 3); with every object fused ("fused": the probes pass adds
+//    the first one's term) at full, half and quarter resolution ("fused half", "fused quarter": pass
+//    dnrt.fused.reduced and one bilinear tap, README "DNRT's fused term at reduced resolution, session 17").
 //  - Tables 6 and 7 and the grid and mode comparisons, per variant level (default cornell-1,
 //    cornell-10): DNRT alone (the level's effects), once with the paper's standard configuration
 //    (sh=4, grid=32, intrusion off; the outer-cube raster) and once per changed setting: sh=9
@@ -50,11 +52,11 @@ struct DnrtBenchOptions {
 struct DnrtBenchRow {
   std::string table;    // "8" (all methods) or "variant"
   std::string level;    // the level file's stem
-  std::string setting;  // Table 8: "all", "clustered", "half", "clustered half" or "fused"; variants: "basic" or the changed setting ("sh=9", …)
+  std::string setting;  // Table 8: "all", "clustered", "half", "clustered half", "fused", "fused half" or "fused quarter"; variants: "basic" or the changed setting ("sh=9", …)
   int objects = 0;      // DNRT objects timed (per-object scopes seen; clustered: the level's dnrt entities)
   double frameMs = 0.0;
   double dnrtMs = 0.0;       // the "dnrt" pass (every object's draw inside it) + "dnrt.combine" (+ "dnrt.upsample");
-                             // "fused": "dnrt.combine" + "dnrt" (objects left to it) + this row's "probes" − the
+                             // "fused…": "dnrt.combine" (+ "dnrt.fused.reduced") + "dnrt" (objects left to it) + this row's "probes" − the
                              // level's "all" row's scaled by the rows' SSAO ratio (the term's marginal cost in the
                              // probes pass; NaN without that row)
   double perObjectMs = 0.0;  // mean of the per-object "dnrt/<object>" medians (NaN when clustered)

@@ -32,6 +32,11 @@ layout(constant_id = 3) const bool kTiles = false;
 // Σ_j c_j M_j in the combined atlas), the clustered draw's sum added here instead of in a pass of its
 // own. A specialization constant, not a branch: llvmpipe runs both sides of a branch (DESIGN.md).
 layout(constant_id = 4) const int kDnrt = 0;
+// With kDnrt 1, the level's "dnrt": {"resolution"} (engine/gi/resolution.hpp step): 1 evaluates the
+// term exactly here; 2 or 4 takes its position-only factor from pass dnrt.fused.reduced's target
+// (binding 12) by one bilinear tap (dnrt.glsl dnrtFusedReducedTerm; README "DNRT's fused term at
+// reduced resolution, session 17"). kDnrt 2 runs at full resolution.
+layout(constant_id = 5) const int kDnrtStep = 1;
 
 layout(set = 0, binding = 0) uniform FrameUbo { Camera camera; };
 layout(set = 1, binding = 0) uniform sampler2D gAlbedo;
@@ -52,6 +57,8 @@ layout(set = 1, binding = 9) uniform sampler3D dnrtCombined;
 // clustered draw's). Dummies otherwise.
 layout(std430, set = 1, binding = 10) readonly buffer DnrtTiles { uint dnrtTileMasks[]; };
 layout(std140, set = 1, binding = 11) uniform DnrtObjects { DnrtClusterObject objects[kDnrtClusterBatch]; };
+// kDnrt 1, kDnrtStep > 1: (w·s Σ_j c_j M_j, w) at G-buffer pixel step·j (RGBA16F, bilinear); unread otherwise.
+layout(set = 1, binding = 12) uniform sampler2D dnrtReduced;
 
 layout(push_constant) uniform Push {
   vec4 originSpacing;  // xyz: probe (0,0,0) position, w: spacing (m)
@@ -90,7 +97,10 @@ void main() {
   float ao = pc.bias.w > 0.5 ? texelFetch(aoTerm, pixel, 0).r : 1.0;
   vec3 e = kTiles ? L[0] : shIrradiance9(L, n);  // probeRadianceSh: with kTiles, L[0] is E(n)
   vec3 radiance = albedo * kInvPi * ao * max(e, vec3(0.0));
-  if (kDnrt == 1) radiance += albedo * dnrtFusedTerm(x, normal, pc.dnrtWorldToQ, pc.dnrtCentreWorld, pc.dnrtExtents, dnrtCombined);
+  if (kDnrt == 1 && kDnrtStep > 1)
+    radiance += albedo * dnrtFusedReducedTerm(x, normal, pixel, pc.dnrtCentreWorld, pc.dnrtExtents, dnrtReduced, kDnrtStep);
+  else if (kDnrt == 1)
+    radiance += albedo * dnrtFusedTerm(x, normal, pc.dnrtWorldToQ, pc.dnrtCentreWorld, pc.dnrtExtents, dnrtCombined);
   if (kDnrt == 2) {
     // The self test reads the normal's w: every fused object's entity id + 1 fits it (gi/dnrt/runtime.cpp).
     uint mask = dnrtTileMasks[uint(pixel.y >> kDnrtClusterTileShift) * uint(pc.dnrtCentreWorld.w) +

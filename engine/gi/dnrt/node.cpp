@@ -55,6 +55,13 @@ struct CullPush {  // tile_cull.comp's Push
   std::uint32_t tileBase = 0, tilesX = 0, tilesY = 0, pad = 0;
 };
 
+struct FusedReducedPush {  // fused_reduced.comp's Push
+  glm::mat4 invViewProj;
+  glm::vec4 worldToQ[3];
+  glm::vec4 extents;  // x inner, y outer (units of R), z entity id + 1 (0 = none), w grid N
+};
+static_assert(sizeof(FusedReducedPush) == 128, "fused_reduced.comp's push block");
+
 struct CubePush {
   glm::mat4 viewProj;
   glm::vec4 origin;
@@ -125,7 +132,12 @@ Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t fra
       cullPipelineLayout_(ctx, {cullLayout_.handle()}, {VkPushConstantRange{VK_SHADER_STAGE_ALL, 0, sizeof(CullPush)}},
                           "dnrt.cull"),
       upsampleInputs_(ctx, {{0, kSampled}, {1, kSampled}, {2, kSampled}, {3, kSampled}}, "dnrt.upsample.inputs"),
-      upsampleLayout_(ctx, {shared.frameLayout.handle(), upsampleInputs_.handle()}, {}, "dnrt.upsample") {
+      upsampleLayout_(ctx, {shared.frameLayout.handle(), upsampleInputs_.handle()}, {}, "dnrt.upsample"),
+      fusedReducedInputs_(ctx, {{0, kSampled}, {1, kSampled}, {2, kSampled}, {3, kStorageImage}},
+                          "dnrt.fused.reduced"),  // depth, normal, combined volume, target
+      fusedReducedLayout_(ctx, {fusedReducedInputs_.handle()},
+                          {VkPushConstantRange{VK_SHADER_STAGE_ALL, 0, sizeof(FusedReducedPush)}},
+                          "dnrt.fused.reduced") {
   {
     gpu::ShaderModule cull(ctx, "dnrt/tile_cull.comp.spv");
     cull_ = gpu::createComputePipeline(ctx, cullPipelineLayout_, cull, "dnrt.tile-cull");
@@ -277,8 +289,10 @@ void Node::recordCombine(VkCommandBuffer cmd, const render::PassContext& pc, gpu
   vkCmdDispatch(cmd, groups(kCombineLocal.x), groups(kCombineLocal.y), groups(kCombineLocal.z));
 }
 
-probes::FusedDnrt Node::addFused(rg::RenderGraph& graph, const render::PassContext& pcIn, const NodeObject& object) {
+probes::FusedDnrt Node::addFused(rg::RenderGraph& graph, const render::PassContext& pcIn, const NodeObject& object,
+                                 std::uint32_t step) {
   if (!object.textures) throw InternalError("dnrt: object '" + object.name + "' has no field textures");
+  step = gi::checkedStep(step);
   const render::PassContext* pc = &pcIn;
   struct CombineData {
     rg::Handle<rg::Texture> volume;
@@ -311,6 +325,52 @@ probes::FusedDnrt Node::addFused(rg::RenderGraph& graph, const render::PassConte
   for (int r = 0; r < 3; ++r) out.push.worldToQ[r] = folded.worldToQ[r];
   out.push.centreWorld = folded.centreWorld;
   out.push.extents = glm::vec4(folded.extents.x, folded.extents.y, float(folded.ids.x), folded.extents.w);
+  out.step = step;
+  if (step == 1u) return out;
+  // Below full resolution: f = s Σ_j c_j M_j at G-buffer pixel step·j (fused_reduced.comp), premultiplied
+  // by the sample's validity, for the probes pass's one bilinear tap (dnrt.glsl dnrtFusedReducedTerm).
+  struct ReducedData {
+    rg::Handle<rg::Texture> depth, normal, volume, target;
+  };
+  const glm::uvec2 fullSize(std::uint32_t(pc->world->camera.resolution.x), std::uint32_t(pc->world->camera.resolution.y));
+  const glm::uvec2 size = gi::reducedSize(fullSize, step);
+  auto& bb = graph.blackboard();
+  const auto& reduced = graph.addPass<ReducedData>(
+      "dnrt.fused.reduced",
+      [&](rg::Builder& b, ReducedData& d) {
+        d.depth = b.read(bb.get<rg::Texture>("gbuffer.depth"), rg::Usage::SampledCompute);
+        d.normal = b.read(bb.get<rg::Texture>("gbuffer.normal"), rg::Usage::SampledCompute);
+        d.volume = b.read(combine.volume, rg::Usage::SampledCompute);
+        d.target = b.write(b.create<rg::Texture>(std::string("dnrt.fused.") + gi::resolutionName(step),
+                                                 rg::TextureDesc{size.x, size.y, 1, 1, 1, rg::Format::RGBA16F, false}),
+                           rg::Usage::StorageWrite);
+      },
+      [this, pc, step, size, push = FusedReducedPush{pc->world->camera.invViewProj, {out.push.worldToQ[0],
+                                                     out.push.worldToQ[1], out.push.worldToQ[2]}, out.push.extents}](
+          const ReducedData& d, const rg::PassResources& res, rg::CommandContext& c) {
+        VkCommandBuffer cmd = pc->cmd(c);
+        gpu::Pipeline& p = fusedReduced_[step == 2u ? 0u : 1u];
+        if (p.handle() == VK_NULL_HANDLE) {
+          gpu::ShaderModule comp(ctx_, "dnrt/fused_reduced.comp.spv");
+          p = gpu::createComputePipeline(ctx_, fusedReducedLayout_, comp, "dnrt.fused.reduced.step" + std::to_string(step),
+                                         nullptr, {step});  // kStep
+        }
+        auto view = [&](rg::Handle<rg::Texture> h) { return pc->backend->image(res.texture(h)).view(); };
+        VkDescriptorSet set = pc->frame().descriptors->allocate(fusedReducedInputs_);
+        const VkSampler point = pc->samplers->get({VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST});
+        gpu::DescriptorWriter w;
+        w.sampledImage(0, view(d.depth), point)
+            .sampledImage(1, view(d.normal), point)
+            // trilinear, as the full-resolution term reads the same volume
+            .sampledImage(2, view(d.volume), pc->samplers->get({VK_FILTER_LINEAR, VK_SAMPLER_MIPMAP_MODE_NEAREST}))
+            .storageImage(3, view(d.target))
+            .update(ctx_, set);
+        p.bind(cmd);
+        p.bindSet(cmd, 0, set);
+        p.push(cmd, push);
+        vkCmdDispatch(cmd, (size.x + 7u) / 8u, (size.y + 7u) / 8u, 1);  // local size 8×8, a sample each
+      });
+  out.reduced = reduced.target;
   return out;
 }
 

@@ -116,8 +116,12 @@ class Node {
   // "dnrt.combine" for `object` alone (its own record buffer: the box draws' buffer may hold other
   // objects this frame) and returns its volume and the record the probes pass adds its term with
   // (probes.frag kDnrt). The object has no intrusion and its entity id + 1 ≤ kEntityInNormalMax (the
-  // self test reads the normal's w); full resolution only.
-  probes::FusedDnrt addFused(rg::RenderGraph& graph, const render::PassContext& pc, const NodeObject& object);
+  // self test reads the normal's w). `step` 2 or 4 (the level's "dnrt": {"resolution"}) also adds pass
+  // "dnrt.fused.reduced" (shaders/dnrt/fused_reduced.comp): the term's position-only factor at G-buffer
+  // pixel step·j, which the probes pass reads with one bilinear tap (README "DNRT's fused term at reduced
+  // resolution, session 17").
+  probes::FusedDnrt addFused(rg::RenderGraph& graph, const render::PassContext& pc, const NodeObject& object,
+                             std::uint32_t step = 1);
   // The fused mode with several objects (probes.frag kDnrt 2): the clustered mode's per-pixel visit
   // inside the probes pass. Adds pass "dnrt.combine.fused" for `objects` (at most kClusterBatch, each as
   // addFused asks): their bricks of a combined atlas (combine.comp), this frame's tile masks (the CPU's
@@ -200,6 +204,10 @@ class Node {
   gpu::PipelineLayout upsampleLayout_;
   gpu::ShaderModule upsampleFrag_;
   std::array<gpu::Pipeline, 2> upsample_;  // index: step 2, 4
+  // "dnrt.fused.reduced" (fused_reduced.comp, step 2, 4): depth, normal, the combined volume, the target.
+  gpu::DescriptorSetLayout fusedReducedInputs_;
+  gpu::PipelineLayout fusedReducedLayout_;
+  std::array<gpu::Pipeline, 2> fusedReduced_;  // index: step 2, 4 (kStep), made on first use
   std::size_t lastTileSlot_ = 0, lastTileCount_ = 0;  // lastTileMasks: the buffer and its masks
 };
 

@@ -65,7 +65,7 @@ render::Renderer::GraphNode Runtime::node() {
 
 std::optional<probes::FusedDnrt> Runtime::addFused(rg::RenderGraph& graph, const render::PassContext& pc) {
   fusedFrame_.reset();
-  if (!pc.world->has("dnrt") || settings_.step != 1u) return std::nullopt;
+  if (!pc.world->has("dnrt")) return std::nullopt;
   const auto modeOf = [&](Mode m) { return settings_.mode.value_or(m); };
   // objectsFor (c_j per object) only when some object asks for the mode.
   const bool any = std::any_of(objects_.begin(), objects_.end(), [&](const Object& o) {
@@ -86,9 +86,11 @@ std::optional<probes::FusedDnrt> Runtime::addFused(rg::RenderGraph& graph, const
   std::vector<bool> fused(objects.size(), false);
   std::optional<probes::FusedDnrt> out;
   if (chosen.size() == 1) {  // one object: its record in the push block, no loop (probes.frag kDnrt 1)
-    out = node_->addFused(graph, pc, objects[chosen[0]]);
+    // Below full resolution the term's position-only factor comes from pass dnrt.fused.reduced.
+    out = node_->addFused(graph, pc, objects[chosen[0]], settings_.step);
     fused[chosen[0]] = true;
-  } else {  // several: the clustered visit of the pixel's tile (kDnrt 2)
+  } else {  // several: the clustered visit of the pixel's tile (kDnrt 2), at full resolution
+
     std::vector<NodeObject> subset;
     for (std::size_t i : chosen) subset.push_back(objects[i]);
     std::vector<bool> taken;

@@ -75,8 +75,8 @@ class Runtime {
   // visible object in that mode with no intrusion whose entity id + 1 fits the normal's w (the self
   // test there), up to kClusterBatch, gets its term in the probes pass: one object as its record in
   // the push block (Node::addFused, probes.frag kDnrt 1), several as the clustered mode's visit of the
-  // pixel's tile mask (Node::addFusedCluster, kDnrt 2); node() then leaves them out. Nothing (all drawn by node(), a fused object as a box) when the frame's
-  // effects do not name dnrt, below full resolution, or no object qualifies; without the probes
+  // pixel's tile mask at full resolution (Node::addFusedCluster, kDnrt 2); node() then leaves them out. Below full resolution (settings().step 2, 4) one object's term takes its position-only factor from pass dnrt.fused.reduced (Node::addFused). Nothing (all drawn by node(), a fused object as a box) when the frame's
+  // effects do not name dnrt or no object qualifies; without the probes
   // effect this is never called and node() draws fused objects as boxes.
   std::optional<probes::FusedDnrt> addFused(rg::RenderGraph& graph, const render::PassContext& pc);
 

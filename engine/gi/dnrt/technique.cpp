@@ -234,7 +234,7 @@ class DnrtTechnique final : public Technique {
     }
   }
 
-  std::vector<std::string> passes() const override { return {"dnrt.cube", "dnrt.combine", "dnrt.combine.fused", "dnrt", "dnrt.upsample"}; }
+  std::vector<std::string> passes() const override { return {"dnrt.cube", "dnrt.combine", "dnrt.combine.fused", "dnrt.fused.reduced", "dnrt", "dnrt.upsample"}; }
 };
 
 }  // namespace

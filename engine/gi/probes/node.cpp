@@ -263,7 +263,8 @@ ProbeNode::ProbeNode(gpu::Context& ctx, const render::Pipelines& pipelines, Prob
                   {8, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                   {9, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                   {10, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                  {11, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER}},
+                  {11, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
+                  {12, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}},
                  "probes") {
   {
     const std::vector<std::uint32_t> words = shPackedWords(volume_);
@@ -388,7 +389,7 @@ void ProbeNode::addPasses(rg::RenderGraph& graph, const render::PassContext* pc)
   if (relight_) block = addRelightPass(graph, pc);
   struct Data {
     render::DeferredInputs g;
-    rg::Handle<rg::Texture> hdr, ao, tiles, dnrt;
+    rg::Handle<rg::Texture> hdr, ao, tiles, dnrt, dnrtReduced;
   };
   auto& bb = graph.blackboard();
   // This frame's irradiance tiles (tiles.comp), after probes.relight rewrote the block (its final
@@ -457,6 +458,7 @@ void ProbeNode::addPasses(rg::RenderGraph& graph, const render::PassContext* pc)
         if (tiles) d.tiles = b.read(*tiles, rg::Usage::SampledFragment);
         if (block) b.read(*block, rg::Usage::UniformBuffer);  // bound either way (with tiles unread)
         if (fused) d.dnrt = b.read(fused->volume, rg::Usage::SampledFragment);
+        if (fused && fused->reduced) d.dnrtReduced = b.read(*fused->reduced, rg::Usage::SampledFragment);
       },
       [this, pc, withAo, fused](const Data& d, const rg::PassResources& res, rg::CommandContext& c) {
         VkCommandBuffer cmd = pc->cmd(c);
@@ -475,6 +477,9 @@ void ProbeNode::addPasses(rg::RenderGraph& graph, const render::PassContext* pc)
                           tiles_ ? pc->samplers->get({VK_FILTER_LINEAR, VK_SAMPLER_MIPMAP_MODE_NEAREST}) : point)
             // trilinear, as the "dnrt" pass's box draw reads the same volume
             .sampledImage(9, fused ? view(d.dnrt) : noDnrt_->view(),
+                          pc->samplers->get({VK_FILTER_LINEAR, VK_SAMPLER_MIPMAP_MODE_NEAREST}))
+            // bilinear: the fused term's one tap below full resolution; the albedo when unread (kDnrtStep 1)
+            .sampledImage(12, view(fused && fused->reduced ? d.dnrtReduced : d.g.albedo),
                           pc->samplers->get({VK_FILTER_LINEAR, VK_SAMPLER_MIPMAP_MODE_NEAREST}));
         const bool several = fused && fused->bindCluster;
         if (several)
@@ -486,7 +491,10 @@ void ProbeNode::addPasses(rg::RenderGraph& graph, const render::PassContext* pc)
         render::Attachment color{target.view(), true};  // additive: keep the direct light
         const VkExtent2D extent{target.desc().width, target.desc().height};
         render::beginRendering(*pc->gpu, cmd, extent, {&color, 1}, nullptr);
-        gpu::Pipeline& fusedPipeline = fusedPipelines_[several ? 1 : 0];
+        const std::size_t stepIndex = !fused || fused->step == 1u ? 0u : fused->step == 2u ? 1u : 2u;
+        if (fused && fused->step != 1u && fused->step != 2u && fused->step != 4u)
+          throw InternalError("probes: fused DNRT step " + std::to_string(fused->step) + " (expected 1, 2 or 4)");
+        gpu::Pipeline& fusedPipeline = fusedPipelines_[several ? 3u : stepIndex];
         if (fused && fusedPipeline.handle() == VK_NULL_HANDLE) {
           gpu::ShaderModule vert(*pc->gpu, "passes/fullscreen.vert.spv");
           gpu::ShaderModule frag(*pc->gpu, "probes/probes.frag.spv");
@@ -496,8 +504,10 @@ void ProbeNode::addPasses(rg::RenderGraph& graph, const render::PassContext* pc)
           pd.colorFormats = {VK_FORMAT_R16G16B16A16_SFLOAT};
           pd.blend = gpu::Blend::Additive;
           pd.specialization = specialization_;
-          pd.specialization.push_back(several ? 2u : 1u);  // kDnrt
-          pd.name = several ? "probes.fused-dnrt.cluster" : "probes.fused-dnrt";
+          pd.specialization.push_back(several ? 2u : 1u);              // kDnrt
+          pd.specialization.push_back(several ? 1u : fused->step);   // kDnrtStep
+          pd.name = several ? std::string("probes.fused-dnrt.cluster")
+                            : "probes.fused-dnrt" + (fused->step > 1u ? ".step" + std::to_string(fused->step) : std::string());
           fusedPipeline = gpu::createGraphicsPipeline(*pc->gpu, layout_, pd);
         }
         const gpu::Pipeline& p = fused ? fusedPipeline : pipeline_;

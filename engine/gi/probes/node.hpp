@@ -53,6 +53,11 @@ struct FusedDnrt {
   // tile masks (binding 10, storage) and object records (binding 11, uniform) into the probes pass's
   // set when it records; empty for one object (kDnrt 1).
   std::function<void(gpu::DescriptorWriter&, const render::PassContext&)> bindCluster;
+  // Below full resolution (the level's "dnrt": {"resolution"}; step 2 or 4): pass dnrt.fused.reduced's
+  // (w·s Σ_j c_j M_j, w) at G-buffer pixel step·j, read bilinear (probes.frag kDnrtStep, binding 12;
+  // README "DNRT's fused term at reduced resolution, session 17"). Unset at step 1 and for several objects (kDnrt 2 runs at full resolution).
+  std::optional<rg::Handle<rg::Texture>> reduced;
+  std::uint32_t step = 1;
 };
 // Called by the probes node before it adds its pass; adds what the fused term reads (dnrt.combine) and
 // returns it, or nothing (no fused object this frame: the plain pipeline).
@@ -121,9 +126,9 @@ class ProbeNode final : public TechniqueRuntime {
   gpu::DescriptorSetLayout setLayout_;
   gpu::PipelineLayout layout_;
   gpu::Pipeline pipeline_;
-  // probes.frag with kDnrt 1 (one object) and 2 (several; FusedDnrt), made on first use; the dummy
-  // volume (binding 9), tile masks (10) and records (11) hold otherwise.
-  std::array<gpu::Pipeline, 2> fusedPipelines_;
+  // probes.frag with kDnrt 1 at kDnrtStep 1, 2, 4 (one object) and kDnrt 2 (several; FusedDnrt), made on
+  // first use; the dummy volume (binding 9), tile masks (10) and records (11) hold otherwise.
+  std::array<gpu::Pipeline, 4> fusedPipelines_;
   std::vector<std::uint32_t> specialization_;  // kCoeffs, kShInUbo, kMomentsInUbo, kTiles
   std::unique_ptr<gpu::Image> noDnrt_;  // 1³ RGBA16F zero
   gpu::Buffer noDnrtTiles_, noDnrtObjects_;  // one zero mask; kDnrtObjectsBytes of zeros

@@ -851,6 +851,70 @@ TEST(DnrtGpu, FusedModeIsTheBoxImageInsideTheProbesPass) {
   }
 }
 
+// The fused mode below full resolution ("dnrt": {"mode": "fused", "resolution": "half"|"quarter"}; README
+// "DNRT's fused term at reduced resolution, session 17"): pass "dnrt.fused.reduced" writes the term's
+// position-only factor f = s Σ_j c_j M_j at G-buffer pixel step·j and the probes pass takes one bilinear
+// tap of it (normalised by the valid samples' weight) times the exact per-pixel (n_o·n_r)₊.
+// - structure: the full-resolution fused passes with "dnrt.fused.reduced" between "dnrt.combine.fused"
+//   and "probes"; no "dnrt", no "dnrt.upsample";
+// - image, on a smooth scene (floor-box.json: a plane under a floating box, whose own samples are the
+//   only invalid ones, so no depth edge of two receivers): the term equals the full-resolution fused
+//   term within kRmsBound relative RMS and kMaxBound of the largest term at any channel value. What is
+//   left is bilinear interpolation of a smooth f over 2 or 4 pixels, the nearest valid samples' f next
+//   to the box's silhouette, and f's fp16 rounding. Measured at 160×120 (the printf): the bounds are
+//   about 1.7× the measured figures, and leaving the term out would score 1 (rel RMS) and 1 (worst).
+TEST(DnrtGpu, FusedModeAtReducedResolutionIsTheFullTermWithinABoundOnASmoothScene) {
+  gpu::Context& ctx = gpu::testkit::sharedContext();
+  const auto render = [&](std::vector<std::string> effects, std::uint32_t step) {
+    scene::Level level = game::loadLevelWithEffects(fs::path(BOUNCE_SOURCE_DIR) / "tests/data/dnrt/floor-box.json", effects);
+    level.dnrt.step = step;
+    for (auto& e : level.entities)
+      if (e.dnrt) e.dnrt->mode = Mode::Fused;
+    game::Session session(ctx, std::move(level));
+    session.update(0.0);
+    return renderOnce(session, ctx);
+  };
+  const std::vector<std::string> all = {"direct", "probes", "dnrt"};
+  const Frame full = render(all, 1), probesOnly = render({"direct", "probes"}, 1);
+  std::vector<std::string> expected;
+  for (const std::string& p : full.passes) {
+    if (p == "probes") expected.push_back("dnrt.fused.reduced");
+    expected.push_back(p);
+  }
+  ASSERT_EQ(std::count(full.passes.begin(), full.passes.end(), "dnrt.combine.fused"), 1);
+  ASSERT_EQ(full.rgb.size(), probesOnly.rgb.size());
+  // half, quarter: measured 0.034 / 0.083 (rel RMS) and 0.125 / 0.289 (worst / largest) at 160×120,
+  // where a quarter-resolution sample covers 4×4 of 160×120 pixels (the box is ~25 pixels wide)
+  constexpr float kRmsBound[2] = {0.06f, 0.15f};
+  constexpr float kMaxBound[2] = {0.25f, 0.5f};
+  for (const std::uint32_t step : {2u, 4u}) {
+    const Frame reduced = render(all, step);
+    EXPECT_EQ(reduced.passes, expected) << "step " << step;
+    ASSERT_EQ(reduced.rgb.size(), full.rgb.size());
+    double sumSq = 0.0, errSq = 0.0;
+    float largest = 0.0f, worst = 0.0f;
+    int covered = 0;
+    for (std::size_t i = 0; i < full.rgb.size(); ++i) {
+      ASSERT_TRUE(std::isfinite(reduced.rgb[i])) << i;
+      const float term = full.rgb[i] - probesOnly.rgb[i];
+      const float err = reduced.rgb[i] - full.rgb[i];
+      sumSq += double(term) * term;
+      errSq += double(err) * err;
+      largest = std::max(largest, std::abs(term));
+      worst = std::max(worst, std::abs(err));
+      covered += term != 0.0f ? 1 : 0;
+    }
+    const double rel = std::sqrt(errSq / sumSq);
+    std::printf("fused step %u vs full: %d channel values carry the term, rel RMS %.4f of it, worst %.4g = %.3f of the "
+                "largest term %.4f\n",
+                step, covered, rel, worst, worst / largest, largest);
+    EXPECT_GT(covered, 1000);
+    EXPECT_GT(largest, 0.005f);
+    EXPECT_LE(rel, kRmsBound[step == 2u ? 0 : 1]) << "step " << step;
+    EXPECT_LE(worst, kMaxBound[step == 2u ? 0 : 1] * largest) << "step " << step;
+  }
+}
+
 // The fused mode with an occlusion term: two-boxes-lamp.json's box-a says "lights_in_anti_radiance":
 // false, so its combined volume sums its field and its occlusion-only field (−k_j, the lamp's c_j
 // negated; combine.comp kOcclusion) — in dnrt.combine for the box mode and in dnrt.combine.fused for

@@ -200,6 +200,7 @@ TEST(Techniques, AccuracyRowsComeFromTheTable) {
     for (const auto& p : passes) {
       if (p == "dnrt.cube") continue;  // optional: only objects with intrusion on have it
       if (p == "dnrt.combine.fused") continue;  // only objects in "mode": "fused" beside the probes
+      if (p == "dnrt.fused.reduced") continue;  // the same, below full resolution
       // only below full resolution ("dnrt": {"resolution": "half"|"quarter"}), and then the row says so
       if (p == "dnrt.upsample" && !r.setting.starts_with("resolution=")) continue;
       // optional: only levels with "local_lights" on have it, and then their rows say so
