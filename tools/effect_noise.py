@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """How much of the reference's object effect on the indirect-only pixels is path-tracing noise.
 
 `bounce accuracy` scores a technique's object effect on the indirect-only pixels (those the dynamic
@@ -27,19 +27,31 @@ against the converged effect (= the CSV's indirect_effect_rel_rmse_corrected for
 --spp-ratio K with NAME@...=E: E was measured against a reference with K times the samples
 (noise energy / K); the same inversion with that noise.
 """
-import argparse
 import sys
 
 import numpy as np
 
+from tool_input import Arguments, BadInput, run
+
 
 def read_pfm(path):
+    """A PFM image (PF: RGB, Pf: grey) as float64 rows top-down; anything else is BadInput naming the file."""
     with open(path, "rb") as f:
         kind = f.readline().strip()
-        width, height = map(int, f.readline().split())
-        scale = float(f.readline())
-        data = np.frombuffer(f.read(), dtype="<f4" if scale < 0 else ">f4")
-    channels = 3 if kind == b"PF" else 1
+        if kind not in (b"PF", b"Pf"):
+            raise BadInput(path, f"header {kind[:8]!r}", "a PFM image starting with PF or Pf")
+        try:
+            width, height = map(int, f.readline().split())
+            scale = float(f.readline())
+        except ValueError:
+            raise BadInput(path, "a malformed size or scale line", "'W H' then a scale") from None
+        channels = 3 if kind == b"PF" else 1
+        if width <= 0 or height <= 0 or width * height > 1 << 28 or scale == 0:
+            raise BadInput(path, f"size {width}x{height} scale {scale}", "a positive size under 2^28 pixels, scale != 0")
+        raw = f.read(width * height * channels * 4 + 1)
+    if len(raw) != width * height * channels * 4:
+        raise BadInput(path, f"{len(raw)} bytes of pixels", f"{width * height * channels * 4} ({width}x{height}x{channels} floats)")
+    data = np.frombuffer(raw, dtype="<f4" if scale < 0 else ">f4")
     return data.reshape(height, width, channels).astype(np.float64)[::-1]  # PFM rows run bottom-up
 
 
@@ -63,7 +75,7 @@ def corrected(e, floor):
 
 
 def main():
-    p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    p = Arguments(description=__doc__.split("\n")[0])
     p.add_argument("dir", help="a `bounce accuracy --effect-images --out DIR` folder")
     p.add_argument("--kind", default="all", help="reference kind (the rows' ref=...)")
     p.add_argument("--error", action="append", default=[], help="NAME=E or NAME@...=E (see --spp-ratio)")
@@ -110,4 +122,4 @@ def main():
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    run(main, "tools/effect_noise.py DIR [--kind K] [--error NAME=E ...] [--spp-ratio K]", args=(1, None))

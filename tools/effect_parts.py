@@ -18,6 +18,7 @@ import sys
 import numpy as np
 
 from effect_noise import corrected, read_pfm as pfm  # one PFM reader and e* for the tools (this folder is on sys.path)
+from tool_input import run  # one line, exit 2 on bad input
 import os
 
 
@@ -72,5 +73,5 @@ def main():
             stats("best " + " + ".join(f"{c:.2f}*{n}" for c, (n, _) in zip(coef, parts)), fit, ref, m, noise)
 
 
-if __name__ == '__main__':
-    main()
+if __name__ == "__main__":
+    run(main, "tools/effect_parts.py DIR ROW [NAME=DIR2 ...]", args=(2, None))

@@ -20,6 +20,7 @@ import sys
 import numpy as np
 
 from effect_noise import read_pfm as pfm
+from tool_input import run  # one line, exit 2 on bad input
 
 
 def main():
@@ -66,4 +67,4 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    run(main, "tools/rtf_bands.py PARTS_DIR ACC_DIR [R [RN [ROW]]]", args=(2, 5))

@@ -19,6 +19,7 @@ import sys
 import numpy as np
 
 from effect_noise import read_pfm as pfm
+from tool_input import run  # one line, exit 2 on bad input
 
 
 def rms(x):
@@ -54,4 +55,4 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    run(main, "tools/rtf_blocked.py PARTS_DIR ACC_DIR", args=(2, 2))

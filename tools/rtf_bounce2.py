@@ -18,6 +18,7 @@ import sys
 import numpy as np
 
 from effect_noise import read_pfm as pfm
+from tool_input import run  # one line, exit 2 on bad input
 
 
 def blocks(a, k=4):
@@ -76,4 +77,4 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    run(main, "tools/rtf_bounce2.py PARTS_DIR ACC_DIR [R]", args=(2, 3))

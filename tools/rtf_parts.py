@@ -13,6 +13,7 @@ import sys
 import numpy as np
 
 from effect_noise import read_pfm as pfm
+from tool_input import run  # one line, exit 2 on bad input
 
 
 def main():
@@ -42,10 +43,6 @@ def main():
         print(f"indirect-only rel. RMSE {name:28s} {np.sqrt(((e - ref)[mask] ** 2).mean()) / rms:.4f}")
 
 
-if __name__ == "__main__":
-    main()
-
-
 def shares(parts, acc, row):
     """Where the GPU row's whole-image effect error lies: pixels that see an object, direct-changed, indirect-only."""
     ref = pfm(f"{acc}/reference-all-with.pfm") - pfm(f"{acc}/reference-all-without.pfm")
@@ -59,5 +56,10 @@ def shares(parts, acc, row):
         print(f"share of the whole-image squared error, {name:24s} {m.sum():6d} px {e2[m].sum() / total:6.1%}")
 
 
-if len(sys.argv) > 1 and __name__ == "__main__":
+def parts_and_shares():
+    main()
     shares(sys.argv[1], sys.argv[2], sys.argv[3] if len(sys.argv) > 3 else "rtf-bounces-2-ref-all")
+
+
+if __name__ == "__main__":
+    run(parts_and_shares, "tools/rtf_parts.py PARTS_DIR ACC_DIR [ROW]", args=(2, 3))

@@ -21,6 +21,7 @@ import sys
 import numpy as np
 
 from effect_noise import read_pfm
+from tool_input import run  # one line, exit 2 on bad input
 
 WHATIFS = ("albedo", "lampvis", "both", "shadowed", "shadowed-lampvis", "lampray", "shadowed-lampray")  # lampray*: -b1 only
 
@@ -75,4 +76,4 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    run(main, "tools/rtf_whatif.py PARTS_DIR ACC_DIR [ROW]", args=(2, 3))

@@ -47,6 +47,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from effect_noise import corrected, read_pfm as pfm  # noqa: E402
+from tool_input import run  # one line, exit 2 on bad input
 from sl_parts import arguments, pixel_groups, sl_parts  # noqa: E402
 
 
@@ -130,4 +131,4 @@ def main():
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    run(main, "tools/sl_bounce_split.py FULL BLACK [--influence 6|12|0] [--sl-bounce off|on] [--level L] | --write-black IN OUT", args=(2, None))

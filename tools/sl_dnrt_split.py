@@ -27,7 +27,6 @@ DNRT's, which says which term holds the gap between the two techniques.
 
 usage: tools/sl_dnrt_split.py FULL BLACK [--level L] [--sl-row ROW] [--dnrt-row ROW]
 """
-import argparse
 import json
 import math
 import os
@@ -37,6 +36,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from effect_noise import read_pfm as pfm  # noqa: E402
+from tool_input import Arguments, run  # one line, exit 2 on bad input
 from sl_bounce_split import ref, score  # noqa: E402
 from sl_parts import effect, room_positions  # noqa: E402
 
@@ -49,7 +49,7 @@ def cosine(a, b):
 
 
 def main():
-    ap = argparse.ArgumentParser()
+    ap = Arguments()
     ap.add_argument("full")
     ap.add_argument("black")
     ap.add_argument("--level", default="content/levels/cornell-1.json")
@@ -119,4 +119,4 @@ def main():
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    run(main, "tools/sl_dnrt_split.py FULL BLACK [--level L] [--sl-row ROW] [--dnrt-row ROW]", args=(2, None))

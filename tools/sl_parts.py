@@ -24,7 +24,6 @@ other levels get the indirect-only line alone).
 
 usage: tools/sl_parts.py DIR [--influence 12|6|0] [--sl-bounce off|on] [--level content/levels/characters.json]
 """
-import argparse
 import json
 import math
 import os
@@ -34,6 +33,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from effect_noise import corrected, read_pfm as pfm  # noqa: E402  one PFM reader and e* for the tools
+from tool_input import Arguments, run  # one line, exit 2 on bad input
 
 
 def effect(d, row):
@@ -124,7 +124,7 @@ def table(label, parts, r, n, m):
 
 def arguments(*folders):
     """The command line both SL tools take: the folders, then --influence and --level."""
-    ap = argparse.ArgumentParser()
+    ap = Arguments()
     for name in folders:
         ap.add_argument(name)
     ap.add_argument("--influence", default="6", choices=["12", "6", "0"])  # the decomposition rows' cuts (0: uncut)
@@ -203,4 +203,4 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    run(main, "tools/sl_parts.py DIR [--influence 12|6|0] [--sl-bounce off|on] [--level L]", args=(1, None))

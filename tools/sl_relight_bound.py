@@ -39,7 +39,6 @@ and w = 1. If A, C2 and D are above the goal, no transport that leaves the ball 
 (FULL, BLACK: sl_bounce_split.py's folders; the .slset files in the level's sl-entity order, from
 `bounce bake`'s log lines "sl NAME: ... -> PATH".)
 """
-import argparse
 import json
 import math
 import os
@@ -50,6 +49,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from effect_noise import read_pfm as pfm  # noqa: E402
+from tool_input import Arguments, run  # one line, exit 2 on bad input
 from sl_parts import characters, effect, room_positions  # noqa: E402
 
 
@@ -101,7 +101,7 @@ def world_spheres(entity, foot, path, reach=None):
 
 
 def main():
-    ap = argparse.ArgumentParser()
+    ap = Arguments()
     ap.add_argument("full")
     ap.add_argument("black")
     ap.add_argument("--slsets", nargs="+", required=True)
@@ -232,4 +232,4 @@ def main():
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    run(main, "tools/sl_relight_bound.py FULL BLACK --slsets FOX.slset CESIUM.slset [--influence 6]", args=(2, None))
