@@ -68,6 +68,7 @@ struct Sums {
   double omega = 0, traced = 0, receiverSh = 0, sphereSh = 0, slUniform = 0, slSphere = 0, slReceiver = 0;
   double tracedShP = 0, tracedShS = 0;  // the traced field's own order-3 SH at p / at the SL
   double slSphereTraced = 0;            // SL_s with that SH at each SL in place of the probes'
+  double slSphereExact = 0;             // SL_s with the radiance traced from each SL along d_j (any order)
   double tracedS4 = 0;        // the traced field's order-4 SH at the SL (unwindowed)
   double tracedAtSphere = 0;  // the static radiance traced from the SL's centre along ω (no SH: any order)
   int n = 0;
@@ -245,9 +246,28 @@ TEST(SlBlockedLight, CharactersFloorProbesVsTraced) {
           const ProbeShadow sp = probeShadow(lights, p, n, receiverSh, atSphere);
           const ProbeShadow rc = probeShadow(lights, p, n, receiverSh, ss);
           const ProbeShadow st = probeShadow(lights, p, n, receiverSh, atSphereTraced);
+          // The bound of a better read at the spheres: each SL's "SH" a constant, the static radiance
+          // traced from its centre towards d_j (the direction sphere mode reads it in; the raw centre's
+          // direction, before the receiver rules move it).
+          ShadowSettings exactRead = atSphere;
+          {
+            std::uint64_t rays = 0;
+            math::Pcg32 rng = math::Pcg32::fromIndex((std::uint64_t(c * 4096 + i) << 32) | 0xffffu);
+            for (std::size_t l = 0; l < lights.size(); ++l) {
+              const glm::dvec3 dj = glm::normalize(lights[l].sphere.centre - p);
+              glm::dvec3 L(0.0);
+              for (int j = 0; j < 4 * kPathsPerDirection; ++j)
+                L += ref::tracePathFrom(staticBvh, glm::vec3(lights[l].sphere.centre), glm::vec3(dj), 1e-5f, 1e30f,
+                                        ref::kUnlimitedBounces, rng, rays);
+              exactRead.sphereRadiance[l] = std::vector<glm::dvec3>(9, glm::dvec3(0.0));
+              exactRead.sphereRadiance[l][0] = 2.0 * std::sqrt(math::kPi) * L / double(4 * kPathsPerDirection);
+            }
+          }
+          const ProbeShadow ex = probeShadow(lights, p, n, receiverSh, exactRead);
           ASSERT_TRUE(std::isfinite(sp.delta.x) && std::isfinite(rc.delta.x) && std::isfinite(u.delta.x));
           s.omega += r.omega, s.traced += r.traced, s.receiverSh += r.receiverSh, s.sphereSh += r.sphereSh;
           s.tracedShP += r.tracedShP, s.tracedShS += r.tracedShS, s.slSphereTraced += -mean3(st.delta);
+          s.slSphereExact += -mean3(ex.delta);
           s.tracedAtSphere += r.tracedAtSphere, s.tracedS4 += r.tracedS4;
           s.slUniform += -mean3(u.delta), s.slSphere += -mean3(sp.delta), s.slReceiver += -mean3(rc.delta);
           ++s.n;
@@ -258,10 +278,10 @@ TEST(SlBlockedLight, CharactersFloorProbesVsTraced) {
         std::printf("  %s %.2f-%.2f m, %2d receivers: mesh %.4f sr, T %.5f W/m2 (mean blocked radiance %.4f)\n"
                     "    blocked light / T: probes' SH at p (R) %.3f, at the SL (S) %.3f; traced field's SH at p %.3f, at the "
                     "SL %.3f (order 4: %.3f); traced from the SL along the ray %.3f\n"
-                    "    SL: SL_u/mesh %.3f; SL_s/T %.3f, SL_r/T %.3f, SL_s with the traced SH at the SLs / T %.3f\n",
+                    "    SL: SL_u/mesh %.3f; SL_s/T %.3f, SL_r/T %.3f, SL_s with the traced SH at the SLs / T %.3f, with the radiance traced from the SLs along d_j / T %.3f\n",
                     parts[c].name.c_str(), kBands[b], kBands[b + 1], s.n, s.omega / s.n, s.traced / s.n, s.traced / s.omega, R,
                     S, s.tracedShP / s.traced, tracedSh3, s.tracedS4 / s.traced, atSl, s.slUniform / s.omega,
-                    s.slSphere / s.traced, s.slReceiver / s.traced, s.slSphereTraced / s.traced);
+                    s.slSphere / s.traced, s.slReceiver / s.traced, s.slSphereTraced / s.traced, s.slSphereExact / s.traced);
         ASSERT_GT(s.traced, 0.0);
         ASSERT_TRUE(std::isfinite(R) && std::isfinite(S) && std::isfinite(atSl));
         if (b < 2) {  // within 0.5 m, where session 17 measured the level's excess
