@@ -16,6 +16,10 @@
 //   SL_u = −ΔE of sl::probeShadow under uniform unit radiance (the geometry, this pose)
 //   SL_s, SL_r = −ΔE of sl::probeShadow with the probes' SH, sphere / receiver mode (uncut, the level's
 //                sets, union shares and shadow scales)
+// What splits S/T: the static field's own SH at p and at the SL (order 3 windowed as the bake does,
+// order 4), the radiance traced from the SL's centre along the same ray (no SH at all), an octahedral
+// map of it at the SL (8², 16² texels); and SL_s with the SLs' SH replaced by the traced SH, by the
+// radiance traced along d_j (the bound of an exact directional read) and by the octahedral maps.
 // R/T and S/T are the one number each: the probes' blocked light over the traced one. Receivers are
 // floor points whose ray to the lamp the characters do not block (the indirect-only pixels of
 // `bounce accuracy`), binned by their horizontal distance to the character's nearest vertex.
@@ -69,6 +73,7 @@ struct Sums {
   double tracedShP = 0, tracedShS = 0;  // the traced field's own order-3 SH at p / at the SL
   double slSphereTraced = 0;            // SL_s with that SH at each SL in place of the probes'
   double slSphereExact = 0;             // SL_s with the radiance traced from each SL along d_j (any order)
+  double octS[2] = {}, slOct[2] = {};   // an octahedral map of the traced field at the SL, 8² / 16² texels
   double tracedS4 = 0;        // the traced field's order-4 SH at the SL (unwindowed)
   double tracedAtSphere = 0;  // the static radiance traced from the SL's centre along ω (no SH: any order)
   int n = 0;
@@ -79,6 +84,49 @@ struct Sums {
 // would hold. Splits R/T into the order-3 truncation of the true field (this over T) and the probes'
 // placement and interpolation (R over this). `order` 4 and `window` false: what a higher-order or
 // unwindowed probe would hold.
+// Octahedral map (z the pole): unit direction ↔ [0, 1]².
+glm::dvec2 octEncode(const glm::dvec3& d) {
+  glm::dvec2 p = glm::dvec2(d.x, d.y) / (std::abs(d.x) + std::abs(d.y) + std::abs(d.z));
+  if (d.z < 0.0)
+    p = (1.0 - glm::abs(glm::dvec2(p.y, p.x))) * glm::dvec2(p.x >= 0.0 ? 1.0 : -1.0, p.y >= 0.0 ? 1.0 : -1.0);
+  return p * 0.5 + 0.5;
+}
+glm::dvec3 octDecode(const glm::dvec2& uv) {
+  const glm::dvec2 f = uv * 2.0 - 1.0;
+  glm::dvec3 n(f.x, f.y, 1.0 - std::abs(f.x) - std::abs(f.y));
+  const double t = std::max(-n.z, 0.0);
+  n.x += n.x >= 0.0 ? -t : t;
+  n.y += n.y >= 0.0 ? -t : t;
+  return glm::normalize(n);
+}
+// The static radiance at `o` as a res² octahedral map, each texel the mean of 4 paths through it: the
+// directional store a probe could keep in place of (or beside) its SH. Read at the nearest texel.
+struct OctMap {
+  int res = 8;
+  std::vector<double> texel;  // channel mean, W/(m²·sr)
+  double read(const glm::dvec3& d) const {
+    const glm::dvec2 uv = octEncode(d);
+    const int x = std::min(res - 1, int(uv.x * res)), y = std::min(res - 1, int(uv.y * res));
+    return texel[std::size_t(y * res + x)];
+  }
+};
+OctMap tracedOct(const ref::SceneBvh& bvh, const glm::dvec3& o, int res, std::uint64_t seed) {
+  OctMap m;
+  m.res = res;
+  math::Pcg32 rng = math::Pcg32::fromIndex(seed);
+  std::uint64_t rays = 0;
+  for (int y = 0; y < res; ++y)
+    for (int x = 0; x < res; ++x) {
+      double sum = 0.0;
+      for (int k = 0; k < 4; ++k) {
+        const glm::dvec2 uv((x + rng.nextDouble()) / res, (y + rng.nextDouble()) / res);
+        sum += mean3(ref::tracePathFrom(bvh, glm::vec3(o), glm::vec3(octDecode(uv)), 1e-5f, 1e30f, ref::kUnlimitedBounces, rng, rays));
+      }
+      m.texel.push_back(sum / 4.0);
+    }
+  return m;
+}
+
 std::vector<glm::dvec3> tracedSh(const ref::SceneBvh& bvh, const glm::dvec3& o, std::uint64_t seed, int order = 3,
                                  bool window = true) {
   math::Pcg32 rng = math::Pcg32::fromIndex(seed);
@@ -156,7 +204,10 @@ TEST(SlBlockedLight, CharactersFloorProbesVsTraced) {
     // The traced field's SH at each posed SL centre (the static level: the field the probes hold).
     std::vector<std::vector<glm::dvec3>> sphereTraced;
     std::vector<std::vector<glm::dvec3>> sphere4;
+    std::vector<OctMap> oct[2];
     for (std::size_t l = 0; l < lights.size(); ++l) {
+      oct[0].push_back(tracedOct(staticBvh, lights[l].sphere.centre, 8, 9000 + l));
+      oct[1].push_back(tracedOct(staticBvh, lights[l].sphere.centre, 16, 9500 + l));
       sphereTraced.push_back(tracedSh(staticBvh, lights[l].sphere.centre, 7000 + l));
       sphere4.push_back(tracedSh(staticBvh, lights[l].sphere.centre, 7000 + l, 4, false));
     }
@@ -239,6 +290,7 @@ TEST(SlBlockedLight, CharactersFloorProbesVsTraced) {
               fromSphere += ref::tracePathFrom(staticBvh, glm::vec3(lights[best].sphere.centre), glm::vec3(d), 1e-5f, 1e30f,
                                                ref::kUnlimitedBounces, rng, rays);
             r.tracedAtSphere += w * mean3(fromSphere) / kPathsPerDirection;
+            for (int o = 0; o < 2; ++o) r.octS[o] += w * oct[o][best].read(d);
             r.tracedS4 += w * mean3(glm::max(sh::evalSum<glm::dvec3, double>(sphere4[best], d), glm::dvec3(0.0)));
           }
           if (r.omega > 0.5 * math::kPi || r.omega <= 0.0) continue;  // under the body, or nothing blocked
@@ -264,6 +316,16 @@ TEST(SlBlockedLight, CharactersFloorProbesVsTraced) {
             }
           }
           const ProbeShadow ex = probeShadow(lights, p, n, receiverSh, exactRead);
+          for (int o = 0; o < 2; ++o) {
+            ShadowSettings octRead = atSphere;
+            for (std::size_t l = 0; l < lights.size(); ++l) {
+              octRead.sphereRadiance[l] = std::vector<glm::dvec3>(9, glm::dvec3(0.0));
+              octRead.sphereRadiance[l][0] =
+                  glm::dvec3(2.0 * std::sqrt(math::kPi) * oct[o][l].read(glm::normalize(lights[l].sphere.centre - p)));
+            }
+            s.slOct[o] += -mean3(probeShadow(lights, p, n, receiverSh, octRead).delta);
+            s.octS[o] += r.octS[o];
+          }
           ASSERT_TRUE(std::isfinite(sp.delta.x) && std::isfinite(rc.delta.x) && std::isfinite(u.delta.x));
           s.omega += r.omega, s.traced += r.traced, s.receiverSh += r.receiverSh, s.sphereSh += r.sphereSh;
           s.tracedShP += r.tracedShP, s.tracedShS += r.tracedShS, s.slSphereTraced += -mean3(st.delta);
@@ -278,10 +340,12 @@ TEST(SlBlockedLight, CharactersFloorProbesVsTraced) {
         std::printf("  %s %.2f-%.2f m, %2d receivers: mesh %.4f sr, T %.5f W/m2 (mean blocked radiance %.4f)\n"
                     "    blocked light / T: probes' SH at p (R) %.3f, at the SL (S) %.3f; traced field's SH at p %.3f, at the "
                     "SL %.3f (order 4: %.3f); traced from the SL along the ray %.3f\n"
-                    "    SL: SL_u/mesh %.3f; SL_s/T %.3f, SL_r/T %.3f, SL_s with the traced SH at the SLs / T %.3f, with the radiance traced from the SLs along d_j / T %.3f\n",
+                    "    SL: SL_u/mesh %.3f; SL_s/T %.3f, SL_r/T %.3f, SL_s with the traced SH at the SLs / T %.3f, with the radiance traced from the SLs along d_j / T %.3f\n"
+                    "    octahedral map at the SL, 8² / 16²: blocked light / T %.3f / %.3f, SL_s / T %.3f / %.3f\n",
                     parts[c].name.c_str(), kBands[b], kBands[b + 1], s.n, s.omega / s.n, s.traced / s.n, s.traced / s.omega, R,
                     S, s.tracedShP / s.traced, tracedSh3, s.tracedS4 / s.traced, atSl, s.slUniform / s.omega,
-                    s.slSphere / s.traced, s.slReceiver / s.traced, s.slSphereTraced / s.traced, s.slSphereExact / s.traced);
+                    s.slSphere / s.traced, s.slReceiver / s.traced, s.slSphereTraced / s.traced, s.slSphereExact / s.traced, s.octS[0] / s.traced, s.octS[1] / s.traced,
+                    s.slOct[0] / s.traced, s.slOct[1] / s.traced);
         ASSERT_GT(s.traced, 0.0);
         ASSERT_TRUE(std::isfinite(R) && std::isfinite(S) && std::isfinite(atSl));
         if (b < 2) {  // within 0.5 m, where session 17 measured the level's excess
