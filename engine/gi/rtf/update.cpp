@@ -105,8 +105,29 @@ FrameObjects Update::frame(std::span<const render::LightGpu> lights) {
     objects.push_back({&p.field, placed->matrix, p.reach});
   }
   if (!objects.empty()) {
-    const LitSource source(service_, lights);
-    BounceResult b = bounce(objects, source, out.bounces);
+    // Bounce 0's source light per object: the service's; with occluders, a service per object whose
+    // lights' visibility leaves that object's own mesh out (occluders.hpp).
+    std::vector<PosedOccluders::Pose> poses;
+    std::vector<PosedVisibility> visibility;
+    std::vector<incident::Service> services;
+    std::vector<LitSource> lit;
+    std::vector<const incident::IndirectSource*> sources;
+    const LitSource shared(service_, lights);
+    if (occluders_) {
+      for (std::size_t o = 0; o < objects.size(); ++o)
+        if (auto p = occluders_->pose(out.participant[o], objects[o].world)) poses.push_back(*p);
+      visibility.reserve(objects.size()), services.reserve(objects.size()), lit.reserve(objects.size());
+      for (std::size_t o = 0; o < objects.size(); ++o) {
+        visibility.emplace_back(level_, *occluders_, poses, out.participant[o]);
+        services.push_back(service_);
+        services.back().setVisibility(&visibility.back());
+        lit.emplace_back(services.back(), lights);
+        sources.push_back(&lit.back());
+      }
+    } else {
+      sources.assign(objects.size(), &shared);
+    }
+    BounceResult b = bounce(objects, sources, out.bounces);
     out.proxyLight = std::move(b.proxyLight);
     out.bounceEnergy = std::move(b.bounceEnergy);
     const incident::ConstantEnvironment none(glm::vec3(0.0f));
