@@ -1,4 +1,5 @@
 #include "engine/gi/incident/incident.hpp"
+#include "engine/gi/incident/shadow_rays.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -79,6 +80,10 @@ constexpr float kShorten = 1e-4f;
 SceneVisibility::SceneVisibility(ref::SceneDesc scene) : bvh_(std::move(scene)) {}
 
 float SceneVisibility::visible(const render::LightGpu& light, glm::vec3 p, float radius) const {
+  return traceVisibility(light, p, radius, [this](glm::vec3 o, glm::vec3 d, float tMax) { return bvh_.occluded(o, d, 0.0f, tMax); });
+}
+
+float traceVisibility(const render::LightGpu& light, glm::vec3 p, float radius, const RayTest& occluded) {
   const ref::RefLight l = refLight(light);
   const bool directional = l.type == ref::RefLightType::Directional;
   glm::vec3 toLight = directional ? -l.direction : l.position - p;
@@ -109,7 +114,7 @@ float SceneVisibility::visible(const render::LightGpu& light, glm::vec3 p, float
       d /= dl;
       tMax = dl * (1.0f - kShorten);
     }
-    if (!bvh_.occluded(o, d, 0.0f, tMax)) ++reach;
+    if (!occluded(o, d, tMax)) ++reach;
   }
   return float(reach) / float(rays);
 }

@@ -232,8 +232,15 @@ Incident incidentRadiance(std::span<const Object> objects, std::span<const std::
 }
 
 BounceResult bounce(std::span<const Object> objects, const dnrt::IrradianceSource& source, int bounces) {
+  const std::vector<const dnrt::IrradianceSource*> sources(objects.size(), &source);
+  return bounce(objects, sources, bounces);
+}
+
+BounceResult bounce(std::span<const Object> objects, std::span<const dnrt::IrradianceSource* const> sources, int bounces) {
   if (bounces < 1 || bounces > 4) throw InternalError("rtf::bounce: bounces must be in 1..4");
   const std::size_t n = objects.size();
+  if (sources.size() != n || std::count(sources.begin(), sources.end(), nullptr) > 0)
+    throw InternalError("rtf::bounce: one source per object");
   std::vector<Placement> placed;
   for (const Object& o : objects) placed.push_back(place(*o.field, o.world));
   BounceResult result;
@@ -250,7 +257,7 @@ BounceResult bounce(std::span<const Object> objects, const dnrt::IrradianceSourc
       next[J].assign(f.proxies.size() * kShCount, glm::vec3(0.0f));
       for (std::size_t k = 0; k < f.proxies.size(); ++k) {
         const glm::vec3 chi = glm::vec3(objects[J].world * glm::vec4(f.proxies[k], 1.0f));
-        const Incident in = incidentRadiance(objects, xiPtr, b == 0 ? &source : nullptr, chi, int(J));
+        const Incident in = incidentRadiance(objects, xiPtr, b == 0 ? sources[J] : nullptr, chi, int(J));
         const ShRgb local = toLocal(in.radiance, placed[J]);
         std::copy(local.begin(), local.end(), next[J].begin() + std::ptrdiff_t(k * kShCount));
         energy += double(local[0].r + local[0].g + local[0].b) / 3.0;

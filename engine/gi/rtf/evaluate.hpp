@@ -126,6 +126,9 @@ struct BounceResult {
 // the proxy (Algorithm 1's order). `bounces` in 1..4 = B: light reaching the proxies after 0..B−1
 // inter-object reflections; the shading step adds one more.
 BounceResult bounce(std::span<const Object> objects, const dnrt::IrradianceSource& source, int bounces);
+// The same with object J's bounce-0 source light read from sources[J] (one per object, not null): the
+// session's lamp visibility at J's proxies leaves J's own mesh out (occluders.hpp, update.cpp).
+BounceResult bounce(std::span<const Object> objects, std::span<const dnrt::IrradianceSource* const> sources, int bounces);
 
 // Algorithm 1 (ComputeIncidentRadiance) at world point q for every object but `skip` (−1: none):
 // Σ_i V_{<i} ⊙ RTF_i(q) (xi[i] null: object i adds no light, only occlusion), then, when

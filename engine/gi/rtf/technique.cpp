@@ -15,6 +15,7 @@
 #include "engine/gi/dnrt/object_scene.hpp"
 #include "engine/gi/incident/session_light.hpp"
 #include "engine/gi/probes/bake.hpp"
+#include "engine/gi/probes/relight.hpp"
 #include "engine/gi/rtf/bake.hpp"
 
 namespace bounce::gi::rtf {
@@ -182,6 +183,7 @@ SessionRuntime::SessionRuntime(SessionContext& sc, const std::filesystem::path& 
   ref::ReferenceAssets assets;
   gi::loadAssetsOf(sc.registry, entities, sc.cookCache, assets);
   std::vector<Participant> participants;
+  std::vector<ref::SceneDesc> meshes;  // each participant's mesh in its own frame: the lamp's occluders
   for (ecs::Entity e : entities) {
     Participant p;
     p.entity = e;
@@ -204,14 +206,22 @@ SessionRuntime::SessionRuntime(SessionContext& sc, const std::filesystem::path& 
     checkPlaceable(sc.level, sc.registry, e, "rtf", p.field.centre, p.field.radius);  // too small to place: bad input
     p.reach = tailReach(p.field, c.tail);
     participants.push_back(std::move(p));
+    meshes.push_back(std::move(ob.object));
   }
   update_ = std::make_unique<Update>(sc.registry, std::move(participants));
   // The proxies' light: the probes (or the level's background) plus the frame's lights, their
-  // visibility traced through the level's STATIC geometry (as DNRT's c_j; the dynamic objects
-  // occlude each other through their OOFs in Algorithm 1 instead).
+  // visibility traced through the level's STATIC geometry and the OTHER posed rtf objects (each
+  // object's own mesh left out: Eq. 8's transfer holds its self-shadowing; occluders.hpp); the
+  // objects' OOFs then multiply it as Algorithm 1 does.
   incident::SessionLight& light = incident::sessionLight(sc);
   update_->setIndirect(&light.indirect());
   update_->setLightVisibility(&light.lightVisibility());
+  update_->setOccluders(std::make_unique<PosedOccluders>(std::move(meshes)), &light.lightVisibility().bvh());
+  // The baked probes hold the room lit where the objects shadow it (room_shadows.hpp); a background has
+  // no room light. The CPU readers get the baked SH even when the probes are relit (kRelightCpuReaders
+  // off, probes/relight.hpp); with it on, the relit SH would hold these shadows already.
+  static_assert(!probes::kRelightCpuReaders, "rtf room shadows would count the relit probes' shadows twice");
+  update_->setRoomShadows(sc.services.probeVolume != nullptr);
   for (const Participant& p : update_->participants()) xi_.push_back(std::make_unique<XiPass>(sc.ctx, p.field));
   node_ = std::make_unique<Node>(sc.ctx, sc.renderer.pipelines(), sc.renderer.frames().framesInFlight());
 }

@@ -9,6 +9,7 @@
 
 #include "engine/core/error.hpp"
 #include "engine/gi/rtf/overlap.hpp"
+#include "engine/gi/rtf/room_shadows.hpp"
 #include "engine/math/sampling.hpp"
 #include "engine/math/sh.hpp"
 #include "engine/scene/components.hpp"
@@ -105,8 +106,51 @@ FrameObjects Update::frame(std::span<const render::LightGpu> lights) {
     objects.push_back({&p.field, placed->matrix, p.reach});
   }
   if (!objects.empty()) {
-    const LitSource source(service_, lights);
-    BounceResult b = bounce(objects, source, out.bounces);
+    // Bounce 0's source light per object: the service's; with occluders, a service per object whose
+    // lights' visibility leaves that object's own mesh out (occluders.hpp).
+    std::vector<PosedOccluders::Pose> poses;
+    std::vector<PosedVisibility> visibility;
+    std::vector<incident::Service> services;
+    std::vector<LitSource> lit;
+    std::vector<const incident::IndirectSource*> sources;
+    const LitSource shared(service_, lights);
+    // The lit source plus the room's lost lamp light at the point (room_shadows.hpp).
+    struct Shadowed final : incident::IndirectSource {
+      const incident::IndirectSource* lit;
+      const ref::SceneBvh* level;
+      const PosedOccluders* occluders;
+      std::span<const PosedOccluders::Pose> poses;
+      std::span<const render::LightGpu> lights;
+      incident::RadianceSH radianceSH(glm::vec3 p) const override {
+        incident::RadianceSH L = lit->radianceSH(p);
+        const incident::RadianceSH d = roomShadow(*level, *occluders, poses, lights, p);
+        for (std::size_t i = 0; i < L.size(); ++i) L[i] += d[i];
+        return L;
+      }
+    };
+    std::vector<Shadowed> shadowed;
+    if (occluders_) {
+      for (std::size_t o = 0; o < objects.size(); ++o)
+        if (auto p = occluders_->pose(out.participant[o], objects[o].world)) poses.push_back(*p);
+      visibility.reserve(objects.size()), services.reserve(objects.size()), lit.reserve(objects.size());
+      shadowed.reserve(objects.size());
+      for (std::size_t o = 0; o < objects.size(); ++o) {
+        visibility.emplace_back(level_, *occluders_, poses, out.participant[o]);
+        services.push_back(service_);
+        services.back().setVisibility(&visibility.back());
+        lit.emplace_back(services.back(), lights);
+        sources.push_back(&lit.back());
+        if (roomShadows_ && level_) {
+          shadowed.push_back({});
+          shadowed.back().lit = &lit.back(), shadowed.back().level = level_, shadowed.back().occluders = occluders_.get();
+          shadowed.back().poses = poses, shadowed.back().lights = lights;
+          sources.back() = &shadowed.back();
+        }
+      }
+    } else {
+      sources.assign(objects.size(), &shared);
+    }
+    BounceResult b = bounce(objects, sources, out.bounces);
     out.proxyLight = std::move(b.proxyLight);
     out.bounceEnergy = std::move(b.bounceEnergy);
     const incident::ConstantEnvironment none(glm::vec3(0.0f));

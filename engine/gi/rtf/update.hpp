@@ -3,7 +3,8 @@
 // bouncing step (Algorithm 1, evaluate.hpp bounce()) for every rtf object of the level, lit by the
 // incident-light service (engine/gi/incident: the probes' or background's indirect light plus the
 // frame's real lights with their visibility through the static geometry), and the per-object
-// records the shading node draws with (node.hpp). It runs in the node's setup because the lights
+// records the shading node draws with (node.hpp); with setOccluders, the lights' shadow rays at an
+// object's proxies also meet the other posed objects (occluders.hpp). It runs in the node's setup because the lights
 // are the frame's (RenderWorld::lights), as DNRT's objectsFor does.
 //
 // Departures (README "RTF"):
@@ -21,6 +22,7 @@
 //    (overlap.hpp: half the directions two objects both hide taken off each), which the lookup
 //    carries to the receiver (README RTF "Seventh pass").
 #include <chrono>
+#include <memory>
 #include <span>
 #include <string>
 #include <vector>
@@ -30,6 +32,7 @@
 #include "engine/ecs/registry.hpp"
 #include "engine/gi/incident/incident.hpp"
 #include "engine/gi/rtf/evaluate.hpp"
+#include "engine/gi/rtf/occluders.hpp"
 #include "engine/render/gpu_types.hpp"
 
 namespace bounce::gi::rtf {
@@ -113,6 +116,16 @@ class Update {
   // Not owned. Null indirect: none; null visibility: every light unoccluded.
   void setIndirect(const incident::IndirectSource* indirect) { service_.setIndirect(indirect); }
   void setLightVisibility(const incident::Visibility* visibility) { service_.setVisibility(visibility); }
+  // The lights' visibility at each object's proxies traced through the level's static geometry
+  // (`level`, not owned, may be null) and the OTHER posed objects (occluders.hpp; occluder i is
+  // participant i's mesh), in place of setLightVisibility's. Null occluders: setLightVisibility's.
+  void setOccluders(std::unique_ptr<PosedOccluders> occluders, const ref::SceneBvh* level) {
+    occluders_ = std::move(occluders), level_ = level;
+  }
+  // With occluders and a level: the proxies' source light also loses the lamp light the posed objects'
+  // shadows take off the room around them (room_shadows.hpp; for an indirect source that holds the
+  // room's lamp bounce without them: the baked probes).
+  void setRoomShadows(bool on) { roomShadows_ = on; }
   const std::vector<Participant>& participants() const { return participants_; }
   int bounces() const;
 
@@ -124,6 +137,9 @@ class Update {
   ecs::Registry& registry_;
   std::vector<Participant> participants_;
   incident::Service service_;
+  std::unique_ptr<PosedOccluders> occluders_;
+  const ref::SceneBvh* level_ = nullptr;
+  bool roomShadows_ = false;
   std::vector<double> bounceMs_;
 };
 

@@ -14,6 +14,8 @@
 #include "engine/core/error.hpp"
 #include "engine/core/file.hpp"
 #include "engine/core/paths.hpp"
+#include "engine/gi/dnrt/object_scene.hpp"
+#include "engine/gi/participants.hpp"
 #include "engine/gi/rtf/overlap.hpp"
 #include "engine/gi/rtf/technique.hpp"
 #include "engine/math/sampling.hpp"
@@ -410,6 +412,74 @@ TEST(RtfUpdate, MirroredRecordSeesTheWorldThroughItsMirror) {
     worst = std::max(worst, glm::length(b.blocked[k] - a.blocked[k])), largest = std::max(largest, glm::length(a.blocked[k]));
   ASSERT_GT(largest, 0.1f);
   EXPECT_LT(worst, 1e-5f * largest) << "largest " << largest;
+}
+
+// ---- the lamp through the other posed objects (occluders.hpp; issue 14, session 18) ----------------
+
+render::LightGpu pointLight(glm::vec3 position, glm::vec3 intensity) {
+  render::LightGpu l{};
+  l.positionType = glm::vec4(position, float(render::LightType::Point));
+  l.directionRange = glm::vec4(0.0f, 0.0f, -1.0f, 0.0f);
+  l.radiance = glm::vec4(intensity, 0.0f);
+  l.cone = glm::vec4(0.0f, 1.0f, 0.0f, 0.0f);
+  l.shadow = glm::vec4(-1.0f);
+  return l;
+}
+
+// The bouncing step's lamp at the proxies (update.hpp setOccluders): a small box under a big one gets no
+// lamp light (no indirect light, 1 bounce: its proxies' light is the lamp's alone); the big box's own
+// proxies, inside its mesh, are not shadowed by it (the same light as without occluders, bit for bit);
+// moving the blocker away gives the small box the light it has without occluders again.
+TEST(RtfUpdate, LampIsTracedThroughTheOtherPosedObjects) {
+  const std::string kTiny = R"("proxies": 2, "spheres": 3, "face": 2, "rays": 4, "vertex_rays": 7, "clusters": 2, "components": 2, "bounces": 1)";
+  Loaded l(writeLevel("rtf-lamp", R"({"id": "low", "dynamic": true, "transform": {"translation": [0, 0, 0], "scale": [0.1, 0.1, 0.1]}, )" +
+                                      mesh() + R"(, "rtf": {)" + kTiny + R"(}},
+                                      {"id": "high", "dynamic": true, "transform": {"translation": [0, 0.5, 0], "scale": [0.6, 0.6, 0.6]}, )" +
+                                      mesh() + R"(, "rtf": {)" + kTiny + R"(}})"));
+  std::vector<Participant> parts;
+  std::vector<ref::SceneDesc> meshes;
+  ref::ReferenceAssets assets;
+  std::vector<ecs::Entity> entities;
+  for (const BakeJob& job : technique().bakeJobs(l.context(), {})) {
+    if (!job.cached()) job.run();
+    Participant p;
+    p.name = job.part;
+    p.field = load(job.output);
+    l.registry.view<scene::Name>().each([&](ecs::Entity e, scene::Name& n) {
+      if (n.id == job.part) p.entity = e;
+    });
+    p.bounces = 1;
+    entities.push_back(p.entity);
+    parts.push_back(std::move(p));
+  }
+  ASSERT_EQ(parts.size(), 2u);
+  ASSERT_EQ(parts[0].name, "low");
+  gi::loadAssetsOf(l.registry, entities, cookCache(), assets);
+  for (ecs::Entity e : entities) meshes.push_back(dnrt::objectScene(l.registry, e, assets));
+  Update traced(l.registry, parts), plain(l.registry, parts);
+  traced.setOccluders(std::make_unique<PosedOccluders>(std::move(meshes)), nullptr);
+  const std::vector<render::LightGpu> lamp = {pointLight(glm::vec3(0.0f, 2.0f, 0.0f), glm::vec3(1.0f, 0.9f, 0.8f))};
+  const auto energy = [](const std::vector<glm::vec3>& light) {
+    double e = 0.0;
+    for (const glm::vec3& c : light) e += double(std::abs(c.r) + std::abs(c.g) + std::abs(c.b));
+    return e;
+  };
+  {
+    const FrameObjects t = traced.frame(lamp), u = plain.frame(lamp);
+    ASSERT_EQ(t.proxyLight.size(), 2u);
+    EXPECT_GT(energy(u.proxyLight[0]), 0.0);   // without occluders the lamp reaches the small box's proxies
+    EXPECT_EQ(energy(t.proxyLight[0]), 0.0);   // behind the big box: none of it
+    EXPECT_GT(energy(t.proxyLight[1]), 0.0);   // the big box is not its own blocker
+    EXPECT_EQ(t.proxyLight[1], u.proxyLight[1]);
+  }
+  l.registry.get<scene::WorldTransform>(parts[1].entity).matrix =
+      glm::translate(glm::mat4(1.0f), glm::vec3(3.0f, 0.5f, 0.0f)) * glm::scale(glm::mat4(1.0f), glm::vec3(0.6f));
+  {
+    const FrameObjects t = traced.frame(lamp), u = plain.frame(lamp);
+    EXPECT_GT(energy(t.proxyLight[0]), 0.0);
+    EXPECT_EQ(t.proxyLight, u.proxyLight);  // the blocker moved away: the light without occluders again
+  }
+  EXPECT_EQ(traced.bounceMs().size(), 2u);
 }
 
 }  // namespace
