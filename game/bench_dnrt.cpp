@@ -264,7 +264,7 @@ DnrtBenchReport runDnrtBench(const DnrtBenchOptions& options) {
     scene::Level half = level, clusteredHalf = clustered;
     half.dnrt.step = clusteredHalf.dnrt.step = 2;
     // The fused mode with its term's position-only factor at half / quarter resolution (pass
-    // dnrt.fused.reduced, one bilinear tap in the probes pass), against the same "all" row; only where
+    // dnrt.fused.reduced, its bilinear blend in the probes pass), against the same "all" row; only where
     // the level has one object (table8Settings).
     scene::Level fusedHalf = fused, fusedQuarter = fused;
     fusedHalf.dnrt.step = 2;

@@ -11,7 +11,7 @@
 //    and both again with the draw at half resolution ("half", "clustered half": the level's "dnrt":
 //    {"resolution": "half"}, issue 15 part 3); with every object fused ("fused": the probes pass adds
 //    every visible object's term, up to 32) and, on a level with one DNRT object, at half and quarter
-//    resolution ("fused half", "fused quarter": pass dnrt.fused.reduced and one bilinear tap, README
+//    resolution ("fused half", "fused quarter": pass dnrt.fused.reduced and its bilinear blend, README
 //    "DNRT's fused term at reduced resolution, session 17"; with several objects in the probes pass the
 //    terms are shaded at full resolution, so those rows would be "fused" again: table8Settings).
 //  - Tables 6 and 7 and the grid and mode comparisons, per variant level (default cornell-1,

@@ -61,6 +61,8 @@ struct FusedReducedPush {  // fused_reduced.comp's Push
   glm::vec4 extents;  // x inner, y outer (units of R), z entity id + 1 (0 = none), w grid N
 };
 static_assert(sizeof(FusedReducedPush) == 128, "fused_reduced.comp's push block");
+// fused_reduced.comp's local size (why 32×8: there).
+constexpr glm::uvec2 kFusedReducedLocal(32, 8);
 
 struct CubePush {
   glm::mat4 viewProj;
@@ -414,7 +416,7 @@ probes::FusedDnrt Node::addFused(rg::RenderGraph& graph, const render::PassConte
   out.step = step;
   if (step == 1u) return out;
   // Below full resolution: f = s Σ_j c_j M_j at G-buffer pixel step·j (fused_reduced.comp), premultiplied
-  // by the sample's validity, for the probes pass's one bilinear tap (dnrt.glsl dnrtFusedReducedTerm).
+  // by the sample's validity, for the probes pass's bilinear blend of it (probes.frag dnrtReducedQuadTap).
   struct ReducedData {
     rg::Handle<rg::Texture> depth, normal, volume, target;
   };
@@ -454,7 +456,8 @@ probes::FusedDnrt Node::addFused(rg::RenderGraph& graph, const render::PassConte
         p.bind(cmd);
         p.bindSet(cmd, 0, set);
         p.push(cmd, push);
-        vkCmdDispatch(cmd, (size.x + 7u) / 8u, (size.y + 7u) / 8u, 1);  // local size 8×8, a sample each
+        vkCmdDispatch(cmd, (size.x + kFusedReducedLocal.x - 1u) / kFusedReducedLocal.x,
+                      (size.y + kFusedReducedLocal.y - 1u) / kFusedReducedLocal.y, 1);  // a sample an invocation
       });
   out.reduced = reduced.target;
   return out;

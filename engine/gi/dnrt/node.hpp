@@ -118,8 +118,8 @@ class Node {
   // (probes.frag kDnrt). The object has no intrusion and its entity id + 1 ≤ kEntityInNormalMax (the
   // self test reads the normal's w). `step` 2 or 4 (the level's "dnrt": {"resolution"}) also adds pass
   // "dnrt.fused.reduced" (shaders/dnrt/fused_reduced.comp): the term's position-only factor at G-buffer
-  // pixel step·j, which the probes pass reads with one bilinear tap (README "DNRT's fused term at reduced
-  // resolution, session 17").
+  // pixel step·j, which the probes pass blends bilinearly from one texelFetch a pixel (README "DNRT's fused
+  // term at reduced resolution, session 17", "DNRT's fused quarter term …, session 18").
   probes::FusedDnrt addFused(rg::RenderGraph& graph, const render::PassContext& pc, const NodeObject& object,
                              std::uint32_t step = 1);
   // The fused mode with several objects (probes.frag kDnrt 2): the clustered mode's per-pixel visit
