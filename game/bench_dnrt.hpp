@@ -10,8 +10,10 @@
 //    clustered draw ("clustered", issue 15), which has no per-object scopes (objects = the level's);
 //    and both again with the draw at half resolution ("half", "clustered half": the level's "dnrt":
 //    {"resolution": "half"}, issue 15 part 3); with every object fused ("fused": the probes pass adds
-//    the first one's term) at full, half and quarter resolution ("fused half", "fused quarter": pass
-//    dnrt.fused.reduced and one bilinear tap, README "DNRT's fused term at reduced resolution, session 17").
+//    every visible object's term, up to 32) and, on a level with one DNRT object, at half and quarter
+//    resolution ("fused half", "fused quarter": pass dnrt.fused.reduced and its bilinear blend, README
+//    "DNRT's fused term at reduced resolution, session 17"; with several objects in the probes pass the
+//    terms are shaded at full resolution, so those rows would be "fused" again: table8Settings).
 //  - Tables 6 and 7 and the grid and mode comparisons, per variant level (default cornell-1,
 //    cornell-10): DNRT alone (the level's effects), once with the paper's standard configuration
 //    (sh=4, grid=32, intrusion off; the outer-cube raster) and once per changed setting: sh=9
@@ -86,6 +88,10 @@ std::string formatDnrtBench(const DnrtBenchReport& report, const DnrtBenchOption
 // CSV, header exactly
 // "table,level,setting,objects,frame_ms,dnrt_ms,per_object_ms,cube_ms,ssao_ms,hbao_ms,fields_baked,bake_s".
 std::string formatDnrtBenchCsv(const DnrtBenchReport& report);
+
+// The Table 8 settings, in the order measured, of a level with `dnrtEntities` DNRT objects: "all",
+// "fused", "fused half" and "fused quarter" (one object only), "clustered", "half", "clustered half".
+std::vector<std::string> table8Settings(int dnrtEntities);
 
 // "cornell-1" → <source>/content/levels/cornell-1.json; a path ending in .json is taken as is.
 std::filesystem::path benchLevelPath(const std::string& name);

@@ -85,24 +85,24 @@ vec3 dnrtFusedTerm(vec3 r, vec4 normal, vec4 worldToQ[3], vec4 centreWorld, vec4
 }
 
 // The fused term below full resolution (probes.frag kDnrtStep = step 2 or 4; README "DNRT's fused term
-// at reduced resolution, session 17"): Eq. 16 without ρ_r as dnrtFusedTerm, with its position-only
-// factor f(r) = s(r) Σ_j c_j M_j(r) taken from `reduced` (pass dnrt.fused.reduced, fused_reduced.comp:
-// (w·f, w) at G-buffer pixel step·j, w = 0 on sky and the object's own samples) by ONE bilinear tap
-// normalised by its filtered w — a bilinear blend over the valid samples only, no branch (llvmpipe would
-// run both sides of one) — times the exact per-pixel (n_o·n_r)₊ and tests (the normal is where the term
-// is not smooth). f is smooth in world space, so the error is where the 4 samples lie on another surface
-// than the pixel (depth edges inside the object's outer cube). 0 where every sample is invalid.
-// `pixel`: this G-buffer pixel; sample j sits at texel j (texel centre j + 0.5), pixel p at p / step.
-vec3 dnrtFusedReducedTerm(vec3 r, vec4 normal, ivec2 pixel, vec4 centreWorld, vec4 extents, sampler2D reduced,
-                          int step) {
-  vec3 toO = centreWorld.xyz - r;
-  float len = length(toO);
-  float lamb = dnrtLambert(toO, len, normal.xyz);
-  bool self = extents.z != 0.0 && normal.w == extents.z;
-  vec4 f = textureLod(reduced, (vec2(pixel) / float(step) + 0.5) / vec2(textureSize(reduced, 0)), 0.0);
-  // dnrtReaches with s(r) > 0 read as "some valid sample": s is inside f (0 past the outer cube).
-  bool reaches = dnrtReaches(f.a, len, centreWorld.w, lamb) && !self;
-  return reaches ? lamb / max(f.a, 1e-6) * f.rgb : vec3(0.0);
+// at reduced resolution", sessions 17 and 18): Eq. 16 without ρ_r as dnrtFusedTerm, with its position-only
+// factor f(r) = s(r) Σ_j c_j M_j(r) from pass dnrt.fused.reduced (fused_reduced.comp: (w·f, w) at G-buffer
+// pixel step·j, w = 0 on sky and the object's own samples) as `tap` = dnrtReducedQuadTap's bilinear blend
+// of its 4 nearest samples, normalised by its filtered w — a blend over the valid samples only, no branch
+// (llvmpipe would run both sides of one) — times the exact per-pixel (n_o·n_r)₊ and tests (the normal is
+// where the term is not smooth). f is smooth in world space, so the error is where the 4 samples lie on
+// another surface than the pixel (depth edges inside the object's outer cube). 0 where every sample is
+// invalid (tap.a = 0: tap.rgb is 0 too, premultiplied).
+// One division a pixel: (n_o·n_r)₊ / w = max(toO·n_r, 0) / (|toO| w), toO = o − r (dnrtLambert's three and
+// the normalisation's one were most of the term's arithmetic on llvmpipe, which divides exactly; session
+// 18). dnrtReaches' tests hold without their branches: w = 0 gives tap.rgb = 0 (premultiplied), and
+// (n_o·n_r)₊ = 0 gives 0; r at o (|toO| ≤ 10⁻⁶ R, n_o undefined) and the object's own pixel stay tests.
+vec3 dnrtFusedReducedTerm(vec3 r, vec4 normal, vec4 tap, vec4 centreWorld, vec4 extents) {
+  const vec3 toO = centreWorld.xyz - r;
+  const float len = length(toO);
+  const bool self = extents.z != 0.0 && normal.w == extents.z;
+  const bool reaches = len > 1e-6 * centreWorld.w && !self;
+  return reaches ? (max(dot(toO, normal.xyz), 0.0) / (len * max(tap.a, 1e-6))) * tap.rgb : vec3(0.0);
 }
 
 #endif

@@ -6,8 +6,8 @@
 //   f(r) = s(r) · Σ_j c_j M_j(r)          (fall-off × the combined volume's trilinear tap, RGB),
 // at reduced sample j = the G-buffer pixel step·j (upsample.glsl reducedSamplePixel, as the reduced
 // dnrt draws), written premultiplied by the sample's validity w (1 = a receiver other than the object,
-// 0 = sky or the object's own pixel): (w·f, w). probes.frag (kDnrtStep > 1, dnrt.glsl
-// dnrtFusedReducedTerm) takes one bilinear tap of it and divides by the filtered w, so sky and the
+// 0 = sky or the object's own pixel): (w·f, w). probes.frag (kDnrtStep > 1, dnrtReducedQuadTap and dnrt.glsl
+// dnrtFusedReducedTerm) blends its 4 nearest samples bilinearly and divides by the blended w, so sky and the
 // object's own samples never bleed into their neighbours, and multiplies the per-pixel factors
 // (n_o·n_r)₊ and the receiver tests itself: those hold the normal, which is where the term is not
 // smooth; f is smooth in world space (a trilinear field times the §5.2.2 fall-off).
@@ -16,7 +16,9 @@
 
 layout(constant_id = 0) const int kStep = 2;  // G-buffer pixels per sample along each axis: 2 or 4
 
-layout(local_size_x = 8, local_size_y = 8) in;
+// 32×8: llvmpipe runs a workgroup as 8-lane rows, each group a task of its own; 8×8 made 900 small tasks
+// at quarter resolution (1280×720), 32×8 makes 230 (node.cpp kFusedReducedLocal; session 18).
+layout(local_size_x = 32, local_size_y = 8) in;
 
 layout(set = 0, binding = 0) uniform sampler2D gDepth;
 layout(set = 0, binding = 1) uniform sampler2D gNormal;

@@ -34,8 +34,9 @@ layout(constant_id = 3) const bool kTiles = false;
 layout(constant_id = 4) const int kDnrt = 0;
 // With kDnrt 1, the level's "dnrt": {"resolution"} (engine/gi/resolution.hpp step): 1 evaluates the
 // term exactly here; 2 or 4 takes its position-only factor from pass dnrt.fused.reduced's target
-// (binding 12) by one bilinear tap (dnrt.glsl dnrtFusedReducedTerm; README "DNRT's fused term at
-// reduced resolution, session 17"). kDnrt 2 runs at full resolution.
+// (binding 12) by a bilinear blend of its 4 nearest samples from one texelFetch a pixel (dnrt.glsl
+// dnrtFusedReducedTerm, dnrtReducedQuadTap below; README "DNRT's fused term at reduced resolution",
+// sessions 17 and 18). kDnrt 2 runs at full resolution.
 layout(constant_id = 5) const int kDnrtStep = 1;
 
 layout(set = 0, binding = 0) uniform FrameUbo { Camera camera; };
@@ -57,7 +58,7 @@ layout(set = 1, binding = 9) uniform sampler3D dnrtCombined;
 // clustered draw's). Dummies otherwise.
 layout(std430, set = 1, binding = 10) readonly buffer DnrtTiles { uint dnrtTileMasks[]; };
 layout(std140, set = 1, binding = 11) uniform DnrtObjects { DnrtClusterObject objects[kDnrtClusterBatch]; };
-// kDnrt 1, kDnrtStep > 1: (w·s Σ_j c_j M_j, w) at G-buffer pixel step·j (RGBA16F, bilinear); unread otherwise.
+// kDnrt 1, kDnrtStep > 1: (w·s Σ_j c_j M_j, w) at G-buffer pixel step·j (RGBA16F, texelFetch); unread otherwise.
 layout(set = 1, binding = 12) uniform sampler2D dnrtReduced;
 
 layout(push_constant) uniform Push {
@@ -81,8 +82,33 @@ layout(location = 0) out vec4 outRadiance;
 
 const float kInvPi = 0.31830988618379067;
 
+// The bilinear tap of the reduced target `reduced` (sample j at texel j, standing for G-buffer pixel
+// step·j; `step` 2 or 4) at G-buffer pixel `pixel`, from ONE texelFetch a pixel instead of a filtered
+// tap (4 texels a pixel, each a per-lane gather on llvmpipe; session 18: the tap was most of the term's
+// per-pixel cost). With an even step the 4 pixels of a 2×2 quad (pixel & 1 its place, quads aligned to
+// even pixels) share their 4 nearest samples j0 + {0, 1}² (j0 = pixel / step), so each pixel fetches the
+// one at its own place in the quad and takes the others' through fine derivatives: dx, dy the row's and
+// column's differences, dxy the mixed one. The bilinear function through the 4 samples is then exactly
+// its expansion about this pixel's sample: v + u dx + t dy + u t dxy, with (u, t) the pixel's bilinear
+// fractions (pixel − step·j0) / step relative to its sample (−1 … 0.75); equal to the filtered tap up to
+// fp32 rounding. Samples past the target's edge clamp to it (CLAMP_TO_EDGE). Must run in uniform control
+// flow (the derivatives): main calls it before its first return. Here, not in dnrt.glsl: derivatives exist
+// in fragment shaders only, and compute shaders include dnrt.glsl.
+vec4 dnrtReducedQuadTap(ivec2 pixel, sampler2D reduced, int step) {
+  const ivec2 place = pixel & 1;
+  const ivec2 j0 = pixel / step;
+  const vec4 v = texelFetch(reduced, min(j0 + place, textureSize(reduced, 0) - 1), 0);
+  const vec4 dx = dFdxFine(v), dy = dFdyFine(v), dxy = dFdyFine(dx);
+  const vec2 ut = vec2(pixel - step * j0) / float(step) - vec2(place);
+  return v + ut.x * dx + ut.y * dy + (ut.x * ut.y) * dxy;
+}
+
 void main() {
   ivec2 pixel = ivec2(gl_FragCoord.xy);
+  // kDnrtStep > 1: the term's reduced factor, here in uniform control flow (dnrtReducedQuadTap takes its
+  // quad neighbours' samples through derivatives).
+  vec4 dnrtTap = vec4(0.0);
+  if (kDnrt == 1 && kDnrtStep > 1) dnrtTap = dnrtReducedQuadTap(pixel, dnrtReduced, kDnrtStep);
   float depth = texelFetch(gDepth, pixel, 0).r;
   if (depth >= 1.0) {
     outRadiance = vec4(0.0);
@@ -98,7 +124,7 @@ void main() {
   vec3 e = kTiles ? L[0] : shIrradiance9(L, n);  // probeRadianceSh: with kTiles, L[0] is E(n)
   vec3 radiance = albedo * kInvPi * ao * max(e, vec3(0.0));
   if (kDnrt == 1 && kDnrtStep > 1)
-    radiance += albedo * dnrtFusedReducedTerm(x, normal, pixel, pc.dnrtCentreWorld, pc.dnrtExtents, dnrtReduced, kDnrtStep);
+    radiance += albedo * dnrtFusedReducedTerm(x, normal, dnrtTap, pc.dnrtCentreWorld, pc.dnrtExtents);
   else if (kDnrt == 1)
     radiance += albedo * dnrtFusedTerm(x, normal, pc.dnrtWorldToQ, pc.dnrtCentreWorld, pc.dnrtExtents, dnrtCombined);
   if (kDnrt == 2) {

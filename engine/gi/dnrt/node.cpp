@@ -61,6 +61,8 @@ struct FusedReducedPush {  // fused_reduced.comp's Push
   glm::vec4 extents;  // x inner, y outer (units of R), z entity id + 1 (0 = none), w grid N
 };
 static_assert(sizeof(FusedReducedPush) == 128, "fused_reduced.comp's push block");
+// fused_reduced.comp's local size (why 32×8: there).
+constexpr glm::uvec2 kFusedReducedLocal(32, 8);
 
 struct CubePush {
   glm::mat4 viewProj;
@@ -289,6 +291,92 @@ void Node::recordCombine(VkCommandBuffer cmd, const render::PassContext& pc, gpu
   vkCmdDispatch(cmd, groups(kCombineLocal.x), groups(kCombineLocal.y), groups(kCombineLocal.z));
 }
 
+std::vector<Node::ClusterItem> Node::placeInAtlas(const std::vector<NodeObject>& objects,
+                                                  const std::vector<std::size_t>& asked, glm::uvec3& combinedSize) {
+  if (asked.empty()) return {};
+  std::vector<const FieldTextures*> textures;  // per asked object: its field, then its occlusion field if any
+  for (std::size_t i : asked) {
+    textures.push_back(objects[i].textures);
+    if (objects[i].occlusion) textures.push_back(objects[i].occlusion);
+  }
+  const std::vector<int> bricks = atlasFor(textures);
+  std::vector<ClusterItem> items;
+  std::size_t t = 0;
+  for (std::size_t i : asked) {
+    const int brick = bricks[t++];
+    const int occlusionBrick = objects[i].occlusion ? bricks[t++] : -1;
+    const auto side = std::uint32_t(objects[i].data.extents.w) + 2u;  // a padded brick (cluster.hpp)
+    if (brick < 0 || (objects[i].occlusion && occlusionBrick < 0) ||
+        combinedSize.z + side > ctx_.limits().maxImageDimension3D)
+      continue;  // no room: the caller draws it alone
+    items.push_back({i, brick, occlusionBrick, combinedSize.z});
+    combinedSize = glm::uvec3(std::max(combinedSize.x, side), std::max(combinedSize.y, side), combinedSize.z + side);
+  }
+  return items;
+}
+
+void Node::recordAtlasCombine(VkCommandBuffer cmd, const render::PassContext& pc, gpu::Buffer& records,
+                              const std::vector<NodeObject>& objects, const std::vector<ClusterItem>& items,
+                              VkImageView target) {
+  const Slots atlasSlot = [this](int s) {
+    return atlas_.slots[std::size_t(s) < atlas_.slots.size() ? std::size_t(s) : 0]->view();
+  };
+  for (const ClusterItem& item : items) {
+    const bool occlusion = item.occlusionBrick >= 0;  // both bricks in the one atlas
+    recordCombine(cmd, pc, records, objects.size(), objects[item.object], item.object, atlasSlot,
+                  occlusion ? &atlasSlot : nullptr, target, std::int32_t(atlas_.layout.z0[std::size_t(item.brick)]),
+                  occlusion ? std::int32_t(atlas_.layout.z0[std::size_t(item.occlusionBrick)]) : 0,
+                  std::int32_t(item.z), std::int32_t(objects[item.object].data.extents.w) + 2);
+  }
+}
+
+std::size_t Node::writeClusterBuffers(const render::PassContext& pc, const std::vector<NodeObject>& objects,
+                                      const std::vector<ClusterItem>& items, glm::uvec2 resolution, gpu::Buffer& tiles,
+                                      gpu::Buffer& records, const std::string& prefix) {
+  const std::size_t batches = (items.size() + kClusterBatch - 1) / kClusterBatch;
+  const VkDeviceSize recordBytes = batches * kClusterBatchBytes;
+  if (!records || records.size() < recordBytes)
+    records = gpu::Buffer(ctx_, {recordBytes, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::MemoryUsage::Upload,
+                                 prefix + "cluster-objects"});
+  std::memset(records.mapped(), 0, recordBytes);
+  std::vector<glm::mat4> boxes;
+  for (std::size_t k = 0; k < items.size(); ++k) {
+    const NodeObject& o = objects[items[k].object];
+    const DnrtClusterObject rec = clusterObject(fold(o.data), items[k].z);
+    std::memcpy(records.mapped() + k * sizeof(DnrtClusterObject), &rec, sizeof rec);
+    boxes.push_back(o.data.boxToWorld);
+  }
+  const std::vector<std::uint32_t> masks = binObjects(pc.world->camera.viewProj, resolution, boxes);
+  const VkDeviceSize tileBytes = masks.size() * sizeof(std::uint32_t);
+  if (!tiles || tiles.size() < tileBytes)
+    tiles = gpu::Buffer(ctx_, {tileBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::Upload, prefix + "tiles"});
+  std::memcpy(tiles.mapped(), masks.data(), tileBytes);
+  return masks.size();
+}
+
+void Node::recordTileCull(VkCommandBuffer cmd, const render::PassContext& pc, VkImageView depth,
+                          VkImageLayout depthLayout, gpu::Buffer& tiles, gpu::Buffer& records, std::size_t batches,
+                          glm::uvec2 resolution) {
+  const TileGrid grid = tileGrid(resolution);
+  const VkSampler point = pc.samplers->get({VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST});
+  cull_.bind(cmd);
+  for (std::size_t b = 0; b < batches; ++b) {
+    VkDescriptorSet set = pc.frame().descriptors->allocate(cullLayout_);
+    gpu::DescriptorWriter w;
+    w.sampledImage(0, depth, point, depthLayout);
+    w.buffer(1, tiles);
+    w.buffer(2, records, kUniform, b * kClusterBatchBytes, kClusterBatchBytes);
+    w.update(ctx_, set);
+    cull_.bindSet(cmd, 0, set);
+    cull_.push(cmd, CullPush{pc.world->camera.invViewProj, 1.0f / glm::vec2(resolution),
+                             std::uint32_t(b * grid.count()), grid.tilesX, grid.tilesY});
+    vkCmdDispatch(cmd, (grid.tilesX + 7) / 8, (grid.tilesY + 7) / 8, 1);  // local size 8×8, a tile each
+  }
+  VkMemoryBarrier written{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_SHADER_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT};
+  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, 0, 1, &written,
+                       0, nullptr, 0, nullptr);
+}
+
 probes::FusedDnrt Node::addFused(rg::RenderGraph& graph, const render::PassContext& pcIn, const NodeObject& object,
                                  std::uint32_t step) {
   if (!object.textures) throw InternalError("dnrt: object '" + object.name + "' has no field textures");
@@ -328,7 +416,7 @@ probes::FusedDnrt Node::addFused(rg::RenderGraph& graph, const render::PassConte
   out.step = step;
   if (step == 1u) return out;
   // Below full resolution: f = s Σ_j c_j M_j at G-buffer pixel step·j (fused_reduced.comp), premultiplied
-  // by the sample's validity, for the probes pass's one bilinear tap (dnrt.glsl dnrtFusedReducedTerm).
+  // by the sample's validity, for the probes pass's bilinear blend of it (probes.frag dnrtReducedQuadTap).
   struct ReducedData {
     rg::Handle<rg::Texture> depth, normal, volume, target;
   };
@@ -368,7 +456,8 @@ probes::FusedDnrt Node::addFused(rg::RenderGraph& graph, const render::PassConte
         p.bind(cmd);
         p.bindSet(cmd, 0, set);
         p.push(cmd, push);
-        vkCmdDispatch(cmd, (size.x + 7u) / 8u, (size.y + 7u) / 8u, 1);  // local size 8×8, a sample each
+        vkCmdDispatch(cmd, (size.x + kFusedReducedLocal.x - 1u) / kFusedReducedLocal.x,
+                      (size.y + kFusedReducedLocal.y - 1u) / kFusedReducedLocal.y, 1);  // a sample an invocation
       });
   out.reduced = reduced.target;
   return out;
@@ -384,33 +473,19 @@ std::optional<probes::FusedDnrt> Node::addFusedCluster(rg::RenderGraph& graph, c
     if (!o.textures || o.intrusion || o.data.ids.x > render::kEntityInNormalMax)
       throw InternalError("dnrt: object '" + o.name + "' cannot be fused");
   const render::PassContext* pc = &pcIn;
-  // The atlas bricks, as addTo's clustered objects (its field, then its occlusion field if any).
-  std::vector<const FieldTextures*> textures;
-  for (const NodeObject& o : objectsIn) {
-    textures.push_back(o.textures);
-    if (o.occlusion) textures.push_back(o.occlusion);
-  }
-  const std::vector<int> bricks = atlasFor(textures);
-  struct Item {
-    int brick = 0, occlusionBrick = -1;
-    std::uint32_t z = 0;  // the object's brick in this frame's combined atlas
-  };
-  std::vector<NodeObject> objects;
-  std::vector<Item> items;
+  // The atlas bricks and combined-atlas bricks, as addTo's clustered objects; `objects` are the ones
+  // with room, in order, and items[k] is objects[k]'s (its record k in the pass's buffers).
+  std::vector<std::size_t> asked(objectsIn.size());
+  for (std::size_t i = 0; i < asked.size(); ++i) asked[i] = i;
   glm::uvec3 size(0u);
-  std::size_t t = 0;
-  for (std::size_t i = 0; i < objectsIn.size(); ++i) {
-    const int brick = bricks[t++];
-    const int occlusionBrick = objectsIn[i].occlusion ? bricks[t++] : -1;
-    const auto side = std::uint32_t(objectsIn[i].data.extents.w) + 2u;  // a padded brick (cluster.hpp)
-    if (brick < 0 || (objectsIn[i].occlusion && occlusionBrick < 0) || size.z + side > ctx_.limits().maxImageDimension3D)
-      continue;  // no room: the caller draws it
-    taken[i] = true;
-    objects.push_back(objectsIn[i]);
-    items.push_back({brick, occlusionBrick, size.z});
-    size = glm::uvec3(std::max(size.x, side), std::max(size.y, side), size.z + side);
+  std::vector<ClusterItem> items = placeInAtlas(objectsIn, asked, size);
+  if (items.empty()) return std::nullopt;
+  std::vector<NodeObject> objects;
+  for (ClusterItem& item : items) {
+    taken[item.object] = true;
+    objects.push_back(objectsIn[item.object]);
+    item.object = objects.size() - 1;
   }
-  if (objects.empty()) return std::nullopt;
   const glm::uvec2 resolution(std::uint32_t(pc->world->camera.resolution.x), std::uint32_t(pc->world->camera.resolution.y));
   const TileGrid grid = tileGrid(resolution);
 
@@ -427,63 +502,22 @@ std::optional<probes::FusedDnrt> Node::addFusedCluster(rg::RenderGraph& graph, c
                           rg::Usage::StorageWrite);
         if (tileCull) d.depth = b.read(bb.get<rg::Texture>("gbuffer.depth"), rg::Usage::SampledCompute);
       },
-      [this, pc, objects, items, grid, resolution, tileCull](const CombineData& d, const rg::PassResources& res,
-                                                             rg::CommandContext& c) {
+      [this, pc, objects, items, resolution, tileCull](const CombineData& d, const rg::PassResources& res,
+                                                       rg::CommandContext& c) {
         VkCommandBuffer cmd = pc->cmd(c);
         const std::size_t slot = pc->frame().slot % fusedTileBuffers_.size();
         // 1. Σ_j c_j M_j per grid vertex into each object's brick (combine.comp), as addTo's clustered objects.
         gpu::Buffer& buffer = objectBuffer(fusedBuffers_, pc->frame().slot, objects);
-        const VkImageView target = pc->backend->image(res.texture(d.atlas)).view();
-        const auto atlasSlot = [this](int s) {
-          return atlas_.slots[std::size_t(s) < atlas_.slots.size() ? std::size_t(s) : 0]->view();
-        };
-        const Slots slots = atlasSlot;
-        for (std::size_t i = 0; i < objects.size(); ++i) {
-          const bool occlusion = items[i].occlusionBrick >= 0;  // both bricks in the one atlas
-          recordCombine(cmd, *pc, buffer, objects.size(), objects[i], i, slots, occlusion ? &slots : nullptr, target,
-                        std::int32_t(atlas_.layout.z0[std::size_t(items[i].brick)]),
-                        occlusion ? std::int32_t(atlas_.layout.z0[std::size_t(items[i].occlusionBrick)]) : 0,
-                        std::int32_t(items[i].z), std::int32_t(objects[i].data.extents.w) + 2);
-        }
+        recordAtlasCombine(cmd, *pc, buffer, objects, items, pc->backend->image(res.texture(d.atlas)).view());
         // 2. The records (clustered.frag's, std140) and the tile masks (the screen hulls, one batch).
-        gpu::Buffer& records = fusedClusterBuffers_[slot];
-        if (!records)
-          records = gpu::Buffer(ctx_, {kClusterBatchBytes, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::MemoryUsage::Upload,
-                                       "dnrt.fused-cluster-objects"});
-        std::memset(records.mapped(), 0, kClusterBatchBytes);
-        std::vector<glm::mat4> boxes;
-        for (std::size_t i = 0; i < objects.size(); ++i) {
-          const DnrtClusterObject rec = clusterObject(fold(objects[i].data), items[i].z);
-          std::memcpy(records.mapped() + i * sizeof(DnrtClusterObject), &rec, sizeof rec);
-          boxes.push_back(objects[i].data.boxToWorld);
-        }
-        const std::vector<std::uint32_t> masks = binObjects(pc->world->camera.viewProj, resolution, boxes);
         gpu::Buffer& tiles = fusedTileBuffers_[slot];
-        const VkDeviceSize tileBytes = masks.size() * sizeof(std::uint32_t);
-        if (!tiles || tiles.size() < tileBytes)
-          tiles = gpu::Buffer(ctx_, {tileBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::Upload,
-                                     "dnrt.fused-tiles"});
-        std::memcpy(tiles.mapped(), masks.data(), tileBytes);
-        lastFusedTileSlot_ = slot;
-        lastFusedTileCount_ = masks.size();
-        if (!tileCull) return;
-        // 3. The masks cut by each tile's depth range (tile_cull.comp), then visible to the probes pass.
-        VkSampler point = pc->samplers->get({VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST});
-        cull_.bind(cmd);
-        VkDescriptorSet set = pc->frame().descriptors->allocate(cullLayout_);
-        gpu::DescriptorWriter w;
-        w.sampledImage(0, pc->backend->image(res.texture(d.depth)).view(), point);
-        w.buffer(1, tiles);
-        w.buffer(2, records, kUniform, 0, kClusterBatchBytes);
-        w.update(ctx_, set);
-        cull_.bindSet(cmd, 0, set);
-        cull_.push(cmd, CullPush{pc->world->camera.invViewProj, 1.0f / glm::vec2(resolution), 0u, grid.tilesX, grid.tilesY});
-        vkCmdDispatch(cmd, (grid.tilesX + 7) / 8, (grid.tilesY + 7) / 8, 1);  // local size 8×8, a tile each
-        // The probes pass reads the masks (outside the graph: a buffer of this node's).
-        VkMemoryBarrier written{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_SHADER_WRITE_BIT,
-                                VK_ACCESS_SHADER_READ_BIT};
-        vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, 0, 1,
-                             &written, 0, nullptr, 0, nullptr);
+        gpu::Buffer& records = fusedClusterBuffers_[slot];
+        writeClusterBuffers(*pc, objects, items, resolution, tiles, records, "dnrt.fused-");
+        // 3. The masks cut by each tile's depth range (tile_cull.comp), then visible to the probes pass
+        // (which reads them outside the graph: a buffer of this node's).
+        if (tileCull)
+          recordTileCull(cmd, *pc, pc->backend->image(res.texture(d.depth)).view(),
+                         VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, tiles, records, 1, resolution);
       });
   probes::FusedDnrt out;
   out.volume = combine.atlas;
@@ -494,12 +528,6 @@ std::optional<probes::FusedDnrt> Node::addFusedCluster(rg::RenderGraph& graph, c
     w.buffer(11, fusedClusterBuffers_[slot], kUniform, 0, kClusterBatchBytes);
   };
   return out;
-}
-
-std::vector<std::uint32_t> Node::lastFusedTileMasks() const {
-  if (lastFusedTileCount_ == 0) return {};
-  const auto* m = reinterpret_cast<const std::uint32_t*>(fusedTileBuffers_[lastFusedTileSlot_].mapped());
-  return std::vector<std::uint32_t>(m, m + lastFusedTileCount_);
 }
 
 std::vector<int> Node::atlasFor(const std::vector<const FieldTextures*>& textures) {
@@ -547,39 +575,14 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
   auto& bb = graph.blackboard();
   const render::PassContext* pc = &pcIn;
   const auto modeOf = [&](const NodeObject& o) { return settings.mode.value_or(o.mode); };
-  // The clustered draw's objects (object index, atlas brick); intrusion and no room: drawn alone.
-  struct ClusterItem {
-    std::size_t object = 0;
-    int brick = 0;       // the field's brick in the RGBA8 atlas
-    int occlusionBrick = -1;  // its occlusion field's brick (NodeObject::occlusion), -1: none
-    std::uint32_t z = 0;  // the object's own brick in this frame's combined atlas (combine.comp)
-  };
+  // The clustered draw's objects (placeInAtlas); intrusion and no room: drawn alone.
   glm::uvec3 combinedSize(0u);
-  std::vector<ClusterItem> cluster;
+  std::vector<std::size_t> asked;
+  for (std::size_t i = 0; i < objects.size(); ++i)
+    if (modeOf(objects[i]) == Mode::Clustered && !objects[i].intrusion) asked.push_back(i);
+  const std::vector<ClusterItem> cluster = placeInAtlas(objects, asked, combinedSize);
   std::vector<bool> clustered(objects.size(), false);
-  {
-    std::vector<std::size_t> asked;
-    std::vector<const FieldTextures*> textures;  // per asked object: its field, then its occlusion field if any
-    for (std::size_t i = 0; i < objects.size(); ++i)
-      if (modeOf(objects[i]) == Mode::Clustered && !objects[i].intrusion) {
-        asked.push_back(i);
-        textures.push_back(objects[i].textures);
-        if (objects[i].occlusion) textures.push_back(objects[i].occlusion);
-      }
-    const std::vector<int> bricks = asked.empty() ? std::vector<int>{} : atlasFor(textures);
-    std::size_t t = 0;
-    for (std::size_t k = 0; k < asked.size(); ++k) {
-      const int brick = bricks[t++];
-      const int occlusionBrick = objects[asked[k]].occlusion ? bricks[t++] : -1;
-      const auto side = std::uint32_t(objects[asked[k]].data.extents.w) + 2u;  // a padded brick (cluster.hpp)
-      if (brick < 0 || (objects[asked[k]].occlusion && occlusionBrick < 0) ||
-          combinedSize.z + side > ctx_.limits().maxImageDimension3D)
-        continue;  // drawn alone
-      cluster.push_back({asked[k], brick, occlusionBrick, combinedSize.z});
-      clustered[asked[k]] = true;
-      combinedSize = glm::uvec3(std::max(combinedSize.x, side), std::max(combinedSize.y, side), combinedSize.z + side);
-    }
-  }
+  for (const ClusterItem& item : cluster) clustered[item.object] = true;
   // Intrusion maps first, one pass per object that asks (timed as "dnrt.cube/<name>").
   std::vector<std::optional<rg::Handle<rg::Texture>>> maps(objects.size());
   const std::uint32_t res = settings.intrusionResolution;
@@ -662,34 +665,17 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
         [this, pc, objects, cluster](const CombineData& d, const rg::PassResources& res, rg::CommandContext& c) {
           VkCommandBuffer cmd = pc->cmd(c);
           gpu::Buffer& buffer = objectBuffer(pc->frame().slot, objects);
-          const auto dispatch = [&](std::size_t i, const Slots& slot, const Slots* occlusionSlot, VkImageView target,
-                                    std::int32_t srcZ, std::int32_t occlusionZ, std::int32_t dstZ, std::int32_t size) {
-            recordCombine(cmd, *pc, buffer, objects.size(), objects[i], i, slot, occlusionSlot, target, srcZ,
-                          occlusionZ, dstZ, size);
-          };
           for (std::size_t i = 0; i < objects.size(); ++i) {
             if (!d.volumes[i]) continue;
             const FieldTextures* field = objects[i].textures;
             const FieldTextures* occlusion = objects[i].occlusion;
             const Slots fieldSlot = [field](int s) { return field->view(s); };
             const Slots occlusionSlot = [occlusion](int s) { return occlusion->view(s); };
-            dispatch(i, fieldSlot, occlusion ? &occlusionSlot : nullptr,
-                     pc->backend->image(res.texture(*d.volumes[i])).view(), 0, 0, 0,
-                     std::int32_t(objects[i].data.extents.w));
+            recordCombine(cmd, *pc, buffer, objects.size(), objects[i], i, fieldSlot,
+                          occlusion ? &occlusionSlot : nullptr, pc->backend->image(res.texture(*d.volumes[i])).view(),
+                          0, 0, 0, std::int32_t(objects[i].data.extents.w));
           }
-          if (d.atlas) {
-            const VkImageView target = pc->backend->image(res.texture(*d.atlas)).view();
-            const Slots atlasSlot = [&](int s) {
-              return atlas_.slots[std::size_t(s) < atlas_.slots.size() ? std::size_t(s) : 0]->view();
-            };
-            for (const ClusterItem& item : cluster) {
-              const bool occlusion = item.occlusionBrick >= 0;  // both bricks in the one atlas
-              dispatch(item.object, atlasSlot, occlusion ? &atlasSlot : nullptr, target,
-                       std::int32_t(atlas_.layout.z0[std::size_t(item.brick)]),
-                       occlusion ? std::int32_t(atlas_.layout.z0[std::size_t(item.occlusionBrick)]) : 0,
-                       std::int32_t(item.z), std::int32_t(objects[item.object].data.extents.w) + 2);
-            }
-          }
+          if (d.atlas) recordAtlasCombine(cmd, *pc, buffer, objects, cluster, pc->backend->image(res.texture(*d.atlas)).view());
         });
     volumes = combine.volumes;
     combinedAtlas = combine.atlas;
@@ -756,57 +742,22 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
         gpu::Buffer* records = nullptr;
         VkDescriptorSet clusterInputs = VK_NULL_HANDLE;
         if (!cluster.empty()) {
-          std::vector<glm::mat4> boxes;
-          for (const ClusterItem& item : cluster) boxes.push_back(objects[item.object].data.boxToWorld);
           const glm::uvec2 resolution = fullSize;  // tiles of G-buffer pixels, at any step
           clusterGrid = tileGrid(resolution);
-          const TileGrid& grid = *clusterGrid;
-          const std::vector<std::uint32_t> masks = binObjects(pc->world->camera.viewProj, resolution, boxes);
           batches = (cluster.size() + kClusterBatch - 1) / kClusterBatch;
           const std::size_t slot = pc->frame().slot % tileBuffers_.size();
           gpu::Buffer& tiles = tileBuffers_[slot];
-          const VkDeviceSize tileBytes = masks.size() * sizeof(std::uint32_t);
-          if (!tiles || tiles.size() < tileBytes)
-            tiles = gpu::Buffer(ctx_, {tileBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::Upload, "dnrt.tiles"});
-          std::memcpy(tiles.mapped(), masks.data(), tileBytes);
-          lastTileSlot_ = slot;
-          lastTileCount_ = masks.size();
           records = &clusterObjectBuffers_[slot];
-          const VkDeviceSize recordBytes = batches * kClusterBatchBytes;
-          if (!*records || records->size() < recordBytes)
-            *records = gpu::Buffer(ctx_, {recordBytes, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::MemoryUsage::Upload,
-                                          "dnrt.cluster-objects"});
-          std::memset(records->mapped(), 0, recordBytes);
-          for (std::size_t k = 0; k < cluster.size(); ++k) {
-            const DnrtClusterObject rec = clusterObject(fold(objects[cluster[k].object].data), cluster[k].z);
-            std::memcpy(records->mapped() + k * sizeof(DnrtClusterObject), &rec, sizeof rec);
-          }
+          lastTileCount_ = writeClusterBuffers(*pc, objects, cluster, resolution, tiles, *records, "dnrt.");
+          lastTileSlot_ = slot;
           clusterInputs = pc->frame().descriptors->allocate(inputLayout_);
           gpu::DescriptorWriter writer;
           render::writeDeferredInputs(writer, d.g, *pc, res, point, depthLayout)
               .buffer(3, tiles)
               .sampledImage(4, view(d.g.entity), point)
               .update(ctx_, clusterInputs);
-          if (tileCull) cull_.bind(cmd);
-          for (std::size_t b = 0; tileCull && b < batches; ++b) {
-            VkDescriptorSet set = pc->frame().descriptors->allocate(cullLayout_);
-            gpu::DescriptorWriter w;
-            w.sampledImage(0, view(d.g.depth), point, depthLayout);
-            w.buffer(1, tiles);
-            w.buffer(2, *records, kUniform, b * kClusterBatchBytes, kClusterBatchBytes);
-            w.update(ctx_, set);
-            cull_.bindSet(cmd, 0, set);
-            cull_.push(cmd, CullPush{pc->world->camera.invViewProj, 1.0f / glm::vec2(resolution),
-                                     std::uint32_t(b * grid.count()), grid.tilesX, grid.tilesY});
-            vkCmdDispatch(cmd, (grid.tilesX + 7) / 8, (grid.tilesY + 7) / 8, 1);  // local size 8×8, a tile each
-          }
-          // The masks written here are read by clustered.frag below.
-          if (tileCull) {
-            VkMemoryBarrier written{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_SHADER_WRITE_BIT,
-                                    VK_ACCESS_SHADER_READ_BIT};
-            vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, 0,
-                                 1, &written, 0, nullptr, 0, nullptr);
-          }
+          // The masks cut here are read by clustered.frag below.
+          if (tileCull) recordTileCull(cmd, *pc, view(d.g.depth), depthLayout, tiles, *records, batches, resolution);
         }
 
         render::Attachment depth{view(d.g.depth)};

@@ -113,13 +113,13 @@ class Node {
   std::vector<std::uint32_t> lastTileMasks() const;
 
   // The fused mode ("dnrt": {"mode": "fused"}; runtime.hpp Runtime::addFused): adds pass
-  // "dnrt.combine" for `object` alone (its own record buffer: the box draws' buffer may hold other
+  // "dnrt.combine.fused" for `object` alone (its own record buffer: the box draws' buffer may hold other
   // objects this frame) and returns its volume and the record the probes pass adds its term with
   // (probes.frag kDnrt). The object has no intrusion and its entity id + 1 ≤ kEntityInNormalMax (the
   // self test reads the normal's w). `step` 2 or 4 (the level's "dnrt": {"resolution"}) also adds pass
   // "dnrt.fused.reduced" (shaders/dnrt/fused_reduced.comp): the term's position-only factor at G-buffer
-  // pixel step·j, which the probes pass reads with one bilinear tap (README "DNRT's fused term at reduced
-  // resolution, session 17").
+  // pixel step·j, which the probes pass blends bilinearly from one texelFetch a pixel (README "DNRT's fused
+  // term at reduced resolution, session 17", "DNRT's fused quarter term …, session 18").
   probes::FusedDnrt addFused(rg::RenderGraph& graph, const render::PassContext& pc, const NodeObject& object,
                              std::uint32_t step = 1);
   // The fused mode with several objects (probes.frag kDnrt 2): the clustered mode's per-pixel visit
@@ -130,9 +130,6 @@ class Node {
   std::optional<probes::FusedDnrt> addFusedCluster(rg::RenderGraph& graph, const render::PassContext& pc,
                                                    const std::vector<NodeObject>& objects, bool tileCull,
                                                    std::vector<bool>& taken);
-  // The tile masks the last addFusedCluster's probes pass read (after tile_cull.comp when on), as
-  // lastTileMasks. For tests.
-  std::vector<std::uint32_t> lastFusedTileMasks() const;
 
  private:
   // A shader variant: specialization constants of dnrt.vert/.frag (one pipeline each, made on first use).
@@ -154,6 +151,32 @@ class Node {
   };
   // The atlas holding `objects`' fields (grown if needed); brick index per object, -1 = no room.
   std::vector<int> atlasFor(const std::vector<const FieldTextures*>& textures);
+  // One object of the clustered draw (addTo) or of the fused probes pass's visit (addFusedCluster).
+  struct ClusterItem {
+    std::size_t object = 0;   // index into the caller's objects (its record in objectBuffer's buffer)
+    int brick = 0;            // its field's brick in the RGBA8 atlas
+    int occlusionBrick = -1;  // its occlusion field's brick (NodeObject::occlusion), -1: none
+    std::uint32_t z = 0;      // its own brick in this frame's combined atlas (combine.comp)
+  };
+  // The objects `asked` (indices into `objects`) that have room in the atlas (atlasFor) and in this
+  // frame's combined atlas, whose size `combinedSize` grows by each one's padded brick; the others
+  // are left out (the caller draws them alone).
+  std::vector<ClusterItem> placeInAtlas(const std::vector<NodeObject>& objects, const std::vector<std::size_t>& asked,
+                                        glm::uvec3& combinedSize);
+  // combine.comp into each item's brick of the combined atlas `target` (`records`: objectBuffer's for `objects`).
+  void recordAtlasCombine(VkCommandBuffer cmd, const render::PassContext& pc, gpu::Buffer& records,
+                          const std::vector<NodeObject>& objects, const std::vector<ClusterItem>& items,
+                          VkImageView target);
+  // The items' records (DnrtClusterObject, std140, kClusterBatch a batch) into `records` and this
+  // frame's tile masks (the CPU's screen hulls, binObjects) into `tiles`, each (re)made as
+  // "<prefix>cluster-objects" / "<prefix>tiles" when too small. Returns the number of masks.
+  std::size_t writeClusterBuffers(const render::PassContext& pc, const std::vector<NodeObject>& objects,
+                                  const std::vector<ClusterItem>& items, glm::uvec2 resolution, gpu::Buffer& tiles,
+                                  gpu::Buffer& records, const std::string& prefix);
+  // tile_cull.comp over `batches` batches (each batch's masks cut by its tiles' depth range; `depth` in
+  // `depthLayout`), then a barrier before the fragment shaders that read the masks.
+  void recordTileCull(VkCommandBuffer cmd, const render::PassContext& pc, VkImageView depth, VkImageLayout depthLayout,
+                      gpu::Buffer& tiles, gpu::Buffer& records, std::size_t batches, glm::uvec2 resolution);
   const gpu::Pipeline& clusteredPipeline(bool single, bool selfInNormal, std::uint32_t step);
   // "dnrt.upsample"'s pipeline for step 2 or 4 (made on first use).
   const gpu::Pipeline& upsamplePipeline(std::uint32_t step);
@@ -183,7 +206,6 @@ class Node {
   // Per frame slot, addFusedCluster's tile masks and DnrtClusterObject records (the probes pass's
   // bindings 10 and 11; apart from the clustered draw's, which may run in the same frame).
   std::vector<gpu::Buffer> fusedTileBuffers_, fusedClusterBuffers_;
-  std::size_t lastFusedTileSlot_ = 0, lastFusedTileCount_ = 0;
   gpu::DescriptorSetLayout clusterLayout_;
   gpu::PipelineLayout clusterPipelineLayout_;
   gpu::ShaderModule fullscreenVert_, clusterFrag_;

@@ -89,8 +89,9 @@ std::optional<probes::FusedDnrt> Runtime::addFused(rg::RenderGraph& graph, const
     // Below full resolution the term's position-only factor comes from pass dnrt.fused.reduced.
     out = node_->addFused(graph, pc, objects[chosen[0]], settings_.step);
     fused[chosen[0]] = true;
-  } else {  // several: the clustered visit of the pixel's tile (kDnrt 2), at full resolution
-
+  } else {
+    // Several: the clustered visit of the pixel's tile (kDnrt 2), at full resolution whatever
+    // settings_.step asks (the reduced factor is one object's; SessionRuntime warns at level load).
     std::vector<NodeObject> subset;
     for (std::size_t i : chosen) subset.push_back(objects[i]);
     std::vector<bool> taken;

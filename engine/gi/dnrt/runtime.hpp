@@ -70,14 +70,16 @@ class Runtime {
   // For Renderer::setNode("dnrt", …): adds the node for the visible objects of the frame (but the
   // one addFused gave the probes pass this frame).
   render::Renderer::GraphNode node();
-  // The fused mode ("dnrt": {"mode": "fused"}, or NodeSettings::mode): for probes::ProbeNode::setFusedDnrt,
-  // called while the probes node adds its pass (before this runtime's node, table order). Every
-  // visible object in that mode with no intrusion whose entity id + 1 fits the normal's w (the self
-  // test there), up to kClusterBatch, gets its term in the probes pass: one object as its record in
-  // the push block (Node::addFused, probes.frag kDnrt 1), several as the clustered mode's visit of the
-  // pixel's tile mask at full resolution (Node::addFusedCluster, kDnrt 2); node() then leaves them out. Below full resolution (settings().step 2, 4) one object's term takes its position-only factor from pass dnrt.fused.reduced (Node::addFused). Nothing (all drawn by node(), a fused object as a box) when the frame's
-  // effects do not name dnrt or no object qualifies; without the probes
-  // effect this is never called and node() draws fused objects as boxes.
+  // The fused mode ("dnrt": {"mode": "fused"}, or NodeSettings::mode), for
+  // probes::ProbeNode::setFusedDnrt: called while the probes node adds its pass (before this runtime's
+  // node, table order). It takes every visible object in that mode that has no intrusion and whose
+  // entity id + 1 fits the normal's w (the self test there), up to kClusterBatch; node() then leaves
+  // them out. One object: its record in the push block (Node::addFused, probes.frag kDnrt 1), and
+  // below full resolution (settings().step 2, 4) its term's position-only factor from pass
+  // dnrt.fused.reduced. Two or more: the clustered visit of the pixel's tile mask (Node::addFusedCluster,
+  // kDnrt 2), always at full resolution (the level load warns when the level asks for less:
+  // technique.cpp). Nothing when the frame's effects do not name dnrt or no object qualifies; without
+  // the probes effect this is never called and node() draws fused objects as boxes.
   std::optional<probes::FusedDnrt> addFused(rg::RenderGraph& graph, const render::PassContext& pc);
 
  private:

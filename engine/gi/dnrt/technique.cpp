@@ -259,6 +259,24 @@ SessionRuntime::SessionRuntime(SessionContext& sc) {
   };
   if (sc.services.probeNode) sc.services.attachFusedDnrt(*sc.services.probeNode);
   runtime_->settings().step = sc.level.dnrt.step;  // "dnrt": {"resolution"}: the draw's step (node.hpp)
+  // The fused term below full resolution serves one object (its position-only factor is that object's,
+  // pass dnrt.fused.reduced): in a frame with two or more fused objects in the probes pass their terms
+  // are shaded at full resolution (Runtime::addFused). Said once here, where the level asks for both.
+  if (sc.level.dnrt.step > 1u) {
+    std::vector<std::string> fused;
+    sc.registry.view<scene::Dnrt, scene::Name>().each([&](ecs::Entity, scene::Dnrt& d, scene::Name& n) {
+      if (d.mode == scene::DnrtMode::Fused && !d.intrusion) fused.push_back(n.id);
+    });
+    if (fused.size() > 1) {
+      std::sort(fused.begin(), fused.end());  // the registry's order is not the level's
+      std::string names;
+      for (const std::string& n : fused) names += (names.empty() ? "" : ", ") + n;
+      log::warn(sc.level.source.string() + ": dnrt " + names + ": \"mode\": \"fused\" with \"resolution\": \"" +
+                gi::resolutionName(sc.level.dnrt.step) +
+                "\": the reduced term serves one fused object; in frames with two or more in the probes pass their "
+                "terms are shaded at full resolution");
+    }
+  }
   for (std::size_t i = 0; i < runtime_->objectCount(); ++i)  // a level too small to place: bad input
     checkPlaceable(sc.level, sc.registry, runtime_->entity(i), "dnrt", runtime_->field(i).centre,
                    runtime_->field(i).radius);

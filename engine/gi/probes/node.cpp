@@ -478,9 +478,9 @@ void ProbeNode::addPasses(rg::RenderGraph& graph, const render::PassContext* pc)
             // trilinear, as the "dnrt" pass's box draw reads the same volume
             .sampledImage(9, fused ? view(d.dnrt) : noDnrt_->view(),
                           pc->samplers->get({VK_FILTER_LINEAR, VK_SAMPLER_MIPMAP_MODE_NEAREST}))
-            // bilinear: the fused term's one tap below full resolution; the albedo when unread (kDnrtStep 1)
-            .sampledImage(12, view(fused && fused->reduced ? d.dnrtReduced : d.g.albedo),
-                          pc->samplers->get({VK_FILTER_LINEAR, VK_SAMPLER_MIPMAP_MODE_NEAREST}));
+            // the fused term's reduced factor below full resolution, read by texelFetch (probes.frag
+            // dnrtReducedQuadTap); the albedo when unread (kDnrtStep 1)
+            .sampledImage(12, view(fused && fused->reduced ? d.dnrtReduced : d.g.albedo), point);
         const bool several = fused && fused->bindCluster;
         if (several)
           fused->bindCluster(writer, *pc);

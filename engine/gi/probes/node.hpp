@@ -32,9 +32,9 @@ struct ProbePush {
 };
 ProbePush probePush(const ProbeVolume& v, float flag);
 
-// DNRT's fused mode ("dnrt": {"mode": "fused"}; gi/dnrt/runtime.hpp Runtime::addFused): one dynamic
-// object's L_DNRT added by the probes pass itself (probes.frag kDnrt, dnrt.glsl dnrtFusedTerm) at the
-// pixels it already shades, instead of a "dnrt" pass of its own. probes.frag's push block past
+// DNRT's fused mode ("dnrt": {"mode": "fused"}; gi/dnrt/runtime.hpp Runtime::addFused): the dynamic
+// objects' L_DNRT added by the probes pass itself (probes.frag kDnrt; dnrt.glsl dnrtFusedTerm for one
+// object, dnrt/cluster.glsl for several) at the pixels it already shades, instead of a "dnrt" pass of its own. probes.frag's push block past
 // ProbePush (128 bytes in all, the Vulkan minimum of maxPushConstantsSize).
 // One object (probes.frag kDnrt 1): its record. Several (kDnrt 2): centreWorld holds 1 / the combined
 // atlas's texels per axis (xyz) and the tiles per row (w); the records are in FusedDnrt::bindCluster's block.
@@ -54,13 +54,14 @@ struct FusedDnrt {
   // set when it records; empty for one object (kDnrt 1).
   std::function<void(gpu::DescriptorWriter&, const render::PassContext&)> bindCluster;
   // Below full resolution (the level's "dnrt": {"resolution"}; step 2 or 4): pass dnrt.fused.reduced's
-  // (w·s Σ_j c_j M_j, w) at G-buffer pixel step·j, read bilinear (probes.frag kDnrtStep, binding 12;
+  // (w·s Σ_j c_j M_j, w) at G-buffer pixel step·j, blended bilinearly from one texelFetch a pixel (probes.frag
+  // kDnrtStep, dnrtReducedQuadTap, binding 12;
   // README "DNRT's fused term at reduced resolution, session 17"). Unset at step 1 and for several objects (kDnrt 2 runs at full resolution).
   std::optional<rg::Handle<rg::Texture>> reduced;
   std::uint32_t step = 1;
 };
-// Called by the probes node before it adds its pass; adds what the fused term reads (dnrt.combine) and
-// returns it, or nothing (no fused object this frame: the plain pipeline).
+// Called by the probes node before it adds its pass; adds the passes the fused term reads
+// (dnrt.combine.fused, and dnrt.fused.reduced below full resolution) and returns it, or nothing (no fused object this frame: the plain pipeline).
 using FusedDnrtHook = std::function<std::optional<FusedDnrt>(rg::RenderGraph&, const render::PassContext&)>;
 
 // The largest |E| change per channel (W/m², E as sh::evalIrradiance) that the uniform block's 8-bit

@@ -88,5 +88,17 @@ TEST(DnrtBench, ReportHasEveryRowTimedAndFiniteRatios) {
   EXPECT_NE(formatDnrtBench(r, o).find("goal <= 0.1"), std::string::npos);
 }
 
+// The reduced fused rows only where they measure what they say: the reduced term serves one fused
+// object, so a level with several (cornell-10) would run "fused half" / "fused quarter" at full
+// resolution under those names (and give 10 : 1 ratios for them).
+TEST(DnrtBench, ReducedFusedRowsOnlyForALevelWithOneObject) {
+  const std::vector<std::string> one = {"all",       "fused", "fused half",    "fused quarter",
+                                        "clustered", "half",  "clustered half"};
+  const std::vector<std::string> several = {"all", "fused", "clustered", "half", "clustered half"};
+  EXPECT_EQ(table8Settings(1), one);
+  EXPECT_EQ(table8Settings(2), several);
+  EXPECT_EQ(table8Settings(10), several);
+}
+
 }  // namespace
 }  // namespace bounce::game

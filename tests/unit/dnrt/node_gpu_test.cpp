@@ -915,6 +915,39 @@ TEST(DnrtGpu, FusedModeAtReducedResolutionIsTheFullTermWithinABoundOnASmoothScen
   }
 }
 
+// Two fused objects with "resolution": "quarter" (two-boxes.json): the reduced term's position-only
+// factor is one object's, so with both in the probes pass (kDnrt 2) the runtime shades them at full
+// resolution (Runtime::addFused) — exactly the full-resolution fused frame: its passes (no
+// "dnrt.fused.reduced") and its image bit for bit (the same pipelines and inputs) — and the level load
+// says so in one warning (counted against the same level at full resolution, whose load warns of
+// nothing more).
+TEST(DnrtGpu, SeveralFusedObjectsAreShadedAtFullResolutionAndTheLevelLoadSaysSo) {
+  gpu::Context& ctx = gpu::testkit::sharedContext();
+  const auto render = [&](std::uint32_t step, std::size_t& warnings) {
+    scene::Level level = game::loadLevelWithEffects(fs::path(BOUNCE_SOURCE_DIR) / "tests/data/dnrt/two-boxes.json",
+                                                    std::vector<std::string>{"direct", "probes", "dnrt"});
+    level.dnrt.step = step;
+    for (auto& e : level.entities)
+      if (e.dnrt) e.dnrt->mode = Mode::Fused;
+    log::resetWarningCount();
+    game::Session session(ctx, std::move(level));
+    warnings = log::warningCount();
+    session.update(0.0);
+    return renderOnce(session, ctx);
+  };
+  std::size_t fullWarnings = 0, quarterWarnings = 0;
+  const Frame full = render(1, fullWarnings);
+  const Frame quarter = render(4, quarterWarnings);
+  EXPECT_EQ(quarterWarnings, fullWarnings + 1) << "one warning at level load";
+  EXPECT_EQ(std::count(full.passes.begin(), full.passes.end(), "dnrt.combine.fused"), 1);
+  EXPECT_EQ(std::count(full.passes.begin(), full.passes.end(), "dnrt"), 0) << "both objects in the probes pass";
+  EXPECT_EQ(quarter.passes, full.passes);
+  ASSERT_EQ(quarter.rgb.size(), full.rgb.size());
+  std::size_t differ = 0;
+  for (std::size_t i = 0; i < full.rgb.size(); ++i) differ += quarter.rgb[i] != full.rgb[i] ? 1 : 0;
+  EXPECT_EQ(differ, 0u);
+}
+
 // The fused mode with an occlusion term: two-boxes-lamp.json's box-a says "lights_in_anti_radiance":
 // false, so its combined volume sums its field and its occlusion-only field (−k_j, the lamp's c_j
 // negated; combine.comp kOcclusion) — in dnrt.combine for the box mode and in dnrt.combine.fused for
