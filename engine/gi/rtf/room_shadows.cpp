@@ -46,4 +46,15 @@ incident::RadianceSH roomShadow(const ref::SceneBvh& level, const PosedOccluders
   return out;
 }
 
+incident::RadianceSH withRoomShadow(const incident::RadianceSH& L, incident::RadianceSH dL) {
+  for (int c = 0; c < 3; ++c)
+    if (dL[0][c] < 0.0f && L[0][c] + dL[0][c] < 0.0f) {
+      const float k = std::max(L[0][c], 0.0f) / -dL[0][c];  // in [0, 1): what L₀ can give
+      for (glm::vec3& v : dL) v[c] *= k;
+    }
+  incident::RadianceSH out = L;
+  for (std::size_t i = 0; i < out.size(); ++i) out[i] += dL[i];
+  return out;
+}
+
 }  // namespace bounce::gi::rtf

@@ -36,4 +36,10 @@ incident::RadianceSH roomShadow(const ref::SceneBvh& level, const PosedOccluders
                                 std::span<const PosedOccluders::Pose> poses, std::span<const render::LightGpu> lights,
                                 glm::vec3 chi, int directions = kRoomShadowDirections);
 
+// L + ΔL, never taking more than L's mean holds, per channel (ΔL scaled down where L₀ + ΔL₀ < 0). The
+// baked probes hold only the bake's lights: a light moved, brightened or added since then has more
+// to lose in roomShadow() than they ever held, and the difference would be negative radiance
+// (session-18 review). Where ΔL₀ ≤ L₀ nothing changes.
+incident::RadianceSH withRoomShadow(const incident::RadianceSH& L, incident::RadianceSH dL);
+
 }  // namespace bounce::gi::rtf

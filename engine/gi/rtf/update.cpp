@@ -122,10 +122,7 @@ FrameObjects Update::frame(std::span<const render::LightGpu> lights) {
       std::span<const PosedOccluders::Pose> poses;
       std::span<const render::LightGpu> lights;
       incident::RadianceSH radianceSH(glm::vec3 p) const override {
-        incident::RadianceSH L = lit->radianceSH(p);
-        const incident::RadianceSH d = roomShadow(*level, *occluders, poses, lights, p);
-        for (std::size_t i = 0; i < L.size(); ++i) L[i] += d[i];
-        return L;
+        return withRoomShadow(lit->radianceSH(p), roomShadow(*level, *occluders, poses, lights, p));
       }
     };
     std::vector<Shadowed> shadowed;

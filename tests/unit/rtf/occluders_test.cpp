@@ -101,5 +101,20 @@ TEST(RtfRoomShadow, NoneWithoutABlockerAndTheFloorsWholeBounceUnderOne) {
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(-lost[0][c], want, 0.10 * want) << c;
 }
 
+// The room's lost light never takes more than the probes' mean holds (a light brighter than the bake's):
+// where L₀ + ΔL₀ ≥ 0 the sum is exact; where not, that channel's ΔL is scaled so L₀ + ΔL₀ = 0 exactly.
+TEST(RtfRoomShadow, NeverTakesMoreThanTheProbesHold) {
+  incident::RadianceSH L{}, dL{};
+  L[0] = glm::vec3(2.0f, 1.0f, 0.0f), L[3] = glm::vec3(0.5f);
+  dL[0] = glm::vec3(-1.0f, -4.0f, -1.0f), dL[3] = glm::vec3(-0.2f, -0.8f, 0.3f);
+  const incident::RadianceSH out = withRoomShadow(L, dL);
+  EXPECT_FLOAT_EQ(out[0].x, 1.0f);   // 2 − 1: enough light, exact
+  EXPECT_FLOAT_EQ(out[3].x, 0.3f);
+  EXPECT_FLOAT_EQ(out[0].y, 0.0f);   // 1 − 4 → scaled by 1/4
+  EXPECT_FLOAT_EQ(out[3].y, 0.5f - 0.2f);
+  EXPECT_FLOAT_EQ(out[0].z, 0.0f);   // nothing to lose: scale 0
+  EXPECT_FLOAT_EQ(out[3].z, 0.5f);
+}
+
 }  // namespace
 }  // namespace bounce::gi::rtf

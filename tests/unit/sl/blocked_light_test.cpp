@@ -155,6 +155,7 @@ TEST(SlBlockedLight, CharactersFloorProbesVsTraced) {
   const incident::ProbeSource source(volume);
   const ref::SceneBvh staticBvh(probes::staticScene(level, cook));
 
+  int nearChecked = 0;  // bands within 0.5 m that reached the asserts (none would pass silently)
   for (const bool posed : {true, false}) {
     ecs::Registry registry;
     scene::instantiate(level, registry);
@@ -385,6 +386,7 @@ TEST(SlBlockedLight, CharactersFloorProbesVsTraced) {
         ASSERT_GT(s.traced, 0.0);
         ASSERT_TRUE(std::isfinite(R) && std::isfinite(S) && std::isfinite(atSl));
         if (b < 2) {  // within 0.5 m, where session 17 measured the level's excess
+          ++nearChecked;
           // The radiance itself, read at the SL's centre along the receiver's ray, is the receiver's
           // (measured 0.92–0.99): the sphere is the right place to read it (no parallax). Bound ±15 %:
           // two paths per direction, 17 receivers.
@@ -397,6 +399,7 @@ TEST(SlBlockedLight, CharactersFloorProbesVsTraced) {
       }
     }
   }
+  EXPECT_EQ(nearChecked, 2 * 2 * 2);  // 2 poses × 2 characters (Fox, CesiumMan) × 2 bands
 }
 
 }  // namespace
