@@ -33,7 +33,10 @@ std::optional<PosedOccluders::Pose> PosedOccluders::pose(std::size_t index, cons
   if (index >= bvh_.size() || !bvh_[index]) return std::nullopt;
   const std::optional<gi::Placement> p = gi::tryPlace(centre_[index], radius_[index], world);
   if (!p) return std::nullopt;
-  return Pose{index, *p};
+  const glm::dmat3 m(world), g = glm::transpose(m) * m;
+  double rowSum = 0.0;
+  for (int i = 0; i < 3; ++i) rowSum = std::max(rowSum, std::abs(g[0][i]) + std::abs(g[1][i]) + std::abs(g[2][i]));
+  return Pose{index, *p, float(double(radius_[index]) * std::sqrt(rowSum))};
 }
 
 bool PosedOccluders::occluded(std::span<const Pose> poses, std::size_t skip, glm::vec3 o, glm::vec3 d, float tMax) const {
@@ -42,7 +45,7 @@ bool PosedOccluders::occluded(std::span<const Pose> poses, std::size_t skip, glm
     // The segment's closest approach to the bounding sphere's centre (d is a unit vector).
     const glm::vec3 c = p.placement.centreWorld - o;
     const float t = std::clamp(glm::dot(c, d), 0.0f, tMax);
-    const float r = p.placement.radiusWorld;
+    const float r = p.cullRadius;
     if (glm::dot(c - t * d, c - t * d) > r * r) continue;
     const glm::vec3 oLocal(p.placement.worldToLocal * glm::vec4(o, 1.0f));
     const glm::vec3 dLocal(p.placement.worldToLocal * glm::vec4(d, 0.0f));  // not unit: t stays the world's

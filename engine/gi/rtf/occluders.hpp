@@ -43,6 +43,11 @@ class PosedOccluders {
   struct Pose {
     std::size_t index = 0;
     gi::Placement placement;
+    // The world bounding sphere's radius for the segment cull: radiusLocal × a bound on the 3×3 block's
+    // largest singular value (√ of the largest row sum of |MᵀM|, Gershgorin; exact without shear), not
+    // Placement's largest column norm, which under shear (a non-uniform parent scale times a child
+    // rotation) is smaller than σ_max and would cull rays that hit the mesh (session-18 review).
+    float cullRadius = 0.0f;
   };
   // The pose of occluder `index` by `world`; nullopt where gi::tryPlace refuses (no size this frame).
   std::optional<Pose> pose(std::size_t index, const glm::mat4& world) const;

@@ -58,6 +58,17 @@ TEST(RtfOccluders, PosedBoxBlocksTheWorldSegmentsThroughIt) {
   EXPECT_FALSE(occ.occluded(poses, 0, o, up, 5.0f));  // its own rays: left out
   EXPECT_FALSE(occ.occluded(poses, 99, o + glm::vec3(0.2f, 0.0f, 0.0f), up, 5.0f));  // beside it (bounding sphere 0.173 m)
   EXPECT_FALSE(occ.occluded({}, 99, o, up, 5.0f));
+  // Sheared: scale (4, 1, 1) after a 45° turn about z makes the box a rhombus reaching x = ±2.83 (σ_max 4),
+  // while its columns' norms are 2.92, so a cull sphere of 0.866 × 2.92 = 2.52 m would miss its tips.
+  // A vertical ray at x = 2.7 crosses the tip (|y| ≤ 0.032 there); one at x = 2.9 passes beyond it.
+  const glm::mat4 sheared = glm::scale(glm::mat4(1.0f), glm::vec3(4.0f, 1.0f, 1.0f)) *
+                            glm::rotate(glm::mat4(1.0f), 0.78539816f, glm::vec3(0.0f, 0.0f, 1.0f));
+  const std::optional<PosedOccluders::Pose> s = occ.pose(0, sheared);
+  ASSERT_TRUE(s.has_value());
+  EXPECT_NEAR(s->cullRadius, 0.5f * std::sqrt(3.0f) * 4.0f, 1e-4f);  // exact σ_max here (Gershgorin row sum 16)
+  const std::vector<PosedOccluders::Pose> shearedPoses = {*s};
+  EXPECT_TRUE(occ.occluded(shearedPoses, 99, glm::vec3(2.7f, -1.0f, 0.0f), up, 2.0f));
+  EXPECT_FALSE(occ.occluded(shearedPoses, 99, glm::vec3(2.9f, -1.0f, 0.0f), up, 2.0f));
 }
 
 // The room's lost lamp light (room_shadows.hpp) at χ 0.1 m over a grey floor (ρ 0.5, 4 × 4 m) under a
