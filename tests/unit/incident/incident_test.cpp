@@ -11,21 +11,14 @@
 #include "tests/support/box_mesh.hpp"
 #include "engine/math/sh.hpp"
 #include "engine/math/sh_exp.hpp"
+#include "tests/support/point_light.hpp"
 
 namespace bounce::gi::incident {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-render::LightGpu pointLight(glm::vec3 position, glm::vec3 intensity) {
-  render::LightGpu l{};
-  l.positionType = glm::vec4(position, float(render::LightType::Point));
-  l.directionRange = glm::vec4(0.0f, 0.0f, -1.0f, 0.0f);
-  l.radiance = glm::vec4(intensity, 0.0f);
-  l.cone = glm::vec4(0.0f, 1.0f, 0.0f, 0.0f);
-  l.shadow = glm::vec4(-1.0f);
-  return l;
-}
+using bounce::testing::pointLight;  // tests/support/point_light.hpp
 
 render::LightGpu spotLight(glm::vec3 position, glm::vec3 direction, glm::vec3 intensity, float outer, float inner) {
   render::LightGpu l = pointLight(position, intensity);

@@ -11,19 +11,12 @@
 
 #include "engine/gi/rtf/occluders.hpp"
 #include "engine/gi/rtf/room_shadows.hpp"
+#include "tests/support/point_light.hpp"
 
 namespace bounce::gi::rtf {
 namespace {
 
-render::LightGpu pointLight(glm::vec3 position, glm::vec3 intensity) {
-  render::LightGpu l{};
-  l.positionType = glm::vec4(position, float(render::LightType::Point));
-  l.directionRange = glm::vec4(0.0f, 0.0f, -1.0f, 0.0f);
-  l.radiance = glm::vec4(intensity, 0.0f);
-  l.cone = glm::vec4(0.0f, 1.0f, 0.0f, 0.0f);
-  l.shadow = glm::vec4(-1.0f);
-  return l;
-}
+using bounce::testing::pointLight;  // tests/support/point_light.hpp
 
 // An axis-aligned box [lo, hi] as a closed triangle mesh (the shadow rays' occluder).
 ref::SceneDesc boxScene(glm::vec3 lo, glm::vec3 hi) {

@@ -23,6 +23,7 @@
 #include "engine/scene/level.hpp"
 #include "engine/scene/systems.hpp"
 #include "tests/support/technique_level.hpp"
+#include "tests/support/point_light.hpp"
 
 namespace bounce::gi::rtf {
 namespace {
@@ -416,15 +417,7 @@ TEST(RtfUpdate, MirroredRecordSeesTheWorldThroughItsMirror) {
 
 // ---- the lamp through the other posed objects (occluders.hpp; issue 14, session 18) ----------------
 
-render::LightGpu pointLight(glm::vec3 position, glm::vec3 intensity) {
-  render::LightGpu l{};
-  l.positionType = glm::vec4(position, float(render::LightType::Point));
-  l.directionRange = glm::vec4(0.0f, 0.0f, -1.0f, 0.0f);
-  l.radiance = glm::vec4(intensity, 0.0f);
-  l.cone = glm::vec4(0.0f, 1.0f, 0.0f, 0.0f);
-  l.shadow = glm::vec4(-1.0f);
-  return l;
-}
+using bounce::testing::pointLight;  // tests/support/point_light.hpp
 
 // The bouncing step's lamp at the proxies (update.hpp setOccluders): a small box under a big one gets no
 // lamp light (no indirect light, 1 bounce: its proxies' light is the lamp's alone); the big box's own
