@@ -198,17 +198,9 @@ struct Sky final : incident::IndirectSource {
   incident::RadianceSH radianceSH(glm::vec3) const override { return sh; }
 };
 
-// Two boxes with fields: Update::frame is the bouncing step of evaluate.hpp with the largest
-// `bounces`, its records map o to q = 0 and a point one η away to |q| = 1, and rotate normals into
-// the object's frame; the blocked matrix reproduces shade()'s blocked term.
-TEST(RtfUpdate, FrameIsTheBouncingStepAndPacksTheRecords) {
-  // Its own bake settings (vertex_rays 5): the test above corrupts and removes kTiny's entry, and
-  // ctest runs tests in parallel.
-  const std::string kTiny = R"("proxies": 2, "spheres": 3, "face": 2, "rays": 4, "vertex_rays": 5, "clusters": 2, "components": 2)";
-  Loaded l(writeLevel("rtf-two", R"({"id": "a", "dynamic": true, "transform": {"translation": [0, 0, 0], "scale": [0.1, 0.1, 0.1]}, )" +
-                                     mesh() + R"(, "rtf": {)" + kTiny + R"(, "bounces": 1}},
-                                     {"id": "b", "dynamic": true, "transform": {"translation": [0.3, 0, 0], "rotation_euler_deg": [10, 40, 0], "scale": [0.1, 0.1, 0.1]}, )" +
-                                     mesh() + R"(, "rtf": {)" + kTiny + R"(, "bounces": 2}})"));
+// The level's rtf entities as Update takes them: each bake job run (where not cached), its field
+// loaded, its entity found by name, its bounces from the level's "rtf" block.
+std::vector<Participant> bakedParticipants(Loaded& l) {
   std::vector<Participant> parts;
   for (const BakeJob& job : technique().bakeJobs(l.context(), {})) {
     if (!job.cached()) job.run();
@@ -221,6 +213,21 @@ TEST(RtfUpdate, FrameIsTheBouncingStepAndPacksTheRecords) {
     p.bounces = l.registry.get<scene::Rtf>(p.entity).bounces;
     parts.push_back(std::move(p));
   }
+  return parts;
+}
+
+// Two boxes with fields: Update::frame is the bouncing step of evaluate.hpp with the largest
+// `bounces`, its records map o to q = 0 and a point one η away to |q| = 1, and rotate normals into
+// the object's frame; the blocked matrix reproduces shade()'s blocked term.
+TEST(RtfUpdate, FrameIsTheBouncingStepAndPacksTheRecords) {
+  // Its own bake settings (vertex_rays 5): the test above corrupts and removes kTiny's entry, and
+  // ctest runs tests in parallel.
+  const std::string kTiny = R"("proxies": 2, "spheres": 3, "face": 2, "rays": 4, "vertex_rays": 5, "clusters": 2, "components": 2)";
+  Loaded l(writeLevel("rtf-two", R"({"id": "a", "dynamic": true, "transform": {"translation": [0, 0, 0], "scale": [0.1, 0.1, 0.1]}, )" +
+                                     mesh() + R"(, "rtf": {)" + kTiny + R"(, "bounces": 1}},
+                                     {"id": "b", "dynamic": true, "transform": {"translation": [0.3, 0, 0], "rotation_euler_deg": [10, 40, 0], "scale": [0.1, 0.1, 0.1]}, )" +
+                                     mesh() + R"(, "rtf": {)" + kTiny + R"(, "bounces": 2}})"));
+  std::vector<Participant> parts = bakedParticipants(l);
   ASSERT_EQ(parts.size(), 2u);
   Update update(l.registry, parts);
   EXPECT_EQ(update.bounces(), 2);
@@ -429,22 +436,11 @@ TEST(RtfUpdate, LampIsTracedThroughTheOtherPosedObjects) {
                                       mesh() + R"(, "rtf": {)" + kTiny + R"(}},
                                       {"id": "high", "dynamic": true, "transform": {"translation": [0, 0.5, 0], "scale": [0.6, 0.6, 0.6]}, )" +
                                       mesh() + R"(, "rtf": {)" + kTiny + R"(}})"));
-  std::vector<Participant> parts;
+  std::vector<Participant> parts = bakedParticipants(l);  // kTiny's "bounces": 1
   std::vector<ref::SceneDesc> meshes;
   ref::ReferenceAssets assets;
   std::vector<ecs::Entity> entities;
-  for (const BakeJob& job : technique().bakeJobs(l.context(), {})) {
-    if (!job.cached()) job.run();
-    Participant p;
-    p.name = job.part;
-    p.field = load(job.output);
-    l.registry.view<scene::Name>().each([&](ecs::Entity e, scene::Name& n) {
-      if (n.id == job.part) p.entity = e;
-    });
-    p.bounces = 1;
-    entities.push_back(p.entity);
-    parts.push_back(std::move(p));
-  }
+  for (const Participant& p : parts) entities.push_back(p.entity);
   ASSERT_EQ(parts.size(), 2u);
   ASSERT_EQ(parts[0].name, "low");
   gi::loadAssetsOf(l.registry, entities, cookCache(), assets);
