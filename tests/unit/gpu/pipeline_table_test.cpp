@@ -80,7 +80,7 @@ TEST(PipelineTable, AnyDifferenceInTheCreationInputBuildsAnother) {
   handles.insert(createComputePipeline(ctx, bindings, spec, "bindings").handle());
   handles.insert(createComputePipeline(ctx, pushed, spec, "push").handle());
   handles.insert(createComputePipeline(ctx, twoSets, spec, "sets").handle());
-  handles.insert(createComputePipeline(ctx, base, fill, "shader").handle());
+  handles.insert(createComputePipeline(ctx, pushed, fill, "shader").handle());  // as "push" but the shader
 
   // Graphics: one fixed-function field at a time.
   ShaderModule vs(ctx, "test/fullscreen.vert.spv"), fs(ctx, "test/solid.frag.spv");
