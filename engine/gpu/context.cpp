@@ -8,6 +8,7 @@
 #include "engine/core/error.hpp"
 #include "engine/core/log.hpp"
 #include "engine/gpu/memory.hpp"
+#include "engine/gpu/pipeline_table.hpp"
 
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
@@ -160,6 +161,9 @@ Context::Context(const ContextOptions& options) : windowed_(options.windowed) {
     createInstance(options);
     pickPhysicalDevice(options);
     createDevice();
+    const std::optional<bool> reuse =
+        options.reusePipelines ? options.reusePipelines : envFlag("BOUNCE_PIPELINE_REUSE");
+    pipelines_ = std::make_unique<PipelineTable>(*this, reuse.value_or(true));
   } catch (...) {
     release();  // a constructor that throws runs no destructor: free what exists
     throw;
@@ -390,6 +394,7 @@ Context::~Context() { release(); }
 void Context::release() {
   if (device_) {
     vkDeviceWaitIdle(device_);
+    pipelines_.reset();  // its pipelines, then their layouts: nothing the device still runs
     if (one_shot_pool_) vkDestroyCommandPool(device_, one_shot_pool_, nullptr);
     one_shot_pool_ = VK_NULL_HANDLE;
     allocator_.reset();

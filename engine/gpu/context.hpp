@@ -28,6 +28,7 @@
 namespace bounce::gpu {
 
 class MemoryAllocator;
+class PipelineTable;
 
 struct ContextOptions {
   std::string deviceName;          // substring; empty → env BOUNCE_DEVICE → automatic choice
@@ -36,6 +37,10 @@ struct ContextOptions {
   // succeeded before; headless contexts (the default) need no display at all.
   bool windowed = false;
   std::string appName = "bounce";
+  // Keep every pipeline built on this context for its life and hand it again to an identical
+  // request (pipeline_table.hpp): a second Session on the context builds none. Empty → env
+  // BOUNCE_PIPELINE_REUSE (=0 turns it off) → on.
+  std::optional<bool> reusePipelines;
 };
 
 // One line per physical device: "'name' [discrete, Vulkan 1.3]" plus " unusable: why" if so.
@@ -67,6 +72,9 @@ class Context {
   bool debugUtilsEnabled() const { return debug_utils_; }
   bool windowed() const { return windowed_; }
   MemoryAllocator& allocator() { return *allocator_; }
+  // Every pipeline of this context is created through it (pipeline.hpp); counts and reuse switch.
+  PipelineTable& pipelines() { return *pipelines_; }
+  const PipelineTable& pipelines() const { return *pipelines_; }
 
   // Validation messages of severity ERROR seen by this context's messenger.
   std::uint64_t validationErrorCount() const { return validation_errors_.load(); }
@@ -117,6 +125,7 @@ class Context {
   bool windowed_ = false;
   std::atomic<std::uint64_t> validation_errors_{0};
   std::unique_ptr<MemoryAllocator> allocator_;
+  std::unique_ptr<PipelineTable> pipelines_;  // destroyed after vkDeviceWaitIdle, before the device
   VkCommandPool one_shot_pool_ = VK_NULL_HANDLE;
   std::mutex one_shot_mutex_;
   std::mutex queue_mutex_;

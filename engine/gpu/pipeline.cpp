@@ -1,12 +1,15 @@
 #include "engine/gpu/pipeline.hpp"
 
 #include <cstring>
+#include <type_traits>
 #include <utility>
 
 #include "engine/core/error.hpp"
 #include "engine/core/file.hpp"
+#include "engine/core/hash.hpp"
 #include "engine/core/paths.hpp"
 #include "engine/gpu/context.hpp"
+#include "engine/gpu/pipeline_table.hpp"
 
 namespace bounce::gpu {
 
@@ -39,6 +42,7 @@ ShaderModule ShaderModule::fromFile(Context& ctx, const std::filesystem::path& p
   ShaderModule m;
   m.ctx_ = &ctx;
   m.name_ = path.filename().string();
+  m.spirv_hash_ = Hasher().u64(words.size()).bytes(words.data(), bytes.size()).digest();
   check(vkCreateShaderModule(ctx.device(), &ci, nullptr, &m.module_), "vkCreateShaderModule");
   ctx.setName(VK_OBJECT_TYPE_SHADER_MODULE, m.module_, m.name_);
   return m;
@@ -50,6 +54,7 @@ ShaderModule& ShaderModule::operator=(ShaderModule&& o) noexcept {
     ctx_ = std::exchange(o.ctx_, nullptr);
     module_ = std::exchange(o.module_, VK_NULL_HANDLE);
     name_ = std::move(o.name_);
+    spirv_hash_ = std::exchange(o.spirv_hash_, 0);
   }
   return *this;
 }
@@ -59,12 +64,17 @@ void ShaderModule::reset() {
   module_ = VK_NULL_HANDLE;
 }
 
-PipelineLayout::PipelineLayout(Context& ctx, const std::vector<VkDescriptorSetLayout>& sets,
+PipelineLayout::PipelineLayout(Context& ctx, const SetLayouts& sets,
                                const std::vector<VkPushConstantRange>& pushConstants, const std::string& name)
-    : ctx_(&ctx) {
+    : ctx_(&ctx), push_constants_(pushConstants) {
+  std::vector<VkDescriptorSetLayout> handles;
+  for (const DescriptorSetLayout& s : sets) {
+    handles.push_back(s.handle());
+    set_bindings_.push_back(s.bindings());
+  }
   VkPipelineLayoutCreateInfo ci{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
-  ci.setLayoutCount = static_cast<std::uint32_t>(sets.size());
-  ci.pSetLayouts = sets.data();
+  ci.setLayoutCount = static_cast<std::uint32_t>(handles.size());
+  ci.pSetLayouts = handles.data();
   ci.pushConstantRangeCount = static_cast<std::uint32_t>(pushConstants.size());
   ci.pPushConstantRanges = pushConstants.data();
   check(vkCreatePipelineLayout(ctx.device(), &ci, nullptr, &layout_), "vkCreatePipelineLayout");
@@ -76,6 +86,8 @@ PipelineLayout& PipelineLayout::operator=(PipelineLayout&& o) noexcept {
     reset();
     ctx_ = std::exchange(o.ctx_, nullptr);
     layout_ = std::exchange(o.layout_, VK_NULL_HANDLE);
+    set_bindings_ = std::move(o.set_bindings_);
+    push_constants_ = std::move(o.push_constants_);
   }
   return *this;
 }
@@ -107,8 +119,9 @@ void PipelineCache::save() const {
   writeFileAtomic(file_, data);
 }
 
-Pipeline::Pipeline(Context& ctx, VkPipeline pipeline, VkPipelineBindPoint bindPoint, VkPipelineLayout layout)
-    : ctx_(&ctx), pipeline_(pipeline), bind_point_(bindPoint), layout_(layout) {}
+Pipeline::Pipeline(Context& ctx, VkPipeline pipeline, VkPipelineBindPoint bindPoint, VkPipelineLayout layout,
+                   bool heldByTable)
+    : ctx_(&ctx), pipeline_(pipeline), bind_point_(bindPoint), layout_(layout), held_by_table_(heldByTable) {}
 
 Pipeline& Pipeline::operator=(Pipeline&& o) noexcept {
   if (this != &o) {
@@ -117,13 +130,15 @@ Pipeline& Pipeline::operator=(Pipeline&& o) noexcept {
     pipeline_ = std::exchange(o.pipeline_, VK_NULL_HANDLE);
     bind_point_ = o.bind_point_;
     layout_ = std::exchange(o.layout_, VK_NULL_HANDLE);
+    held_by_table_ = std::exchange(o.held_by_table_, false);
   }
   return *this;
 }
 
 void Pipeline::reset() {
-  if (pipeline_) vkDestroyPipeline(ctx_->device(), pipeline_, nullptr);
+  if (pipeline_ && !held_by_table_) vkDestroyPipeline(ctx_->device(), pipeline_, nullptr);
   pipeline_ = VK_NULL_HANDLE;
+  held_by_table_ = false;
 }
 
 namespace {
@@ -143,10 +158,54 @@ struct Specialization {
   const VkSpecializationInfo* get() const { return entries.empty() ? nullptr : &info; }
 };
 
-}  // namespace
+// The pipeline table's key bytes (pipeline_table.hpp): each value appended whole, field by field
+// (never a struct with padding), so equal keys mean equal creation inputs — the SPIR-V by hash.
+struct Key {
+  std::string bytes;
+  template <class T>
+    requires std::is_trivially_copyable_v<T>
+  Key& pod(const T& v) {
+    bytes.append(reinterpret_cast<const char*>(&v), sizeof v);
+    return *this;
+  }
+  Key& shader(const ShaderModule* m) {
+    pod(m != nullptr);
+    return m ? pod(m->spirvHash()) : *this;
+  }
+  Key& constants(const SpecConstants& values) {
+    pod(std::uint64_t(values.size()));
+    for (std::uint32_t v : values) pod(v);
+    return *this;
+  }
+};
 
-Pipeline createComputePipeline(Context& ctx, const PipelineLayout& layout, const ShaderModule& shader,
-                               const std::string& name, const PipelineCache* cache, const SpecConstants& specialization) {
+std::string computeKey(const ShaderModule& shader, const SpecConstants& specialization) {
+  return Key().pod('C').shader(&shader).constants(specialization).bytes;
+}
+
+std::string graphicsKey(const GraphicsPipelineDesc& desc) {
+  // Every member of the desc, in order: a member added to GraphicsPipelineDesc fails to compile
+  // here until it joins the key (or is named as left out, as `name` is: a debug name only).
+  [[maybe_unused]] const auto& [vertex, fragment, bindings, attributes, topology, colorFormats, depthFormat, cull,
+                                frontFace, polygonMode, blend, depthTest, depthWrite, depthCompare, depthBias,
+                                specialization, name] = desc;
+  Key k;
+  k.pod('G').shader(vertex).shader(fragment);
+  k.pod(std::uint64_t(bindings.size()));
+  for (const VertexBinding& b : bindings) k.pod(b.binding).pod(b.stride).pod(b.perInstance);
+  k.pod(std::uint64_t(attributes.size()));
+  for (const VertexAttribute& a : attributes) k.pod(a.location).pod(a.binding).pod(a.format).pod(a.offset);
+  k.pod(topology);
+  k.pod(std::uint64_t(colorFormats.size()));
+  for (VkFormat f : colorFormats) k.pod(f);
+  k.pod(depthFormat).pod(cull).pod(frontFace).pod(polygonMode).pod(blend);
+  k.pod(depthTest).pod(depthWrite).pod(depthCompare).pod(depthBias);
+  k.constants(specialization);
+  return k.bytes;
+}
+
+VkPipeline buildCompute(Context& ctx, VkPipelineLayout layout, const ShaderModule& shader,
+                        const SpecConstants& specialization, const PipelineCache* cache) {
   const Specialization spec(specialization);
   VkComputePipelineCreateInfo ci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
   ci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
@@ -154,17 +213,37 @@ Pipeline createComputePipeline(Context& ctx, const PipelineLayout& layout, const
   ci.stage.module = shader.handle();
   ci.stage.pName = "main";
   ci.stage.pSpecializationInfo = spec.get();
-  ci.layout = layout.handle();
+  ci.layout = layout;
   VkPipeline p = VK_NULL_HANDLE;
   check(vkCreateComputePipelines(ctx.device(), cache ? cache->handle() : VK_NULL_HANDLE, 1, &ci, nullptr, &p),
         "vkCreateComputePipelines");
-  ctx.setName(VK_OBJECT_TYPE_PIPELINE, p, name);
-  return Pipeline(ctx, p, VK_PIPELINE_BIND_POINT_COMPUTE, layout.handle());
+  return p;
+}
+
+VkPipeline buildGraphics(Context& ctx, VkPipelineLayout layout, const GraphicsPipelineDesc& desc,
+                         const PipelineCache* cache);
+
+}  // namespace
+
+Pipeline createComputePipeline(Context& ctx, const PipelineLayout& layout, const ShaderModule& shader,
+                               const std::string& name, const PipelineCache* cache, const SpecConstants& specialization) {
+  return ctx.pipelines().obtain(computeKey(shader, specialization), layout, VK_PIPELINE_BIND_POINT_COMPUTE, name,
+                                [&](VkPipelineLayout vkLayout) {
+                                  return buildCompute(ctx, vkLayout, shader, specialization, cache);
+                                });
 }
 
 Pipeline createGraphicsPipeline(Context& ctx, const PipelineLayout& layout, const GraphicsPipelineDesc& desc,
                                 const PipelineCache* cache) {
   if (!desc.vertex) throw InternalError("vulkan: graphics pipeline '" + desc.name + "' has no vertex shader");
+  return ctx.pipelines().obtain(graphicsKey(desc), layout, VK_PIPELINE_BIND_POINT_GRAPHICS, desc.name,
+                                [&](VkPipelineLayout vkLayout) { return buildGraphics(ctx, vkLayout, desc, cache); });
+}
+
+namespace {
+
+VkPipeline buildGraphics(Context& ctx, VkPipelineLayout layout, const GraphicsPipelineDesc& desc,
+                         const PipelineCache* cache) {
   const Specialization spec(desc.specialization);
   std::vector<VkPipelineShaderStageCreateInfo> stages;
   VkPipelineShaderStageCreateInfo st{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
@@ -252,13 +331,14 @@ Pipeline createGraphicsPipeline(Context& ctx, const PipelineLayout& layout, cons
   ci.pDepthStencilState = &ds;
   ci.pColorBlendState = &cb;
   ci.pDynamicState = &dyn;
-  ci.layout = layout.handle();
+  ci.layout = layout;
   VkPipeline p = VK_NULL_HANDLE;
   check(vkCreateGraphicsPipelines(ctx.device(), cache ? cache->handle() : VK_NULL_HANDLE, 1, &ci, nullptr, &p),
         "vkCreateGraphicsPipelines");
-  ctx.setName(VK_OBJECT_TYPE_PIPELINE, p, desc.name);
-  return Pipeline(ctx, p, VK_PIPELINE_BIND_POINT_GRAPHICS, layout.handle());
+  return p;
 }
+
+}  // namespace
 
 void setViewportAndScissor(VkCommandBuffer cmd, VkExtent2D extent) {
   VkViewport v{0.0f, 0.0f, static_cast<float>(extent.width), static_cast<float>(extent.height), 0.0f, 1.0f};

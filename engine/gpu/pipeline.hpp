@@ -7,9 +7,11 @@
 // and framebuffer objects. Viewport and scissor are always dynamic state.
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
+#include "engine/gpu/descriptors.hpp"
 #include "engine/gpu/vk.hpp"
 
 namespace bounce::gpu {
@@ -33,18 +35,26 @@ class ShaderModule {
   void reset();
   VkShaderModule handle() const { return module_; }
   const std::string& name() const { return name_; }
+  // 64-bit hash (engine/core/hash.hpp) of the SPIR-V words and their count: the shader's part of
+  // the pipeline table's key (pipeline_table.hpp). Two modules from the same bytes hash alike.
+  std::uint64_t spirvHash() const { return spirv_hash_; }
 
  private:
   Context* ctx_ = nullptr;
   VkShaderModule module_ = VK_NULL_HANDLE;
   std::string name_;
+  std::uint64_t spirv_hash_ = 0;
 };
 
+// A pipeline layout keeps what it was made of (each set layout's bindings, the push ranges) so
+// the pipeline table can key pipelines by the layout's content, not its handle: two layouts built
+// alike (one per Session) are "compatible" in Vulkan's sense and bind the same pipelines.
 class PipelineLayout {
  public:
+  using SetLayouts = std::vector<std::reference_wrapper<const DescriptorSetLayout>>;
   PipelineLayout() = default;
-  PipelineLayout(Context& ctx, const std::vector<VkDescriptorSetLayout>& sets,
-                 const std::vector<VkPushConstantRange>& pushConstants, const std::string& name);
+  PipelineLayout(Context& ctx, const SetLayouts& sets, const std::vector<VkPushConstantRange>& pushConstants,
+                 const std::string& name);
   ~PipelineLayout() { reset(); }
   PipelineLayout(PipelineLayout&& o) noexcept { *this = std::move(o); }
   PipelineLayout& operator=(PipelineLayout&& o) noexcept;
@@ -52,10 +62,14 @@ class PipelineLayout {
   PipelineLayout& operator=(const PipelineLayout&) = delete;
   void reset();
   VkPipelineLayout handle() const { return layout_; }
+  const std::vector<std::vector<Binding>>& setBindings() const { return set_bindings_; }
+  const std::vector<VkPushConstantRange>& pushConstants() const { return push_constants_; }
 
  private:
   Context* ctx_ = nullptr;
   VkPipelineLayout layout_ = VK_NULL_HANDLE;
+  std::vector<std::vector<Binding>> set_bindings_;  // per set, as its DescriptorSetLayout had them
+  std::vector<VkPushConstantRange> push_constants_;
 };
 
 // VkPipelineCache, optionally loaded from and saved to a file (a stale or foreign file is
@@ -75,10 +89,15 @@ class PipelineCache {
   std::filesystem::path file_;
 };
 
+// A bound pipeline and the layout its sets and push constants go through. Either owned (destroyed
+// with this object) or held by the Context's pipeline table (pipeline_table.hpp: shared by every
+// identical request, destroyed with the Context); `layout` is the requester's own, compatible with
+// the one the table built the pipeline with.
 class Pipeline {
  public:
   Pipeline() = default;
-  Pipeline(Context& ctx, VkPipeline pipeline, VkPipelineBindPoint bindPoint, VkPipelineLayout layout);
+  Pipeline(Context& ctx, VkPipeline pipeline, VkPipelineBindPoint bindPoint, VkPipelineLayout layout,
+           bool heldByTable = false);
   ~Pipeline() { reset(); }
   Pipeline(Pipeline&& o) noexcept { *this = std::move(o); }
   Pipeline& operator=(Pipeline&& o) noexcept;
@@ -88,6 +107,7 @@ class Pipeline {
   VkPipeline handle() const { return pipeline_; }
   VkPipelineLayout layout() const { return layout_; }
   VkPipelineBindPoint bindPoint() const { return bind_point_; }
+  bool heldByTable() const { return held_by_table_; }
 
   void bind(VkCommandBuffer cmd) const { vkCmdBindPipeline(cmd, bind_point_, pipeline_); }
   void bindSet(VkCommandBuffer cmd, std::uint32_t index, VkDescriptorSet set) const {
@@ -105,6 +125,7 @@ class Pipeline {
   VkPipeline pipeline_ = VK_NULL_HANDLE;
   VkPipelineBindPoint bind_point_ = VK_PIPELINE_BIND_POINT_COMPUTE;
   VkPipelineLayout layout_ = VK_NULL_HANDLE;  // not owned
+  bool held_by_table_ = false;                // the Context's table destroys it, not reset()
 };
 
 // Specialization constants: value i is `layout(constant_id = i)` in every stage of the pipeline
@@ -113,6 +134,9 @@ class Pipeline {
 // a mask, so an untaken variant block costs in full (README "What costs what on lavapipe").
 using SpecConstants = std::vector<std::uint32_t>;
 
+// Both create functions go through the Context's pipeline table (pipeline_table.hpp): with reuse
+// on (the default) an identical earlier request's pipeline comes back, held by the table; with it
+// off every call builds and owns a new one. `cache` only matters when the driver builds.
 Pipeline createComputePipeline(Context& ctx, const PipelineLayout& layout, const ShaderModule& shader,
                                const std::string& name, const PipelineCache* cache = nullptr,
                                const SpecConstants& specialization = {});

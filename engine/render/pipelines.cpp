@@ -28,12 +28,12 @@ Pipelines::Pipelines(gpu::Context& ctx)
       tonemapLayout(ctx, {{0, kSampled}}, "tonemap"),
       skinningLayout(ctx, {{0, kStorage}, {1, kStorage}, {2, kStorage}, {3, kStorage}, {4, kStorage}}, "skinning"),
       subdivisionLayout(ctx, {{0, kStorage}, {1, kStorage}, {2, kStorage}}, "subdivision") {
-  gbufferLayout = gpu::PipelineLayout(ctx, {frameLayout.handle(), materialLayout.handle()}, {push(4)}, "gbuffer");
-  shadowLayout = gpu::PipelineLayout(ctx, {frameLayout.handle()}, {push(8)}, "shadow");
+  gbufferLayout = gpu::PipelineLayout(ctx, {frameLayout, materialLayout}, {push(4)}, "gbuffer");
+  shadowLayout = gpu::PipelineLayout(ctx, {frameLayout}, {push(8)}, "shadow");
   lightingPipelineLayout =
-      gpu::PipelineLayout(ctx, {frameLayout.handle(), lightingLayout.handle()}, {push(24)}, "lighting");
-  debugPipelineLayout = gpu::PipelineLayout(ctx, {frameLayout.handle(), debugLayout.handle()}, {push(16)}, "debug");
-  tonemapPipelineLayout = gpu::PipelineLayout(ctx, {tonemapLayout.handle()}, {push(4)}, "tonemap");
+      gpu::PipelineLayout(ctx, {frameLayout, lightingLayout}, {push(24)}, "lighting");
+  debugPipelineLayout = gpu::PipelineLayout(ctx, {frameLayout, debugLayout}, {push(16)}, "debug");
+  tonemapPipelineLayout = gpu::PipelineLayout(ctx, {tonemapLayout}, {push(4)}, "tonemap");
 
   gpu::ShaderModule meshVert(ctx, "passes/mesh.vert.spv");
   gpu::ShaderModule gbufferFrag(ctx, "passes/gbuffer.frag.spv");
@@ -91,11 +91,11 @@ Pipelines::Pipelines(gpu::Context& ctx)
   f.name = "tonemap";
   tonemap = gpu::createGraphicsPipeline(ctx, tonemapPipelineLayout, f);
 
-  skinningPipelineLayout = gpu::PipelineLayout(ctx, {skinningLayout.handle()}, {push(24)}, "skinning");
+  skinningPipelineLayout = gpu::PipelineLayout(ctx, {skinningLayout}, {push(24)}, "skinning");
   gpu::ShaderModule skinningComp(ctx, "skinning/skinning.comp.spv");
   skinning = gpu::createComputePipeline(ctx, skinningPipelineLayout, skinningComp, "skinning");
 
-  subdivisionPipelineLayout = gpu::PipelineLayout(ctx, {subdivisionLayout.handle()}, {push(12)}, "subdivision");
+  subdivisionPipelineLayout = gpu::PipelineLayout(ctx, {subdivisionLayout}, {push(12)}, "subdivision");
   gpu::ShaderModule subdivisionComp(ctx, "subdivision/subdivision.comp.spv");
   subdivision = gpu::createComputePipeline(ctx, subdivisionPipelineLayout, subdivisionComp, "subdivision");
 }

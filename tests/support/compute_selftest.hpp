@@ -31,7 +31,7 @@ std::vector<Output> runComputeSelfTest(gpu::Context& ctx, const std::string& sha
   gpu::upload(ctx, in, inBytes);
   gpu::DescriptorSetLayout layout(ctx, {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}, {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}},
                                   "selftest");
-  gpu::PipelineLayout pipelineLayout(ctx, {layout.handle()}, {}, "selftest");
+  gpu::PipelineLayout pipelineLayout(ctx, {layout}, {}, "selftest");
   gpu::ShaderModule module(ctx, shader);
   gpu::Pipeline pipeline = gpu::createComputePipeline(ctx, pipelineLayout, module, shader);
   gpu::DescriptorAllocator descriptors(ctx);

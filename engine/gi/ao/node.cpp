@@ -35,7 +35,7 @@ Node::Node(gpu::Context& ctx, const render::Pipelines& shared, Kind kind, Settin
       kind_(kind),
       settings_(settings),
       inputLayout_(ctx, {{0, kSampled}, {1, kSampled}}, std::string("ao.") + kindName(kind)),
-      layout_(ctx, {shared.frameLayout.handle(), inputLayout_.handle()},
+      layout_(ctx, {shared.frameLayout, inputLayout_},
               {VkPushConstantRange{VK_SHADER_STAGE_ALL, 0, sizeof(Push)}}, std::string("ao.") + kindName(kind)) {
   gpu::ShaderModule vert(ctx, "passes/fullscreen.vert.spv");
   gpu::ShaderModule frag(ctx, std::string("ao/") + kindName(kind) + ".frag.spv");

@@ -110,16 +110,16 @@ Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t fra
     : ctx_(ctx),
       inputLayout_(ctx, {{0, kSampled}, {1, kSampled}, {2, kSampled}, {3, kStorage}, {4, kSampled}}, "dnrt.inputs"),
       fieldLayout_(ctx, {{0, kSampled}, {1, kSampled}}, "dnrt.field"),  // combined volume, intrusion map
-      layout_(ctx, {shared.frameLayout.handle(), inputLayout_.handle(), fieldLayout_.handle()},
+      layout_(ctx, {shared.frameLayout, inputLayout_, fieldLayout_},
               {VkPushConstantRange{VK_SHADER_STAGE_ALL, 0, sizeof(Push)}}, "dnrt"),
-      cubeLayout_(ctx, {shared.frameLayout.handle()}, {VkPushConstantRange{VK_SHADER_STAGE_ALL, 0, sizeof(CubePush)}},
+      cubeLayout_(ctx, {shared.frameLayout}, {VkPushConstantRange{VK_SHADER_STAGE_ALL, 0, sizeof(CubePush)}},
                   "dnrt.cube"),
       objectBuffers_(framesInFlight),
       fusedBuffers_(framesInFlight),
       fusedTileBuffers_(framesInFlight),
       fusedClusterBuffers_(framesInFlight),
       clusterLayout_(ctx, {{0, kUniform}, {1, kSampled}}, "dnrt.cluster"),  // records, combined atlas
-      clusterPipelineLayout_(ctx, {shared.frameLayout.handle(), inputLayout_.handle(), clusterLayout_.handle()},
+      clusterPipelineLayout_(ctx, {shared.frameLayout, inputLayout_, clusterLayout_},
                              {VkPushConstantRange{VK_SHADER_STAGE_ALL, 0, sizeof(ClusterPush)}}, "dnrt.clustered"),
       tileBuffers_(framesInFlight),
       clusterObjectBuffers_(framesInFlight),
@@ -127,17 +127,17 @@ Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t fra
                            {6, kSampled}, {7, kSampled}, {8, kStorageImage}, {9, kSampled}, {10, kSampled},
                            {11, kSampled}, {12, kSampled}, {13, kSampled}, {14, kSampled}, {15, kSampled}},
                      "dnrt.combine"),
-      combinePipelineLayout_(ctx, {combineLayout_.handle()},
+      combinePipelineLayout_(ctx, {combineLayout_},
                              {VkPushConstantRange{VK_SHADER_STAGE_ALL, 0, sizeof(CombinePush)}},
                              "dnrt.combine"),
       cullLayout_(ctx, {{0, kSampled}, {1, kStorage}, {2, kUniform}}, "dnrt.cull"),  // depth, masks, records
-      cullPipelineLayout_(ctx, {cullLayout_.handle()}, {VkPushConstantRange{VK_SHADER_STAGE_ALL, 0, sizeof(CullPush)}},
+      cullPipelineLayout_(ctx, {cullLayout_}, {VkPushConstantRange{VK_SHADER_STAGE_ALL, 0, sizeof(CullPush)}},
                           "dnrt.cull"),
       upsampleInputs_(ctx, {{0, kSampled}, {1, kSampled}, {2, kSampled}, {3, kSampled}}, "dnrt.upsample.inputs"),
-      upsampleLayout_(ctx, {shared.frameLayout.handle(), upsampleInputs_.handle()}, {}, "dnrt.upsample"),
+      upsampleLayout_(ctx, {shared.frameLayout, upsampleInputs_}, {}, "dnrt.upsample"),
       fusedReducedInputs_(ctx, {{0, kSampled}, {1, kSampled}, {2, kSampled}, {3, kStorageImage}},
                           "dnrt.fused.reduced"),  // depth, normal, combined volume, target
-      fusedReducedLayout_(ctx, {fusedReducedInputs_.handle()},
+      fusedReducedLayout_(ctx, {fusedReducedInputs_},
                           {VkPushConstantRange{VK_SHADER_STAGE_ALL, 0, sizeof(FusedReducedPush)}},
                           "dnrt.fused.reduced") {
   {

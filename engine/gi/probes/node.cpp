@@ -299,7 +299,7 @@ ProbeNode::ProbeNode(gpu::Context& ctx, const render::Pipelines& pipelines, Prob
                                                   {3, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
                                                   {4, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}},
                                                  "probes.tiles");
-      tilesLayout_ = gpu::PipelineLayout(ctx, {tilesSetLayout_.handle()}, {{VK_SHADER_STAGE_ALL, 0, sizeof(ProbePush)}},
+      tilesLayout_ = gpu::PipelineLayout(ctx, {tilesSetLayout_}, {{VK_SHADER_STAGE_ALL, 0, sizeof(ProbePush)}},
                                          "probes.tiles");
       gpu::ShaderModule comp(ctx, "probes/tiles.comp.spv");
       tilesPipeline_ = gpu::createComputePipeline(ctx, tilesLayout_, comp, "probes.tiles", nullptr,
@@ -307,7 +307,7 @@ ProbeNode::ProbeNode(gpu::Context& ctx, const render::Pipelines& pipelines, Prob
       buildBakedTiles(ctx);
     }
   }
-  layout_ = gpu::PipelineLayout(ctx, {pipelines.frameLayout.handle(), setLayout_.handle()},
+  layout_ = gpu::PipelineLayout(ctx, {pipelines.frameLayout, setLayout_},
                                 {{VK_SHADER_STAGE_ALL, 0, sizeof(ProbePush) + sizeof(FusedDnrtPush)}}, "probes");
   {
     // Binding 9 when no fused DNRT object reads it (probes.frag kDnrt false): one zero texel.

@@ -56,7 +56,7 @@ RelightPass::RelightPass(gpu::Context& ctx, const ProbeVolume& volume, RelightDa
                   {13, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                   {14, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}},
                  "probes.relight"),
-      layout_(ctx, {setLayout_.handle()}, {{VK_SHADER_STAGE_ALL, 0, sizeof(Push)}}, "probes.relight") {
+      layout_(ctx, {setLayout_}, {{VK_SHADER_STAGE_ALL, 0, sizeof(Push)}}, "probes.relight") {
   const std::size_t probes = volume.grid.probeCount();
   if (data_.probes() != probes) throw InternalError("probes::RelightPass: relight data for another grid");
   std::vector<glm::vec4> surfels;

@@ -19,7 +19,7 @@ Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t fra
     : ctx_(ctx),
       inputLayout_(ctx, {{0, kSampled}, {1, kSampled}, {2, kSampled}, {3, kSampled}}, "rtf.inputs"),
       objectLayout_(ctx, {{0, kUniform}, {1, kSampled}, {2, kUniform}}, "rtf.object"),
-      layout_(ctx, {shared.frameLayout.handle(), inputLayout_.handle(), objectLayout_.handle()}, {}, "rtf"),
+      layout_(ctx, {shared.frameLayout, inputLayout_, objectLayout_}, {}, "rtf"),
       records_(framesInFlight) {
   const gpu::ShaderModule vert(ctx, "rtf/rtf.vert.spv"), frag(ctx, "rtf/rtf.frag.spv");
   gpu::GraphicsPipelineDesc d;

@@ -63,7 +63,7 @@ XiPass::XiPass(gpu::Context& ctx, const Field& f)
                   {12, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                   {13, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}},
                  "rtf.xi"),
-      layout_(ctx, {setLayout_.handle()}, {{VK_SHADER_STAGE_ALL, 0, sizeof(Push)}}, "rtf.xi"),
+      layout_(ctx, {setLayout_}, {{VK_SHADER_STAGE_ALL, 0, sizeof(Push)}}, "rtf.xi"),
       descriptors_(ctx) {
   const FieldSettings& s = f.settings;
   push_ = {0, std::uint32_t(s.proxies), std::uint32_t(f.itf.clusters), std::uint32_t(f.itf.components),

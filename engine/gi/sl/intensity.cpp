@@ -121,7 +121,7 @@ IntensityPass::IntensityPass(gpu::Context& ctx, std::span<const SphereSet* const
     : ctx_(ctx),
       order_(order),
       setLayout_(ctx, passBindings(), "sl.intensity"),
-      layout_(ctx, {setLayout_.handle()}, {{VK_SHADER_STAGE_ALL, 0, sizeof(Push)}}, "sl.intensity"),
+      layout_(ctx, {setLayout_}, {{VK_SHADER_STAGE_ALL, 0, sizeof(Push)}}, "sl.intensity"),
       descriptors_(ctx, "sl.intensity"),
       samplers_(ctx) {
   if (order != 3 && order != 4) throw InternalError("sl::IntensityPass: order must be 3 or 4");
@@ -200,7 +200,7 @@ IntensityPass::IntensityPass(gpu::Context& ctx, std::span<const SphereSet* const
                                                  {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                                                  {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}},
                                                 "sl.parents");
-    parentLayout_ = gpu::PipelineLayout(ctx, {parentSetLayout_.handle()}, {}, "sl.parents");
+    parentLayout_ = gpu::PipelineLayout(ctx, {parentSetLayout_}, {}, "sl.parents");
     parentPipeline_ = gpu::createComputePipeline(ctx, parentLayout_, gpu::ShaderModule(ctx, "sl/parent_intensity.comp.spv"),
                                                  "sl.parents", nullptr, {std::uint32_t(order)});
     parentSet_ = descriptors_.allocate(parentSetLayout_);

@@ -33,7 +33,7 @@ LocalLightPass::LocalLightPass(gpu::Context& ctx, const render::Pipelines& share
                                std::uint32_t spheres, float influence)
     : ctx_(ctx),
       inputLayout_(ctx, inputBindings(), "sl.local.inputs"),
-      layout_(ctx, {shared.frameLayout.handle(), inputLayout_.handle()},
+      layout_(ctx, {shared.frameLayout, inputLayout_},
               {{VK_SHADER_STAGE_ALL, 0, sizeof(LightPush) + sizeof(TilePush)}}, "sl.local") {
   gpu::ShaderModule vert(ctx, "sl/local_tiles.vert.spv");
   gpu::ShaderModule frag(ctx, "sl/local_light.frag.spv");

@@ -64,7 +64,7 @@ Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t fra
       influence_(influence),
       resolution_(resolution),
       inputLayout_(ctx, inputBindings(hierarchy), "sl.inputs"),
-      layout_(ctx, {shared.frameLayout.handle(), inputLayout_.handle()},
+      layout_(ctx, {shared.frameLayout, inputLayout_},
               {VkPushConstantRange{VK_SHADER_STAGE_ALL, 0, sizeof(TilePush)}}, "sl") {
   hierarchy_ = hierarchy;
   if (hierarchy && sets.size() > kMaxHierarchyObjects)
@@ -106,7 +106,7 @@ Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t fra
   }
   if (reduced) {
     upsampleInputs_ = gpu::DescriptorSetLayout(ctx, upsampleBindings(), "sl.upsample.inputs");
-    upsampleLayout_ = gpu::PipelineLayout(ctx, {shared.frameLayout.handle(), upsampleInputs_.handle()},
+    upsampleLayout_ = gpu::PipelineLayout(ctx, {shared.frameLayout, upsampleInputs_},
                                           {VkPushConstantRange{VK_SHADER_STAGE_ALL, 0, sizeof(TilePush)}}, "sl.upsample");
     upsampleFrag_ = gpu::ShaderModule(ctx, "sl/upsample.frag.spv");
     gpu::GraphicsPipelineDesc u;
@@ -136,7 +136,7 @@ Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t fra
     local_ = std::make_unique<LocalLightPass>(ctx, shared, order, blocking, spheres_, influence);
   if (hierarchy) {
     ratioInputs_ = gpu::DescriptorSetLayout(ctx, ratioBindings(), "sl.hierarchy.inputs");
-    ratioLayout_ = gpu::PipelineLayout(ctx, {ratioInputs_.handle()}, {VkPushConstantRange{VK_SHADER_STAGE_ALL, 0, sizeof(RatioPush)}},
+    ratioLayout_ = gpu::PipelineLayout(ctx, {ratioInputs_}, {VkPushConstantRange{VK_SHADER_STAGE_ALL, 0, sizeof(RatioPush)}},
                                        "sl.hierarchy");
     gpu::SpecConstants spec = ShadeData::specialization(order, blocking, spheres_, 0.0f);  // Eq. 25: uncut
     spec.push_back(step);                                                                  // kStep
@@ -152,7 +152,7 @@ void Node::enableRelightBounce(probes::RelightPass& relight) {
   b.push_back({3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
   b.push_back({4, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
   bounceInputs_ = gpu::DescriptorSetLayout(ctx_, b, "sl.relight_bounce.inputs");
-  bounceLayout_ = gpu::PipelineLayout(ctx_, {bounceInputs_.handle()}, {VkPushConstantRange{VK_SHADER_STAGE_ALL, 0, sizeof(glm::uvec4)}},
+  bounceLayout_ = gpu::PipelineLayout(ctx_, {bounceInputs_}, {VkPushConstantRange{VK_SHADER_STAGE_ALL, 0, sizeof(glm::uvec4)}},
                                       "sl.relight_bounce");
   // Pass 2's cut (rule 0's F, in sphere radii): the room carries on the first bounce that pass 2
   // shows, no more. Uncut here against a cut pass 2 measured worse on cornell-1 (0.592 → 0.785 at 12:

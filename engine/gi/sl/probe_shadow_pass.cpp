@@ -51,7 +51,7 @@ ProbeShadowPass::ProbeShadowPass(gpu::Context& ctx, const render::Pipelines& sha
       reduced_(checkedStep(step) > 1u),  // 1, 2 or 4 only (resolution.hpp)
       step_(step),
       inputLayout_(ctx, inputBindings(hierarchy), "sl.shadow.inputs"),
-      layout_(ctx, {shared.frameLayout.handle(), inputLayout_.handle()},
+      layout_(ctx, {shared.frameLayout, inputLayout_},
               {{VK_SHADER_STAGE_ALL, 0, sizeof(probes::ProbePush) + sizeof(TilePush)}}, "sl.shadow") {
   hierarchy_ = hierarchy;
   tileCut_ = tileCut && !hierarchy;
@@ -91,7 +91,7 @@ ProbeShadowPass::ProbeShadowPass(gpu::Context& ctx, const render::Pipelines& sha
   }
   if (hierarchy) {
     ratioInputs_ = gpu::DescriptorSetLayout(ctx, ratioBindings(), "sl.shadow.hierarchy.inputs");
-    ratioLayout_ = gpu::PipelineLayout(ctx, {shared.frameLayout.handle(), ratioInputs_.handle()},
+    ratioLayout_ = gpu::PipelineLayout(ctx, {shared.frameLayout, ratioInputs_},
                                        {{VK_SHADER_STAGE_ALL, 0, sizeof(RatioPush)}}, "sl.shadow.hierarchy");
     gpu::SpecConstants spec = ShadeData::specialization(order, blocking, spheres, 0.0f);  // τ: uncut
     spec.push_back(std::uint32_t(probes.volume->coeffs()));

@@ -78,8 +78,8 @@ Runtime::Runtime(gpu::Context& ctx, const render::Pipelines& pipelines, ecs::Reg
                    {{0, kSampled}, {1, kSampled}, {2, kSampled}, {3, kSampled}, {4, kStorage}, {5, kSampled},
                     {6, kStorage}, {7, kStorage}},
                    "vlm"),
-      lightsPipelineLayout_(ctx, {lightsLayout_.handle()}, {{VK_SHADER_STAGE_ALL, 0, sizeof(LightsPush)}}, "vlm.lights"),
-      shadePipelineLayout_(ctx, {pipelines.frameLayout.handle(), shadeLayout_.handle()},
+      lightsPipelineLayout_(ctx, {lightsLayout_}, {{VK_SHADER_STAGE_ALL, 0, sizeof(LightsPush)}}, "vlm.lights"),
+      shadePipelineLayout_(ctx, {pipelines.frameLayout, shadeLayout_},
                            {{VK_SHADER_STAGE_ALL, 0, sizeof(ShadePush)}}, "vlm"),
       buffers_(std::max(1u, framesInFlight)) {
   gpu::ShaderModule vert(ctx, "passes/fullscreen.vert.spv");

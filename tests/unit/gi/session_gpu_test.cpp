@@ -4,10 +4,13 @@
 // table order.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <fstream>
 
 #include "engine/core/error.hpp"
+#include "engine/gpu/pipeline_table.hpp"
 #include "engine/gpu/presenter_offscreen.hpp"
 #include "engine/scene/level.hpp"
 #include "engine/gpu/testing.hpp"
@@ -192,4 +195,49 @@ TEST(SessionPlacement, ScaleThroughZeroSkipsTheObjectsGiForThatFrame) {
       EXPECT_GT(largest, 1e-4f) << "t = " << t << ": the object's GI (scale ±0.1)";
   }
   session.renderer().frames().waitIdle();
+}
+
+// The Context's pipeline table (engine/gpu/pipeline_table.hpp), as `bounce accuracy` uses it: two
+// Sessions per row on one Context. The second Session of a level builds no pipeline — every request
+// it makes (as many as the first made) is answered from the table — and its image is bit-identical
+// to one rendered with reuse off, where every request builds its own pipeline (exact bytes: the same
+// creation input gives the same pipeline, so no tolerance). Renderer, shadows, DNRT and RTF passes.
+TEST(SessionPipelines, SecondSessionOnOneContextBuildsNoneAndRendersAsWithReuseOff) {
+  const auto path = boxLevel("pipelines", R"({"translation": [0, 0.12, 0], "scale": [0.1, 0.1, 0.1]})", "",
+                             R"(["direct", "shadows", "dnrt", "rtf"])");
+  auto render = [&](gpu::Context& ctx) {
+    game::Session session(ctx, scene::loadLevel(path));
+    gpu::OffscreenPresenter presenter(ctx, kExtent);
+    render::FrameSettings settings;
+    settings.keepHdr = true;
+    session.update(0.0);
+    session.render(presenter, settings);
+    std::vector<float> hdr = session.renderer().readHdr();
+    session.renderer().frames().waitIdle();
+    return hdr;
+  };
+  gpu::ContextOptions on, off;
+  on.reusePipelines = true;
+  off.reusePipelines = false;
+  gpu::Context shared(on);
+  render(shared);  // the first Session: builds every pipeline (and bakes the fields into the cache)
+  const gpu::PipelineTable::Counts first = shared.pipelines().counts();
+  const std::vector<float> reused = render(shared);
+  const gpu::PipelineTable::Counts second = shared.pipelines().counts();
+  const std::uint64_t requests = first.built + first.reused;
+  EXPECT_GT(first.built, 10u) << "gbuffer, shadow, lighting, tonemap, DNRT's and RTF's pipelines";
+  EXPECT_EQ(second.built, first.built) << "the second Session built pipelines";
+  EXPECT_EQ(second.reused - first.reused, requests);
+  EXPECT_EQ(second.held, first.built);
+
+  gpu::Context own(off);
+  const std::vector<float> plain = render(own);
+  EXPECT_EQ(own.pipelines().counts().built, requests) << "reuse off: every request builds";
+  EXPECT_EQ(own.pipelines().counts().held, 0u);
+  ASSERT_EQ(reused.size(), plain.size());
+  EXPECT_EQ(std::memcmp(reused.data(), plain.data(), plain.size() * sizeof(float)), 0)
+      << "the image with the table's pipelines differs from the one with pipelines of its own";
+  float largest = 0.0f;
+  for (float v : plain) largest = std::max(largest, std::abs(v));
+  EXPECT_GT(largest, 1e-3f) << "a lit image, not two black ones";
 }

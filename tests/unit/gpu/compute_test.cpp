@@ -31,7 +31,7 @@ TEST(Compute, FillsAStorageBufferWithAFormula) {
   upload(ctx, out, bytesOf(std::vector<float>(capacity, kSentinel)));
 
   DescriptorSetLayout setLayout(ctx, {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT}}, "fill");
-  PipelineLayout layout(ctx, {setLayout.handle()}, {{VK_SHADER_STAGE_ALL, 0, sizeof(FillPush)}}, "fill");
+  PipelineLayout layout(ctx, {setLayout}, {{VK_SHADER_STAGE_ALL, 0, sizeof(FillPush)}}, "fill");
   ShaderModule shader(ctx, "test/fill.comp.spv");
   PipelineCache cache(ctx);
   Pipeline pipeline = createComputePipeline(ctx, layout, shader, "fill", &cache);
@@ -60,7 +60,7 @@ TEST(Compute, FillsAStorageBufferWithAFormula) {
 TEST(Compute, SpecializationConstantsSelectTheVariant) {
   Context& ctx = testkit::sharedContext();
   DescriptorSetLayout setLayout(ctx, {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT}}, "spec");
-  PipelineLayout layout(ctx, {setLayout.handle()}, {}, "spec");
+  PipelineLayout layout(ctx, {setLayout}, {}, "spec");
   ShaderModule shader(ctx, "test/spec.comp.spv");
   DescriptorAllocator descriptors(ctx);
   const auto run = [&](const SpecConstants& constants) {
@@ -102,7 +102,7 @@ TEST(Compute, PipelineCacheSavesAndReloads) {
   auto file = std::filesystem::path(BOUNCE_TEST_OUT) / "gpu" / "pipeline.cache";
   std::filesystem::remove(file);
   DescriptorSetLayout setLayout(ctx, {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT}}, "fill");
-  PipelineLayout layout(ctx, {setLayout.handle()}, {{VK_SHADER_STAGE_ALL, 0, sizeof(FillPush)}}, "fill");
+  PipelineLayout layout(ctx, {setLayout}, {{VK_SHADER_STAGE_ALL, 0, sizeof(FillPush)}}, "fill");
   ShaderModule shader(ctx, "test/fill.comp.spv");
   {
     PipelineCache cache(ctx, file);

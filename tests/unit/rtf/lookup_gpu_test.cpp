@@ -60,7 +60,7 @@ TEST(RtfLookupGpu, GlslLookupEqualsTheCpuEvaluation) {
                                    {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                                    {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}},
                                   "rtf.lookup");
-  gpu::PipelineLayout pipelineLayout(ctx, {layout.handle()}, {{VK_SHADER_STAGE_ALL, 0, sizeof(Push)}}, "rtf.lookup");
+  gpu::PipelineLayout pipelineLayout(ctx, {layout}, {{VK_SHADER_STAGE_ALL, 0, sizeof(Push)}}, "rtf.lookup");
   gpu::Pipeline pipeline = gpu::createComputePipeline(ctx, pipelineLayout, gpu::ShaderModule(ctx, "rtf/lookup_selftest.comp.spv"), "rtf.lookup");
   gpu::SamplerCache samplers(ctx);
   // Linear: the bilinear part of Eq. 10 is the sampler's (rtf.glsl rtfTaps).

@@ -119,7 +119,7 @@ std::vector<glm::vec3> runHierarchy(gpu::Context& ctx, const Device& s, std::spa
     std::memcpy(radianceBuf.mapped() + 16 * k, &v, 16);
   }
   gpu::DescriptorSetLayout layout(ctx, b, "sl.test");
-  gpu::PipelineLayout pipelineLayout(ctx, {layout.handle()}, {}, "sl.test");
+  gpu::PipelineLayout pipelineLayout(ctx, {layout}, {}, "sl.test");
   gpu::ShaderModule shader(ctx, radiance.empty() ? "sl/hierarchy_selftest.comp.spv" : "sl/hierarchy_shadow_selftest.comp.spv");
   gpu::SpecConstants ratioSpec = ShadeData::specialization(order, blocking, std::uint32_t(s.shaded.size()), 0.0f);
   ratioSpec.push_back(1u);

@@ -138,7 +138,7 @@ std::vector<Output> runShader(gpu::Context& ctx, const Fixture& f, const gi::pro
   b.push_back({6, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
   b.push_back({7, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER});
   gpu::DescriptorSetLayout layout(ctx, b, "sl.shadow.test");
-  gpu::PipelineLayout pipelineLayout(ctx, {layout.handle()}, {{VK_SHADER_STAGE_ALL, 0, sizeof(gi::probes::ProbePush)}},
+  gpu::PipelineLayout pipelineLayout(ctx, {layout}, {{VK_SHADER_STAGE_ALL, 0, sizeof(gi::probes::ProbePush)}},
                                      "sl.shadow.test");
   gpu::SpecConstants spec = ShadeData::specialization(order, Blocking::PerSphere, std::uint32_t(f.shaded.size()));
   spec.push_back(std::uint32_t(vol.coeffs()));

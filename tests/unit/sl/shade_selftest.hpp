@@ -39,7 +39,7 @@ std::vector<Output> runShadeSelfTest(gpu::Context& ctx, const ShadeData& data, c
   b.push_back({3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
   b.push_back({4, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
   gpu::DescriptorSetLayout layout(ctx, b, "sl.test");
-  gpu::PipelineLayout pipelineLayout(ctx, {layout.handle()}, {VkPushConstantRange{VK_SHADER_STAGE_ALL, 0, 16}}, "sl.test");
+  gpu::PipelineLayout pipelineLayout(ctx, {layout}, {VkPushConstantRange{VK_SHADER_STAGE_ALL, 0, 16}}, "sl.test");
   gpu::Pipeline pipeline =
       gpu::createComputePipeline(ctx, pipelineLayout, gpu::ShaderModule(ctx, shader), shader, nullptr, spec);
   gpu::SamplerCache samplers(ctx);
