@@ -98,7 +98,12 @@ TEST(Compute, MissingShaderFileIsNamed) {
 }
 
 TEST(Compute, PipelineCacheSavesAndReloads) {
-  Context& ctx = testkit::sharedContext();
+  // Reuse off: with Context's pipeline table on, the second request would be served from the table
+  // and the reloaded cache never consulted.
+  ContextOptions noReuse;
+  noReuse.reusePipelines = false;
+  Context ctx(noReuse);
+  ASSERT_FALSE(ctx.pipelines().reuses());
   auto file = std::filesystem::path(BOUNCE_TEST_OUT) / "gpu" / "pipeline.cache";
   std::filesystem::remove(file);
   DescriptorSetLayout setLayout(ctx, {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT}}, "fill");
