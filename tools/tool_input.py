@@ -12,7 +12,9 @@ Arguments (argparse, its errors on one line),
 BadInput (raised by read_pfm and the tools' own checks, with the file and what it expected), a missing or
 unreadable file (OSError), and the ValueError / KeyError / IndexError a folder of the wrong kind leads to
 (a CSV without the column, an image of another size). Anything else is a bug in the tool and keeps its
-traceback.
+traceback. A ValueError / KeyError / IndexError can also be a bug in the tool's own arithmetic, which this
+one line would hide: its line says so, and BOUNCE_TOOL_TRACEBACK=1 lets every exception through with its
+traceback (the session-18 review).
 """
 import argparse
 import os
@@ -39,6 +41,8 @@ def run(main, usage, args=(1, None)):
     lo, hi = args
     if len(positional) < lo or (hi is not None and len(positional) > hi):
         _fail(f"{tool}: {len(positional)} arguments (expected usage: {usage})")
+    if os.environ.get("BOUNCE_TOOL_TRACEBACK") == "1":
+        sys.exit(main() or 0)
     try:
         code = main()
     except BadInput as e:
@@ -46,7 +50,8 @@ def run(main, usage, args=(1, None)):
     except OSError as e:
         _fail(f"{e.filename or tool}: {e.strerror or e} (expected the files of the usage: {usage})")
     except (ValueError, KeyError, IndexError) as e:
-        _fail(f"{tool}: {type(e).__name__}: {e} (expected the folders and files of the usage: {usage})")
+        _fail(f"{tool}: {type(e).__name__}: {e} (expected the folders and files of the usage: {usage}; "
+              "if they are, rerun with BOUNCE_TOOL_TRACEBACK=1 for the tool's traceback)")
     sys.exit(code or 0)
 
 

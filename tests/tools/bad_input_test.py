@@ -29,7 +29,8 @@ failures = []
 
 
 def check(name, argv):
-    r = subprocess.run([sys.executable] + argv, capture_output=True, text=True, timeout=120)
+    r = subprocess.run([sys.executable] + argv, capture_output=True, text=True, timeout=120,
+                       env={k: v for k, v in os.environ.items() if k != "BOUNCE_TOOL_TRACEBACK"})
     lines = [l for l in r.stderr.splitlines() if l.strip()]
     if r.returncode != 2 or len(lines) != 1 or "Traceback" in r.stderr:
         failures.append(f"{name}: exit {r.returncode}, stderr {r.stderr.strip()[:400]!r}")
@@ -71,6 +72,13 @@ def main():
             for kind in ("truncated", "garbage"):  # the rest of BAD is read_pfm's alone (above)
                 d = folders[kind]
                 check(f"{t} ({kind} images)", [path, d] + ([] if one else [d]) + extra(d))
+        # The escape hatch for a tool's own bugs: BOUNCE_TOOL_TRACEBACK=1 lets the exception through
+        # with its traceback (exit 1), so a ValueError in a tool's arithmetic is not read as bad input.
+        r = subprocess.run([sys.executable, os.path.join(tools, "effect_noise.py"), folders["garbage"]],
+                           capture_output=True, text=True, timeout=120,
+                           env=dict(os.environ, BOUNCE_TOOL_TRACEBACK="1"))
+        if r.returncode != 1 or "Traceback" not in r.stderr or "BadInput" not in r.stderr:
+            failures.append(f"BOUNCE_TOOL_TRACEBACK=1: exit {r.returncode}, stderr {r.stderr.strip()[-300:]!r}")
     for f in failures:
         print("FAIL", f)
     print(f"{len(TOOLS)} tools, {len(failures)} failures")
