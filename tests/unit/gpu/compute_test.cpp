@@ -9,6 +9,7 @@
 #include "engine/gpu/commands.hpp"
 #include "engine/gpu/descriptors.hpp"
 #include "engine/gpu/pipeline.hpp"
+#include "engine/gpu/pipeline_table.hpp"
 #include "engine/gpu/testing.hpp"
 
 using namespace bounce;
