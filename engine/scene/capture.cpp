@@ -1,5 +1,7 @@
 #include "engine/scene/capture.hpp"
 
+#include <nlohmann/json.hpp>
+
 #include "engine/core/error.hpp"
 #include "engine/scene/json_reader.hpp"
 #include "engine/scene/motion.hpp"

@@ -2,6 +2,8 @@
 
 #include <array>
 
+#include <nlohmann/json.hpp>
+
 #include "engine/core/error.hpp"
 #include "engine/core/suggest.hpp"
 #include "engine/scene/json_reader.hpp"

@@ -6,6 +6,8 @@
 #include <limits>
 #include <set>
 
+#include <nlohmann/json.hpp>
+
 #include "engine/core/error.hpp"
 #include "engine/core/file.hpp"
 
@@ -286,6 +288,8 @@ Node Node::child(std::string_view key) const {
 Node Node::element(std::size_t index) const {
   return Node((*value_)[index], pointer_ + "/" + std::to_string(index), *file_);
 }
+
+bool Object::has(std::string_view key) const { return node_.raw().contains(key); }
 
 std::optional<Node> Object::optional(std::string_view key) const {
   if (!has(key)) return std::nullopt;

@@ -8,6 +8,7 @@
 // parse() adds what nlohmann::json does not check on its own: duplicate object keys, nesting
 // deeper than kMaxDepth (hostile input), numbers that overflow a double (reported at their
 // pointer), and it turns syntax errors into "byte N (line L, column C)" messages.
+#include <cmath>  // HUGE_VAL
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
@@ -17,8 +18,11 @@
 #include <string_view>
 #include <vector>
 
-#include <glm/glm.hpp>
-#include <nlohmann/json.hpp>
+#include <glm/vec3.hpp>
+// Declarations only (nlohmann::json as a reference/pointer type): the full json.hpp (~130k lines
+// preprocessed, ~2 s of gcc per TU) is included by the .cpp files that read JSON, not by every TU
+// that reaches this header through game/session.hpp or engine/gi/participants.hpp (CI time).
+#include <nlohmann/json_fwd.hpp>
 
 namespace bounce::scene::json {
 
@@ -108,7 +112,7 @@ class Object {
  public:
   explicit Object(Node node) : node_(std::move(node)) {}
   const Node& node() const { return node_; }
-  bool has(std::string_view key) const { return node_.raw().contains(key); }
+  bool has(std::string_view key) const;
   std::optional<Node> optional(std::string_view key) const;
   // `expected` words the value, for the "missing required key" message.
   Node required(std::string_view key, const std::string& expected) const;

@@ -6,6 +6,8 @@
 #include <numbers>
 #include <unordered_map>
 
+#include <nlohmann/json.hpp>
+
 #include "engine/core/error.hpp"
 #include "engine/gi/resolution.hpp"  // header only: the "sl" and "dnrt" "resolution" names, one table
 #include "engine/scene/json_reader.hpp"

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "engine/scene/json_reader.hpp"
 #include "engine/scene/transform_math.hpp"
 
 namespace bounce::scene {

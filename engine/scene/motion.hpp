@@ -12,9 +12,14 @@
 //      With axis +Y this is a counter-clockwise turn seen from above: +X at θ=0, −Z at θ=π/2;
 //   4. bob: translation' += axis · amplitude · sin(2π(t/period + phase)).
 #include "engine/scene/components.hpp"
-#include "engine/scene/json_reader.hpp"
 
 namespace bounce::scene {
+
+// Only declared here (as effects.hpp does): json_reader.hpp is for the .cpp files that parse, not
+// for every TU that reaches this header through game/session.hpp (CI time).
+namespace json {
+class Node;
+}
 
 // Parses a `motion` object at `node` (base is left default; instantiate() fills it).
 Motion parseMotion(const json::Node& node);
