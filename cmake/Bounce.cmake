@@ -28,6 +28,31 @@ if(CMAKE_CXX_FLAGS MATCHES "-fsanitize=[^ ]*address")
   endif()
 endif()
 
+# One precompiled header for every test executable (CI time): each test TU otherwise parses ~200k
+# lines of gtest, glm, Vulkan and the standard library before its own code (about half of a test
+# TU's compile time in gcc; measured in README "CI time, session 19"). bounce_test_pch builds it once
+# and every bounce_test target reuses it (REUSE_FROM), so it holds only what no test configures with a
+# macro first (nothing in the project defines GLM_*, VK_* or GTEST_* options). Reuse needs the same
+# compile options as the tests: those below. BOUNCE_TEST_PCH=OFF builds the tests without it (to check
+# that each test includes what it uses).
+option(BOUNCE_TEST_PCH "Tests reuse one precompiled header (gtest, glm, Vulkan, std)" ON)
+if(BOUNCE_TEST_PCH)
+  add_library(bounce_test_pch OBJECT ${PROJECT_SOURCE_DIR}/tests/support/pch.cpp)
+  target_link_libraries(bounce_test_pch PRIVATE GTest::gtest glm::glm Vulkan::Vulkan)
+  target_compile_options(bounce_test_pch PRIVATE -Wall -Wextra $<$<CXX_COMPILER_ID:GNU>:-Wno-restrict>)
+  if(CMAKE_CXX_COMPILER_ID STREQUAL "Clang")
+    # A .pch restored from ccache's store must not be checked against the headers' mtimes (ccache
+    # manual, "Precompiled headers"); gcc's .gch holds none.
+    target_compile_options(bounce_test_pch PRIVATE "SHELL:-Xclang -fno-pch-timestamp")
+  endif()
+  target_precompile_headers(bounce_test_pch PRIVATE
+    <gtest/gtest.h>
+    <glm/glm.hpp> <glm/gtc/matrix_transform.hpp> <glm/gtc/quaternion.hpp>
+    <vulkan/vulkan.h>
+    <algorithm> <array> <cmath> <cstdio> <cstdlib> <cstring> <filesystem> <fstream> <functional>
+    <limits> <map> <memory> <optional> <set> <sstream> <string> <string_view> <variant> <vector>)
+endif()
+
 # bounce_test(NAME SOURCES ... DEPS ... [GPU] [ONE_PROCESS ENTRY] [TIMEOUT s]): a GoogleTest executable
 # registered with ctest, one ctest entry per TEST(). GPU tests run with Vulkan validation on (any
 # validation error fails the test: see engine/gpu) and a build-local Mesa shader cache.
@@ -45,6 +70,9 @@ function(bounce_test name)
     BOUNCE_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
     BOUNCE_SHARED_DIR="${BOUNCE_SHARED_DIR}"
     BOUNCE_TEST_OUT="${PROJECT_BINARY_DIR}/test-out")
+  if(BOUNCE_TEST_PCH)
+    target_precompile_headers(test_${name} REUSE_FROM bounce_test_pch)
+  endif()
   if(NOT ARG_TIMEOUT)
     set(ARG_TIMEOUT 600)
   endif()
