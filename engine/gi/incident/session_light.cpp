@@ -28,6 +28,11 @@ const SceneVisibility& SessionLight::lightVisibility() {
   return *visibility_;
 }
 
+const ref::SceneBvh& SessionLight::surfaces() {
+  if (!surfaces_) surfaces_ = std::make_unique<ref::SceneBvh>(probes::staticScene(level_, cookCache_, nullptr, /*withTextures=*/true));
+  return *surfaces_;
+}
+
 SessionLight& sessionLight(SessionContext& sc) {
   if (!sc.services.light)
     sc.services.light = std::make_shared<SessionLight>(sc.level, sc.cookCache, sc.services.probeVolume);
