@@ -27,13 +27,15 @@ incident::RadianceSH roomShadow(const ref::SceneBvh& level, const PosedOccluders
       const glm::vec3 e = incident::lightIrradiance(light, x, toLight, dist);
       const float cosine = glm::dot(n, toLight);
       if (!(cosine > 0.0f)) continue;
-      // A ray the static level blocks was dark in the probes too; one an object blocks is what they miss.
-      const float seen = incident::traceVisibility(light, x, 0.0f, [&](glm::vec3 o, glm::vec3 d, float tMax) {
-        return level.occluded(o, d, 0.0f, tMax);
-      });
-      if (!(seen > 0.0f)) continue;
+      // What an object blocks is what the probes miss, unless the static level blocks it too (dark in
+      // the probes as well). The objects first: their bounding spheres cull most rays, and where nothing
+      // is blocked the static ray is not needed.
       const float open = incident::traceVisibility(light, x, 0.0f, [&](glm::vec3 o, glm::vec3 d, float tMax) {
         return occluders.occluded(poses, std::numeric_limits<std::size_t>::max(), o, d, tMax);
+      });
+      if (!(open < 1.0f)) continue;
+      const float seen = incident::traceVisibility(light, x, 0.0f, [&](glm::vec3 o, glm::vec3 d, float tMax) {
+        return level.occluded(o, d, 0.0f, tMax);
       });
       lost += e * cosine * seen * (1.0f - open);
     }
