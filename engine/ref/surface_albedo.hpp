@@ -2,7 +2,7 @@
 // A surface's albedo where a ray hit it, as the rasteriser shades it (scene_bvh.hpp's conventions,
 // gbuffer.frag): clamp(albedo factor × base colour texture at the hit's uv, 0, 1). The one
 // evaluation of it: the path tracer (and through it the probe bake), DNRT's and SL's bakes, RTF's room
-// shadows.
+// shadows and its bake's per-vertex albedo.
 #include <cstddef>
 #include <cstdint>
 
