@@ -92,9 +92,10 @@ struct NodeSettings {
   // "dnrt.upsample" (shaders/dnrt/upsample.frag) adds ρ_r times its depth- and normal-aware upsample
   // (SL's weights, gi/upsample.hpp) to "lighting.hdr" at every pixel.
   std::uint32_t step = 1;
-  // The fused mode with one object (addFused): draw the probes pass as the object's outer cube, its term
-  // evaluated only where the pixel's surface is not behind the cube (probes::FusedDnrt::split), whenever
-  // eyeInsideOuterCube (cluster.hpp) holds. Off: one full-screen draw evaluates it everywhere (tests compare the two).
+  // The fused mode with one object at full resolution (addFused): draw the probes pass as the object's outer
+  // cube, its term evaluated only where the pixel's surface is not behind the cube (probes::FusedDnrt::split),
+  // whenever eyeInsideOuterCube (cluster.hpp) holds. Off: one full-screen draw evaluates it everywhere (tests
+  // compare the two). Below full resolution never (measured dearer there).
   bool splitProbes = true;
 };
 

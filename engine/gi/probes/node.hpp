@@ -59,7 +59,8 @@ struct FusedDnrt {
   // README "DNRT's fused term at reduced resolution, session 17"). Unset at step 1 and for several objects (kDnrt 2 runs at full resolution).
   std::optional<rg::Handle<rg::Texture>> reduced;
   std::uint32_t step = 1;
-  // One object (kDnrt 1) with the eye inside its outer cube (gi/dnrt/node.hpp eyeInsideOuterCube): the pass
+  // One object (kDnrt 1) at full resolution with the eye inside its outer cube (gi/dnrt/cluster.hpp
+  // eyeInsideOuterCube; dnrt::Node::addFused sets it at step 1 only, but any step works here): the pass
   // is drawn as the cube's faces twice (shaders/probes/outer_cube.vert), against the G-buffer depth as a
   // read-only attachment — the fused pipeline where the pixel's surface is not behind the face (the term may
   // be non-zero), the plain one where it is (outside the cube: s(r) = 0) — so the term is evaluated only

@@ -924,11 +924,7 @@ TEST(DnrtGpu, FusedModeAtReducedResolutionIsTheFullTermWithinABoundOnASmoothScen
 // cube's faces twice — the fused pipeline where the surface is not behind the face, the plain one where it
 // is. The passes are the unsplit frame's. At full resolution the term is exactly 0 outside the cube
 // (s(r) = 0), so the image is the unsplit one bit for bit: no pixel shaded twice or missed, no term lost.
-// Below full resolution the unsplit pass blends the reduced factor of samples inside the cube into pixels
-// just outside it (the bilinear footprint; session 17's error), which the split leaves at the probes'
-// light: every channel value is the unsplit frame's, or — only where the full-resolution term is 0 — the
-// probes-only frame's within the fp16 rounding of the blend (kHalfUlp of it: the two pipelines compute the
-// probes' light with the same code).
+// Below full resolution the node does not split (measured dearer there).
 TEST(DnrtGpu, FusedProbesPassSplitAtTheOuterCubeIsTheUnsplitImage) {
   gpu::Context& ctx = gpu::testkit::sharedContext();
   const auto render = [&](std::vector<std::string> effects, std::uint32_t step, bool split, bool* wasSplit) {
@@ -949,7 +945,7 @@ TEST(DnrtGpu, FusedProbesPassSplitAtTheOuterCubeIsTheUnsplitImage) {
     return frame;
   };
   const std::vector<std::string> all = {"direct", "probes", "dnrt"};
-  bool splitFull = false, unsplitFull = true, splitQuarter = false, unsplitQuarter = true, probesSplit = true;
+  bool splitFull = false, unsplitFull = true, splitQuarter = true, probesSplit = true;
   const Frame full = render(all, 1, false, &unsplitFull), fullSplit = render(all, 1, true, &splitFull);
   const Frame probesOnly = render({"direct", "probes"}, 1, true, &probesSplit);
   EXPECT_TRUE(splitFull);
@@ -958,7 +954,7 @@ TEST(DnrtGpu, FusedProbesPassSplitAtTheOuterCubeIsTheUnsplitImage) {
   EXPECT_EQ(fullSplit.passes, full.passes);
   ASSERT_EQ(fullSplit.rgb.size(), full.rgb.size());
   ASSERT_EQ(probesOnly.rgb.size(), full.rgb.size());
-  std::size_t differ = 0, carry = 0, outside = 0;
+  std::size_t differ = 0, carry = 0;
   for (std::size_t i = 0; i < full.rgb.size(); ++i) {
     differ += fullSplit.rgb[i] != full.rgb[i] ? 1 : 0;
     carry += full.rgb[i] != probesOnly.rgb[i] ? 1 : 0;
@@ -968,25 +964,9 @@ TEST(DnrtGpu, FusedProbesPassSplitAtTheOuterCubeIsTheUnsplitImage) {
   EXPECT_EQ(differ, 0u);
   EXPECT_GT(carry, 1000u);
 
-  const Frame quarter = render(all, 4, false, &unsplitQuarter), quarterSplit = render(all, 4, true, &splitQuarter);
-  EXPECT_TRUE(splitQuarter);
-  EXPECT_FALSE(unsplitQuarter);
-  EXPECT_EQ(quarterSplit.passes, quarter.passes);
-  ASSERT_EQ(quarterSplit.rgb.size(), full.rgb.size());
-  constexpr float kHalfUlp = 1.0f / 2048.0f;
-  differ = 0;
-  for (std::size_t i = 0; i < full.rgb.size(); ++i) {
-    ASSERT_TRUE(std::isfinite(quarterSplit.rgb[i])) << i;
-    if (quarterSplit.rgb[i] == quarter.rgb[i]) continue;
-    ++differ;
-    outside += full.rgb[i] == probesOnly.rgb[i] ? 1 : 0;
-    EXPECT_LE(std::abs(quarterSplit.rgb[i] - probesOnly.rgb[i]), kHalfUlp * std::abs(probesOnly.rgb[i]) + 1e-7f) << i;
-  }
-  std::printf("split at quarter resolution: %zu channel values differ from the unsplit frame, %zu of them where the "
-              "full-resolution term is 0\n",
-              differ, outside);
-  EXPECT_EQ(outside, differ) << "only pixels the term does not reach change";
-  EXPECT_GT(differ, 0u) << "the unsplit pass blends some term into pixels outside the cube";
+  // Below full resolution the pass is not split (measured dearer: Node::addFused).
+  render(all, 4, true, &splitQuarter);
+  EXPECT_FALSE(splitQuarter);
 }
 
 // Two fused objects with "resolution": "quarter" (two-boxes.json): the reduced term's position-only
