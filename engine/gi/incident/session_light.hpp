@@ -28,6 +28,8 @@ class ProbeSource final : public IndirectSource {
  public:
   explicit ProbeSource(const probes::ProbeVolume& volume) : volume_(volume) {}
   RadianceSH radianceSH(glm::vec3 p) const override;
+  // The probes' SH and direction maps blended with one set of lookup weights (ProbeVolume::radianceAt).
+  RadianceSH radianceShAndMap(glm::vec3 p, DirectionMap& map) const override;
 
  private:
   const probes::ProbeVolume& volume_;
