@@ -179,6 +179,14 @@ Receiver receiver(glm::vec3 p, glm::vec3 n) {
           glm::vec4(glm::normalize(glm::vec3(0.3f, -0.8f, 1.0f)), 0.0f)};
 }
 
+// 12 × 12 receivers facing +z over the floor square [-0.9, 0.9]² at z = 0.
+std::vector<Receiver> floorGrid() {
+  std::vector<Receiver> r;
+  for (int y = 0; y < 12; ++y)
+    for (int x = 0; x < 12; ++x) r.push_back(receiver({-0.9f + 1.8f * x / 11.0f, -0.9f + 1.8f * y / 11.0f, 0.0f}, {0, 0, 1}));
+  return r;
+}
+
 // Compares every receiver; returns the worst |GPU − C++| / (|E_u| + 1e-6) and how many are shadowed.
 double expectMatches(const Fixture& f, const gi::probes::ProbeVolume& vol, std::span<const Receiver> r,
                      const std::vector<Output>& gpu, int order, int* shadowed,
@@ -237,9 +245,7 @@ TEST(SlProbeShadowGpu, GlslEqualsProbeShadowOnAPlaneInsideAndUnderACluster) {
     const glm::vec3 d(std::sin(a) * std::cos(phi), std::sin(a) * std::sin(phi), std::cos(a));
     addSphere(f, glm::vec3(-0.6f, 0.6f, 0.0f) + d * (0.35f + 0.01f * float(i)), 0.28f, 2 + i);
   }
-  std::vector<Receiver> r;
-  for (int y = 0; y < 12; ++y)
-    for (int x = 0; x < 12; ++x) r.push_back(receiver({-0.9f + 1.8f * x / 11.0f, -0.9f + 1.8f * y / 11.0f, 0.0f}, {0, 0, 1}));
+  std::vector<Receiver> r = floorGrid();
   for (int y = 0; y < 4; ++y)
     for (int x = 0; x < 4; ++x) r.push_back(receiver({-0.7f + 0.2f * x / 3.0f, 0.5f + 0.2f * y / 3.0f, 0.0f}, {0, 0, 1}));
   // Inside sphere 0 (t = 0.8, 0.6, 0.3 of its radius), on it and just outside, with tilted normals.
@@ -326,9 +332,7 @@ TEST(SlProbeShadowGpu, GlslEqualsProbeShadowWithTheBlockedLightReadAtTheSpheres)
     sh[0] = glm::vec3(1.0f + 0.3f * float(i), 0.8f, 0.5f) * 3.5449077f * 1.5f;
     sphereL.push_back(sh);
   }
-  std::vector<Receiver> r;
-  for (int y = 0; y < 12; ++y)
-    for (int x = 0; x < 12; ++x) r.push_back(receiver({-0.9f + 1.8f * x / 11.0f, -0.9f + 1.8f * y / 11.0f, 0.0f}, {0, 0, 1}));
+  std::vector<Receiver> r = floorGrid();
   for (int order : {3, 4}) {
     const gi::probes::ProbeVolume vol = volume(3);
     int shadowed = 0;
@@ -354,9 +358,7 @@ TEST(SlProbeShadowGpu, GlslEqualsProbeShadowWithTheBlockedLightReadFromDirection
       const float wave = 0.75f + 0.25f * std::sin(0.9f * float(t) + float(i));
       maps[i][std::size_t(t)] = glm::vec3(1.0f + 0.3f * float(i), 0.8f, 0.5f) * wave * (t % 3 == 0 ? 1.0f : 0.6f);
     }
-  std::vector<Receiver> r;
-  for (int y = 0; y < 12; ++y)
-    for (int x = 0; x < 12; ++x) r.push_back(receiver({-0.9f + 1.8f * x / 11.0f, -0.9f + 1.8f * y / 11.0f, 0.0f}, {0, 0, 1}));
+  std::vector<Receiver> r = floorGrid();
   for (int order : {3, 4}) {
     const gi::probes::ProbeVolume vol = volume(3);
     int shadowed = 0;
