@@ -188,7 +188,7 @@ ProbeVolume deserialize(std::span<const std::uint8_t> bytes, const std::string& 
   std::memcpy(v.valid.data(), p, v.valid.size() * sizeof(std::uint32_t));
   p += v.valid.size() * sizeof(std::uint32_t);
   v.dirMap.resize(nMap);
-  std::memcpy(v.dirMap.data(), p, nMap * sizeof(std::uint16_t));
+  if (nMap != 0) std::memcpy(v.dirMap.data(), p, nMap * sizeof(std::uint16_t));  // no maps: data() may be null (UB)
   for (std::uint16_t half : v.dirMap)
     if (!std::isfinite(glm::unpackHalf1x16(half))) fail("non-finite direction map texel");
   for (const glm::vec3& c : v.sh)
