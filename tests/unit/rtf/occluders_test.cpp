@@ -11,6 +11,7 @@
 
 #include "engine/gi/rtf/occluders.hpp"
 #include "engine/gi/rtf/room_shadows.hpp"
+#include "tests/support/box_mesh.hpp"
 #include "tests/support/point_light.hpp"
 
 namespace bounce::gi::rtf {
@@ -71,14 +72,7 @@ TEST(RtfOccluders, PosedBoxBlocksTheWorldSegmentsThroughIt) {
 // Fibonacci directions of which ~30 see the floor estimate that smooth integral to a few per cent
 // (kDirections' error); 10 % allows it.
 TEST(RtfRoomShadow, NoneWithoutABlockerAndTheFloorsWholeBounceUnderOne) {
-  ref::SceneDesc floor;
-  floor.materials.push_back({glm::vec3(0.5f), -1, glm::vec3(0.0f), -1});
-  ref::RefMesh m;
-  m.positions = {{-2, 0, -2}, {2, 0, -2}, {-2, 0, 2}, {2, 0, 2}};
-  m.normals.assign(4, glm::vec3(0, 1, 0));
-  m.indices = {0, 2, 1, 1, 2, 3};
-  floor.meshes.push_back(m);
-  const ref::SceneBvh level(std::move(floor));
+  const ref::SceneBvh level(bounce::testing::floorMesh(2.0f, glm::vec3(0.5f)));
   std::vector<ref::SceneDesc> blocker = {boxScene(glm::vec3(-0.5f), glm::vec3(0.5f))};
   const PosedOccluders occ(std::move(blocker));
   const std::vector<render::LightGpu> lamp = {pointLight(glm::vec3(0, 1, 0), glm::vec3(2.0f))};

@@ -23,6 +23,7 @@
 #include "engine/scene/level.hpp"
 #include "engine/scene/systems.hpp"
 #include "tests/support/technique_level.hpp"
+#include "tests/support/box_mesh.hpp"
 #include "tests/support/point_light.hpp"
 
 namespace bounce::gi::rtf {
@@ -496,14 +497,7 @@ TEST(RtfUpdate, RoomShadowsTakeTheObjectsShadowsOnTheLevelOffTheProxies) {
     for (ecs::Entity e : entities) meshes.push_back(dnrt::objectScene(l.registry, e, assets));
     return std::make_unique<PosedOccluders>(std::move(meshes));
   };
-  ref::SceneDesc floor;
-  floor.materials.push_back({glm::vec3(0.5f), -1, glm::vec3(0.0f), -1});
-  ref::RefMesh m;
-  m.positions = {{-1, 0, -1}, {1, 0, -1}, {-1, 0, 1}, {1, 0, 1}};
-  m.normals.assign(4, glm::vec3(0, 1, 0));
-  m.indices = {0, 2, 1, 1, 2, 3};
-  floor.meshes.push_back(m);
-  const ref::SceneBvh level(std::move(floor));
+  const ref::SceneBvh level(bounce::testing::floorMesh(1.0f, glm::vec3(0.5f)));
   const Sky sky;
   Update shadowed(l.registry, parts), plain(l.registry, parts);
   for (Update* u : {&shadowed, &plain}) {
