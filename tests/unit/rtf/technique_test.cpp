@@ -427,16 +427,24 @@ TEST(RtfUpdate, MirroredRecordSeesTheWorldThroughItsMirror) {
 
 using bounce::testing::pointLight;  // tests/support/point_light.hpp
 
+// A level with a small box "low" (0.1 m, its centre at height lowY) under a big one "high" (0.6 m at
+// 0.5 m), both rtf objects with a tiny one-bounce field; vertexRays differs per test so that their
+// cached bakes do not collide.
+Loaded lowAndHighBoxes(const std::string& name, const std::string& lowY, int vertexRays) {
+  const std::string tiny = R"("proxies": 2, "spheres": 3, "face": 2, "rays": 4, "vertex_rays": )" + std::to_string(vertexRays) +
+                           R"(, "clusters": 2, "components": 2, "bounces": 1)";
+  return Loaded(writeLevel(name, R"({"id": "low", "dynamic": true, "transform": {"translation": [0, )" + lowY +
+                                     R"(, 0], "scale": [0.1, 0.1, 0.1]}, )" + mesh() + R"(, "rtf": {)" + tiny + R"(}},
+                                     {"id": "high", "dynamic": true, "transform": {"translation": [0, 0.5, 0], "scale": [0.6, 0.6, 0.6]}, )" +
+                                     mesh() + R"(, "rtf": {)" + tiny + R"(}})"));
+}
+
 // The bouncing step's lamp at the proxies (update.hpp setOccluders): a small box under a big one gets no
 // lamp light (no indirect light, 1 bounce: its proxies' light is the lamp's alone); the big box's own
 // proxies, inside its mesh, are not shadowed by it (the same light as without occluders, bit for bit);
 // moving the blocker away gives the small box the light it has without occluders again.
 TEST(RtfUpdate, LampIsTracedThroughTheOtherPosedObjects) {
-  const std::string kTiny = R"("proxies": 2, "spheres": 3, "face": 2, "rays": 4, "vertex_rays": 7, "clusters": 2, "components": 2, "bounces": 1)";
-  Loaded l(writeLevel("rtf-lamp", R"({"id": "low", "dynamic": true, "transform": {"translation": [0, 0, 0], "scale": [0.1, 0.1, 0.1]}, )" +
-                                      mesh() + R"(, "rtf": {)" + kTiny + R"(}},
-                                      {"id": "high", "dynamic": true, "transform": {"translation": [0, 0.5, 0], "scale": [0.6, 0.6, 0.6]}, )" +
-                                      mesh() + R"(, "rtf": {)" + kTiny + R"(}})"));
+  Loaded l(lowAndHighBoxes("rtf-lamp", "0", 7));
   std::vector<Participant> parts = bakedParticipants(l);  // kTiny's "bounces": 1
   std::vector<ref::SceneDesc> meshes;
   ref::ReferenceAssets assets;
@@ -480,11 +488,7 @@ TEST(RtfUpdate, LampIsTracedThroughTheOtherPosedObjects) {
 // own shadow under it; measured: the small box's proxies lose 0.088 of 3.92 in red, 0.053 aside). 1 bounce,
 // so the proxies' light is the source's alone. Tolerance 1e-6 relative on "at most": the sum in another order.
 TEST(RtfUpdate, RoomShadowsTakeTheObjectsShadowsOnTheLevelOffTheProxies) {
-  const std::string kTiny = R"("proxies": 2, "spheres": 3, "face": 2, "rays": 4, "vertex_rays": 6, "clusters": 2, "components": 2, "bounces": 1)";
-  Loaded l(writeLevel("rtf-room-shadows", R"({"id": "low", "dynamic": true, "transform": {"translation": [0, 0.05, 0], "scale": [0.1, 0.1, 0.1]}, )" +
-                                              mesh() + R"(, "rtf": {)" + kTiny + R"(}},
-                                              {"id": "high", "dynamic": true, "transform": {"translation": [0, 0.5, 0], "scale": [0.6, 0.6, 0.6]}, )" +
-                                              mesh() + R"(, "rtf": {)" + kTiny + R"(}})"));
+  Loaded l(lowAndHighBoxes("rtf-room-shadows", "0.05", 6));
   std::vector<Participant> parts = bakedParticipants(l);
   ASSERT_EQ(parts.size(), 2u);
   ASSERT_EQ(parts[0].name, "low");
