@@ -81,8 +81,28 @@ glm::vec3 incidentIrradiance(const RefLight& light, const glm::vec3& p, glm::vec
   return lightsglsl::incidentIrradiance(l, p, toLight, dist);
 }
 
+namespace {
+
+// One Embree device for every SceneBvh of the process, each BVH holding a reference (session-18 review):
+// RTF's occluders build one BVH per object, and a device each cost its own memory pools (and its own
+// threads, with Embree's internal tasking). Embree's devices are thread-safe, and rtcGetDeviceError
+// keeps its error code per thread, so the build check below still reads this BVH's own error. The
+// holder's reference is dropped at exit; the device goes with the last BVH.
+RTCDevice sharedDevice() {
+  struct Holder {
+    RTCDevice device = rtcNewDevice(nullptr);
+    ~Holder() {
+      if (device) rtcReleaseDevice(device);
+    }
+  };
+  static const Holder holder;  // created once, thread-safe (C++11 statics)
+  return holder.device;
+}
+
+}  // namespace
+
 struct SceneBvh::Embree {
-  RTCDevice device = nullptr;
+  RTCDevice device = nullptr;  // sharedDevice(), one reference held
   RTCScene scene = nullptr;
   std::vector<std::uint32_t> meshOfGeometry;  // Embree geometry id → SceneDesc::meshes index
   ~Embree() {
@@ -107,8 +127,10 @@ SceneBvh::SceneBvh(SceneDesc scene) : scene_(std::move(scene)), embree_(std::mak
     check(mat.emissiveTexture < int(scene_.textures.size()), "emissive texture out of range");
   }
 
-  embree_->device = rtcNewDevice(nullptr);
+  embree_->device = sharedDevice();
   check(embree_->device != nullptr, "rtcNewDevice failed (error " + std::to_string(rtcGetDeviceError(nullptr)) + ")");
+  rtcRetainDevice(embree_->device);
+  rtcGetDeviceError(embree_->device);  // clears a code an earlier call on this thread left on the shared device
   embree_->scene = rtcNewScene(embree_->device);
   rtcSetSceneFlags(embree_->scene, RTC_SCENE_FLAG_ROBUST);  // watertight: no leaks along shared edges
   rtcSetSceneBuildQuality(embree_->scene, RTC_BUILD_QUALITY_HIGH);

@@ -12,6 +12,7 @@
 #include "engine/core/parallel.hpp"
 #include "engine/core/progress.hpp"
 #include "engine/math/sampling.hpp"
+#include "engine/ref/surface_albedo.hpp"
 
 namespace bounce::ref {
 namespace {
@@ -81,10 +82,9 @@ glm::dvec3 tracePathFrom(const SceneBvh& bvh, glm::vec3 origin, glm::vec3 dir, f
       if (hitAnything) *hitAnything = true;
     }
     const RefMaterial& mat = scene.materials[hit.material];
-    glm::vec3 albedo = mat.albedo, emissive = mat.emissive;
-    if (mat.albedoTexture >= 0) albedo *= scene.textures[mat.albedoTexture].sample(hit.uv);
+    const glm::vec3 albedo = surfaceAlbedo(scene, hit);  // gbuffer.frag stores clamp(albedo, 0, 1)
+    glm::vec3 emissive = mat.emissive;
     if (mat.emissiveTexture >= 0) emissive *= scene.textures[mat.emissiveTexture].sample(hit.uv);
-    albedo = glm::clamp(albedo, 0.0f, 1.0f);  // gbuffer.frag stores clamp(albedo, 0, 1)
     radiance += throughput * glm::dvec3(emissive);
 
     // Two-sided shading (gbuffer.frag): both normals face the side the ray came from.

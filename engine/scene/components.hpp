@@ -219,6 +219,11 @@ struct Sl {
   // (the probes' SH at its posed centre, in the receiver → SL direction; engine/gi/sl/probe_shadow.hpp
   // BlockedLight). Run time only. Not with "hierarchy".
   bool blockedAtSphere = false;
+  // "blocked_read": "sh" or "map" (true): with "blocked_light": "sphere", how pass 2 reads the light an
+  // SL blocks in the receiver → SL direction d_j — the probes' order-3 SH at the SL's posed centre, or
+  // the probes' 16² direction maps blended there (probe_volume.hpp dirMap; README "SL's blocked light
+  // read from the probes' direction maps, session 19"). Run time only. Default "sh".
+  bool blockedMap = false;
   // Whether pass 2's tiles ("sl", "sl.shadow" and the two in one walk, without the hierarchy) cut
   // each tile's SL list by its receivers' world box (shaders/sl/tile_cut.glsl): not a level key,
   // only tests clear it to draw the uncut lists, which give the same image (SlSession.TileCut…).

@@ -193,12 +193,14 @@ void parseDnrt(const json::Node& node, EntityDesc& d, const ParseContext&) {
 
 // "sl": {"spheres": 1..64, "order": 3|4, "blocking": "per-sphere"|"per-object", "influence": 0|3..1000,
 //        "resolution": "full"|"half"|"quarter", "local_lights": bool, "hierarchy": bool, "fused": bool,
-//        "blocked_light": "receiver"|"sphere"} — every key optional (defaults 16, 4, per-sphere, 12, full, false, false, true,
-//        receiver); "sphere" with "hierarchy": true is refused. The sphere limit is gi::sl::kMaxSpheres
+//        "blocked_light": "receiver"|"sphere", "blocked_read": "sh"|"map"} — every key optional (defaults 16, 4,
+//        per-sphere, 12, full, false, false, true, receiver, sh); "sphere" with "hierarchy": true is refused,
+//        "map" needs "sphere". The sphere limit is gi::sl::kMaxSpheres
 //        (one uint64 mask).
 void parseSl(const json::Node& node, EntityDesc& d, const ParseContext&) {
   const auto o = node.object(
-      {"spheres", "order", "blocking", "influence", "resolution", "local_lights", "hierarchy", "fused", "blocked_light"});
+      {"spheres", "order", "blocking", "influence", "resolution", "local_lights", "hierarchy", "fused", "blocked_light",
+       "blocked_read"});
   Sl c;
   if (auto v = o.optional("spheres")) c.spheres = int(v->integer(1, 64));
   if (auto v = o.optional("order")) {
@@ -234,6 +236,13 @@ void parseSl(const json::Node& node, EntityDesc& d, const ParseContext&) {
     c.blockedAtSphere = m == "sphere";
     if (c.blockedAtSphere && c.hierarchy)
       v->fail("blocked_light \"sphere\" with \"hierarchy\": true", "\"receiver\" with the hierarchy (its parents read the receiver's SH)");
+  }
+  if (auto v = o.optional("blocked_read")) {
+    const std::string m = v->string();
+    if (m != "sh" && m != "map") v->fail("unknown blocked_read " + json::inQuotes(m), "sh or map");
+    c.blockedMap = m == "map";
+    if (c.blockedMap && !c.blockedAtSphere)
+      v->fail("blocked_read \"map\" without blocked_light \"sphere\"", "\"sh\", or \"blocked_light\": \"sphere\" (the map is read at the SLs)");
   }
   d.sl = c;
 }

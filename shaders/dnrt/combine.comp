@@ -28,7 +28,17 @@ layout(constant_id = 0) const bool kSh9 = false;
 // of the first term).
 layout(constant_id = 1) const bool kOcclusion = false;
 
-layout(std430, set = 0, binding = 0) readonly buffer Objects { DnrtObject objects[]; };
+// This dispatch's k and a (DnrtObject's) and its occlusion term's, in a uniform block bound at the
+// dispatch's own record (node.cpp CombineRecord): every read has a constant offset, so llvmpipe loads it
+// once for all lanes. Read from the storage buffer of records instead (objects[pc.object].k), each scalar
+// was a per-lane loop with a bounds check: ~30 a vertex, 13 ms of a 15 ms dispatch at load 7 against 1.7 ms
+// with constants in their place (README "DNRT's fused term only inside its outer cube, session 19").
+layout(std140, set = 0, binding = 0) uniform Record {
+  vec4 k[7];
+  vec4 a;
+  vec4 occlusionK[7];  // kOcclusion: the occlusion-only field's (−c_j^lights folded in); unread otherwise
+  vec4 occlusionA;
+} rec;
 // Table 2's slots (dnrt.frag's order); a 4-SH field binds slot 0 in 3..6 (never read).
 layout(set = 0, binding = 1) uniform sampler3D field0;
 layout(set = 0, binding = 2) uniform sampler3D field1;
@@ -47,11 +57,9 @@ layout(set = 0, binding = 13) uniform sampler3D occlusion4;
 layout(set = 0, binding = 14) uniform sampler3D occlusion5;
 layout(set = 0, binding = 15) uniform sampler3D occlusion6;
 layout(push_constant) uniform Push {
-  uint object;     // record in Objects
   int srcZ;        // first z layer of the vertices in the slot textures (an atlas brick's z0, else 0)
   int dstZ;        // first z layer written in `combined`
   int size;        // vertices per axis: N (a field's own textures) or N + 2 (a padded atlas brick)
-  uint occlusion;  // kOcclusion: the occlusion term's record in Objects
   int occlusionZ;  // kOcclusion: first z layer of its vertices in occlusion0..6
 } pc;
 
@@ -59,8 +67,8 @@ void main() {
   ivec3 v = ivec3(gl_GlobalInvocationID);
   if (any(greaterThanEqual(v, ivec3(pc.size)))) return;
   ivec3 src = ivec3(v.xy, v.z + pc.srcZ);
-  vec4 k[7] = objects[pc.object].k;
-  vec3 sum = objects[pc.object].a.rgb + vec3(dot(k[0], texelFetch(field0, src, 0)),
+  const vec4 k[7] = rec.k;
+  vec3 sum = rec.a.rgb + vec3(dot(k[0], texelFetch(field0, src, 0)),
                                             dot(k[1], texelFetch(field1, src, 0)), dot(k[2], texelFetch(field2, src, 0)));
   if (kSh9) {
     sum += vec3(dot(k[3], texelFetch(field3, src, 0)), dot(k[4], texelFetch(field4, src, 0)),
@@ -69,8 +77,8 @@ void main() {
   }
   if (kOcclusion) {
     ivec3 o = ivec3(v.xy, v.z + pc.occlusionZ);
-    vec4 q[7] = objects[pc.occlusion].k;
-    sum += objects[pc.occlusion].a.rgb + vec3(dot(q[0], texelFetch(occlusion0, o, 0)),
+    const vec4 q[7] = rec.occlusionK;
+    sum += rec.occlusionA.rgb + vec3(dot(q[0], texelFetch(occlusion0, o, 0)),
                                              dot(q[1], texelFetch(occlusion1, o, 0)), dot(q[2], texelFetch(occlusion2, o, 0)));
     if (kSh9) {
       sum += vec3(dot(q[3], texelFetch(occlusion3, o, 0)), dot(q[4], texelFetch(occlusion4, o, 0)),

@@ -37,6 +37,17 @@ struct DnrtClusterObject {
   uvec4 ids;
 };
 const uint kDnrtClusterBatch = 32u;  // engine/gi/dnrt/cluster.hpp kClusterBatch
+
+// Corner of the unit cube [-1, 1]³ at vertex `vertex` (0..35) of its 12 triangles (6 faces × 2, outward
+// counter-clockwise), for 36-vertex draws from gl_VertexIndex: the box draw (dnrt.vert) and the probes pass
+// split at the outer cube (probes/outer_cube.vert). A corner's bits are its x, y, z signs.
+const int kDnrtCubeFaces[6][4] = int[6][4](int[4](1, 3, 7, 5), int[4](0, 4, 6, 2), int[4](2, 6, 7, 3),
+                                           int[4](0, 1, 5, 4), int[4](4, 5, 7, 6), int[4](0, 2, 3, 1));
+const int kDnrtCubeQuad[6] = int[6](0, 1, 2, 0, 2, 3);
+vec3 dnrtCubeCorner(int vertex) {
+  const int corner = kDnrtCubeFaces[vertex / 6][kDnrtCubeQuad[vertex % 6]];
+  return vec3(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1) * 2.0 - 1.0;
+}
 const int kDnrtClusterTileShift = 4;  // 16-pixel tiles (kClusterTile)
 
 float dnrtFalloff(vec3 q, float inner, float outer) {

@@ -21,10 +21,6 @@ layout(location = 3) flat out vec4 outCentreWorld;
 layout(location = 4) flat out vec4 outExtents;
 layout(location = 5) flat out uint outSelf;
 
-const int kFaces[6][4] = int[6][4](int[4](1, 3, 7, 5), int[4](0, 4, 6, 2), int[4](2, 6, 7, 3),
-                                   int[4](0, 1, 5, 4), int[4](4, 5, 7, 6), int[4](0, 2, 3, 1));
-const int kQuad[6] = int[6](0, 1, 2, 0, 2, 3);
-
 void main() {
   DnrtObject ob = objects[pc.object];
   outWorldToQ = ob.worldToQ;
@@ -36,7 +32,5 @@ void main() {
     gl_Position = vec4(uv * 2.0 - 1.0, 0.0, 1.0);
     return;
   }
-  int corner = kFaces[gl_VertexIndex / 6][kQuad[gl_VertexIndex % 6]];
-  vec3 p = vec3(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1) * 2.0 - 1.0;
-  gl_Position = camera.viewProj * (ob.boxToWorld * vec4(p, 1.0));
+  gl_Position = camera.viewProj * (ob.boxToWorld * vec4(dnrtCubeCorner(gl_VertexIndex), 1.0));
 }

@@ -77,7 +77,8 @@ layout(push_constant) uniform Push {
 #include "probes/probe_sh.glsl"
 #include "dnrt/cluster.glsl"  // after `objects`, which it reads
 
-layout(location = 0) in vec2 inUv;
+// No varying: the pixel is gl_FragCoord, under the full-screen triangle and the outer cube's faces alike
+// (FusedDnrt::split, probes/outer_cube.vert).
 layout(location = 0) out vec4 outRadiance;
 
 const float kInvPi = 0.31830988618379067;

@@ -9,7 +9,9 @@
 // With `atSphere` ("blocked_light": "sphere", probe_shadow.hpp BlockedLight::Sphere; needs
 // SL_INDIRECT_BINDING, sl_data.glsl) E_u − E_s is replaced by the blocked light read at the SLs:
 // (π − ρ_n·V) Σ_j w_j max(0, L_j(d_j)) / Σ_j w_j, w_j = (σ u_o + 1 − σ) X_j, L_j the probes' radiance
-// SH at SL j's posed centre evaluated in the receiver → SL direction d_j (no V ∗ ĉ_n product then).
+// SH at SL j's posed centre evaluated in the receiver → SL direction d_j (no V ∗ ĉ_n product then);
+// with `mapRead` too ("blocked_read": "map") L_j(d_j) is the texel of SL j's blended direction map
+// that holds d_j (sl_data.glsl slIndirectMap; common/oct_map.glsl), not the SH.
 // Needs sl.glsl (and what it needs) included first.
 #ifndef BOUNCE_SL_PROBE_SHADOW_GLSL
 #define BOUNCE_SL_PROBE_SHADOW_GLSL
@@ -22,7 +24,7 @@ const float kSlShadowMaxRatio = 4.0;  // probe_shadow.hpp kShadowMaxRatio
 // second loop: the rotation, the exp and the per-lane reads, run as often as the 8 pixels' longest
 // live list, README "SL cost, session 8"). sl_shadow.frag calls it after slIrradianceLive on the
 // same walk (one walk for both terms); slProbeShadow below walks first.
-vec3 slProbeShadowLive(vec3 p, vec3 n, in vec3 L[9], uint alive, bool atSphere) {
+vec3 slProbeShadowLive(vec3 p, vec3 n, in vec3 L[9], uint alive, bool atSphere, bool mapRead) {
   float sum[16];
   vec3 readExact = vec3(0.0), readShared = vec3(0.0);  // Σ X_j L_j(d_j), Σ u_o X_j L_j(d_j) (atSphere)
   for (uint k = 0u; k < 16u; ++k) sum[k] = 0.0;
@@ -53,10 +55,14 @@ vec3 slProbeShadowLive(vec3 p, vec3 n, in vec3 L[9], uint alive, bool atSphere) 
         sharedX += slShare(i) * capX;
 #ifdef SL_INDIRECT_BINDING
         if (atSphere) {  // the light SL j blocks, read at its centre: L_j(d_j) ≥ 0 (a blocker adds none)
-          float yd[9];
-          shEval9(dir, yd);
           vec3 read = vec3(0.0);
-          for (uint k = 0u; k < 9u; ++k) read += yd[k] * slIndirect(i, k);
+          if (mapRead) {
+            read = slIndirectMap(i, dir);
+          } else {
+            float yd[9];
+            shEval9(dir, yd);
+            for (uint k = 0u; k < 9u; ++k) read += yd[k] * slIndirect(i, k);
+          }
           read = max(read, vec3(0.0));
           readExact += capX * read;
           readShared += slShare(i) * capX * read;
@@ -99,7 +105,9 @@ vec3 slProbeShadowLive(vec3 p, vec3 n, in vec3 L[9], uint alive, bool atSphere) 
   return clamp(-ratio * blocked, -max(unshadowed, vec3(0.0)), vec3(0.0));
 }
 
-vec3 slProbeShadowLive(vec3 p, vec3 n, in vec3 L[9], uint alive) { return slProbeShadowLive(p, n, L, alive, false); }
+vec3 slProbeShadowLive(vec3 p, vec3 n, in vec3 L[9], uint alive, bool atSphere) { return slProbeShadowLive(p, n, L, alive, atSphere, false); }
+
+vec3 slProbeShadowLive(vec3 p, vec3 n, in vec3 L[9], uint alive) { return slProbeShadowLive(p, n, L, alive, false, false); }
 
 // Over the SLs whose bit is set in `candidates` (sl.glsl slIrradianceAt's convention: those left out
 // must be culled at p by the receiver rules, so they would add nothing).
@@ -108,8 +116,16 @@ vec3 slProbeShadowLive(vec3 p, vec3 n, in vec3 L[9], uint alive) { return slProb
 // receiver rules to every candidate and keeps those that reach p (llvmpipe runs an untaken branch in
 // full, so work inside the walk is paid per candidate); slProbeShadowLive does the rest. The same
 // terms in the same order.
+vec3 slProbeShadow(vec3 p, vec3 n, in vec3 L[9], uvec4 candidates, uint count, bool atSphere, bool mapRead) {
+  return slProbeShadowLive(p, n, L, slWalk(p, n, candidates, count), atSphere, mapRead);
+}
+
 vec3 slProbeShadow(vec3 p, vec3 n, in vec3 L[9], uvec4 candidates, uint count, bool atSphere) {
-  return slProbeShadowLive(p, n, L, slWalk(p, n, candidates, count), atSphere);
+  return slProbeShadow(p, n, L, candidates, count, atSphere, false);
+}
+
+vec3 slProbeShadow(vec3 p, vec3 n, in vec3 L[9], uvec4 candidates, bool atSphere, bool mapRead) {
+  return slProbeShadow(p, n, L, candidates, min(slCount(), kSpheres), atSphere, mapRead);
 }
 
 vec3 slProbeShadow(vec3 p, vec3 n, in vec3 L[9], uvec4 candidates, uint count) {
@@ -125,16 +141,18 @@ vec3 slProbeShadow(vec3 p, vec3 n, in vec3 L[9], uvec4 candidates) {
 }
 
 // Over every SL (the self-test's receivers, which no tile list culls).
-vec3 slProbeShadow(vec3 p, vec3 n, in vec3 L[9], bool atSphere) {
+vec3 slProbeShadow(vec3 p, vec3 n, in vec3 L[9], bool atSphere, bool mapRead) {
   uvec4 all = uvec4(0u);
   uint count = min(slCount(), kSpheres);
   for (uint w = 0u; w < 4u; ++w) {
     uint bits = uint(clamp(int(count) - int(32u * w), 0, 32));
     all[w] = bits == 32u ? 0xffffffffu : (1u << bits) - 1u;
   }
-  return slProbeShadow(p, n, L, all, atSphere);
+  return slProbeShadow(p, n, L, all, atSphere, mapRead);
 }
 
-vec3 slProbeShadow(vec3 p, vec3 n, in vec3 L[9]) { return slProbeShadow(p, n, L, false); }
+vec3 slProbeShadow(vec3 p, vec3 n, in vec3 L[9], bool atSphere) { return slProbeShadow(p, n, L, atSphere, false); }
+
+vec3 slProbeShadow(vec3 p, vec3 n, in vec3 L[9]) { return slProbeShadow(p, n, L, false, false); }
 
 #endif  // BOUNCE_SL_PROBE_SHADOW_GLSL

@@ -26,6 +26,9 @@ layout(constant_id = 5) const uint kStep = 1u;
 // "blocked_light": "sphere" (scene::Sl::blockedAtSphere): the blocked light read at each SL's centre
 // (sl/probe_shadow.glsl); false ("receiver", the default): the receiver's SH. Not with the hierarchy.
 layout(constant_id = 6) const bool kBlockedAtSphere = false;
+// "blocked_read": "map" (scene::Sl::blockedMap, with kBlockedAtSphere): the SLs' blended direction maps
+// in SlIndirect instead of their SH (sl/probe_shadow.glsl).
+layout(constant_id = 7) const bool kBlockedMap = false;
 
 #include "frame.glsl"
 #include "sh.glsl"
@@ -78,7 +81,7 @@ void main() {
   // §7.3 for the shadow (sl/hierarchy_shadow.glsl): the cut SLs' ΔE plus each listed parent's share.
   vec3 delta = ao * slShadowHierarchyAt(x, n, L, inCandidates, inRatios, slProbeShadow(x, n, L, inCandidates));
 #else
-  vec3 delta = ao * slProbeShadow(x, n, L, inCandidates, kBlockedAtSphere);
+  vec3 delta = ao * slProbeShadow(x, n, L, inCandidates, kBlockedAtSphere, kBlockedMap);
 #endif
   outRadiance = vec4(kStep > 1u ? delta : albedo * kInvPi * delta, 0.0);
 }

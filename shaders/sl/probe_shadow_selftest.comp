@@ -4,7 +4,8 @@
 // tests/unit/sl/probe_shadow_gpu_test.cpp compares them with sl::probeShadow and the probe volume's
 // CPU lookup. Bindings 0–2: sl_data.glsl; 3: probeSh, 4: probeMoments; 5 (std430): {uint count;
 // uint pad[3];} then Receiver[count] = 48 bytes (p, n, v in three vec4); 6: vec4 out[2·count];
-// 7: sl_data.glsl's SlIndirect (the SLs' radiance SH, read with kBlockedAtSphere, id 5).
+// 7: sl_data.glsl's SlIndirect (the SLs' radiance SH, read with kBlockedAtSphere, id 5; their
+// direction maps with kBlockedMap, id 6).
 // Push constants: probe_sh.glsl's. Dispatch ceil(count / 64) groups.
 #extension GL_GOOGLE_include_directive : require
 
@@ -15,6 +16,7 @@ layout(constant_id = 2) const uint kSpheres = 64u;
 layout(constant_id = 3) const float kInfluence = 0.0;
 layout(constant_id = 4) const int kCoeffs = 9;
 layout(constant_id = 5) const bool kBlockedAtSphere = false;  // "blocked_light": "sphere" (binding 7)
+layout(constant_id = 6) const bool kBlockedMap = false;       // "blocked_read": "map" (binding 7 holds maps)
 
 #include "sh.glsl"
 
@@ -47,6 +49,6 @@ void main() {
   Receiver r = receivers.items[i];
   vec3 L[9];
   probeRadianceSh(r.p.xyz, r.n.xyz, r.v.xyz, L);
-  outputs.values[2u * i] = vec4(slProbeShadow(r.p.xyz, r.n.xyz, L, kBlockedAtSphere), 0.0);
+  outputs.values[2u * i] = vec4(slProbeShadow(r.p.xyz, r.n.xyz, L, kBlockedAtSphere, kBlockedMap), 0.0);
   outputs.values[2u * i + 1u] = vec4(shIrradiance9(L, r.n.xyz), 0.0);
 }

@@ -37,19 +37,35 @@ uvec4 slIntersecting(uint i) { return slIntersectMasks[i]; }
 // Channel c of L^c_2m and L^c_2m+1 of SL i (m a loop counter: the component index folds to a constant).
 vec2 slIntensityPair(uint i, uint c, uint m) { return unpackHalf2x16(slIntensityWords[6u * i + 2u * c + m / 4u][m % 4u]); }
 
-// "blocked_light": "sphere" (sl/probe_shadow.glsl, engine/gi/sl/probe_shadow.hpp): the probes' radiance
-// SH at each SL's posed centre (pass 1's `indirect`, engine/gi/sl/shade.hpp ShadeData::setSpheres), in
-// its own uniform block at binding SL_INDIRECT_BINDING when the includer defines it (sl.shadow and the
-// fused pass; not pass 1 nor sl.local). fp16, 16 words per SL (4 uvec4): half h = 3k + c (coefficient k
-// < 9, channel c) in word h / 2, low half first (packHalf2x16); half 27 is 0. 128 · 64 B = 8 KiB.
+// "blocked_light": "sphere" (sl/probe_shadow.glsl, engine/gi/sl/probe_shadow.hpp): the light the SLs
+// block, read at each SL's posed centre, in its own uniform block at binding SL_INDIRECT_BINDING when
+// the includer defines it (sl.shadow and the fused pass; not pass 1 nor sl.local), in one of two
+// layouts (engine/gi/sl/shade.hpp ShadeData::setSpheres):
+//   "blocked_read": "sh": the probes' radiance SH (pass 1's `indirect`). fp16, 16 words per SL (4 uvec4):
+//   half h = 3k + c (coefficient k < 9, channel c) in word h / 2, low half first (packHalf2x16); half
+//   27 is 0. 128 · 64 B = 8 KiB.
+//   "blocked_read": "map": the probes' direction maps blended at the SL (common/oct_map.glsl texels).
+//   RGB9E5 (glm::packF3x9_E1x5: bits 0–8, 9–17, 18–26 the channels' mantissas, 27–31 the shared
+//   exponent, bias 15), texel t of SL i in word 256 i + t; at most kSlMaxMappedLights SLs. 64 · 1 KiB =
+//   64 KiB, the block's size.
 #ifdef SL_INDIRECT_BINDING
-layout(std140, set = SL_SET, binding = SL_INDIRECT_BINDING) uniform SlIndirect { uvec4 slIndirectWords[kSlMaxLights * 4u]; };
+#include "oct_map.glsl"
+const uint kSlMaxMappedLights = 64u;   // shade.hpp kMaxMappedSpheres
+const uint kSlMapWordsPerLight = 256u;  // shade.hpp kMapWordsPerSl
+layout(std140, set = SL_SET, binding = SL_INDIRECT_BINDING) uniform SlIndirect { uvec4 slIndirectWords[kSlMaxMappedLights * kSlMapWordsPerLight / 4u]; };
 float slIndirectHalf(uint i, uint h) {
   vec2 pair = unpackHalf2x16(slIndirectWords[4u * i + h / 8u][(h / 2u) % 4u]);
   return (h % 2u) == 0u ? pair.x : pair.y;
 }
 // Coefficient k (W/(m²·sr) per channel) of the radiance SH at SL i's posed centre (k a loop counter).
 vec3 slIndirect(uint i, uint k) { return vec3(slIndirectHalf(i, 3u * k), slIndirectHalf(i, 3u * k + 1u), slIndirectHalf(i, 3u * k + 2u)); }
+// SL i's blended map read in unit direction d (W/(m²·sr) per channel): the texel holding d (nearest),
+// one word, RGB9E5 as glm::unpackF3x9_E1x5 decodes it: mantissas × 2^(e − 15 − 9).
+vec3 slIndirectMap(uint i, vec3 d) {
+  uint w = kSlMapWordsPerLight * i + uint(octTexel(d));
+  uint v = slIndirectWords[w / 4u][w % 4u];
+  return vec3(float(v & 511u), float((v >> 9u) & 511u), float((v >> 18u) & 511u)) * exp2(float(v >> 27u) - 24.0);
+}
 #endif
 
 #endif  // BOUNCE_SL_DATA_GLSL

@@ -12,7 +12,7 @@
 // ("sl.upsample" applies ρ/π).
 // Bindings and push block are sl.shadow's (probe_shadow_frag.glsl, sl/shadow_tiles.vert);
 // specialization: sl.glsl's ids 0–3, kCoeffs (4), kStep (5), kTerms (6), kSingleObject (7, sl_frag.glsl's),
-// kBlockedAtSphere (8).
+// kBlockedAtSphere (8), kBlockedMap (9).
 layout(constant_id = 0) const uint kOrder = 4u;
 layout(constant_id = 1) const bool kPerObject = false;
 layout(constant_id = 2) const uint kSpheres = 64u;
@@ -25,6 +25,7 @@ layout(constant_id = 6) const uint kTerms = 3u;
 layout(constant_id = 7) const bool kSingleObject = false;  // per-object: tiles whose SLs are one object's
 #define SL_SINGLE_OBJECT kSingleObject
 layout(constant_id = 8) const bool kBlockedAtSphere = false;  // probe_shadow_frag.glsl's (constant_id 6 there)
+layout(constant_id = 9) const bool kBlockedMap = false;       // probe_shadow_frag.glsl's (constant_id 7 there)
 
 #include "frame.glsl"
 #include "sh.glsl"
@@ -69,7 +70,7 @@ void main() {
   vec3 L[9];
   probeRadianceSh(p, n, normalize(camera.position.xyz - p), L);
   float ao = pc.bias.w > 0.5 ? texelFetch(aoTerm, pixel, 0).r : 1.0;
-  vec3 delta = (kTerms & 2u) != 0u ? ao * slProbeShadowLive(p, n, L, alive, kBlockedAtSphere) : vec3(0.0);
+  vec3 delta = (kTerms & 2u) != 0u ? ao * slProbeShadowLive(p, n, L, alive, kBlockedAtSphere, kBlockedMap) : vec3(0.0);
   // Each pass's own output, then summed (fp32): the terms as the two passes write them.
   outRadiance = vec4(kStep > 1u ? e + delta : albedo * kInvPi * e + albedo * kInvPi * delta, 0.0);
 }

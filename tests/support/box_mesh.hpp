@@ -27,4 +27,16 @@ inline ref::SceneDesc boxMesh(glm::vec3 lo, glm::vec3 hi, glm::vec3 rho = glm::v
   return s;
 }
 
+// A square floor [-half, half]² at y = 0 facing +y (2 triangles), one material of albedo rho.
+inline ref::SceneDesc floorMesh(float half, glm::vec3 rho) {
+  ref::SceneDesc s;
+  s.materials.push_back(ref::RefMaterial{rho});
+  ref::RefMesh m;
+  m.positions = {{-half, 0, -half}, {half, 0, -half}, {-half, 0, half}, {half, 0, half}};
+  m.normals.assign(4, glm::vec3(0, 1, 0));
+  m.indices = {0, 2, 1, 1, 2, 3};
+  s.meshes.push_back(std::move(m));
+  return s;
+}
+
 }  // namespace bounce::testing

@@ -14,6 +14,7 @@
 #include "engine/core/progress.hpp"
 #include "engine/math/sampling.hpp"
 #include "engine/math/sh.hpp"
+#include "engine/ref/surface_albedo.hpp"
 
 namespace bounce::gi::dnrt {
 
@@ -21,15 +22,6 @@ namespace {
 
 // Vertices closer to o than this (units of R) have no usable n_o.
 constexpr double kCentreEpsilon = 1e-6;
-
-glm::vec3 albedoAt(const ref::SceneDesc& scene, const ref::Hit& hit) {
-  if (hit.material >= scene.materials.size()) return glm::vec3(1.0f);
-  const ref::RefMaterial& m = scene.materials[hit.material];
-  glm::vec3 a = m.albedo;
-  if (m.albedoTexture >= 0 && std::size_t(m.albedoTexture) < scene.textures.size())
-    a *= scene.textures[std::size_t(m.albedoTexture)].sample(hit.uv);
-  return glm::clamp(a, glm::vec3(0.0f), glm::vec3(1.0f));  // as gbuffer.frag clamps albedo
-}
 
 // Fills every invalid vertex from its valid 26-neighbours, sweep by sweep (Jacobi: a sweep reads
 // only vertices valid before it, so the result does not depend on visiting order).
@@ -158,7 +150,7 @@ BakeResult bakeFields(const ref::SceneDesc& object, const FieldSettings& setting
       ++front;
       glm::dvec3 ns(hit.shadingNormal);
       if (glm::dot(ns, glm::dvec3(hit.geometricNormal)) < 0.0) ns = -ns;  // outward, like the surface
-      const glm::dvec3 rho(albedoAt(scene, hit));
+      const glm::dvec3 rho(ref::surfaceAlbedo(scene, hit));
       sh::evalBasis<double>(order, ns, yn);
       sh::evalBasis<double>(order, w, yw);
       for (int j = 0; j < nc; ++j) {

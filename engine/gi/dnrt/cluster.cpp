@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 
 namespace bounce::gi::dnrt {
 
@@ -37,6 +38,34 @@ std::vector<std::uint8_t> atlasTexels(const AtlasLayout& l, std::span<const Fiel
         }
   }
   return out;
+}
+
+bool eyeInsideOuterCube(const glm::mat4& boxToWorld, const glm::mat4& view, const glm::mat4& proj) {
+  // A perspective projection as perspectiveVk makes (glm::perspectiveRH_ZO, y flipped): clip w = −z_view.
+  if (proj[2][3] != -1.0f || proj[3][3] != 0.0f || proj[2][2] >= 0.0f) return false;
+  const float nearM = proj[3][2] / proj[2][2], farM = proj[3][2] / (proj[2][2] + 1.0f);
+  const glm::mat4 worldToBox = glm::inverse(boxToWorld);
+  const glm::vec3 eye = glm::vec3(glm::inverse(view)[3]);
+  const glm::vec3 u = glm::vec3(worldToBox * glm::vec4(eye, 1.0f));  // the eye in the unit cube's frame
+  // The nearest face plane (u_i = ±1): (1 − |u_i|) / |∇u_i| metres away, ∇u_i row i of worldToBox.
+  float nearest = std::numeric_limits<float>::infinity();
+  for (int i = 0; i < 3; ++i) {
+    const glm::vec3 gradient(worldToBox[0][i], worldToBox[1][i], worldToBox[2][i]);
+    nearest = std::min(nearest, (1.0f - std::abs(u[i])) / glm::length(gradient));
+  }
+  // The farthest point of the cube (a corner: distance is convex).
+  float farthest = 0.0f;
+  for (int c = 0; c < 8; ++c) {
+    const glm::vec4 corner(c & 1 ? 1.0f : -1.0f, c & 2 ? 1.0f : -1.0f, c & 4 ? 1.0f : -1.0f, 1.0f);
+    farthest = std::max(farthest, glm::length(glm::vec3(boxToWorld * corner) - eye));
+  }
+  // A point of the view frustum at distance d lies at depth z ≥ d cos θ, θ the angle of the frustum's
+  // corner rays to its axis (tan² θ = tan²(fov_x/2) + tan²(fov_y/2)); and z ≤ d. The relative margins
+  // keep the tests clear of the fp32 rounding of the corners the vertex shader computes.
+  const float tanX = 1.0f / std::abs(proj[0][0]), tanY = 1.0f / std::abs(proj[1][1]);
+  const float cosCorner = 1.0f / std::sqrt(1.0f + tanX * tanX + tanY * tanY);
+  constexpr float kMargin = 1e-3f;
+  return nearest > 0.0f && nearest * cosCorner > nearM * (1.0f + kMargin) && farthest < farM * (1.0f - kMargin);
 }
 
 }  // namespace bounce::gi::dnrt

@@ -40,6 +40,14 @@ using gi::TileGrid;
 using gi::tileGrid;
 
 
+// Whether the probes pass may be drawn as an object's outer cube (the fused mode, probes::FusedDnrt::split;
+// shaders/probes/outer_cube.vert): the eye is inside the cube, and every point of its faces that the view
+// frustum holds lies between the near and far planes (no face is clipped where it is seen), so every
+// pixel's view ray leaves the cube through exactly one face. `boxToWorld`: the unit cube [-1, 1]³ → the
+// world-space outer cube (DnrtObjectGpu); `view`, `proj`: the frame's camera (render::CameraGpu, proj as
+// perspectiveVk makes; false for any other projection).
+bool eyeInsideOuterCube(const glm::mat4& boxToWorld, const glm::mat4& view, const glm::mat4& proj);
+
 // Where each field's brick sits in the atlas. Brick i occupies z ∈ [z0[i], z0[i] + N_i + 2) and
 // x, y ∈ [0, N_i + 2); its grid vertex (0, 0, 0) is texel (1, 1, z0[i] + 1).
 struct AtlasLayout {

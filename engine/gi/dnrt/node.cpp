@@ -4,6 +4,7 @@
 #include <atomic>
 #include <cstring>
 #include <functional>
+#include <iterator>
 #include <optional>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -34,11 +35,27 @@ struct Push {
 };
 
 struct CombinePush {  // combine.comp's Push
-  std::uint32_t object = 0;
   std::int32_t srcZ = 0, dstZ = 0, size = 0;
-  std::uint32_t occlusion = 0;  // kOcclusion: the occlusion term's record
-  std::int32_t occlusionZ = 0;  // kOcclusion: its first z layer
+  std::int32_t occlusionZ = 0;  // kOcclusion: the occlusion term's first z layer
 };
+
+// combine.comp's uniform block Record (std140): one object's k and a (DnrtShaderObject's) and its
+// occlusion term's, read at constant offsets (combine.comp says why not from the records' storage buffer).
+struct CombineRecord {
+  glm::vec4 k[7]{};
+  glm::vec4 a{0.0f};
+  glm::vec4 occlusionK[7]{};
+  glm::vec4 occlusionA{0.0f};
+};
+// Each CombineRecord at a multiple of 256 bytes, the largest minUniformBufferOffsetAlignment Vulkan allows.
+constexpr VkDeviceSize kCombineRecordStride = 256;
+static_assert(sizeof(CombineRecord) == kCombineRecordStride, "combine.comp's Record");
+// objectBuffer's layout: 2·count DnrtShaderObjects (the objects', then their occlusion terms'), then from
+// this offset the objects' CombineRecords.
+VkDeviceSize combineRecordsOffset(std::size_t count) {
+  const VkDeviceSize records = 2 * count * sizeof(DnrtShaderObject);
+  return (records + kCombineRecordStride - 1) / kCombineRecordStride * kCombineRecordStride;
+}
 
 // combine.comp's local size (why 8 wide in x: there).
 constexpr glm::uvec3 kCombineLocal(8, 4, 4);
@@ -123,7 +140,7 @@ Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t fra
                              {VkPushConstantRange{VK_SHADER_STAGE_ALL, 0, sizeof(ClusterPush)}}, "dnrt.clustered"),
       tileBuffers_(framesInFlight),
       clusterObjectBuffers_(framesInFlight),
-      combineLayout_(ctx, {{0, kStorage}, {1, kSampled}, {2, kSampled}, {3, kSampled}, {4, kSampled}, {5, kSampled},
+      combineLayout_(ctx, {{0, kUniform}, {1, kSampled}, {2, kSampled}, {3, kSampled}, {4, kSampled}, {5, kSampled},
                            {6, kSampled}, {7, kSampled}, {8, kStorageImage}, {9, kSampled}, {10, kSampled},
                            {11, kSampled}, {12, kSampled}, {13, kSampled}, {14, kSampled}, {15, kSampled}},
                      "dnrt.combine"),
@@ -254,17 +271,26 @@ gpu::Buffer& Node::objectBuffer(std::vector<gpu::Buffer>& ring, std::uint32_t sl
                                 const std::vector<NodeObject>& objects) {
   // This slot's object records (the ring waited for the slot's fence before the frame began). The
   // combine pass and the draw pass both call this in one frame; the second writes the same bytes.
-  // Record i: object i; record objects.size() + i: its occlusion term (NodeObject::occlusion), if any.
+  // Record i: object i; record objects.size() + i: its occlusion term (NodeObject::occlusion), if any;
+  // from combineRecordsOffset on, object i's CombineRecord (both terms' k and a, for combine.comp).
   gpu::Buffer& buffer = ring[slot % ring.size()];
-  const VkDeviceSize bytes = 2 * objects.size() * sizeof(DnrtShaderObject);
+  const VkDeviceSize bytes = combineRecordsOffset(objects.size()) + objects.size() * kCombineRecordStride;
   if (!buffer || buffer.size() < bytes)
-    buffer = gpu::Buffer(ctx_, {bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::Upload, "dnrt.objects"});
+    buffer = gpu::Buffer(ctx_, {bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+                                gpu::MemoryUsage::Upload, "dnrt.objects"});
   for (std::size_t i = 0; i < objects.size(); ++i) {
     const DnrtShaderObject folded = fold(objects[i].data);
     std::memcpy(buffer.mapped() + i * sizeof(DnrtShaderObject), &folded, sizeof(DnrtShaderObject));
     const DnrtShaderObject occlusion = objects[i].occlusion ? fold(objects[i].occlusionData) : DnrtShaderObject{};
     std::memcpy(buffer.mapped() + (objects.size() + i) * sizeof(DnrtShaderObject), &occlusion,
                 sizeof(DnrtShaderObject));
+    CombineRecord combine;
+    std::copy(std::begin(folded.k), std::end(folded.k), combine.k);
+    combine.a = folded.a;
+    std::copy(std::begin(occlusion.k), std::end(occlusion.k), combine.occlusionK);
+    combine.occlusionA = occlusion.a;
+    std::memcpy(buffer.mapped() + combineRecordsOffset(objects.size()) + i * kCombineRecordStride, &combine,
+                sizeof combine);
   }
   return buffer;
 }
@@ -278,7 +304,7 @@ void Node::recordCombine(VkCommandBuffer cmd, const render::PassContext& pc, gpu
   p.bind(cmd);
   VkDescriptorSet set = pc.frame().descriptors->allocate(combineLayout_);
   gpu::DescriptorWriter w;
-  w.buffer(0, records);
+  w.buffer(0, records, kUniform, combineRecordsOffset(count) + i * kCombineRecordStride, kCombineRecordStride);
   for (int s = 0; s < 7; ++s) {
     w.sampledImage(std::uint32_t(s + 1), slot(s), point);
     w.sampledImage(std::uint32_t(s + 9), occlusionSlot ? (*occlusionSlot)(s) : slot(s), point);
@@ -286,7 +312,7 @@ void Node::recordCombine(VkCommandBuffer cmd, const render::PassContext& pc, gpu
   w.storageImage(8, target);
   w.update(ctx_, set);
   p.bindSet(cmd, 0, set);
-  p.push(cmd, CombinePush{std::uint32_t(i), srcZ, dstZ, size, std::uint32_t(count + i), occlusionZ});
+  p.push(cmd, CombinePush{srcZ, dstZ, size, occlusionZ});
   const auto groups = [size](std::uint32_t local) { return (std::uint32_t(size) + local - 1) / local; };
   vkCmdDispatch(cmd, groups(kCombineLocal.x), groups(kCombineLocal.y), groups(kCombineLocal.z));
 }
@@ -378,7 +404,7 @@ void Node::recordTileCull(VkCommandBuffer cmd, const render::PassContext& pc, Vk
 }
 
 probes::FusedDnrt Node::addFused(rg::RenderGraph& graph, const render::PassContext& pcIn, const NodeObject& object,
-                                 std::uint32_t step) {
+                                 std::uint32_t step, bool split) {
   if (!object.textures) throw InternalError("dnrt: object '" + object.name + "' has no field textures");
   step = gi::checkedStep(step);
   const render::PassContext* pc = &pcIn;
@@ -414,6 +440,11 @@ probes::FusedDnrt Node::addFused(rg::RenderGraph& graph, const render::PassConte
   out.push.centreWorld = folded.centreWorld;
   out.push.extents = glm::vec4(folded.extents.x, folded.extents.y, float(folded.ids.x), folded.extents.w);
   out.step = step;
+  // The split pays at full resolution, where the term per pixel is a trilinear tap; below it the term is one
+  // texelFetch and a division a pixel, and the second early-depth-tested raster of the screen cost more than
+  // the ≈ 30 % of pixels it skips (README "DNRT's fused term only inside its outer cube, session 19").
+  out.split = split && step == 1u &&
+              eyeInsideOuterCube(object.data.boxToWorld, pc->world->camera.view, pc->world->camera.proj);
   if (step == 1u) return out;
   // Below full resolution: f = s Σ_j c_j M_j at G-buffer pixel step·j (fused_reduced.comp), premultiplied
   // by the sample's validity, for the probes pass's bilinear blend of it (probes.frag dnrtReducedQuadTap).

@@ -92,7 +92,13 @@ struct NodeSettings {
   // "dnrt.upsample" (shaders/dnrt/upsample.frag) adds ρ_r times its depth- and normal-aware upsample
   // (SL's weights, gi/upsample.hpp) to "lighting.hdr" at every pixel.
   std::uint32_t step = 1;
+  // The fused mode with one object at full resolution (addFused): draw the probes pass as the object's outer
+  // cube, its term evaluated only where the pixel's surface is not behind the cube (probes::FusedDnrt::split),
+  // whenever eyeInsideOuterCube (cluster.hpp) holds. Off: one full-screen draw evaluates it everywhere (tests
+  // compare the two). Below full resolution never (measured dearer there).
+  bool splitProbes = true;
 };
+
 
 // View-projection of cube face `face` (0..5: +X, −X, +Y, −Y, +Z, −Z) seen from `origin`, 90° square,
 // depth 0..1 (Vulkan): the mapping shaders/dnrt/intrusion.glsl inverts.
@@ -119,9 +125,11 @@ class Node {
   // self test reads the normal's w). `step` 2 or 4 (the level's "dnrt": {"resolution"}) also adds pass
   // "dnrt.fused.reduced" (shaders/dnrt/fused_reduced.comp): the term's position-only factor at G-buffer
   // pixel step·j, which the probes pass blends bilinearly from one texelFetch a pixel (README "DNRT's fused
-  // term at reduced resolution, session 17", "DNRT's fused quarter term …, session 18").
+  // term at reduced resolution, session 17", "DNRT's fused quarter term …, session 18"). `split`
+  // (NodeSettings::splitProbes): the probes pass is drawn as the object's outer cube when the eye is
+  // inside it (cluster.hpp eyeInsideOuterCube; FusedDnrt::split).
   probes::FusedDnrt addFused(rg::RenderGraph& graph, const render::PassContext& pc, const NodeObject& object,
-                             std::uint32_t step = 1);
+                             std::uint32_t step = 1, bool split = true);
   // The fused mode with several objects (probes.frag kDnrt 2): the clustered mode's per-pixel visit
   // inside the probes pass. Adds pass "dnrt.combine.fused" for `objects` (at most kClusterBatch, each as
   // addFused asks): their bricks of a combined atlas (combine.comp), this frame's tile masks (the CPU's

@@ -87,7 +87,7 @@ std::optional<probes::FusedDnrt> Runtime::addFused(rg::RenderGraph& graph, const
   std::optional<probes::FusedDnrt> out;
   if (chosen.size() == 1) {  // one object: its record in the push block, no loop (probes.frag kDnrt 1)
     // Below full resolution the term's position-only factor comes from pass dnrt.fused.reduced.
-    out = node_->addFused(graph, pc, objects[chosen[0]], settings_.step);
+    out = node_->addFused(graph, pc, objects[chosen[0]], settings_.step, settings_.splitProbes);
     fused[chosen[0]] = true;
   } else {
     // Several: the clustered visit of the pixel's tile (kDnrt 2), at full resolution whatever

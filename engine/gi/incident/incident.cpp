@@ -119,6 +119,13 @@ float traceVisibility(const render::LightGpu& light, glm::vec3 p, float radius, 
   return float(reach) / float(rays);
 }
 
+RadianceSH IndirectSource::radianceShAndMap(glm::vec3 p, DirectionMap& map) const {
+  const RadianceSH sh = radianceSH(p);
+  for (int t = 0; t < math::kOctMapTexels; ++t)
+    map[std::size_t(t)] = sh::evalSum<glm::vec3, float>(std::span<const glm::vec3>(sh), math::octTexelDirection(t));
+  return sh;
+}
+
 RadianceSH ConstantEnvironment::radianceSH(glm::vec3) const {
   RadianceSH c{};
   // A constant function L has the single coefficient ∫ L Y_00 dω = 4π L Y_00 = 2√π L.

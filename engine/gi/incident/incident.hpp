@@ -22,6 +22,7 @@
 
 #include <glm/glm.hpp>
 
+#include "engine/math/oct_map.hpp"
 #include "engine/ref/scene_bvh.hpp"
 #include "engine/render/gpu_types.hpp"
 
@@ -88,9 +89,17 @@ class SceneVisibility final : public Visibility {
 
 // Radiance SH of the indirect (baked) light at a point: the probe volume (ProbeSource, session_light.hpp) or
 // a constant environment. Was gi::dnrt::IrradianceSource (still an alias there).
+// A math::kOctMapRes² octahedral map of radiance (math/oct_map.hpp texels, W/(m²·sr) per channel).
+using DirectionMap = std::array<glm::vec3, math::kOctMapTexels>;
+
 struct IndirectSource {
   virtual ~IndirectSource() = default;
   virtual RadianceSH radianceSH(glm::vec3 p) const = 0;
+  // The radiance SH at p and, from the same lookup, a direction map of the radiance there (SL's
+  // pass 1 with "blocked_read": "map", README "SL's blocked light read from the probes' direction
+  // maps, session 19"). This default: the SH evaluated at each texel's centre direction (a source
+  // without a directional store); ProbeSource blends the probes' baked maps.
+  virtual RadianceSH radianceShAndMap(glm::vec3 p, DirectionMap& map) const;
 };
 
 // Uniform radiance L (W/(m²·sr) per channel) from every direction at every point: L_00 = 2√π L.

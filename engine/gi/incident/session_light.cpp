@@ -1,5 +1,7 @@
 #include "engine/gi/incident/session_light.hpp"
 
+#include <algorithm>
+
 #include "engine/gi/probes/bake.hpp"
 
 namespace bounce::gi::incident {
@@ -8,6 +10,15 @@ RadianceSH ProbeSource::radianceSH(glm::vec3 p) const {
   const std::vector<glm::vec3> sh = volume_.radianceSH(p);
   RadianceSH out{};
   for (std::size_t i = 0; i < out.size() && i < sh.size(); ++i) out[i] = sh[i];
+  return out;
+}
+
+RadianceSH ProbeSource::radianceShAndMap(glm::vec3 p, DirectionMap& map) const {
+  std::vector<glm::vec3> sh, texels;
+  volume_.radianceAt(p, glm::vec3(0.0f), sh, &texels);
+  RadianceSH out{};
+  for (std::size_t i = 0; i < out.size() && i < sh.size(); ++i) out[i] = sh[i];
+  std::copy(texels.begin(), texels.end(), map.begin());
   return out;
 }
 
@@ -26,6 +37,11 @@ const SceneVisibility& SessionLight::lightVisibility() {
     visibility_ = std::make_unique<SceneVisibility>(std::move(occluders));
   }
   return *visibility_;
+}
+
+const ref::SceneBvh& SessionLight::surfaces() {
+  if (!surfaces_) surfaces_ = std::make_unique<ref::SceneBvh>(probes::staticScene(level_, cookCache_, nullptr, /*withTextures=*/true));
+  return *surfaces_;
 }
 
 SessionLight& sessionLight(SessionContext& sc) {

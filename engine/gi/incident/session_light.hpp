@@ -5,7 +5,10 @@
 //   indirect():        the probes' baked volume when the probes run, else the level's background;
 //   lightVisibility(): rays to each light through the level's STATIC geometry (SceneVisibility:
 //                      the dynamic objects are left out, so an object never shadows its own
-//                      centre), one Embree BVH per session, built the first time a technique asks.
+//                      centre), one Embree BVH per session, built the first time a technique asks;
+//   surfaces():        the same static scene with its textures, for the light a static surface
+//                      reflects (ref::surfaceAlbedo at a hit: RTF's room shadows); its own BVH, built
+//                      only when asked, so the shadow rays' scene holds no decoded textures.
 // A technique reaches it through sessionLight(sc), which creates Services::light on first use, so
 // a level whose techniques never ask builds nothing.
 #include <filesystem>
@@ -25,6 +28,8 @@ class ProbeSource final : public IndirectSource {
  public:
   explicit ProbeSource(const probes::ProbeVolume& volume) : volume_(volume) {}
   RadianceSH radianceSH(glm::vec3 p) const override;
+  // The probes' SH and direction maps blended with one set of lookup weights (ProbeVolume::radianceAt).
+  RadianceSH radianceShAndMap(glm::vec3 p, DirectionMap& map) const override;
 
  private:
   const probes::ProbeVolume& volume_;
@@ -36,12 +41,14 @@ class SessionLight {
   SessionLight(const scene::Level& level, std::filesystem::path cookCache, const probes::ProbeVolume* probes);
   const IndirectSource& indirect() const { return *indirect_; }
   const SceneVisibility& lightVisibility();
+  const ref::SceneBvh& surfaces();
 
  private:
   const scene::Level& level_;
   std::filesystem::path cookCache_;
   std::unique_ptr<IndirectSource> indirect_;
   std::unique_ptr<SceneVisibility> visibility_;
+  std::unique_ptr<ref::SceneBvh> surfaces_;
 };
 
 // The session's SessionLight (sc.services.light), created on first use from the probe volume the

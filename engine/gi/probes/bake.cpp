@@ -7,6 +7,9 @@
 #include <limits>
 #include <optional>
 #include <set>
+#include <utility>
+
+#include <glm/gtc/packing.hpp>
 
 #include "engine/core/error.hpp"
 #include "engine/core/file.hpp"
@@ -15,6 +18,7 @@
 #include "engine/core/parallel.hpp"
 #include "engine/core/progress.hpp"
 #include "engine/math/sampling.hpp"
+#include "engine/math/oct_map.hpp"
 #include "engine/math/sh.hpp"
 #include "engine/ref/reference_scene.hpp"
 #include "engine/scene/systems.hpp"
@@ -101,6 +105,10 @@ ProbeVolume bakeProbes(const ref::SceneBvh& bvh, const ProbeGrid& grid, const Pr
   v.sh.assign(probes * coeffs, glm::vec3(0.0f));
   v.moments.assign(probes * kVisBins, glm::vec2(0.0f));
   v.valid.assign(probes, 0u);
+  v.dirMap.assign(probes * math::kOctMapTexels * 3, glm::packHalf1x16(0.0f));
+  std::vector<glm::vec3> texelDirs(math::kOctMapTexels);
+  for (int t = 0; t < math::kOctMapTexels; ++t) texelDirs[std::size_t(t)] = math::octTexelDirection(t);
+  const double cosKernel = std::cos(kDirMapKernel);
   std::atomic<std::uint64_t> rays{0}, nonFinite{0};
   std::atomic<std::size_t> invalid{0}, moved{0};
   std::optional<Progress> progress;
@@ -114,6 +122,8 @@ ProbeVolume bakeProbes(const ref::SceneBvh& bvh, const ProbeGrid& grid, const Pr
     std::uint32_t backfaces = 0;
     std::array<double, kVisBins> sum{}, sum2{};
     std::array<std::uint32_t, kVisBins> count{};
+    std::vector<std::pair<glm::dvec3, glm::dvec3>> traced;  // every ray's (direction, radiance): the map's
+    traced.reserve(settings.rays);
     auto radiance = [&](const glm::dvec3& d) {
       const glm::vec3 dir(d);
       ref::Hit hit;
@@ -126,6 +136,7 @@ ProbeVolume bakeProbes(const ref::SceneBvh& bvh, const ProbeGrid& grid, const Pr
       sum[b] += dist, sum2[b] += dist * dist, ++count[b];
       // A NaN/Inf sample would poison the probe; none is expected, so count and report it.
       if (!std::isfinite(l.x) || !std::isfinite(l.y) || !std::isfinite(l.z)) ++bad, l = glm::dvec3(0.0);
+      traced.push_back({d, l});
       return l;
     };
     std::vector<glm::dvec3> l = sh::projectMonteCarlo(radiance, settings.order, perAxis, probeRaySeed(i));
@@ -144,6 +155,21 @@ ProbeVolume bakeProbes(const ref::SceneBvh& bvh, const ProbeGrid& grid, const Pr
       if (!width || std::isfinite(*width)) l = sh::applyWindow<glm::dvec3>(l, sh::Window::Sloan, width ? *width : 1.0);
     }
     for (int c = 0; c < coeffs; ++c) v.sh[i * coeffs + c] = glm::vec3(l[c]);
+    for (int t = 0; t < math::kOctMapTexels; ++t) {  // the direction map (header), from the same rays
+      const glm::dvec3 c(texelDirs[std::size_t(t)]);
+      glm::dvec3 sum(0.0), nearest(0.0);
+      double total = 0.0, bestCos = -2.0;
+      for (const auto& [d, radiance] : traced) {
+        const double cs = glm::dot(c, d);
+        if (cs > bestCos) bestCos = cs, nearest = radiance;
+        const double w = cs - cosKernel;
+        if (w > 0.0) sum += w * radiance, total += w;
+      }
+      const glm::dvec3 texel = total > 0.0 ? sum / total : nearest;
+      for (int ch = 0; ch < 3; ++ch)
+        v.dirMap[(i * math::kOctMapTexels + std::size_t(t)) * 3 + std::size_t(ch)] =
+            glm::packHalf1x16(float(std::min(texel[ch], 65504.0)));
+    }
     for (int b = 0; b < kVisBins; ++b) {
       // validate() gives every bin rays/kVisBins rays; an empty bin would read as "open".
       v.moments[i * kVisBins + b] =

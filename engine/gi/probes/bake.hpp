@@ -15,6 +15,13 @@
 // non-negative along kWindowDirections directions (sh::minimalWindow, applied to radiance: the
 // window and the cosine convolution are both per-band scalings, so they commute).
 //
+// The same rays also fill each probe's direction map (probe_volume.hpp dirMap, math::kOctMapRes²
+// octahedral texels): texel t holds Σ_i w_i L(ω_i) / Σ_i w_i over the probe's rays, with the cone
+// weight w_i = max(0, ω_i·c_t − cos kDirMapKernel) about the texel's centre direction c_t; a texel
+// no ray reaches (none does at 256 rays; a bound for fewer) takes its nearest ray. Why a kernel and
+// not the rays falling inside the texel: 256 rays over 256 texels leave some texels empty and most
+// with one path each. No window: the map is not truncated.
+//
 // Deterministic (seeds from probe indices, each probe summed in sample order), TBB-parallel, with
 // a progress bar; cached as <cache>/<key>.bin keyed by every input (loadOrBake).
 #include <cstddef>
@@ -33,13 +40,17 @@ namespace bounce::gi::probes {
 
 // Bump whenever the bake's output changes for the same inputs (part of the cache key).
 // 2: virtual offset (probes inside or too close to geometry baked from a point moved out of it).
-inline constexpr std::uint32_t kBakerVersion = 2;
+// 3: the direction maps.
+inline constexpr std::uint32_t kBakerVersion = 3;
 // Back-face hit fraction above which a probe counts as inside geometry (DDGI probe classification
 // uses the same 25%: a probe in open space sees no back faces of closed, consistently wound meshes).
 inline constexpr double kBackfaceFraction = 0.25;
 // Hit distances are clamped to this many spacings: lookups only ever ask about receivers within
 // √3 spacings (plus bias) of a probe, and the clamp keeps open-sky bins from inflating σ².
 inline constexpr float kMaxDistance = 3.0f;
+// The direction maps' cone half-angle (radians): 20°, against 256 rays' mean spacing of ~13°
+// (√(4π/256)), so a texel averages ~8 rays (cone area 0.38 sr × 256/4π), tent-weighted.
+inline constexpr double kDirMapKernel = 20.0 * 3.14159265358979324 / 180.0;
 // Directions checked for negative irradiance when choosing the window (spherical Fibonacci).
 inline constexpr int kWindowDirections = 256;
 

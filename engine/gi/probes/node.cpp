@@ -22,6 +22,9 @@ using namespace glm;
 namespace {
 
 constexpr int kProbeTile = glsl::PROBE_TILE;
+constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;  // "gbuffer.depth" (gbuffer_pass.cpp)
+// The depth's layout in a split pass (FusedDnrt::split): tested as a read-only attachment and sampled.
+constexpr VkImageLayout kDepthReadOnly = VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL;
 // tiles.comp's workgroup: PROBE_TILE × PROBE_TILE/2 invocations writing two rows each, within the
 // 128 every Vulkan device allows (maxComputeWorkGroupInvocations' required minimum).
 static_assert(kProbeTile % 2 == 0 && kProbeTile * (kProbeTile / 2) <= 128, "tiles.comp's workgroup");
@@ -459,14 +462,18 @@ void ProbeNode::addPasses(rg::RenderGraph& graph, const render::PassContext* pc)
         if (block) b.read(*block, rg::Usage::UniformBuffer);  // bound either way (with tiles unread)
         if (fused) d.dnrt = b.read(fused->volume, rg::Usage::SampledFragment);
         if (fused && fused->reduced) d.dnrtReduced = b.read(*fused->reduced, rg::Usage::SampledFragment);
+        // FusedDnrt::split: the cube's faces are depth-tested against it (read-only, also sampled)
+        if (fused && fused->split) b.read(d.g.depth, rg::Usage::DepthRead);
       },
       [this, pc, withAo, fused](const Data& d, const rg::PassResources& res, rg::CommandContext& c) {
         VkCommandBuffer cmd = pc->cmd(c);
         VkSampler point = pc->samplers->get({VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST});
         auto view = [&](rg::Handle<rg::Texture> h) { return pc->backend->image(res.texture(h)).view(); };
         VkDescriptorSet set = pc->frame().descriptors->allocate(setLayout_);
+        const bool split = fused && fused->split;
         gpu::DescriptorWriter writer;
-        render::writeDeferredInputs(writer, d.g, *pc, res, point)
+        render::writeDeferredInputs(writer, d.g, *pc, res, point,
+                                    split ? kDepthReadOnly : VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
             .sampledImage(3, sh_->view(), point)
             .sampledImage(4, moments_->view(), point)
             .buffer(5, shUbo_, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 0, kShUboBytes)
@@ -490,36 +497,64 @@ void ProbeNode::addPasses(rg::RenderGraph& graph, const render::PassContext* pc)
         gpu::Image& target = pc->backend->image(res.texture(d.hdr));
         render::Attachment color{target.view(), true};  // additive: keep the direct light
         const VkExtent2D extent{target.desc().width, target.desc().height};
-        render::beginRendering(*pc->gpu, cmd, extent, {&color, 1}, nullptr);
+        render::Attachment depth{view(d.g.depth)};
+        depth.readOnly = true;
+        render::beginRendering(*pc->gpu, cmd, extent, {&color, 1}, split ? &depth : nullptr);
         const std::size_t stepIndex = !fused || fused->step == 1u ? 0u : fused->step == 2u ? 1u : 2u;
         if (fused && fused->step != 1u && fused->step != 2u && fused->step != 4u)
           throw InternalError("probes: fused DNRT step " + std::to_string(fused->step) + " (expected 1, 2 or 4)");
-        gpu::Pipeline& fusedPipeline = fusedPipelines_[several ? 3u : stepIndex];
-        if (fused && fusedPipeline.handle() == VK_NULL_HANDLE) {
-          gpu::ShaderModule vert(*pc->gpu, "passes/fullscreen.vert.spv");
+        // probes.frag with kDnrt `dnrt` at kDnrtStep `step`; split: drawn as the outer cube (outer_cube.vert)
+        // against the depth, `compare` deciding which pixels it shades (FusedDnrt::split).
+        const auto make = [&](std::uint32_t dnrt, std::uint32_t step, bool splitDraw, VkCompareOp compare,
+                              std::string name) {
+          gpu::ShaderModule vert(*pc->gpu, splitDraw ? "probes/outer_cube.vert.spv" : "passes/fullscreen.vert.spv");
           gpu::ShaderModule frag(*pc->gpu, "probes/probes.frag.spv");
           gpu::GraphicsPipelineDesc pd;
           pd.vertex = &vert;
           pd.fragment = &frag;
           pd.colorFormats = {VK_FORMAT_R16G16B16A16_SFLOAT};
           pd.blend = gpu::Blend::Additive;
+          if (splitDraw) {
+            pd.depthFormat = kDepthFormat;
+            pd.depthTest = true;
+            pd.depthCompare = compare;
+          }
           pd.specialization = specialization_;
-          pd.specialization.push_back(several ? 2u : 1u);              // kDnrt
-          pd.specialization.push_back(several ? 1u : fused->step);   // kDnrtStep
-          pd.name = several ? std::string("probes.fused-dnrt.cluster")
-                            : "probes.fused-dnrt" + (fused->step > 1u ? ".step" + std::to_string(fused->step) : std::string());
-          fusedPipeline = gpu::createGraphicsPipeline(*pc->gpu, layout_, pd);
-        }
-        const gpu::Pipeline& p = fused ? fusedPipeline : pipeline_;
-        p.bind(cmd);
-        p.bindSet(cmd, 0, pc->frameSet);
-        p.bindSet(cmd, 1, set);
+          pd.specialization.push_back(dnrt);  // kDnrt
+          pd.specialization.push_back(step);  // kDnrtStep
+          pd.name = std::move(name);
+          return gpu::createGraphicsPipeline(*pc->gpu, layout_, pd);
+        };
+        const std::string stepName = fused && fused->step > 1u ? ".step" + std::to_string(fused->step) : "";
+        gpu::Pipeline& fusedPipeline =
+            split ? splitFusedPipelines_[stepIndex] : fusedPipelines_[several ? 3u : stepIndex];
+        if (fused && fusedPipeline.handle() == VK_NULL_HANDLE)
+          fusedPipeline = several ? make(2u, 1u, false, VK_COMPARE_OP_ALWAYS, "probes.fused-dnrt.cluster")
+                          : split ? make(1u, fused->step, true, VK_COMPARE_OP_GREATER_OR_EQUAL,
+                                         "probes.fused-dnrt.inside" + stepName)
+                                  : make(1u, fused->step, false, VK_COMPARE_OP_ALWAYS, "probes.fused-dnrt" + stepName);
+        if (split && splitPlainPipeline_.handle() == VK_NULL_HANDLE)
+          splitPlainPipeline_ = make(0u, 1u, true, VK_COMPARE_OP_LESS, "probes.outside");
         struct {
           ProbePush probes;
           FusedDnrtPush dnrt;
         } push{probePush(volume_, withAo ? 1.0f : 0.0f), fused ? fused->push : FusedDnrtPush{}};
-        p.push(cmd, push);
-        vkCmdDraw(cmd, 3, 1, 0, 0);
+        const auto draw = [&](const gpu::Pipeline& p, std::uint32_t vertices) {
+          p.bind(cmd);
+          p.bindSet(cmd, 0, pc->frameSet);
+          p.bindSet(cmd, 1, set);
+          p.push(cmd, push);
+          vkCmdDraw(cmd, vertices, 1, 0, 0);
+        };
+        if (split) {
+          // The cube's 36 vertices (outer_cube.vert) twice: the term where the surface is not behind the face the
+          // pixel's ray leaves the cube through, then the probes alone where it is. Every pixel once.
+          draw(fusedPipeline, 36);
+          draw(splitPlainPipeline_, 36);
+        } else {
+          draw(fused ? fusedPipeline : pipeline_, 3);
+        }
+        lastPassSplit_ = split;
         pc->gpu->cmdEndRendering(cmd);
       });
   bb.put("lighting.hdr", data.hdr);

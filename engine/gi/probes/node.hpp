@@ -59,6 +59,14 @@ struct FusedDnrt {
   // README "DNRT's fused term at reduced resolution, session 17"). Unset at step 1 and for several objects (kDnrt 2 runs at full resolution).
   std::optional<rg::Handle<rg::Texture>> reduced;
   std::uint32_t step = 1;
+  // One object (kDnrt 1) at full resolution with the eye inside its outer cube (gi/dnrt/cluster.hpp
+  // eyeInsideOuterCube; dnrt::Node::addFused sets it at step 1 only, but any step works here): the pass
+  // is drawn as the cube's faces twice (shaders/probes/outer_cube.vert), against the G-buffer depth as a
+  // read-only attachment — the fused pipeline where the pixel's surface is not behind the face (the term may
+  // be non-zero), the plain one where it is (outside the cube: s(r) = 0) — so the term is evaluated only
+  // inside the cube (README "DNRT's fused term only inside its outer cube, session 19"). False: one
+  // full-screen triangle with the fused pipeline.
+  bool split = false;
 };
 // Called by the probes node before it adds its pass; adds the passes the fused term reads
 // (dnrt.combine.fused, and dnrt.fused.reduced below full resolution) and returns it, or nothing (no fused object this frame: the plain pipeline).
@@ -110,6 +118,8 @@ class ProbeNode final : public TechniqueRuntime {
   // DNRT's fused mode (FusedDnrtHook); an empty function removes it. The hook's owner must outlive the
   // node's frames or remove it first.
   void setFusedDnrt(FusedDnrtHook hook) { fusedDnrt_ = std::move(hook); }
+  // Whether the last recorded probes pass was split at a fused object's outer cube (FusedDnrt::split). For tests.
+  bool lastPassSplit() const { return lastPassSplit_; }
 
  private:
   ProbeVolume volume_;
@@ -130,6 +140,11 @@ class ProbeNode final : public TechniqueRuntime {
   // probes.frag with kDnrt 1 at kDnrtStep 1, 2, 4 (one object) and kDnrt 2 (several; FusedDnrt), made on
   // first use; the dummy volume (binding 9), tile masks (10) and records (11) hold otherwise.
   std::array<gpu::Pipeline, 4> fusedPipelines_;
+  // FusedDnrt::split's pipelines (outer_cube.vert, the G-buffer depth read-only): kDnrt 1 at kDnrtStep 1, 2, 4
+  // where the surface is not behind the cube's face, and the plain one (kDnrt 0) where it is.
+  std::array<gpu::Pipeline, 3> splitFusedPipelines_;
+  gpu::Pipeline splitPlainPipeline_;
+  bool lastPassSplit_ = false;
   std::vector<std::uint32_t> specialization_;  // kCoeffs, kShInUbo, kMomentsInUbo, kTiles
   std::unique_ptr<gpu::Image> noDnrt_;  // 1³ RGBA16F zero
   gpu::Buffer noDnrtTiles_, noDnrtObjects_;  // one zero mask; kDnrtObjectsBytes of zeros

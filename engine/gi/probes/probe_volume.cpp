@@ -3,6 +3,8 @@
 #include <cmath>
 #include <cstring>
 
+#include <glm/gtc/packing.hpp>
+
 #include "engine/core/error.hpp"
 #include "engine/core/hash.hpp"
 #include "engine/math/sh.hpp"
@@ -42,16 +44,38 @@ void ProbeVolume::weights(const glm::vec3& pos, const glm::vec3& normal, const g
 }
 
 std::vector<glm::vec3> ProbeVolume::radianceSH(const glm::vec3& pos, const glm::vec3& normal) const {
+  std::vector<glm::vec3> out;
+  radianceAt(pos, normal, out, nullptr);
+  return out;
+}
+
+glm::vec3 ProbeVolume::dirMapTexel(std::size_t probe, int texel) const {
+  const std::uint16_t* h = &dirMap[(probe * math::kOctMapTexels + std::size_t(texel)) * 3];
+  return {glm::unpackHalf1x16(h[0]), glm::unpackHalf1x16(h[1]), glm::unpackHalf1x16(h[2])};
+}
+
+void ProbeVolume::radianceAt(const glm::vec3& pos, const glm::vec3& normal, std::vector<glm::vec3>& out,
+                             std::vector<glm::vec3>* map) const {
   int probe[8];
   float weight[8];
   weights(pos, normal, glm::vec3(0.0f), probe, weight);
-  std::vector<glm::vec3> out(std::size_t(coeffs()), glm::vec3(0.0f));
+  out.assign(std::size_t(coeffs()), glm::vec3(0.0f));
   for (int k = 0; k < 8; ++k) {
     if (weight[k] == 0.0f) continue;
     const glm::vec3* c = &sh[std::size_t(probe[k]) * coeffs()];
     for (int i = 0; i < coeffs(); ++i) out[i] += weight[k] * c[i];
   }
-  return out;
+  if (!map) return;
+  map->assign(math::kOctMapTexels, glm::vec3(0.0f));
+  if (hasDirMap()) {
+    for (int k = 0; k < 8; ++k) {
+      if (weight[k] == 0.0f) continue;
+      for (int t = 0; t < math::kOctMapTexels; ++t) (*map)[std::size_t(t)] += weight[k] * dirMapTexel(std::size_t(probe[k]), t);
+    }
+  } else {
+    for (int t = 0; t < math::kOctMapTexels; ++t)
+      (*map)[std::size_t(t)] = sh::evalSum<glm::vec3, float>(out, math::octTexelDirection(t));
+  }
 }
 
 glm::vec3 ProbeVolume::irradiance(const glm::vec3& pos, const glm::vec3& normal, const glm::vec3& view) const {
@@ -83,6 +107,7 @@ struct Header {
   std::int32_t order;
   std::int32_t visBins;
   float bias[2];
+  std::int32_t dirMapRes;  // math::kOctMapRes, or 0: no direction maps
 };
 
 template <class T>
@@ -102,11 +127,17 @@ std::vector<std::uint8_t> serialize(const ProbeVolume& v) {
   h.order = v.order;
   h.visBins = kVisBins;
   h.bias[0] = v.bias.normal, h.bias[1] = v.bias.view;
+  h.dirMapRes = v.hasDirMap() ? math::kOctMapRes : 0;
   std::vector<std::uint8_t> out;
+  // Sized up front: one allocation (and GCC 12's -Wstringop-overflow false positive on the first
+  // insert into an empty vector goes away).
+  out.reserve(sizeof h + v.sh.size() * sizeof(glm::vec3) + v.moments.size() * sizeof(glm::vec2) +
+              v.valid.size() * sizeof(std::uint32_t) + v.dirMap.size() * sizeof(std::uint16_t) + sizeof(std::uint64_t));
   append(out, &h, 1);
   append(out, v.sh.data(), v.sh.size());
   append(out, v.moments.data(), v.moments.size());
   append(out, v.valid.data(), v.valid.size());
+  if (h.dirMapRes != 0) append(out, v.dirMap.data(), v.dirMap.size());
   const std::uint64_t sum = hashBytes(out);
   append(out, &sum, 1);
   return out;
@@ -121,6 +152,7 @@ ProbeVolume deserialize(std::span<const std::uint8_t> bytes, const std::string& 
   if (h.version != kProbeFormatVersion) fail("format version " + std::to_string(h.version));
   if (h.order < 2 || h.order > 3) fail("SH order " + std::to_string(h.order));
   if (h.visBins != kVisBins) fail("visibility bin count " + std::to_string(h.visBins));
+  if (h.dirMapRes != 0 && h.dirMapRes != math::kOctMapRes) fail("direction map resolution " + std::to_string(h.dirMapRes));
   std::uint64_t probes = 1;
   for (int i = 0; i < 3; ++i) {
     if (h.count[i] < 1 || !std::isfinite(h.origin[i])) fail("bad grid");
@@ -130,8 +162,10 @@ ProbeVolume deserialize(std::span<const std::uint8_t> bytes, const std::string& 
   if (!std::isfinite(h.spacing) || !(h.spacing > 0.0f) || !std::isfinite(h.bias[0]) || !std::isfinite(h.bias[1]))
     fail("bad spacing or bias");
   const std::size_t nSh = std::size_t(probes) * h.order * h.order, nMom = std::size_t(probes) * kVisBins;
+  const std::size_t nMap = h.dirMapRes != 0 ? std::size_t(probes) * math::kOctMapTexels * 3 : 0;
   const std::size_t expected = sizeof(Header) + nSh * sizeof(glm::vec3) + nMom * sizeof(glm::vec2) +
-                               std::size_t(probes) * sizeof(std::uint32_t) + sizeof(std::uint64_t);
+                               std::size_t(probes) * sizeof(std::uint32_t) + nMap * sizeof(std::uint16_t) +
+                               sizeof(std::uint64_t);
   if (bytes.size() != expected) fail("size " + std::to_string(bytes.size()) + ", header implies " + std::to_string(expected));
   std::uint64_t sum;
   std::memcpy(&sum, bytes.data() + expected - sizeof sum, sizeof sum);
@@ -152,6 +186,11 @@ ProbeVolume deserialize(std::span<const std::uint8_t> bytes, const std::string& 
   std::memcpy(v.moments.data(), p, nMom * sizeof(glm::vec2));
   p += nMom * sizeof(glm::vec2);
   std::memcpy(v.valid.data(), p, v.valid.size() * sizeof(std::uint32_t));
+  p += v.valid.size() * sizeof(std::uint32_t);
+  v.dirMap.resize(nMap);
+  if (nMap != 0) std::memcpy(v.dirMap.data(), p, nMap * sizeof(std::uint16_t));  // no maps: data() may be null (UB)
+  for (std::uint16_t half : v.dirMap)
+    if (!std::isfinite(glm::unpackHalf1x16(half))) fail("non-finite direction map texel");
   for (const glm::vec3& c : v.sh)
     if (!std::isfinite(c.x) || !std::isfinite(c.y) || !std::isfinite(c.z)) fail("non-finite SH coefficient");
   for (const glm::vec2& m : v.moments)

@@ -13,6 +13,8 @@
 
 #include <glm/glm.hpp>
 
+#include "engine/math/oct_map.hpp"
+
 namespace bounce::gi::probes {
 
 // Visibility bins per probe (probe_weights.glsl PROBE_VIS_RES², equal-area cylindrical map).
@@ -44,6 +46,14 @@ struct ProbeVolume {
   std::vector<glm::vec3> sh;         // probeCount × order² RGB radiance coefficients (windowed)
   std::vector<glm::vec2> moments;    // probeCount × kVisBins: mean and mean-square hit distance (m, m²)
   std::vector<std::uint32_t> valid;  // probeCount: 1 usable, 0 inside geometry (weight 0)
+  // Per probe a math::kOctMapRes² octahedral map of the static radiance (issue 13, README "SL's
+  // blocked light read from the probes' direction maps, session 19"): texel t of probe i, channel c
+  // at [(i · kOctMapTexels + t) · 3 + c], fp16 (glm::packHalf1x16), W/(m²·sr). Built by the bake from
+  // the same rays as the SH (bake.hpp); empty when a volume has none (hand-made volumes), and then
+  // radianceAt() evaluates the SH at the texels instead. SL pass 2 reads it at each SL
+  // ("blocked_read": "map"): the order-3 SH spreads the floor's bright half over the horizon, where
+  // the directions an SL blocks lie (README "SL's blocked light on the characters' floor, session 18").
+  std::vector<std::uint16_t> dirMap;
   LookupBias bias;
 
   int coeffs() const { return order * order; }
@@ -59,6 +69,14 @@ struct ProbeVolume {
 
   // Weighted radiance SH (order² RGB coefficients) at `pos`: DNRT's c_j. `normal` as above.
   std::vector<glm::vec3> radianceSH(const glm::vec3& pos, const glm::vec3& normal = glm::vec3(0.0f)) const;
+  // One lookup (weights() once) for both stores: the weighted radiance SH into `sh` (order² RGB) and,
+  // when `map` is not null, the same weights' blend of the probes' direction maps into it
+  // (math::kOctMapTexels RGB radiance): SL's pass 1 at each posed SL centre (incident::ProbeSource).
+  // Without baked maps the blended SH evaluated at each texel's centre direction.
+  void radianceAt(const glm::vec3& pos, const glm::vec3& normal, std::vector<glm::vec3>& sh, std::vector<glm::vec3>* map) const;
+  bool hasDirMap() const { return !dirMap.empty() && dirMap.size() == grid.probeCount() * math::kOctMapTexels * 3; }
+  // Texel t of probe i's direction map (RGB, W/(m²·sr)); needs hasDirMap().
+  glm::vec3 dirMapTexel(std::size_t probe, int texel) const;
   // Irradiance E(n) (W/m² in the renderer's linear units) at a surface point with unit normal n.
   glm::vec3 irradiance(const glm::vec3& pos, const glm::vec3& normal, const glm::vec3& view = glm::vec3(0.0f)) const;
 };
@@ -66,7 +84,8 @@ struct ProbeVolume {
 // Versioned binary format: magic "BPRB", format version, header, arrays, FNV/splitmix checksum of
 // everything before it. load() validates sizes, counts, order, finiteness and the checksum and
 // throws InputError naming `name` on any mismatch.
-inline constexpr std::uint32_t kProbeFormatVersion = 1;
+// 2: the direction maps (dirMap; header field dirMapRes, 0 when the volume has none).
+inline constexpr std::uint32_t kProbeFormatVersion = 2;
 std::vector<std::uint8_t> serialize(const ProbeVolume& volume);
 ProbeVolume deserialize(std::span<const std::uint8_t> bytes, const std::string& name);
 

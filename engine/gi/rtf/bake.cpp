@@ -16,6 +16,7 @@
 #include "engine/gi/rtf/dense.hpp"
 #include "engine/math/sampling.hpp"
 #include "engine/math/sh.hpp"
+#include "engine/ref/surface_albedo.hpp"
 
 namespace bounce::gi::rtf {
 
@@ -27,23 +28,73 @@ struct Vertices {
   std::vector<std::uint32_t> meshOffset;  // a mesh's first vertex here
 };
 
+// Sub-triangles per triangle side for a textured vertex's albedo (kAlbedoSubdivision² points a triangle).
+constexpr int kAlbedoSubdivision = 8;
+
+// A vertex's albedo. Untextured: the material's factor. Textured: the texture's mean over the triangles
+// around the vertex, each point weighted by the vertex's barycentric (hat) weight b_v:
+//   ρ_v = Σ_tri ∫ b_v ρ dA / Σ_tri ∫ b_v dA,
+// the lumped-mass projection of ρ onto the per-vertex values the transfer carries and the field
+// interpolates over a hit's triangle, so Σ_v ρ_v ∫ b_v dA = ∫ ρ dA: the surface reflects the texture's
+// area mean, not the texels that happen to lie at the vertices' uvs (until session 19: textured box 0.658
+// against its area mean 0.455, truck 0.238 against 0.414; README "RTF's textured albedo and the bouncing
+// step's cost, session 19").
+// Each integral by the midpoint rule over the triangle's kAlbedoSubdivision² equal sub-triangles (exact for
+// a linear ρ); each point's ρ clamped as gbuffer.frag clamps a pixel's. A vertex in no triangle keeps its
+// own uv's texel.
+void meshAlbedo(const ref::SceneDesc& o, const ref::RefMesh& m, std::vector<glm::vec3>& out) {
+  const ref::RefMaterial* mat = m.material < o.materials.size() ? &o.materials[m.material] : nullptr;
+  const bool textured = mat && mat->albedoTexture >= 0 && std::size_t(mat->albedoTexture) < o.textures.size() &&
+                        m.uvs.size() == m.positions.size();
+  if (!textured) {
+    out.insert(out.end(), m.positions.size(), glm::clamp(mat ? mat->albedo : glm::vec3(1.0f), glm::vec3(0.0f), glm::vec3(1.0f)));
+    return;
+  }
+  const auto rho = [&](glm::vec2 uv) { return ref::surfaceAlbedo(o, m.material, uv); };
+  for (std::size_t i = 0; i < m.positions.size(); ++i) out.push_back(rho(m.uvs[i]));
+  const std::size_t first = out.size() - m.positions.size();
+  std::vector<glm::dvec3> sum(m.positions.size(), glm::dvec3(0.0));
+  std::vector<double> weight(m.positions.size(), 0.0);
+  constexpr int n = kAlbedoSubdivision;
+  for (std::size_t t = 0; t + 2 < m.indices.size(); t += 3) {
+    const std::uint32_t c[3] = {m.indices[t], m.indices[t + 1], m.indices[t + 2]};
+    const double area = 0.5 * double(glm::length(glm::cross(m.positions[c[1]] - m.positions[c[0]], m.positions[c[2]] - m.positions[c[0]])));
+    if (!(area > 0.0)) continue;
+    const auto point = [&](double u, double v) {  // barycentrics (1 − u − v, u, v) of corners 0, 1, 2
+      const double b[3] = {1.0 - u - v, u, v};
+      const glm::dvec3 r(rho(float(b[0]) * m.uvs[c[0]] + float(b[1]) * m.uvs[c[1]] + float(b[2]) * m.uvs[c[2]]));
+      for (int k = 0; k < 3; ++k) sum[c[k]] += area * b[k] * r, weight[c[k]] += area * b[k];
+    };
+    // The centroids of the n² sub-triangles: n(n+1)/2 pointing like the triangle, n(n−1)/2 the other way.
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; i + j < n; ++j) {
+        point((double(i) + 1.0 / 3.0) / n, (double(j) + 1.0 / 3.0) / n);
+        if (i + j + 1 < n) point((double(i) + 2.0 / 3.0) / n, (double(j) + 2.0 / 3.0) / n);
+      }
+  }
+  for (std::size_t i = 0; i < m.positions.size(); ++i)
+    if (weight[i] > 0.0) out[first + i] = glm::vec3(sum[i] / weight[i]);
+}
+
 Vertices flatten(const ref::SceneDesc& o) {
   Vertices v;
   for (const auto& m : o.meshes) {
     v.meshOffset.push_back(std::uint32_t(v.position.size()));
-    const ref::RefMaterial* mat = m.material < o.materials.size() ? &o.materials[m.material] : nullptr;
     for (std::size_t i = 0; i < m.positions.size(); ++i) {
       v.position.push_back(m.positions[i]);
       const glm::vec3 n = i < m.normals.size() ? m.normals[i] : glm::vec3(0.0f);
       v.normal.push_back(glm::length(n) > 0.0f ? glm::normalize(n) : glm::vec3(0.0f, 0.0f, 1.0f));
-      glm::vec3 a = mat ? mat->albedo : glm::vec3(1.0f);
-      if (mat && mat->albedoTexture >= 0 && std::size_t(mat->albedoTexture) < o.textures.size() && i < m.uvs.size())
-        a *= o.textures[std::size_t(mat->albedoTexture)].sample(m.uvs[i]);
-      v.albedo.push_back(glm::clamp(a, glm::vec3(0.0f), glm::vec3(1.0f)));  // as gbuffer.frag clamps
     }
+    meshAlbedo(o, m, v.albedo);
   }
   return v;
 }
+
+}  // namespace
+
+std::vector<glm::vec3> vertexAlbedo(const ref::SceneDesc& object) { return flatten(object).albedo; }
+
+namespace {
 
 // The hit point's transfer as the renderer shades it: the rasteriser interpolates the per-vertex
 // transfer across a triangle (Sloan et al. 2002 §5, per-vertex PRT), so a ray's hit takes
@@ -287,7 +338,7 @@ BakeResult bake(const ref::SceneDesc& object, const FieldSettings& s) {
 
 std::string cacheKey(const ref::SceneDesc& object, const FieldSettings& s) {
   Hasher h;
-  h.str("rtf-field-v8");  // baker and file format version: bump when either changes (v2: cube-map projection directions; v3: warm-started CPCA; v4: CPCA on lines, k-means++ seeds, float products; v5: fp16 basis and α, file version 2; v6: burned by two unmerged session-11 experiments; v7: a hit's transfer interpolated over its triangle, not its nearest vertex's; v8: byteComponents, file version 3)
+  h.str("rtf-field-v9");  // baker and file format version: bump when either changes (v2: cube-map projection directions; v3: warm-started CPCA; v4: CPCA on lines, k-means++ seeds, float products; v5: fp16 basis and α, file version 2; v6: burned by two unmerged session-11 experiments; v7: a hit's transfer interpolated over its triangle, not its nearest vertex's; v8: byteComponents, file version 3; v9: a textured vertex's albedo the texture's hat-weighted mean over its triangles, not its uv's texel)
   h.pod(s.proxies).pod(s.spheres).pod(s.faceSize).pod(s.innerRadius).pod(s.outerRadius).pod(s.raysPerAxis);
   h.pod(s.vertexRaysPerAxis).pod(s.selfBounces).pod(s.clusters).pod(s.components).pod(s.byteComponents);
   ref::hashGeometry(h, object);

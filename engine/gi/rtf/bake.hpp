@@ -55,6 +55,11 @@ struct BakeResult {
   std::vector<float> itf;  // uncompressed M, sample-major (itfIndex layout), kept for tests
 };
 
+// The albedo each vertex's transfer carries (RGB, vertices of all meshes in order): the material's
+// factor, or for a textured material the texture's hat-weighted mean over the triangles around the
+// vertex (bake.cpp meshAlbedo: Σ_v ρ_v ∫ b_v dA = ∫ ρ dA), each clamped to [0, 1] as gbuffer.frag.
+std::vector<glm::vec3> vertexAlbedo(const ref::SceneDesc& object);
+
 // Vertex transfer t_{p,k}^j (RGB), [vertex · m·16 + k·16 + j], vertices of all meshes in order.
 std::vector<glm::vec3> vertexTransfer(const ref::SceneDesc& object, std::span<const glm::vec3> proxies,
                                       float radius, const FieldSettings& settings);

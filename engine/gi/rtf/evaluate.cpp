@@ -5,6 +5,7 @@
 #include <numeric>
 
 #include "engine/core/error.hpp"
+#include "engine/core/parallel.hpp"
 #include "engine/math/sh.hpp"
 
 namespace bounce::gi::rtf {
@@ -251,18 +252,26 @@ BounceResult bounce(std::span<const Object> objects, std::span<const dnrt::Irrad
     if (b > 0)
       for (std::size_t i = 0; i < n; ++i) xi[i] = xiCache(*objects[i].field, current[i]), xiPtr[i] = &xi[i];
     std::vector<std::vector<glm::vec3>> next(n);
-    double energy = 0.0;
+    std::vector<std::pair<std::size_t, std::size_t>> proxies;  // (J, k): every object's proxies
     for (std::size_t J = 0; J < n; ++J) {
-      const Field& f = *objects[J].field;
-      next[J].assign(f.proxies.size() * kShCount, glm::vec3(0.0f));
-      for (std::size_t k = 0; k < f.proxies.size(); ++k) {
-        const glm::vec3 chi = glm::vec3(objects[J].world * glm::vec4(f.proxies[k], 1.0f));
-        const Incident in = incidentRadiance(objects, xiPtr, b == 0 ? sources[J] : nullptr, chi, int(J));
-        const ShRgb local = toLocal(in.radiance, placed[J]);
-        std::copy(local.begin(), local.end(), next[J].begin() + std::ptrdiff_t(k * kShCount));
-        energy += double(local[0].r + local[0].g + local[0].b) / 3.0;
-      }
+      next[J].assign(objects[J].field->proxies.size() * kShCount, glm::vec3(0.0f));
+      for (std::size_t k = 0; k < objects[J].field->proxies.size(); ++k) proxies.emplace_back(J, k);
     }
+    // Each proxy on its own over TBB's pool (cornell-5's step is ≈ 16 ms of one thread's CPU a frame, the
+    // room shadows ≈ 3 of it; README "RTF's textured albedo and the bouncing step's cost, session 19"):
+    // every proxy writes only its own slots and the energy is summed in proxy order afterwards, so the
+    // result is the serial loop's bit for bit on any thread count.
+    std::vector<double> proxyEnergy(proxies.size(), 0.0);
+    parallelFor(0, proxies.size(), [&](std::size_t i) {
+      const auto [J, k] = proxies[i];
+      const glm::vec3 chi = glm::vec3(objects[J].world * glm::vec4(objects[J].field->proxies[k], 1.0f));
+      const Incident in = incidentRadiance(objects, xiPtr, b == 0 ? sources[J] : nullptr, chi, int(J));
+      const ShRgb local = toLocal(in.radiance, placed[J]);
+      std::copy(local.begin(), local.end(), next[J].begin() + std::ptrdiff_t(k * kShCount));
+      proxyEnergy[i] = double(local[0].r + local[0].g + local[0].b) / 3.0;
+    });
+    double energy = 0.0;
+    for (const double e : proxyEnergy) energy += e;
     result.bounceEnergy.push_back(energy);
     for (std::size_t J = 0; J < n; ++J) {
       if (result.proxyLight[J].empty()) result.proxyLight[J].assign(next[J].size(), glm::vec3(0.0f));

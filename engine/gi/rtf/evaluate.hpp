@@ -124,7 +124,9 @@ struct BounceResult {
 // objects' OOFs (Algorithm 1: the distant light is the farthest entity). Bounce b ≥ 1: the other
 // objects' RTFs lit by their bounce b−1 light, each occluded by the OOFs of the objects nearer to
 // the proxy (Algorithm 1's order). `bounces` in 1..4 = B: light reaching the proxies after 0..B−1
-// inter-object reflections; the shading step adds one more.
+// inter-object reflections; the shading step adds one more. The proxies run in parallel (TBB), so a
+// source's radianceSH is called from several threads at once: it must be safe to (every source in the
+// engine is: const reads and Embree queries). The result does not depend on the thread count.
 BounceResult bounce(std::span<const Object> objects, const dnrt::IrradianceSource& source, int bounces);
 // The same with object J's bounce-0 source light read from sources[J] (one per object, not null): the
 // session's lamp visibility at J's proxies leaves J's own mesh out (occluders.hpp, update.cpp).

@@ -12,7 +12,8 @@
 // directions ω_s (the spherical Fibonacci lattice) to the static surface x_s they hit first:
 //   ΔL_i(χ) = −(4π/N) Σ_s Y_i(ω_s) ρ(x_s)/π Σ_lights E(x_s) max(n_s·l, 0) V_static(x_s) (1 − V_objects(x_s))
 // (radiance SH, W/(m²·sr), world axes; E the light's irradiance, incident::lightIrradiance; ρ the
-// static material's albedo factor, textures dropped as the light visibility's scene has them;
+// static surface's albedo at the hit, texture included (ref::surfaceAlbedo, what the probe bake's
+// paths reflect), so `level` must hold its textures (incident::SessionLight::surfaces());
 // V_objects through EVERY posed object, the proxy's own included: its shadow on the room is the
 // room's, not Eq. 8's self-shadowing). Only the lamp's first bounce off the room is taken away: the
 // probes' higher orders stay.
@@ -31,7 +32,8 @@ namespace bounce::gi::rtf {
 inline constexpr int kRoomShadowDirections = 64;
 
 // ΔL at χ (9 radiance SH, world; ≤ 0 in its mean) for `lights` through `level` (the static scene, with
-// its materials) and the posed objects `poses` of `occluders`.
+// its materials and textures) and the posed objects `poses` of `occluders`. Safe to call from several
+// threads at once (const reads and Embree queries only).
 incident::RadianceSH roomShadow(const ref::SceneBvh& level, const PosedOccluders& occluders,
                                 std::span<const PosedOccluders::Pose> poses, std::span<const render::LightGpu> lights,
                                 glm::vec3 chi, int directions = kRoomShadowDirections);

@@ -217,11 +217,11 @@ SessionRuntime::SessionRuntime(SessionContext& sc, const std::filesystem::path& 
   update_->setIndirect(&light.indirect());
   update_->setLightVisibility(&light.lightVisibility());
   update_->setOccluders(std::make_unique<PosedOccluders>(std::move(meshes)), &light.lightVisibility().bvh());
-  // The baked probes hold the room lit where the objects shadow it (room_shadows.hpp); a background has
-  // no room light. The CPU readers get the baked SH even when the probes are relit (kRelightCpuReaders
+  // The baked probes hold the room lit where the objects shadow it (room_shadows.hpp: the room's albedo
+  // at each hit from the textured static scene); a background has no room light. The CPU readers get the baked SH even when the probes are relit (kRelightCpuReaders
   // off, probes/relight.hpp); with it on, the relit SH would hold these shadows already.
   static_assert(!probes::kRelightCpuReaders, "rtf room shadows would count the relit probes' shadows twice");
-  update_->setRoomShadows(sc.services.probeVolume != nullptr);
+  update_->setRoomShadows(sc.services.probeVolume != nullptr ? &light.surfaces() : nullptr);
   for (const Participant& p : update_->participants()) xi_.push_back(std::make_unique<XiPass>(sc.ctx, p.field));
   node_ = std::make_unique<Node>(sc.ctx, sc.renderer.pipelines(), sc.renderer.frames().framesInFlight());
 }

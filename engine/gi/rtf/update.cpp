@@ -137,9 +137,9 @@ FrameObjects Update::frame(std::span<const render::LightGpu> lights) {
         services.back().setVisibility(&visibility.back());
         lit.emplace_back(services.back(), lights);
         sources.push_back(&lit.back());
-        if (roomShadows_ && level_) {
+        if (surfaces_) {
           shadowed.push_back({});
-          shadowed.back().lit = &lit.back(), shadowed.back().level = level_, shadowed.back().occluders = occluders_.get();
+          shadowed.back().lit = &lit.back(), shadowed.back().level = surfaces_, shadowed.back().occluders = occluders_.get();
           shadowed.back().poses = poses, shadowed.back().lights = lights;
           sources.back() = &shadowed.back();
         }

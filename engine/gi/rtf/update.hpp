@@ -122,10 +122,11 @@ class Update {
   void setOccluders(std::unique_ptr<PosedOccluders> occluders, const ref::SceneBvh* level) {
     occluders_ = std::move(occluders), level_ = level;
   }
-  // With occluders and a level: the proxies' source light also loses the lamp light the posed objects'
-  // shadows take off the room around them (room_shadows.hpp; for an indirect source that holds the
-  // room's lamp bounce without them: the baked probes).
-  void setRoomShadows(bool on) { roomShadows_ = on; }
+  // With occluders and `surfaces` (the static scene with its textures, not owned; null: off): the
+  // proxies' source light also loses the lamp light the posed objects' shadows take off the room around
+  // them (room_shadows.hpp; for an indirect source that holds the room's lamp bounce without them: the
+  // baked probes).
+  void setRoomShadows(const ref::SceneBvh* surfaces) { surfaces_ = surfaces; }
   const std::vector<Participant>& participants() const { return participants_; }
   int bounces() const;
 
@@ -139,7 +140,7 @@ class Update {
   incident::Service service_;
   std::unique_ptr<PosedOccluders> occluders_;
   const ref::SceneBvh* level_ = nullptr;
-  bool roomShadows_ = false;
+  const ref::SceneBvh* surfaces_ = nullptr;
   std::vector<double> bounceMs_;
 };
 

@@ -13,6 +13,7 @@
 #include "engine/gi/sl/sphere_fit.hpp"
 #include "engine/math/sampling.hpp"
 #include "engine/math/sh_eval.hpp"
+#include "engine/ref/surface_albedo.hpp"
 
 namespace bounce::gi::sl {
 namespace {
@@ -90,15 +91,6 @@ bool sampleHit(const ref::SceneBvh& bvh, const std::vector<Sphere>& spheres, std
     }
   }
   return false;
-}
-
-glm::vec3 albedoAt(const ref::SceneDesc& scene, const ref::Hit& h) {
-  if (h.material >= scene.materials.size()) return glm::vec3(1.0f);
-  const ref::RefMaterial& m = scene.materials[h.material];
-  glm::vec3 a = m.albedo;
-  if (m.albedoTexture >= 0 && std::size_t(m.albedoTexture) < scene.textures.size())
-    a *= scene.textures[std::size_t(m.albedoTexture)].sample(h.uv);
-  return glm::clamp(a, glm::vec3(0.0f), glm::vec3(1.0f));
 }
 
 }  // namespace
@@ -234,7 +226,7 @@ SphereSet bake(const ref::SceneDesc& object, const BakeSettings& settings, const
         for (std::size_t c = 0; c < nc; ++c) basis[std::size_t(s) * nc + c] += y[c];  // Eq. 10's Y_j
       ref::Hit h;
       if (sampleHit(bvh, spheres, i, proj[k], scale, h)) {
-        const glm::dvec3 a(albedoAt(object, h));
+        const glm::dvec3 a(ref::surfaceAlbedo(object, h));
         for (std::size_t c = 0; c < nc; ++c) albedo[c] += a * y[c];
       }
     }

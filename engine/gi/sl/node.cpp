@@ -57,7 +57,8 @@ std::vector<gpu::Binding> upsampleBindings() {
 
 Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t framesInFlight,
            std::span<const SphereSet* const> sets, int order, Blocking blocking, float influence, Resolution resolution,
-           ProbeLight probes, bool localLights, bool hierarchy, bool fuse, std::uint32_t terms, bool blockedAtSphere, bool tileCut)
+           ProbeLight probes, bool localLights, bool hierarchy, bool fuse, std::uint32_t terms, bool blockedAtSphere, bool tileCut,
+           bool blockedMap)
     : ctx_(ctx),
       order_(order),
       blocking_(blocking),
@@ -131,7 +132,7 @@ Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t fra
     throw InternalError("sl::Node: one term alone needs the fused pass (probes, \"fused\", no hierarchy)");
   if (probes && spheres_ > 0)
     shadow_ = std::make_unique<ProbeShadowPass>(ctx, shared, probes, order, blocking, spheres_, influence, step, hierarchy, fuse,
-                                                terms, blockedAtSphere, tileCut_);
+                                                terms, blockedAtSphere, tileCut_, blockedMap);
   if (localLights && spheres_ > 0)
     local_ = std::make_unique<LocalLightPass>(ctx, shared, order, blocking, spheres_, influence);
   if (hierarchy) {
@@ -164,10 +165,12 @@ void Node::enableRelightBounce(probes::RelightPass& relight) {
 }
 
 void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::span<const PosedSphere> posed,
-                 std::span<const std::uint32_t> objects, std::span<const incident::RadianceSH> indirect) {
+                 std::span<const std::uint32_t> objects, std::span<const incident::RadianceSH> indirect,
+                 std::span<const incident::DirectionMap> maps) {
   if (spheres_ == 0) return;
   if (posed.size() != spheres_ || objects.size() != spheres_ || indirect.size() != spheres_)
     throw InternalError("sl::Node: one pose, object and indirect SH per SL");
+  if (!maps.empty() && maps.size() != spheres_) throw InternalError("sl::Node: one direction map per SL or none");
   const render::PassContext* pc = &pcIn;
   // `bounce graph` builds the graph without a frame ring (and records nothing): no CPU writes then.
   const bool recording = pc->frames != nullptr;
@@ -183,7 +186,7 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::s
   if (recording) {
     // CPU writes of this slot's host-visible blocks: the ring waited for the slot's last frame.
     slot.intensity->setSpheres(posed, indirect);
-    slot.shade->setSpheres(shaded, parents, indirect);  // indirect: SlIndirect ("blocked_light": "sphere")
+    slot.shade->setSpheres(shaded, parents, indirect, maps);  // SlIndirect ("blocked_light": "sphere")
   }
   std::vector<ShadedSphere> binned = shaded;
   for (std::size_t o = 0; o < parents.size(); ++o)

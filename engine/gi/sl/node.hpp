@@ -54,18 +54,21 @@ class Node {
        std::span<const SphereSet* const> sets, int order, Blocking blocking, float influence,
        Resolution resolution = Resolution::Full, ProbeLight probes = {}, bool localLights = false,
        bool hierarchy = false, bool fuse = true, std::uint32_t terms = 3u, bool blockedAtSphere = false,
-       bool tileCut = true);
+       bool tileCut = true, bool blockedMap = false);
   // `tileCut` (scene::Sl::tileCut; true but in tests): without the hierarchy, "sl", "sl.shadow" and
   // the fused pass cut each tile's list by its receivers (cut_tiles.vert, shadow_cut_tiles.vert).
   // `blockedAtSphere` (level "blocked_light": "sphere", probe_shadow.hpp BlockedLight::Sphere): the
-  // shadow on the probes' light reads the blocked light at each SL's centre (addTo's `indirect`).
+  // shadow on the probes' light reads the blocked light at each SL's centre (addTo's `indirect`);
+  // with `blockedMap` (level "blocked_read": "map") from the direction maps blended there (addTo's
+  // `maps`) instead of the SH.
   // `fuse` (level "fused", default true): with "sl.shadow" running and the hierarchy off, one pass
   // "sl" walks each tile's candidates once for both terms (ProbeShadowPass::addFused). `terms`
   // (scene::Sl::terms, a diagnostic): bit 0 the SLs' bounce E, bit 1 the shadow on the probes' light;
   // anything but both needs the fused pass.
   // This frame's SLs, concatenated over the sets: pose, object index, probes' SH at the centre.
   void addTo(rg::RenderGraph& graph, const render::PassContext& pc, std::span<const PosedSphere> posed,
-             std::span<const std::uint32_t> objects, std::span<const incident::RadianceSH> indirect);
+             std::span<const std::uint32_t> objects, std::span<const incident::RadianceSH> indirect,
+             std::span<const incident::DirectionMap> maps = {});
   std::uint32_t sphereCount() const { return spheres_; }
   bool hierarchy() const { return hierarchy_; }
   // Level `"probes": {"relight": true, "sl_bounce": true}`: each frame, after "sl.intensity", pass

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "engine/core/error.hpp"
+#include "engine/math/oct_map.hpp"
 #include "engine/math/sh_convolve.hpp"
 #include "engine/math/sampling.hpp"
 #include "engine/math/sh_exp.hpp"
@@ -31,8 +32,11 @@ ProbeShadow probeShadow(std::span<const Light> lights, const glm::dvec3& p, cons
   for (int l = 0; l < 3; ++l)
     for (int m = -l; m <= l; ++m) lobe[std::size_t(sh::index(l, m))] = sh::cosineLobeBand(l) * y[std::size_t(sh::index(l, m))];
   const bool atSphere = settings.blocked == BlockedLight::Sphere;
-  if (atSphere && settings.sphereRadiance.size() != lights.size())
+  const bool mapRead = atSphere && settings.read == BlockedRead::Map;
+  if (atSphere && !mapRead && settings.sphereRadiance.size() != lights.size())
     throw InternalError("sl::probeShadow: blocked light read at the spheres needs one radiance SH per light");
+  if (mapRead && settings.sphereMap.size() != lights.size())
+    throw InternalError("sl::probeShadow: blocked light read from the maps needs one direction map per light");
   glm::dvec3 shadowed = out.unshadowed;  // atSphere: E_u − E_s is set below
   if (!atSphere) {
     const std::vector<double> transfer = sh::product<double>(v, lobe, lOrder);
@@ -62,11 +66,18 @@ ProbeShadow probeShadow(std::span<const Light> lights, const glm::dvec3& p, cons
       exact += x;
       shared += share * x;
       if (atSphere) {
-        const std::vector<glm::dvec3>& Lj = settings.sphereRadiance[li];
-        if (Lj.size() != 9) throw InternalError("sl::probeShadow: a sphere's radiance SH needs 9 coefficients");
-        const auto yd = sh::evalBasis<double>(3, dir);
         glm::dvec3 read(0.0);
-        for (std::size_t k = 0; k < 9; ++k) read += Lj[k] * yd[k];
+        if (mapRead) {
+          const std::vector<glm::dvec3>& map = settings.sphereMap[li];
+          if (map.size() != std::size_t(math::kOctMapTexels))
+            throw InternalError("sl::probeShadow: a sphere's direction map needs math::kOctMapTexels texels");
+          read = map[std::size_t(math::octTexel(glm::vec3(dir)))];  // the texel the shader picks (float)
+        } else {
+          const std::vector<glm::dvec3>& Lj = settings.sphereRadiance[li];
+          if (Lj.size() != 9) throw InternalError("sl::probeShadow: a sphere's radiance SH needs 9 coefficients");
+          const auto yd = sh::evalBasis<double>(3, dir);
+          for (std::size_t k = 0; k < 9; ++k) read += Lj[k] * yd[k];
+        }
         read = glm::max(read, glm::dvec3(0.0));
         readExact += x * read;
         readShared += share * x * read;

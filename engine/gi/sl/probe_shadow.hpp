@@ -59,6 +59,15 @@
 // exactly: a probe field uniform in direction and constant in space gives both modes the same ΔE.
 // One small sphere: σ = 1, k(π − ρ_n·V) = X, so ΔE = −X L(d) (the cap's exact amount × the radiance
 // behind it). The clamps to [−max(E_u, 0), 0] are kept (E_u the receiver's).
+//
+// How L_j(d_j) is read (BlockedRead, level key "sl": {"blocked_read": …}; README "SL's blocked light
+// read from the probes' direction maps, session 19"). Sh (the default): the order-3 SH above. On the
+// characters' floor it is 1.3–1.6× the radiance the mesh hides (session 18): the floor is the
+// bright half of the SL's sphere of directions, and order 3 spreads it over the horizon, where the
+// directions an SL blocks from a nearby floor receiver lie. Map (ours): the probes' 16² octahedral
+// maps of the static radiance (probe_volume.hpp dirMap), blended at SL j's centre with the SH's own
+// lookup weights (settings.sphereMap), read at the texel holding d_j (math::octTexel, nearest; the
+// same function the shader compiles). Everything else — the amount, w_j, the clamps — is unchanged.
 #include <span>
 #include <vector>
 
@@ -71,6 +80,8 @@ namespace bounce::gi::sl {
 enum class ShadowForm { Ratio, Eq6 };
 // Where the light the SLs block is read (header): the receiver's SH or each SL's own.
 enum class BlockedLight { Receiver, Sphere };
+// How the light an SL blocks is read at the sphere (header): its SH, or its direction map.
+enum class BlockedRead { Sh, Map };
 
 inline constexpr double kShadowEpsilon = 1e-9;  // sr; ε of k above
 inline constexpr double kShadowMaxRatio = 4.0;  // k is clamped to [1/4, 4]: a bound, not reached by one cap
@@ -89,6 +100,10 @@ struct ShadowSettings {
   // BlockedLight::Sphere: the probes' radiance SH (9 RGB coefficients, W/(m²·sr)) at the posed centre
   // of lights[i], one per light.
   std::vector<std::vector<glm::dvec3>> sphereRadiance;
+  // BlockedRead::Map (with BlockedLight::Sphere): the blended direction map at the posed centre of
+  // lights[i] (math::kOctMapTexels RGB, W/(m²·sr)), one per light; sphereRadiance is then unused.
+  BlockedRead read = BlockedRead::Sh;
+  std::vector<std::vector<glm::dvec3>> sphereMap;
 };
 
 // u_o of one object's spheres (any frame: a rigid motion or uniform scale leaves it unchanged):

@@ -45,7 +45,8 @@ std::vector<gpu::Binding> inputBindings(bool hierarchy) {
 
 ProbeShadowPass::ProbeShadowPass(gpu::Context& ctx, const render::Pipelines& shared, ProbeLight probes, int order,
                                  Blocking blocking, std::uint32_t spheres, float influence, std::uint32_t step,
-                                 bool hierarchy, bool fuse, std::uint32_t terms, bool blockedAtSphere, bool tileCut)
+                                 bool hierarchy, bool fuse, std::uint32_t terms, bool blockedAtSphere, bool tileCut,
+                                 bool blockedMap)
     : ctx_(ctx),
       probes_(probes),
       reduced_(checkedStep(step) > 1u),  // 1, 2 or 4 only (resolution.hpp)
@@ -68,7 +69,9 @@ ProbeShadowPass::ProbeShadowPass(gpu::Context& ctx, const render::Pipelines& sha
   d.specialization.push_back(step);                                     // probe_shadow.frag kStep
   if (blockedAtSphere && hierarchy)
     throw InternalError("sl::ProbeShadowPass: the blocked light read at the spheres is not built for the hierarchy");
+  if (blockedMap && !blockedAtSphere) throw InternalError("sl::ProbeShadowPass: the direction maps are read at the spheres only");
   d.specialization.push_back(blockedAtSphere ? 1u : 0u);                // probe_shadow.frag kBlockedAtSphere (6)
+  d.specialization.push_back(blockedMap ? 1u : 0u);                     // probe_shadow.frag kBlockedMap (7)
   const bool reduced = reduced_;
   d.name = std::string("sl.shadow") + (reduced ? ".step" + std::to_string(step) : "") + (hierarchy ? ".hierarchy" : "");
   pipeline_ = gpu::createGraphicsPipeline(ctx, layout_, d);
@@ -78,9 +81,11 @@ ProbeShadowPass::ProbeShadowPass(gpu::Context& ctx, const render::Pipelines& sha
     gpu::ShaderModule fusedFrag(ctx, "sl/sl_shadow.frag.spv");
     d.fragment = &fusedFrag;
     d.blend = reduced ? gpu::Blend::None : gpu::Blend::Additive;
-    d.specialization.back() = terms;    // sl_shadow.frag kTerms (constant_id 6): Node's `terms`
+    d.specialization.resize(6);         // ids 0–5 as above; sl_shadow.frag's own from 6 on
+    d.specialization.push_back(terms);  // sl_shadow.frag kTerms (constant_id 6): Node's `terms`
     d.specialization.push_back(0u);     // sl_shadow.frag kSingleObject (constant_id 7)
     d.specialization.push_back(blockedAtSphere ? 1u : 0u);  // sl_shadow.frag kBlockedAtSphere (constant_id 8)
+    d.specialization.push_back(blockedMap ? 1u : 0u);       // sl_shadow.frag kBlockedMap (constant_id 9)
     d.name = std::string("sl+shadow") + (reduced ? ".step" + std::to_string(step) : "");
     fused_ = gpu::createGraphicsPipeline(ctx, layout_, d);
     if (blocking == Blocking::PerObject) {

@@ -42,11 +42,12 @@ class ProbeShadowPass {
   // pass's pipeline (ShadeData::specialization); `step` (resolution.hpp): 1 full resolution, 2 or 4:
   // write ao · ΔE at G-buffer pixel step·j into "sl.half" / "sl.quarter". `blockedAtSphere`
   // ("blocked_light": "sphere", probe_shadow.hpp BlockedLight::Sphere; not with the hierarchy): the
-  // blocked light read from ShadeData's SlIndirect block. `tileCut` (Node's; ignored with the
+  // blocked light read from ShadeData's SlIndirect block: the SH, or with `blockedMap` ("blocked_read":
+  // "map") the direction maps (ShadeData::setSpheres' `maps`). `tileCut` (Node's; ignored with the
   // hierarchy): each tile's list cut by its receivers (shaders/sl/shadow_cut_tiles.vert).
   ProbeShadowPass(gpu::Context& ctx, const render::Pipelines& shared, ProbeLight probes, int order, Blocking blocking,
                   std::uint32_t spheres, float influence, std::uint32_t step, bool hierarchy = false, bool fuse = false,
-                  std::uint32_t terms = 3u, bool blockedAtSphere = false, bool tileCut = true);
+                  std::uint32_t terms = 3u, bool blockedAtSphere = false, bool tileCut = true, bool blockedMap = false);
   // Adds the pass when "probes" runs this frame; `shade` and `intensity` as the SL pass binds them.
   // Full resolution: blends into "lighting.hdr" and publishes it; half / quarter: into `reducedTarget`
   // ("sl.half" / "sl.quarter", which the SL pass cleared) and returns its new version. Returns

@@ -49,12 +49,19 @@ ShadeData::ShadeData(gpu::Context& ctx, int order) : ctx_(ctx), order_(order) {
 }
 
 void ShadeData::setSpheres(std::span<const ShadedSphere> spheres, std::span<const PosedSphere> parents,
-                           std::span<const incident::RadianceSH> indirect) {
+                           std::span<const incident::RadianceSH> indirect, std::span<const incident::DirectionMap> maps) {
   if (spheres.size() + parents.size() > kMaxShadedSpheres)
     throw InternalError("sl::ShadeData: more SLs (and parents) than the uniform block holds");
   if (!indirect.empty() && indirect.size() != spheres.size())
     throw InternalError("sl::ShadeData: one indirect SH per SL or none");
-  {  // SlIndirect (sl_data.glsl): half h = 3k + c in word h / 2, low half first.
+  if (!maps.empty() && (maps.size() != spheres.size() || maps.size() > kMaxMappedSpheres))
+    throw InternalError("sl::ShadeData: one direction map per SL (at most kMaxMappedSpheres) or none");
+  if (!maps.empty()) {  // SlIndirect as maps (sl_data.glsl): SL i's texel t in word 256 i + t, RGB9E5
+    std::vector<std::uint32_t> words(kIndirectBlockBytes / 4, 0u);
+    for (std::size_t i = 0; i < maps.size(); ++i)
+      for (std::size_t t = 0; t < kMapWordsPerSl; ++t) words[kMapWordsPerSl * i + t] = glm::packF3x9_E1x5(maps[i][t]);
+    std::memcpy(indirect_.mapped(), words.data(), kIndirectBlockBytes);
+  } else {  // SlIndirect (sl_data.glsl): half h = 3k + c in word h / 2, low half first.
     std::vector<std::uint32_t> words(kIndirectBlockBytes / 4, 0u);
     for (std::size_t i = 0; i < indirect.size(); ++i) {
       float halves[2 * kIndirectWordsPerSl] = {};

@@ -7,6 +7,7 @@
 // tensor as generated code (shaders/sl/gaunt.glsl), not a buffer: unrolled, g stays in registers. Order, blocking and the
 // per-receiver array size are specialization constants of the pipelines that read it
 // (specialization() below).
+#include <algorithm>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -30,9 +31,17 @@ inline constexpr std::uint32_t kMaxShadedSpheres = 128;
 // Bytes of the intensity uniform block (fp16 pairs, intensity_words.hpp): IntensityPass allocates at
 // least this.
 inline constexpr std::size_t kIntensityBlockBytes = std::size_t(kMaxShadedSpheres) * kIntensityWordsPerSl * 4;
-// Bytes of sl_data.glsl's SlIndirect block ("blocked_light": "sphere"): 16 words (27 fp16) per SL, 8 KiB.
+// sl_data.glsl's SlIndirect block ("blocked_light": "sphere") holds one of two layouts. "blocked_read":
+// "sh": 16 words (27 fp16) per SL, 8 KiB for 128 SLs. "map": each SL's blended 16² direction map, one
+// word a texel, RGB9E5 (glm::packF3x9_E1x5: 9-bit mantissas under a shared 5-bit exponent, each channel
+// within 2^-9 of the brightest one's value, ≥ 0), for at most kMaxMappedSpheres SLs: 64 · 1 KiB = 64 KiB,
+// lavapipe's maxUniformBufferRange (fp16 RGB would hold 42 SLs; the accuracy rows' 2 × 32 need 64).
+// technique.cpp refuses a level with more.
 inline constexpr std::size_t kIndirectWordsPerSl = 16;
-inline constexpr std::size_t kIndirectBlockBytes = std::size_t(kMaxShadedSpheres) * kIndirectWordsPerSl * 4;
+inline constexpr std::uint32_t kMaxMappedSpheres = 64;
+inline constexpr std::size_t kMapWordsPerSl = std::size_t(math::kOctMapTexels);
+inline constexpr std::size_t kIndirectBlockBytes =
+    std::max(std::size_t(kMaxShadedSpheres) * kIndirectWordsPerSl, std::size_t(kMaxMappedSpheres) * kMapWordsPerSl) * 4;
 
 // One SL as pass 2 reads it.
 struct ShadedSphere {
@@ -53,8 +62,10 @@ class ShadeData {
   // = their count), world frame; they take no part in the means or overlap masks.
   // `indirect` (empty, or one per sphere): the probes' radiance SH at each SL's posed centre, for
   // sl_data.glsl's SlIndirect ("blocked_light": "sphere"), packed to fp16; empty leaves zeros.
+  // `maps` (empty, or one per sphere, at most kMaxMappedSpheres; "blocked_read": "map"): the blended
+  // direction maps at the SLs' posed centres, written to SlIndirect in place of `indirect`.
   void setSpheres(std::span<const ShadedSphere> spheres, std::span<const PosedSphere> parents = {},
-                  std::span<const incident::RadianceSH> indirect = {});
+                  std::span<const incident::RadianceSH> indirect = {}, std::span<const incident::DirectionMap> maps = {});
   std::uint32_t count() const { return count_; }
   // Writes the three sl_data.glsl bindings first … first + 2 (intensity: pass 1's buffer, ≥
   // kIntensityBlockBytes).

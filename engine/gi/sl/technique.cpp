@@ -158,6 +158,11 @@ class SlTechnique final : public Technique {
                          (e.sl->blockedAtSphere ? "sphere" : "receiver") + "\" differs from entity \"" + first->id + "\"'s \"" +
                          (first->sl->blockedAtSphere ? "sphere" : "receiver") +
                          "\" (expected one blocked_light for every sl entity of a level: pass 2 shades them in one draw)");
+      if (e.sl->blockedMap != first->sl->blockedMap)
+        throw InputError(sc.level.source.string() + ": " + e.pointer + "/sl/blocked_read: \"" +
+                         (e.sl->blockedMap ? "map" : "sh") + "\" differs from entity \"" + first->id + "\"'s \"" +
+                         (first->sl->blockedMap ? "map" : "sh") +
+                         "\" (expected one blocked_read for every sl entity of a level: pass 2 shades them in one draw)");
       if (e.sl->influence != first->sl->influence)
         throw InputError(sc.level.source.string() + ": " + e.pointer + "/sl/influence: " + num(e.sl->influence) +
                          " differs from entity \"" + first->id + "\"'s " + num(first->sl->influence) +
@@ -182,6 +187,12 @@ class SlTechnique final : public Technique {
                          " differs from entity \"" + first->id + "\"'s " + (first->sl->fused ? "true" : "false") +
                          " (expected one setting for every sl entity of a level: pass 2 shades them in one draw)");
     }
+    // "blocked_read": "map": the SLs' blended direction maps share one uniform block of
+    // kMaxMappedSpheres maps (shade.hpp).
+    if (first && first->sl->blockedAtSphere && first->sl->blockedMap && spheres > kMaxMappedSpheres)
+      throw InputError(sc.level.source.string() + ": " + first->pointer + "/sl/blocked_read: \"map\" with " +
+                       std::to_string(spheres) + " sl spheres (expected at most " + std::to_string(kMaxMappedSpheres) +
+                       " in all with the direction maps: pass 2 holds one 16² map per SL in a 64 KiB uniform block)");
     // The hierarchy's per-tile ratios travel as kMaxHierarchyObjects flat varyings (node.hpp).
     std::size_t objects = 0;
     for (const scene::EntityDesc& e : sc.level.entities) objects += e.sl ? 1 : 0;
@@ -497,7 +508,8 @@ void SessionRuntime::enableGpu(SessionContext& sc) {
                                  participants_.front().component.hierarchy, participants_.front().component.fused,
                                  std::uint32_t(participants_.front().component.terms),
                                  participants_.front().component.blockedAtSphere,
-                                 participants_.front().component.tileCut);
+                                 participants_.front().component.tileCut,
+                                 participants_.front().component.blockedAtSphere && participants_.front().component.blockedMap);
   if (sc.services.relightSlBounce) node_->enableRelightBounce(*sc.services.relightSlBounce);
 }
 
@@ -507,13 +519,20 @@ render::Renderer::GraphNode SessionRuntime::node() {
     posed_.clear();
     objects_.clear();
     indirectSh_.clear();
+    indirectMaps_.clear();
+    const bool maps = participants_.front().component.blockedAtSphere && participants_.front().component.blockedMap;
     for (std::size_t o = 0; o < participants_.size(); ++o)
       for (const PosedSphere& s : participants_[o].spheres) {
         posed_.push_back(s);
         objects_.push_back(std::uint32_t(o));
-        indirectSh_.push_back(indirect_->radianceSH(s.centre));
+        if (maps) {  // one probe lookup for both: the SH (pass 1) and the blended map (pass 2's blocked light)
+          indirectMaps_.emplace_back();
+          indirectSh_.push_back(indirect_->radianceShAndMap(s.centre, indirectMaps_.back()));
+        } else {
+          indirectSh_.push_back(indirect_->radianceSH(s.centre));
+        }
       }
-    node_->addTo(graph, pc, posed_, objects_, indirectSh_);
+    node_->addTo(graph, pc, posed_, objects_, indirectSh_, indirectMaps_);
   };
 }
 

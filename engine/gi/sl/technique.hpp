@@ -77,6 +77,7 @@ class SessionRuntime final : public TechniqueRuntime {
   std::vector<PosedSphere> posed_;                      // concatenated over participants (update)
   std::vector<std::uint32_t> objects_;
   std::vector<incident::RadianceSH> indirectSh_;
+  std::vector<incident::DirectionMap> indirectMaps_;  // "blocked_read": "map" only
 };
 
 }  // namespace bounce::gi::sl

@@ -158,5 +158,33 @@ TEST(DnrtCluster, ClusterRecordIsTheFoldedRecordAndItsBrick) {
   EXPECT_EQ(c.atlas, glm::vec4(1.5f, 1.5f, 41.5f, 0.0f));  // vertex (0, 0, 0)'s texel centre after the padding
 }
 
+// The probes pass is drawn as a fused object's outer cube only with the eye inside it and no face clipped by
+// the near or far plane where the view sees it (eyeInsideOuterCube): otherwise some pixel's ray would leave
+// the cube through no drawn face. The camera above: eye at the origin, 90° both ways (tan θ_corner² = 2),
+// near 0.1 m, far 100 m.
+TEST(DnrtCluster, EyeInsideOuterCubeOnlyWhenNoSeenFaceIsClipped) {
+  const glm::mat4 proj = viewProj({160, 160}), view(1.0f);
+  EXPECT_TRUE(eyeInsideOuterCube(cube({0, 0, 0}, 1), view, proj));
+  EXPECT_FALSE(eyeInsideOuterCube(cube({0, 0, -10}, 1), view, proj)) << "ahead of the eye";
+  // The nearest face 0.2 m away: seen at depths ≥ 0.2 cos θ_corner = 0.2/√3 = 0.115 m, beyond the near plane;
+  // 0.15 m away: ≥ 0.087 m, so the near plane may clip it where the corner rays meet it.
+  EXPECT_TRUE(eyeInsideOuterCube(cube({0.8f, 0, 0}, 1), view, proj));
+  EXPECT_FALSE(eyeInsideOuterCube(cube({0.85f, 0, 0}, 1), view, proj));
+  // The farthest corner 50√3 = 86.6 m away, inside the far plane; 60√3 = 103.9 m, past it.
+  EXPECT_TRUE(eyeInsideOuterCube(cube({0, 0, 0}, 50), view, proj));
+  EXPECT_FALSE(eyeInsideOuterCube(cube({0, 0, 0}, 60), view, proj));
+  // The eye placed by the view matrix, and a rotated, stretched cube (its faces' distances are not its
+  // half-sizes along the world axes): 0.5 m along its short axis from the centre, the face 0.5 m further.
+  const glm::mat4 eyeAt = glm::lookAt(glm::vec3(3, 2, 1), glm::vec3(3, 2, 0), glm::vec3(0, 1, 0));
+  const glm::mat4 stretched = glm::translate(glm::mat4(1.0f), glm::vec3(3, 2, 1)) *
+                              glm::rotate(glm::mat4(1.0f), 0.7f, glm::vec3(0, 0, 1)) *
+                              glm::scale(glm::mat4(1.0f), glm::vec3(1.0f, 5.0f, 5.0f));
+  EXPECT_TRUE(eyeInsideOuterCube(glm::translate(stretched, glm::vec3(0.5f, 0, 0)), eyeAt, proj));
+  EXPECT_FALSE(eyeInsideOuterCube(glm::translate(stretched, glm::vec3(0.95f, 0, 0)), eyeAt, proj)) << "0.05 m";
+  EXPECT_FALSE(eyeInsideOuterCube(glm::translate(stretched, glm::vec3(1.5f, 0, 0)), eyeAt, proj)) << "outside";
+  // Only a perspective projection as the renderer makes.
+  EXPECT_FALSE(eyeInsideOuterCube(cube({0, 0, 0}, 1), view, glm::orthoRH_ZO(-1.0f, 1.0f, -1.0f, 1.0f, 0.1f, 100.0f)));
+}
+
 }  // namespace
 }  // namespace bounce::gi::dnrt

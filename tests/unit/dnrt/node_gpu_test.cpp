@@ -19,12 +19,15 @@
 #include <string>
 #include <vector>
 
+#include <glm/gtc/quaternion.hpp>
+
 #include "engine/core/log.hpp"
 #include "engine/gi/dnrt/bake.hpp"
 #include "engine/gi/dnrt/irradiance_source.hpp"
 #include "engine/gi/dnrt/node.hpp"
 #include "engine/gi/dnrt/object_scene.hpp"
 #include "engine/gi/dnrt/runtime.hpp"
+#include "engine/gi/dnrt/technique.hpp"
 #include "engine/gi/upsample.hpp"
 #include "engine/gpu/commands.hpp"
 #include "engine/gpu/format.hpp"
@@ -913,6 +916,57 @@ TEST(DnrtGpu, FusedModeAtReducedResolutionIsTheFullTermWithinABoundOnASmoothScen
     EXPECT_LE(rel, kRmsBound[step == 2u ? 0 : 1]) << "step " << step;
     EXPECT_LE(worst, kMaxBound[step == 2u ? 0 : 1] * largest) << "step " << step;
   }
+}
+
+// The probes pass split at the fused object's outer cube (probes::FusedDnrt::split, NodeSettings::splitProbes;
+// README "DNRT's fused term only inside its outer cube, session 19"): floor-box.json's camera moved next to
+// the box, inside its outer cube, looking down the floor past the cube's far faces, so the pass draws the
+// cube's faces twice — the fused pipeline where the surface is not behind the face, the plain one where it
+// is. The passes are the unsplit frame's. At full resolution the term is exactly 0 outside the cube
+// (s(r) = 0), so the image is the unsplit one bit for bit: no pixel shaded twice or missed, no term lost.
+// Below full resolution the node does not split (measured dearer there).
+TEST(DnrtGpu, FusedProbesPassSplitAtTheOuterCubeIsTheUnsplitImage) {
+  gpu::Context& ctx = gpu::testkit::sharedContext();
+  const auto render = [&](std::vector<std::string> effects, std::uint32_t step, bool split, bool* wasSplit) {
+    scene::Level level = game::loadLevelWithEffects(fs::path(BOUNCE_SOURCE_DIR) / "tests/data/dnrt/floor-box.json", effects);
+    level.dnrt.step = step;
+    for (auto& e : level.entities) {
+      if (e.dnrt) e.dnrt->mode = Mode::Fused;
+      if (e.camera) {  // 0.37 m from the box's centre (its outer cube's half-size: 6 R ≈ 0.52 m), 40° down
+        e.transform.translation = glm::vec3(0.0f, 0.35f, 0.25f);
+        e.transform.rotation = glm::angleAxis(glm::radians(-40.0f), glm::vec3(1.0f, 0.0f, 0.0f));
+      }
+    }
+    game::Session session(ctx, std::move(level));
+    if (auto* dnrt = session.technique<SessionRuntime>("dnrt")) dnrt->runtime().settings().splitProbes = split;
+    session.update(0.0);
+    Frame frame = renderOnce(session, ctx);
+    *wasSplit = session.probes()->lastPassSplit();
+    return frame;
+  };
+  const std::vector<std::string> all = {"direct", "probes", "dnrt"};
+  bool splitFull = false, unsplitFull = true, splitQuarter = true, probesSplit = true;
+  const Frame full = render(all, 1, false, &unsplitFull), fullSplit = render(all, 1, true, &splitFull);
+  const Frame probesOnly = render({"direct", "probes"}, 1, true, &probesSplit);
+  EXPECT_TRUE(splitFull);
+  EXPECT_FALSE(unsplitFull);
+  EXPECT_FALSE(probesSplit) << "no fused object, no split";
+  EXPECT_EQ(fullSplit.passes, full.passes);
+  ASSERT_EQ(fullSplit.rgb.size(), full.rgb.size());
+  ASSERT_EQ(probesOnly.rgb.size(), full.rgb.size());
+  std::size_t differ = 0, carry = 0;
+  for (std::size_t i = 0; i < full.rgb.size(); ++i) {
+    differ += fullSplit.rgb[i] != full.rgb[i] ? 1 : 0;
+    carry += full.rgb[i] != probesOnly.rgb[i] ? 1 : 0;
+  }
+  std::printf("split at full resolution: %zu of %zu channel values differ from the unsplit frame; %zu carry the term\n",
+              differ, full.rgb.size(), carry);
+  EXPECT_EQ(differ, 0u);
+  EXPECT_GT(carry, 1000u);
+
+  // Below full resolution the pass is not split (measured dearer: Node::addFused).
+  render(all, 4, true, &splitQuarter);
+  EXPECT_FALSE(splitQuarter);
 }
 
 // Two fused objects with "resolution": "quarter" (two-boxes.json): the reduced term's position-only

@@ -11,15 +11,15 @@
 #include "engine/gpu/pipeline.hpp"
 #include "engine/gpu/pipeline_table.hpp"
 #include "engine/gpu/testing.hpp"
+#include "tests/unit/gpu/fill_shader.hpp"
 
 using namespace bounce;
 using namespace bounce::gpu;
 
+using testkit::FillPush;
+using testkit::kFillPush;
+
 namespace {
-struct FillPush {
-  std::uint32_t count;
-  float a, b;
-};
 constexpr float kSentinel = -7.0f;  // marks elements the shader must not touch
 }  // namespace
 
@@ -32,7 +32,7 @@ TEST(Compute, FillsAStorageBufferWithAFormula) {
   upload(ctx, out, bytesOf(std::vector<float>(capacity, kSentinel)));
 
   DescriptorSetLayout setLayout(ctx, {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT}}, "fill");
-  PipelineLayout layout(ctx, {setLayout}, {{VK_SHADER_STAGE_ALL, 0, sizeof(FillPush)}}, "fill");
+  PipelineLayout layout(ctx, {setLayout}, {kFillPush}, "fill");
   ShaderModule shader(ctx, "test/fill.comp.spv");
   PipelineCache cache(ctx);
   Pipeline pipeline = createComputePipeline(ctx, layout, shader, "fill", &cache);
@@ -40,16 +40,8 @@ TEST(Compute, FillsAStorageBufferWithAFormula) {
   VkDescriptorSet set = descriptors.allocate(setLayout);
   DescriptorWriter().buffer(0, out).update(ctx, set);
 
-  submitAndWait(ctx, [&](VkCommandBuffer cmd) {
-    fullBarrier(cmd);  // the upload's transfer write → shader write
-    pipeline.bind(cmd);
-    pipeline.bindSet(cmd, 0, set);
-    pipeline.push(cmd, FillPush{count, 0.5f, 3.0f});
-    vkCmdDispatch(cmd, (count + 63) / 64, 1, 1);
-  });
-  auto bytes = readback(ctx, out);
-  std::vector<float> v(capacity);
-  std::memcpy(v.data(), bytes.data(), bytes.size());
+  const std::vector<float> v = testkit::dispatchFill(ctx, pipeline, set, out, FillPush{count, 0.5f, 3.0f});
+  ASSERT_EQ(v.size(), capacity);
   for (std::uint32_t i = 0; i < capacity; ++i) {
     float expected = i < count ? 0.5f * float(i) * float(i) + 3.0f : kSentinel;  // exact in float32
     ASSERT_EQ(v[i], expected) << "element " << i;
@@ -108,7 +100,7 @@ TEST(Compute, PipelineCacheSavesAndReloads) {
   auto file = std::filesystem::path(BOUNCE_TEST_OUT) / "gpu" / "pipeline.cache";
   std::filesystem::remove(file);
   DescriptorSetLayout setLayout(ctx, {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT}}, "fill");
-  PipelineLayout layout(ctx, {setLayout}, {{VK_SHADER_STAGE_ALL, 0, sizeof(FillPush)}}, "fill");
+  PipelineLayout layout(ctx, {setLayout}, {kFillPush}, "fill");
   ShaderModule shader(ctx, "test/fill.comp.spv");
   {
     PipelineCache cache(ctx, file);

@@ -13,18 +13,16 @@
 #include "engine/gpu/pipeline.hpp"
 #include "engine/gpu/pipeline_table.hpp"
 #include "engine/gpu/testing.hpp"
+#include "tests/unit/gpu/fill_shader.hpp"
 
 using namespace bounce;
 using namespace bounce::gpu;
 
 namespace {
 
-struct FillPush {  // shaders/test/fill.comp
-  std::uint32_t count;
-  float a, b;
-};
+using testkit::FillPush;
+using testkit::kFillPush;
 const Binding kOut{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT};
-const VkPushConstantRange kFillPush{VK_SHADER_STAGE_ALL, 0, sizeof(FillPush)};
 
 ContextOptions reuse(bool on) {
   ContextOptions o;
@@ -153,15 +151,8 @@ TEST(PipelineTable, HeldPipelineOutlivesTheLayoutsItWasFirstAskedWith) {
   DescriptorAllocator descriptors(ctx);
   VkDescriptorSet ds = descriptors.allocate(set);
   DescriptorWriter().buffer(0, out).update(ctx, ds);
-  submitAndWait(ctx, [&](VkCommandBuffer cmd) {
-    pipeline.bind(cmd);
-    pipeline.bindSet(cmd, 0, ds);
-    pipeline.push(cmd, FillPush{count, 0.5f, 3.0f});
-    vkCmdDispatch(cmd, (count + 63) / 64, 1, 1);
-  });
-  auto bytes = readback(ctx, out);
-  std::vector<float> v(count);
-  std::memcpy(v.data(), bytes.data(), bytes.size());
+  const std::vector<float> v = testkit::dispatchFill(ctx, pipeline, ds, out, FillPush{count, 0.5f, 3.0f});
+  ASSERT_EQ(v.size(), count);
   for (std::uint32_t i = 0; i < count; ++i) ASSERT_EQ(v[i], 0.5f * float(i) * float(i) + 3.0f) << "element " << i;
 }
 

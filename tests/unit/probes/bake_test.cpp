@@ -1,8 +1,12 @@
 // Probe bake hard cases on hand-built scenes (no glTF): white furnace, probes inside geometry,
 // a thin wall between a lit and a dark room, a small bright light (windowing).
+#include <algorithm>
+#include <cmath>
+
 #include <gtest/gtest.h>
 
 #include "engine/gi/probes/bake.hpp"
+#include "engine/math/oct_map.hpp"
 #include "engine/math/sampling.hpp"
 #include "engine/math/sh.hpp"
 #include "tests/unit/ref/test_scenes.hpp"
@@ -68,6 +72,11 @@ TEST(ProbeBake, WhiteFurnaceGivesPiLEverywhere) {
   }
   EXPECT_LT(worst, kRelTol);
   std::printf("white furnace: worst relative irradiance error %.4f\n", worst);
+  // Every ray returns Lc, so every texel of every direction map is Lc: its kernel's mean of equal
+  // values, stored as fp16 (relative rounding ≤ 2^-11).
+  ASSERT_TRUE(v.hasDirMap());
+  for (std::size_t p = 0; p < grid.probeCount(); ++p)
+    for (int t = 0; t < math::kOctMapTexels; ++t) ASSERT_NEAR(v.dirMapTexel(p, t).g, lc, lc * 1e-3) << "probe " << p << " texel " << t;
 }
 
 TEST(ProbeBake, ProbesInsideGeometryAreInvalidAndGetNoWeight) {
@@ -157,6 +166,21 @@ TEST(ProbeBake, SmallBrightLightRingsWithoutWindowAndNotWithIt) {
       lo = std::min(lo, e), hi = std::max(hi, e);
     }
     ASSERT_GT(hi, 0.0f);
+    // The direction map (no window: the same either way) holds the emitter in the texels whose
+    // kernel cone (kDirMapKernel about the centre) reaches the +X emitter (≤ 13.3° off +X), and
+    // nothing where it cannot: no ringing, no negative texel.
+    ASSERT_TRUE(v.hasDirMap());
+    int brightest = 0;
+    for (int t = 0; t < math::kOctMapTexels; ++t) {
+      const glm::vec3 texel = v.dirMapTexel(0, t);
+      EXPECT_GE(texel.r, 0.0f) << "texel " << t;
+      if (texel.r > v.dirMapTexel(0, brightest).r) brightest = t;
+      const double angle = std::acos(std::clamp(double(math::octTexelDirection(t).x), -1.0, 1.0));
+      if (angle > kDirMapKernel + 0.3) {
+        EXPECT_EQ(texel.r, 0.0f) << "texel " << t << " at " << angle << " rad from the emitter";
+      }
+    }
+    EXPECT_GT(double(math::octTexelDirection(brightest).x), std::cos(kDirMapKernel)) << "the brightest texel faces the emitter";
     if (window) {
       EXPECT_GE(lo, -kNegativeEps * hi);
     } else {

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <glm/gtc/packing.hpp>
+
 #include "engine/core/error.hpp"
 #include "engine/gi/probes/probe_volume.hpp"
 #include "engine/math/sampling.hpp"
@@ -101,9 +103,14 @@ TEST(ProbeLookup, ChebyshevCutsAProbeBehindAnOccluder) {
 }
 
 TEST(ProbeFormat, RoundTripsAndRejectsEveryCorruption) {
-  const ProbeVolume v = cube();
+  ProbeVolume v = cube();
+  EXPECT_FALSE(deserialize(serialize(v), "p.bin").hasDirMap());  // a volume without direction maps stays without
+  for (std::size_t i = 0; i < 8 * std::size_t(math::kOctMapTexels) * 3; ++i)
+    v.dirMap.push_back(glm::packHalf1x16(0.01f * float(i % 997)));
+  ASSERT_TRUE(v.hasDirMap());
   const auto bytes = serialize(v);
   const ProbeVolume back = deserialize(bytes, "p.bin");
+  EXPECT_EQ(back.dirMap, v.dirMap);
   EXPECT_EQ(back.sh, v.sh);
   EXPECT_EQ(back.moments, v.moments);
   EXPECT_EQ(back.valid, v.valid);

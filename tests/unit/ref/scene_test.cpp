@@ -7,6 +7,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "engine/core/error.hpp"
+#include "engine/core/parallel.hpp"
 #include "engine/ref/reference.hpp"
 #include "engine/ref/reference_scene.hpp"
 #include "engine/scene/systems.hpp"
@@ -61,6 +62,29 @@ TEST(Texture, BilinearFilterOfSrgbDecodedTexels) {
 
 std::filesystem::path outDir() { return std::filesystem::path(BOUNCE_TEST_OUT) / "ref"; }
 std::filesystem::path cornell() { return std::filesystem::path(BOUNCE_SOURCE_DIR) / "content/levels/cornell-1.json"; }
+
+// Every SceneBvh shares one Embree device (scene_bvh.cpp sharedDevice, each BVH holding a reference):
+// BVHs built on several threads at once each answer their own rays, and one destroyed first leaves the
+// others working (the device outlives it). Each BVH i is a floor quad at height i.
+TEST(SceneBvh, BvhsOnOneSharedDeviceBuildOnThreadsAndOutliveEachOther) {
+  constexpr std::size_t kCount = 6;
+  std::vector<std::unique_ptr<SceneBvh>> bvh(kCount);
+  parallelFor(0, kCount, [&](std::size_t i) {
+    SceneDesc s;
+    s.materials.push_back({});
+    s.meshes.push_back(test::quad(glm::vec3(-1.0f, float(i), -1.0f), glm::vec3(0, 0, 2), glm::vec3(2, 0, 0), 0));
+    bvh[i] = std::make_unique<SceneBvh>(std::move(s));
+  });
+  bvh[0].reset();
+  bvh[3].reset();
+  for (std::size_t i = 0; i < kCount; ++i) {
+    if (!bvh[i]) continue;
+    Hit hit;
+    ASSERT_TRUE(bvh[i]->intersect(glm::vec3(0.0f, 10.0f, 0.0f), glm::vec3(0.0f, -1.0f, 0.0f), 0.0f, 100.0f, hit)) << i;
+    EXPECT_FLOAT_EQ(hit.position.y, float(i)) << i;
+    EXPECT_FALSE(bvh[i]->occluded(glm::vec3(0.0f, float(i) + 0.5f, 0.0f), glm::vec3(0.0f, 1.0f, 0.0f), 0.0f, 100.0f)) << i;
+  }
+}
 
 TEST(LevelScene, CornellExpandsLikeTheRasteriser) {
   const scene::Level level = scene::loadLevel(cornell());

@@ -9,6 +9,7 @@
 #include "engine/core/error.hpp"
 #include "engine/core/file.hpp"
 #include "engine/math/sh.hpp"
+#include "engine/ref/scene_bvh.hpp"
 #include "tests/unit/rtf/half_bound.hpp"
 #include "tests/unit/rtf/small_field.hpp"
 
@@ -51,6 +52,42 @@ TEST(RtfBake, ProxyWeightsAtAProxyAreOneHotAndSumToOneAtEveryScale) {
     // Eq. 3 by hand: weights proportional to inverse distances.
     EXPECT_NEAR(v[0] / v[1], glm::length(glm::vec3(0.7f, -0.2f, -0.1f)) / glm::length(glm::vec3(0.3f, 0.2f, 0.1f)), 1e-4f);
   }
+}
+
+// A textured vertex's albedo is the texture's hat-weighted mean over its triangles (bake.hpp vertexAlbedo):
+// on a unit quad (uv = xy) under a 4 × 4 texture whose 12 border texels are 0.9 and 4 inner ones 0.1,
+// every vertex's uv lies where the four border texels meet (0.9: what the transfer held until session 19),
+// while the surface's mean is the texels' mean 0.7 (REPEAT bilinear over one period). The lumped sum
+// Σ_v ρ_v ∫ b_v dA (∫ b_v dA = A/3 per triangle corner) must be that mean: measured 0.700000 (ρ_v 0.786 at
+// the two corners in one triangle, 0.657 at the two in both); 1e-4 allows the midpoint rule's error on the
+// bilinear texture's kinks at 8² points a triangle. An untextured material's vertices carry its factor.
+TEST(RtfBake, TexturedVertexAlbedoIsTheTexturesAreaMean) {
+  ref::SceneDesc s;
+  ref::RefTexture tex;
+  tex.width = tex.height = 4;
+  for (int y = 0; y < 4; ++y)
+    for (int x = 0; x < 4; ++x) tex.texels.push_back(glm::vec3((x == 0 || x == 3 || y == 0 || y == 3) ? 0.9f : 0.1f));
+  s.textures.push_back(tex);
+  s.materials.push_back({glm::vec3(1.0f), 0, glm::vec3(0.0f), -1});
+  s.materials.push_back({glm::vec3(0.2f, 0.4f, 1.5f), -1, glm::vec3(0.0f), -1});
+  ref::RefMesh quad;
+  quad.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}};
+  quad.normals.assign(4, glm::vec3(0, 0, 1));
+  quad.uvs = {{0, 0}, {1, 0}, {0, 1}, {1, 1}};
+  quad.indices = {0, 1, 2, 1, 3, 2};
+  quad.material = 0;
+  s.meshes.push_back(quad);
+  quad.material = 1;
+  s.meshes.push_back(quad);
+  const std::vector<glm::vec3> rho = vertexAlbedo(s);
+  ASSERT_EQ(rho.size(), 8u);
+  for (std::size_t v = 0; v < 4; ++v) EXPECT_FLOAT_EQ(tex.sample(quad.uvs[v]).x, 0.9f);  // the old per-vertex texel
+  // ∫ b_v dA: vertices 0 and 3 are in one triangle each, 1 and 2 in both; each triangle's area 1/2.
+  const double share[4] = {1.0 / 6.0, 1.0 / 3.0, 1.0 / 3.0, 1.0 / 6.0};
+  double lumped = 0.0;
+  for (std::size_t v = 0; v < 4; ++v) lumped += share[v] * double(rho[v].x);
+  EXPECT_NEAR(lumped, 0.7, 1e-4);
+  for (std::size_t v = 4; v < 8; ++v) EXPECT_EQ(rho[v], glm::vec3(0.2f, 0.4f, 1.0f)) << v;  // clamped factor
 }
 
 TEST(RtfBake, ConvexVertexTransferIsAlbedoTimesY00) {

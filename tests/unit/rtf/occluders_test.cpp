@@ -11,6 +11,7 @@
 
 #include "engine/gi/rtf/occluders.hpp"
 #include "engine/gi/rtf/room_shadows.hpp"
+#include "tests/support/box_mesh.hpp"
 #include "tests/support/point_light.hpp"
 
 namespace bounce::gi::rtf {
@@ -71,14 +72,7 @@ TEST(RtfOccluders, PosedBoxBlocksTheWorldSegmentsThroughIt) {
 // Fibonacci directions of which ~30 see the floor estimate that smooth integral to a few per cent
 // (kDirections' error); 10 % allows it.
 TEST(RtfRoomShadow, NoneWithoutABlockerAndTheFloorsWholeBounceUnderOne) {
-  ref::SceneDesc floor;
-  floor.materials.push_back({glm::vec3(0.5f), -1, glm::vec3(0.0f), -1});
-  ref::RefMesh m;
-  m.positions = {{-2, 0, -2}, {2, 0, -2}, {-2, 0, 2}, {2, 0, 2}};
-  m.normals.assign(4, glm::vec3(0, 1, 0));
-  m.indices = {0, 2, 1, 1, 2, 3};
-  floor.meshes.push_back(m);
-  const ref::SceneBvh level(std::move(floor));
+  const ref::SceneBvh level(bounce::testing::floorMesh(2.0f, glm::vec3(0.5f)));
   std::vector<ref::SceneDesc> blocker = {boxScene(glm::vec3(-0.5f), glm::vec3(0.5f))};
   const PosedOccluders occ(std::move(blocker));
   const std::vector<render::LightGpu> lamp = {pointLight(glm::vec3(0, 1, 0), glm::vec3(2.0f))};
@@ -103,6 +97,40 @@ TEST(RtfRoomShadow, NoneWithoutABlockerAndTheFloorsWholeBounceUnderOne) {
       want += y00 * L * (0.1 / std::sqrt(r2)) * dA / r2;
     }
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(-lost[0][c], want, 0.10 * want) << c;
+}
+
+// The room's albedo at a hit is its texture's there (ref::surfaceAlbedo, as the probe bake's paths reflect
+// it; until session 19 the material's factor alone): the same floor and slab as above, once with factor 1
+// times a uniform 0.25 texture and once with factor 0.25 and no texture, lose the same light — and 1/4 of
+// a white floor's. Tolerance 1e-6 relative: the bilinear mix of equal texels rounds in the last bit.
+TEST(RtfRoomShadow, TheRoomsAlbedoIsItsTextureAtTheHit) {
+  const auto floorScene = [](glm::vec3 factor, bool textured) {
+    ref::SceneDesc floor;
+    if (textured) floor.textures.push_back(ref::RefTexture{2, 2, std::vector<glm::vec3>(4, glm::vec3(0.25f))});
+    floor.materials.push_back({factor, textured ? 0 : -1, glm::vec3(0.0f), -1});
+    ref::RefMesh m;
+    m.positions = {{-2, 0, -2}, {2, 0, -2}, {-2, 0, 2}, {2, 0, 2}};
+    m.normals.assign(4, glm::vec3(0, 1, 0));
+    m.uvs = {{0, 0}, {1, 0}, {0, 1}, {1, 1}};
+    m.indices = {0, 2, 1, 1, 2, 3};
+    floor.meshes.push_back(m);
+    return floor;
+  };
+  const ref::SceneBvh textured(floorScene(glm::vec3(1.0f), true)), plain(floorScene(glm::vec3(0.25f), false)),
+      white(floorScene(glm::vec3(1.0f), false));
+  std::vector<ref::SceneDesc> blocker = {boxScene(glm::vec3(-0.5f), glm::vec3(0.5f))};
+  const PosedOccluders occ(std::move(blocker));
+  const std::vector<render::LightGpu> lamp = {pointLight(glm::vec3(0, 1, 0), glm::vec3(2.0f))};
+  const std::vector<PosedOccluders::Pose> slab = {*occ.pose(0, glm::translate(glm::mat4(1.0f), glm::vec3(0, 0.8f, 0)) * glm::scale(glm::mat4(1.0f), glm::vec3(20, 0.01f, 20)))};
+  const glm::vec3 chi(0.3f, 0.1f, -0.2f);
+  const incident::RadianceSH a = roomShadow(textured, occ, slab, lamp, chi), b = roomShadow(plain, occ, slab, lamp, chi),
+                             w = roomShadow(white, occ, slab, lamp, chi);
+  ASSERT_LT(a[0].x, -1e-3f);
+  for (std::size_t i = 0; i < a.size(); ++i)
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_NEAR(a[i][c], b[i][c], 1e-6f * std::abs(b[0][c])) << i << " " << c;
+      EXPECT_NEAR(a[i][c], 0.25f * w[i][c], 1e-6f * std::abs(b[0][c])) << i << " " << c;
+    }
 }
 
 // The room's lost light never takes more than the probes' mean holds (a light brighter than the bake's):

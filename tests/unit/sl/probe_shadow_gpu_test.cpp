@@ -114,12 +114,14 @@ struct Output {
   glm::vec3 delta, unshadowed;
 };
 
-// `sphereL` (empty, or one per sphere): "blocked_light": "sphere" with these radiance SH at the SLs.
+// `sphereL` (empty, or one per sphere): "blocked_light": "sphere" with these radiance SH at the SLs;
+// `maps` (empty, or one per sphere): "blocked_read": "map" with these direction maps instead.
 std::vector<Output> runShader(gpu::Context& ctx, const Fixture& f, const gi::probes::ProbeVolume& vol,
                               std::span<const Receiver> receivers, int order,
-                              std::span<const gi::incident::RadianceSH> sphereL = {}) {
+                              std::span<const gi::incident::RadianceSH> sphereL = {},
+                              std::span<const gi::incident::DirectionMap> maps = {}) {
   ShadeData data(ctx, order);
-  data.setSpheres(f.shaded, {}, sphereL);
+  data.setSpheres(f.shaded, {}, sphereL, maps);
   gpu::Buffer intensity(ctx, {kIntensityBlockBytes, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::MemoryUsage::Upload, "sl.test.intensity"});
   std::memset(intensity.mapped(), 0, intensity.size());
   const auto sh = gi::probes::uploadSh(ctx, vol);
@@ -142,7 +144,8 @@ std::vector<Output> runShader(gpu::Context& ctx, const Fixture& f, const gi::pro
                                      "sl.shadow.test");
   gpu::SpecConstants spec = ShadeData::specialization(order, Blocking::PerSphere, std::uint32_t(f.shaded.size()));
   spec.push_back(std::uint32_t(vol.coeffs()));
-  spec.push_back(sphereL.empty() ? 0u : 1u);  // kBlockedAtSphere
+  spec.push_back(sphereL.empty() && maps.empty() ? 0u : 1u);  // kBlockedAtSphere
+  spec.push_back(maps.empty() ? 0u : 1u);                      // kBlockedMap
   gpu::Pipeline pipeline = gpu::createComputePipeline(
       ctx, pipelineLayout, gpu::ShaderModule(ctx, "sl/probe_shadow_selftest.comp.spv"), "sl.shadow.test", nullptr, spec);
   gpu::SamplerCache samplers(ctx);
@@ -176,10 +179,19 @@ Receiver receiver(glm::vec3 p, glm::vec3 n) {
           glm::vec4(glm::normalize(glm::vec3(0.3f, -0.8f, 1.0f)), 0.0f)};
 }
 
+// 12 × 12 receivers facing +z over the floor square [-0.9, 0.9]² at z = 0.
+std::vector<Receiver> floorGrid() {
+  std::vector<Receiver> r;
+  for (int y = 0; y < 12; ++y)
+    for (int x = 0; x < 12; ++x) r.push_back(receiver({-0.9f + 1.8f * x / 11.0f, -0.9f + 1.8f * y / 11.0f, 0.0f}, {0, 0, 1}));
+  return r;
+}
+
 // Compares every receiver; returns the worst |GPU − C++| / (|E_u| + 1e-6) and how many are shadowed.
 double expectMatches(const Fixture& f, const gi::probes::ProbeVolume& vol, std::span<const Receiver> r,
                      const std::vector<Output>& gpu, int order, int* shadowed,
-                     std::span<const gi::incident::RadianceSH> sphereL = {}) {
+                     std::span<const gi::incident::RadianceSH> sphereL = {},
+                     std::span<const gi::incident::DirectionMap> maps = {}) {
   ShadowSettings s;
   s.order = order;
   s.objectShare = f.shares;
@@ -192,6 +204,15 @@ double expectMatches(const Fixture& f, const gi::probes::ProbeVolume& vol, std::
       std::vector<glm::dvec3> c;
       for (const glm::vec3& v : sh) c.push_back(glm::dvec3(glm::unpackHalf(glm::packHalf(v))));
       s.sphereRadiance.push_back(c);
+    }
+  }
+  if (!maps.empty()) {  // the same RGB9E5 rounding as ShadeData's map layout
+    s.blocked = BlockedLight::Sphere;
+    s.read = BlockedRead::Map;
+    for (const gi::incident::DirectionMap& m : maps) {
+      std::vector<glm::dvec3> c;
+      for (const glm::vec3& v : m) c.push_back(glm::dvec3(glm::unpackF3x9_E1x5(glm::packF3x9_E1x5(v))));
+      s.sphereMap.push_back(c);
     }
   }
   double worst = 0.0;
@@ -224,9 +245,7 @@ TEST(SlProbeShadowGpu, GlslEqualsProbeShadowOnAPlaneInsideAndUnderACluster) {
     const glm::vec3 d(std::sin(a) * std::cos(phi), std::sin(a) * std::sin(phi), std::cos(a));
     addSphere(f, glm::vec3(-0.6f, 0.6f, 0.0f) + d * (0.35f + 0.01f * float(i)), 0.28f, 2 + i);
   }
-  std::vector<Receiver> r;
-  for (int y = 0; y < 12; ++y)
-    for (int x = 0; x < 12; ++x) r.push_back(receiver({-0.9f + 1.8f * x / 11.0f, -0.9f + 1.8f * y / 11.0f, 0.0f}, {0, 0, 1}));
+  std::vector<Receiver> r = floorGrid();
   for (int y = 0; y < 4; ++y)
     for (int x = 0; x < 4; ++x) r.push_back(receiver({-0.7f + 0.2f * x / 3.0f, 0.5f + 0.2f * y / 3.0f, 0.0f}, {0, 0, 1}));
   // Inside sphere 0 (t = 0.8, 0.6, 0.3 of its radius), on it and just outside, with tilted normals.
@@ -313,15 +332,39 @@ TEST(SlProbeShadowGpu, GlslEqualsProbeShadowWithTheBlockedLightReadAtTheSpheres)
     sh[0] = glm::vec3(1.0f + 0.3f * float(i), 0.8f, 0.5f) * 3.5449077f * 1.5f;
     sphereL.push_back(sh);
   }
-  std::vector<Receiver> r;
-  for (int y = 0; y < 12; ++y)
-    for (int x = 0; x < 12; ++x) r.push_back(receiver({-0.9f + 1.8f * x / 11.0f, -0.9f + 1.8f * y / 11.0f, 0.0f}, {0, 0, 1}));
+  std::vector<Receiver> r = floorGrid();
   for (int order : {3, 4}) {
     const gi::probes::ProbeVolume vol = volume(3);
     int shadowed = 0;
     const double worst = expectMatches(f, vol, r, runShader(ctx, f, vol, r, order, sphereL), order, &shadowed, sphereL);
     EXPECT_GT(shadowed, int(r.size()) / 4);
     std::printf("blocked light at the spheres, order %d: worst |GPU - C++| / |E_u| = %.3g; %d of %zu receivers shadowed by > 1%%\n",
+                order, worst, shadowed, r.size());
+  }
+}
+
+// "blocked_read": "map" (probe_shadow.hpp BlockedRead::Map) in GLSL against the C++ reference: the
+// same objects and receivers, each SL with a direction map whose neighbouring texels differ by up to
+// 2× (a pattern over the texel index, brighter per SL), so a read from the wrong texel, the wrong SL
+// or the wrong channel fails; the shader and the reference pick the texel with the same function
+// (common/oct_map.glsl, math::octTexel). At SH orders 3 and 4 (the visibility's order).
+TEST(SlProbeShadowGpu, GlslEqualsProbeShadowWithTheBlockedLightReadFromDirectionMaps) {
+  gpu::Context& ctx = gpu::testkit::sharedContext();
+  Fixture f;
+  addTwoObjects(f);
+  std::vector<gi::incident::DirectionMap> maps(f.shaded.size());
+  for (std::size_t i = 0; i < maps.size(); ++i)
+    for (int t = 0; t < math::kOctMapTexels; ++t) {
+      const float wave = 0.75f + 0.25f * std::sin(0.9f * float(t) + float(i));
+      maps[i][std::size_t(t)] = glm::vec3(1.0f + 0.3f * float(i), 0.8f, 0.5f) * wave * (t % 3 == 0 ? 1.0f : 0.6f);
+    }
+  std::vector<Receiver> r = floorGrid();
+  for (int order : {3, 4}) {
+    const gi::probes::ProbeVolume vol = volume(3);
+    int shadowed = 0;
+    const double worst = expectMatches(f, vol, r, runShader(ctx, f, vol, r, order, {}, maps), order, &shadowed, {}, maps);
+    EXPECT_GT(shadowed, int(r.size()) / 4);
+    std::printf("blocked light from direction maps, order %d: worst |GPU - C++| / |E_u| = %.3g; %d of %zu receivers shadowed by > 1%%\n",
                 order, worst, shadowed, r.size());
   }
 }

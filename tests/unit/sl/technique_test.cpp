@@ -58,6 +58,11 @@ TEST(SlComponent, ParsesWithDefaults) {
                                                            R"(, "sl": {"blocked_light": "sphere"}})"))
                   .entities[0]
                   .sl->blockedAtSphere);
+  EXPECT_FALSE(level.entities[0].sl->blockedMap);  // "blocked_read": "sh" unless asked
+  EXPECT_TRUE(scene::loadLevel(writeLevel("sl-map", R"({"id": "a", "dynamic": true, )" + mesh() +
+                                                        R"(, "sl": {"blocked_light": "sphere", "blocked_read": "map"}})"))
+                  .entities[0]
+                  .sl->blockedMap);
   EXPECT_EQ(settingsFrom(*level.entities[0].sl).spheres, 32);
   EXPECT_EQ(settingsFrom(*level.entities[0].sl).order, 3);
 }
@@ -106,6 +111,11 @@ TEST(SlComponent, BadInputIsOneLine) {
   EXPECT_EQ(loadError("sl-blocked-hierarchy", dyn + R"(, "sl": {"hierarchy": true, "blocked_light": "sphere"}})"),
             "FILE: /entities/0/sl/blocked_light: blocked_light \"sphere\" with \"hierarchy\": true (expected \"receiver\" "
             "with the hierarchy (its parents read the receiver's SH))");
+  EXPECT_EQ(loadError("sl-read", dyn + R"(, "sl": {"blocked_light": "sphere", "blocked_read": "texture"}})"),
+            "FILE: /entities/0/sl/blocked_read: unknown blocked_read \"texture\" (expected sh or map)");
+  EXPECT_EQ(loadError("sl-read-receiver", dyn + R"(, "sl": {"blocked_read": "map"}})"),
+            "FILE: /entities/0/sl/blocked_read: blocked_read \"map\" without blocked_light \"sphere\" (expected \"sh\", or "
+            "\"blocked_light\": \"sphere\" (the map is read at the SLs))");
   EXPECT_EQ(loadError("light-radius", R"({"id": "l", "light": {"type": "point", "radius": -1}})"),
             "FILE: /entities/0/light/radius: -1 is out of range (expected a number in [0, 100])");
   EXPECT_EQ(loadError("light-radius-sun", R"({"id": "l", "light": {"type": "directional", "radius": 1}})"),
