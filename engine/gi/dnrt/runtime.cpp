@@ -63,6 +63,20 @@ render::Renderer::GraphNode Runtime::node() {
   };
 }
 
+bool fusedEligible(Mode mode, bool intrusion, std::uint32_t entityId1) {
+  return mode == Mode::Fused && !intrusion && entityId1 != 0u && entityId1 <= render::kEntityInNormalMax;
+}
+
+std::vector<std::string> Runtime::fusedEligibleNames() const {
+  std::vector<std::string> names;
+  for (const Object& o : objects_) {
+    const auto* c = registry_.tryGet<scene::Dnrt>(o.entity);
+    if (!c || names.size() == kClusterBatch) continue;
+    if (fusedEligible(settings_.mode.value_or(c->mode), c->intrusion, o.entity.index() + 1u)) names.push_back(o.name);
+  }
+  return names;
+}
+
 std::optional<probes::FusedDnrt> Runtime::addFused(rg::RenderGraph& graph, const render::PassContext& pc) {
   fusedFrame_.reset();
   if (!pc.world->has("dnrt")) return std::nullopt;
@@ -78,8 +92,7 @@ std::optional<probes::FusedDnrt> Runtime::addFused(rg::RenderGraph& graph, const
   std::vector<std::size_t> chosen;
   for (std::size_t i = 0; i < objects.size() && chosen.size() < kClusterBatch; ++i) {
     const NodeObject& o = objects[i];
-    if (modeOf(o.mode) != Mode::Fused || o.intrusion || o.data.ids.x == 0u || o.data.ids.x > render::kEntityInNormalMax)
-      continue;
+    if (!fusedEligible(modeOf(o.mode), o.intrusion, o.data.ids.x)) continue;
     chosen.push_back(i);
   }
   if (chosen.empty()) return std::nullopt;

@@ -27,6 +27,11 @@
 
 namespace bounce::gi::dnrt {
 
+// One object's eligibility for the fused term (Runtime::addFused): in the fused mode (`mode` after
+// NodeSettings::mode's override), no intrusion map, and its entity id + 1 (`entityId1`, 0 = none)
+// fits the G-buffer normal's w, where probes.frag's self test reads it (render::kEntityInNormalMax).
+bool fusedEligible(Mode mode, bool intrusion, std::uint32_t entityId1);
+
 class Runtime {
  public:
   // `assets` must have loaded the registry's MeshRefs. `background`: the uniform radiance used as
@@ -81,6 +86,10 @@ class Runtime {
   // technique.cpp). Nothing when the frame's effects do not name dnrt or no object qualifies; without
   // the probes effect this is never called and node() draws fused objects as boxes.
   std::optional<probes::FusedDnrt> addFused(rg::RenderGraph& graph, const render::PassContext& pc);
+  // The names of the objects addFused would take were all of them visible (its rule, fusedEligible,
+  // and its cap of kClusterBatch); the level load warns from this list (technique.cpp), so the warning
+  // and the frame apply one rule.
+  std::vector<std::string> fusedEligibleNames() const;
 
  private:
   struct Object {

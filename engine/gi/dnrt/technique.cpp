@@ -263,10 +263,7 @@ SessionRuntime::SessionRuntime(SessionContext& sc) {
   // pass dnrt.fused.reduced): in a frame with two or more fused objects in the probes pass their terms
   // are shaded at full resolution (Runtime::addFused). Said once here, where the level asks for both.
   if (sc.level.dnrt.step > 1u) {
-    std::vector<std::string> fused;
-    sc.registry.view<scene::Dnrt, scene::Name>().each([&](ecs::Entity, scene::Dnrt& d, scene::Name& n) {
-      if (d.mode == scene::DnrtMode::Fused && !d.intrusion) fused.push_back(n.id);
-    });
+    std::vector<std::string> fused = runtime_->fusedEligibleNames();  // Runtime::addFused's rule
     if (fused.size() > 1) {
       std::sort(fused.begin(), fused.end());  // the registry's order is not the level's
       std::string names;

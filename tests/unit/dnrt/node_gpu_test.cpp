@@ -975,6 +975,19 @@ TEST(DnrtGpu, FusedProbesPassSplitAtTheOuterCubeIsTheUnsplitImage) {
 // "dnrt.fused.reduced") and its image bit for bit (the same pipelines and inputs) — and the level load
 // says so in one warning (counted against the same level at full resolution, whose load warns of
 // nothing more).
+// The fused term's rule (Runtime::addFused; the level load's warning counts by the same function):
+// the fused mode, no intrusion map, and an entity id + 1 the G-buffer normal's w holds (1…2047).
+TEST(DnrtFused, EligibleIsTheFusedModeWithoutIntrusionAndAnIdTheNormalHolds) {
+  using dnrt::fusedEligible;
+  using Mode = dnrt::Mode;
+  EXPECT_TRUE(fusedEligible(Mode::Fused, false, 1u));
+  EXPECT_TRUE(fusedEligible(Mode::Fused, false, render::kEntityInNormalMax));
+  EXPECT_FALSE(fusedEligible(Mode::Fused, false, 0u)) << "no entity: the self test cannot skip its pixels";
+  EXPECT_FALSE(fusedEligible(Mode::Fused, false, render::kEntityInNormalMax + 1u)) << "id past the normal's w";
+  EXPECT_FALSE(fusedEligible(Mode::Fused, true, 1u)) << "an intrusion map is drawn by the node";
+  for (Mode m : {Mode::Box, Mode::Clustered, Mode::FullScreen}) EXPECT_FALSE(fusedEligible(m, false, 1u));
+}
+
 TEST(DnrtGpu, SeveralFusedObjectsAreShadedAtFullResolutionAndTheLevelLoadSaysSo) {
   gpu::Context& ctx = gpu::testkit::sharedContext();
   const auto render = [&](std::uint32_t step, std::size_t& warnings) {
