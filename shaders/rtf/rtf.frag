@@ -8,7 +8,7 @@
 // scaled per sample by the ξ pass where objects share occlusion, overlap.hpp), all in the
 // object's frame (the normal is rotated there instead of 16 coefficients into the world), and
 // E_n(L) = Σ Â_l L_lm Y_lm(n) with Â_3 = 0, so only bands 0..2 matter. Both terms are folded per
-// sample by the ξ pass into X_i (i < 9, xi.comp), stored in 8 bits as 7 RGBA texels (DNRT's
+// sample by the ξ pass into X_i (i < 9, xi.comp), stored in 8 bits (as r_s² X_i) as 7 RGBA texels (DNRT's
 // Table 2 order) and looked up by hardware filtering (rtf.glsl rtfTaps, a linear sampler; one
 // trilinear fetch per texel, 7 against 9 float fetches before): ρ Σ_i y_i(n) X_i(q). Added to
 // "lighting.hdr" with additive blending.
@@ -25,7 +25,8 @@ layout(set = 1, binding = 1) uniform sampler2D gNormal;
 layout(set = 1, binding = 2) uniform sampler2D gDepth;
 layout(set = 1, binding = 3) uniform usampler2D gEntity;
 // X_i = Â_l/π ξ_i − Σ_j T'_ij (u − V)_j per sample, i < 9 (xi.comp): RGBA8 3D, slice k·spheres + sphere
-// for texel k < 7; a slot's t decodes to X = m(2t − 1) with m its range (inRange, from xi.comp).
+// for texel k < 7; a slot's t decodes to Y = m(2t − 1) with m its range (inRange, from xi.comp), and
+// X = Y/r_s² (r_s the sample's sphere radius in η).
 layout(set = 2, binding = 1) uniform sampler3D netTex;
 
 // The object's record, folded by rtf.vert.
@@ -54,11 +55,17 @@ void main() {
   if (fade <= 0.0) discard;  // beyond the fade: the field is zero
   // The object's own surface: its transfer already holds its self-interreflection (Eq. 8).
   if (texelFetch(gEntity, pixel, 0).r == self) discard;
-  // Between spheres s0 and s0 + 1 the weight is linear in 1/|q|² (rtfRadialWeight; evaluate.cpp
-  // radialWeight says why), handed to the sampler as the slice coordinate's fraction.
+  // Between spheres s0 and s0 + 1 the weight w is linear in 1/|q|² (rtfRadialWeight; evaluate.cpp
+  // radialWeight says why). The texels hold Y = r_s² X (xi.comp; xi_pass.hpp netScale says why), and
+  // (1 − w) Y_a/r_a² + w Y_b/r_b² = ((1 − w') Y_a + w' Y_b)/|q|² with w' = (|q|² − r_a²)/(r_b² − r_a²):
+  // w' is handed to the sampler as the slice coordinate's fraction and 1/|q|² multiplies the sum
+  // (|q| clamped to [r_0, r_N]: inside the innermost sphere Y_0/r_0², beyond the outermost Y_N/|q|² is
+  // `fade`'s (r_N/|q|)² on X_N = Y_N/r_N²).
   float t = clamp((len - radial.x) * radial.y, 0.0, radial.z);
-  float s0 = min(floor(t), radial.z - 1.0), ra = radial.x + s0 / radial.y;
-  t = s0 + rtfRadialWeight(ra, ra + 1.0 / radial.y, len);
+  float s0 = min(floor(t), radial.z - 1.0), ra = radial.x + s0 / radial.y, rb = ra + 1.0 / radial.y;
+  t = s0 + clamp((len * len - ra * ra) / (rb * rb - ra * ra), 0.0, 1.0);
+  float rc = clamp(len, radial.x, radial.w);
+  fade /= rc * rc;
   // Bilinear within the face by clamped coordinates (rtfFace): the sampler's.
   int f;
   vec2 st;
@@ -69,9 +76,9 @@ void main() {
   float y[9];
   shEval9(n, y);  // bands 0–1 only when !kSh9: the compiler drops the rest
 
-  // Σ_i y_i X_i with X = m(2t − 1) per slot and t trilinear (one fetch per texel: bilinear in the
+  // Σ_i y_i Y_i with Y = m(2t − 1) per slot and t trilinear (one fetch per texel: bilinear in the
   // face, linear between the spheres by the slice coordinate; the weights sum to 1 before the fade):
-  // Σ (y m)(2t − 1) = 2 (y m)·t − Σ (y m).
+  // Σ (y m)(2t − 1) = 2 (y m)·t − Σ (y m); × fade/|q|² below makes it Σ_i y_i X_i.
   float spheres = radial.z + 1.0;
   vec4 y0 = vec4(y[0], y[1], y[2], y[3]), y1 = vec4(y[4], y[5], y[6], y[7]);
   vec3 sum;

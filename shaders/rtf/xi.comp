@@ -35,17 +35,18 @@ layout(rgba32f, binding = 5) uniform writeonly image2DArray xi;
 // with the same trilinear weights (the fade included: u − V fades to 0 with them) and only evaluates
 // Σ_i y_i(n) X_i.
 // Stored as RGBA8 UNORM (llvmpipe filters 8-bit unorm texels on its fast fixed-point path; a float
-// texel goes through the general one, DESIGN.md "What costs what"), 27 values in 7 texels in
-// DNRT's Table 2 order (rtfNetSlot): texel k < 3 holds channel k's X_0..3, 3 ≤ k < 6 channel
-// (k−3)'s X_4..7, texel 6 X_8.rgb. Each of the 28 slots has its own scale m = max |X| over the
+// texel goes through the general one, DESIGN.md "What costs what"), as Y = r_s² X (the sample's
+// sphere radius in η squared: xi_pass.hpp netScale), 27 values in 7 texels in
+// DNRT's Table 2 order (rtfNetSlot): texel k < 3 holds channel k's Y_0..3, 3 ≤ k < 6 channel
+// (k−3)'s Y_4..7, texel 6 Y_8.rgb. Each of the 28 slots has its own scale m = max |Y| over the
 // samples this frame (range[], atomicMax of the float bits: non-negative floats order as uints), and
-// holds t = X/(2m) + ½ rounded to 1/255, so X = m(2t − 1) to ½·2m/255. Image: 3D, texel
+// holds t = Y/(2m) + ½ rounded to 1/255, so Y = m(2t − 1) to ½·2m/255. Image: 3D, texel
 // (face·n_r + x, y, k·spheres + sphere): one coefficient group's spheres are consecutive slices, so
 // one trilinear fetch is Eq. 10's whole lookup for 4 values (rtf.frag).
 layout(std430, binding = 6) readonly buffer Oof { float oof[]; };
 layout(rgba8, binding = 7) uniform writeonly image3D net;
-layout(std430, binding = 8) buffer Range { uint range[28]; };  // float bits of max |X| per slot; 0 before stage 1
-layout(std430, binding = 9) buffer Net { vec4 netValue[]; };    // X per (sample, i < 9), rgb
+layout(std430, binding = 8) buffer Range { uint range[28]; };  // float bits of max |Y| per slot; 0 before stage 1
+layout(std430, binding = 9) buffer Net { vec4 netValue[]; };    // Y = r_s² X per (sample, i < 9), rgb
 // The per-sample factor of the blocked term (overlap.hpp sharedOcclusionScale: the share of the
 // directions this object hides that no other object's term already takes off; 1 where one object acts).
 layout(std430, binding = 10) readonly buffer BlockedScale { vec4 blockedScale[]; };
@@ -73,7 +74,16 @@ layout(push_constant) uniform Push {
   uint samples;     // N
   uint faceSize;    // n_r
   uint byteComponents;  // n₈: the last n₈ of the n_e components in 8-bit codes
+  float innerRadius;    // η, the innermost sphere's radius
+  float outerRadius;    // η, the outermost's
 } pc;
+
+// Y = r_s² X is what the 8 bits hold (xi_pass.hpp netScale says why; rtf.frag divides it out again):
+// sphere s's squared radius in η², as field.cpp sphereRadius computes it.
+float netScale(uint sphere, uint spheres) {
+  float r = pc.innerRadius + (pc.outerRadius - pc.innerRadius) * float(sphere) / float(spheres - 1u);
+  return r * r;
+}
 
 // Stage 2: after every X and its slot's range are known, one invocation per (sample, texel k < 7).
 void encode(uint t) {
@@ -175,6 +185,7 @@ void main() {
         blocked += notV * light[T + j * 9u + i].rgb;
       }
       X -= blockedScale[r].rgb * blocked;
+      X *= netScale(sphere, pc.samples / per);  // Y, the value the 8 bits hold
       netValue[r * 9u + i] = vec4(X, 0.0);
       for (uint c = 0u; c < 3u; ++c) atomicMax(range[rtfNetSlot(c, i)], floatBitsToUint(abs(X[c])));
     }

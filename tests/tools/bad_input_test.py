@@ -13,7 +13,7 @@ import subprocess
 import sys
 import tempfile
 
-TOOLS = ["effect_noise", "effect_parts", "rtf_bands", "rtf_blocked", "rtf_bounce2", "rtf_parts", "rtf_whatif",
+TOOLS = ["effect_noise", "effect_parts", "rtf_bands", "rtf_blocked", "rtf_bounce2", "rtf_parts", "rtf_second", "rtf_whatif",
          "sl_bounce_split", "sl_dnrt_split", "sl_near_bins", "sl_parts", "sl_relight_bound"]
 # The images the tools open first (accuracy --effect-images and rtf_parts folders).
 IMAGES = ["reference-all-with", "reference-all-without", "reference-all-half-with", "reference-all-half-without",

@@ -67,7 +67,8 @@ XiPass::XiPass(gpu::Context& ctx, const Field& f)
       descriptors_(ctx) {
   const FieldSettings& s = f.settings;
   push_ = {0, std::uint32_t(s.proxies), std::uint32_t(f.itf.clusters), std::uint32_t(f.itf.components),
-           std::uint32_t(sampleCount(s)), std::uint32_t(s.faceSize), std::uint32_t(f.itf.byteComponents)};
+           std::uint32_t(sampleCount(s)), std::uint32_t(s.faceSize), std::uint32_t(f.itf.byteComponents),
+           s.innerRadius, s.outerRadius};
   const CpcaParts parts = storedParts(f.itf);
   basis_ = storage(ctx, halfWords(parts.basisHalves), "rtf.basis");
   alpha_ = storage(ctx, halfWords(parts.alphaHalves), "rtf.alpha");

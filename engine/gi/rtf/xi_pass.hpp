@@ -35,9 +35,23 @@ class XiPass {
   // (the light at o). Written by the next record().
   void setBlockedScale(std::span<const glm::vec4> scale);
   // X for i < 9 in 8 bits (xi.comp): RGBA8 UNORM 3D, texel (face·n_r + x, y, k·spheres + sphere) for
-  // texel k < kNetTexels in DNRT's Table 2 order; slot k·4 + c holds t = X/(2m) + ½ with m =
-  // netRange()'s slot (float max |X| this frame), so X = m(2t − 1). GENERAL layout from construction on.
+  // texel k < kNetTexels in DNRT's Table 2 order; slot k·4 + c holds t = Y/(2m) + ½ of Y = r_s² X
+  // (netScale: X weighted by its sphere's squared radius) with m = netRange()'s slot (float max |Y| this
+  // frame), so X = m(2t − 1)/r_s². GENERAL layout from construction on.
   static constexpr std::uint32_t kNetTexels = 7;
+  // Why r_s²: what X carries (the light an object sends to q and the light it hides there) falls as the
+  // object's solid angle, ~1/|q|² (evaluate.hpp radialWeight), so one range per slot over X itself spent
+  // the 8 bits on the innermost spheres: a sample on sphere s got m/255 steps of an X ≈ (r_1/r_s)² of m,
+  // and the second bounce (≈ 1 % of X on cornell-5) was below a step on the middle and outer spheres
+  // (README "RTF's second bounce in 8 bits, session 20"). Y ≈ flat across the spheres instead. The
+  // lookup stays one trilinear fetch and exact: between spheres a < b Eq. 10's weight w (linear in 1/|q|²)
+  // gives (1 − w) Y_a/r_a² + w Y_b/r_b² = ((1 − w') Y_a + w' Y_b)/|q|² with w' = (|q|² − r_a²)/(r_b² − r_a²),
+  // since (1 − w)/r_a² + w/r_b² = 1/|q|² (rtf.frag); inside the innermost sphere Y_0/r_0², beyond the
+  // outermost Y_N/|q|² times the end's ramp (= tailFade · X_N). Radii in η.
+  static float netScale(const FieldSettings& s, int sphere) {
+    const float r = sphereRadius(s, sphere);
+    return r * r;
+  }
   // The slot (texel k · 4 + component) of channel c's X_i, i < 9 (xi.comp rtfNetSlot).
   static constexpr int netSlot(int c, int i) { return i < 8 ? ((i / 4) * 3 + c) * 4 + i % 4 : 24 + c; }
   gpu::Image& net() { return net_; }
@@ -51,6 +65,7 @@ class XiPass {
  private:
   struct Push {
     std::uint32_t stage, proxies, clusters, components, samples, faceSize, byteComponents;
+    float innerRadius, outerRadius;  // η: the spheres' radii (field.hpp sphereRadius; netScale)
   };
   gpu::Context& ctx_;
   FieldSettings settings_;

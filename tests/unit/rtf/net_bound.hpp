@@ -36,33 +36,41 @@ inline std::vector<glm::vec3> netValues(const Field& f, std::span<const glm::vec
   return X;
 }
 
-// Each slot's scale m = max |X| over the samples (XiPass::netRange), [slot].
-inline std::array<float, 28> netRanges(std::span<const glm::vec3> X) {
+// Each slot's scale m = max |Y| over the samples of Y = r_s² X (XiPass::netRange, netScale), [slot].
+inline std::array<float, 28> netRanges(std::span<const glm::vec3> X, const FieldSettings& s) {
   std::array<float, 28> m{};
+  const std::size_t per = std::size_t(samplesPerSphere(s));
   for (std::size_t k = 0; k < X.size(); ++k)
     for (int c = 0; c < 3; ++c) {
       float& slot = m[std::size_t(XiPass::netSlot(c, int(k % 9)))];
-      slot = std::max(slot, std::abs(X[k][c]));
+      slot = std::max(slot, std::abs(X[k][c]) * XiPass::netScale(s, int(k / 9 / per)));
     }
   return m;
 }
 
+// What rtf.frag multiplies the decoded Y by at |q| = r (η) to get X: the end's fade (tailFade) over
+// r² clamped to [r_0, r_N] (xi_pass.hpp netScale's lookup).
+inline float netDecode(const FieldSettings& s, float r, float reach = 0.0f) {
+  const float rc = std::clamp(r, sphereRadius(s, 0), sphereRadius(s, s.spheres - 1));
+  return tailFade(s, r, reach) / (rc * rc);
+}
+
 // The 8-bit image's share of a shaded pixel's error, channel c, receiver normal n (world), albedo
-// ρ_c: ρ_c · fade · Σ_i |y_i(n_local)| · m_slot(c,i) · kNetSteps/255. Per slot the stored
-// t = X/(2m) + ½ is X to ½ step of 1/255 (X: m/255); the sampler then filters 8-bit texels on
-// llvmpipe's fixed-point path: 8-bit weights and an 8-bit result for each of the 3 lerps of a
-// trilinear fetch, ≤ 1 step of t from the weight and ≤ 1 from the result each, so
-// |t̃ − t| ≤ (½ + 3·2)/255 and X to 13 m/255. The bound Vulkan itself gives (≥ 4 bits of sub-texel
+// ρ_c: ρ_c · decode · Σ_i |y_i(n_local)| · m_slot(c,i) · kNetSteps/255, decode = netDecode() at the
+// pixel's |q|. Per slot the stored t = Y/(2m) + ½ is Y to ½ step of 1/255 (Y: m/255); the sampler then
+// filters 8-bit texels on llvmpipe's fixed-point path: 8-bit weights and an 8-bit result for each of
+// the 3 lerps of a trilinear fetch, ≤ 1 step of t from the weight and ≤ 1 from the result each, so
+// |t̃ − t| ≤ (½ + 3·2)/255 and Y to 13 m/255. The bound Vulkan itself gives (≥ 4 bits of sub-texel
 // weight precision) is looser; this is the implementation the tests run on.
 inline constexpr float kNetSteps = 13.0f;
 // shCount: the coefficients the shading reads (the record's ids.y: 9 or 4).
-inline float netBound(const std::array<float, 28>& m, const glm::vec4 toLocal[3], glm::vec3 n, float fade, float rho, int c,
+inline float netBound(const std::array<float, 28>& m, const glm::vec4 toLocal[3], glm::vec3 n, float decode, float rho, int c,
                       int shCount = 9) {
   const glm::vec3 nl(glm::dot(glm::vec3(toLocal[0]), n), glm::dot(glm::vec3(toLocal[1]), n), glm::dot(glm::vec3(toLocal[2]), n));
   const auto y = sh::evalBasis<float>(3, nl);
   float s = 0.0f;
   for (int i = 0; i < shCount; ++i) s += std::abs(y[std::size_t(i)]) * m[std::size_t(XiPass::netSlot(c, i))];
-  return rho * fade * s * kNetSteps / 255.0f;
+  return rho * decode * s * kNetSteps / 255.0f;
 }
 
 }  // namespace bounce::gi::rtf::testing

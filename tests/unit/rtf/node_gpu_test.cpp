@@ -90,7 +90,7 @@ TEST(RtfGpu, ShaderMatchesCpuShadingOnTheFloor) {
   // float sums of 8 × 25 terms: 1e-4 of the largest term in the image; X in 8 bits: netBound
   // (net_bound.hpp, 13 steps of each slot's m/255).
   constexpr float kHalfRel = 1e-3f, kSumRel = 1e-4f;
-  const std::array<float, 28> range = testing::netRanges(testing::netValues(s.field, bounced.xi[0], record.blocked));
+  const std::array<float, 28> range = testing::netRanges(testing::netValues(s.field, bounced.xi[0], record.blocked), s.field.settings);
   std::vector<glm::vec3> want;
   std::vector<glm::vec3> got;
   std::vector<glm::vec3> netTol;
@@ -116,9 +116,8 @@ TEST(RtfGpu, ShaderMatchesCpuShadingOnTheFloor) {
       else beyondNonZero += (rgb[i] != 0.0f || rgb[i + 1] != 0.0f || rgb[i + 2] != 0.0f), ++beyond;
       want.push_back(sh.net());
       got.emplace_back(rgb[i], rgb[i + 1], rgb[i + 2]);
-      const float fade = tailFade(fsettings, qLen, 0.0f);
       glm::vec3 tol;
-      for (int c = 0; c < 3; ++c) tol[c] = testing::netBound(range, record.toLocal, glm::vec3(0, 1, 0), fade, floor.albedo[c], c);
+      for (int c = 0; c < 3; ++c) tol[c] = testing::netBound(range, record.toLocal, glm::vec3(0, 1, 0), testing::netDecode(fsettings, qLen), floor.albedo[c], c);
       netTol.push_back(tol);
       largest = std::max(largest, glm::length(sh.net()));
       largestInter = std::max(largestInter, glm::length(sh.interreflected));
@@ -212,7 +211,7 @@ TEST(RtfGpu, BlockedLightAtTheReceiverFollowsTheLightsLevel) {
     const glm::vec3 xiPart = X[k] - blockedX[k];
     scaledX[k] = xiPart + glm::vec3(scale[k / 9]) * blockedX[k];
   }
-  const std::array<float, 28> range = testing::netRanges(scaledX);
+  const std::array<float, 28> range = testing::netRanges(scaledX, fs);
   const rtest::FloorScene floor = rtest::readFloorScene(s.session.level());
   const glm::vec3 nLocal(glm::dot(glm::vec3(record.toLocal[0]), glm::vec3(0, 1, 0)), glm::dot(glm::vec3(record.toLocal[1]), glm::vec3(0, 1, 0)),
                          glm::dot(glm::vec3(record.toLocal[2]), glm::vec3(0, 1, 0)));
@@ -249,7 +248,7 @@ TEST(RtfGpu, BlockedLightAtTheReceiverFollowsTheLightsLevel) {
       levelSpread = std::max(levelSpread, maxDiff);
       for (int c = 0; c < 3; ++c) {
         const float bound = 1e-3f * std::abs(model[c]) + 2e-4f * std::max(glm::length(model), 1e-2f) +
-                            testing::netBound(range, record.toLocal, glm::vec3(0, 1, 0), fade, floor.albedo[c], c) + 1e-6f;
+                            testing::netBound(range, record.toLocal, glm::vec3(0, 1, 0), testing::netDecode(fs, glm::length(q)), floor.albedo[c], c) + 1e-6f;
         worstGpu = std::max(worstGpu, std::abs(got[c] - model[c]) / bound);
         worstShade = std::max(worstShade, std::abs(model[c] - sh.net()[c]) / (spreadBound[c] + 1e-4f * glm::length(sh.blocked) + 1e-6f));
       }
@@ -288,7 +287,7 @@ TEST(RtfGpu, FourShShadingMatchesCpuShadingWithBandsZeroAndOne) {
   const std::vector<float> rgb = renderHdr(s.session, ctx, kW, kH);
   const rtest::FloorScene floor = rtest::readFloorScene(s.session.level());
   constexpr float kHalfRel = 1e-3f, kSumRel = 1e-4f;
-  const std::array<float, 28> range = testing::netRanges(testing::netValues(s.field, bounced.xi[0], record.blocked));
+  const std::array<float, 28> range = testing::netRanges(testing::netValues(s.field, bounced.xi[0], record.blocked), s.field.settings);
   const FieldSettings& fs = s.field.settings;
   float largest = 0.0f;
   for (std::uint32_t y = 0; y < kH; ++y)
@@ -305,11 +304,10 @@ TEST(RtfGpu, FourShShadingMatchesCpuShadingWithBandsZeroAndOne) {
       const glm::vec3 nine = shade(objects, bounced, sky, *p, glm::vec3(0, 1, 0), floor.albedo, -1, 9).net();
       const glm::vec4 pw(*p, 1.0f);
       const float qLen = glm::length(glm::vec3(glm::dot(record.toQ[0], pw), glm::dot(record.toQ[1], pw), glm::dot(record.toQ[2], pw)));
-      const float fade = tailFade(fs, qLen, 0.0f);
       const std::size_t i = (std::size_t(y) * kW + x) * 3;
       for (int c = 0; c < 3; ++c) {
         const float bound = kHalfRel * std::abs(want[c]) + kSumRel * largest +
-                            testing::netBound(range, record.toLocal, glm::vec3(0, 1, 0), fade, floor.albedo[c], c, 4) + 1e-6f;
+                            testing::netBound(range, record.toLocal, glm::vec3(0, 1, 0), testing::netDecode(fs, qLen), floor.albedo[c], c, 4) + 1e-6f;
         worst = std::max(worst, std::abs(rgb[i + std::size_t(c)] - want[c]) / bound);
         band2 = std::max(band2, std::abs(nine[c] - want[c]) / bound);
       }
@@ -349,7 +347,7 @@ TEST(RtfGpu, TailShadingMatchesCpuShadingPastTheOutermostSphere) {
   const std::vector<float> rgb = renderHdr(s.session, ctx, kW, kH);
   const rtest::FloorScene floor = rtest::readFloorScene(s.session.level());
   constexpr float kHalfRel = 1e-3f, kSumRel = 1e-4f;
-  const std::array<float, 28> range = testing::netRanges(testing::netValues(s.field, bounced.xi[0], record.blocked));
+  const std::array<float, 28> range = testing::netRanges(testing::netValues(s.field, bounced.xi[0], record.blocked), s.field.settings);
   float largest = 0.0f;
   for (std::uint32_t y = 0; y < kH; ++y)
     for (std::uint32_t x = 0; x < kW; ++x)
@@ -371,10 +369,9 @@ TEST(RtfGpu, TailShadingMatchesCpuShadingPastTheOutermostSphere) {
         continue;
       }
       if (qLen > fs.outerRadius + dr) ++tail, largestTail = std::max(largestTail, glm::length(want));
-      const float fade = tailFade(fs, qLen, reach);
       for (int c = 0; c < 3; ++c) {
         const float bound = kHalfRel * std::abs(want[c]) + kSumRel * largest +
-                            testing::netBound(range, record.toLocal, glm::vec3(0, 1, 0), fade, floor.albedo[c], c) + 1e-6f;
+                            testing::netBound(range, record.toLocal, glm::vec3(0, 1, 0), testing::netDecode(fs, qLen, reach), floor.albedo[c], c) + 1e-6f;
         worst = std::max(worst, std::abs(rgb[i + std::size_t(c)] - want[c]) / bound);
       }
       ++compared;
@@ -417,7 +414,7 @@ TEST(RtfGpu, SessionRunsTheBouncingStepAndBothPasses) {
   const rtest::FloorScene floor = rtest::readFloorScene(s.session.level());
   // X in 8 bits (net_bound.hpp): the record's blocked light is 0 (black background).
   const RtfObjectGpu record = packObject(s.field, s.world, ShRgb{}, s.box.index());
-  const std::array<float, 28> range = testing::netRanges(testing::netValues(s.field, bounced.xi[0], record.blocked));
+  const std::array<float, 28> range = testing::netRanges(testing::netValues(s.field, bounced.xi[0], record.blocked), s.field.settings);
   const FieldSettings& fs = s.field.settings;
   float largest = 0.0f, worst = 0.0f;
   int compared = 0;
@@ -429,10 +426,9 @@ TEST(RtfGpu, SessionRunsTheBouncingStepAndBothPasses) {
       const std::size_t i = (std::size_t(y) * kW + x) * 3;
       const glm::vec4 pw(*p, 1.0f);
       const float qLen = glm::length(glm::vec3(glm::dot(record.toQ[0], pw), glm::dot(record.toQ[1], pw), glm::dot(record.toQ[2], pw)));
-      const float fade = tailFade(fs, qLen, 0.0f);
       for (int c = 0; c < 3; ++c)
         worst = std::max(worst, std::abs(rgb[i + std::size_t(c)] - want[c]) - 1e-3f * std::abs(want[c]) -
-                                    testing::netBound(range, record.toLocal, glm::vec3(0, 1, 0), fade, floor.albedo[c], c));
+                                    testing::netBound(range, record.toLocal, glm::vec3(0, 1, 0), testing::netDecode(fs, qLen), floor.albedo[c], c));
       largest = std::max(largest, glm::length(want));
       ++compared;
     }
@@ -493,7 +489,7 @@ TEST(RtfGpu, OverlappingObjectsAddAndMatchTheCpuSum) {
   constexpr float kHalfRel = 1e-3f, kSumRel = 1e-4f;
   // Each object's X in 8 bits (net_bound.hpp).
   std::array<std::array<float, 28>, 2> range;
-  for (std::size_t k = 0; k < 2; ++k) range[k] = testing::netRanges(testing::netValues(fields[k], bounced.xi[k], nodeObjects[k].record.blocked));
+  for (std::size_t k = 0; k < 2; ++k) range[k] = testing::netRanges(testing::netValues(fields[k], bounced.xi[k], nodeObjects[k].record.blocked), fields[k].settings);
   float largest = 0.0f, worstAdd = 0.0f, worstSum = 0.0f, departure = 0.0f;
   int compared = 0, overlap = 0;
   // Each object's term has the single-object bound (kHalfRel of the term + kSumRel of the image's
@@ -522,8 +518,7 @@ TEST(RtfGpu, OverlappingObjectsAddAndMatchTheCpuSum) {
         const FieldSettings& fs = fields[k].settings;
         const glm::vec4 pw(*p, 1.0f);
         const float qLen = glm::length(glm::vec3(glm::dot(rec.toQ[0], pw), glm::dot(rec.toQ[1], pw), glm::dot(rec.toQ[2], pw)));
-        const float fade = tailFade(fs, qLen, 0.0f);
-        for (int c = 0; c < 3; ++c) netTol[c] += testing::netBound(range[k], rec.toLocal, glm::vec3(0, 1, 0), fade, floor.albedo[c], c);
+        for (int c = 0; c < 3; ++c) netTol[c] += testing::netBound(range[k], rec.toLocal, glm::vec3(0, 1, 0), testing::netDecode(fs, qLen), floor.albedo[c], c);
       }
       for (int c = 0; c < 3; ++c) {
         const float both = frames[0][i + std::size_t(c)], a = frames[1][i + std::size_t(c)], b = frames[2][i + std::size_t(c)];

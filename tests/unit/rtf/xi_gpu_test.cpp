@@ -75,11 +75,12 @@ TEST(RtfXiGpu, ComputePassEqualsTheCpuCaches) {
   }
 }
 
-// The shading step's X in 8 bits (xi.comp stages 1–2): each slot's range = max |X| over the samples
-// of the CPU's X (netValues: ξ folded with the blocked light), and each texel decodes, X = m(2t − 1),
-// to the CPU's X within half a step (m/255) plus X's float error (1e-4 m: X's sums of ≤ 25 terms
-// in float, against a step of 2m/255 ≈ 8e-3 m). Random light and blocked matrix, so every slot is
-// signed and non-zero; the unused 28th slot decodes to 0.
+// The shading step's X in 8 bits (xi.comp stages 1–2), held as Y = r_s² X (XiPass::netScale): each
+// slot's range = max |Y| over the samples of the CPU's X (netValues: ξ folded with the blocked light)
+// times its sphere's r_s², and each texel decodes, Y = m(2t − 1), to the CPU's r_s² X within half a
+// step (m/255) plus X's float error (1e-4 m: X's sums of ≤ 25 terms in float, against a step of
+// 2m/255 ≈ 8e-3 m). Random light and blocked matrix, so every slot is signed and non-zero; the unused
+// 28th slot decodes to 0.
 TEST(RtfXiGpu, NetImageHoldsXToHalfAStepOfItsSlotsRange) {
   gpu::Context& ctx = gpu::testkit::sharedContext();
   const BakeResult b = bake(testing::unitSphere(glm::vec3(0.8f, 0.6f, 0.4f), 8), testing::smallSettings());
@@ -91,7 +92,7 @@ TEST(RtfXiGpu, NetImageHoldsXToHalfAStepOfItsSlotsRange) {
   std::vector<glm::vec4> blocked(kShCount * 9);
   for (auto& t : blocked) t = glm::vec4(rng.nextFloat3() * 0.2f - 0.1f, 0.0f);
   const std::vector<glm::vec3> X = testing::netValues(f, xiCache(f, L), blocked);
-  const std::array<float, 28> want = testing::netRanges(X);
+  const std::array<float, 28> want = testing::netRanges(X, s);
 
   XiPass pass(ctx, f);
   pass.setProxyLight(L);
@@ -121,7 +122,7 @@ TEST(RtfXiGpu, NetImageHoldsXToHalfAStepOfItsSlotsRange) {
         const std::uint8_t t = bytes[((slice * h + std::size_t(y)) * w + std::size_t(face * s.faceSize + x)) * 4 + std::size_t(slot % 4)];
         const float mm = m[std::size_t(slot)];
         const float got = mm * (2.0f * float(t) / 255.0f - 1.0f);
-        const float err = std::abs(got - X[r * 9 + std::size_t(i)][c]);
+        const float err = std::abs(got - XiPass::netScale(s, sphere) * X[r * 9 + std::size_t(i)][c]);
         worst = std::max(worst, err / (mm / 255.0f));
         ASSERT_LE(err, mm / 255.0f + 1e-4f * mm) << "sample " << r << " coefficient " << i << " channel " << c;
       }
