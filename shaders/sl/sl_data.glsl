@@ -43,16 +43,19 @@ vec2 slIntensityPair(uint i, uint c, uint m) { return unpackHalf2x16(slIntensity
 // layouts (engine/gi/sl/shade.hpp ShadeData::setSpheres):
 //   "blocked_read": "sh": the probes' radiance SH (pass 1's `indirect`). fp16, 16 words per SL (4 uvec4):
 //   half h = 3k + c (coefficient k < 9, channel c) in word h / 2, low half first (packHalf2x16); half
-//   27 is 0. 128 · 64 B = 8 KiB.
+//   27 is 0. 128 · 64 B = 8 KiB, the block's size (kBlockedMap false).
 //   "blocked_read": "map": the probes' direction maps blended at the SL (common/oct_map.glsl texels).
 //   RGB9E5 (glm::packF3x9_E1x5: bits 0–8, 9–17, 18–26 the channels' mantissas, 27–31 the shared
-//   exponent, bias 15), texel t of SL i in word 256 i + t; at most kSlMaxMappedLights SLs. 64 · 1 KiB =
-//   64 KiB, the block's size.
+//   exponent, bias 15), texel t of SL i in word 256 i + t: kSpheres · 1 KiB, the block's size
+//   (kBlockedMap true; kSpheres ≤ kSlMaxMappedLights = 64, so ≤ 64 KiB).
+// The includer declares the specialization constants kSpheres (sl.glsl's) and kBlockedMap first; the
+// block's size follows them, as shade.hpp indirectBlockBytes sizes the buffer and its descriptor range.
 #ifdef SL_INDIRECT_BINDING
 #include "oct_map.glsl"
 const uint kSlMaxMappedLights = 64u;   // shade.hpp kMaxMappedSpheres
 const uint kSlMapWordsPerLight = 256u;  // shade.hpp kMapWordsPerSl
-layout(std140, set = SL_SET, binding = SL_INDIRECT_BINDING) uniform SlIndirect { uvec4 slIndirectWords[kSlMaxMappedLights * kSlMapWordsPerLight / 4u]; };
+const uint kSlIndirectVec4s = kBlockedMap ? kSpheres * (kSlMapWordsPerLight / 4u) : kSlMaxLights * 4u;
+layout(std140, set = SL_SET, binding = SL_INDIRECT_BINDING) uniform SlIndirect { uvec4 slIndirectWords[kSlIndirectVec4s]; };
 float slIndirectHalf(uint i, uint h) {
   vec2 pair = unpackHalf2x16(slIndirectWords[4u * i + h / 8u][(h / 2u) % 4u]);
   return (h % 2u) == 0u ? pair.x : pair.y;

@@ -73,7 +73,8 @@ Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t fra
   for (std::uint32_t i = 0; i < std::max<std::uint32_t>(framesInFlight, 1); ++i) {
     Slot s;
     s.intensity = std::make_unique<IntensityPass>(ctx, sets, order, influence, hierarchy);
-    s.shade = std::make_unique<ShadeData>(ctx, order);
+    // SlIndirect sized per layout (shade.hpp indirectBlockBytes): 8 KiB of SH, or one map per SL.
+    s.shade = std::make_unique<ShadeData>(ctx, order, blockedMap ? s.intensity->sphereCount() : 0u);
     slots_.push_back(std::move(s));
   }
   spheres_ = slots_[0].intensity->sphereCount();

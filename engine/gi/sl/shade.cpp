@@ -17,8 +17,10 @@ static_assert(sh::ExpTables::kThetaEntries == int(kTableWidth) && kAverageRadian
               sh::ExpTables::kMagEntries <= int(kTableWidth));
 }  // namespace
 
-ShadeData::ShadeData(gpu::Context& ctx, int order) : ctx_(ctx), order_(order) {
+ShadeData::ShadeData(gpu::Context& ctx, int order, std::uint32_t mappedSpheres)
+    : ctx_(ctx), order_(order), mappedSpheres_(mappedSpheres), indirectBytes_(indirectBlockBytes(mappedSpheres)) {
   if (order != 3 && order != 4) throw InternalError("sl::ShadeData: order must be 3 or 4");
+  if (mappedSpheres > kMaxMappedSpheres) throw InternalError("sl::ShadeData: more mapped SLs than kMaxMappedSpheres");
   // Tables: sl.glsl's rows 0 (log ZH), 1 (weight ZH), 2 (OL a, b).
   const sh::ExpTables& t = sh::expTables(order, sh::LogKind::Windowed);
   const std::span<const double> w = averageRadianceTable(order);
@@ -44,7 +46,7 @@ ShadeData::ShadeData(gpu::Context& ctx, int order) : ctx_(ctx), order_(order) {
   spheres_ = gpu::Buffer(ctx, {(1 + 6 * std::size_t(kMaxShadedSpheres)) * sizeof(glm::vec4), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                                gpu::MemoryUsage::Upload, "sl.spheres"});
   std::memset(spheres_.mapped(), 0, spheres_.size());
-  indirect_ = gpu::Buffer(ctx, {kIndirectBlockBytes, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::MemoryUsage::Upload, "sl.indirect"});
+  indirect_ = gpu::Buffer(ctx, {indirectBytes_, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::MemoryUsage::Upload, "sl.indirect"});
   std::memset(indirect_.mapped(), 0, indirect_.size());
 }
 
@@ -54,15 +56,17 @@ void ShadeData::setSpheres(std::span<const ShadedSphere> spheres, std::span<cons
     throw InternalError("sl::ShadeData: more SLs (and parents) than the uniform block holds");
   if (!indirect.empty() && indirect.size() != spheres.size())
     throw InternalError("sl::ShadeData: one indirect SH per SL or none");
-  if (!maps.empty() && (maps.size() != spheres.size() || maps.size() > kMaxMappedSpheres))
-    throw InternalError("sl::ShadeData: one direction map per SL (at most kMaxMappedSpheres) or none");
+  if (!maps.empty() && (maps.size() != spheres.size() || maps.size() > mappedSpheres_))
+    throw InternalError("sl::ShadeData: one direction map per SL (at most the block's mappedSpheres) or none");
+  if (!indirect.empty() && maps.empty() && indirect.size() * kIndirectWordsPerSl * 4 > indirectBytes_)
+    throw InternalError("sl::ShadeData: more indirect SH than the SlIndirect block holds");
   if (!maps.empty()) {  // SlIndirect as maps (sl_data.glsl): SL i's texel t in word 256 i + t, RGB9E5
-    std::vector<std::uint32_t> words(kIndirectBlockBytes / 4, 0u);
+    std::vector<std::uint32_t> words(indirectBytes_ / 4, 0u);
     for (std::size_t i = 0; i < maps.size(); ++i)
       for (std::size_t t = 0; t < kMapWordsPerSl; ++t) words[kMapWordsPerSl * i + t] = glm::packF3x9_E1x5(maps[i][t]);
-    std::memcpy(indirect_.mapped(), words.data(), kIndirectBlockBytes);
+    std::memcpy(indirect_.mapped(), words.data(), indirectBytes_);
   } else {  // SlIndirect (sl_data.glsl): half h = 3k + c in word h / 2, low half first.
-    std::vector<std::uint32_t> words(kIndirectBlockBytes / 4, 0u);
+    std::vector<std::uint32_t> words(indirectBytes_ / 4, 0u);
     for (std::size_t i = 0; i < indirect.size(); ++i) {
       float halves[2 * kIndirectWordsPerSl] = {};
       for (std::size_t k = 0; k < 9; ++k)
@@ -70,7 +74,7 @@ void ShadeData::setSpheres(std::span<const ShadedSphere> spheres, std::span<cons
       for (std::size_t w = 0; w < kIndirectWordsPerSl; ++w)
         words[kIndirectWordsPerSl * i + w] = glm::packHalf2x16(glm::vec2(halves[2 * w], halves[2 * w + 1]));
     }
-    std::memcpy(indirect_.mapped(), words.data(), kIndirectBlockBytes);
+    std::memcpy(indirect_.mapped(), words.data(), indirectBytes_);
   }
   std::vector<glm::vec4> v(1 + 6 * std::size_t(kMaxShadedSpheres), glm::vec4(0.0f));
   count_ = std::uint32_t(spheres.size());
@@ -128,7 +132,7 @@ void ShadeData::write(gpu::DescriptorWriter& w, std::uint32_t first, const gpu::
 }
 
 void ShadeData::writeIndirect(gpu::DescriptorWriter& w, std::uint32_t binding) const {
-  w.buffer(binding, indirect_, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER);
+  w.buffer(binding, indirect_, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 0, indirectBytes_);
 }
 
 std::vector<gpu::Binding> ShadeData::bindings(std::uint32_t first) {
@@ -138,7 +142,7 @@ std::vector<gpu::Binding> ShadeData::bindings(std::uint32_t first) {
 }
 
 gpu::SpecConstants ShadeData::specialization(int order, Blocking blocking, std::uint32_t spheres, float influence) {
-  const std::uint32_t size = std::max<std::uint32_t>(8, (spheres + 7) / 8 * 8);
+  const std::uint32_t size = specSpheres(spheres);
   std::uint32_t f = 0;
   std::memcpy(&f, &influence, sizeof f);
   return {std::uint32_t(order), blocking == Blocking::PerObject ? 1u : 0u, size, f};

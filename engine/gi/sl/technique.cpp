@@ -500,6 +500,19 @@ void SessionRuntime::enableGpu(SessionContext& sc) {
   const Blocking blocking =
       participants_.front().component.perObject ? Blocking::PerObject : Blocking::PerSphere;
   indirect_ = &incident::sessionLight(sc).indirect();
+  const scene::Sl& first = participants_.front().component;
+  blockedMap_ = first.blockedAtSphere && first.blockedMap;
+  std::uint32_t spheres = 0;
+  for (const Participant& p : participants_) spheres += std::uint32_t(p.set.spheres.size());
+  const std::uint64_t range = sc.ctx.limits().maxUniformBufferRange;
+  if (blockedMap_ && !mapsFitUniformRange(spheres, range)) {
+    // Vulkan guarantees 16 KiB (16 SLs' maps); lavapipe and desktop GPUs give ≥ 64 KiB.
+    log::warn(sc.level.source.string() + ": sl: \"blocked_read\": \"map\" needs a " +
+              std::to_string(indirectBlockBytes(spheres) / 1024) + " KiB uniform block for " + std::to_string(spheres) +
+              " SLs, above this device's maxUniformBufferRange of " + std::to_string(range) +
+              " bytes: reading the blocked light from the SH instead");
+    blockedMap_ = false;
+  }
   node_ = std::make_unique<Node>(sc.ctx, sc.renderer.pipelines(), sc.renderer.frames().framesInFlight(), sets, order,
                                  blocking, participants_.front().component.influence,
                                  resolutionFromStep(std::uint32_t(participants_.front().component.step)),
@@ -508,8 +521,7 @@ void SessionRuntime::enableGpu(SessionContext& sc) {
                                  participants_.front().component.hierarchy, participants_.front().component.fused,
                                  std::uint32_t(participants_.front().component.terms),
                                  participants_.front().component.blockedAtSphere,
-                                 participants_.front().component.tileCut,
-                                 participants_.front().component.blockedAtSphere && participants_.front().component.blockedMap);
+                                 participants_.front().component.tileCut, blockedMap_);
   if (sc.services.relightSlBounce) node_->enableRelightBounce(*sc.services.relightSlBounce);
 }
 
@@ -520,7 +532,7 @@ render::Renderer::GraphNode SessionRuntime::node() {
     objects_.clear();
     indirectSh_.clear();
     indirectMaps_.clear();
-    const bool maps = participants_.front().component.blockedAtSphere && participants_.front().component.blockedMap;
+    const bool maps = blockedMap_;
     for (std::size_t o = 0; o < participants_.size(); ++o)
       for (const PosedSphere& s : participants_[o].spheres) {
         posed_.push_back(s);

@@ -78,6 +78,9 @@ class SessionRuntime final : public TechniqueRuntime {
   std::vector<std::uint32_t> objects_;
   std::vector<incident::RadianceSH> indirectSh_;
   std::vector<incident::DirectionMap> indirectMaps_;  // "blocked_read": "map" only
+  // "blocked_read": "map" as run: the level's, unless the maps' uniform block exceeds the device's
+  // maxUniformBufferRange (enableGpu warns and reads the SH).
+  bool blockedMap_ = false;
 };
 
 }  // namespace bounce::gi::sl

@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "engine/core/error.hpp"
 #include "engine/gi/probes/node.hpp"
 #include "engine/gi/sl/probe_shadow.hpp"
 #include "engine/gi/sl/shade.hpp"
@@ -120,7 +121,7 @@ std::vector<Output> runShader(gpu::Context& ctx, const Fixture& f, const gi::pro
                               std::span<const Receiver> receivers, int order,
                               std::span<const gi::incident::RadianceSH> sphereL = {},
                               std::span<const gi::incident::DirectionMap> maps = {}) {
-  ShadeData data(ctx, order);
+  ShadeData data(ctx, order, std::uint32_t(maps.size()));  // the map layout's block for these SLs, else the SH's
   data.setSpheres(f.shaded, {}, sphereL, maps);
   gpu::Buffer intensity(ctx, {kIntensityBlockBytes, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::MemoryUsage::Upload, "sl.test.intensity"});
   std::memset(intensity.mapped(), 0, intensity.size());
@@ -367,4 +368,34 @@ TEST(SlProbeShadowGpu, GlslEqualsProbeShadowWithTheBlockedLightReadFromDirection
     std::printf("blocked light from direction maps, order %d: worst |GPU - C++| / |E_u| = %.3g; %d of %zu receivers shadowed by > 1%%\n",
                 order, worst, shadowed, r.size());
   }
+}
+
+// The SlIndirect block is sized per "blocked_read" (shade.hpp indirectBlockBytes; sl_data.glsl sizes
+// its array by the same rule from kBlockedMap and kSpheres): the SH layout 8 KiB (128 SLs · 16 words)
+// whatever the SL count, the maps 1 KiB (256 RGB9E5 words) per SL rounded up to 8 SLs as pass 2's
+// kSpheres. The buffer and the descriptor range are that size; lavapipe's maxUniformBufferRange
+// holds the largest map block (64 SLs), Vulkan's guaranteed 16 KiB holds 16 SLs' maps.
+TEST(SlProbeShadowGpu, IndirectBlockIsSizedPerBlockedRead) {
+  gpu::Context& ctx = gpu::testkit::sharedContext();
+  struct Case {
+    std::uint32_t mapped;
+    std::size_t bytes;
+  };
+  for (const Case c : {Case{0, 8192}, Case{1, 8192}, Case{8, 8192}, Case{12, 16384}, Case{32, 32768}, Case{64, 65536}}) {
+    EXPECT_EQ(indirectBlockBytes(c.mapped), c.bytes) << c.mapped << " mapped SLs";
+    ShadeData data(ctx, 4, c.mapped);
+    EXPECT_EQ(data.indirectBytes(), c.bytes) << c.mapped << " mapped SLs";
+  }
+  // The characters level ships 2 × 16 SLs with the maps: 32 KiB, within this device's range.
+  EXPECT_GE(ctx.limits().maxUniformBufferRange, indirectBlockBytes(32));
+  // SH layout: setSpheres writes the block without reading past it (128 SLs, the pass's limit).
+  ShadeData sh(ctx, 4);
+  std::vector<ShadedSphere> spheres(kMaxShadedSpheres);
+  std::vector<gi::incident::RadianceSH> indirect(kMaxShadedSpheres);
+  sh.setSpheres(spheres, {}, indirect);
+  EXPECT_EQ(sh.indirectBytes(), std::size_t(kMaxShadedSpheres) * kIndirectWordsPerSl * 4);
+  // More maps than the block was made for is an internal error, not a write past it.
+  ShadeData mapped(ctx, 4, 8);
+  std::vector<gi::incident::DirectionMap> maps(9);
+  EXPECT_THROW(mapped.setSpheres(std::span(spheres).first(9), {}, std::span(indirect).first(9), maps), InternalError);
 }

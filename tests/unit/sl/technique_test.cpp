@@ -16,6 +16,7 @@
 #include "engine/core/paths.hpp"
 #include "engine/gi/sl/hierarchy.hpp"
 #include "engine/gi/sl/resolution.hpp"
+#include "engine/gi/sl/shade.hpp"
 #include "engine/gi/sl/technique.hpp"
 #include "engine/gi/sl/update.hpp"
 #include "engine/ref/reference_scene.hpp"
@@ -380,4 +381,20 @@ TEST(SlComponent, ParsesHierarchy) {
   EXPECT_FALSE(level.entities[1].sl->hierarchy);  // off by default
 }
 }  // namespace
+}  // namespace bounce::gi::sl
+
+// "blocked_read": "map" on a device whose maxUniformBufferRange is below the maps' block reads the SH
+// instead (SessionRuntime::enableGpu warns once): the maps fit where specSpheres(N) KiB ≤ the range.
+// Vulkan's guaranteed 16 KiB holds 16 SLs (character-one.json's one set), not the characters level's
+// 2 × 16; lavapipe's 64 KiB holds the 64 the level format allows.
+namespace bounce::gi::sl {
+TEST(SlTechnique, MapsFitTheDevicesUniformRangeOrTheLevelReadsTheSh) {
+  EXPECT_TRUE(mapsFitUniformRange(16, 16384));
+  EXPECT_FALSE(mapsFitUniformRange(17, 16384));  // 24 KiB: kSpheres rounds 17 up to 24
+  EXPECT_FALSE(mapsFitUniformRange(32, 16384));
+  EXPECT_TRUE(mapsFitUniformRange(32, 65536));
+  EXPECT_TRUE(mapsFitUniformRange(64, 65536));
+  EXPECT_FALSE(mapsFitUniformRange(65, std::uint64_t(1) << 32));  // beyond kMaxMappedSpheres on any device
+  EXPECT_EQ(indirectBlockBytes(0), std::size_t(8192));             // the SH layout, whatever the range
+}
 }  // namespace bounce::gi::sl
