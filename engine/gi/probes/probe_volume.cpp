@@ -134,7 +134,8 @@ std::vector<std::uint8_t> serialize(const ProbeVolume& v) {
   h.bias[0] = v.bias.normal, h.bias[1] = v.bias.view;
   h.dirMapRes = v.hasDirMap() ? math::kOctMapRes : 0;
   std::vector<std::uint8_t> out;
-  out.reserve(  // sized up front: one allocationsizeof h + v.sh.size() * sizeof(glm::vec3) + v.moments.size() * sizeof(glm::vec2) +
+  // Sized up front: one allocation.
+  out.reserve(sizeof h + v.sh.size() * sizeof(glm::vec3) + v.moments.size() * sizeof(glm::vec2) +
               v.valid.size() * sizeof(std::uint32_t) + v.dirMap.size() * sizeof(std::uint16_t) + sizeof(std::uint64_t));
   append(out, &h, 1);
   append(out, v.sh.data(), v.sh.size());
