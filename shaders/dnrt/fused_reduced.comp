@@ -5,33 +5,25 @@
 // Eq. 16 that depends on the receiver's position alone,
 //   f(r) = s(r) · Σ_j c_j M_j(r)          (fall-off × the combined volume's trilinear tap, RGB),
 // at reduced sample j = the G-buffer pixel step·j (upsample.glsl reducedSamplePixel, as the reduced
-// dnrt draws), premultiplied by the sample's validity w (1 = a receiver other than the object, 0 = sky
-// or the object's own pixel): (w·f, w). The bilinear blend of those samples is separable, and this pass
-// does its x half: it writes, for every G-buffer column x of sample row j.y, the lerp between samples
-// j0 = x / step and j0 + 1 at u = (x − step·j0) / step (the last sample's right neighbour is itself, as
-// a clamped fetch), into the transient RGBA16F `dnrt.fused.half` / `dnrt.fused.quarter` of full width ×
-// ⌈height / step⌉. probes.frag (kDnrtStep > 1, dnrtReducedQuadTap and dnrt.glsl dnrtFusedReducedTerm)
-// does the y half with one fetch and one derivative a pixel (README "DNRT's fused quarter term: one fetch
-// and one derivative a pixel, session 20"), divides by the blended w, so sky and the object's own samples never bleed
-// into their neighbours, and multiplies the per-pixel factors (n_o·n_r)₊ and the receiver tests itself:
-// those hold the normal, which is where the term is not smooth; f is smooth in world space (a trilinear
-// field times the §5.2.2 fall-off).
+// dnrt draws), written premultiplied by the sample's validity w (1 = a receiver other than the object,
+// 0 = sky or the object's own pixel): (w·f, w). probes.frag (kDnrtStep > 1, dnrtReducedQuadTap and dnrt.glsl
+// dnrtFusedReducedTerm) blends its 4 nearest samples bilinearly and divides by the blended w, so sky and the
+// object's own samples never bleed into their neighbours, and multiplies the per-pixel factors
+// (n_o·n_r)₊ and the receiver tests itself: those hold the normal, which is where the term is not
+// smooth; f is smooth in world space (a trilinear field times the §5.2.2 fall-off).
 #include "dnrt/dnrt.glsl"
 #include "upsample.glsl"  // reducedSamplePixel; frame.glsl worldFromDepth
 
 layout(constant_id = 0) const int kStep = 2;  // G-buffer pixels per sample along each axis: 2 or 4
 
 // 32×8: llvmpipe runs a workgroup as 8-lane rows, each group a task of its own; 8×8 made 900 small tasks
-// at quarter resolution (1280×720), 32×8 makes 230 (node.cpp kFusedReducedLocal; session 18). A
-// workgroup's 32 columns of samples overlap the next one's by one: its last column is only the right
-// neighbour of its 31st (node.cpp dispatches ⌈samples / 31⌉ groups along x).
+// at quarter resolution (1280×720), 32×8 makes 230 (node.cpp kFusedReducedLocal; session 18).
 layout(local_size_x = 32, local_size_y = 8) in;
-const int kColumns = 31;  // sample columns a workgroup writes
 
 layout(set = 0, binding = 0) uniform sampler2D gDepth;
 layout(set = 0, binding = 1) uniform sampler2D gNormal;
 layout(set = 0, binding = 2) uniform sampler3D combined;  // this frame's Σ_j c_j M_j (dnrt.combine.fused)
-layout(set = 0, binding = 3, rgba16f) uniform writeonly image2D reducedOut;  // full width × ⌈height / kStep⌉
+layout(set = 0, binding = 3, rgba16f) uniform writeonly image2D reducedOut;
 
 layout(push_constant) uniform Push {
   mat4 invViewProj;    // the frame's camera (frame.glsl Camera.invViewProj)
@@ -39,34 +31,22 @@ layout(push_constant) uniform Push {
   vec4 extents;        // x inner, y outer (units of R), z entity id + 1 (0 = none), w grid N
 } pc;
 
-shared vec4 samples[8][32];  // (w·f, w) of this workgroup's samples, [row][column]
-
 void main() {
+  const ivec2 j = ivec2(gl_GlobalInvocationID.xy);
+  const ivec2 size = imageSize(reducedOut);
+  if (j.x >= size.x || j.y >= size.y) return;
   const ivec2 full = textureSize(gDepth, 0);
-  const ivec2 count = (full + kStep - 1) / kStep;  // samples per axis (gi::reducedSize)
-  const ivec2 local = ivec2(gl_LocalInvocationID.xy);
-  const ivec2 j = ivec2(int(gl_WorkGroupID.x) * kColumns + local.x, int(gl_GlobalInvocationID.y));
-  // Every invocation evaluates a sample and meets the barrier; past the edge it takes the last one (so the
-  // last sample's right neighbour is itself) and stores nothing.
-  const ivec2 p = reducedSamplePixel(min(j, count - 1), kStep, full);
+  const ivec2 p = reducedSamplePixel(j, kStep, full);
   const float depth = texelFetch(gDepth, p, 0).r;
   const vec4 normal = texelFetch(gNormal, p, 0);
-  vec4 value = vec4(0.0);
+  vec4 outValue = vec4(0.0);
   const bool self = pc.extents.z != 0.0 && normal.w == pc.extents.z;
   if (depth < 1.0 && !self) {
     const vec3 r = worldFromDepth(pc.invViewProj, (vec2(p) + 0.5) / vec2(full), depth);
     const vec3 q = dnrtQ(pc.worldToQ, vec4(r, 1.0));
     const float s = dnrtFalloff(q, pc.extents.x, pc.extents.y);
     const vec3 sum = s > 0.0 ? textureLod(combined, dnrtUvw(q, pc.extents.x, pc.extents.w), 0.0).rgb : vec3(0.0);
-    value = vec4(s * sum, 1.0);
+    outValue = vec4(s * sum, 1.0);
   }
-  samples[local.y][local.x] = value;
-  memoryBarrierShared();
-  barrier();
-  if (local.x >= kColumns || j.x >= count.x || j.y >= count.y) return;
-  const vec4 d = samples[local.y][local.x + 1] - value;  // right neighbour − this sample
-  for (int k = 0; k < kStep; ++k) {
-    const int x = kStep * j.x + k;
-    if (x < full.x) imageStore(reducedOut, ivec2(x, j.y), value + (float(k) / float(kStep)) * d);
-  }
+  imageStore(reducedOut, j, outValue);
 }

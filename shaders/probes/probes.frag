@@ -34,9 +34,9 @@ layout(constant_id = 3) const bool kTiles = false;
 layout(constant_id = 4) const int kDnrt = 0;
 // With kDnrt 1, the level's "dnrt": {"resolution"} (engine/gi/resolution.hpp step): 1 evaluates the
 // term exactly here; 2 or 4 takes its position-only factor from pass dnrt.fused.reduced's target
-// (binding 12) by a bilinear blend of its 4 nearest samples, whose x half that pass did, from one
-// texelFetch and one derivative a pixel (dnrt.glsl dnrtFusedReducedTerm, dnrtReducedQuadTap below; README
-// "DNRT's fused term at reduced resolution", sessions 17, 18 and 20). kDnrt 2 runs at full resolution.
+// (binding 12) by a bilinear blend of its 4 nearest samples from one texelFetch a pixel (dnrt.glsl
+// dnrtFusedReducedTerm, dnrtReducedQuadTap below; README "DNRT's fused term at reduced resolution",
+// sessions 17 and 18). kDnrt 2 runs at full resolution.
 layout(constant_id = 5) const int kDnrtStep = 1;
 
 layout(set = 0, binding = 0) uniform FrameUbo { Camera camera; };
@@ -58,8 +58,7 @@ layout(set = 1, binding = 9) uniform sampler3D dnrtCombined;
 // clustered draw's). Dummies otherwise.
 layout(std430, set = 1, binding = 10) readonly buffer DnrtTiles { uint dnrtTileMasks[]; };
 layout(std140, set = 1, binding = 11) uniform DnrtObjects { DnrtClusterObject objects[kDnrtClusterBatch]; };
-// kDnrt 1, kDnrtStep > 1: (w·s Σ_j c_j M_j, w) of sample row j.y lerped along x to every G-buffer column
-// (dnrt.fused.reduced; RGBA16F, full width × ⌈height / step⌉, texelFetch); unread otherwise.
+// kDnrt 1, kDnrtStep > 1: (w·s Σ_j c_j M_j, w) at G-buffer pixel step·j (RGBA16F, texelFetch); unread otherwise.
 layout(set = 1, binding = 12) uniform sampler2D dnrtReduced;
 
 layout(push_constant) uniform Push {
@@ -84,26 +83,30 @@ layout(location = 0) out vec4 outRadiance;
 
 const float kInvPi = 0.31830988618379067;
 
-// The bilinear tap of the reduced target at G-buffer pixel `pixel`, from ONE texelFetch and ONE derivative a
-// pixel. Sample j of the reduced factor stands for G-buffer pixel step·j (`step` 2 or 4); pass
-// dnrt.fused.reduced has already done the blend's x half (fused_reduced.comp): `reduced` holds, at (x, j.y),
-// the lerp along sample row j.y between its samples j0 = x / step and j0 + 1. What is left is the lerp along y
-// between rows j0.y and j0.y + 1 (j0 = pixel / step). With an even step the two pixels of a 2×2 quad's
-// column (pixel.y & 1 its place, quads aligned to even pixels) share those two rows at the same x, so each
-// fetches the row at its own place and the other's is one fine derivative away: row + t·dFdyFine(row), with
-// t = (pixel.y − step·j0.y) / step − place (−1 … 0.75) the bilinear fraction relative to its own row. Equal
-// to the filtered tap up to fp16 rounding of the stored x-lerp. Rows past the target's edge clamp to it
-// (CLAMP_TO_EDGE). Session 18 fetched the sample itself and took the quad's other three through three
-// derivatives of a vec4 (v + u dx + t dy + u t dxy); on llvmpipe each costs about a third of the fetch
-// (README "DNRT's fused quarter term: one fetch and one derivative a pixel, session 20"). Must run in uniform control flow (the
-// derivative): main calls it before its first return. Here, not in dnrt.glsl: derivatives exist in fragment
-// shaders only, and compute shaders include dnrt.glsl.
+// The bilinear tap of the reduced target `reduced` (sample j at texel j, standing for G-buffer pixel
+// step·j; `step` 2 or 4) at G-buffer pixel `pixel`, from ONE texelFetch a pixel instead of a filtered
+// tap (4 texels a pixel, each a per-lane gather on llvmpipe; session 18: the tap was most of the term's
+// per-pixel cost). With an even step the 4 pixels of a 2×2 quad (pixel & 1 its place, quads aligned to
+// even pixels) share their 4 nearest samples j0 + {0, 1}² (j0 = pixel / step), so each pixel fetches the
+// one at its own place in the quad and takes the others' through fine derivatives. Separably, as a
+// bilinear filter is: first along x in the pixel's sample row, row = v + u·dFdxFine(v) (the quad's two
+// pixels of a row hold that row's two samples), then along y between the quad's two rows, row + t·dFdyFine(row)
+// (the two pixels of a column share u, so the other row's value at the same u is one derivative away), with
+// (u, t) the pixel's bilinear fractions (pixel − step·j0) / step relative to its own sample (−1 … 0.75).
+// Two derivatives of a vec4 where the expansion v + u dx + t dy + u t dxy took three (dxy = dFdyFine(dx)):
+// on llvmpipe each costs about a third of the fetch, and the third was ≈ 0.006 of SSAO (README "DNRT's
+// fused quarter term: two derivatives, session 20"; doing the x half in dnrt.fused.reduced instead, one
+// derivative here, cost as much in that pass's stores as it saved here). Equal to the filtered tap up to fp32 rounding. Samples past
+// the target's edge clamp to it (CLAMP_TO_EDGE). Must run in uniform control flow (the derivatives): main
+// calls it before its first return. Here, not in dnrt.glsl: derivatives exist in fragment shaders only, and
+// compute shaders include dnrt.glsl.
 vec4 dnrtReducedQuadTap(ivec2 pixel, sampler2D reduced, int step) {
-  const int place = pixel.y & 1;
-  const int j0 = pixel.y / step;
-  const vec4 row = texelFetch(reduced, ivec2(pixel.x, min(j0 + place, textureSize(reduced, 0).y - 1)), 0);
-  const float t = float(pixel.y - step * j0) / float(step) - float(place);
-  return row + t * dFdyFine(row);
+  const ivec2 place = pixel & 1;
+  const ivec2 j0 = pixel / step;
+  const vec4 v = texelFetch(reduced, min(j0 + place, textureSize(reduced, 0) - 1), 0);
+  const vec2 ut = vec2(pixel - step * j0) / float(step) - vec2(place);
+  const vec4 row = v + ut.x * dFdxFine(v);
+  return row + ut.y * dFdyFine(row);
 }
 
 void main() {

@@ -78,10 +78,8 @@ struct FusedReducedPush {  // fused_reduced.comp's Push
   glm::vec4 extents;  // x inner, y outer (units of R), z entity id + 1 (0 = none), w grid N
 };
 static_assert(sizeof(FusedReducedPush) == 128, "fused_reduced.comp's push block");
-// fused_reduced.comp's local size (why 32×8: there), and the sample columns a workgroup writes (its last
-// column is only its 31st's right neighbour: the x half of the bilinear blend, kColumns there).
+// fused_reduced.comp's local size (why 32×8: there).
 constexpr glm::uvec2 kFusedReducedLocal(32, 8);
-constexpr std::uint32_t kFusedReducedColumns = 31;
 
 struct CubePush {
   glm::mat4 viewProj;
@@ -449,15 +447,12 @@ probes::FusedDnrt Node::addFused(rg::RenderGraph& graph, const render::PassConte
               eyeInsideOuterCube(object.data.boxToWorld, pc->world->camera.view, pc->world->camera.proj);
   if (step == 1u) return out;
   // Below full resolution: f = s Σ_j c_j M_j at G-buffer pixel step·j (fused_reduced.comp), premultiplied
-  // by the sample's validity, already lerped along x to every G-buffer column of its sample row (the x half of
-  // the bilinear blend; full width × ⌈height / step⌉), for the probes pass's y half (probes.frag
-  // dnrtReducedQuadTap: one fetch and one derivative a pixel).
+  // by the sample's validity, for the probes pass's bilinear blend of it (probes.frag dnrtReducedQuadTap).
   struct ReducedData {
     rg::Handle<rg::Texture> depth, normal, volume, target;
   };
   const glm::uvec2 fullSize(std::uint32_t(pc->world->camera.resolution.x), std::uint32_t(pc->world->camera.resolution.y));
-  const glm::uvec2 samples = gi::reducedSize(fullSize, step);
-  const glm::uvec2 size(fullSize.x, samples.y);
+  const glm::uvec2 size = gi::reducedSize(fullSize, step);
   auto& bb = graph.blackboard();
   const auto& reduced = graph.addPass<ReducedData>(
       "dnrt.fused.reduced",
@@ -469,7 +464,7 @@ probes::FusedDnrt Node::addFused(rg::RenderGraph& graph, const render::PassConte
                                                  rg::TextureDesc{size.x, size.y, 1, 1, 1, rg::Format::RGBA16F, false}),
                            rg::Usage::StorageWrite);
       },
-      [this, pc, step, samples, push = FusedReducedPush{pc->world->camera.invViewProj, {out.push.worldToQ[0],
+      [this, pc, step, size, push = FusedReducedPush{pc->world->camera.invViewProj, {out.push.worldToQ[0],
                                                      out.push.worldToQ[1], out.push.worldToQ[2]}, out.push.extents}](
           const ReducedData& d, const rg::PassResources& res, rg::CommandContext& c) {
         VkCommandBuffer cmd = pc->cmd(c);
@@ -492,8 +487,8 @@ probes::FusedDnrt Node::addFused(rg::RenderGraph& graph, const render::PassConte
         p.bind(cmd);
         p.bindSet(cmd, 0, set);
         p.push(cmd, push);
-        vkCmdDispatch(cmd, (samples.x + kFusedReducedColumns - 1u) / kFusedReducedColumns,
-                      (samples.y + kFusedReducedLocal.y - 1u) / kFusedReducedLocal.y, 1);  // a sample an invocation
+        vkCmdDispatch(cmd, (size.x + kFusedReducedLocal.x - 1u) / kFusedReducedLocal.x,
+                      (size.y + kFusedReducedLocal.y - 1u) / kFusedReducedLocal.y, 1);  // a sample an invocation
       });
   out.reduced = reduced.target;
   return out;
