@@ -88,20 +88,25 @@ const float kInvPi = 0.31830988618379067;
 // tap (4 texels a pixel, each a per-lane gather on llvmpipe; session 18: the tap was most of the term's
 // per-pixel cost). With an even step the 4 pixels of a 2×2 quad (pixel & 1 its place, quads aligned to
 // even pixels) share their 4 nearest samples j0 + {0, 1}² (j0 = pixel / step), so each pixel fetches the
-// one at its own place in the quad and takes the others' through fine derivatives: dx, dy the row's and
-// column's differences, dxy the mixed one. The bilinear function through the 4 samples is then exactly
-// its expansion about this pixel's sample: v + u dx + t dy + u t dxy, with (u, t) the pixel's bilinear
-// fractions (pixel − step·j0) / step relative to its sample (−1 … 0.75); equal to the filtered tap up to
-// fp32 rounding. Samples past the target's edge clamp to it (CLAMP_TO_EDGE). Must run in uniform control
-// flow (the derivatives): main calls it before its first return. Here, not in dnrt.glsl: derivatives exist
-// in fragment shaders only, and compute shaders include dnrt.glsl.
+// one at its own place in the quad and takes the others' through fine derivatives. Separably, as a
+// bilinear filter is: first along x in the pixel's sample row, row = v + u·dFdxFine(v) (the quad's two
+// pixels of a row hold that row's two samples), then along y between the quad's two rows, row + t·dFdyFine(row)
+// (the two pixels of a column share u, so the other row's value at the same u is one derivative away), with
+// (u, t) the pixel's bilinear fractions (pixel − step·j0) / step relative to its own sample (−1 … 0.75).
+// Two derivatives of a vec4 where the expansion v + u dx + t dy + u t dxy took three (dxy = dFdyFine(dx)):
+// on llvmpipe each costs about a third of the fetch, and the third was ≈ 0.006 of SSAO (README "DNRT's
+// fused quarter term: two derivatives, session 20"; doing the x half in dnrt.fused.reduced instead, one
+// derivative here, cost as much in that pass's stores as it saved here). Equal to the filtered tap up to fp32 rounding. Samples past
+// the target's edge clamp to it (CLAMP_TO_EDGE). Must run in uniform control flow (the derivatives): main
+// calls it before its first return. Here, not in dnrt.glsl: derivatives exist in fragment shaders only, and
+// compute shaders include dnrt.glsl.
 vec4 dnrtReducedQuadTap(ivec2 pixel, sampler2D reduced, int step) {
   const ivec2 place = pixel & 1;
   const ivec2 j0 = pixel / step;
   const vec4 v = texelFetch(reduced, min(j0 + place, textureSize(reduced, 0) - 1), 0);
-  const vec4 dx = dFdxFine(v), dy = dFdyFine(v), dxy = dFdyFine(dx);
   const vec2 ut = vec2(pixel - step * j0) / float(step) - vec2(place);
-  return v + ut.x * dx + ut.y * dy + (ut.x * ut.y) * dxy;
+  const vec4 row = v + ut.x * dFdxFine(v);
+  return row + ut.y * dFdyFine(row);
 }
 
 void main() {
