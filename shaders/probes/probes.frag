@@ -96,10 +96,10 @@ const float kInvPi = 0.31830988618379067;
 // Two derivatives of a vec4 where the expansion v + u dx + t dy + u t dxy took three (dxy = dFdyFine(dx)):
 // on llvmpipe each costs about a third of the fetch, and the third was ≈ 0.006 of SSAO (README "DNRT's
 // fused quarter term: two derivatives, session 20"; doing the x half in dnrt.fused.reduced instead, one
-// derivative here, cost as much in that pass's stores as it saved here). Equal to the filtered tap up to fp32 rounding. Samples past
-// the target's edge clamp to it (CLAMP_TO_EDGE). Must run in uniform control flow (the derivatives): main
-// calls it before its first return. Here, not in dnrt.glsl: derivatives exist in fragment shaders only, and
-// compute shaders include dnrt.glsl.
+// derivative here, cost as much in that pass's stores as it saved here). Equal to the filtered tap up to
+// fp32 rounding. Samples past the target's edge clamp to it (CLAMP_TO_EDGE). Must run in uniform control
+// flow (the derivatives): main calls it before its first return. Here, not in dnrt.glsl: derivatives exist
+// in fragment shaders only, and compute shaders include dnrt.glsl.
 vec4 dnrtReducedQuadTap(ivec2 pixel, sampler2D reduced, int step) {
   const ivec2 place = pixel & 1;
   const ivec2 j0 = pixel / step;
