@@ -34,6 +34,8 @@ from tool_input import BadInput, run  # one line, exit 2 on bad input
 
 def main():
     acc, parts = sys.argv[1], sys.argv[2]
+    if len(sys.argv) == 4:  # Y0 without X1: the region needs both (run() counts 2 to 4)
+        raise BadInput("tools/rtf_second.py", "Y0 without X1", "ACC_DIR PARTS_DIR, or both Y0 and X1")
     y0, x1 = (float(sys.argv[3]), float(sys.argv[4])) if len(sys.argv) > 4 else (0.75, 0.39)
     ref = lambda n: read_pfm(f"{acc}/{n}.pfm")
     R = ref("reference-all-with") - ref("reference-all-without")

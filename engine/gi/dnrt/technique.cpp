@@ -261,7 +261,9 @@ SessionRuntime::SessionRuntime(SessionContext& sc) {
   runtime_->settings().step = sc.level.dnrt.step;  // "dnrt": {"resolution"}: the draw's step (node.hpp)
   // The fused term below full resolution serves one object (its position-only factor is that object's,
   // pass dnrt.fused.reduced): in a frame with two or more fused objects in the probes pass their terms
-  // are shaded at full resolution (Runtime::addFused). Said once here, where the level asks for both.
+  // are shaded at full resolution (Runtime::addFused). Said once here, where the level asks for both: by
+  // the level's modes (NodeSettings::mode is unset at load; `bounce play`'s mode key sets it later, and
+  // then addFused's frames follow it without a second warning).
   if (sc.level.dnrt.step > 1u) {
     std::vector<std::string> fused = runtime_->fusedEligibleNames();  // Runtime::addFused's rule
     if (fused.size() > 1) {

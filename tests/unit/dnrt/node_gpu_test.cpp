@@ -969,12 +969,6 @@ TEST(DnrtGpu, FusedProbesPassSplitAtTheOuterCubeIsTheUnsplitImage) {
   EXPECT_FALSE(splitQuarter);
 }
 
-// Two fused objects with "resolution": "quarter" (two-boxes.json): the reduced term's position-only
-// factor is one object's, so with both in the probes pass (kDnrt 2) the runtime shades them at full
-// resolution (Runtime::addFused) — exactly the full-resolution fused frame: its passes (no
-// "dnrt.fused.reduced") and its image bit for bit (the same pipelines and inputs) — and the level load
-// says so in one warning (counted against the same level at full resolution, whose load warns of
-// nothing more).
 // The fused term's rule (Runtime::addFused; the level load's warning counts by the same function):
 // the fused mode, no intrusion map, and an entity id + 1 the G-buffer normal's w holds (1…2047).
 TEST(DnrtFused, EligibleIsTheFusedModeWithoutIntrusionAndAnIdTheNormalHolds) {
@@ -988,6 +982,12 @@ TEST(DnrtFused, EligibleIsTheFusedModeWithoutIntrusionAndAnIdTheNormalHolds) {
   for (Mode m : {Mode::Box, Mode::Clustered, Mode::FullScreen}) EXPECT_FALSE(fusedEligible(m, false, 1u));
 }
 
+// Two fused objects with "resolution": "quarter" (two-boxes.json): the reduced term's position-only
+// factor is one object's, so with both in the probes pass (kDnrt 2) the runtime shades them at full
+// resolution (Runtime::addFused) — exactly the full-resolution fused frame: its passes (no
+// "dnrt.fused.reduced") and its image bit for bit (the same pipelines and inputs) — and the level load
+// says so in one warning (counted against the same level at full resolution, whose load warns of
+// nothing more).
 TEST(DnrtGpu, SeveralFusedObjectsAreShadedAtFullResolutionAndTheLevelLoadSaysSo) {
   gpu::Context& ctx = gpu::testkit::sharedContext();
   const auto render = [&](std::uint32_t step, std::size_t& warnings) {

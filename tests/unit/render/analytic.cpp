@@ -1,5 +1,6 @@
 #include "tests/unit/render/analytic.hpp"
 
+#include <algorithm>
 #include <glm/gtc/constants.hpp>
 #include <stdexcept>
 

@@ -12,6 +12,7 @@
 // The lighting chain is culled whenever a view is on.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <map>

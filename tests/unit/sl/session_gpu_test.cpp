@@ -204,7 +204,8 @@ TEST(SlSession, GraphDotListsItsPassesWithoutAFrame) {
 
 // Pass 2 holds at most kMaxShadedSpheres (128) SLs in all, in uniform blocks: three 64-sphere characters
 // are bad input — one line naming the level, /entities and the limit, thrown when the session is made
-// (before any bake), not an internal error at the first frame. Two of them (128) are accepted.
+// (before any bake), not an internal error at the first frame. Two of them (128) are accepted with
+// "blocked_read": "sh"; the level's "map" allows 64 in all (the next check, technique.cpp), so 128 is refused there.
 TEST(SlSession, MoreSpheresThanPassTwoHoldsIsBadInput) {
   scene::Level level = game::loadLevelWithEffects(kCharacters, std::vector<std::string>{"direct", "sl"});
   std::vector<scene::EntityDesc> withSl;
@@ -228,7 +229,7 @@ TEST(SlSession, MoreSpheresThanPassTwoHoldsIsBadInput) {
 }
 
 // With the hierarchy pass 2's blocks also hold one parent SL per entity: two 64-sphere characters
-// (accepted without it, above) are 128 spheres + 2 parents — bad input naming the first entity's
+// (accepted without it when they read the SH, above) are 128 spheres + 2 parents — bad input naming the first entity's
 // /sl/hierarchy, thrown when the session is made, not IntensityPass's InternalError at the first frame.
 TEST(SlSession, SpheresAndParentsBeyondPassTwoAreBadInputWithTheHierarchy) {
   scene::Level level = game::loadLevelWithEffects(kCharacters, std::vector<std::string>{"direct", "sl"});
