@@ -67,6 +67,8 @@ class SessionRuntime final : public TechniqueRuntime {
   std::vector<std::string> profileLines() const override;
   // The median CPU ms of update() so far (NaN before the first after construction): sl_update_ms.
   double medianUpdateMs() const;
+  // Whether pass 2 reads the blocked light from the direction maps ("blocked_read": "map" as run).
+  bool readsDirectionMaps() const { return blockedMap_; }
 
  private:
   ref::ReferenceAssets assets_;  // the cooked assets the posers read (skins, node hierarchy)
