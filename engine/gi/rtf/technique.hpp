@@ -32,6 +32,7 @@ class SessionRuntime final : public TechniqueRuntime {
   SessionRuntime(SessionContext& sc, const std::filesystem::path& cacheDir);
   render::Renderer::GraphNode node() override;
   std::vector<std::string> profileLines() const override;
+  using TechniqueRuntime::update;  // the per-frame hook, beside the accessor below
   const Update& update() const { return *update_; }
   // Baked this run (the others came from the cache).
   std::size_t bakedCount() const { return baked_; }

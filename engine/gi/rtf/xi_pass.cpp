@@ -45,8 +45,7 @@ std::vector<std::uint32_t> byteWords(const std::vector<std::int8_t>& q) {
 }  // namespace
 
 XiPass::XiPass(gpu::Context& ctx, const Field& f)
-    : ctx_(ctx),
-      settings_(f.settings),
+    : settings_(f.settings),
       setLayout_(ctx,
                  {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                   {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},

@@ -67,7 +67,6 @@ class XiPass {
     std::uint32_t stage, proxies, clusters, components, samples, faceSize, byteComponents;
     float innerRadius, outerRadius;  // η: the spheres' radii (field.hpp sphereRadius; netScale)
   };
-  gpu::Context& ctx_;
   FieldSettings settings_;
   Push push_{};
   gpu::Buffer basis_, alpha_, cluster_, light_, eigen_, basisCodes_, alphaCodes_, codeScales_;

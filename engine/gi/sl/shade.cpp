@@ -18,7 +18,7 @@ static_assert(sh::ExpTables::kThetaEntries == int(kTableWidth) && kAverageRadian
 }  // namespace
 
 ShadeData::ShadeData(gpu::Context& ctx, int order, std::uint32_t mappedSpheres)
-    : ctx_(ctx), order_(order), mappedSpheres_(mappedSpheres), indirectBytes_(indirectBlockBytes(mappedSpheres)) {
+    : order_(order), mappedSpheres_(mappedSpheres), indirectBytes_(indirectBlockBytes(mappedSpheres)) {
   if (order != 3 && order != 4) throw InternalError("sl::ShadeData: order must be 3 or 4");
   if (mappedSpheres > kMaxMappedSpheres) throw InternalError("sl::ShadeData: more mapped SLs than kMaxMappedSpheres");
   // Tables: sl.glsl's rows 0 (log ZH), 1 (weight ZH), 2 (OL a, b).

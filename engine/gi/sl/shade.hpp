@@ -98,7 +98,6 @@ class ShadeData {
   static gpu::SpecConstants specialization(int order, Blocking blocking, std::uint32_t spheres, float influence = 0.0f);
 
  private:
-  gpu::Context& ctx_;
   int order_ = 4;
   std::uint32_t count_ = 0;
   std::uint32_t mappedSpheres_ = 0;
