@@ -85,9 +85,10 @@ int runBenchSl(const cli::Args& args) {
           if (influence) e.sl->influence = *influence;
           e.sl->step = step;
           if (fused) e.sl->fused = true;
-          // The direction maps' uniform block holds kMaxMappedSpheres SLs in all (shade.hpp); a level
-          // that reads them (characters.json) is benched with the SH above that, and the line says so.
-          if (n > int(gi::sl::kMaxMappedSpheres)) e.sl->blockedMap = false;
+          // Where the direction maps' uniform block cannot hold n SLs (shade.hpp: kMaxMappedSpheres, and
+          // the device's range), a level that reads them (characters.json) is benched with the SH; the
+          // line says which it read.
+          if (!gi::sl::mapsFitUniformRange(std::uint32_t(n), ctx.limits().maxUniformBufferRange)) e.sl->blockedMap = false;
         }
       TimingCollector timings;
       double updateMs = std::numeric_limits<double>::quiet_NaN();

@@ -497,10 +497,9 @@ void SessionRuntime::enableGpu(SessionContext& sc) {
     sets.push_back(&p.set);
     order = std::max(order, p.set.settings.order);
   }
-  const Blocking blocking =
-      participants_.front().component.perObject ? Blocking::PerObject : Blocking::PerSphere;
+  const scene::Sl& first = participants_.front().component;  // pass 2's settings: the first participant's
+  const Blocking blocking = first.perObject ? Blocking::PerObject : Blocking::PerSphere;
   indirect_ = &incident::sessionLight(sc).indirect();
-  const scene::Sl& first = participants_.front().component;
   blockedMap_ = first.blockedAtSphere && first.blockedMap;
   std::uint32_t spheres = 0;
   for (const Participant& p : participants_) spheres += std::uint32_t(p.set.spheres.size());
@@ -514,14 +513,10 @@ void SessionRuntime::enableGpu(SessionContext& sc) {
     blockedMap_ = false;
   }
   node_ = std::make_unique<Node>(sc.ctx, sc.renderer.pipelines(), sc.renderer.frames().framesInFlight(), sets, order,
-                                 blocking, participants_.front().component.influence,
-                                 resolutionFromStep(std::uint32_t(participants_.front().component.step)),
+                                 blocking, first.influence, resolutionFromStep(std::uint32_t(first.step)),
                                  ProbeLight{sc.services.probeVolume, sc.services.probeSh, sc.services.probeMoments},
-                                 participants_.front().component.localLights,
-                                 participants_.front().component.hierarchy, participants_.front().component.fused,
-                                 std::uint32_t(participants_.front().component.terms),
-                                 participants_.front().component.blockedAtSphere,
-                                 participants_.front().component.tileCut, blockedMap_);
+                                 first.localLights, first.hierarchy, first.fused, std::uint32_t(first.terms),
+                                 first.blockedAtSphere, first.tileCut, blockedMap_);
   if (sc.services.relightSlBounce) node_->enableRelightBounce(*sc.services.relightSlBounce);
 }
 

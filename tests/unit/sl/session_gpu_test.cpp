@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <initializer_list>
+#include <numbers>
 #include <numeric>
 #include <string>
 #include <string_view>
@@ -597,7 +598,7 @@ TEST(SlSession, ShadowOnTiledProbesTakesAtMostTheirLightAndTheTilesError) {
     settings.keepHdr = true;
     s.render(presenter, settings);
     passes = s.renderer().executedPasses();
-    tileError = gi::probes::tileIrradianceError(s.probes()->volume()) / 3.14159265358979;
+    tileError = gi::probes::tileIrradianceError(s.probes()->volume()) * std::numbers::inv_pi;
     return s.renderer().readHdr();
   };
   const std::vector<float> probes = hdr({"probes"}, 3, true);
