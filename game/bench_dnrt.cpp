@@ -7,6 +7,7 @@
 #include <functional>
 #include <limits>
 #include <map>
+#include <optional>
 #include <string_view>
 
 #include "engine/core/error.hpp"
@@ -34,6 +35,9 @@ struct Job {
   std::string table, level, setting;
   scene::Level configured;
   int dnrtEntities = 0;  // the objects of a clustered session, which has no per-object scopes
+  // "fused…" rows: the same level without DNRT (its probes pass is the fused one less the term), timed
+  // right before and right after the fused session for the term's marginal (fusedBaselineMs).
+  std::optional<scene::Level> withoutDnrt;
 };
 
 // The paper's standard configuration (§7.2.2: Table 4 configuration 2) and the one-setting changes.
@@ -226,6 +230,13 @@ std::string fmt(double v, const char* spec = "%9.3f") {
 
 }  // namespace
 
+double fusedBaselineMs(double ssaoMs, const std::vector<ProbesBaseline>& baselines) {
+  if (baselines.empty()) return kNaN;
+  double sum = 0.0;
+  for (const ProbesBaseline& b : baselines) sum += b.probesMs * (ssaoMs / b.ssaoMs);
+  return sum / double(baselines.size());  // NaN propagates from any unmeasured pass
+}
+
 std::vector<std::string> table8Settings(int dnrtEntities) {
   std::vector<std::string> out = {"all", "fused"};
   if (dnrtEntities == 1) out.insert(out.end(), {"fused half", "fused quarter"});
@@ -250,6 +261,9 @@ DnrtBenchReport runDnrtBench(const DnrtBenchOptions& options) {
       if (!level.effects.has(*scene::effectFromName(method)))
         effects += std::string(effects.empty() ? "" : ",") + method;
     scene::overrideEffects(level, effects);
+    std::string effectsWithoutDnrt;
+    for (const auto& e : level.effects.names())
+      if (e != "dnrt") effectsWithoutDnrt += (effectsWithoutDnrt.empty() ? "" : ",") + e;
     if (options.raysPerVertex) forEachDnrt(level, [&](scene::Dnrt& d) { d.samplesPerAxis = *options.raysPerVertex; });
     int entities = 0;
     forEachDnrt(level, [&](scene::Dnrt&) { ++entities; });
@@ -277,8 +291,14 @@ DnrtBenchReport runDnrtBench(const DnrtBenchOptions& options) {
     levels.emplace("clustered", std::move(clustered));
     levels.emplace("half", std::move(half));
     levels.emplace("clustered half", std::move(clusteredHalf));
-    for (const std::string& setting : table8Settings(entities))
-      jobs.push_back({"8", path.stem().string(), setting, std::move(levels.at(setting)), entities});
+    for (const std::string& setting : table8Settings(entities)) {
+      Job job{"8", path.stem().string(), setting, std::move(levels.at(setting)), entities, std::nullopt};
+      if (setting.starts_with("fused")) {
+        job.withoutDnrt = job.configured;
+        scene::overrideEffects(*job.withoutDnrt, effectsWithoutDnrt);
+      }
+      jobs.push_back(std::move(job));
+    }
   }
   for (const auto& path : options.variantLevels) {
     const scene::Level level = scene::loadLevel(path);
@@ -294,7 +314,7 @@ DnrtBenchReport runDnrtBench(const DnrtBenchOptions& options) {
       });
       int entities = 0;
       forEachDnrt(configured, [&](scene::Dnrt&) { ++entities; });
-      jobs.push_back({"variant", path.stem().string(), v.setting, std::move(configured), entities});
+      jobs.push_back({"variant", path.stem().string(), v.setting, std::move(configured), entities, std::nullopt});
     }
   }
 
@@ -305,31 +325,51 @@ DnrtBenchReport runDnrtBench(const DnrtBenchOptions& options) {
   gpu::Context ctx({options.device});
   report.device = ctx.deviceName();
   gpu::OffscreenPresenter presenter(ctx, {options.width, options.height});
-  Progress progress("bench dnrt", jobs.size());
+  std::size_t sessions = jobs.size();  // + the baselines: one after each fused session, one before each run of them
+  for (std::size_t i = 0; i < jobs.size(); ++i)
+    if (jobs[i].withoutDnrt)
+      sessions += (i > 0 && jobs[i - 1].withoutDnrt && jobs[i - 1].level == jobs[i].level) ? 1 : 2;
+  Progress progress("bench dnrt", sessions);
+  const auto measure = [&](const scene::Level& level) {
+    TimingCollector timings;
+    {
+      Session session(ctx, level);
+      timeFrames(session, presenter, options.frames, timings);
+    }
+    progress.advance();
+    return timings.stats();
+  };
+  // The baseline after a fused session serves as the next one's "before" when that is the same level's
+  // (the fused settings run back to back): B F B F B instead of B F B B F B.
+  std::optional<std::pair<std::string, ProbesBaseline>> lastBaseline;
+  const auto baseline = [&](const Job& job) {
+    DnrtBenchRow base;
+    base.setting = "base";
+    fillTimes(measure(*job.withoutDnrt), base, 0);
+    lastBaseline = std::pair{job.level, ProbesBaseline{base.probesMs, base.ssaoMs}};
+    return lastBaseline->second;
+  };
   for (Job& job : jobs) {
     DnrtBenchRow row;
     row.table = job.table, row.level = job.level, row.setting = job.setting;
     bakeMissing(job.configured, row);
-    TimingCollector timings;
-    {
-      Session session(ctx, job.configured);
-      timeFrames(session, presenter, options.frames, timings);
+    std::vector<ProbesBaseline> baselines;
+    if (job.withoutDnrt)
+      baselines.push_back(lastBaseline && lastBaseline->first == job.level ? lastBaseline->second : baseline(job));
+    const std::vector<PassStats> stats = measure(job.configured);
+    if (job.withoutDnrt) baselines.push_back(baseline(job));
+    else lastBaseline.reset();
+    fillTimes(stats, row, job.dnrtEntities);
+    // The fused rows' DNRT: their probes pass carries the term, so its share is the probes pass's time over
+    // the same level's without DNRT, timed just before and after (fusedBaselineMs): a marginal cost,
+    // measured in this run.
+    if (job.withoutDnrt) {
+      row.baseProbesMs = fusedBaselineMs(row.ssaoMs, baselines);
+      row.dnrtMs += row.probesMs - row.baseProbesMs;
     }
-    fillTimes(timings.stats(), row, job.dnrtEntities);
     report.rows.push_back(std::move(row));
-    progress.advance();
   }
   progress.finish();
-  // The fused rows' DNRT: their probes pass carries the term, so its share is the probes pass's time over
-  // the same level's "all" session's (the same pixels and passes, the term drawn by "dnrt" there): a
-  // marginal cost, measured in this run. The two sessions run minutes apart, so the "all" session's
-  // probes time is taken in units of its SSAO (probes_all · ssao_fused / ssao_all): the goal's own
-  // currency, in which a host-load change between the sessions cancels to first order.
-  for (DnrtBenchRow& row : report.rows) {
-    if (!row.setting.starts_with("fused")) continue;
-    const DnrtBenchRow* box = findRow(report, "8", row.level, "all");
-    row.dnrtMs += box ? row.probesMs - box->probesMs * (row.ssaoMs / box->ssaoMs) : kNaN;
-  }
   addRatios(report, options);
   return report;
 }
@@ -345,9 +385,11 @@ std::string formatDnrtBench(const DnrtBenchReport& report, const DnrtBenchOption
     if (r.table == "8" && !header8) {
       out += "\nTable 8 analogue: DNRT, SSAO and HBAO in one session per level (GPU ms, medians)\n"
              "(\"fused half\", \"fused quarter\": levels with one DNRT object only; with several in the probes "
-             "pass the terms are shaded at full resolution)\n";
-      std::snprintf(line, sizeof line, "%-14s %-14s %7s %9s %9s %9s %9s %9s %9s %7s %7s\n", "level", "setting", "objects",
-                    "frame", "dnrt", "dnrt/obj", "ssao", "hbao", "probes", "baked", "bake s");
+             "pass the terms are shaded at full resolution.\n"
+             " Fused rows: dnrt = the term's own passes + probes - \"w/o term\", the probes pass of the level without "
+             "DNRT timed\n right before and after the row's session, in its SSAO units)\n";
+      std::snprintf(line, sizeof line, "%-14s %-14s %7s %9s %9s %9s %9s %9s %9s %9s %7s %7s\n", "level", "setting",
+                    "objects", "frame", "dnrt", "dnrt/obj", "ssao", "hbao", "probes", "w/o term", "baked", "bake s");
       out += line;
       header8 = true;
     }
@@ -360,9 +402,10 @@ std::string formatDnrtBench(const DnrtBenchReport& report, const DnrtBenchOption
       headerV = true;
     }
     if (r.table == "8")
-      std::snprintf(line, sizeof line, "%-14s %-14s %7d %s %s %s %s %s %s %7d %7.1f\n", r.level.c_str(), r.setting.c_str(),
-                    r.objects, fmt(r.frameMs).c_str(), fmt(r.dnrtMs).c_str(), fmt(r.perObjectMs).c_str(),
-                    fmt(r.ssaoMs).c_str(), fmt(r.hbaoMs).c_str(), fmt(r.probesMs).c_str(), r.fieldsBaked, r.bakeSeconds);
+      std::snprintf(line, sizeof line, "%-14s %-14s %7d %s %s %s %s %s %s %s %7d %7.1f\n", r.level.c_str(),
+                    r.setting.c_str(), r.objects, fmt(r.frameMs).c_str(), fmt(r.dnrtMs).c_str(),
+                    fmt(r.perObjectMs).c_str(), fmt(r.ssaoMs).c_str(), fmt(r.hbaoMs).c_str(), fmt(r.probesMs).c_str(),
+                    fmt(r.baseProbesMs).c_str(), r.fieldsBaked, r.bakeSeconds);
     else
       std::snprintf(line, sizeof line, "%-14s %-16s %7d %s %s %s %s %7d %7.1f\n", r.level.c_str(), r.setting.c_str(),
                     r.objects, fmt(r.frameMs).c_str(), fmt(r.dnrtMs).c_str(), fmt(r.perObjectMs).c_str(),
@@ -386,12 +429,12 @@ std::string formatDnrtBench(const DnrtBenchReport& report, const DnrtBenchOption
 
 std::string formatDnrtBenchCsv(const DnrtBenchReport& report) {
   std::string out =
-      "table,level,setting,objects,frame_ms,dnrt_ms,per_object_ms,cube_ms,ssao_ms,hbao_ms,fields_baked,bake_s,probes_ms\n";
+      "table,level,setting,objects,frame_ms,dnrt_ms,per_object_ms,cube_ms,ssao_ms,hbao_ms,fields_baked,bake_s,probes_ms,base_probes_ms\n";
   char line[320];
   for (const auto& r : report.rows) {
-    std::snprintf(line, sizeof line, "%s,%s,%s,%d,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%d,%.3f,%.4f\n", r.table.c_str(),
+    std::snprintf(line, sizeof line, "%s,%s,%s,%d,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%d,%.3f,%.4f,%.4f\n", r.table.c_str(),
                   r.level.c_str(), r.setting.c_str(), r.objects, r.frameMs, r.dnrtMs, r.perObjectMs, r.cubeMs, r.ssaoMs,
-                  r.hbaoMs, r.fieldsBaked, r.bakeSeconds, r.probesMs);
+                  r.hbaoMs, r.fieldsBaked, r.bakeSeconds, r.probesMs, r.baseProbesMs);
     out += line;
   }
   return out;

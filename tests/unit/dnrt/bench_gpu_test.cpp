@@ -21,23 +21,36 @@ TEST(DnrtBench, ReportHasEveryRowTimedAndFiniteRatios) {
   o.raysPerVertex = 2;  // 4 rays per vertex: the 64³ field bakes in about a second
   // One reduced-resolution session only (CI time): "clustered half" and the variant "resolution=half"
   // run the same half-resolution path as Table 8's "half"; their ratios go with them.
-  // "fused" (the probes pass with DNRT's term) is left out too: one more session of cornell-1 (CI time);
-  // DnrtGpu.FusedModeIsTheBoxImageInsideTheProbesPass covers the mode.
-  o.skipSettings = {"clustered half", "resolution=half", "fused", "fused half", "fused quarter"};
+  // Of the fused rows (the probes pass with DNRT's term) only "fused quarter", with the two sessions
+  // without DNRT around it that its marginal is measured against; "fused" and "fused half" are left out
+  // (CI time): DnrtGpu.FusedModeIsTheBoxImageInsideTheProbesPass covers the mode.
+  o.skipSettings = {"clustered half", "resolution=half", "fused", "fused half"};
   const DnrtBenchReport r = runDnrtBench(o);
 
-  const std::vector<std::string> settings = {"all",          "clustered",       "half",          "basic",
+  const std::vector<std::string> settings = {"all",          "fused quarter",   "clustered",     "half",          "basic",
                                              "sh=9",         "grid=16",         "grid=64",       "intrusion=on",
                                              "mode=fullscreen", "mode=clustered"};
   ASSERT_EQ(r.rows.size(), settings.size());
   for (std::size_t i = 0; i < r.rows.size(); ++i) {
     const DnrtBenchRow& row = r.rows[i];
     EXPECT_EQ(row.setting, settings[i]);
-    EXPECT_EQ(row.table, i < 3 ? "8" : "variant");
+    EXPECT_EQ(row.table, i < 4 ? "8" : "variant");
+    const bool fused = row.setting.starts_with("fused");
     const bool clustered = row.setting.starts_with("clustered") || row.setting == "mode=clustered";
     EXPECT_EQ(row.level, "cornell-1");
     EXPECT_EQ(row.objects, 1) << row.setting << ": the prop is drawn in every frame";
     EXPECT_GT(row.frameMs, 0.0) << row.setting;
+    if (fused) {
+      // A marginal (its passes + probes − the baseline's probes): finite, but at 64×36 its sign is noise.
+      EXPECT_TRUE(std::isfinite(row.dnrtMs)) << row.setting;
+      EXPECT_GT(row.baseProbesMs, 0.0) << row.setting << ": the probes pass without the term, timed around it";
+      EXPECT_TRUE(std::isnan(row.perObjectMs)) << row.setting << ": the term has no scope of its own";
+      EXPECT_EQ(row.objects, 1);
+      EXPECT_GT(row.ssaoMs, 0.0);
+      EXPECT_GT(row.hbaoMs, 0.0);
+      continue;
+    }
+    EXPECT_TRUE(std::isnan(row.baseProbesMs)) << row.setting << ": only fused rows have a baseline";
     EXPECT_GT(row.dnrtMs, 0.0) << row.setting;
     if (clustered) {
       EXPECT_TRUE(std::isnan(row.perObjectMs)) << row.setting << ": one draw for all objects, no scope per object";
@@ -61,7 +74,8 @@ TEST(DnrtBench, ReportHasEveryRowTimedAndFiniteRatios) {
       {"DNRT(1 obj) / SSAO, cornell-1", 0.1},          {"DNRT(1 obj) clustered / SSAO, cornell-1", 0.05},
       {"9 SH / 4 SH, cornell-1", 1.5},                  {"fullscreen / box, cornell-1", 0.0},
       {"clustered / box, cornell-1", 0.0},
-      {"DNRT(1 obj) half / SSAO, cornell-1", 0.1}};
+      {"DNRT(1 obj) half / SSAO, cornell-1", 0.1},     {"DNRT(1 obj) fused quarter / SSAO, cornell-1", 0.05},
+      {"fused quarter / box (in SSAO units), cornell-1", 0.0}};
   for (const auto& [name, goal] : goals) {
     bool found = false;
     for (const DnrtBenchRatio& q : r.ratios)
@@ -71,21 +85,39 @@ TEST(DnrtBench, ReportHasEveryRowTimedAndFiniteRatios) {
       }
     EXPECT_TRUE(found) << name;
   }
-  // DNRT/SSAO, DNRT/HBAO, clustered DNRT/SSAO, DNRT/SSAO at half (one Table 8 level) + 8 per variant
-  // level (9 less the left-out "half / full resolution")
+  // DNRT/SSAO, DNRT/HBAO, clustered DNRT/SSAO, DNRT/SSAO at half, fused quarter DNRT/SSAO and / box (one
+  // Table 8 level) + 8 per variant level (9 less the left-out "half / full resolution")
   for (const DnrtBenchRatio& q : r.ratios) EXPECT_EQ(q.name.find("clustered half"), std::string::npos) << q.name;
-  EXPECT_EQ(r.ratios.size(), 4u + 8u);
-  for (const DnrtBenchRatio& q : r.ratios) EXPECT_TRUE(std::isfinite(q.value) && q.value > 0.0) << q.name;
+  EXPECT_EQ(r.ratios.size(), 6u + 8u);
+  for (const DnrtBenchRatio& q : r.ratios)  // the fused ones are marginals: finite, their sign noise at 64×36
+    EXPECT_TRUE(std::isfinite(q.value) && (q.value > 0.0 || q.name.find("fused") != std::string::npos)) << q.name;
 
   std::istringstream csv(formatDnrtBenchCsv(r));
   std::string line;
   std::getline(csv, line);
   EXPECT_EQ(line,
-            "table,level,setting,objects,frame_ms,dnrt_ms,per_object_ms,cube_ms,ssao_ms,hbao_ms,fields_baked,bake_s,probes_ms");
+            "table,level,setting,objects,frame_ms,dnrt_ms,per_object_ms,cube_ms,ssao_ms,hbao_ms,fields_baked,bake_s,probes_ms,base_probes_ms");
   int lines = 0;
   while (std::getline(csv, line)) ++lines;
   EXPECT_EQ(lines, int(settings.size()));
   EXPECT_NE(formatDnrtBench(r, o).find("goal <= 0.1"), std::string::npos);
+}
+
+// A fused row's baseline (the probes pass without the term, from the sessions right before and after):
+// each neighbour's probes time rescaled by the SSAO ratio, then averaged, so a load step between the
+// sessions cancels (SSAO and probes slowed alike) and so does a linear drift across the three.
+TEST(DnrtBench, FusedBaselineIsItsNeighboursProbesInTheRowsSsaoUnits) {
+  // Unchanged host: the plain mean.
+  EXPECT_DOUBLE_EQ(fusedBaselineMs(100.0, {{30.0, 100.0}, {34.0, 100.0}}), 32.0);
+  // The session after ran on a host 1.5x slower in both passes: it reads as the same 30 ms.
+  EXPECT_DOUBLE_EQ(fusedBaselineMs(100.0, {{30.0, 100.0}, {45.0, 150.0}}), 30.0);
+  // A linear drift 100 -> 110 -> 120 in SSAO with probes following it: the fused session's own 33 ms.
+  EXPECT_DOUBLE_EQ(fusedBaselineMs(110.0, {{30.0, 100.0}, {36.0, 120.0}}), 33.0);
+  // One neighbour only (the bench's last fused row before a fresh baseline is never that; a caller may).
+  EXPECT_DOUBLE_EQ(fusedBaselineMs(50.0, {{30.0, 100.0}}), 15.0);
+  // Nothing to compare with, or a pass that did not run: NaN, never a number that looks measured.
+  EXPECT_TRUE(std::isnan(fusedBaselineMs(100.0, {})));
+  EXPECT_TRUE(std::isnan(fusedBaselineMs(100.0, {{std::nan(""), 100.0}, {30.0, 100.0}})));
 }
 
 // The reduced fused rows only where they measure what they say: the reduced term serves one fused
