@@ -83,7 +83,8 @@ struct ProbesBaseline {
 // cancels to first order: the goal's own currency), averaged over the sessions before and after (a load
 // drift across the three cancels to first order too). NaN without a baseline or with one unmeasured.
 // Until session 22 the baseline was the level's "all" session, which ran up to a minute before: on a
-// host whose load drifts that put 0.041–0.074 of SSAO on one term that measures 0.043 in paired runs.
+// host whose load drifts that put 0.041–0.074 of SSAO on one term that reads 0.044–0.046 in quiet paired
+// runs (README "DNRT's fused quarter term against its own baseline, session 22").
 double fusedBaselineMs(double ssaoMs, const std::vector<ProbesBaseline>& baselines);
 
 struct DnrtBenchRatio {
