@@ -54,7 +54,10 @@ inline Outcome runShell(const std::string& cmd, const std::filesystem::path& out
 // `bounce ARGS` (BOUNCE_EXE, quoted), with an optional environment prefix ("VAR=value ").
 inline std::string bounceCommand(const std::vector<std::string>& args, const std::string& envPrefix = {}) {
   std::string cmd = envPrefix + quote(BOUNCE_EXE);
-  for (const auto& a : args) cmd += " " + quote(a);
+  for (const auto& a : args) {  // append, not " " + quote(a): GCC 12 -O3 warns (-Wstringop-overflow) on a
+    cmd += ' ';                   // literal prepended to a temporary, a false positive in its insert path
+    cmd += quote(a);
+  }
   return cmd;
 }
 
