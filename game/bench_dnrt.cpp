@@ -325,10 +325,15 @@ DnrtBenchReport runDnrtBench(const DnrtBenchOptions& options) {
   gpu::Context ctx({options.device});
   report.device = ctx.deviceName();
   gpu::OffscreenPresenter presenter(ctx, {options.width, options.height});
-  std::size_t sessions = jobs.size();  // + the baselines: one after each fused session, one before each run of them
+  // A fused session is timed between two sessions of its level without DNRT; the one after a fused session
+  // serves as the next one's "before" when that is the same level's (the fused settings run back to back):
+  // B F B F B instead of B F B B F B.
+  const auto sharesBaseline = [&](std::size_t i) {
+    return i > 0 && jobs[i - 1].withoutDnrt && jobs[i - 1].level == jobs[i].level;
+  };
+  std::size_t sessions = jobs.size();
   for (std::size_t i = 0; i < jobs.size(); ++i)
-    if (jobs[i].withoutDnrt)
-      sessions += (i > 0 && jobs[i - 1].withoutDnrt && jobs[i - 1].level == jobs[i].level) ? 1 : 2;
+    if (jobs[i].withoutDnrt) sessions += sharesBaseline(i) ? 1 : 2;
   Progress progress("bench dnrt", sessions);
   const auto measure = [&](const scene::Level& level) {
     TimingCollector timings;
@@ -339,26 +344,21 @@ DnrtBenchReport runDnrtBench(const DnrtBenchOptions& options) {
     progress.advance();
     return timings.stats();
   };
-  // The baseline after a fused session serves as the next one's "before" when that is the same level's
-  // (the fused settings run back to back): B F B F B instead of B F B B F B.
-  std::optional<std::pair<std::string, ProbesBaseline>> lastBaseline;
   const auto baseline = [&](const Job& job) {
     DnrtBenchRow base;
-    base.setting = "base";
     fillTimes(measure(*job.withoutDnrt), base, 0);
-    lastBaseline = std::pair{job.level, ProbesBaseline{base.probesMs, base.ssaoMs}};
-    return lastBaseline->second;
+    return ProbesBaseline{base.probesMs, base.ssaoMs};
   };
-  for (Job& job : jobs) {
+  ProbesBaseline after;  // the last fused session's "after"
+  for (std::size_t i = 0; i < jobs.size(); ++i) {
+    const Job& job = jobs[i];
     DnrtBenchRow row;
     row.table = job.table, row.level = job.level, row.setting = job.setting;
     bakeMissing(job.configured, row);
     std::vector<ProbesBaseline> baselines;
-    if (job.withoutDnrt)
-      baselines.push_back(lastBaseline && lastBaseline->first == job.level ? lastBaseline->second : baseline(job));
+    if (job.withoutDnrt) baselines.push_back(sharesBaseline(i) ? after : baseline(job));
     const std::vector<PassStats> stats = measure(job.configured);
-    if (job.withoutDnrt) baselines.push_back(baseline(job));
-    else lastBaseline.reset();
+    if (job.withoutDnrt) baselines.push_back(after = baseline(job));
     fillTimes(stats, row, job.dnrtEntities);
     // The fused rows' DNRT: their probes pass carries the term, so its share is the probes pass's time over
     // the same level's without DNRT, timed just before and after (fusedBaselineMs): a marginal cost,
