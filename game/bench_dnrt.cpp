@@ -35,9 +35,9 @@ struct Job {
   std::string table, level, setting;
   scene::Level configured;
   int dnrtEntities = 0;  // the objects of a clustered session, which has no per-object scopes
-  // "fused…" rows: the same level without DNRT (its probes pass is the fused one less the term), timed
-  // right before and right after the fused session for the term's marginal (fusedBaselineMs).
-  std::optional<scene::Level> withoutDnrt;
+  // "fused…" rows: the probes pass also drawn without the term in each frame (ProbeNode::setTermBaseline),
+  // for the term's marginal cost.
+  bool termBaseline = false;
 };
 
 // The paper's standard configuration (§7.2.2: Table 4 configuration 2) and the one-setting changes.
@@ -230,13 +230,6 @@ std::string fmt(double v, const char* spec = "%9.3f") {
 
 }  // namespace
 
-double fusedBaselineMs(double ssaoMs, const std::vector<ProbesBaseline>& baselines) {
-  if (baselines.empty()) return kNaN;
-  double sum = 0.0;
-  for (const ProbesBaseline& b : baselines) sum += b.probesMs * (ssaoMs / b.ssaoMs);
-  return sum / double(baselines.size());  // NaN propagates from any unmeasured pass
-}
-
 std::vector<std::string> table8Settings(int dnrtEntities) {
   std::vector<std::string> out = {"all", "fused"};
   if (dnrtEntities == 1) out.insert(out.end(), {"fused half", "fused quarter"});
@@ -261,9 +254,6 @@ DnrtBenchReport runDnrtBench(const DnrtBenchOptions& options) {
       if (!level.effects.has(*scene::effectFromName(method)))
         effects += std::string(effects.empty() ? "" : ",") + method;
     scene::overrideEffects(level, effects);
-    std::string effectsWithoutDnrt;
-    for (const auto& e : level.effects.names())
-      if (e != "dnrt") effectsWithoutDnrt += (effectsWithoutDnrt.empty() ? "" : ",") + e;
     if (options.raysPerVertex) forEachDnrt(level, [&](scene::Dnrt& d) { d.samplesPerAxis = *options.raysPerVertex; });
     int entities = 0;
     forEachDnrt(level, [&](scene::Dnrt&) { ++entities; });
@@ -292,12 +282,8 @@ DnrtBenchReport runDnrtBench(const DnrtBenchOptions& options) {
     levels.emplace("half", std::move(half));
     levels.emplace("clustered half", std::move(clusteredHalf));
     for (const std::string& setting : table8Settings(entities)) {
-      Job job{"8", path.stem().string(), setting, std::move(levels.at(setting)), entities, std::nullopt};
-      if (setting.starts_with("fused")) {
-        job.withoutDnrt = job.configured;
-        scene::overrideEffects(*job.withoutDnrt, effectsWithoutDnrt);
-      }
-      jobs.push_back(std::move(job));
+      jobs.push_back({"8", path.stem().string(), setting, std::move(levels.at(setting)), entities,
+                      setting.starts_with("fused")});
     }
   }
   for (const auto& path : options.variantLevels) {
@@ -314,7 +300,7 @@ DnrtBenchReport runDnrtBench(const DnrtBenchOptions& options) {
       });
       int entities = 0;
       forEachDnrt(configured, [&](scene::Dnrt&) { ++entities; });
-      jobs.push_back({"variant", path.stem().string(), v.setting, std::move(configured), entities, std::nullopt});
+      jobs.push_back({"variant", path.stem().string(), v.setting, std::move(configured), entities, false});
     }
   }
 
@@ -325,47 +311,38 @@ DnrtBenchReport runDnrtBench(const DnrtBenchOptions& options) {
   gpu::Context ctx({options.device});
   report.device = ctx.deviceName();
   gpu::OffscreenPresenter presenter(ctx, {options.width, options.height});
-  // A fused session is timed between two sessions of its level without DNRT; the one after a fused session
-  // serves as the next one's "before" when that is the same level's (the fused settings run back to back):
-  // B F B F B instead of B F B B F B.
-  const auto sharesBaseline = [&](std::size_t i) {
-    return i > 0 && jobs[i - 1].withoutDnrt && jobs[i - 1].level == jobs[i].level;
-  };
-  std::size_t sessions = jobs.size();
-  for (std::size_t i = 0; i < jobs.size(); ++i)
-    if (jobs[i].withoutDnrt) sessions += sharesBaseline(i) ? 1 : 2;
-  Progress progress("bench dnrt", sessions);
-  const auto measure = [&](const scene::Level& level) {
-    TimingCollector timings;
-    {
-      Session session(ctx, level);
-      timeFrames(session, presenter, options.frames, timings);
-    }
-    progress.advance();
-    return timings.stats();
-  };
-  const auto baseline = [&](const Job& job) {
-    DnrtBenchRow base;
-    fillTimes(measure(*job.withoutDnrt), base, 0);
-    return ProbesBaseline{base.probesMs, base.ssaoMs};
-  };
-  ProbesBaseline after;  // the last fused session's "after"
-  for (std::size_t i = 0; i < jobs.size(); ++i) {
-    const Job& job = jobs[i];
+  Progress progress("bench dnrt", jobs.size());
+  for (const Job& job : jobs) {
     DnrtBenchRow row;
     row.table = job.table, row.level = job.level, row.setting = job.setting;
     bakeMissing(job.configured, row);
-    std::vector<ProbesBaseline> baselines;
-    if (job.withoutDnrt) baselines.push_back(sharesBaseline(i) ? after : baseline(job));
-    const std::vector<PassStats> stats = measure(job.configured);
-    if (job.withoutDnrt) baselines.push_back(after = baseline(job));
+    TimingCollector timings;
+    {
+      Session session(ctx, job.configured);
+      if (job.termBaseline && session.probes()) session.probes()->setTermBaseline(true);
+      timeFrames(session, presenter, options.frames, timings);
+    }
+    progress.advance();
+    const std::vector<PassStats> stats = timings.stats();
     fillTimes(stats, row, job.dnrtEntities);
-    // The fused rows' DNRT: their probes pass carries the term, so its share is the probes pass's time over
-    // the same level's without DNRT, timed just before and after (fusedBaselineMs): a marginal cost,
-    // measured in this run.
-    if (job.withoutDnrt) {
-      row.baseProbesMs = fusedBaselineMs(row.ssaoMs, baselines);
-      row.dnrtMs += row.probesMs - row.baseProbesMs;
+    // The fused rows' DNRT: their probes pass carries the term, so its share is that pass's time less the
+    // same pass without the term ("probes.baseline"), paired frame by frame: a marginal cost measured in
+    // the same frames as the SSAO it is divided by. Until session 23 the pass without the term was timed in
+    // sessions of its own around the fused one, whose load drift put ±0.01 of SSAO on the term (README
+    // "DNRT's fused quarter term timed within its frames, session 23"). NaN if an object was in the probes
+    // pass but the pass without it did not run.
+    for (const PassStats& s : stats) {
+      if (s.depth == 0 && s.object.empty() && s.pass == "probes.baseline") {
+        row.baseProbesMs = s.medianMs;
+        row.frameMs = timings.pairedPercentileMs("frame", "probes.baseline", 0.5);  // the frame as the level draws it
+      }
+      if (s.depth == 0 && s.object.empty() && s.pass == "dnrt.combine.fused" && job.termBaseline)
+      {
+        row.termMs = timings.pairedPercentileMs("probes", "probes.baseline", 0.5);
+        row.dnrtMs += row.termMs;
+        row.termQ1Ms = timings.pairedPercentileMs("probes", "probes.baseline", 0.25);
+        row.termQ3Ms = timings.pairedPercentileMs("probes", "probes.baseline", 0.75);
+      }
     }
     report.rows.push_back(std::move(row));
   }
@@ -386,8 +363,8 @@ std::string formatDnrtBench(const DnrtBenchReport& report, const DnrtBenchOption
       out += "\nTable 8 analogue: DNRT, SSAO and HBAO in one session per level (GPU ms, medians)\n"
              "(\"fused half\", \"fused quarter\": levels with one DNRT object only; with several in the probes "
              "pass the terms are shaded at full resolution.\n"
-             " Fused rows: dnrt = the term's own passes + probes - \"w/o term\", the probes pass of the level without "
-             "DNRT timed\n right before and after the row's session, in its SSAO units)\n";
+             " Fused rows: dnrt = the term's own passes + the median over frames of probes - \"w/o term\", the same "
+             "pass\n without the term drawn in each frame; frame leaves that pass out)\n";
       std::snprintf(line, sizeof line, "%-14s %-14s %7s %9s %9s %9s %9s %9s %9s %9s %7s %7s\n", "level", "setting",
                     "objects", "frame", "dnrt", "dnrt/obj", "ssao", "hbao", "probes", "w/o term", "baked", "bake s");
       out += line;
@@ -412,6 +389,21 @@ std::string formatDnrtBench(const DnrtBenchReport& report, const DnrtBenchOption
                     fmt(r.cubeMs).c_str(), r.fieldsBaked, r.bakeSeconds);
     out += line;
   }
+  // How well the run resolves each fused row's term: its per-frame marginal's quartiles, and DNRT / SSAO with
+  // the median replaced by each (the term's own passes and SSAO as measured).
+  bool termHeader = false;
+  for (const auto& r : report.rows) {
+    if (std::isnan(r.termMs)) continue;
+    if (!termHeader)
+      out += "\nFused rows: the term in the probes pass, probes - \"w/o term\" frame by frame (ms), and DNRT / SSAO "
+             "with it\n";
+    termHeader = true;
+    const double own = r.dnrtMs - r.termMs;  // dnrt.combine.fused, dnrt.fused.reduced, any box left
+    std::snprintf(line, sizeof line, "%-14s %-14s median %7.3f  quartiles %7.3f .. %7.3f  DNRT / SSAO %.3f (%.3f .. %.3f)\n",
+                  r.level.c_str(), r.setting.c_str(), r.termMs, r.termQ1Ms, r.termQ3Ms, r.dnrtMs / r.ssaoMs,
+                  (own + r.termQ1Ms) / r.ssaoMs, (own + r.termQ3Ms) / r.ssaoMs);
+    out += line;
+  }
   out += "\nRatios (same run)\n";
   for (const auto& q : report.ratios) {
     std::string goal;
@@ -429,12 +421,14 @@ std::string formatDnrtBench(const DnrtBenchReport& report, const DnrtBenchOption
 
 std::string formatDnrtBenchCsv(const DnrtBenchReport& report) {
   std::string out =
-      "table,level,setting,objects,frame_ms,dnrt_ms,per_object_ms,cube_ms,ssao_ms,hbao_ms,fields_baked,bake_s,probes_ms,base_probes_ms\n";
+      "table,level,setting,objects,frame_ms,dnrt_ms,per_object_ms,cube_ms,ssao_ms,hbao_ms,fields_baked,bake_s,probes_ms,base_probes_ms,"
+      "term_ms,term_q1_ms,term_q3_ms\n";
   char line[320];
   for (const auto& r : report.rows) {
-    std::snprintf(line, sizeof line, "%s,%s,%s,%d,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%d,%.3f,%.4f,%.4f\n", r.table.c_str(),
-                  r.level.c_str(), r.setting.c_str(), r.objects, r.frameMs, r.dnrtMs, r.perObjectMs, r.cubeMs, r.ssaoMs,
-                  r.hbaoMs, r.fieldsBaked, r.bakeSeconds, r.probesMs, r.baseProbesMs);
+    std::snprintf(line, sizeof line, "%s,%s,%s,%d,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%d,%.3f,%.4f,%.4f,%.4f,%.4f,%.4f\n",
+                  r.table.c_str(), r.level.c_str(), r.setting.c_str(), r.objects, r.frameMs, r.dnrtMs, r.perObjectMs,
+                  r.cubeMs, r.ssaoMs, r.hbaoMs, r.fieldsBaked, r.bakeSeconds, r.probesMs, r.baseProbesMs, r.termMs,
+                  r.termQ1Ms, r.termQ3Ms);
     out += line;
   }
   return out;

@@ -14,9 +14,9 @@
 //    resolution ("fused half", "fused quarter": pass dnrt.fused.reduced and its bilinear blend, README
 //    "DNRT's fused term at reduced resolution, session 17"; with several objects in the probes pass the
 //    terms are shaded at full resolution, so those rows would be "fused" again: table8Settings). A fused
-//    row's DNRT is a marginal: its own passes plus its probes pass less the same level's without DNRT,
-//    timed in sessions right before and after it (fusedBaselineMs; one session between two fused rows
-//    serves both).
+//    row's DNRT is a marginal: its own passes plus its probes pass less the same pass without the term,
+//    drawn in the same frames ("probes.baseline", gi::probes::ProbeNode::setTermBaseline) and paired
+//    frame by frame (TimingCollector::pairedPercentileMs); the row's frame time leaves that pass out.
 //  - Tables 6 and 7 and the grid and mode comparisons, per variant level (default cornell-1,
 //    cornell-10): DNRT alone (the level's effects), once with the paper's standard configuration
 //    (sh=4, grid=32, intrusion off; the outer-cube raster) and once per changed setting: sh=9
@@ -63,29 +63,20 @@ struct DnrtBenchRow {
   double frameMs = 0.0;
   double dnrtMs = 0.0;       // the "dnrt" pass (every object's draw inside it) + "dnrt.combine" (+ "dnrt.upsample");
                              // "fused…": "dnrt.combine" (+ "dnrt.fused.reduced") + "dnrt" (objects left to it) + this row's
-                             // "probes" − baseProbesMs (the term's marginal cost in the probes pass)
+                             // "probes" − "probes.baseline", the median of their per-frame differences (the term's
+                             // marginal cost in the probes pass)
   double perObjectMs = 0.0;  // mean of the per-object "dnrt/<object>" medians (NaN when clustered)
   double cubeMs = 0.0;       // the intrusion maps: sum of the "dnrt.cube/<object>" passes (0 when off)
   double ssaoMs = 0.0, hbaoMs = 0.0;
   double probesMs = 0.0;     // the "probes" pass (NaN when the level has no probes; "fused": with the object's term)
-  double baseProbesMs = std::numeric_limits<double>::quiet_NaN();  // "fused…": the probes pass without the term (fusedBaselineMs); NaN elsewhere
+  double baseProbesMs = std::numeric_limits<double>::quiet_NaN();  // "fused…": "probes.baseline", the probes pass without the term in the same frames; NaN elsewhere
+  // "fused…": the term's marginal in the probes pass, "probes" − "probes.baseline" over frames: its median
+  // (part of dnrtMs) and quartiles, how well one run resolves it. NaN elsewhere.
+  double termMs = std::numeric_limits<double>::quiet_NaN();
+  double termQ1Ms = std::numeric_limits<double>::quiet_NaN(), termQ3Ms = std::numeric_limits<double>::quiet_NaN();
   int fieldsBaked = 0;       // fields missing from the cache before this session
   double bakeSeconds = 0.0;  // time spent baking them
 };
-
-// A "fused…" row's baseline: the same level without DNRT, whose probes pass is the fused one less the
-// term, timed in a session of its own right before and right after the fused session (medians, ms).
-struct ProbesBaseline {
-  double probesMs = 0.0, ssaoMs = 0.0;
-};
-// The fused session's probes pass less its term, from its baselines: each baseline's probes time in
-// the fused session's SSAO units (probes_b · ssao / ssao_b, so a host-load change between the sessions
-// cancels to first order: the goal's own currency), averaged over the sessions before and after (a load
-// drift across the three cancels to first order too). NaN without a baseline or with one unmeasured.
-// Until session 22 the baseline was the level's "all" session, which ran up to a minute before: on a
-// host whose load drifts that put 0.041–0.074 of SSAO on one term that reads 0.044–0.046 in quiet paired
-// runs (README "DNRT's fused quarter term against its own baseline, session 22").
-double fusedBaselineMs(double ssaoMs, const std::vector<ProbesBaseline>& baselines);
 
 struct DnrtBenchRatio {
   std::string name;
@@ -104,7 +95,7 @@ DnrtBenchReport runDnrtBench(const DnrtBenchOptions& options);
 // The tables and ratios for the terminal.
 std::string formatDnrtBench(const DnrtBenchReport& report, const DnrtBenchOptions& options);
 // CSV, header exactly
-// "table,level,setting,objects,frame_ms,dnrt_ms,per_object_ms,cube_ms,ssao_ms,hbao_ms,fields_baked,bake_s,probes_ms,base_probes_ms".
+// "table,level,setting,objects,frame_ms,dnrt_ms,per_object_ms,cube_ms,ssao_ms,hbao_ms,fields_baked,bake_s,probes_ms,base_probes_ms,term_ms,term_q1_ms,term_q3_ms".
 std::string formatDnrtBenchCsv(const DnrtBenchReport& report);
 
 // The Table 8 settings, in the order measured, of a level with `dnrtEntities` DNRT objects: "all",

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
+#include <utility>
 #include <nlohmann/json.hpp>
 
 #include "engine/core/progress.hpp"
@@ -21,17 +23,34 @@ double percentile(std::vector<double> s, double q) {
 void TimingCollector::collect(gpu::FrameRing& frames, std::uint64_t warmupFrames) {
   for (const auto& resolved : frames.takeResolvedTimings()) {
     if (resolved.frame <= warmupFrames) continue;
-    double total = 0.0;
-    for (const auto& t : resolved.timings) {
-      if (!samples_.count(t.name)) order_.push_back(t.name);
-      samples_[t.name].push_back(t.ms);
-      depth_[t.name] = t.depth;
-      if (t.depth == 0) total += t.ms;
-    }
-    if (!samples_.count("frame")) order_.push_back("frame");
-    samples_["frame"].push_back(total);
-    ++frames_;
+    addFrame(resolved.timings);
   }
+}
+
+void TimingCollector::addFrame(const std::vector<gpu::TimingResult>& timings) {
+  double total = 0.0;
+  auto& frame = frameMs_.emplace_back();
+  for (const auto& t : timings) {
+    frame[t.name] = t.ms;
+    if (!samples_.count(t.name)) order_.push_back(t.name);
+    samples_[t.name].push_back(t.ms);
+    depth_[t.name] = t.depth;
+    if (t.depth == 0) total += t.ms;
+  }
+  if (!samples_.count("frame")) order_.push_back("frame");
+  samples_["frame"].push_back(total);
+  frame["frame"] = total;
+  ++frames_;
+}
+
+double TimingCollector::pairedPercentileMs(const std::string& a, const std::string& b, double q) const {
+  std::vector<double> differences;
+  for (const auto& frame : frameMs_) {
+    const auto ia = frame.find(a), ib = frame.find(b);
+    if (ia != frame.end() && ib != frame.end()) differences.push_back(ia->second - ib->second);
+  }
+  if (differences.empty()) return std::numeric_limits<double>::quiet_NaN();
+  return percentile(std::move(differences), q);  // nearest rank, as stats()'s medians
 }
 
 std::vector<PassStats> TimingCollector::stats() const {

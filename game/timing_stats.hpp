@@ -37,16 +37,24 @@ class TimingCollector {
  public:
   // Records every frame the ring resolved since the last call, except warm-up frames.
   void collect(gpu::FrameRing& frames, std::uint64_t warmupFrames);
+  // Records one frame's scopes (what collect does per frame; tests feed frames through it).
+  void addFrame(const std::vector<gpu::TimingResult>& timings);
   // One row per pass in first-seen order, then a "frame" row: the sum of the outermost scopes.
   // A scope named "<pass>/<object>" becomes a row with that pass and object. A per-object row
   // counts only the frames that drew the object.
   std::vector<PassStats> stats() const;
   std::size_t framesCollected() const { return frames_; }
+  // The q-th percentile (nearest rank, q in [0, 1]; 0.5 the median) over the frames that timed both scopes
+  // of `a` − `b` (ms; NaN when no frame did): a paired difference, so the host's speed drifting between
+  // frames cancels, where the difference of the two medians keeps it (`bounce bench dnrt`'s fused rows:
+  // "probes" − "probes.baseline").
+  double pairedPercentileMs(const std::string& a, const std::string& b, double q) const;
 
  private:
   std::vector<std::string> order_;
   std::map<std::string, std::vector<double>> samples_;
   std::map<std::string, std::uint32_t> depth_;  // of each scope name (the same every frame)
+  std::vector<std::map<std::string, double>> frameMs_;  // each collected frame's scopes (pairedPercentileMs)
   std::size_t frames_ = 0;
 };
 

@@ -387,13 +387,108 @@ void ProbeNode::enableRelight(gpu::Context& ctx, RelightData data, const ref::Sc
   relightBaked_ = volume_.sh;
 }
 
+// The probes pass's commands (addPasses): probes.frag over every G-buffer pixel into d.hdr, with the fused
+// DNRT term when `fused` is set; `baseline`: pass probes.baseline (setTermBaseline), which leaves
+// lastPassSplit_ alone.
+void ProbeNode::recordPass(const PassData& d, const rg::PassResources& res, rg::CommandContext& c,
+                           const render::PassContext& ctx, bool withAo, const std::optional<FusedDnrt>& fused,
+                           bool baseline) {
+  const render::PassContext* pc = &ctx;
+  VkCommandBuffer cmd = pc->cmd(c);
+  VkSampler point = pc->samplers->get({VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST});
+  auto view = [&](rg::Handle<rg::Texture> h) { return pc->backend->image(res.texture(h)).view(); };
+  VkDescriptorSet set = pc->frame().descriptors->allocate(setLayout_);
+  const bool split = fused && fused->split;
+  gpu::DescriptorWriter writer;
+  render::writeDeferredInputs(writer, d.g, *pc, res, point,
+                              split ? kDepthReadOnly : VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
+      .sampledImage(3, sh_->view(), point)
+      .sampledImage(4, moments_->view(), point)
+      .buffer(5, shUbo_, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 0, kShUboBytes)
+      .buffer(7, momentsUbo_, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 0, kMomentsUboBytes)
+      .sampledImage(6, view(withAo ? d.ao : d.g.albedo), point)
+      // bilinear: one tap a probe (probe_tiles.glsl); without tiles the shader ignores it
+      .sampledImage(8, tiles_ ? view(d.tiles) : sh_->view(),
+                    tiles_ ? pc->samplers->get({VK_FILTER_LINEAR, VK_SAMPLER_MIPMAP_MODE_NEAREST}) : point)
+      // trilinear, as the "dnrt" pass's box draw reads the same volume
+      .sampledImage(9, fused ? view(d.dnrt) : noDnrt_->view(),
+                    pc->samplers->get({VK_FILTER_LINEAR, VK_SAMPLER_MIPMAP_MODE_NEAREST}))
+      // the fused term's reduced factor below full resolution, read by texelFetch (probes.frag
+      // dnrtReducedQuadTap); the albedo when unread (kDnrtStep 1)
+      .sampledImage(12, view(fused && fused->reduced ? d.dnrtReduced : d.g.albedo), point);
+  const bool several = fused && fused->bindCluster;
+  if (several)
+    fused->bindCluster(writer, *pc);
+  else
+    writer.buffer(10, noDnrtTiles_).buffer(11, noDnrtObjects_, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER);
+  writer.update(*pc->gpu, set);
+  gpu::Image& target = pc->backend->image(res.texture(d.hdr));
+  render::Attachment color{target.view(), true};  // additive: keep the direct light
+  const VkExtent2D extent{target.desc().width, target.desc().height};
+  render::Attachment depth{view(d.g.depth)};
+  depth.readOnly = true;
+  render::beginRendering(*pc->gpu, cmd, extent, {&color, 1}, split ? &depth : nullptr);
+  const std::size_t stepIndex = !fused || fused->step == 1u ? 0u : fused->step == 2u ? 1u : 2u;
+  if (fused && fused->step != 1u && fused->step != 2u && fused->step != 4u)
+    throw InternalError("probes: fused DNRT step " + std::to_string(fused->step) + " (expected 1, 2 or 4)");
+  // probes.frag with kDnrt `dnrt` at kDnrtStep `step`; split: drawn as the outer cube (outer_cube.vert)
+  // against the depth, `compare` deciding which pixels it shades (FusedDnrt::split).
+  const auto make = [&](std::uint32_t dnrt, std::uint32_t step, bool splitDraw, VkCompareOp compare,
+                        std::string name) {
+    gpu::ShaderModule vert(*pc->gpu, splitDraw ? "probes/outer_cube.vert.spv" : "passes/fullscreen.vert.spv");
+    gpu::ShaderModule frag(*pc->gpu, "probes/probes.frag.spv");
+    gpu::GraphicsPipelineDesc pd;
+    pd.vertex = &vert;
+    pd.fragment = &frag;
+    pd.colorFormats = {VK_FORMAT_R16G16B16A16_SFLOAT};
+    pd.blend = gpu::Blend::Additive;
+    if (splitDraw) {
+      pd.depthFormat = kDepthFormat;
+      pd.depthTest = true;
+      pd.depthCompare = compare;
+    }
+    pd.specialization = specialization_;
+    pd.specialization.push_back(dnrt);  // kDnrt
+    pd.specialization.push_back(step);  // kDnrtStep
+    pd.name = std::move(name);
+    return gpu::createGraphicsPipeline(*pc->gpu, layout_, pd);
+  };
+  const std::string stepName = fused && fused->step > 1u ? ".step" + std::to_string(fused->step) : "";
+  gpu::Pipeline& fusedPipeline =
+      split ? splitFusedPipelines_[stepIndex] : fusedPipelines_[several ? 3u : stepIndex];
+  if (fused && fusedPipeline.handle() == VK_NULL_HANDLE)
+    fusedPipeline = several ? make(2u, 1u, false, VK_COMPARE_OP_ALWAYS, "probes.fused-dnrt.cluster")
+                    : split ? make(1u, fused->step, true, VK_COMPARE_OP_GREATER_OR_EQUAL,
+                                   "probes.fused-dnrt.inside" + stepName)
+                            : make(1u, fused->step, false, VK_COMPARE_OP_ALWAYS, "probes.fused-dnrt" + stepName);
+  if (split && splitPlainPipeline_.handle() == VK_NULL_HANDLE)
+    splitPlainPipeline_ = make(0u, 1u, true, VK_COMPARE_OP_LESS, "probes.outside");
+  struct {
+    ProbePush probes;
+    FusedDnrtPush dnrt;
+  } push{probePush(volume_, withAo ? 1.0f : 0.0f), fused ? fused->push : FusedDnrtPush{}};
+  const auto draw = [&](const gpu::Pipeline& p, std::uint32_t vertices) {
+    p.bind(cmd);
+    p.bindSet(cmd, 0, pc->frameSet);
+    p.bindSet(cmd, 1, set);
+    p.push(cmd, push);
+    vkCmdDraw(cmd, vertices, 1, 0, 0);
+  };
+  if (split) {
+    // The cube's 36 vertices (outer_cube.vert) twice: the term where the surface is not behind the face the
+    // pixel's ray leaves the cube through, then the probes alone where it is. Every pixel once.
+    draw(fusedPipeline, 36);
+    draw(splitPlainPipeline_, 36);
+  } else {
+    draw(fused ? fusedPipeline : pipeline_, 3);
+  }
+  if (!baseline) lastPassSplit_ = split;
+  pc->gpu->cmdEndRendering(cmd);
+}
+
 void ProbeNode::addPasses(rg::RenderGraph& graph, const render::PassContext* pc) {
   std::optional<rg::Handle<rg::Buffer>> block;  // probes.relight's output, read below: culled with them
   if (relight_) block = addRelightPass(graph, pc);
-  struct Data {
-    render::DeferredInputs g;
-    rg::Handle<rg::Texture> hdr, ao, tiles, dnrt, dnrtReduced;
-  };
   auto& bb = graph.blackboard();
   // This frame's irradiance tiles (tiles.comp), after probes.relight rewrote the block (its final
   // barrier makes the block visible to compute reads). A graph texture read only by the probes
@@ -452,9 +547,30 @@ void ProbeNode::addPasses(rg::RenderGraph& graph, const render::PassContext* pc)
   // DNRT's fused mode: its combine pass first, then this pass adds the object's term (probes.frag kDnrt).
   std::optional<FusedDnrt> fused;
   if (fusedDnrt_) fused = fusedDnrt_(graph, *pc);
-  const auto& data = graph.addPass<Data>(
+  // setTermBaseline: the same pass without the term into a scratch target, before the probes pass on even
+  // frames and after it on odd ones, so that which of the two finds the G-buffer in the caches evens out.
+  const bool withBaseline = termBaseline_ && fused;
+  const bool baselineFirst = withBaseline && baselineFrames_++ % 2 == 0;
+  const auto addBaseline = [&] {
+    graph.addPass<PassData>(
+        "probes.baseline",
+        [&](rg::Builder& b, PassData& d) {
+          d.g = render::readDeferredInputs(b, bb);
+          const rg::TextureDesc hdr = b.desc(bb.get<rg::Texture>("lighting.hdr"));
+          d.hdr = b.write(b.create<rg::Texture>("probes.baseline", hdr), rg::Usage::ColorAttachment);
+          if (withAo) d.ao = b.read(bb.get<rg::Texture>("ao.term"), rg::Usage::SampledFragment);
+          if (tiles) d.tiles = b.read(*tiles, rg::Usage::SampledFragment);
+          if (block) b.read(*block, rg::Usage::UniformBuffer);
+          b.sideEffect();  // nothing reads its target: it exists to be timed
+        },
+        [this, pc, withAo](const PassData& d, const rg::PassResources& res, rg::CommandContext& c) {
+          recordPass(d, res, c, *pc, withAo, std::nullopt, true);
+        });
+  };
+  if (baselineFirst) addBaseline();
+  const auto& data = graph.addPass<PassData>(
       "probes",
-      [&](rg::Builder& b, Data& d) {
+      [&](rg::Builder& b, PassData& d) {
         d.g = render::readDeferredInputs(b, bb);
         d.hdr = b.write(bb.get<rg::Texture>("lighting.hdr"), rg::Usage::ColorAttachment);
         if (withAo) d.ao = b.read(bb.get<rg::Texture>("ao.term"), rg::Usage::SampledFragment);
@@ -465,99 +581,11 @@ void ProbeNode::addPasses(rg::RenderGraph& graph, const render::PassContext* pc)
         // FusedDnrt::split: the cube's faces are depth-tested against it (read-only, also sampled)
         if (fused && fused->split) b.read(d.g.depth, rg::Usage::DepthRead);
       },
-      [this, pc, withAo, fused](const Data& d, const rg::PassResources& res, rg::CommandContext& c) {
-        VkCommandBuffer cmd = pc->cmd(c);
-        VkSampler point = pc->samplers->get({VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST});
-        auto view = [&](rg::Handle<rg::Texture> h) { return pc->backend->image(res.texture(h)).view(); };
-        VkDescriptorSet set = pc->frame().descriptors->allocate(setLayout_);
-        const bool split = fused && fused->split;
-        gpu::DescriptorWriter writer;
-        render::writeDeferredInputs(writer, d.g, *pc, res, point,
-                                    split ? kDepthReadOnly : VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
-            .sampledImage(3, sh_->view(), point)
-            .sampledImage(4, moments_->view(), point)
-            .buffer(5, shUbo_, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 0, kShUboBytes)
-            .buffer(7, momentsUbo_, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 0, kMomentsUboBytes)
-            .sampledImage(6, view(withAo ? d.ao : d.g.albedo), point)
-            // bilinear: one tap a probe (probe_tiles.glsl); without tiles the shader ignores it
-            .sampledImage(8, tiles_ ? view(d.tiles) : sh_->view(),
-                          tiles_ ? pc->samplers->get({VK_FILTER_LINEAR, VK_SAMPLER_MIPMAP_MODE_NEAREST}) : point)
-            // trilinear, as the "dnrt" pass's box draw reads the same volume
-            .sampledImage(9, fused ? view(d.dnrt) : noDnrt_->view(),
-                          pc->samplers->get({VK_FILTER_LINEAR, VK_SAMPLER_MIPMAP_MODE_NEAREST}))
-            // the fused term's reduced factor below full resolution, read by texelFetch (probes.frag
-            // dnrtReducedQuadTap); the albedo when unread (kDnrtStep 1)
-            .sampledImage(12, view(fused && fused->reduced ? d.dnrtReduced : d.g.albedo), point);
-        const bool several = fused && fused->bindCluster;
-        if (several)
-          fused->bindCluster(writer, *pc);
-        else
-          writer.buffer(10, noDnrtTiles_).buffer(11, noDnrtObjects_, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER);
-        writer.update(*pc->gpu, set);
-        gpu::Image& target = pc->backend->image(res.texture(d.hdr));
-        render::Attachment color{target.view(), true};  // additive: keep the direct light
-        const VkExtent2D extent{target.desc().width, target.desc().height};
-        render::Attachment depth{view(d.g.depth)};
-        depth.readOnly = true;
-        render::beginRendering(*pc->gpu, cmd, extent, {&color, 1}, split ? &depth : nullptr);
-        const std::size_t stepIndex = !fused || fused->step == 1u ? 0u : fused->step == 2u ? 1u : 2u;
-        if (fused && fused->step != 1u && fused->step != 2u && fused->step != 4u)
-          throw InternalError("probes: fused DNRT step " + std::to_string(fused->step) + " (expected 1, 2 or 4)");
-        // probes.frag with kDnrt `dnrt` at kDnrtStep `step`; split: drawn as the outer cube (outer_cube.vert)
-        // against the depth, `compare` deciding which pixels it shades (FusedDnrt::split).
-        const auto make = [&](std::uint32_t dnrt, std::uint32_t step, bool splitDraw, VkCompareOp compare,
-                              std::string name) {
-          gpu::ShaderModule vert(*pc->gpu, splitDraw ? "probes/outer_cube.vert.spv" : "passes/fullscreen.vert.spv");
-          gpu::ShaderModule frag(*pc->gpu, "probes/probes.frag.spv");
-          gpu::GraphicsPipelineDesc pd;
-          pd.vertex = &vert;
-          pd.fragment = &frag;
-          pd.colorFormats = {VK_FORMAT_R16G16B16A16_SFLOAT};
-          pd.blend = gpu::Blend::Additive;
-          if (splitDraw) {
-            pd.depthFormat = kDepthFormat;
-            pd.depthTest = true;
-            pd.depthCompare = compare;
-          }
-          pd.specialization = specialization_;
-          pd.specialization.push_back(dnrt);  // kDnrt
-          pd.specialization.push_back(step);  // kDnrtStep
-          pd.name = std::move(name);
-          return gpu::createGraphicsPipeline(*pc->gpu, layout_, pd);
-        };
-        const std::string stepName = fused && fused->step > 1u ? ".step" + std::to_string(fused->step) : "";
-        gpu::Pipeline& fusedPipeline =
-            split ? splitFusedPipelines_[stepIndex] : fusedPipelines_[several ? 3u : stepIndex];
-        if (fused && fusedPipeline.handle() == VK_NULL_HANDLE)
-          fusedPipeline = several ? make(2u, 1u, false, VK_COMPARE_OP_ALWAYS, "probes.fused-dnrt.cluster")
-                          : split ? make(1u, fused->step, true, VK_COMPARE_OP_GREATER_OR_EQUAL,
-                                         "probes.fused-dnrt.inside" + stepName)
-                                  : make(1u, fused->step, false, VK_COMPARE_OP_ALWAYS, "probes.fused-dnrt" + stepName);
-        if (split && splitPlainPipeline_.handle() == VK_NULL_HANDLE)
-          splitPlainPipeline_ = make(0u, 1u, true, VK_COMPARE_OP_LESS, "probes.outside");
-        struct {
-          ProbePush probes;
-          FusedDnrtPush dnrt;
-        } push{probePush(volume_, withAo ? 1.0f : 0.0f), fused ? fused->push : FusedDnrtPush{}};
-        const auto draw = [&](const gpu::Pipeline& p, std::uint32_t vertices) {
-          p.bind(cmd);
-          p.bindSet(cmd, 0, pc->frameSet);
-          p.bindSet(cmd, 1, set);
-          p.push(cmd, push);
-          vkCmdDraw(cmd, vertices, 1, 0, 0);
-        };
-        if (split) {
-          // The cube's 36 vertices (outer_cube.vert) twice: the term where the surface is not behind the face the
-          // pixel's ray leaves the cube through, then the probes alone where it is. Every pixel once.
-          draw(fusedPipeline, 36);
-          draw(splitPlainPipeline_, 36);
-        } else {
-          draw(fused ? fusedPipeline : pipeline_, 3);
-        }
-        lastPassSplit_ = split;
-        pc->gpu->cmdEndRendering(cmd);
+      [this, pc, withAo, fused](const PassData& d, const rg::PassResources& res, rg::CommandContext& c) {
+        recordPass(d, res, c, *pc, withAo, fused, false);
       });
   bb.put("lighting.hdr", data.hdr);
+  if (withBaseline && !baselineFirst) addBaseline();
 }
 
 }  // namespace bounce::gi::probes

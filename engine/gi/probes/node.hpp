@@ -15,6 +15,7 @@
 #include "engine/gpu/descriptors.hpp"
 #include "engine/gpu/image.hpp"
 #include "engine/gpu/pipeline.hpp"
+#include "engine/render/passes/gbuffer_pass.hpp"
 #include "engine/render/renderer.hpp"
 
 namespace bounce::gi::probes {
@@ -120,6 +121,13 @@ class ProbeNode final : public TechniqueRuntime {
   void setFusedDnrt(FusedDnrtHook hook) { fusedDnrt_ = std::move(hook); }
   // Whether the last recorded probes pass was split at a fused object's outer cube (FusedDnrt::split). For tests.
   bool lastPassSplit() const { return lastPassSplit_; }
+  // `bounce bench dnrt` only: on frames with a fused DNRT term, also draw pass "probes.baseline" — the same
+  // pass without the term (probes.frag kDnrt 0, the full-screen triangle) into a scratch target of the same
+  // format and blend, which nothing reads — alternately right before and right after "probes". The term's
+  // marginal cost is then the two passes' difference within each frame (TimingCollector::pairedPercentileMs), not
+  // across sessions a host's load drifts between (README "DNRT's fused quarter term timed within its frames,
+  // session 23"). Off otherwise: it doubles the pass's cost.
+  void setTermBaseline(bool on) { termBaseline_ = on; }
 
  private:
   ProbeVolume volume_;
@@ -145,6 +153,15 @@ class ProbeNode final : public TechniqueRuntime {
   std::array<gpu::Pipeline, 3> splitFusedPipelines_;
   gpu::Pipeline splitPlainPipeline_;
   bool lastPassSplit_ = false;
+  bool termBaseline_ = false;
+  std::uint64_t baselineFrames_ = 0;  // frames with probes.baseline so far: even ones draw it first
+  // What the probes pass (and probes.baseline) read and write.
+  struct PassData {
+    render::DeferredInputs g;
+    rg::Handle<rg::Texture> hdr, ao, tiles, dnrt, dnrtReduced;
+  };
+  void recordPass(const PassData& d, const rg::PassResources& res, rg::CommandContext& c,
+                  const render::PassContext& pc, bool withAo, const std::optional<FusedDnrt>& fused, bool baseline);
   std::vector<std::uint32_t> specialization_;  // kCoeffs, kShInUbo, kMomentsInUbo, kTiles
   std::unique_ptr<gpu::Image> noDnrt_;  // 1³ RGBA16F zero
   gpu::Buffer noDnrtTiles_, noDnrtObjects_;  // one zero mask; kDnrtObjectsBytes of zeros

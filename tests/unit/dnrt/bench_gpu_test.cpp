@@ -8,6 +8,7 @@
 
 #include "engine/gpu/testing.hpp"
 #include "game/bench_dnrt.hpp"
+#include "game/timing_stats.hpp"
 
 namespace bounce::game {
 namespace {
@@ -21,9 +22,9 @@ TEST(DnrtBench, ReportHasEveryRowTimedAndFiniteRatios) {
   o.raysPerVertex = 2;  // 4 rays per vertex: the 64³ field bakes in about a second
   // One reduced-resolution session only (CI time): "clustered half" and the variant "resolution=half"
   // run the same half-resolution path as Table 8's "half"; their ratios go with them.
-  // Of the fused rows (the probes pass with DNRT's term) only "fused quarter", with the two sessions
-  // without DNRT around it that its marginal is measured against; "fused" and "fused half" are left out
-  // (CI time): DnrtGpu.FusedModeIsTheBoxImageInsideTheProbesPass covers the mode.
+  // Of the fused rows (the probes pass with DNRT's term) only "fused quarter", whose marginal is measured
+  // against "probes.baseline" in the same frames; "fused" and "fused half" are left out (CI time):
+  // DnrtGpu.FusedModeIsTheBoxImageInsideTheProbesPass covers the mode.
   o.skipSettings = {"clustered half", "resolution=half", "fused", "fused half"};
   const DnrtBenchReport r = runDnrtBench(o);
 
@@ -41,9 +42,11 @@ TEST(DnrtBench, ReportHasEveryRowTimedAndFiniteRatios) {
     EXPECT_EQ(row.objects, 1) << row.setting << ": the prop is drawn in every frame";
     EXPECT_GT(row.frameMs, 0.0) << row.setting;
     if (fused) {
-      // A marginal (its passes + probes − the baseline's probes): finite, but at 64×36 its sign is noise.
+      // A marginal (its passes + probes − probes.baseline, frame by frame): finite, but at 64×36 its sign is noise.
       EXPECT_TRUE(std::isfinite(row.dnrtMs)) << row.setting;
-      EXPECT_GT(row.baseProbesMs, 0.0) << row.setting << ": the probes pass without the term, timed around it";
+      EXPECT_GT(row.baseProbesMs, 0.0) << row.setting << ": the probes pass without the term, in the same frames";
+      EXPECT_LE(row.termQ1Ms, row.termMs) << row.setting << ": the term's quartiles over frames";
+      EXPECT_LE(row.termMs, row.termQ3Ms) << row.setting;
       EXPECT_TRUE(std::isnan(row.perObjectMs)) << row.setting << ": the term has no scope of its own";
       EXPECT_EQ(row.objects, 1);
       EXPECT_GT(row.ssaoMs, 0.0);
@@ -51,6 +54,7 @@ TEST(DnrtBench, ReportHasEveryRowTimedAndFiniteRatios) {
       continue;
     }
     EXPECT_TRUE(std::isnan(row.baseProbesMs)) << row.setting << ": only fused rows have a baseline";
+    EXPECT_TRUE(std::isnan(row.termMs) && std::isnan(row.termQ1Ms) && std::isnan(row.termQ3Ms)) << row.setting;
     EXPECT_GT(row.dnrtMs, 0.0) << row.setting;
     if (clustered) {
       EXPECT_TRUE(std::isnan(row.perObjectMs)) << row.setting << ": one draw for all objects, no scope per object";
@@ -96,28 +100,41 @@ TEST(DnrtBench, ReportHasEveryRowTimedAndFiniteRatios) {
   std::string line;
   std::getline(csv, line);
   EXPECT_EQ(line,
-            "table,level,setting,objects,frame_ms,dnrt_ms,per_object_ms,cube_ms,ssao_ms,hbao_ms,fields_baked,bake_s,probes_ms,base_probes_ms");
+            "table,level,setting,objects,frame_ms,dnrt_ms,per_object_ms,cube_ms,ssao_ms,hbao_ms,fields_baked,bake_s,probes_ms,base_probes_ms,"
+            "term_ms,term_q1_ms,term_q3_ms");
   int lines = 0;
   while (std::getline(csv, line)) ++lines;
   EXPECT_EQ(lines, int(settings.size()));
   EXPECT_NE(formatDnrtBench(r, o).find("goal <= 0.1"), std::string::npos);
 }
 
-// A fused row's baseline (the probes pass without the term, from the sessions right before and after):
-// each neighbour's probes time rescaled by the SSAO ratio, then averaged, so a load step between the
-// sessions cancels (SSAO and probes slowed alike) and so does a linear drift across the three.
-TEST(DnrtBench, FusedBaselineIsItsNeighboursProbesInTheRowsSsaoUnits) {
-  // Unchanged host: the plain mean.
-  EXPECT_DOUBLE_EQ(fusedBaselineMs(100.0, {{30.0, 100.0}, {34.0, 100.0}}), 32.0);
-  // The session after ran on a host 1.5x slower in both passes: it reads as the same 30 ms.
-  EXPECT_DOUBLE_EQ(fusedBaselineMs(100.0, {{30.0, 100.0}, {45.0, 150.0}}), 30.0);
-  // A linear drift 100 -> 110 -> 120 in SSAO with probes following it: the fused session's own 33 ms.
-  EXPECT_DOUBLE_EQ(fusedBaselineMs(110.0, {{30.0, 100.0}, {36.0, 120.0}}), 33.0);
-  // One neighbour only (the bench's last fused row before a fresh baseline is never that; a caller may).
-  EXPECT_DOUBLE_EQ(fusedBaselineMs(50.0, {{30.0, 100.0}}), 15.0);
-  // Nothing to compare with, or a pass that did not run: NaN, never a number that looks measured.
-  EXPECT_TRUE(std::isnan(fusedBaselineMs(100.0, {})));
-  EXPECT_TRUE(std::isnan(fusedBaselineMs(100.0, {{std::nan(""), 100.0}, {30.0, 100.0}})));
+// A fused row's marginal is the median of the per-frame differences "probes" − "probes.baseline", not the
+// difference of the two medians. Here the term costs exactly 4 ms in every frame; the host slows 1.5× in
+// frames 1 and 2, and in frame 3 a burst of load catches the probes pass but not the baseline drawn
+// beside it. The medians' difference reads 19 ms (49 − 30: the two medians come from different frames),
+// the paired median 4.
+TEST(DnrtBench, FusedMarginalIsThePairedMedianOverFrames) {
+  TimingCollector t;
+  const double baseline[] = {30.0, 45.0, 45.0, 30.0, 30.0};
+  const double probes[] = {34.0, 49.0, 49.0, 49.0, 34.0};
+  for (int i = 0; i < 5; ++i) t.addFrame({{"probes.baseline", 0, baseline[i]}, {"probes", 0, probes[i]}});
+  double probesMedian = 0.0, baselineMedian = 0.0;
+  for (const PassStats& s : t.stats()) {
+    if (s.pass == "probes") probesMedian = s.medianMs;
+    if (s.pass == "probes.baseline") baselineMedian = s.medianMs;
+  }
+  EXPECT_DOUBLE_EQ(probesMedian - baselineMedian, 19.0);
+  EXPECT_DOUBLE_EQ(t.pairedPercentileMs("probes", "probes.baseline", 0.5), 4.0);
+  // "frame" (the outermost scopes' sum) less the baseline, frame by frame: the frame as the level draws it.
+  EXPECT_DOUBLE_EQ(t.pairedPercentileMs("frame", "probes.baseline", 0.5), probesMedian);
+  // Frames without one of the two scopes are left out; none with both: NaN, never a number that looks measured.
+  t.addFrame({{"probes", 0, 1000.0}});
+  EXPECT_DOUBLE_EQ(t.pairedPercentileMs("probes", "probes.baseline", 0.5), 4.0);
+  EXPECT_TRUE(std::isnan(t.pairedPercentileMs("probes", "ssao", 0.5)));
+  // Quartiles (nearest rank) of the differences 4, 4, 4, 19, 4: the burst lies past the upper one.
+  EXPECT_DOUBLE_EQ(t.pairedPercentileMs("probes", "probes.baseline", 0.25), 4.0);
+  EXPECT_DOUBLE_EQ(t.pairedPercentileMs("probes", "probes.baseline", 0.75), 4.0);
+  EXPECT_DOUBLE_EQ(t.pairedPercentileMs("probes", "probes.baseline", 1.0), 19.0);
 }
 
 // The reduced fused rows only where they measure what they say: the reduced term serves one fused

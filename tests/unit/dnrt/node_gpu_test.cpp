@@ -918,6 +918,45 @@ TEST(DnrtGpu, FusedModeAtReducedResolutionIsTheFullTermWithinABoundOnASmoothScen
   }
 }
 
+// `bounce bench dnrt`'s pass without the term (ProbeNode::setTermBaseline): on a frame with a fused object it
+// adds exactly one "probes.baseline" pass, right before "probes" on the first frame and right after it on the
+// next (which of the two finds the G-buffer in the caches evens out), and the image is the one without it bit
+// for bit (it writes a scratch target nothing reads). Without a fused object (box mode) there is no term to
+// time and no extra pass.
+TEST(DnrtGpu, TermBaselineIsOnePassBesideTheFusedProbesPassAndLeavesTheImage) {
+  gpu::Context& ctx = gpu::testkit::sharedContext();
+  const auto render = [&](Mode mode, bool baseline, int frames) {
+    scene::Level level = game::loadLevelWithEffects(fs::path(BOUNCE_SOURCE_DIR) / "tests/data/dnrt/floor-box.json",
+                                                    std::vector<std::string>{"direct", "probes", "dnrt"});
+    for (auto& e : level.entities)
+      if (e.dnrt) e.dnrt->mode = mode;
+    if (mode == Mode::Fused) level.dnrt.step = 4;  // the bench's "fused quarter"
+    game::Session session(ctx, std::move(level));
+    if (baseline) session.probes()->setTermBaseline(true);
+    std::vector<Frame> out;
+    for (int f = 0; f < frames; ++f) {
+      session.update(f / 60.0);
+      out.push_back(renderOnce(session, ctx));
+    }
+    return out;
+  };
+  const std::vector<Frame> plain = render(Mode::Fused, false, 2), timed = render(Mode::Fused, true, 2);
+  for (int f = 0; f < 2; ++f) {
+    std::vector<std::string> expected = plain[f].passes;
+    const auto probes = std::find(expected.begin(), expected.end(), "probes");
+    ASSERT_NE(probes, expected.end());
+    expected.insert(f == 0 ? probes : probes + 1, "probes.baseline");
+    EXPECT_EQ(timed[f].passes, expected) << "frame " << f;
+    ASSERT_EQ(timed[f].rgb.size(), plain[f].rgb.size());
+    int differ = 0;
+    for (std::size_t i = 0; i < plain[f].rgb.size(); ++i) differ += timed[f].rgb[i] != plain[f].rgb[i] ? 1 : 0;
+    EXPECT_EQ(differ, 0) << "frame " << f << ": the image moved";
+  }
+  const std::vector<Frame> box = render(Mode::Box, true, 1);
+  EXPECT_EQ(std::count(box[0].passes.begin(), box[0].passes.end(), "probes.baseline"), 0) << "no fused term, no baseline";
+  EXPECT_EQ(box[0].passes, render(Mode::Box, false, 1)[0].passes);
+}
+
 // The probes pass split at the fused object's outer cube (probes::FusedDnrt::split, NodeSettings::splitProbes;
 // README "DNRT's fused term only inside its outer cube, session 19"): floor-box.json's camera moved next to
 // the box, inside its outer cube, looking down the floor past the cube's far faces, so the pass draws the
