@@ -43,11 +43,15 @@ void TimingCollector::addFrame(const std::vector<gpu::TimingResult>& timings) {
   ++frames_;
 }
 
-double TimingCollector::pairedPercentileMs(const std::string& a, const std::string& b, double q) const {
+double TimingCollector::pairedPercentileMs(const std::string& a, const std::string& b, double q,
+                                           bool bMayBeMissing) const {
   std::vector<double> differences;
   for (const auto& frame : frameMs_) {
     const auto ia = frame.find(a), ib = frame.find(b);
-    if (ia != frame.end() && ib != frame.end()) differences.push_back(ia->second - ib->second);
+    if (ia != frame.end() && ib != frame.end())
+      differences.push_back(ia->second - ib->second);
+    else if (ia != frame.end() && bMayBeMissing)
+      differences.push_back(ia->second);
   }
   if (differences.empty()) return std::numeric_limits<double>::quiet_NaN();
   return percentile(std::move(differences), q);  // nearest rank, as stats()'s medians

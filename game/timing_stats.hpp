@@ -48,7 +48,9 @@ class TimingCollector {
   // of `a` − `b` (ms; NaN when no frame did): a paired difference, so the host's speed drifting between
   // frames cancels, where the difference of the two medians keeps it (`bounce bench dnrt`'s fused rows:
   // "probes" − "probes.baseline").
-  double pairedPercentileMs(const std::string& a, const std::string& b, double q) const;
+  // `bMayBeMissing`: a frame without `b` counts with b = 0 instead of being left out. A scope timed twice in
+  // one frame counts with its last time here (stats() keeps both).
+  double pairedPercentileMs(const std::string& a, const std::string& b, double q, bool bMayBeMissing = false) const;
 
  private:
   std::vector<std::string> order_;

@@ -423,7 +423,17 @@ void ProbeNode::recordPass(const PassData& d, const rg::PassResources& res, rg::
     writer.buffer(10, noDnrtTiles_).buffer(11, noDnrtObjects_, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER);
   writer.update(*pc->gpu, set);
   gpu::Image& target = pc->backend->image(res.texture(d.hdr));
-  render::Attachment color{target.view(), true};  // additive: keep the direct light
+  // Additive: keep the direct light. probes.baseline's fresh scratch target has nothing to keep (the graph
+  // grants it no read), so it clears: its time leaves out the load of the target, which puts that load on
+  // the term's marginal — the bench's figure errs high, never low.
+  render::Attachment color{target.view(), res.keepsContents(d.hdr)};
+  if (termBaseline_) {
+    // Timed against each other (setTermBaseline): neither pass may start before the work ahead of it ends,
+    // or on a GPU that overlaps passes its scope would hold only its tail. lavapipe runs them in order anyway.
+    const VkMemoryBarrier none{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, 0, 0};
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 1, &none, 0,
+                         nullptr, 0, nullptr);
+  }
   const VkExtent2D extent{target.desc().width, target.desc().height};
   render::Attachment depth{view(d.g.depth)};
   depth.readOnly = true;

@@ -45,6 +45,7 @@ TEST(DnrtBench, ReportHasEveryRowTimedAndFiniteRatios) {
       // A marginal (its passes + probes − probes.baseline, frame by frame): finite, but at 64×36 its sign is noise.
       EXPECT_TRUE(std::isfinite(row.dnrtMs)) << row.setting;
       EXPECT_GT(row.baseProbesMs, 0.0) << row.setting << ": the probes pass without the term, in the same frames";
+      EXPECT_TRUE(std::isfinite(row.termQ1Ms) && std::isfinite(row.termQ3Ms)) << row.setting << ": measured";
       EXPECT_LE(row.termQ1Ms, row.termMs) << row.setting << ": the term's quartiles over frames";
       EXPECT_LE(row.termMs, row.termQ3Ms) << row.setting;
       EXPECT_TRUE(std::isnan(row.perObjectMs)) << row.setting << ": the term has no scope of its own";
@@ -109,9 +110,9 @@ TEST(DnrtBench, ReportHasEveryRowTimedAndFiniteRatios) {
 }
 
 // A fused row's marginal is the median of the per-frame differences "probes" − "probes.baseline", not the
-// difference of the two medians. Here the term costs exactly 4 ms in every frame; the host slows 1.5× in
-// frames 1 and 2, and in frame 3 a burst of load catches the probes pass but not the baseline drawn
-// beside it. The medians' difference reads 19 ms (49 − 30: the two medians come from different frames),
+// difference of the two medians. Here the term costs exactly 4 ms in every frame; a slower host adds 15 ms
+// to both passes in frames 1 and 2, and in frame 3 a burst of load catches the probes pass but not the
+// baseline drawn beside it. The medians' difference reads 19 ms (49 − 30: the two medians come from different frames),
 // the paired median 4.
 TEST(DnrtBench, FusedMarginalIsThePairedMedianOverFrames) {
   TimingCollector t;
@@ -131,6 +132,10 @@ TEST(DnrtBench, FusedMarginalIsThePairedMedianOverFrames) {
   t.addFrame({{"probes", 0, 1000.0}});
   EXPECT_DOUBLE_EQ(t.pairedPercentileMs("probes", "probes.baseline", 0.5), 4.0);
   EXPECT_TRUE(std::isnan(t.pairedPercentileMs("probes", "ssao", 0.5)));
+  // The frame less the baseline where it ran: the sixth frame (no baseline) counts whole. Frames 34, 49, 49,
+  // 49, 34 and 1000: the nearest-rank median is the third of six, 49.
+  EXPECT_DOUBLE_EQ(t.pairedPercentileMs("frame", "probes.baseline", 0.5, true), 49.0);
+  EXPECT_DOUBLE_EQ(t.pairedPercentileMs("frame", "probes.baseline", 1.0, true), 1000.0);
   // Quartiles (nearest rank) of the differences 4, 4, 4, 19, 4: the burst lies past the upper one.
   EXPECT_DOUBLE_EQ(t.pairedPercentileMs("probes", "probes.baseline", 0.25), 4.0);
   EXPECT_DOUBLE_EQ(t.pairedPercentileMs("probes", "probes.baseline", 0.75), 4.0);
