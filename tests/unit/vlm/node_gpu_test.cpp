@@ -54,7 +54,12 @@ struct Scene {
 fs::path writeLevel(const std::string& name, const Scene& s) {
   const fs::path path = outDir() / (name + ".json");
   std::ofstream f(path);
-  auto v3 = [](glm::vec3 v) { return "[" + std::to_string(v.x) + ", " + std::to_string(v.y) + ", " + std::to_string(v.z) + "]"; };
+  // Appended piece by piece: GCC 12 at -O3 warns (-Wstringop-overflow, a false positive) on the "[" + … chain.
+  auto v3 = [](glm::vec3 v) {
+    std::string out = "[";
+    for (int i = 0; i < 3; ++i) (out += std::to_string(v[i])) += i < 2 ? ", " : "]";
+    return out;
+  };
   f << R"({"bounce_level": 1, "effects": ["direct", "vlm"], "vlm": {"grid": 8, "k": 16, "range": )" << s.range
     << R"(}, "entities": [
     {"id": "floor", "transform": {"translation": [0, -0.01, 0], "scale": [4, 0.02, 4]},
