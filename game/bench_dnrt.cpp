@@ -337,8 +337,7 @@ DnrtBenchReport runDnrtBench(const DnrtBenchOptions& options) {
         // The frame as the level draws it: less probes.baseline where it ran (every frame with a fused object).
         row.frameMs = timings.pairedPercentileMs("frame", "probes.baseline", 0.5, true);
       }
-      if (s.depth == 0 && s.object.empty() && s.pass == "dnrt.combine.fused" && job.termBaseline)
-      {
+      if (s.depth == 0 && s.object.empty() && s.pass == "dnrt.combine.fused" && job.termBaseline) {
         row.termMs = timings.pairedPercentileMs("probes", "probes.baseline", 0.5);
         row.dnrtMs += row.termMs;
         row.termQ1Ms = timings.pairedPercentileMs("probes", "probes.baseline", 0.25);

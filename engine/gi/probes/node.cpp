@@ -391,9 +391,8 @@ void ProbeNode::enableRelight(gpu::Context& ctx, RelightData data, const ref::Sc
 // DNRT term when `fused` is set; `baseline`: pass probes.baseline (setTermBaseline), which leaves
 // lastPassSplit_ alone.
 void ProbeNode::recordPass(const PassData& d, const rg::PassResources& res, rg::CommandContext& c,
-                           const render::PassContext& ctx, bool withAo, const std::optional<FusedDnrt>& fused,
+                           const render::PassContext* pc, bool withAo, const std::optional<FusedDnrt>& fused,
                            bool baseline) {
-  const render::PassContext* pc = &ctx;
   VkCommandBuffer cmd = pc->cmd(c);
   VkSampler point = pc->samplers->get({VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST});
   auto view = [&](rg::Handle<rg::Texture> h) { return pc->backend->image(res.texture(h)).view(); };
@@ -574,7 +573,7 @@ void ProbeNode::addPasses(rg::RenderGraph& graph, const render::PassContext* pc)
           b.sideEffect();  // nothing reads its target: it exists to be timed
         },
         [this, pc, withAo](const PassData& d, const rg::PassResources& res, rg::CommandContext& c) {
-          recordPass(d, res, c, *pc, withAo, std::nullopt, true);
+          recordPass(d, res, c, pc, withAo, std::nullopt, true);
         });
   };
   if (baselineFirst) addBaseline();
@@ -592,7 +591,7 @@ void ProbeNode::addPasses(rg::RenderGraph& graph, const render::PassContext* pc)
         if (fused && fused->split) b.read(d.g.depth, rg::Usage::DepthRead);
       },
       [this, pc, withAo, fused](const PassData& d, const rg::PassResources& res, rg::CommandContext& c) {
-        recordPass(d, res, c, *pc, withAo, fused, false);
+        recordPass(d, res, c, pc, withAo, fused, false);
       });
   bb.put("lighting.hdr", data.hdr);
   if (withBaseline && !baselineFirst) addBaseline();

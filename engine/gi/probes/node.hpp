@@ -161,7 +161,7 @@ class ProbeNode final : public TechniqueRuntime {
     rg::Handle<rg::Texture> hdr, ao, tiles, dnrt, dnrtReduced;
   };
   void recordPass(const PassData& d, const rg::PassResources& res, rg::CommandContext& c,
-                  const render::PassContext& pc, bool withAo, const std::optional<FusedDnrt>& fused, bool baseline);
+                  const render::PassContext* pc, bool withAo, const std::optional<FusedDnrt>& fused, bool baseline);
   std::vector<std::uint32_t> specialization_;  // kCoeffs, kShInUbo, kMomentsInUbo, kTiles
   std::unique_ptr<gpu::Image> noDnrt_;  // 1³ RGBA16F zero
   gpu::Buffer noDnrtTiles_, noDnrtObjects_;  // one zero mask; kDnrtObjectsBytes of zeros
