@@ -7,7 +7,6 @@
 #include <functional>
 #include <limits>
 #include <map>
-#include <optional>
 #include <string_view>
 
 #include "engine/core/error.hpp"
@@ -281,10 +280,9 @@ DnrtBenchReport runDnrtBench(const DnrtBenchOptions& options) {
     levels.emplace("clustered", std::move(clustered));
     levels.emplace("half", std::move(half));
     levels.emplace("clustered half", std::move(clusteredHalf));
-    for (const std::string& setting : table8Settings(entities)) {
+    for (const std::string& setting : table8Settings(entities))
       jobs.push_back({"8", path.stem().string(), setting, std::move(levels.at(setting)), entities,
                       setting.starts_with("fused")});
-    }
   }
   for (const auto& path : options.variantLevels) {
     const scene::Level level = scene::loadLevel(path);
