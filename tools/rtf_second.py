@@ -18,7 +18,13 @@ so the second bounce helps only where the first order is too dark (T1 < R). Prin
   3. the noise of the reference in the comparison: the standard deviation of 2 D·(R − R_true), from the
      half-sample references (R − R_half estimates R's per-pixel noise);
   4. the corrected effect error of both rows with the receivers' first-order terms swapped for the
-     reference's (blocked, single-bounce interreflected, the rest = direct change + room), with D and with C.
+     reference's (blocked, single-bounce interreflected, the rest = direct change + room), with D, with C
+     and with O (the reference's own second bounce, exact up to rtf_parts' noise);
+  5. the reference's own second bounce O added at a scale a to the 1-bounce row (and to the 1/|q|² tail's
+     1-bounce row when the run has it): |T1 + a O − R|² − |T1 − R|² = 2a O·(T1 − R) + a²|O|², so where the
+     cross term O·(T1 − R) is positive no second bounce of O's shape helps at any a > 0, however exact —
+     only a change to the first order can make 2 bounces better than 1 (README "RTF's second bounce
+     against an exact one, session 24").
 
 usage: tools/rtf_second.py ACC_DIR PARTS_DIR [Y0 X1]   (region: rows ≥ Y0·H, columns < X1·W; default 0.75 0.39)
 """
@@ -96,9 +102,21 @@ def main():
             t1 = T1.copy()
             for c in combo:
                 t1[recv] += swaps[c][recv]
-            a, b, c2 = score(t1), score(t1 + D), score(t1 + C * recv[..., None])
+            a, b, c2, o = score(t1), score(t1 + D), score(t1 + C * recv[..., None]), score(t1 + rO * recv[..., None])
             print(f"receivers' {'+'.join(combo) or 'nothing':24s} swapped for the reference's: 1 bounce {a:.5f}, "
-                  f"+ D {b:.5f} ({b - a:+.5f}), + C {c2:.5f} ({c2 - a:+.5f})")
+                  f"+ D {b:.5f} ({b - a:+.5f}), + C {c2:.5f} ({c2 - a:+.5f}), + O {o:.5f} ({o - a:+.5f})")
+    O = rO * recv[..., None]
+    rows = [("as rendered", T1)]
+    try:
+        rows.append(("tail 1 bounce", ref("image-rtf-tail-0.01-bounces-1-ref-all") - ref("without-rtf-tail-0.01-bounces-1-ref-all")))
+    except (OSError, BadInput):  # a run without the tail row (the shipped rows have none)
+        pass
+    for name, t1 in rows:
+        cross_o = 2.0 * (O * (t1 - R)).sum()
+        sd_o = 2.0 * np.sqrt((O ** 2 * (R - Rh) ** 2).sum())  # the reference's noise in that cross term
+        print(f"{name}: 2 O·(T1 − R) {cross_o:+.4f} (reference noise sd {sd_o:.4f}, {cross_o / max(sd_o, 1e-30):+.1f} sd), "
+              f"|O|² {(O ** 2).sum():.5f}; T1 {score(t1):.5f}, + a O at a = 0.25, 0.5, 1, 2: "
+              + ", ".join(f"{score(t1 + a * O):.5f}" for a in (0.25, 0.5, 1.0, 2.0)))
 
 
 if __name__ == "__main__":

@@ -34,6 +34,11 @@
 //                     bounces ≥ 2 between the objects; 4 cosine directions ω' at A per ω, unlimited bounces)
 //   ref-via-self      the same for ω' hitting A itself (self-interreflection, in RTF's transfer T)
 //   rtf-interreflected-b1/-b3/-b4   shade()'s interreflected light at 1, 3 and 4 bounces
+//   rtf-interreflected-engine-b1/-engine   shade()'s interreflected light at 1 and 2 bounces from the engine's own
+//                     bouncing step (gi::rtf::Update with the objects as the lamp's occluders and the room shadows,
+//                     as technique.cpp sets it up): what the GPU rows render (session 24)
+//   rtf-interreflected-engine-add-b1/-add   the same with each object's field shaded on its own and added, as
+//                     the GPU pass adds them (no nearer object's OOF over another's light; Algorithm 1 has it)
 //   rtf-interreflected-exact1/-exact2   a what-if: Algorithm 1 with each proxy's probe light scaled to the
 //                     room's traced l = 0 there (below), at 1 and 2 bounces
 // and per object on stderr: the reference's interreflected light via it and its part from the others, against
@@ -232,6 +237,45 @@ int main(int argc, char** argv) {
   const gi::rtf::BounceResult bounced = gi::rtf::bounce(objects, lit, 2);
   const gi::rtf::BounceResult bounced1 = gi::rtf::bounce(objects, lit, 1);
   const gi::rtf::BounceResult bounced3 = gi::rtf::bounce(objects, lit, 3), bounced4 = gi::rtf::bounce(objects, lit, 4);
+  // The engine's bouncing step as the session runs it (technique.cpp: gi::rtf::Update with the posed
+  // objects as the lamp's occluders and the room shadows on the proxies' probe light), 1 and 2 bounces:
+  // rtf-interreflected-engine-b1 / -engine (session 24: the GPU's second bounce against shade()'s on the
+  // same proxy light; `bounced` above is the shared source without them).
+  const auto engineBounce = [&](int bounces) {
+    std::vector<gi::rtf::Participant> participants;
+    std::vector<ref::SceneDesc> meshes;
+    for (std::size_t i = 0; i < rtfEntities.size(); ++i) {
+      gi::rtf::Participant p;
+      p.entity = rtfEntities[i], p.name = with.registry.get<scene::Name>(rtfEntities[i]).id;
+      p.field = fields[i], p.bounces = bounces, p.reach = objects[i].reach;
+      participants.push_back(std::move(p));
+      meshes.push_back(gi::dnrt::objectScene(with.registry, rtfEntities[i], with.assets));
+    }
+    gi::rtf::Update update(with.registry, std::move(participants));
+    update.setIndirect(&light.indirect());
+    update.setLightVisibility(&light.lightVisibility());
+    update.setOccluders(std::make_unique<gi::rtf::PosedOccluders>(std::move(meshes)), &light.lightVisibility().bvh());
+    update.setRoomShadows(&light.surfaces());
+    gi::rtf::FrameObjects f = update.frame(lights);
+    if (f.participant.size() != objects.size()) {
+      std::fprintf(stderr, "rtf_parts: the engine's bouncing step placed %zu of %zu objects\n", f.participant.size(), objects.size());
+      std::exit(1);
+    }
+    gi::rtf::BounceResult r;
+    for (std::size_t i = 0; i < objects.size(); ++i) r.xi.push_back(gi::rtf::xiCache(*objects[i].field, f.proxyLight[i]));
+    r.proxyLight = std::move(f.proxyLight);
+    r.bounceEnergy = std::move(f.bounceEnergy);
+    return r;
+  };
+  const gi::rtf::BounceResult engine1 = engineBounce(1), engine2 = engineBounce(2);
+  std::vector<gi::rtf::BounceResult> engineSingle1, engineSingle2;
+  for (std::size_t k = 0; k < objects.size(); ++k) {
+    engineSingle1.push_back({{engine1.proxyLight[k]}, {engine1.xi[k]}, {}});
+    engineSingle2.push_back({{engine2.proxyLight[k]}, {engine2.xi[k]}, {}});
+  }
+  for (std::size_t b = 0; b < engine2.bounceEnergy.size(); ++b)
+    std::fprintf(stderr, "rtf_parts: engine's bouncing step: bounce %zu energy %.6g; the shared source's %.6g\n", b,
+                 engine2.bounceEnergy[b], b < bounced.bounceEnergy.size() ? bounced.bounceEnergy[b] : 0.0);
   // Each object's field alone with its own bounced light, 1 and 2 bounces (per-object interreflected sums).
   std::vector<gi::rtf::BounceResult> single1, single2;
   for (std::size_t k = 0; k < objects.size(); ++k) {
@@ -793,13 +837,13 @@ int main(int argc, char** argv) {
     scalesEq3.push_back(std::move(e3));
     scalesSurf.push_back(std::move(sf));
   }
-  enum { kInter, kBlocked, kRoom, kBlockedProbes, kRtfInter, kRtfBlocked, kField, kAtR, kShapeO, kAtO, kGpu, kOofAtR, kOofNoFade, kOofShExactCos, kVisExactCos, kEq3, kSurf, kLevel, kViaOther, kViaSelf, kRtfInter1, kRtfInter3, kRtfInter4, kExact1, kExact2, kHidden, kAlbedo, kLampVis, kBoth, kShadowed, kShadowedLamp, kShadowedLamp1, kLampRay1, kShadowedLampRay1, kParts };
+  enum { kInter, kBlocked, kRoom, kBlockedProbes, kRtfInter, kRtfBlocked, kField, kAtR, kShapeO, kAtO, kGpu, kOofAtR, kOofNoFade, kOofShExactCos, kVisExactCos, kEq3, kSurf, kLevel, kViaOther, kViaSelf, kRtfInter1, kRtfInter3, kRtfInter4, kExact1, kExact2, kHidden, kAlbedo, kLampVis, kBoth, kShadowed, kShadowedLamp, kShadowedLamp1, kLampRay1, kShadowedLampRay1, kEngine1, kEngine2, kEngineAdd1, kEngineAdd2, kParts };
   const char* names[kParts] = {"ref-interreflected", "ref-blocked", "ref-room", "blocked-probes", "rtf-interreflected",
                                "rtf-blocked", "field", "blocked-receiver", "blocked-shape-o", "blocked-at-o", "blocked-gpu",
                                "blocked-oof-at-r", "blocked-oof-at-r-nofade", "blocked-oofsh-exactcos", "blocked-vis-exactcos", "blocked-eq3", "blocked-surface", "blocked-level",
                                "ref-via-other", "ref-via-self", "rtf-interreflected-b1",
                                "rtf-interreflected-b3", "rtf-interreflected-b4",
-                               "rtf-interreflected-exact1", "rtf-interreflected-exact2", "ref-interreflected-hidden", "rtf-interreflected-albedo", "rtf-interreflected-lampvis", "rtf-interreflected-both", "rtf-interreflected-shadowed", "rtf-interreflected-shadowed-lampvis", "rtf-interreflected-shadowed-lampvis-b1", "rtf-interreflected-lampray-b1", "rtf-interreflected-shadowed-lampray-b1"};
+                               "rtf-interreflected-exact1", "rtf-interreflected-exact2", "ref-interreflected-hidden", "rtf-interreflected-albedo", "rtf-interreflected-lampvis", "rtf-interreflected-both", "rtf-interreflected-shadowed", "rtf-interreflected-shadowed-lampvis", "rtf-interreflected-shadowed-lampvis-b1", "rtf-interreflected-lampray-b1", "rtf-interreflected-shadowed-lampray-b1", "rtf-interreflected-engine-b1", "rtf-interreflected-engine", "rtf-interreflected-engine-add-b1", "rtf-interreflected-engine-add"};
   std::vector<gpu::FloatImage> images(kParts);
   for (auto& im : images) im.width = W, im.height = H, im.rgb.assign(std::size_t(W) * H * 3, 0.0f);
   parallelFor(0, std::size_t(W) * H, [&](std::size_t pixel) {
@@ -895,6 +939,17 @@ int main(int argc, char** argv) {
     put(kShadowedLamp1, gi::rtf::shade(objects, bouncedShadowedLamp1, light.indirect(), hit.position, n, rho, -1, 9).interreflected);
     put(kLampRay1, gi::rtf::shade(objects, lampRay1, light.indirect(), hit.position, n, rho, -1, 9).interreflected);
     put(kShadowedLampRay1, gi::rtf::shade(objects, shadowedLampRay1, light.indirect(), hit.position, n, rho, -1, 9).interreflected);
+    put(kEngine1, gi::rtf::shade(objects, engine1, light.indirect(), hit.position, n, rho, -1, 9).interreflected);
+    put(kEngine2, gi::rtf::shade(objects, engine2, light.indirect(), hit.position, n, rho, -1, 9).interreflected);
+    {  // the GPU pass's form: each object's field on its own, added (no nearer object's OOF over it)
+      glm::vec3 add1(0.0f), add2(0.0f);
+      for (std::size_t k = 0; k < objects.size(); ++k) {
+        const std::span<const gi::rtf::Object> one(&objects[k], 1);
+        add1 += gi::rtf::shade(one, engineSingle1[k], light.indirect(), hit.position, n, rho, -1, 9).interreflected;
+        add2 += gi::rtf::shade(one, engineSingle2[k], light.indirect(), hit.position, n, rho, -1, 9).interreflected;
+      }
+      put(kEngineAdd1, add1), put(kEngineAdd2, add2);
+    }
     for (std::size_t k = 0; k < objects.size(); ++k) {
       const std::span<const gi::rtf::Object> one(&objects[k], 1);
       auto& po = perObject[pixel * objects.size() + k];
