@@ -23,8 +23,8 @@ so the second bounce helps only where the first order is too dark (T1 < R). Prin
   5. the reference's own second bounce O added at a scale a to the 1-bounce row (and to the 1/|q|² tail's
      1-bounce row when the run has it): |T1 + a O − R|² − |T1 − R|² = 2a O·(T1 − R) + a²|O|², so where the
      cross term O·(T1 − R) is positive no second bounce of O's shape helps at any a > 0, however exact —
-     only a change to the first order can make 2 bounces better than 1 (README "RTF's second bounce
-     against an exact one, session 24").
+     only a change to the first order can make 2 bounces better than 1 (README "RTF: the nearer
+     object's occlusion of the other's light, session 24").
 
 usage: tools/rtf_second.py ACC_DIR PARTS_DIR [Y0 X1]   (region: rows ≥ Y0·H, columns < X1·W; default 0.75 0.39)
 """

@@ -47,8 +47,10 @@ layout(std430, binding = 6) readonly buffer Oof { float oof[]; };
 layout(rgba8, binding = 7) uniform writeonly image3D net;
 layout(std430, binding = 8) buffer Range { uint range[28]; };  // float bits of max |Y| per slot; 0 before stage 1
 layout(std430, binding = 9) buffer Net { vec4 netValue[]; };    // Y = r_s² X per (sample, i < 9), rgb
-// The per-sample factor of the blocked term (overlap.hpp sharedOcclusionScale: the share of the
-// directions this object hides that no other object's term already takes off; 1 where one object acts).
+// Per sample (overlap.hpp sharedOcclusionScale), rgb: the factor of the blocked term (the share of the
+// directions this object hides that no other object's term already takes off); w: the factor of the
+// interreflected term (the share of this object's light the nearer objects let through, Algorithm 1's
+// V_{<i}). 1 where one object acts.
 layout(std430, binding = 10) readonly buffer BlockedScale { vec4 blockedScale[]; };
 layout(std430, binding = 11) readonly buffer BasisCodes { uint basisCodes[]; };  // 4 codes a word
 layout(std430, binding = 12) readonly buffer AlphaCodes { uint alphaCodes[]; };  // 4 codes a word
@@ -177,7 +179,7 @@ void main() {
     if (i < 9u) {
       const float kInvPi = 0.31830988618379067;
       float a = (i == 0u ? 3.14159265358979324 : (i < 4u ? 2.09439510239319549 : 0.78539816339744831)) * kInvPi;
-      vec3 X = a * x;
+      vec3 X = a * x * blockedScale[r].w;  // w: the share of ξ the nearer objects let through (overlap.hpp)
       uint T = pc.proxies * 16u;
       vec3 blocked = vec3(0.0);
       for (uint j = 0u; j < 16u; ++j) {

@@ -19,6 +19,9 @@ std::vector<glm::vec4> sharedOcclusionScale(std::span<const Object> objects, std
   struct Other {
     const Field* field;
     float reach;
+    glm::vec3 centre;   // o_B, world
+    float radius;       // η_B, world
+    bool nearerOnTies;  // Algorithm 1's stable order: at equal distances the lower index is nearer
     glm::mat4 worldToLocal;
     // B's local frame → A's local frame: directions M_A⁻¹ M_B = ±R_Aᵀ R_B (gi::Placement), the
     // rotation R_Aᵀ R_B then the inversion (−1)^l when exactly one of the two is mirrored.
@@ -34,7 +37,7 @@ std::vector<glm::vec4> sharedOcclusionScale(std::span<const Object> objects, std
     const float drb = (sb.outerRadius - sb.innerRadius) / float(sb.spheres - 1);
     const float reachB = pb.radiusWorld * std::max(sb.outerRadius + drb, objects[b].reach);
     if (glm::length(pa.centreWorld - pb.centreWorld) >= reachA + reachB) continue;  // no sample of A in B's field
-    others.push_back({&fb, objects[b].reach, pb.worldToLocal,
+    others.push_back({&fb, objects[b].reach, pb.centreWorld, pb.radiusWorld, b < a, pb.worldToLocal,
                       sh::Rotationf::fromMatrix(glm::transpose(pa.localToWorldRotation) * pb.localToWorldRotation),
                       pa.mirrored != pb.mirrored});
   }
@@ -48,7 +51,8 @@ std::vector<glm::vec4> sharedOcclusionScale(std::span<const Object> objects, std
       const float a0 = u - oofA[0];  // (1 − V_A)'s l = 0 coefficient
       if (a0 <= 1e-6f) continue;     // A hides nothing from this sample
       const glm::vec3 p = pa.centreWorld + pa.radiusWorld * sphereRadius(s, sphere) * dir;
-      float shared = 0.0f;
+      const float distA = glm::length(p - pa.centreWorld);
+      float shared = 0.0f, hiddenByNearer = 0.0f;
       for (const Other& o : others) {
         const Field& fb = *o.field;
         const glm::vec3 qb = (glm::vec3(o.worldToLocal * glm::vec4(p, 1.0f)) - fb.centre) / fb.radius;
@@ -62,9 +66,15 @@ std::vector<glm::vec4> sharedOcclusionScale(std::span<const Object> objects, std
         if (o.invert) gi::invert<float>(std::span<float>(vbA));
         float dot = a0 * vbA[0];
         for (int j = 1; j < kShCount; ++j) dot -= oofA[j] * vbA[std::size_t(j)];  // (1 − V_A)_j = −oof_j for j > 0
-        shared += std::clamp(dot / (a0 * u), 0.0f, 1.0f);
+        const float share = std::clamp(dot / (a0 * u), 0.0f, 1.0f);
+        shared += share;
+        const float distB = glm::length(p - o.centre);
+        // Algorithm 1 leaves the receiver's own entity out: inside B's bounding sphere the receivers
+        // are mostly B's own surface, so there B takes nothing off A's light (overlap.hpp).
+        const bool nearer = distB < distA || (distB == distA && o.nearerOnTies);
+        if (nearer && distB >= o.radius) hiddenByNearer += share;
       }
-      out[smp] = glm::vec4(glm::vec3(std::max(0.0f, 1.0f - 0.5f * shared)), 1.0f);
+      out[smp] = glm::vec4(glm::vec3(std::max(0.0f, 1.0f - 0.5f * shared)), std::max(0.0f, 1.0f - hiddenByNearer));
     }
   }, 64);
   return out;

@@ -14,6 +14,20 @@
 // Where no other object's field reaches p, s = 1: the light at o, unscaled. The ξ pass multiplies the
 // sample's blocked light by it (shaders/rtf/xi.comp, buffer BlockedScale), the same slot the former
 // per-sample light level used (blockedScale in update.hpp, kept for rtf_parts).
+//
+// The light A sends (its interreflected radiance, ξ) is added on its own as well, where Algorithm 1
+// at a receiver q takes Σ_i V_{<i} ⊙ RTF_i(q): each object's light is occluded by the objects nearer
+// to q (centre distance, evaluate.cpp incidentRadiance). Per sample p of A, with the same share of
+// what A covers that B covers too, and A's light taken as uniform over what A covers (it arrives
+// only from there):
+//   w_A(p) = max(0, 1 − Σ_{B nearer to p than A, |p − o_B| ≥ η_B} ∫(1 − V_A)(1 − V_B) dω / ∫(1 − V_A) dω),
+// the ξ pass's factor of the interreflected part of X (xi.comp). Where A is the nearer object, or no
+// other field reaches p, w = 1. Algorithm 1 sorts "the entities except J_q", the receiver's own: the
+// receivers inside B's bounding sphere (radius η_B) are mostly B's own surface, so B takes nothing off
+// there (a choice: on cornell-rtf, whose boxes stand 2 cm apart, B's pixels lose 0.009 of effect error
+// with B counted there; README "RTF: the nearer object's occlusion of the other's light, session 24").
+// Without w the GPU's second bounce near cornell-5's red box and truck was 1.25–1.5× shade()'s from
+// the same proxy light.
 #include <span>
 #include <vector>
 
@@ -23,7 +37,8 @@
 
 namespace bounce::gi::rtf {
 
-// One vec4 (s, s, s, 1) per sample of objects[a]'s field, in field.hpp's sample order.
+// One vec4 (s, s, s, w) per sample of objects[a]'s field, in field.hpp's sample order: s the blocked
+// light's factor, w the interreflected light's.
 std::vector<glm::vec4> sharedOcclusionScale(std::span<const Object> objects, std::size_t a);
 
 }  // namespace bounce::gi::rtf

@@ -31,8 +31,9 @@ class XiPass {
   void setBlockedLight(std::span<const glm::vec4> blocked);
   // Per sample (field.hpp's order), rgb: the factor of the blocked light at that sample — the
   // session passes overlap.hpp sharedOcclusionScale (the occlusion other objects' terms already
-  // take off); update.hpp blockedScale (the light's level there) also fits. Empty: 1 everywhere
-  // (the light at o). Written by the next record().
+  // take off); update.hpp blockedScale (the light's level there) also fits; w: the factor of the
+  // interreflected light ξ (sharedOcclusionScale: the share the nearer objects let through). Empty: 1
+  // everywhere (the light at o, ξ whole). Written by the next record().
   void setBlockedScale(std::span<const glm::vec4> scale);
   // X for i < 9 in 8 bits (xi.comp): RGBA8 UNORM 3D, texel (face·n_r + x, y, k·spheres + sphere) for
   // texel k < kNetTexels in DNRT's Table 2 order; slot k·4 + c holds t = Y/(2m) + ½ of Y = r_s² X

@@ -20,18 +20,23 @@ namespace bounce::gi::rtf::testing {
 
 // X_i = Â_l(i)/π ξ_i − Σ_j T'_ij (u − V)_j per sample and i < 9, [sample·9 + i] (xi.comp's fold;
 // T'_ij = blocked[j·9 + i].rgb as RtfObjectGpu::blocked, u_0 = 2√π).
-inline std::vector<glm::vec3> netValues(const Field& f, std::span<const glm::vec3> xi, std::span<const glm::vec4> blocked) {
+// `scale` (XiPass::setBlockedScale; empty: 1): per sample, rgb the blocked term's factor, w the
+// interreflected term's (overlap.hpp).
+inline std::vector<glm::vec3> netValues(const Field& f, std::span<const glm::vec3> xi, std::span<const glm::vec4> blocked,
+                                        std::span<const glm::vec4> scale = {}) {
   const std::size_t N = sampleCount(f.settings);
   std::vector<glm::vec3> X(N * 9);
   for (std::size_t r = 0; r < N; ++r)
     for (int i = 0; i < 9; ++i) {
       const float a = float(sh::cosineLobeBand(i == 0 ? 0 : i < 4 ? 1 : 2) / math::kPi);
-      glm::vec3 x = a * xi[r * kShCount + std::size_t(i)];
+      const glm::vec4 sc = scale.empty() ? glm::vec4(1.0f) : scale[r];
+      glm::vec3 x = a * xi[r * kShCount + std::size_t(i)] * sc.w;
+      glm::vec3 b(0.0f);
       for (int j = 0; j < kShCount; ++j) {
         const float notV = (j == 0 ? 3.5449077018110318f : 0.0f) - f.oof[r * kShCount + std::size_t(j)];
-        x -= notV * glm::vec3(blocked[std::size_t(j * 9 + i)]);
+        b += notV * glm::vec3(blocked[std::size_t(j * 9 + i)]);
       }
-      X[r * 9 + std::size_t(i)] = x;
+      X[r * 9 + std::size_t(i)] = x - glm::vec3(sc) * b;
     }
   return X;
 }

@@ -4,6 +4,7 @@
 // lobe), W_B(p) the sum of B's lookup weights at p (1 inside B's field, its end's fraction past r_N).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -44,12 +45,15 @@ TEST(RtfOverlap, OneObjectAloneOrOutOfReachKeepsTheLightAtO) {
 
 // Checks every sample of A (world wa) against B (world wb): s = 1 − ½ W_B(p)·(2·1.5 + lobe)/(2√(4π)) with
 // W_B(p) from B's lookup at p, `full` where W_B = 1, and all three kinds of sample (W_B = 1, its end, beyond).
+// The 4th component, the share of A's light B lets through: 1 − W_B(p)·(2·1.5 + lobe)/(2√(4π)) where B's
+// centre is nearer to p than A's (Algorithm 1's order) and p lies outside B's bounding sphere (inside it
+// the receivers are B's own surface, which Algorithm 1 leaves B out for), else 1; both kinds occur.
 void expectShared(const Field& a, const glm::mat4& wa, const Field& b, const glm::mat4& wb, float lobe, float fullValue,
                   const std::string& what) {
   const std::vector<Object> objects = {{&a, wa, 0.0f}, {&b, wb, 0.0f}};
   const std::vector<glm::vec4> s = sharedOcclusionScale(objects, 0);
   ASSERT_EQ(s.size(), sampleCount(a.settings));
-  int full = 0, partial = 0, none = 0;
+  int full = 0, partial = 0, none = 0, nearer = 0, farther = 0;
   for (std::size_t r = 0; r < s.size(); ++r) {
     const glm::vec3 p(wa * glm::vec4(a.radius * samplePosition(a.settings, r), 1.0f));
     const glm::vec3 qb = glm::vec3(glm::inverse(wb) * glm::vec4(p, 1.0f)) / b.radius;
@@ -59,7 +63,14 @@ void expectShared(const Field& a, const glm::mat4& wa, const Field& b, const glm
     EXPECT_NEAR(s[r].x, want, 2e-5f) << what << " " << r;
     EXPECT_EQ(s[r].x, s[r].y);
     EXPECT_EQ(s[r].x, s[r].z);
-    EXPECT_EQ(s[r].w, 1.0f);
+    const glm::vec3 oa(wa * glm::vec4(a.centre, 1.0f)), ob(wb * glm::vec4(b.centre, 1.0f));
+    if (glm::length(p - ob) < glm::length(p - oa) && glm::length(p - ob) >= b.radius) {
+      EXPECT_NEAR(s[r].w, std::max(0.0f, 1.0f - w * (2.0f * 1.5f + lobe) / (2.0f * kU)), 4e-5f) << what << " " << r;
+      nearer += w > 0.0f;
+    } else {
+      EXPECT_EQ(s[r].w, 1.0f) << what << " " << r;
+      farther += w > 0.0f;
+    }
     if (w > 1.0f - 1e-6f) {
       ++full;
       EXPECT_NEAR(s[r].x, fullValue, 2e-5f) << what << " " << r;
@@ -72,6 +83,8 @@ void expectShared(const Field& a, const glm::mat4& wa, const Field& b, const glm
   EXPECT_GT(full, 0) << what;
   EXPECT_GT(partial, 0) << what;
   EXPECT_GT(none, 0) << what;
+  EXPECT_GT(nearer, 0) << what;   // samples in B's field nearer B: A's light there partly hidden
+  EXPECT_GT(farther, 0) << what;  // and nearer A: its light whole
 }
 
 // B 1 m (2 η) from A along x, turned about x by 0, 90 and 180 degrees: its z lobe lands on world z, −y and

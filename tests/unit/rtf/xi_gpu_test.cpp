@@ -80,56 +80,64 @@ TEST(RtfXiGpu, ComputePassEqualsTheCpuCaches) {
 // times its sphere's r_s², and each texel decodes, Y = m(2t − 1), to the CPU's r_s² X within half a
 // step (m/255) plus X's float error (1e-4 m: X's sums of ≤ 25 terms in float, against a step of
 // 2m/255 ≈ 8e-3 m). Random light and blocked matrix, so every slot is signed and non-zero; the unused
-// 28th slot decodes to 0.
+// 28th slot decodes to 0. Twice: without a per-sample scale, and with a random one (setBlockedScale: rgb
+// the blocked term's factor, w the interreflected term's, overlap.hpp), which X must carry.
 TEST(RtfXiGpu, NetImageHoldsXToHalfAStepOfItsSlotsRange) {
-  gpu::Context& ctx = gpu::testkit::sharedContext();
-  const BakeResult b = bake(testing::unitSphere(glm::vec3(0.8f, 0.6f, 0.4f), 8), testing::smallSettings());
-  const Field& f = b.field;
-  const FieldSettings& s = f.settings;
-  math::Pcg32 rng(9);
-  std::vector<glm::vec3> L(std::size_t(s.proxies) * kShCount);
-  for (auto& l : L) l = rng.nextFloat3() * 2.0f - 1.0f;
-  std::vector<glm::vec4> blocked(kShCount * 9);
-  for (auto& t : blocked) t = glm::vec4(rng.nextFloat3() * 0.2f - 0.1f, 0.0f);
-  const std::vector<glm::vec3> X = testing::netValues(f, xiCache(f, L), blocked);
-  const std::array<float, 28> want = testing::netRanges(X, s);
+  for (const bool withScale : {false, true}) {
+    SCOPED_TRACE(withScale ? "with a per-sample scale" : "without a scale");
+    gpu::Context& ctx = gpu::testkit::sharedContext();
+    const BakeResult b = bake(testing::unitSphere(glm::vec3(0.8f, 0.6f, 0.4f), 8), testing::smallSettings());
+    const Field& f = b.field;
+    const FieldSettings& s = f.settings;
+    math::Pcg32 rng(9);
+    std::vector<glm::vec3> L(std::size_t(s.proxies) * kShCount);
+    for (auto& l : L) l = rng.nextFloat3() * 2.0f - 1.0f;
+    std::vector<glm::vec4> blocked(kShCount * 9);
+    for (auto& t : blocked) t = glm::vec4(rng.nextFloat3() * 0.2f - 0.1f, 0.0f);
+    std::vector<glm::vec4> scale;
+    if (withScale)
+      for (std::size_t r = 0; r < sampleCount(s); ++r) scale.push_back(glm::vec4(rng.nextFloat3(), rng.nextFloat()));
+    const std::vector<glm::vec3> X = testing::netValues(f, xiCache(f, L), blocked, scale);
+    const std::array<float, 28> want = testing::netRanges(X, s);
 
-  XiPass pass(ctx, f);
-  pass.setProxyLight(L);
-  pass.setBlockedLight(blocked);
-  gpu::submitAndWait(ctx, [&](VkCommandBuffer cmd) { pass.record(cmd); });
-  const auto rangeBytes = gpu::readback(ctx, pass.netRange());
-  ASSERT_EQ(rangeBytes.size(), 28 * sizeof(float));
-  std::array<float, 28> m{};
-  std::memcpy(m.data(), rangeBytes.data(), sizeof(m));
-  for (int slot = 0; slot < 27; ++slot) {
-    ASSERT_GT(want[std::size_t(slot)], 0.0f);
-    EXPECT_NEAR(m[std::size_t(slot)], want[std::size_t(slot)], 1e-4f * want[std::size_t(slot)]) << "slot " << slot;
-  }
-  EXPECT_EQ(m[27], 0.0f);
+    XiPass pass(ctx, f);
+    pass.setProxyLight(L);
+    pass.setBlockedLight(blocked);
+    pass.setBlockedScale(scale);
+    gpu::submitAndWait(ctx, [&](VkCommandBuffer cmd) { pass.record(cmd); });
+    const auto rangeBytes = gpu::readback(ctx, pass.netRange());
+    ASSERT_EQ(rangeBytes.size(), 28 * sizeof(float));
+    std::array<float, 28> m{};
+    std::memcpy(m.data(), rangeBytes.data(), sizeof(m));
+    for (int slot = 0; slot < 27; ++slot) {
+      ASSERT_GT(want[std::size_t(slot)], 0.0f);
+      EXPECT_NEAR(m[std::size_t(slot)], want[std::size_t(slot)], 1e-4f * want[std::size_t(slot)]) << "slot " << slot;
+    }
+    EXPECT_EQ(m[27], 0.0f);
 
-  const auto bytes = gpu::readback(ctx, pass.net());
-  const std::size_t w = std::size_t(6 * s.faceSize), h = std::size_t(s.faceSize);
-  ASSERT_EQ(bytes.size(), std::size_t(s.spheres) * XiPass::kNetTexels * w * h * 4);
-  const int n2 = s.faceSize * s.faceSize, per = samplesPerSphere(s);
-  float worst = 0.0f;
-  for (std::size_t r = 0; r < sampleCount(s); ++r) {
-    const int sphere = int(r) / per, rest = int(r) % per, face = rest / n2, y = rest % n2 / s.faceSize, x = rest % s.faceSize;
-    for (int i = 0; i < 9; ++i)
-      for (int c = 0; c < 3; ++c) {
-        const int slot = XiPass::netSlot(c, i), k = slot / 4;
-        const std::size_t slice = std::size_t(k * s.spheres + sphere);
-        const std::uint8_t t = bytes[((slice * h + std::size_t(y)) * w + std::size_t(face * s.faceSize + x)) * 4 + std::size_t(slot % 4)];
-        const float mm = m[std::size_t(slot)];
-        const float got = mm * (2.0f * float(t) / 255.0f - 1.0f);
-        const float err = std::abs(got - XiPass::netScale(s, sphere) * X[r * 9 + std::size_t(i)][c]);
-        worst = std::max(worst, err / (mm / 255.0f));
-        ASSERT_LE(err, mm / 255.0f + 1e-4f * mm) << "sample " << r << " coefficient " << i << " channel " << c;
-      }
-    const std::size_t slice = std::size_t(6 * s.spheres + sphere);
-    EXPECT_EQ(bytes[((slice * h + std::size_t(y)) * w + std::size_t(face * s.faceSize + x)) * 4 + 3], 128) << "sample " << r;
+    const auto bytes = gpu::readback(ctx, pass.net());
+    const std::size_t w = std::size_t(6 * s.faceSize), h = std::size_t(s.faceSize);
+    ASSERT_EQ(bytes.size(), std::size_t(s.spheres) * XiPass::kNetTexels * w * h * 4);
+    const int n2 = s.faceSize * s.faceSize, per = samplesPerSphere(s);
+    float worst = 0.0f;
+    for (std::size_t r = 0; r < sampleCount(s); ++r) {
+      const int sphere = int(r) / per, rest = int(r) % per, face = rest / n2, y = rest % n2 / s.faceSize, x = rest % s.faceSize;
+      for (int i = 0; i < 9; ++i)
+        for (int c = 0; c < 3; ++c) {
+          const int slot = XiPass::netSlot(c, i), k = slot / 4;
+          const std::size_t slice = std::size_t(k * s.spheres + sphere);
+          const std::uint8_t t = bytes[((slice * h + std::size_t(y)) * w + std::size_t(face * s.faceSize + x)) * 4 + std::size_t(slot % 4)];
+          const float mm = m[std::size_t(slot)];
+          const float got = mm * (2.0f * float(t) / 255.0f - 1.0f);
+          const float err = std::abs(got - XiPass::netScale(s, sphere) * X[r * 9 + std::size_t(i)][c]);
+          worst = std::max(worst, err / (mm / 255.0f));
+          ASSERT_LE(err, mm / 255.0f + 1e-4f * mm) << "sample " << r << " coefficient " << i << " channel " << c;
+        }
+      const std::size_t slice = std::size_t(6 * s.spheres + sphere);
+      EXPECT_EQ(bytes[((slice * h + std::size_t(y)) * w + std::size_t(face * s.faceSize + x)) * 4 + 3], 128) << "sample " << r;
+    }
+    std::printf("rtf 8-bit X%s: worst %.3f of half a step\n", withScale ? " (scaled)" : "", worst);
   }
-  std::printf("rtf 8-bit X: worst %.3f of half a step\n", worst);
 }
 
 }  // namespace
