@@ -38,7 +38,8 @@
 //                     bouncing step (gi::rtf::Update with the objects as the lamp's occluders and the room shadows,
 //                     as technique.cpp sets it up): what the GPU rows render (session 24)
 //   rtf-interreflected-engine-add-b1/-add   the same with each object's field shaded on its own and added, as
-//                     the GPU pass adds them (no nearer object's OOF over another's light; Algorithm 1 has it)
+//                     the GPU pass added them before session 24 (no nearer object's OOF over another's light,
+//                     no w; Algorithm 1 has it)
 //   rtf-interreflected-exact1/-exact2   a what-if: Algorithm 1 with each proxy's probe light scaled to the
 //                     room's traced l = 0 there (below), at 1 and 2 bounces
 // and per object on stderr: the reference's interreflected light via it and its part from the others, against

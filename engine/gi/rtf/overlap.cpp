@@ -20,7 +20,7 @@ std::vector<glm::vec4> sharedOcclusionScale(std::span<const Object> objects, std
     const Field* field;
     float reach;
     glm::vec3 centre;   // o_B, world
-    float radius;       // η_B, world
+    float etaWorld;     // η_B, world units (field->radius is the local one)
     bool nearerOnTies;  // Algorithm 1's stable order: at equal distances the lower index is nearer
     glm::mat4 worldToLocal;
     // B's local frame → A's local frame: directions M_A⁻¹ M_B = ±R_Aᵀ R_B (gi::Placement), the
@@ -52,7 +52,7 @@ std::vector<glm::vec4> sharedOcclusionScale(std::span<const Object> objects, std
       if (a0 <= 1e-6f) continue;     // A hides nothing from this sample
       const glm::vec3 p = pa.centreWorld + pa.radiusWorld * sphereRadius(s, sphere) * dir;
       const float distA = glm::length(p - pa.centreWorld);
-      float shared = 0.0f, hiddenByNearer = 0.0f;
+      float shared = 0.0f, letThrough = 1.0f;
       for (const Other& o : others) {
         const Field& fb = *o.field;
         const glm::vec3 qb = (glm::vec3(o.worldToLocal * glm::vec4(p, 1.0f)) - fb.centre) / fb.radius;
@@ -70,11 +70,12 @@ std::vector<glm::vec4> sharedOcclusionScale(std::span<const Object> objects, std
         shared += share;
         const float distB = glm::length(p - o.centre);
         // Algorithm 1 leaves the receiver's own entity out: inside B's bounding sphere the receivers
-        // are mostly B's own surface, so there B takes nothing off A's light (overlap.hpp).
+        // are mostly B's own surface, so there B takes nothing off A's light (overlap.hpp). Several
+        // nearer objects multiply, as Algorithm 1's visibilities do.
         const bool nearer = distB < distA || (distB == distA && o.nearerOnTies);
-        if (nearer && distB >= o.radius) hiddenByNearer += share;
+        if (nearer && distB >= o.etaWorld) letThrough *= 1.0f - share;
       }
-      out[smp] = glm::vec4(glm::vec3(std::max(0.0f, 1.0f - 0.5f * shared)), std::max(0.0f, 1.0f - hiddenByNearer));
+      out[smp] = glm::vec4(glm::vec3(std::max(0.0f, 1.0f - 0.5f * shared)), letThrough);
     }
   }, 64);
   return out;

@@ -1,5 +1,6 @@
 #pragma once
-// The objects' shared occlusion in the GPU's blocked light (issue 14, README RTF "Seventh pass").
+// The objects' shared occlusion in the GPU's blocked light (issue 14, README RTF "Seventh pass"), and the
+// nearer objects' occlusion of each object's interreflected light (session 24).
 //
 // The GPU pass adds each object's blocked term on its own (additive blending); Algorithm 1 (§5)
 // multiplies the objects' visibilities, and for two objects
@@ -20,12 +21,13 @@
 // to q (centre distance, evaluate.cpp incidentRadiance). Per sample p of A, with the same share of
 // what A covers that B covers too, and A's light taken as uniform over what A covers (it arrives
 // only from there):
-//   w_A(p) = max(0, 1 − Σ_{B nearer to p than A, |p − o_B| ≥ η_B} ∫(1 − V_A)(1 − V_B) dω / ∫(1 − V_A) dω),
+//   w_A(p) = Π_{B nearer to p than A, |p − o_B| ≥ η_B} (1 − ∫(1 − V_A)(1 − V_B) dω / ∫(1 − V_A) dω),
 // the ξ pass's factor of the interreflected part of X (xi.comp). Where A is the nearer object, or no
 // other field reaches p, w = 1. Algorithm 1 sorts "the entities except J_q", the receiver's own: the
 // receivers inside B's bounding sphere (radius η_B) are mostly B's own surface, so B takes nothing off
-// there (a choice: on cornell-rtf, whose boxes stand 2 cm apart, B's pixels lose 0.009 of effect error
-// with B counted there; README "RTF: the nearer object's occlusion of the other's light, session 24").
+// there (a choice: with B counted there too, cornell-rtf's effect error rises by 0.009, mostly on the
+// boxes' own pixels; README "RTF: the nearer object's occlusion of the other's light, session 24"). The
+// factors of several nearer objects multiply, as Algorithm 1's visibilities do.
 // Without w the GPU's second bounce near cornell-5's red box and truck was 1.25–1.5× shade()'s from
 // the same proxy light.
 #include <span>

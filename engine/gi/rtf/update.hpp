@@ -20,7 +20,8 @@
 //    multiplies the objects' visibilities (V_{<i}). The two agree for one object (the GPU test);
 //    where fields overlap, each object's term is scaled per field sample by sharedOcclusionScale
 //    (overlap.hpp: half the directions two objects both hide taken off each), which the lookup
-//    carries to the receiver (README RTF "Seventh pass").
+//    carries to the receiver (README RTF "Seventh pass"), and each object's interreflected light ξ by
+//    w, the share of it the nearer objects let through (overlap.hpp; session 24).
 #include <chrono>
 #include <memory>
 #include <span>

@@ -313,52 +313,57 @@ TEST(RtfEvaluate, OverlappingAndTouchingObjectsStayFiniteAndBounded) {
 // Algorithm 1 at a receiver q occludes each object's light by the objects nearer to q (evaluate.cpp
 // incidentRadiance: Σ_i V_{<i} ⊙ RTF_i(q)); the GPU pass adds each object's field on its own, its ξ
 // scaled per sample by w (overlap.hpp sharedOcclusionScale's 4th component). Two overlapping unit
-// spheres (centres at x = ∓1.1, gap −0.2) under a uniform sky, 2 bounces. w < 1 only at samples where
-// the other object is the nearer, outside its bounding sphere (its own surface's receivers, which
-// Algorithm 1 leaves it out for). On the axis beyond B (x = 2.6…3.2, facing −x) B's disc (angular
-// radius ≥ 41°) covers A's (≤ 16°, behind it on the same line), and Algorithm 1 takes A's light off
-// by V_B's order-4 product — about a third of it (0.145 of 0.220 is left: the coarse test field and the
-// order-4 OOF blur the discs, what the paper's shading step does too). What A adds with w must be that
-// of Algorithm 1 within 30 % of the plain sum's excess over it (0.152 here: 9 %).
+// spheres (centres at x = ∓0.9, gap −0.2) under a uniform sky, 2 bounces, at world scales 1 and 2 (w's
+// distances and B's bounding sphere are in world units). w < 1 only at samples where the other object is
+// the nearer, outside its bounding sphere (its own surface's receivers, which Algorithm 1 leaves it out
+// for). On the axis beyond B (x = 2.6…3.2 × scale, facing −x) B's disc (angular radius 26–36°) covers A's
+// (14–17°, behind it on the same line), and Algorithm 1 takes A's light off by V_B's order-4 product —
+// about a third of it (0.145 of 0.220 is left: the coarse test field and the order-4 OOF blur the discs,
+// what the paper's shading step does too). What A adds with w must be that of Algorithm 1 within 30 % of
+// the plain sum's excess over it (0.152 here: 9 %).
 TEST(RtfEvaluate, NearerObjectsShareOfTheOthersLightFollowsAlgorithm1) {
   const Field& f = sphereBake().field;
   const dnrt::ConstantEnvironment env(glm::vec3(1.0f));
-  const auto objects = pair(f, -0.2f, 1.0f);
-  const BounceResult bounced = bounce(objects, env, 2);
-  std::vector<BounceResult> plain(2), scaled(2);
-  int hidden = 0;
-  for (std::size_t k = 0; k < 2; ++k) {
-    const std::vector<glm::vec4> s = sharedOcclusionScale(objects, k);
-    const Placement self = place(f, objects[k].world), other = place(f, objects[1 - k].world);
-    plain[k].xi = {bounced.xi[k]};
-    scaled[k].xi = {bounced.xi[k]};
-    for (std::size_t r = 0; r < s.size(); ++r) {
-      ASSERT_GE(s[r].w, 0.0f);
-      ASSERT_LE(s[r].w, 1.0f);
-      if (s[r].w < 1.0f) {
-        ++hidden;
-        const glm::vec3 p(objects[k].world * glm::vec4(f.centre + f.radius * samplePosition(f.settings, r), 1.0f));
-        EXPECT_LE(glm::length(p - other.centreWorld), glm::length(p - self.centreWorld)) << "object " << k << " sample " << r;
-        EXPECT_GE(glm::length(p - other.centreWorld), other.radiusWorld) << "object " << k << " sample " << r;  // not on B
+  for (const float scale : {1.0f, 2.0f}) {
+    SCOPED_TRACE("scale " + std::to_string(scale));
+    const auto objects = pair(f, -0.2f, scale);
+    const BounceResult bounced = bounce(objects, env, 2);
+    std::vector<BounceResult> plain(2), scaled(2);
+    int hidden = 0;
+    for (std::size_t k = 0; k < 2; ++k) {
+      const std::vector<glm::vec4> s = sharedOcclusionScale(objects, k);
+      const Placement self = place(f, objects[k].world), other = place(f, objects[1 - k].world);
+      plain[k].xi = {bounced.xi[k]};
+      scaled[k].xi = {bounced.xi[k]};
+      for (std::size_t r = 0; r < s.size(); ++r) {
+        ASSERT_GE(s[r].w, 0.0f);
+        ASSERT_LE(s[r].w, 1.0f);
+        if (s[r].w < 1.0f) {
+          ++hidden;
+          const glm::vec3 p(objects[k].world * glm::vec4(f.centre + f.radius * samplePosition(f.settings, r), 1.0f));
+          EXPECT_LE(glm::length(p - other.centreWorld), glm::length(p - self.centreWorld)) << "object " << k << " sample " << r;
+          EXPECT_GE(glm::length(p - other.centreWorld), other.radiusWorld) << "object " << k << " sample " << r;  // not on B
+        }
+        for (int i = 0; i < kShCount; ++i) scaled[k].xi[0][r * kShCount + std::size_t(i)] *= s[r].w;
       }
-      for (int i = 0; i < kShCount; ++i) scaled[k].xi[0][r * kShCount + std::size_t(i)] *= s[r].w;
     }
+    EXPECT_GT(hidden, 0);
+    double aloneA = 0.0, withW = 0.0, algorithm1 = 0.0;
+    const std::vector<Object> a = {objects[0]}, b = {objects[1]};
+    for (float x : {2.6f, 2.8f, 3.0f, 3.2f})
+      for (const glm::vec3 off : {glm::vec3(0.0f), glm::vec3(0.0f, 0.1f, 0.0f), glm::vec3(0.0f, 0.0f, -0.1f)}) {
+        const glm::vec3 r = scale * (glm::vec3(x, 0.0f, 0.0f) + off), n(-1.0f, 0.0f, 0.0f), rho(0.5f);
+        const glm::vec3 fromB = shade(b, plain[1], env, r, n, rho, -1).interreflected;  // B is the nearer: whole
+        aloneA += double(shade(a, plain[0], env, r, n, rho, -1).interreflected.x);
+        withW += double(shade(a, scaled[0], env, r, n, rho, -1).interreflected.x);
+        algorithm1 += double((shade(objects, bounced, env, r, n, rho, -1).interreflected - fromB).x);
+      }
+    std::printf("scale %g: A's light behind B (sum over 12 receivers): on its own %.5f, with w %.5f, Algorithm 1 %.5f\n",
+                double(scale), aloneA, withW, algorithm1);
+    EXPECT_GT(aloneA, 1e-3);                       // A's field reaches there: the case is one where w matters
+    EXPECT_GT(aloneA - algorithm1, 0.1 * aloneA);  // Algorithm 1 hides a good part of it
+    EXPECT_LE(std::abs(withW - algorithm1), 0.3 * (aloneA - algorithm1));
   }
-  EXPECT_GT(hidden, 0);
-  double aloneA = 0.0, withW = 0.0, algorithm1 = 0.0;
-  const std::vector<Object> a = {objects[0]}, b = {objects[1]};
-  for (float x : {2.6f, 2.8f, 3.0f, 3.2f})
-    for (const glm::vec3 off : {glm::vec3(0.0f), glm::vec3(0.0f, 0.1f, 0.0f), glm::vec3(0.0f, 0.0f, -0.1f)}) {
-      const glm::vec3 r = glm::vec3(x, 0.0f, 0.0f) + off, n(-1.0f, 0.0f, 0.0f), rho(0.5f);
-      const glm::vec3 fromB = shade(b, plain[1], env, r, n, rho, -1).interreflected;  // B is the nearer: whole
-      aloneA += double(shade(a, plain[0], env, r, n, rho, -1).interreflected.x);
-      withW += double(shade(a, scaled[0], env, r, n, rho, -1).interreflected.x);
-      algorithm1 += double((shade(objects, bounced, env, r, n, rho, -1).interreflected - fromB).x);
-    }
-  std::printf("A's light behind B (sum over 12 receivers): on its own %.5f, with w %.5f, Algorithm 1 %.5f\n", aloneA, withW, algorithm1);
-  EXPECT_GT(aloneA, 1e-3);            // A's field reaches there: the case is one where w matters
-  EXPECT_GT(aloneA - algorithm1, 0.1 * aloneA);  // Algorithm 1 hides a good part of it
-  EXPECT_LE(std::abs(withW - algorithm1), 0.3 * (aloneA - algorithm1));
 }
 
 // A source with the same 9 radiance coefficients everywhere, strong in bands 1 and 2 (negative lobes
@@ -432,8 +437,15 @@ TEST(RtfEvaluate, MirroredSceneShadesAsTheMirrorImage) {
       const auto sa = sharedOcclusionScale(objects, o), sb = sharedOcclusionScale(mirrored, o);
       ASSERT_EQ(sa.size(), sb.size());
       float diff = 0.0f, shared = 0.0f;
-      for (std::size_t i = 0; i < sa.size(); ++i) diff = std::max(diff, glm::length(sa[i] - sb[i])), shared += 1.0f - sa[i].x;
+      // w (the 4th component) steps where a sample's nearer object changes (halfway between the centres)
+      // and at the other's bounding sphere: a sample within rounding of either may flip, so a few may differ.
+      int flipped = 0;
+      for (std::size_t i = 0; i < sa.size(); ++i) {
+        diff = std::max(diff, glm::length(glm::vec3(sa[i]) - glm::vec3(sb[i]))), shared += 1.0f - sa[i].x;
+        flipped += std::abs(sa[i].w - sb[i].w) > 1e-4f;
+      }
       EXPECT_LE(diff, 1e-4f) << "gap " << gap << " object " << o;
+      EXPECT_LE(flipped, int(sa.size() / 100)) << "gap " << gap << " object " << o;
       if (gap < 0.0f) {
         EXPECT_GT(shared, 0.0f) << "the overlapping pair shares occlusion";
       }

@@ -149,6 +149,33 @@ TEST(RtfOverlap, ExactlyOneMirroredInvertsTheOtherFieldsOcclusion) {
   }
 }
 
+// Two nearer objects at the same place (B and its copy C, 1 m from A along x): where both are nearer to a
+// sample than A and it lies outside their bounding spheres, A's light gets through each, w = (1 − x)² with x
+// one object's share — Algorithm 1's visibilities multiply —, not 1 − 2x; the blocked term's s loses half of
+// both shares, 1 − x. Where B's lookup holds p fully x = (2·1.5 + 0.48)/(2√(4π)) = 0.49084.
+TEST(RtfOverlap, SeveralNearerObjectsMultiplyTheirShares) {
+  const Field a = handField(2.0f, 0.8f), b = handField(1.5f, 0.6f);
+  const glm::mat4 wb = glm::translate(glm::mat4(1.0f), glm::vec3(1.0f, 0.0f, 0.0f));
+  const std::vector<Object> objects = {{&a, glm::mat4(1.0f), 0.0f}, {&b, wb, 0.0f}, {&b, wb, 0.0f}};
+  const std::vector<glm::vec4> s = sharedOcclusionScale(objects, 0);
+  int both = 0;
+  for (std::size_t r = 0; r < s.size(); ++r) {
+    const glm::vec3 p(a.radius * samplePosition(a.settings, r));
+    float w = 0.0f;
+    for (float x : lookup(b.settings, (p - glm::vec3(1.0f, 0.0f, 0.0f)) / b.radius).weight) w += x;
+    const float x = w * (2.0f * 1.5f + 0.48f) / (2.0f * kU);
+    EXPECT_NEAR(s[r].x, 1.0f - x, 4e-5f) << r;
+    const float toB = glm::length(p - glm::vec3(1.0f, 0.0f, 0.0f));
+    if (toB < glm::length(p) && toB >= b.radius) {
+      EXPECT_NEAR(s[r].w, (1.0f - x) * (1.0f - x), 4e-5f) << r;
+      both += w > 1.0f - 1e-6f;
+    } else {
+      EXPECT_EQ(s[r].w, 1.0f) << r;
+    }
+  }
+  EXPECT_GT(both, 0);
+}
+
 // A hides nothing from a sample (1 − V_A = 0): nothing to share, s = 1 whatever B hides.
 TEST(RtfOverlap, SampleThatAHidesNothingFromIsOne) {
   const Field a = handField(0.0f, 0.0f), b = handField(1.5f, 0.6f);

@@ -83,12 +83,12 @@ TEST(RtfXiGpu, ComputePassEqualsTheCpuCaches) {
 // 28th slot decodes to 0. Twice: without a per-sample scale, and with a random one (setBlockedScale: rgb
 // the blocked term's factor, w the interreflected term's, overlap.hpp), which X must carry.
 TEST(RtfXiGpu, NetImageHoldsXToHalfAStepOfItsSlotsRange) {
+  gpu::Context& ctx = gpu::testkit::sharedContext();
+  const BakeResult b = bake(testing::unitSphere(glm::vec3(0.8f, 0.6f, 0.4f), 8), testing::smallSettings());
+  const Field& f = b.field;
+  const FieldSettings& s = f.settings;
   for (const bool withScale : {false, true}) {
     SCOPED_TRACE(withScale ? "with a per-sample scale" : "without a scale");
-    gpu::Context& ctx = gpu::testkit::sharedContext();
-    const BakeResult b = bake(testing::unitSphere(glm::vec3(0.8f, 0.6f, 0.4f), 8), testing::smallSettings());
-    const Field& f = b.field;
-    const FieldSettings& s = f.settings;
     math::Pcg32 rng(9);
     std::vector<glm::vec3> L(std::size_t(s.proxies) * kShCount);
     for (auto& l : L) l = rng.nextFloat3() * 2.0f - 1.0f;
