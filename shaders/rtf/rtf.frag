@@ -18,6 +18,9 @@
 
 // 9 SH (bands 0–2) or 4 (bands 0–1: texels 0..2 only), the object's "sh" (node.cpp: one pipeline each).
 layout(constant_id = 0) const bool kSh9 = true;
+// kSelfInNormal: the object's entity id + 1 is ≤ kEntityInNormalMax (gbuffer.glsl), so the self test
+// compares it with the normal's w, fetched anyway, instead of fetching gbuffer.entity (as dnrt.frag).
+layout(constant_id = 1) const bool kSelfInNormal = true;
 
 layout(set = 0, binding = 0) uniform FrameUbo { Camera camera; };
 layout(set = 1, binding = 0) uniform sampler2D gAlbedo;
@@ -54,7 +57,12 @@ void main() {
   float fade = rtfTailFade(radial.w, radial.y, len, reach);
   if (fade <= 0.0) discard;  // beyond the fade: the field is zero
   // The object's own surface: its transfer already holds its self-interreflection (Eq. 8).
-  if (texelFetch(gEntity, pixel, 0).r == self) discard;
+  vec4 normal = texelFetch(gNormal, pixel, 0);
+  if (kSelfInNormal) {
+    if (self != 0u && normal.w == float(self)) discard;
+  } else if (texelFetch(gEntity, pixel, 0).r == self) {
+    discard;
+  }
   // Between spheres s0 and s0 + 1 the weight w is linear in 1/|q|² (rtfRadialWeight; evaluate.cpp
   // radialWeight says why). The texels hold Y = r_s² X (xi.comp; xi_pass.hpp netScale says why), and
   // (1 − w) Y_a/r_a² + w Y_b/r_b² = ((1 − w') Y_a + w' Y_b)/|q|² with w' = (|q|² − r_a²)/(r_b² − r_a²):
@@ -71,7 +79,7 @@ void main() {
   vec2 st;
   rtfFace(len > 0.0 ? q / len : vec3(0.0), int(face.x), f, st);
   vec2 uv = vec2((float(f) * face.x + st.x + 0.5) * face.y, (st.y + 0.5) * face.z);
-  vec3 nw = normalize(texelFetch(gNormal, pixel, 0).xyz);
+  vec3 nw = normalize(normal.xyz);
   vec3 n = vec3(dot(toLocal[0].xyz, nw), dot(toLocal[1].xyz, nw), dot(toLocal[2].xyz, nw));
   float y[9];
   shEval9(n, y);  // bands 0–1 only when !kSh9: the compiler drops the rest

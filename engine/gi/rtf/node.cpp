@@ -1,6 +1,7 @@
 #include "engine/gi/rtf/node.hpp"
 
 #include <cstring>
+#include <string>
 
 #include "engine/core/error.hpp"
 #include "engine/gpu/commands.hpp"
@@ -28,13 +29,14 @@ Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t fra
   d.colorFormats = {kHdrFormat};
   d.blend = gpu::Blend::Additive;
   d.cull = VK_CULL_MODE_NONE;  // rtf.vert's camera-facing octagon (or full-screen triangle): each covered pixel once
-  // One pipeline per SH count (rtf.frag's kSh9): llvmpipe runs an untaken branch in full.
-  d.name = "rtf";
-  d.specialization = {1u};
-  pipeline9_ = gpu::createGraphicsPipeline(ctx, layout_, d);
-  d.name = "rtf.sh4";
-  d.specialization = {0u};
-  pipeline4_ = gpu::createGraphicsPipeline(ctx, layout_, d);
+  // One pipeline per SH count and self test (rtf.frag's kSh9, kSelfInNormal): llvmpipe runs an untaken
+  // branch in full.
+  for (int sh4 = 0; sh4 < 2; ++sh4)
+    for (int entity = 0; entity < 2; ++entity) {
+      d.name = std::string("rtf") + (sh4 ? ".sh4" : "") + (entity ? ".entity" : "");
+      d.specialization = {sh4 ? 0u : 1u, entity ? 0u : 1u};
+      pipelines_[sh4][entity] = gpu::createGraphicsPipeline(ctx, layout_, d);
+    }
 }
 
 void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::vector<NodeObject> objects) {
@@ -109,11 +111,11 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
         render::Attachment color{target.view(), res.keepsContents(d.hdr)};
         const VkExtent2D extent{target.desc().width, target.desc().height};
         render::beginRendering(ctx_, cmd, extent, {&color, 1}, nullptr);
-        // Both pipelines share the layout: sets bound through one stay bound for the other.
-        pipeline9_.bind(cmd);
-        pipeline9_.bindSet(cmd, 0, pc->frameSet);
-        pipeline9_.bindSet(cmd, 1, inputs);
-        const gpu::Pipeline* bound = &pipeline9_;
+        // The pipelines share the layout: sets bound through one stay bound for the others.
+        const gpu::Pipeline* bound = &pipelines_[0][0];
+        bound->bind(cmd);
+        bound->bindSet(cmd, 0, pc->frameSet);
+        bound->bindSet(cmd, 1, inputs);
         gpu::TimestampPool* ts = pc->frame().timestamps.get();
         for (std::size_t i = 0; i < objects.size(); ++i) {
           VkDescriptorSet set = pc->frame().descriptors->allocate(objectLayout_);
@@ -122,7 +124,9 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
               .sampledImage(1, objects[i].xi->net().view(), linear, VK_IMAGE_LAYOUT_GENERAL)
               .buffer(2, objects[i].xi->netRange(), kUniform)
               .update(ctx_, set);
-          const gpu::Pipeline* want = objects[i].record.ids.y == 4u ? &pipeline4_ : &pipeline9_;
+          // The self test reads the entity id + 1 from the normal's w while it fits there (gbuffer.glsl).
+          const bool entity = objects[i].record.ids.x > render::kEntityInNormalMax;
+          const gpu::Pipeline* want = &pipelines_[objects[i].record.ids.y == 4u ? 1 : 0][entity ? 1 : 0];
           if (want != bound) want->bind(cmd), bound = want;
           bound->bindSet(cmd, 2, set);
           if (ts) ts->begin(cmd, "rtf/" + objects[i].name);

@@ -41,7 +41,8 @@ class Node {
   gpu::Context& ctx_;
   gpu::DescriptorSetLayout inputLayout_, objectLayout_;
   gpu::PipelineLayout layout_;
-  gpu::Pipeline pipeline9_, pipeline4_;
+  // [sh 9 : 4][self test on the normal's w : on gbuffer.entity] (rtf.frag kSh9, kSelfInNormal).
+  gpu::Pipeline pipelines_[2][2];
   std::vector<gpu::Buffer> records_;  // per frame slot, RtfObjectGpu at kRtfObjectStride
 };
 
