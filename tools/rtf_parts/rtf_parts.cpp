@@ -51,6 +51,8 @@
 // ref-interreflected-hidden (issue 14, session 17): ρ·E[L_obj(ω)·1(ω hits an object behind the room's
 //   first hit)]: the light objects send towards r that the room's geometry hides in the reference; RTF's field
 //   has no room visibility and adds it (traced from just before the object's surface, its own random stream).
+// RTF_PARTS_COVERAGE=1 (issue 14, session 24): per object, the pixels the shading pass covers against those whose
+//   surface lies inside the field's sphere, in front of it and behind it (stderr), then stop.
 // RTF_PARTS_FACES=N (issue 14, session 17): per object and face class, the light the objects' vertices send
 //   out, RTF's transfer × the proxies' bounce-0 light (its lamp part and probes part) against the reference's
 //   (direct and indirect, N cosine paths a vertex), and the albedo per vertex against the area mean
@@ -233,6 +235,38 @@ int main(int argc, char** argv) {
     const gi::rtf::Placement pl = gi::rtf::place(fields[i], objects.back().world);
     const float dr = (s.outerRadius - s.innerRadius) / float(s.spheres - 1);
     reach.push_back({pl.centreWorld, (s.outerRadius + dr) * pl.radiusWorld});  // field.pfm: the shipped fade's end
+  }
+  // RTF_PARTS_COVERAGE=1 (session 24): what the shading pass covers, per object — rtf.vert's octagon around the
+  // field's sphere (radius (outer + Δr)·η, or the tail's reach), or the whole screen with the eye within 1.05 of
+  // it — against the pixels whose surface lies inside that sphere (where the field is not zero), in front of it
+  // and behind it; then stop.
+  if (const char* cov = std::getenv("RTF_PARTS_COVERAGE"); cov && std::string(cov) == "1") {
+    const glm::vec3 eye = ref::cameraRay(with.desc.camera, W, H, W / 2, H / 2).origin;
+    for (std::size_t i = 0; i < objects.size(); ++i) {
+      const gi::rtf::FieldSettings& fs = fields[i].settings;
+      const gi::rtf::Placement pl = gi::rtf::place(fields[i], objects[i].world);
+      const float dr = (fs.outerRadius - fs.innerRadius) / float(fs.spheres - 1);
+      const float R = pl.radiusWorld * std::max(fs.outerRadius + dr, objects[i].reach), d = glm::length(pl.centreWorld - eye);
+      const bool full = d < 1.05f * R;
+      const float cosCone = full ? -1.0f : std::cos(std::asin(R / d) / std::cos(3.14159265f / 8.0f));
+      std::size_t covered = 0, inside = 0, before = 0, behind = 0, none = 0;
+      for (std::uint32_t y = 0; y < H; ++y)
+        for (std::uint32_t x = 0; x < W; ++x) {
+          const ref::CameraRay cam = ref::cameraRay(with.desc.camera, W, H, x, y);
+          if (!full && glm::dot(cam.direction, (pl.centreWorld - eye) / d) < cosCone) continue;
+          ++covered;
+          ref::Hit hit;
+          if (!bvhWith.intersect(cam.origin, cam.direction, cam.tMin, cam.tMax, hit)) { ++none; continue; }
+          const float along = glm::dot(hit.position - pl.centreWorld, cam.direction);
+          if (glm::length(hit.position - pl.centreWorld) < R) ++inside;
+          else if (along < 0.0f) ++before;
+          else ++behind;
+        }
+      std::fprintf(stderr, "rtf_parts: coverage %s: R %.3f m at %.3f m (%s): %zu px covered of %u; surface inside the field's sphere %zu, "
+                   "in front of it %zu, behind it %zu, background %zu\n", with.registry.get<scene::Name>(rtfEntities[i]).id.c_str(), R, d,
+                   full ? "full screen" : "octagon", covered, W * H, inside, before, behind, none);
+    }
+    return 0;
   }
   const gi::rtf::LitSource lit(service, lights);
   const gi::rtf::BounceResult bounced = gi::rtf::bounce(objects, lit, 2);
