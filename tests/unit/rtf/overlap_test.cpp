@@ -162,7 +162,7 @@ TEST(RtfOverlap, SeveralNearerObjectsMultiplyTheirShares) {
   for (std::size_t r = 0; r < s.size(); ++r) {
     const glm::vec3 p(a.radius * samplePosition(a.settings, r));
     float w = 0.0f;
-    for (float x : lookup(b.settings, (p - glm::vec3(1.0f, 0.0f, 0.0f)) / b.radius).weight) w += x;
+    for (float weight : lookup(b.settings, (p - glm::vec3(1.0f, 0.0f, 0.0f)) / b.radius).weight) w += weight;
     const float x = w * (2.0f * 1.5f + 0.48f) / (2.0f * kU);
     EXPECT_NEAR(s[r].x, 1.0f - x, 4e-5f) << r;
     const float toB = glm::length(p - glm::vec3(1.0f, 0.0f, 0.0f));
