@@ -308,6 +308,94 @@ int main(int argc, char** argv) {
     engineSingle1.push_back({{engine1.proxyLight[k]}, {engine1.xi[k]}, {}});
     engineSingle2.push_back({{engine2.proxyLight[k]}, {engine2.xi[k]}, {}});
   }
+  // RTF_PARTS_NEARER=1 (issue 14, session 24; a what-if): the engine's interreflected light at 1 and 2 bounces
+  // at EVERY pixel (an object's own pixels skip its own field), each object's field shaded on its own and
+  // added as the GPU pass does, three ways: nearer-add (ξ whole), nearer-w (ξ·w, overlap.hpp as shipped) and
+  // nearer-dir (ξ ⊗ V_near per sample: the SH product of ξ with the visibility of the objects nearer to the
+  // sample, looked up there and turned into the object's frame — Algorithm 1 at the sample, direction by
+  // direction); written as nearer-{add,w,dir}-b{1,2}.pfm, then stop.
+  if (const char* nv = std::getenv("RTF_PARTS_NEARER"); nv && std::string(nv) == "1") {
+    const auto dirXi = [&](std::size_t a, const std::vector<glm::vec3>& xi) {
+      const gi::rtf::Field& f = *objects[a].field;
+      const gi::rtf::FieldSettings& fs = f.settings;
+      const gi::rtf::Placement pa = gi::rtf::place(f, objects[a].world);
+      std::vector<glm::vec3> out = xi;
+      const int per = gi::rtf::samplesPerSphere(fs);
+      for (int sphere = 0; sphere < fs.spheres; ++sphere)
+        for (int ray = 0; ray < per; ++ray) {
+          const std::size_t smp = std::size_t(sphere) * std::size_t(per) + std::size_t(ray);
+          const glm::vec3 dir = pa.localToWorldDirections() * gi::rtf::sampleDirection(fs, std::size_t(ray));
+          const glm::vec3 p = pa.centreWorld + pa.radiusWorld * gi::rtf::sphereRadius(fs, sphere) * dir;
+          const float distA = glm::length(p - pa.centreWorld);
+          std::vector<float> V(gi::rtf::kShCount, 0.0f);
+          V[0] = gi::rtf::kUnitVisibility;
+          bool any = false;
+          for (std::size_t b = 0; b < objects.size(); ++b) {
+            if (b == a) continue;
+            const gi::rtf::Field& fb = *objects[b].field;
+            const gi::rtf::Placement pb = gi::rtf::place(fb, objects[b].world);
+            const float distB = glm::length(p - pb.centreWorld);
+            if (!(distB < distA || (distB == distA && b < a))) continue;
+            const glm::vec3 qb = (glm::vec3(pb.worldToLocal * glm::vec4(p, 1.0f)) - fb.centre) / fb.radius;
+            const gi::rtf::ShScalar vb = gi::rtf::occlusion(fb, qb, objects[b].reach);
+            gi::rtf::ShScalar vbA{};
+            sh::Rotationf::fromMatrix(glm::transpose(pa.localToWorldRotation) * pb.localToWorldRotation)
+                .apply<float>(std::span<const float>(vb), std::span<float>(vbA));
+            if (pa.mirrored != pb.mirrored) gi::invert<float>(std::span<float>(vbA));
+            V = sh::product<float>(std::span<const float>(V), std::span<const float>(vbA), gi::rtf::kShOrder);
+            any = true;
+          }
+          if (!any) continue;
+          for (int c = 0; c < 3; ++c) {
+            std::vector<float> x(gi::rtf::kShCount);
+            for (int i = 0; i < gi::rtf::kShCount; ++i) x[std::size_t(i)] = xi[smp * gi::rtf::kShCount + std::size_t(i)][c];
+            const std::vector<float> y = sh::product<float>(std::span<const float>(x), std::span<const float>(V), gi::rtf::kShOrder);
+            for (int i = 0; i < gi::rtf::kShCount; ++i) out[smp * gi::rtf::kShCount + std::size_t(i)][c] = y[std::size_t(i)];
+          }
+        }
+      return out;
+    };
+    // Three forms × two bounce counts of per-object results.
+    std::vector<gi::rtf::BounceResult> forms[3][2];
+    for (int bn = 0; bn < 2; ++bn) {
+      const gi::rtf::BounceResult& eb = bn == 0 ? engine1 : engine2;
+      for (std::size_t k = 0; k < objects.size(); ++k) {
+        const std::vector<glm::vec4> sc = gi::rtf::sharedOcclusionScale(objects, k);
+        std::vector<glm::vec3> xw = eb.xi[k];
+        for (std::size_t r = 0; r < sc.size(); ++r)
+          for (int i = 0; i < gi::rtf::kShCount; ++i) xw[r * gi::rtf::kShCount + std::size_t(i)] *= sc[r].w;
+        forms[0][bn].push_back({{eb.proxyLight[k]}, {eb.xi[k]}, {}});
+        forms[1][bn].push_back({{eb.proxyLight[k]}, {xw}, {}});
+        forms[2][bn].push_back({{eb.proxyLight[k]}, {dirXi(k, eb.xi[k])}, {}});
+      }
+    }
+    std::vector<gpu::FloatImage> img(6);
+    for (auto& im : img) im.width = W, im.height = H, im.rgb.assign(std::size_t(W) * H * 3, 0.0f);
+    parallelFor(0, std::size_t(W) * H, [&](std::size_t pixel) {
+      const ref::CameraRay cam = ref::cameraRay(with.desc.camera, W, H, std::uint32_t(pixel % W), std::uint32_t(pixel / W));
+      ref::Hit hit;
+      if (!bvhWith.intersect(cam.origin, cam.direction, cam.tMin, cam.tMax, hit)) return;
+      const int own = objectHit(cam.origin, cam.direction, hit.t);  // the object this pixel sees, −1: none
+      const glm::vec3 rho = albedoAt(with.desc, hit);
+      glm::vec3 n = hit.shadingNormal;
+      if (glm::dot(n, cam.direction) > 0.0f) n = -n;
+      for (int form = 0; form < 3; ++form)
+        for (int bn = 0; bn < 2; ++bn) {
+          glm::vec3 sum(0.0f);
+          for (std::size_t k = 0; k < objects.size(); ++k) {
+            if (int(k) == own) continue;
+            const std::span<const gi::rtf::Object> one(&objects[k], 1);
+            sum += gi::rtf::shade(one, forms[form][bn][k], light.indirect(), hit.position, n, rho, -1, 9).interreflected;
+          }
+          float* px = img[std::size_t(form * 2 + bn)].rgb.data() + pixel * 3;
+          px[0] = sum.x, px[1] = sum.y, px[2] = sum.z;
+        }
+    }, 16);
+    const char* fn[6] = {"nearer-add-b1", "nearer-add-b2", "nearer-w-b1", "nearer-w-b2", "nearer-dir-b1", "nearer-dir-b2"};
+    for (int i = 0; i < 6; ++i) gpu::writePfm(out / (std::string(fn[i]) + ".pfm"), img[std::size_t(i)]);
+    std::fprintf(stderr, "rtf_parts: wrote the nearer-* what-if to %s\n", out.c_str());
+    return 0;
+  }
   for (std::size_t b = 0; b < engine2.bounceEnergy.size(); ++b)
     std::fprintf(stderr, "rtf_parts: engine's bouncing step: bounce %zu energy %.6g; the shared source's %.6g\n", b,
                  engine2.bounceEnergy[b], b < bounced.bounceEnergy.size() ? bounced.bounceEnergy[b] : 0.0);
