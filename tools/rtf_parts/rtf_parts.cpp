@@ -51,6 +51,8 @@
 // ref-interreflected-hidden (issue 14, session 17): ρ·E[L_obj(ω)·1(ω hits an object behind the room's
 //   first hit)]: the light objects send towards r that the room's geometry hides in the reference; RTF's field
 //   has no room visibility and adds it (traced from just before the object's surface, its own random stream).
+// RTF_PARTS_NEARER=1 (issue 14, session 24): the engine's interreflected light at every pixel, each object's field
+//   added on its own, with ξ whole, ξ·w (overlap.hpp) and ξ ⊗ V_near per sample (nearer-*.pfm), then stop.
 // RTF_PARTS_COVERAGE=1 (issue 14, session 24): per object, the pixels the shading pass covers against those whose
 //   surface lies inside the field's sphere, in front of it and behind it (stderr), then stop.
 // RTF_PARTS_FACES=N (issue 14, session 17): per object and face class, the light the objects' vertices send
