@@ -322,28 +322,22 @@ int main(int argc, char** argv) {
       const gi::rtf::FieldSettings& fs = f.settings;
       const gi::rtf::Placement pa = gi::rtf::place(f, objects[a].world);
       std::vector<glm::vec3> out = xi;
+      std::vector<gi::rtf::OtherField> others;
+      for (std::size_t b = 0; b < objects.size(); ++b)
+        if (b != a) others.emplace_back(objects, a, b);
       const int per = gi::rtf::samplesPerSphere(fs);
       for (int sphere = 0; sphere < fs.spheres; ++sphere)
         for (int ray = 0; ray < per; ++ray) {
           const std::size_t smp = std::size_t(sphere) * std::size_t(per) + std::size_t(ray);
           const glm::vec3 dir = pa.localToWorldDirections() * gi::rtf::sampleDirection(fs, std::size_t(ray));
           const glm::vec3 p = pa.centreWorld + pa.radiusWorld * gi::rtf::sphereRadius(fs, sphere) * dir;
-          const float distA = glm::length(p - pa.centreWorld);
           std::vector<float> V(gi::rtf::kShCount, 0.0f);
           V[0] = gi::rtf::kUnitVisibility;
           bool any = false;
-          for (std::size_t b = 0; b < objects.size(); ++b) {
-            if (b == a) continue;
-            const gi::rtf::Field& fb = *objects[b].field;
-            const gi::rtf::Placement pb = gi::rtf::place(fb, objects[b].world);
-            const float distB = glm::length(p - pb.centreWorld);
-            if (!(distB < distA || (distB == distA && b < a))) continue;
-            const glm::vec3 qb = (glm::vec3(pb.worldToLocal * glm::vec4(p, 1.0f)) - fb.centre) / fb.radius;
-            const gi::rtf::ShScalar vb = gi::rtf::occlusion(fb, qb, objects[b].reach);
-            gi::rtf::ShScalar vbA{};
-            sh::Rotationf::fromMatrix(glm::transpose(pa.localToWorldRotation) * pb.localToWorldRotation)
-                .apply<float>(std::span<const float>(vb), std::span<float>(vbA));
-            if (pa.mirrored != pb.mirrored) gi::invert<float>(std::span<float>(vbA));
+          for (const gi::rtf::OtherField& o : others) {
+            if (!o.nearerThanA(p)) continue;
+            gi::rtf::ShScalar vbA = o.hiddenInA(p);  // (1 − V_B), A's frame → V_B
+            for (int j = 0; j < gi::rtf::kShCount; ++j) vbA[std::size_t(j)] = (j == 0 ? gi::rtf::kUnitVisibility : 0.0f) - vbA[std::size_t(j)];
             V = sh::product<float>(std::span<const float>(V), std::span<const float>(vbA), gi::rtf::kShOrder);
             any = true;
           }

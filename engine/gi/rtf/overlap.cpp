@@ -8,6 +8,40 @@
 
 namespace bounce::gi::rtf {
 
+OtherField::OtherField(std::span<const Object> objects, std::size_t a, std::size_t b)
+    : field_(objects[b].field), reach_(objects[b].reach) {
+  const Placement pa = place(*objects[a].field, objects[a].world), pb = place(*field_, objects[b].world);
+  const FieldSettings& sb = field_->settings;
+  const float drb = (sb.outerRadius - sb.innerRadius) / float(sb.spheres - 1);
+  reachWorld_ = pb.radiusWorld * std::max(sb.outerRadius + drb, reach_);
+  centre_ = pb.centreWorld, centreA_ = pa.centreWorld;
+  etaWorld_ = pb.radiusWorld;
+  beforeOnTies_ = b < a;
+  worldToLocal_ = pb.worldToLocal;
+  toA_ = sh::Rotationf::fromMatrix(glm::transpose(pa.localToWorldRotation) * pb.localToWorldRotation);
+  invert_ = pa.mirrored != pb.mirrored;
+}
+
+ShScalar OtherField::hiddenInA(glm::vec3 p) const {
+  constexpr float u = kUnitVisibility;
+  const Field& fb = *field_;
+  const glm::vec3 qb = (glm::vec3(worldToLocal_ * glm::vec4(p, 1.0f)) - fb.centre) / fb.radius;
+  ShScalar vb = occlusion(fb, qb, reach_);
+  for (int j = 0; j < kShCount; ++j) vb[std::size_t(j)] = (j == 0 ? u : 0.0f) - vb[std::size_t(j)];
+  if (vb == ShScalar{}) return vb;
+  ShScalar vbA{};
+  toA_.apply<float>(std::span<const float>(vb), std::span<float>(vbA));
+  if (invert_) gi::invert<float>(std::span<float>(vbA));
+  return vbA;
+}
+
+bool OtherField::nearerThanA(glm::vec3 p) const {
+  const float distA = glm::length(p - centreA_), distB = glm::length(p - centre_);
+  return distB < distA || (distB == distA && beforeOnTies_);
+}
+
+bool OtherField::reaches(float reachA) const { return glm::length(centreA_ - centre_) < reachA + reachWorld_; }
+
 std::vector<glm::vec4> sharedOcclusionScale(std::span<const Object> objects, std::size_t a) {
   constexpr float u = kUnitVisibility;  // ∫f dω = u·f_0 (evaluate.hpp)
   const Field& f = *objects[a].field;
@@ -16,31 +50,12 @@ std::vector<glm::vec4> sharedOcclusionScale(std::span<const Object> objects, std
   const Placement pa = place(f, objects[a].world);
   const float dr = (s.outerRadius - s.innerRadius) / float(s.spheres - 1);
   const float reachA = pa.radiusWorld * (s.outerRadius + dr);
-  struct Other {
-    const Field* field;
-    float reach;
-    glm::vec3 centre;   // o_B, world
-    float etaWorld;     // η_B, world units (field->radius is the local one)
-    bool nearerOnTies;  // Algorithm 1's stable order: at equal distances the lower index is nearer
-    glm::mat4 worldToLocal;
-    // B's local frame → A's local frame: directions M_A⁻¹ M_B = ±R_Aᵀ R_B (gi::Placement), the
-    // rotation R_Aᵀ R_B then the inversion (−1)^l when exactly one of the two is mirrored.
-    sh::Rotationf toA;
-    bool invert;
-  };
-  std::vector<Other> others;
-  for (std::size_t b = 0; b < objects.size(); ++b) {
-    if (b == a) continue;
-    const Field& fb = *objects[b].field;
-    const Placement pb = place(fb, objects[b].world);
-    const FieldSettings& sb = fb.settings;
-    const float drb = (sb.outerRadius - sb.innerRadius) / float(sb.spheres - 1);
-    const float reachB = pb.radiusWorld * std::max(sb.outerRadius + drb, objects[b].reach);
-    if (glm::length(pa.centreWorld - pb.centreWorld) >= reachA + reachB) continue;  // no sample of A in B's field
-    others.push_back({&fb, objects[b].reach, pb.centreWorld, pb.radiusWorld, b < a, pb.worldToLocal,
-                      sh::Rotationf::fromMatrix(glm::transpose(pa.localToWorldRotation) * pb.localToWorldRotation),
-                      pa.mirrored != pb.mirrored});
-  }
+  std::vector<OtherField> others;
+  for (std::size_t b = 0; b < objects.size(); ++b)
+    if (b != a) {
+      OtherField o(objects, a, b);
+      if (o.reaches(reachA)) others.push_back(o);  // else no sample of A lies in B's field
+    }
   if (others.empty()) return out;
   const int per = samplesPerSphere(s);
   parallelFor(0, std::size_t(per), [&](std::size_t ray) {
@@ -51,29 +66,18 @@ std::vector<glm::vec4> sharedOcclusionScale(std::span<const Object> objects, std
       const float a0 = u - oofA[0];  // (1 − V_A)'s l = 0 coefficient
       if (a0 <= 1e-6f) continue;     // A hides nothing from this sample
       const glm::vec3 p = pa.centreWorld + pa.radiusWorld * sphereRadius(s, sphere) * dir;
-      const float distA = glm::length(p - pa.centreWorld);
       float shared = 0.0f, letThrough = 1.0f;
-      for (const Other& o : others) {
-        const Field& fb = *o.field;
-        const glm::vec3 qb = (glm::vec3(o.worldToLocal * glm::vec4(p, 1.0f)) - fb.centre) / fb.radius;
-        // (1 − V_B) at p: u·δ_0 − V_B, V_B Eq. 10's lookup faded to V = 1 at the field's end (occlusion()),
-        // so all zero beyond B's field.
-        ShScalar vb = occlusion(fb, qb, o.reach);
-        for (int j = 0; j < kShCount; ++j) vb[std::size_t(j)] = (j == 0 ? u : 0.0f) - vb[std::size_t(j)];
-        if (vb == ShScalar{}) continue;
-        ShScalar vbA{};
-        o.toA.apply<float>(std::span<const float>(vb), std::span<float>(vbA));
-        if (o.invert) gi::invert<float>(std::span<float>(vbA));
+      for (const OtherField& o : others) {
+        const ShScalar vbA = o.hiddenInA(p);  // (1 − V_B) at p, A's frame
+        if (vbA == ShScalar{}) continue;      // beyond B's field
         float dot = a0 * vbA[0];
         for (int j = 1; j < kShCount; ++j) dot -= oofA[j] * vbA[std::size_t(j)];  // (1 − V_A)_j = −oof_j for j > 0
         const float share = std::clamp(dot / (a0 * u), 0.0f, 1.0f);
         shared += share;
-        const float distB = glm::length(p - o.centre);
         // Algorithm 1 leaves the receiver's own entity out: inside B's bounding sphere the receivers
         // are mostly B's own surface, so there B takes nothing off A's light (overlap.hpp). Several
         // nearer objects multiply, as Algorithm 1's visibilities do.
-        const bool nearer = distB < distA || (distB == distA && o.nearerOnTies);
-        if (nearer && distB >= o.etaWorld) letThrough *= 1.0f - share;
+        if (o.nearerThanA(p) && glm::length(p - o.centre()) >= o.etaWorld()) letThrough *= 1.0f - share;
       }
       out[smp] = glm::vec4(glm::vec3(std::max(0.0f, 1.0f - 0.5f * shared)), letThrough);
     }

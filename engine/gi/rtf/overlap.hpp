@@ -36,11 +36,42 @@
 #include <glm/glm.hpp>
 
 #include "engine/gi/rtf/evaluate.hpp"
+#include "engine/math/sh_rotate.hpp"
 
 namespace bounce::gi::rtf {
 
 // One vec4 (s, s, s, w) per sample of objects[a]'s field, in field.hpp's sample order: s the blocked
 // light's factor, w the interreflected light's.
 std::vector<glm::vec4> sharedOcclusionScale(std::span<const Object> objects, std::size_t a);
+
+// Object B's occlusion seen from object A's field samples: B's OOF looked up at a world point and
+// turned into A's local frame, and the two objects' order in Algorithm 1 there. Built once per pair.
+class OtherField {
+ public:
+  OtherField(std::span<const Object> objects, std::size_t a, std::size_t b);
+  // (1 − V_B) at world point p in A's local frame: u·δ_0 − V_B, V_B Eq. 10's lookup faded to V = 1 at
+  // the field's end (occlusion()), so all zero beyond B's field.
+  ShScalar hiddenInA(glm::vec3 p) const;
+  // B comes before A in Algorithm 1's near-to-far order at p: centre distance, ties to the lower index
+  // (evaluate.cpp incidentRadiance's stable sort).
+  bool nearerThanA(glm::vec3 p) const;
+  // Whether any point within `reachA` of o_A lies in B's field (its end or tail included).
+  bool reaches(float reachA) const;
+  glm::vec3 centre() const { return centre_; }    // o_B, world
+  float etaWorld() const { return etaWorld_; }    // η_B, world units (field->radius is the local one)
+
+ private:
+  const Field* field_;
+  float reach_;       // Object::reach of B (η_B units)
+  float reachWorld_;  // where B's field ends, world units
+  glm::vec3 centre_, centreA_;
+  float etaWorld_;
+  bool beforeOnTies_;
+  glm::mat4 worldToLocal_;
+  // B's local frame → A's local frame: directions M_A⁻¹ M_B = ±R_Aᵀ R_B (gi::Placement), the
+  // rotation R_Aᵀ R_B then the inversion (−1)^l when exactly one of the two is mirrored.
+  sh::Rotationf toA_;
+  bool invert_;
+};
 
 }  // namespace bounce::gi::rtf
