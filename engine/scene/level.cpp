@@ -483,7 +483,7 @@ Level levelFromJson(const nlohmann::json& doc, const std::filesystem::path& path
   if (doc.is_object() && doc.contains("bounce_capture") && !doc.contains("bounce_level"))
     throwInputError(file, "/bounce_capture", "this is a capture script, not a level",
                     "a level (\"bounce_level\": 1); run a capture script with 'bounce capture SCRIPT --out DIR'");
-  const auto o = root.object({"bounce_level", "name", "effects", "background", "probes", "dnrt", "vlm", "entities"});
+  const auto o = root.object({"bounce_level", "name", "effects", "background", "probes", "dnrt", "rtf", "vlm", "entities"});
 
   const auto version = o.required("bounce_level", "the format version 1");
   if (const auto v = version.integer(0, 1 << 30); v != 1)
@@ -520,17 +520,22 @@ Level levelFromJson(const nlohmann::json& doc, const std::filesystem::path& path
     }
   }
 
-  // "dnrt": {"resolution": "full"|"half"|"quarter"} — the DNRT draw's resolution for every object (the
-  // same names and steps as SL pass 2's, gi/resolution.hpp; default full).
-  if (auto p = o.optional("dnrt")) {
-    const auto dobj = p->object({"resolution"});
-    if (auto v = dobj.optional("resolution")) {
-      const std::string m = v->string();
-      const std::optional<std::uint32_t> step = gi::parseResolution(m);
-      if (!step) v->fail("unknown resolution " + json::inQuotes(m), gi::kResolutionNames);
-      level.dnrt.step = *step;
+  // "dnrt": {"resolution": "full"|"half"|"quarter"} — the DNRT draw's resolution for every object, and
+  // "rtf": {"resolution": …} the RTF shading draws' (the same names and steps as SL pass 2's,
+  // gi/resolution.hpp; default full).
+  const auto resolutionOf = [&o](const char* key, std::uint32_t& step) {
+    if (auto p = o.optional(key)) {
+      const auto obj = p->object({"resolution"});
+      if (auto v = obj.optional("resolution")) {
+        const std::string m = v->string();
+        const std::optional<std::uint32_t> parsed = gi::parseResolution(m);
+        if (!parsed) v->fail("unknown resolution " + json::inQuotes(m), gi::kResolutionNames);
+        step = *parsed;
+      }
     }
-  }
+  };
+  resolutionOf("dnrt", level.dnrt.step);
+  resolutionOf("rtf", level.rtf.step);
 
   if (auto p = o.optional("vlm")) {
     const auto vo = p->object({"grid", "k", "range", "overrides", "conservative_threshold"});

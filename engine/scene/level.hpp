@@ -91,6 +91,14 @@ struct DnrtConfig {
   std::uint32_t step = 1;
 };
 
+// The level's "rtf" object (used when effects name `rtf`; the per-entity fields are each entity's own
+// "rtf"): the resolution of the RTF shading draws, as DnrtConfig's — 1 (full, default), 2 (half) or 4
+// (quarter); below full the draws shade a reduced target and "rtf.upsample" spreads it over every pixel
+// (engine/gi/rtf/node.hpp).
+struct RtfConfig {
+  std::uint32_t step = 1;
+};
+
 // The level's "vlm" object (used when effects name `vlm`): the acceleration grid (thesis ch. 4):
 // cells per axis over the scene bounds, candidates per cell K and the active-hemisphere range.
 // Per-tag artistic overrides (§3.5, thesis Fig. 5.5): every virtual light with tag `t` emits
@@ -118,6 +126,7 @@ struct Level {
   glm::vec3 background{0.0f};
   ProbesConfig probes;
   DnrtConfig dnrt;
+  RtfConfig rtf;
   VlmConfig vlm;
   std::vector<EntityDesc> entities;
   std::filesystem::path source;  // the level file, absolute

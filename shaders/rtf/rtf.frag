@@ -11,9 +11,11 @@
 // sample by the ξ pass into X_i (i < 9, xi.comp), stored in 8 bits (as r_s² X_i) as 7 RGBA texels (DNRT's
 // Table 2 order) and looked up by hardware filtering (rtf.glsl rtfTaps, a linear sampler; one
 // trilinear fetch per texel, 7 against 9 float fetches before): ρ Σ_i y_i(n) X_i(q). Added to
-// "lighting.hdr" with additive blending.
+// "lighting.hdr" with additive blending — or, below full resolution, without ρ into a reduced target that
+// "rtf.upsample" spreads over every pixel (kStep).
 #include "frame.glsl"
 #include "sh.glsl"
+#include "upsample.glsl"  // reducedSamplePixel
 #include "rtf/rtf.glsl"
 
 // 9 SH (bands 0–2) or 4 (bands 0–1: texels 0..2 only), the object's "sh" (node.cpp: one pipeline each).
@@ -21,6 +23,15 @@ layout(constant_id = 0) const bool kSh9 = true;
 // kSelfInNormal: the object's entity id + 1 is ≤ kEntityInNormalMax (gbuffer.glsl), so the self test
 // compares it with the normal's w, fetched anyway, instead of fetching gbuffer.entity (as dnrt.frag).
 layout(constant_id = 1) const bool kSelfInNormal = true;
+// kStep: G-buffer pixels per shaded sample along each axis — 1 (full), 2 (half), 4 (quarter); the level's
+// "rtf": {"resolution"} (node.cpp). Below full the octagon covers the reduced target "rtf.half" /
+// "rtf.quarter" (the same clip-space polygon on a viewport of ⌈size/step⌉: its 5.5 % margin over the
+// sphere's silhouette holds the half-pixel offset of sample j's G-buffer pixel step·j), sample j shades
+// G-buffer pixel step·j (reducedSamplePixel) and writes Σ_i y_i(n) X_i(q) without ρ; the pass
+// "rtf.upsample" (gi/upsample_pass.hpp) blends it depth- and normal-aware at every pixel and multiplies
+// by ρ there. The sum is the term's smooth part in q; its normal dependence is what the upsample's
+// normal weights keep (README "RTF at half and quarter resolution, session 25").
+layout(constant_id = 2) const uint kStep = 1u;
 
 layout(set = 0, binding = 0) uniform FrameUbo { Camera camera; };
 layout(set = 1, binding = 0) uniform sampler2D gAlbedo;
@@ -44,7 +55,8 @@ layout(location = 16) flat in float reach;  // the tail's end (η), 0: none (eva
 layout(location = 0) out vec4 outRadiance;
 
 void main() {
-  ivec2 pixel = ivec2(gl_FragCoord.xy);
+  ivec2 pixel = kStep == 1u ? ivec2(gl_FragCoord.xy)
+                            : reducedSamplePixel(ivec2(gl_FragCoord.xy), int(kStep), ivec2(camera.resolution.xy));
   float depth = texelFetch(gDepth, pixel, 0).r;
   if (depth >= 1.0) discard;
   vec4 r = vec4(worldFromDepth(camera.invViewProj, (vec2(pixel) + 0.5) * camera.resolution.zw, depth), 1.0);
@@ -104,6 +116,6 @@ void main() {
     vec3 e = y[8] * inRange[6].rgb;
     sum += e * (2.0 * texture(netTex, vec3(uv, (6.0 * spheres + t + 0.5) * face.w)).rgb - 1.0);
   }
-  vec3 albedo = texelFetch(gAlbedo, pixel, 0).rgb;
+  vec3 albedo = kStep == 1u ? texelFetch(gAlbedo, pixel, 0).rgb : vec3(1.0);  // reduced: ρ at the upsample
   outRadiance = vec4(albedo * (fade * sum), 0.0);
 }

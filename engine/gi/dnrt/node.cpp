@@ -150,8 +150,7 @@ Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t fra
       cullLayout_(ctx, {{0, kSampled}, {1, kStorage}, {2, kUniform}}, "dnrt.cull"),  // depth, masks, records
       cullPipelineLayout_(ctx, {cullLayout_}, {VkPushConstantRange{VK_SHADER_STAGE_ALL, 0, sizeof(CullPush)}},
                           "dnrt.cull"),
-      upsampleInputs_(ctx, {{0, kSampled}, {1, kSampled}, {2, kSampled}, {3, kSampled}}, "dnrt.upsample.inputs"),
-      upsampleLayout_(ctx, {shared.frameLayout, upsampleInputs_}, {}, "dnrt.upsample"),
+      upsample_(ctx, shared, "dnrt.upsample"),
       fusedReducedInputs_(ctx, {{0, kSampled}, {1, kSampled}, {2, kSampled}, {3, kStorageImage}},
                           "dnrt.fused.reduced"),  // depth, normal, combined volume, target
       fusedReducedLayout_(ctx, {fusedReducedInputs_},
@@ -244,22 +243,6 @@ const gpu::Pipeline& Node::clusteredPipeline(bool single, bool selfInNormal, std
   d.name = std::string("dnrt.clustered") + (single ? ".single" : "") + (selfInNormal ? "" : ".entity") +
            (step > 1u ? ".step" + std::to_string(step) : "");
   p = gpu::createGraphicsPipeline(ctx_, clusterPipelineLayout_, d);
-  return p;
-}
-
-const gpu::Pipeline& Node::upsamplePipeline(std::uint32_t step) {
-  if (stepIndex(step) == 0) throw InternalError("dnrt: no upsample at full resolution");
-  gpu::Pipeline& p = upsample_[stepIndex(step) - 1];
-  if (p.handle()) return p;
-  if (!upsampleFrag_.handle()) upsampleFrag_ = gpu::ShaderModule(ctx_, "dnrt/upsample.frag.spv");
-  gpu::GraphicsPipelineDesc d;
-  d.vertex = &fullscreenVert_;
-  d.fragment = &upsampleFrag_;
-  d.colorFormats = {kHdrFormat};
-  d.blend = gpu::Blend::Additive;  // added to "lighting.hdr", as the full-resolution draw
-  d.specialization = {step};       // upsample.frag kStep
-  d.name = "dnrt.upsample.step" + std::to_string(step);
-  p = gpu::createGraphicsPipeline(ctx_, upsampleLayout_, d);
   return p;
 }
 
@@ -854,40 +837,8 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
   }
 
   // The reduced target's upsample over every pixel: ρ_r times the depth- and normal-aware blend of the
-  // 4 nearest samples (shaders/dnrt/upsample.frag, common/upsample.glsl), added to "lighting.hdr".
-  struct UpData {
-    render::DeferredInputs g;
-    rg::Handle<rg::Texture> reduced, hdr;
-  };
-  const rg::Handle<rg::Texture> reducedTarget = data.hdr;
-  const auto& up = graph.addPass<UpData>(
-      "dnrt.upsample",
-      [&](rg::Builder& b, UpData& d) {
-        d.g = render::readDeferredInputs(b, bb);
-        d.reduced = b.read(reducedTarget, rg::Usage::SampledFragment);
-        d.hdr = b.write(bb.get<rg::Texture>("lighting.hdr"), rg::Usage::ColorAttachment);
-      },
-      [this, pc, step](const UpData& d, const rg::PassResources& res, rg::CommandContext& c) {
-        VkCommandBuffer cmd = pc->cmd(c);
-        VkSampler point = pc->samplers->get({VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST});
-        VkDescriptorSet inputs = pc->frame().descriptors->allocate(upsampleInputs_);
-        gpu::DescriptorWriter w;
-        // The reduced target is read by texelFetch only (upsample.frag's edge-aware blend), which
-        // ignores the sampler: the point one, as the G-buffer's.
-        render::writeDeferredInputs(w, d.g, *pc, res, point)
-            .sampledImage(3, pc->backend->image(res.texture(d.reduced)).view(), point)
-            .update(ctx_, inputs);
-        gpu::Image& target = pc->backend->image(res.texture(d.hdr));
-        render::Attachment color{target.view(), res.keepsContents(d.hdr)};
-        render::beginRendering(ctx_, cmd, {target.desc().width, target.desc().height}, {&color, 1}, nullptr);
-        const gpu::Pipeline& p = upsamplePipeline(step);
-        p.bind(cmd);
-        p.bindSet(cmd, 0, pc->frameSet);
-        p.bindSet(cmd, 1, inputs);
-        vkCmdDraw(cmd, 3, 1, 0, 0);
-        ctx_.cmdEndRendering(cmd);
-      });
-  bb.put("lighting.hdr", up.hdr);
+  // 4 nearest samples, added to "lighting.hdr" (gi/upsample_pass.hpp).
+  upsample_.addTo(graph, *pc, data.hdr, step);
 }
 
 std::vector<std::uint32_t> Node::lastTileMasks() const {

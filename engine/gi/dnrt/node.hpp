@@ -32,6 +32,7 @@
 #include "engine/gi/dnrt/field.hpp"
 #include "engine/gi/dnrt/gpu_object.hpp"
 #include "engine/gi/probes/node.hpp"
+#include "engine/gi/upsample_pass.hpp"
 #include "engine/gpu/buffer.hpp"
 #include "engine/gpu/descriptors.hpp"
 #include "engine/gpu/image.hpp"
@@ -89,7 +90,7 @@ struct NodeSettings {
   // "dnrt": {"resolution"} (scene::DnrtConfig; names and checks gi/resolution.hpp). Below full, the
   // box, full-screen and clustered draws shade the transient "dnrt.half" / "dnrt.quarter"
   // (⌈size/step⌉, cleared to 0, no depth attachment) at G-buffer pixel step·j, without ρ_r, and the pass
-  // "dnrt.upsample" (shaders/dnrt/upsample.frag) adds ρ_r times its depth- and normal-aware upsample
+  // "dnrt.upsample" (gi/upsample_pass.hpp) adds ρ_r times its depth- and normal-aware upsample
   // (SL's weights, gi/upsample.hpp) to "lighting.hdr" at every pixel.
   std::uint32_t step = 1;
   // The fused mode with one object at full resolution (addFused): draw the probes pass as the object's outer
@@ -186,8 +187,6 @@ class Node {
   void recordTileCull(VkCommandBuffer cmd, const render::PassContext& pc, VkImageView depth, VkImageLayout depthLayout,
                       gpu::Buffer& tiles, gpu::Buffer& records, std::size_t batches, glm::uvec2 resolution);
   const gpu::Pipeline& clusteredPipeline(bool single, bool selfInNormal, std::uint32_t step);
-  // "dnrt.upsample"'s pipeline for step 2 or 4 (made on first use).
-  const gpu::Pipeline& upsamplePipeline(std::uint32_t step);
   // This frame slot's buffer of folded records (DnrtShaderObject per object), written now.
   gpu::Buffer& objectBuffer(std::uint32_t slot, const std::vector<NodeObject>& objects);
   // The same into `ring` (objectBuffers_, or fusedBuffers_ for addFused).
@@ -229,11 +228,8 @@ class Node {
   gpu::DescriptorSetLayout cullLayout_;
   gpu::PipelineLayout cullPipelineLayout_;
   gpu::Pipeline cull_;
-  // "dnrt.upsample" (step 2, 4): G-buffer albedo, normal, depth and the reduced target.
-  gpu::DescriptorSetLayout upsampleInputs_;
-  gpu::PipelineLayout upsampleLayout_;
-  gpu::ShaderModule upsampleFrag_;
-  std::array<gpu::Pipeline, 2> upsample_;  // index: step 2, 4
+  // "dnrt.upsample" (step 2, 4; gi/upsample_pass.hpp).
+  ReducedUpsample upsample_;
   // "dnrt.fused.reduced" (fused_reduced.comp, step 2, 4): depth, normal, the combined volume, the target.
   gpu::DescriptorSetLayout fusedReducedInputs_;
   gpu::PipelineLayout fusedReducedLayout_;

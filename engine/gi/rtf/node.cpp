@@ -4,6 +4,7 @@
 #include <string>
 
 #include "engine/core/error.hpp"
+#include "engine/gi/resolution.hpp"  // header only: the steps and the reduced size
 #include "engine/gpu/commands.hpp"
 #include "engine/render/passes/rendering.hpp"
 #include "engine/render/passes/gbuffer_pass.hpp"
@@ -21,26 +22,34 @@ Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t fra
       inputLayout_(ctx, {{0, kSampled}, {1, kSampled}, {2, kSampled}, {3, kSampled}}, "rtf.inputs"),
       objectLayout_(ctx, {{0, kUniform}, {1, kSampled}, {2, kUniform}}, "rtf.object"),
       layout_(ctx, {shared.frameLayout, inputLayout_, objectLayout_}, {}, "rtf"),
-      records_(framesInFlight) {
-  const gpu::ShaderModule vert(ctx, "rtf/rtf.vert.spv"), frag(ctx, "rtf/rtf.frag.spv");
+      vert_(ctx, "rtf/rtf.vert.spv"),
+      frag_(ctx, "rtf/rtf.frag.spv"),
+      upsample_(ctx, shared, "rtf.upsample"),
+      records_(framesInFlight) {}
+
+// One pipeline per SH count, self test and step (rtf.frag's kSh9, kSelfInNormal, kStep): llvmpipe runs
+// an untaken branch in full.
+const gpu::Pipeline& Node::pipeline(bool sh4, bool entity, std::uint32_t step) {
+  const std::size_t s = gi::checkedStep(step) == 4u ? 2 : step == 2u ? 1 : 0;
+  gpu::Pipeline& p = pipelines_[sh4 ? 1 : 0][entity ? 1 : 0][s];
+  if (p.handle()) return p;
   gpu::GraphicsPipelineDesc d;
-  d.vertex = &vert;
-  d.fragment = &frag;
-  d.colorFormats = {kHdrFormat};
+  d.vertex = &vert_;
+  d.fragment = &frag_;
+  d.colorFormats = {kHdrFormat};  // "lighting.hdr", or "rtf.half" / "rtf.quarter" (the same format)
   d.blend = gpu::Blend::Additive;
   d.cull = VK_CULL_MODE_NONE;  // rtf.vert's camera-facing octagon (or full-screen triangle): each covered pixel once
-  // One pipeline per SH count and self test (rtf.frag's kSh9, kSelfInNormal): llvmpipe runs an untaken
-  // branch in full.
-  for (int sh4 = 0; sh4 < 2; ++sh4)
-    for (int entity = 0; entity < 2; ++entity) {
-      d.name = std::string("rtf") + (sh4 ? ".sh4" : "") + (entity ? ".entity" : "");
-      d.specialization = {sh4 ? 0u : 1u, entity ? 0u : 1u};
-      pipelines_[sh4][entity] = gpu::createGraphicsPipeline(ctx, layout_, d);
-    }
+  d.name = std::string("rtf") + (sh4 ? ".sh4" : "") + (entity ? ".entity" : "") +
+           (step > 1u ? ".step" + std::to_string(step) : "");
+  d.specialization = {sh4 ? 0u : 1u, entity ? 0u : 1u, step};
+  p = gpu::createGraphicsPipeline(ctx_, layout_, d);
+  return p;
 }
 
-void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::vector<NodeObject> objects) {
+void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::vector<NodeObject> objects,
+                 std::uint32_t step) {
   if (objects.empty()) return;
+  const bool reduced = gi::checkedStep(step) > 1u;
   for (const NodeObject& o : objects)
     if (!o.xi) throw InternalError("rtf: object '" + o.name + "' has no field on the GPU");
   auto& bb = graph.blackboard();
@@ -85,9 +94,16 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
       "rtf",
       [&](rg::Builder& b, Data& d) {
         d.g = render::readDeferredInputs(b, bb, /*withEntity=*/true);
-        d.hdr = b.write(bb.get<rg::Texture>("lighting.hdr"), rg::Usage::ColorAttachment);
+        // Full resolution: the draws add to "lighting.hdr". Half, quarter: into the transient "rtf.half" /
+        // "rtf.quarter" (⌈size/step⌉, cleared), which "rtf.upsample" below adds to "lighting.hdr".
+        const glm::uvec2 size = gi::reducedSize(
+            {std::uint32_t(pc->world->camera.resolution.x), std::uint32_t(pc->world->camera.resolution.y)}, step);
+        d.hdr = reduced ? b.write(b.create<rg::Texture>(std::string("rtf.") + gi::resolutionName(step),
+                                                        rg::TextureDesc{size.x, size.y, 1, 1, 1, rg::Format::RGBA16F, false}),
+                                  rg::Usage::ColorAttachment)
+                        : b.write(bb.get<rg::Texture>("lighting.hdr"), rg::Usage::ColorAttachment);
       },
-      [this, pc, objects = std::move(objects)](const Data& d, const rg::PassResources& res, rg::CommandContext& c) {
+      [this, pc, step, reduced, objects = std::move(objects)](const Data& d, const rg::PassResources& res, rg::CommandContext& c) {
         VkCommandBuffer cmd = pc->cmd(c);
         // This slot's records (the ring waited for the slot's fence before the frame began).
         gpu::Buffer& buffer = records_[pc->frame().slot % records_.size()];
@@ -108,11 +124,12 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
             .update(ctx_, inputs);
 
         gpu::Image& target = pc->backend->image(res.texture(d.hdr));
-        render::Attachment color{target.view(), res.keepsContents(d.hdr)};
+        // "rtf.half" / "rtf.quarter" starts at zero (samples no object reaches stay 0); "lighting.hdr" keeps its light.
+        render::Attachment color{target.view(), !reduced && res.keepsContents(d.hdr)};
         const VkExtent2D extent{target.desc().width, target.desc().height};
         render::beginRendering(ctx_, cmd, extent, {&color, 1}, nullptr);
         // The pipelines share the layout: sets bound through one stay bound for the others.
-        const gpu::Pipeline* bound = &pipelines_[0][0];
+        const gpu::Pipeline* bound = &pipeline(false, false, step);
         bound->bind(cmd);
         bound->bindSet(cmd, 0, pc->frameSet);
         bound->bindSet(cmd, 1, inputs);
@@ -126,7 +143,7 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
               .update(ctx_, set);
           // The self test reads the entity id + 1 from the normal's w while it fits there (gbuffer.glsl).
           const bool entity = objects[i].record.ids.x > render::kEntityInNormalMax;
-          const gpu::Pipeline* want = &pipelines_[objects[i].record.ids.y == 4u ? 1 : 0][entity ? 1 : 0];
+          const gpu::Pipeline* want = &pipeline(objects[i].record.ids.y == 4u, entity, step);
           if (want != bound) want->bind(cmd), bound = want;
           bound->bindSet(cmd, 2, set);
           if (ts) ts->begin(cmd, "rtf/" + objects[i].name);
@@ -135,7 +152,10 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
         }
         ctx_.cmdEndRendering(cmd);
       });
-  bb.put("lighting.hdr", data.hdr);
+  if (reduced)
+    upsample_.addTo(graph, *pc, data.hdr, step);
+  else
+    bb.put("lighting.hdr", data.hdr);
 }
 
 }  // namespace bounce::gi::rtf

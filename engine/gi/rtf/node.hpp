@@ -8,6 +8,10 @@
 //                (rtf.vert: no depth test, no culling) and every covered receiver pixel gets ρ/π·E_n of the Eq. 10 lookup of ξ
 //                (the interreflected light) minus ρ/π·E_n((1 − V) ⊙ L) (the indirect light the
 //                object's OOF blocks), shaders/rtf/rtf.frag. The object's own pixels skip its field.
+//  "rtf.upsample" only below full resolution (addTo's `step`, the level's "rtf": {"resolution"}): the
+//                draws above then shade one G-buffer pixel in step² into the transient "rtf.half" /
+//                "rtf.quarter" (⌈size/step⌉, cleared) without ρ, and this full-screen pass adds ρ times
+//                its depth- and normal-aware upsample to "lighting.hdr" (gi/upsample_pass.hpp).
 // Reads "gbuffer.albedo", "gbuffer.normal", "gbuffer.depth", "gbuffer.entity"; puts back "lighting.hdr".
 // No object: no pass.
 #include <memory>
@@ -16,6 +20,7 @@
 
 #include "engine/gi/rtf/update.hpp"
 #include "engine/gi/rtf/xi_pass.hpp"
+#include "engine/gi/upsample_pass.hpp"
 #include "engine/gpu/buffer.hpp"
 #include "engine/gpu/descriptors.hpp"
 #include "engine/gpu/pipeline.hpp"
@@ -35,14 +40,20 @@ struct NodeObject {
 class Node {
  public:
   Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t framesInFlight);
-  void addTo(rg::RenderGraph& graph, const render::PassContext& pc, std::vector<NodeObject> objects);
+  // `step`: G-buffer pixels per shaded sample along each axis, 1 (full), 2 (half) or 4 (quarter).
+  void addTo(rg::RenderGraph& graph, const render::PassContext& pc, std::vector<NodeObject> objects,
+             std::uint32_t step = 1);
 
  private:
   gpu::Context& ctx_;
   gpu::DescriptorSetLayout inputLayout_, objectLayout_;
   gpu::PipelineLayout layout_;
-  // [sh 9 : 4][self test on the normal's w : on gbuffer.entity] (rtf.frag kSh9, kSelfInNormal).
-  gpu::Pipeline pipelines_[2][2];
+  // rtf.frag's variant: sh 9 or 4 (kSh9), the self test on the normal's w or on gbuffer.entity
+  // (kSelfInNormal), step 1, 2 or 4 (kStep); made on first use.
+  const gpu::Pipeline& pipeline(bool sh4, bool entity, std::uint32_t step);
+  gpu::ShaderModule vert_, frag_;
+  gpu::Pipeline pipelines_[2][2][3];  // [sh 4][entity][step 1, 2, 4]
+  gi::ReducedUpsample upsample_;      // "rtf.upsample"
   std::vector<gpu::Buffer> records_;  // per frame slot, RtfObjectGpu at kRtfObjectStride
 };
 

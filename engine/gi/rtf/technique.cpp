@@ -12,6 +12,7 @@
 #include "engine/core/log.hpp"
 #include "engine/core/paths.hpp"
 #include "engine/gi/participants.hpp"
+#include "engine/gi/resolution.hpp"  // header only: the resolution names
 #include "engine/gi/dnrt/object_scene.hpp"
 #include "engine/gi/incident/session_light.hpp"
 #include "engine/gi/probes/bake.hpp"
@@ -149,8 +150,23 @@ class RtfTechnique final : public Technique {
       };
       rows.push_back(std::move(r));
     }
+    // The shading at half and quarter resolution (the level's "rtf": {"resolution"}), 2 bounces, 9 SH:
+    // what the reduced draws and their upsample cost in accuracy.
+    for (const std::uint32_t step : {2u, 4u}) {
+      AccuracyRow r;
+      r.technique = "rtf";
+      r.setting = std::string("resolution=") + gi::resolutionName(step) + ";bounces=2;ref=all";
+      r.effects = {"direct", "shadows", "probes", "rtf"};
+      r.passes = {"shadow", "lighting", "probes", "rtf.bounce", "rtf", "rtf.upsample"};
+      r.configure = [step](scene::Level& level) {
+        level.rtf.step = step;
+        for (auto& e : level.entities)
+          if (e.rtf) e.rtf->bounces = 2, e.rtf->sh = 9, e.rtf->tail = 0.0f;
+      };
+      rows.push_back(std::move(r));
+    }
   }
-  std::vector<std::string> passes() const override { return {"rtf.bounce", "rtf"}; }
+  std::vector<std::string> passes() const override { return {"rtf.bounce", "rtf", "rtf.upsample"}; }
 };
 
 }  // namespace
@@ -224,6 +240,7 @@ SessionRuntime::SessionRuntime(SessionContext& sc, const std::filesystem::path& 
   update_->setRoomShadows(sc.services.probeVolume != nullptr ? &light.surfaces() : nullptr);
   for (const Participant& p : update_->participants()) xi_.push_back(std::make_unique<XiPass>(sc.ctx, p.field));
   node_ = std::make_unique<Node>(sc.ctx, sc.renderer.pipelines(), sc.renderer.frames().framesInFlight());
+  step_ = sc.level.rtf.step;  // "rtf": {"resolution"}
 }
 
 render::Renderer::GraphNode SessionRuntime::node() {
@@ -235,7 +252,7 @@ render::Renderer::GraphNode SessionRuntime::node() {
       objects.push_back({xi_[i].get(), std::move(f.proxyLight[o]), f.records[o], update_->participants()[i].name,
                          std::move(f.blockedScale[o])});
     }
-    node_->addTo(graph, pc, std::move(objects));
+    node_->addTo(graph, pc, std::move(objects), step_);
   };
 }
 

@@ -41,6 +41,7 @@ class SessionRuntime final : public TechniqueRuntime {
   std::unique_ptr<Update> update_;
   std::vector<std::unique_ptr<XiPass>> xi_;  // per participant
   std::unique_ptr<Node> node_;
+  std::uint32_t step_ = 1;  // G-buffer pixels per shaded sample per axis: the level's "rtf": {"resolution"}
   std::size_t baked_ = 0;
 };
 

@@ -441,6 +441,77 @@ TEST(RtfGpu, SessionRunsTheBouncingStepAndBothPasses) {
 }
 
 
+// The level's "rtf": {"resolution": "half"|"quarter"} (README "RTF at half and quarter resolution, session
+// 25"): the draws shade one G-buffer pixel in step² into "rtf.half" / "rtf.quarter" without ρ, and
+// "rtf.upsample" adds ρ times the depth- and normal-aware blend of the 4 nearest samples.
+// - structure: the full-resolution passes with "rtf.upsample" right after "rtf";
+// - image, on two-boxes.json (the RTF term alone, two overlapping fields, both draws into one reduced
+//   target): every value finite and within 1.5× the full term's largest; within kRmsBound relative RMS of
+//   the full-resolution term; at most kOffShare of the values off by more than kOff of the largest. What is
+//   left is the blend of a smooth term over 2 or 4 pixels, fp16 rounding, and the boxes' silhouettes: a
+//   floor pixel whose 4 samples all lie on a box's top takes the best-matching one, which holds only the
+//   other box's term (the box skips its own), so a band up to `step` pixels wide there is off (the same
+//   holds for DNRT's reduced draws). Measured at 128×128 (the printf): the RMS bounds are about 1.7× the
+//   measured figures, the share's about 4×; leaving the term out scores 1 and 1.
+TEST(RtfGpu, ReducedResolutionIsTheFullShadingWithinABound) {
+  gpu::Context& ctx = gpu::testkit::sharedContext();
+  const fs::path levelFile = fs::path(BOUNCE_SOURCE_DIR) / "tests/data/rtf/two-boxes.json";
+  constexpr std::uint32_t kW = 128, kH = 128;
+  const auto render = [&](std::uint32_t step, std::vector<std::string>& passes) {
+    scene::Level level = game::loadLevelWithEffects(levelFile, std::nullopt);
+    level.rtf.step = step;
+    game::Session session(ctx, std::move(level));
+    session.update(0.0);
+    std::vector<float> rgb = renderHdr(session, ctx, kW, kH, &passes);
+    session.renderer().frames().waitIdle();
+    return rgb;
+  };
+  std::vector<std::string> fullPasses;
+  const std::vector<float> full = render(1, fullPasses);
+  ASSERT_EQ(std::count(fullPasses.begin(), fullPasses.end(), "rtf"), 1);
+  EXPECT_EQ(std::count(fullPasses.begin(), fullPasses.end(), "rtf.upsample"), 0);
+  std::vector<std::string> expected;
+  for (const std::string& p : fullPasses) {
+    expected.push_back(p);
+    if (p == "rtf") expected.push_back("rtf.upsample");
+  }
+  // half, quarter: measured 0.082 / 0.100 (rel RMS) and 0.0002 / 0.0003 (the share of values off by more than
+  // kOff of the largest term: 8 and 11 channel values of 36 153, at the boxes' silhouettes)
+  constexpr float kOff = 0.1f;
+  constexpr float kRmsBound[2] = {0.14f, 0.17f};
+  constexpr double kOffShare[2] = {0.001, 0.001};
+  for (const std::uint32_t step : {2u, 4u}) {
+    std::vector<std::string> passes;
+    const std::vector<float> reduced = render(step, passes);
+    EXPECT_EQ(passes, expected) << "step " << step;
+    ASSERT_EQ(reduced.size(), full.size());
+    double sumSq = 0.0, errSq = 0.0;
+    float largest = 0.0f;
+    for (std::size_t i = 0; i < full.size(); ++i) {
+      ASSERT_TRUE(std::isfinite(reduced[i])) << i;
+      const float err = reduced[i] - full[i];
+      sumSq += double(full[i]) * full[i];
+      errSq += double(err) * err;
+      largest = std::max(largest, std::abs(full[i]));
+    }
+    int covered = 0, off = 0, bounded = 0;
+    for (std::size_t i = 0; i < full.size(); ++i) {
+      covered += full[i] != 0.0f ? 1 : 0;
+      off += std::abs(reduced[i] - full[i]) > kOff * largest ? 1 : 0;
+      bounded += std::abs(reduced[i]) <= 1.5f * largest ? 1 : 0;
+    }
+    const double rel = std::sqrt(errSq / sumSq), share = double(off) / double(covered);
+    std::printf("rtf step %u vs full: %d channel values carry the term (largest %.4g), rel RMS %.4f of it, %.4f of them "
+                "off by more than %.2f of the largest\n",
+                step, covered, largest, rel, share, kOff);
+    EXPECT_GT(covered, 10000);
+    EXPECT_GT(largest, 1e-4f);
+    EXPECT_EQ(bounded, int(full.size())) << "a blend of the samples stays within the term's range";
+    EXPECT_LE(rel, kRmsBound[step == 2u ? 0 : 1]) << "step " << step;
+    EXPECT_LE(share, kOffShare[step == 2u ? 0 : 1]) << "step " << step;
+  }
+}
+
 // Two objects whose fields overlap (the issue's hard case): the pass adds each object's term on
 // its own, so the frame with both = the frames with each alone summed, and = Σ_k shade() of each
 // object alone (with the ξ of the two-object bouncing step) within fp16 rounding. Algorithm 1 at a

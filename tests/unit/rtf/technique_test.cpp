@@ -103,6 +103,44 @@ TEST(RtfComponent, BadInputIsOneLine) {
             "FILE: /entities/0/rtf: a radiance transfer field on an entity without a mesh (expected a \"mesh\" key)");
 }
 
+// The level's own "rtf": {"resolution"} (beside the entities' fields): the shading draws' step, default
+// full (1) — no shipped level sets it — "half" 2, "quarter" 4; anything else is one line at its place
+// (the `bounce` binary's exit 2 is the same InputError).
+TEST(RtfLevel, ResolutionKeyAndItsBadInput) {
+  const auto levelWith = [&](const std::string& name, const std::string& rtfLevelJson) {
+    const fs::path path = outDir() / (name + ".json");
+    fs::create_directories(outDir());
+    writeFileAtomic(path, R"({"bounce_level": 1, "effects": ["direct", "rtf"], "rtf": )" + rtfLevelJson +
+                              R"(, "entities": [{"id": "a", "dynamic": true, )" + mesh() + R"(, "rtf": {}}]})");
+    return path;
+  };
+  for (const char* shipped : {"cornell-5", "cornell-rtf"})
+    EXPECT_EQ(scene::loadLevel(kSource / "content/levels" / (std::string(shipped) + ".json")).rtf.step, 1u) << shipped;
+  EXPECT_EQ(scene::loadLevel(levelWith("rtf-res-default", "{}")).rtf.step, 1u);
+  EXPECT_EQ(scene::loadLevel(levelWith("rtf-res-full", R"({"resolution": "full"})")).rtf.step, 1u);
+  EXPECT_EQ(scene::loadLevel(levelWith("rtf-res-half", R"({"resolution": "half"})")).rtf.step, 2u);
+  EXPECT_EQ(scene::loadLevel(levelWith("rtf-res-quarter", R"({"resolution": "quarter"})")).rtf.step, 4u);
+  EXPECT_EQ(scene::loadLevel(levelWith("rtf-res-quarter", R"({"resolution": "quarter"})")).dnrt.step, 1u)
+      << "the rtf key is not DNRT's";
+  const std::pair<const char*, std::string> cases[] = {
+      {R"({"resolution": "eighth"})", ": /rtf/resolution: unknown resolution \"eighth\" (expected full, half or quarter)"},
+      {R"({"resolution": 2})", ": /rtf/resolution: wrong type: integer (expected a string)"},
+      {R"({"bounces": 2})", ": /rtf/bounces: "},
+      {R"("half")", ": /rtf: "},
+  };
+  for (const auto& [json, want] : cases) {
+    const fs::path path = levelWith("rtf-res-bad", json);
+    try {
+      scene::loadLevel(path);
+      ADD_FAILURE() << json;
+    } catch (const InputError& e) {
+      const std::string what = e.what();
+      EXPECT_EQ(what.rfind(path.string() + want, 0), 0u) << what;
+      EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+    }
+  }
+}
+
 TEST(RtfTechnique, TakesPartAndBakesOneEntryPerEntity) {
   const Technique& t = technique();
   EXPECT_EQ(t.cacheKind(), "rtf");
