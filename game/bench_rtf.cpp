@@ -11,6 +11,7 @@
 #include "engine/gi/dnrt/object_scene.hpp"
 #include "engine/gi/rtf/bake.hpp"
 #include "engine/gi/rtf/evaluate.hpp"
+#include "engine/gi/resolution.hpp"  // header only: the --rtf-resolution names
 #include "engine/math/sampling.hpp"
 #include "engine/scene/systems.hpp"
 #include "game/bench_dnrt.hpp"
@@ -40,6 +41,14 @@ int intIn(const cli::Args& args, const char* option, int fallback, int lo, int h
 
 int runBenchRtf(const cli::Args& args) {
   gi::rtf::FieldSettings s;  // the paper's resolution unless told otherwise
+  std::vector<std::uint32_t> steps;  // the shading's G-buffer pixels per sample per axis (engine/gi/resolution.hpp)
+  for (const std::string& r : args.list("--rtf-resolution").value_or(std::vector<std::string>{"full"})) {
+    const std::optional<std::uint32_t> step = gi::parseResolution(r);
+    if (!step)
+      throwInputError("bounce bench", "--rtf-resolution", "'" + r + "' is not a resolution",
+                      "full, half, quarter or a list: full,half,quarter");
+    steps.push_back(*step);
+  }
   s.proxies = intIn(args, "--proxies", s.proxies, 1, 64);
   s.spheres = intIn(args, "--spheres", s.spheres, 2, 64);
   s.faceSize = intIn(args, "--face", s.faceSize, 1, 64);
@@ -163,37 +172,42 @@ int runBenchRtf(const cli::Args& args) {
   const int frames = intIn(args, "--frames", 30, 1, 100000);
   gpu::Context ctx({args.str("--device", "")});
   gpu::OffscreenPresenter presenter(ctx, {std::uint32_t(res.first), std::uint32_t(res.second)});
-  for (std::size_t n = 1; n <= fields.size(); ++n) {
-    scene::Level configured = level;
-    scene::overrideEffects(configured, "direct,shadows,probes,rtf");
-    std::size_t k = 0;
-    for (auto& e : configured.entities) {
-      if (!e.dnrt) continue;  // the bench's objects (above)
-      e.rtf.reset();
-      if (k++ >= n) continue;
-      scene::Rtf c;
-      c.proxies = s.proxies, c.bounces = bounces, c.spheres = s.spheres, c.face = s.faceSize, c.rays = s.raysPerAxis;
-      c.vertexRays = s.vertexRaysPerAxis, c.clusters = s.clusters, c.components = s.components;
-      c.byteComponents = s.byteComponents;  // else the GPU rows would bake (and time) a field without the 8-bit tail
-      c.inner = s.innerRadius, c.outer = s.outerRadius;
-      e.rtf = c;
+  for (std::size_t n = 1; n <= fields.size(); ++n)
+    for (const std::uint32_t step : steps) {
+      scene::Level configured = level;
+      scene::overrideEffects(configured, "direct,shadows,probes,rtf");
+      configured.rtf.step = step;
+      std::size_t k = 0;
+      for (auto& e : configured.entities) {
+        if (!e.dnrt) continue;  // the bench's objects (above)
+        e.rtf.reset();
+        if (k++ >= n) continue;
+        scene::Rtf c;
+        c.proxies = s.proxies, c.bounces = bounces, c.spheres = s.spheres, c.face = s.faceSize, c.rays = s.raysPerAxis;
+        c.vertexRays = s.vertexRaysPerAxis, c.clusters = s.clusters, c.components = s.components;
+        c.byteComponents = s.byteComponents;  // else the GPU rows would bake (and time) a field without the 8-bit tail
+        c.inner = s.innerRadius, c.outer = s.outerRadius;
+        e.rtf = c;
+      }
+      TimingCollector timings;
+      {
+        Session session(ctx, configured);
+        timeFrames(session, presenter, frames, timings);
+      }
+      double bounceGpu = 0.0, shade = 0.0, upsample = 0.0, perObject = 0.0;
+      std::size_t objectRows = 0, measured = 0;
+      for (const PassStats& p : timings.stats()) {
+        if (p.pass == "rtf.bounce" && p.object.empty()) bounceGpu = p.medianMs, measured = p.frames;
+        if (p.pass == "rtf" && p.object.empty()) shade = p.medianMs;
+        if (p.pass == "rtf.upsample" && p.object.empty()) upsample = p.medianMs;
+        if (p.pass == "rtf" && !p.object.empty()) perObject += p.medianMs, ++objectRows;
+      }
+      std::printf("objects=%zu bounces=%d %dx%d rtf_bounce_ms=%.3f rtf_ms=%.3f rtf_per_object_ms=%.3f frames=%zu resolution=%s "
+                  "rtf_upsample_ms=%.3f\n",
+                  n, bounces, res.first, res.second, bounceGpu, shade + upsample,
+                  objectRows ? perObject / double(objectRows) : 0.0, measured, gi::resolutionName(step), upsample);
+      std::fflush(stdout);
     }
-    TimingCollector timings;
-    {
-      Session session(ctx, configured);
-      timeFrames(session, presenter, frames, timings);
-    }
-    double bounceGpu = 0.0, shade = 0.0, perObject = 0.0;
-    std::size_t objectRows = 0, measured = 0;
-    for (const PassStats& p : timings.stats()) {
-      if (p.pass == "rtf.bounce" && p.object.empty()) bounceGpu = p.medianMs, measured = p.frames;
-      if (p.pass == "rtf" && p.object.empty()) shade = p.medianMs;
-      if (p.pass == "rtf" && !p.object.empty()) perObject += p.medianMs, ++objectRows;
-    }
-    std::printf("objects=%zu bounces=%d %dx%d rtf_bounce_ms=%.3f rtf_ms=%.3f rtf_per_object_ms=%.3f frames=%zu\n", n, bounces,
-                res.first, res.second, bounceGpu, shade, objectRows ? perObject / double(objectRows) : 0.0, measured);
-    std::fflush(stdout);
-  }
   return 0;
 }
 

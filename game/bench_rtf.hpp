@@ -12,9 +12,11 @@
 // medians over --runs (the light: a uniform environment of radiance 1; the source's cost is not what
 // is measured). Then on the GPU (unless --no-gpu), the level rendered with direct,shadows,probes,rtf
 // and the first 1…N of those objects carrying an `rtf` component at these settings, one line each:
-//   objects=N bounces=B WxH rtf_bounce_ms=… rtf_ms=… rtf_per_object_ms=… frames=…
-// rtf_bounce_ms: the ξ pass ("rtf.bounce"); rtf_ms: the shading pass ("rtf"); per object: the mean
-// of the "rtf/<id>" scopes; GPU medians over --frames (default 30) after 5 warm-up frames.
+//   objects=N bounces=B WxH rtf_bounce_ms=… rtf_ms=… rtf_per_object_ms=… frames=… resolution=full|half|quarter rtf_upsample_ms=…
+// rtf_bounce_ms: the ξ pass ("rtf.bounce"); rtf_ms: the shading, pass "rtf" plus "rtf.upsample" below full
+// resolution (--rtf-resolution, a list: one line per scene size and resolution; the level's "rtf":
+// {"resolution"}); per object: the mean of the "rtf/<id>" scopes (the draws alone); rtf_upsample_ms: the
+// upsample (0 at full); GPU medians over --frames (default 30) after 5 warm-up frames.
 #include "game/cli.hpp"
 
 namespace bounce::game {

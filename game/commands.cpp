@@ -128,6 +128,7 @@ const std::vector<cli::CommandSpec>& commandSpecs() {
         {"--fused", "", "sl: run the probes too, so pass 2 is the shipped levels' one walk for sl and sl.shadow (sl_ms holds both terms)"},
         {"--radii", "INNER,OUTER", "rtf: innermost and outermost sphere radii in units of the bounding radius (default 0.1,8)"},
         {"--no-gpu", "", "rtf: only the bake and CPU lines"},
+        {"--rtf-resolution", "LIST", "rtf: the shading's resolution, full, half, quarter or a list such as full,quarter (default full); rtf_ms then adds rtf.upsample"},
         {"--only", "TEXT", "skinning: only the models whose name contains TEXT (e.g. +subdiv)"}},
        1, 1},
   };

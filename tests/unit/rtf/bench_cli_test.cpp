@@ -67,6 +67,14 @@ TEST(RtfBenchCli, ObjectIsAnyEntityWithAMesh) {
   EXPECT_EQ(out[1].rfind("objects=1 bounces=2 ", 0), 0u) << out[1];
 }
 
+TEST(RtfBenchCli, UnknownShadingResolutionIsOneLineAndExit2BeforeAnyBake) {
+  const auto r = runBounce({"bench", "rtf", "--level", "cornell-5", "--no-gpu", "--rtf-resolution", "full,eighth"}, kOut / "resolution");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_EQ(lines(r.out).size(), 0u) << r.out;  // nothing baked or printed first
+  ASSERT_EQ(lines(r.err).size(), 1u) << r.err;
+  EXPECT_NE(r.err.find("--rtf-resolution: 'eighth' is not a resolution (expected full, half, quarter or a list"), std::string::npos) << r.err;
+}
+
 TEST(RtfBenchCli, MissingLevelIsOneLineAndExit2) {
   const auto r = runBounce({"bench", "rtf", "--level", "no-such-level"}, kOut / "level");
   EXPECT_EQ(r.code, 2);
