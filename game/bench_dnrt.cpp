@@ -116,7 +116,7 @@ void fillTimes(const std::vector<PassStats>& stats, DnrtBenchRow& row, int dnrtE
     if (s.pass == "probes") row.probesMs = s.medianMs;
   }
   // The draws' Σ_j c_j M_j per grid vertex (combine.comp) and, below full resolution, the upsample
-  // (dnrt/upsample.frag) are part of DNRT's cost.
+  // (passes/reduced_upsample.frag) are part of DNRT's cost.
   row.dnrtMs += combineMs + upsampleMs;
   row.perObjectMs = row.objects > 0 ? perObject / row.objects : kNaN;
   // Fused: every object is either a box (a scope each) or in the probes pass; clustered: one draw for

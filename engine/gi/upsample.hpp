@@ -1,11 +1,12 @@
 #pragma once
 // C++ reference of the edge-aware upsample of a reduced-resolution irradiance target
 // (shaders/common/upsample.glsl, the same operations in the same order, in double), shared by SL pass 2
-// ("sl.half" / "sl.quarter", shaders/sl/upsample.frag) and DNRT at reduced resolution ("dnrt.half" /
-// "dnrt.quarter", shaders/dnrt/upsample.frag): the reduced target holds E at G-buffer pixel step·j
-// (engine/gi/resolution.hpp); a full-resolution pixel blends its 4 nearest samples with bilinear
-// weights times a receiver match — exp(−(|n·(p_q − p)| / (eye · kUpsamplePlaneScale))²), the sample's
-// distance from this pixel's tangent plane relative to the eye distance, times max(0, n·n_q)^8 —
+// ("sl.half" / "sl.quarter", shaders/sl/upsample.frag) and DNRT and RTF at reduced resolution
+// ("dnrt.half" / "dnrt.quarter", "rtf.half" / "rtf.quarter": shaders/passes/reduced_upsample.frag): the
+// reduced target holds E at G-buffer pixel step·j (engine/gi/resolution.hpp); a full-resolution
+// pixel blends its 4 nearest samples with bilinear weights times a receiver match —
+// exp(−(|n·(p_q − p)| / (eye · kUpsamplePlaneScale))²), the sample's distance from this pixel's tangent
+// plane relative to the eye distance, times max(0, n·n_q)^8 —
 // so light does not cross depth or crease edges; all samples rejected (Σ weight ≤ kUpsampleMinWeight):
 // the best-matching sample alone. Tests: tests/unit/sl/upsample_gpu_test.cpp (GLSL = this).
 #include <array>

@@ -1,7 +1,7 @@
 // The edge-aware upsample of a reduced-resolution irradiance target (README "SL cost", "SL at quarter
 // resolution, session 10", "DNRT at half resolution, session 15"), one copy for SL pass 2
 // (shaders/sl/upsample.frag, self-test sl/upsample_selftest.comp) and DNRT at reduced resolution
-// (shaders/dnrt/upsample.frag); C++ reference engine/gi/upsample.hpp (gi::upsampleTaps,
+// (shaders/passes/reduced_upsample.frag, also RTF's); C++ reference engine/gi/upsample.hpp (gi::upsampleTaps,
 // gi::upsampleBlend), the same operations in the same order.
 // A joint bilateral upsample: the reduced target ("sl.half" / "sl.quarter", "dnrt.half" / "dnrt.quarter") holds E at G-buffer pixel
 // step·j (engine/gi/resolution.hpp); a full-resolution pixel blends its up to 4 nearest samples with

@@ -24,7 +24,7 @@ layout(constant_id = 0) const bool kSingle = false;
 layout(constant_id = 1) const bool kSelfInNormal = false;
 // kStep: 1 (full), 2 (half), 4 (quarter) G-buffer pixels per shaded sample along each axis, as
 // dnrt.frag's: below full, sample j of the reduced target shades G-buffer pixel kStep·j (its tile's
-// mask is that pixel's) and writes the sum without ρ_r for dnrt/upsample.frag.
+// mask is that pixel's) and writes the sum without ρ_r for passes/reduced_upsample.frag.
 layout(constant_id = 2) const uint kStep = 1u;
 
 layout(set = 0, binding = 0) uniform FrameUbo { Camera camera; };

@@ -18,7 +18,7 @@ layout(constant_id = 2) const bool kSelfInNormal = false;
 // kStep: G-buffer pixels per shaded sample along each axis — 1 (full), 2 (half), 4 (quarter); the level's
 // "dnrt": {"resolution"} (node.cpp). Below full the draw covers the reduced target "dnrt.half" /
 // "dnrt.quarter": sample j shades G-buffer pixel kStep·j (reducedSamplePixel) and writes Eq. 16 without
-// ρ_r, (n_o·n_r)₊ s(r) Σ_j c_j M_j(r), which dnrt/upsample.frag spreads over every pixel (depth- and
+// ρ_r, (n_o·n_r)₊ s(r) Σ_j c_j M_j(r), which passes/reduced_upsample.frag spreads over every pixel (depth- and
 // normal-aware, upsample.glsl) and multiplies by ρ_r there. That target has no depth attachment, so
 // the early depth test below rejects nothing then; s(r) > 0 keeps the same receivers.
 layout(constant_id = 3) const uint kStep = 1u;

@@ -59,7 +59,7 @@ TEST(Techniques, RtfWithoutParticipantsSaysSo) {
   EXPECT_FALSE(t->takesPart(lc, nullptr));
   EXPECT_TRUE(t->bakeJobs(lc, {}).empty());
   EXPECT_EQ(t->cacheKind(), "rtf");
-  EXPECT_EQ(t->passes(), (std::vector<std::string>{"rtf.bounce", "rtf"}));
+  EXPECT_EQ(t->passes(), (std::vector<std::string>{"rtf.bounce", "rtf", "rtf.upsample"}));
   EXPECT_EQ(gi::effectNote(*t, lc), "note: effect rtf is named but no entity takes part (no entity has an rtf component): no pass");
 }
 
@@ -203,6 +203,7 @@ TEST(Techniques, AccuracyRowsComeFromTheTable) {
       if (p == "dnrt.fused.reduced") continue;  // the same, below full resolution
       // only below full resolution ("dnrt": {"resolution": "half"|"quarter"}), and then the row says so
       if (p == "dnrt.upsample" && !r.setting.starts_with("resolution=")) continue;
+      if (p == "rtf.upsample" && !r.setting.starts_with("resolution=")) continue;  // "rtf": {"resolution"}, likewise
       // optional: only levels with "local_lights" on have it, and then their rows say so
       if (p == "sl.local" && r.setting.find("local_lights=on") == std::string::npos) continue;
       // likewise the hierarchy's tile passes (§7.3, "hierarchy": true)

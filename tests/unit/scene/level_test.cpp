@@ -273,7 +273,7 @@ TEST(LevelErrors, HostileInput) {
   // A 10 MB key: the message quotes only its start.
   EXPECT_EQ(loadError("big-key", R"({"bounce_level": 1, ")" + big + R"(": 1, "effects": [], "entities": []})"),
             "FILE: /" + std::string(64, 'x') + "...: unknown key \"" + std::string(64, 'x') +
-                "...\" (expected one of: bounce_level, name, effects, background, probes, dnrt, vlm, entities)");
+                "...\" (expected one of: bounce_level, name, effects, background, probes, dnrt, rtf, vlm, entities)");
   // Integers beyond 64 bits become doubles: not an integer.
   EXPECT_EQ(loadError("huge-int", R"({"bounce_level": 123456789012345678901234567890, "effects": [], "entities": []})"),
             "FILE: /bounce_level: wrong type: number (expected an integer in [0, 1073741824])");
@@ -282,7 +282,7 @@ TEST(LevelErrors, HostileInput) {
   // Control characters in a key (JSON escapes) are shown as '?' in the pointer as in the quote, so
   // the message stays one line (fuzz_level found the pointer echoing them).
   EXPECT_EQ(loadError("control-key", R"({"bounce_level": 1, "a\nb\u007f": 1, "effects": [], "entities": []})"),
-            "FILE: /a?b?: unknown key \"a?b?\" (expected one of: bounce_level, name, effects, background, probes, dnrt, vlm, "
+            "FILE: /a?b?: unknown key \"a?b?\" (expected one of: bounce_level, name, effects, background, probes, dnrt, rtf, vlm, "
             "entities)");
   // Invalid UTF-8 is reported without echoing the bytes.
   EXPECT_EQ(loadError("utf8", "{\"name\": \"\xff\"}"),
