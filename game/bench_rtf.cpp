@@ -41,14 +41,9 @@ int intIn(const cli::Args& args, const char* option, int fallback, int lo, int h
 
 int runBenchRtf(const cli::Args& args) {
   gi::rtf::FieldSettings s;  // the paper's resolution unless told otherwise
-  std::vector<std::uint32_t> steps;  // the shading's G-buffer pixels per sample per axis (engine/gi/resolution.hpp)
-  for (const std::string& r : args.list("--rtf-resolution").value_or(std::vector<std::string>{"full"})) {
-    const std::optional<std::uint32_t> step = gi::parseResolution(r);
-    if (!step)
-      throwInputError("bounce bench", "--rtf-resolution", "'" + r + "' is not a resolution",
-                      "full, half, quarter or a list: full,half,quarter");
-    steps.push_back(*step);
-  }
+  // The shading's G-buffer pixels per sample per axis (engine/gi/resolution.hpp), checked before any bake.
+  const std::vector<std::uint32_t> steps = gi::parseResolutionList(
+      args.list("--rtf-resolution").value_or(std::vector<std::string>{"full"}), "bounce bench", "--rtf-resolution");
   s.proxies = intIn(args, "--proxies", s.proxies, 1, 64);
   s.spheres = intIn(args, "--spheres", s.spheres, 2, 64);
   s.faceSize = intIn(args, "--face", s.faceSize, 1, 64);

@@ -61,13 +61,9 @@ int runBenchSl(const cli::Args& args) {
   }
 
   std::vector<int> steps;  // pass 2's G-buffer pixels per sample per axis (engine/gi/resolution.hpp)
-  for (const std::string& r : args.list("--sl-resolution").value_or(std::vector<std::string>{"full"})) {
-    const std::optional<std::uint32_t> step = gi::parseResolution(r);
-    if (!step)
-      throwInputError("bounce bench", "--sl-resolution", "'" + r + "' is not a resolution",
-                      "full, half, quarter or a list: full,half,quarter");
-    steps.push_back(int(*step));
-  }
+  for (const std::uint32_t step : gi::parseResolutionList(
+           args.list("--sl-resolution").value_or(std::vector<std::string>{"full"}), "bounce bench", "--sl-resolution"))
+    steps.push_back(int(step));
 
   const bool fused = args.has("--fused");
   gpu::Context ctx({args.str("--device")});

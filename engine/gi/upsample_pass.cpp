@@ -1,5 +1,7 @@
 #include "engine/gi/upsample_pass.hpp"
 
+#include <utility>
+
 #include "engine/core/error.hpp"
 #include "engine/gi/resolution.hpp"
 #include "engine/render/passes/gbuffer_pass.hpp"
@@ -20,7 +22,7 @@ ReducedUpsample::ReducedUpsample(gpu::Context& ctx, const render::Pipelines& sha
 
 const gpu::Pipeline& ReducedUpsample::pipeline(std::uint32_t step) {
   if (checkedStep(step) == 1u) throw InternalError(name_ + ": no upsample at full resolution");
-  gpu::Pipeline& p = steps_[step == 4u ? 1 : 0];
+  gpu::Pipeline& p = steps_[stepIndex(step) - 1];  // step 2, 4
   if (p.handle()) return p;
   if (!frag_.handle()) {
     vert_ = gpu::ShaderModule(ctx_, "passes/fullscreen.vert.spv");

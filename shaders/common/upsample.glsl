@@ -1,15 +1,16 @@
 // The edge-aware upsample of a reduced-resolution irradiance target (README "SL cost", "SL at quarter
 // resolution, session 10", "DNRT at half resolution, session 15"), one copy for SL pass 2
-// (shaders/sl/upsample.frag, self-test sl/upsample_selftest.comp) and DNRT at reduced resolution
-// (shaders/passes/reduced_upsample.frag, also RTF's); C++ reference engine/gi/upsample.hpp (gi::upsampleTaps,
-// gi::upsampleBlend), the same operations in the same order.
-// A joint bilateral upsample: the reduced target ("sl.half" / "sl.quarter", "dnrt.half" / "dnrt.quarter") holds E at G-buffer pixel
-// step·j (engine/gi/resolution.hpp); a full-resolution pixel blends its up to 4 nearest samples with
-// bilinear weights times how well each sample's receiver matches its own — the distance of the sample's
-// point from this pixel's tangent plane relative to the distance from the eye (Gaussian, e^-1 at
-// kUpPlaneScale) and the normals' agreement (max(0, n·n_j)^kUpNormalPower) — so light does not
-// bleed across depth or crease edges. When every sample is rejected with its bilinear weight (a thin
-// feature between samples) the best-matching sample alone is used. One code path for step 2 and 4.
+// (shaders/sl/upsample.frag, self-test sl/upsample_selftest.comp) and DNRT and RTF at reduced
+// resolution (shaders/passes/reduced_upsample.frag); C++ reference engine/gi/upsample.hpp
+// (gi::upsampleTaps, gi::upsampleBlend), the same operations in the same order.
+// A joint bilateral upsample: the reduced target ("sl.half" / "sl.quarter", "dnrt.half" / "dnrt.quarter",
+// "rtf.half" / "rtf.quarter") holds E at G-buffer pixel step·j (engine/gi/resolution.hpp); a
+// full-resolution pixel blends its up to 4 nearest samples with bilinear weights times how well each
+// sample's receiver matches its own — the distance of the sample's point from this pixel's tangent
+// plane relative to the distance from the eye (Gaussian, e^-1 at kUpPlaneScale) and the normals'
+// agreement (max(0, n·n_j)^kUpNormalPower) — so light does not bleed across depth or crease edges.
+// When every sample is rejected with its bilinear weight (a thin feature between samples) the
+// best-matching sample alone is used. One code path for step 2 and 4.
 #ifndef BOUNCE_UPSAMPLE_GLSL
 #define BOUNCE_UPSAMPLE_GLSL
 #include "frame.glsl"  // worldFromDepth, for upsampleReceivers
@@ -26,7 +27,8 @@ const float kUpMinWeight = 1e-4;   // below: the best-matching sample alone
 // engine/gi/resolution.hpp, where every step enters: the level, `bounce bench`, the passes).
 // The G-buffer pixel that reduced sample j stands for: step·j, clamped to the image (the reduced size
 // is ⌈full/step⌉, engine/gi/resolution.hpp reducedSize). The passes that shade a reduced target
-// (DNRT's dnrt.frag / clustered.frag with kStep) and upsampleTaps share this one mapping.
+// (DNRT's dnrt.frag / clustered.frag and RTF's rtf.frag with kStep) and upsampleTaps share this one
+// mapping.
 ivec2 reducedSamplePixel(ivec2 j, int step, ivec2 full) { return min(step * j, full - 1); }
 
 void upsampleTaps(ivec2 pixel, int step, ivec2 reducedSize, ivec2 full, out ivec2 j[4], out ivec2 q[4], out vec2 f) {
@@ -39,9 +41,9 @@ void upsampleTaps(ivec2 pixel, int step, ivec2 reducedSize, ivec2 full, out ivec
 }
 
 // The 4 taps' receivers, as the upsample's fragment shaders read them from the G-buffer (one copy for
-// SL's and DNRT's): tap k's world point pq (m) from the depth at G-buffer pixel q[k] (worldFromDepth,
-// frame.glsl, at the pixel's centre; invResolution = 1 / full size), its normal nq, and valid = not
-// background (depth < 1, the cleared far plane).
+// SL's, DNRT's and RTF's): tap k's world point pq (m) from the depth at G-buffer pixel q[k]
+// (worldFromDepth, frame.glsl, at the pixel's centre; invResolution = 1 / full size), its normal nq,
+// and valid = not background (depth < 1, the cleared far plane).
 void upsampleReceivers(sampler2D depthTex, sampler2D normalTex, mat4 invViewProj, vec2 invResolution, ivec2 q[4],
                        out vec3 pq[4], out vec3 nq[4], out bool valid[4]) {
   for (int k = 0; k < 4; ++k) {

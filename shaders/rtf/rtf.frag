@@ -25,9 +25,8 @@ layout(constant_id = 0) const bool kSh9 = true;
 layout(constant_id = 1) const bool kSelfInNormal = true;
 // kStep: G-buffer pixels per shaded sample along each axis — 1 (full), 2 (half), 4 (quarter); the level's
 // "rtf": {"resolution"} (node.cpp). Below full the octagon covers the reduced target "rtf.half" /
-// "rtf.quarter" (the same clip-space polygon on a viewport of ⌈size/step⌉: its 5.5 % margin over the
-// sphere's silhouette holds the half-pixel offset of sample j's G-buffer pixel step·j), sample j shades
-// G-buffer pixel step·j (reducedSamplePixel) and writes Σ_i y_i(n) X_i(q) without ρ; the pass
+// "rtf.quarter" (⌈size/step⌉; rtf.vert maps it so that each sample is covered where its G-buffer pixel
+// is), sample j shades G-buffer pixel step·j (reducedSamplePixel) and writes Σ_i y_i(n) X_i(q) without ρ; the pass
 // "rtf.upsample" (gi/upsample_pass.hpp) blends it depth- and normal-aware at every pixel and multiplies
 // by ρ there. The sum is the term's smooth part in q; its normal dependence is what the upsample's
 // normal weights keep (README "RTF at half and quarter resolution, session 25").

@@ -30,6 +30,9 @@ layout(location = 15) flat out uint outSelf;
 layout(location = 16) flat out float outReach;  // the tail's end (η; 0: the end at r_N + Δr), ids.z
 
 const int kCorners = 8;  // the octagon: 6 fan triangles, 18 vertices (node.cpp's draw)
+// rtf.frag's kStep (the same specialization constant): below full resolution the draw covers the reduced
+// target, ⌈size/step⌉, whose sample j shades G-buffer pixel step·j.
+layout(constant_id = 2) const uint kStep = 1u;
 
 void main() {
   outToQ = ob.toQ;
@@ -58,4 +61,16 @@ void main() {
   int corner = k == 0 ? 0 : tri + k;
   float a = 6.28318531 * float(corner) / float(kCorners);
   gl_Position = camera.viewProj * vec4(o + radius * (cos(a) * u + sin(a) * w), 1.0);
+  if (kStep > 1u) {
+    // On the reduced target the rasteriser tests sample j at its own centre, j + ½ reduced pixels, but
+    // the sample shades G-buffer pixel step·j, whose centre is step·j + ½ full pixels: up to (step − 1)/2
+    // pixels apart, and the octagon touches the silhouette at its 8 tangent points. So the polygon is
+    // moved into the reduced viewport by the affine map that takes full-resolution pixel coordinate x to
+    // (x − ½)/step + ½ (per axis, in clip space: × w): each sample is covered exactly where its
+    // G-buffer pixel would be at full resolution. The full-screen triangle above needs no map.
+    vec2 full = camera.resolution.xy, reduced = ceil(full / float(kStep));
+    vec2 scale = full / (float(kStep) * reduced);
+    vec2 shift = (float(kStep) - 1.0) / (float(kStep) * reduced) - 1.0;
+    gl_Position.xy = (gl_Position.xy + gl_Position.w) * scale + gl_Position.w * shift;
+  }
 }

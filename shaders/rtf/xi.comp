@@ -24,8 +24,7 @@ layout(local_size_x = 64) in;
 layout(std430, binding = 0) readonly buffer Basis { uint basis[]; };  // packHalf2x16 words
 layout(std430, binding = 1) readonly buffer Alpha { uint alpha[]; };  // packHalf2x16 words
 layout(std430, binding = 2) readonly buffer Cluster { uint cluster[]; };
-// A uniform block at its largest, m ≤ 64 (xi_pass.hpp kLightEntries says why not a storage buffer).
-layout(std140, binding = 3) uniform Light { vec4 light[64 * 16 + 16 * 9]; };
+layout(std430, binding = 3) readonly buffer Light { vec4 light[]; };
 layout(std430, binding = 4) buffer Eigen { vec4 eigen[]; };
 layout(rgba32f, binding = 5) uniform writeonly image2DArray xi;
 // The shading step folded per sample (engine/gi/rtf/node.hpp): for i < 9,

@@ -87,9 +87,6 @@ struct CubePush {
   std::uint32_t instance = 0, pad[3] = {0, 0, 0};
 };
 
-// Pipeline-array index of a resolution step (NodeSettings::step): 1, 2, 4 → 0, 1, 2.
-std::size_t stepIndex(std::uint32_t step) { return gi::checkedStep(step) == 4u ? 2u : step == 2u ? 1u : 0u; }
-
 // Face frames as intrusion.glsl: forward and up hint.
 constexpr float kFaces[6][6] = {{1, 0, 0, 0, -1, 0}, {-1, 0, 0, 0, -1, 0}, {0, 1, 0, 0, 0, 1},
                                 {0, -1, 0, 0, 0, -1}, {0, 0, 1, 0, -1, 0},  {0, 0, -1, 0, -1, 0}};

@@ -30,8 +30,7 @@ Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t fra
 // One pipeline per SH count, self test and step (rtf.frag's kSh9, kSelfInNormal, kStep): llvmpipe runs
 // an untaken branch in full.
 const gpu::Pipeline& Node::pipeline(bool sh4, bool entity, std::uint32_t step) {
-  const std::size_t s = gi::checkedStep(step) == 4u ? 2 : step == 2u ? 1 : 0;
-  gpu::Pipeline& p = pipelines_[sh4 ? 1 : 0][entity ? 1 : 0][s];
+  gpu::Pipeline& p = pipelines_[sh4 ? 1 : 0][entity ? 1 : 0][gi::stepIndex(step)];
   if (p.handle()) return p;
   gpu::GraphicsPipelineDesc d;
   d.vertex = &vert_;
@@ -128,11 +127,9 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
         render::Attachment color{target.view(), !reduced && res.keepsContents(d.hdr)};
         const VkExtent2D extent{target.desc().width, target.desc().height};
         render::beginRendering(ctx_, cmd, extent, {&color, 1}, nullptr);
-        // The pipelines share the layout: sets bound through one stay bound for the others.
-        const gpu::Pipeline* bound = &pipeline(false, false, step);
-        bound->bind(cmd);
-        bound->bindSet(cmd, 0, pc->frameSet);
-        bound->bindSet(cmd, 1, inputs);
+        // The pipelines share the layout: sets bound through one stay bound for the others. Each variant is
+        // made on its first use (an object with it), as DNRT's.
+        const gpu::Pipeline* bound = nullptr;
         gpu::TimestampPool* ts = pc->frame().timestamps.get();
         for (std::size_t i = 0; i < objects.size(); ++i) {
           VkDescriptorSet set = pc->frame().descriptors->allocate(objectLayout_);
@@ -144,7 +141,11 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
           // The self test reads the entity id + 1 from the normal's w while it fits there (gbuffer.glsl).
           const bool entity = objects[i].record.ids.x > render::kEntityInNormalMax;
           const gpu::Pipeline* want = &pipeline(objects[i].record.ids.y == 4u, entity, step);
-          if (want != bound) want->bind(cmd), bound = want;
+          if (want != bound) {
+            want->bind(cmd);
+            if (!bound) want->bindSet(cmd, 0, pc->frameSet), want->bindSet(cmd, 1, inputs);
+            bound = want;
+          }
           bound->bindSet(cmd, 2, set);
           if (ts) ts->begin(cmd, "rtf/" + objects[i].name);
           vkCmdDraw(cmd, 18, 1, 0, 0);  // rtf.vert: the octagon's fan

@@ -1,5 +1,5 @@
 #pragma once
-// The RTF render-graph node (Pan et al. 2007 §5 on the GPU), two passes:
+// The RTF render-graph node (Pan et al. 2007 §5 on the GPU), two passes and, below full resolution, a third:
 //  "rtf.bounce"  compute, a side-effect pass: per object (scope "rtf.bounce/<name>") the ξ caches of
 //                Eq. 11–12 from the proxies' light of the frame's bouncing step (xi_pass.hpp), into
 //                the object's ξ image;

@@ -145,6 +145,7 @@ class RtfTechnique final : public Technique {
       r.effects = {"direct", "shadows", "probes", "rtf"};
       r.passes = {"shadow", "lighting", "probes", "rtf.bounce", "rtf"};
       r.configure = [bounces, sh, tail](scene::Level& level) {
+        level.rtf.step = 1;  // full resolution, whatever the level's "rtf": {"resolution"}
         for (auto& e : level.entities)
           if (e.rtf) e.rtf->bounces = bounces, e.rtf->sh = sh, e.rtf->tail = tail;
       };

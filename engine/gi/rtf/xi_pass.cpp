@@ -50,7 +50,7 @@ XiPass::XiPass(gpu::Context& ctx, const Field& f)
                  {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                   {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                   {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                  {3, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
+                  {3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                   {4, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                   {5, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
                   {6, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
@@ -78,8 +78,8 @@ XiPass::XiPass(gpu::Context& ctx, const Field& f)
   codeScales_ = storage(ctx, scales, "rtf.code_scales");
   cluster_ = storage(ctx, f.itf.cluster, "rtf.cluster");
   // Written by vkCmdUpdateBuffer in record(): ordered in the command stream, so a frame in flight
-  // never sees the next frame's light (≤ kLightEntries·16 bytes ≈ 18 KiB < the command's 64 KiB limit).
-  light_ = gpu::Buffer(ctx, {kLightEntries * 16, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+  // never sees the next frame's light (m·16·16 bytes ≤ 16 KiB < the command's 64 KiB limit).
+  light_ = gpu::Buffer(ctx, {(std::size_t(s.proxies) * kShCount + kShCount * 9) * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                              gpu::MemoryUsage::GpuOnly, "rtf.light"});
   eigen_ = gpu::Buffer(ctx, {std::size_t(f.itf.clusters) * std::size_t(f.itf.components + 1) * kShCount * 16,
                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::GpuOnly, "rtf.eigen"});
@@ -138,7 +138,7 @@ XiPass::XiPass(gpu::Context& ctx, const Field& f)
       .buffer(0, basis_)
       .buffer(1, alpha_)
       .buffer(2, cluster_)
-      .buffer(3, light_, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER)
+      .buffer(3, light_)
       .buffer(4, eigen_)
       .storageImage(5, xi_.view())
       .buffer(6, oofBuffer_)
@@ -192,7 +192,7 @@ void XiPass::record(VkCommandBuffer cmd) {
   }
   vkCmdFillBuffer(cmd, range_.handle(), 0, VK_WHOLE_SIZE, 0u);  // atomicMax starts from +0.0
   VkMemoryBarrier uploaded{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_TRANSFER_WRITE_BIT,
-                           VK_ACCESS_UNIFORM_READ_BIT | VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT};  // light; the atomics read and write
+                           VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT};  // the atomics read and write
   vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &uploaded, 0, nullptr,
                        0, nullptr);
   pipeline_.bind(cmd);

@@ -40,11 +40,6 @@ class XiPass {
   // (netScale: X weighted by its sphere's squared radius) with m = netRange()'s slot (float max |Y| this
   // frame), so X = m(2t − 1)/r_s². GENERAL layout from construction on.
   static constexpr std::uint32_t kNetTexels = 7;
-  // xi.comp's Light uniform block, in vec4: m·16 proxy-light coefficients (m ≤ 64, field.cpp
-  // checkSettings) then the 16·9 blocked-light product matrix. A uniform block, not a storage buffer:
-  // every invocation reads the same entries, and llvmpipe reads a storage buffer per lane with a bounds
-  // check (DESIGN.md "What costs what"); the block is declared at its largest, so the buffer is too.
-  static constexpr std::size_t kLightEntries = 64 * 16 + 16 * 9;
   // Why r_s²: what X carries (the light an object sends to q and the light it hides there) falls as the
   // object's solid angle, ~1/|q|² (evaluate.hpp radialWeight), so one range per slot over X itself spent
   // the 8 bits on the innermost spheres: a sample on sphere s got m/255 steps of an X ≈ (r_1/r_s)² of m,

@@ -446,13 +446,17 @@ TEST(RtfGpu, SessionRunsTheBouncingStepAndBothPasses) {
 // "rtf.upsample" adds ρ times the depth- and normal-aware blend of the 4 nearest samples.
 // - structure: the full-resolution passes with "rtf.upsample" right after "rtf";
 // - image, on two-boxes.json (the RTF term alone, two overlapping fields, both draws into one reduced
-//   target): every value finite and within 1.5× the full term's largest; within kRmsBound relative RMS of
-//   the full-resolution term; at most kOffShare of the values off by more than kOff of the largest. What is
-//   left is the blend of a smooth term over 2 or 4 pixels, fp16 rounding, and the boxes' silhouettes: a
-//   floor pixel whose 4 samples all lie on a box's top takes the best-matching one, which holds only the
-//   other box's term (the box skips its own), so a band up to `step` pixels wide there is off (the same
-//   holds for DNRT's reduced draws). Measured at 128×128 (the printf): the RMS bounds are about 1.7× the
-//   measured figures, the share's about 4×; leaving the term out scores 1 and 1.
+//   target): every value finite and at most kRange times the full term's largest — the blend is a
+//   convex combination of the samples' Σ y_i X_i (each one a pixel's full term over its ρ) times this
+//   pixel's ρ, so it is bounded by max ρ / min ρ of the largest: 0.9 / 0.4 here (the boxes' and the
+//   floor's blue); within kRmsBound relative RMS of the full-resolution term;
+//   at most kOffShare of the values off by more than kOff of the largest. What is left is the blend of the
+//   term over 2 or 4 pixels (the term itself moves by up to ≈ 10 % between neighbouring pixels: the 8-bit
+//   X and the field's face and sphere seams), fp16 rounding, and the boxes' silhouettes: a floor pixel
+//   whose 4 samples all lie on a box's top takes the best-matching one, which holds only the other box's
+//   term (the box skips its own), so a band up to `step` pixels wide there is off (the same holds for
+//   DNRT's reduced draws). Measured at 128×128 (the printf): the RMS bounds are about 1.7× the measured
+//   figures, the share's about 4×; leaving the term out would score a relative RMS of 1.
 TEST(RtfGpu, ReducedResolutionIsTheFullShadingWithinABound) {
   gpu::Context& ctx = gpu::testkit::sharedContext();
   const fs::path levelFile = fs::path(BOUNCE_SOURCE_DIR) / "tests/data/rtf/two-boxes.json";
@@ -478,8 +482,9 @@ TEST(RtfGpu, ReducedResolutionIsTheFullShadingWithinABound) {
   // half, quarter: measured 0.082 / 0.100 (rel RMS) and 0.0002 / 0.0003 (the share of values off by more than
   // kOff of the largest term: 8 and 11 channel values of 36 153, at the boxes' silhouettes)
   constexpr float kOff = 0.1f;
+  constexpr float kRange = 0.9f / 0.4f;  // max ρ / min ρ over the level's materials and channels
   constexpr float kRmsBound[2] = {0.14f, 0.17f};
-  constexpr double kOffShare[2] = {0.001, 0.001};
+  constexpr double kOffShare = 0.001;
   for (const std::uint32_t step : {2u, 4u}) {
     std::vector<std::string> passes;
     const std::vector<float> reduced = render(step, passes);
@@ -494,21 +499,22 @@ TEST(RtfGpu, ReducedResolutionIsTheFullShadingWithinABound) {
       errSq += double(err) * err;
       largest = std::max(largest, std::abs(full[i]));
     }
-    int covered = 0, off = 0, bounded = 0;
+    int covered = 0, off = 0;
+    float reducedLargest = 0.0f;
     for (std::size_t i = 0; i < full.size(); ++i) {
       covered += full[i] != 0.0f ? 1 : 0;
       off += std::abs(reduced[i] - full[i]) > kOff * largest ? 1 : 0;
-      bounded += std::abs(reduced[i]) <= 1.5f * largest ? 1 : 0;
+      reducedLargest = std::max(reducedLargest, std::abs(reduced[i]));
     }
     const double rel = std::sqrt(errSq / sumSq), share = double(off) / double(covered);
-    std::printf("rtf step %u vs full: %d channel values carry the term (largest %.4g), rel RMS %.4f of it, %.4f of them "
-                "off by more than %.2f of the largest\n",
-                step, covered, largest, rel, share, kOff);
+    std::printf("rtf step %u vs full: %d channel values carry the term (largest %.4g, reduced %.3f of it), rel RMS "
+                "%.4f of it, %.4f of them off by more than %.2f of the largest\n",
+                step, covered, largest, reducedLargest / largest, rel, share, kOff);
     EXPECT_GT(covered, 10000);
     EXPECT_GT(largest, 1e-4f);
-    EXPECT_EQ(bounded, int(full.size())) << "a blend of the samples stays within the term's range";
+    EXPECT_LE(reducedLargest, kRange * largest) << "a blend of the samples stays within the term's range";
     EXPECT_LE(rel, kRmsBound[step == 2u ? 0 : 1]) << "step " << step;
-    EXPECT_LE(share, kOffShare[step == 2u ? 0 : 1]) << "step " << step;
+    EXPECT_LE(share, kOffShare) << "step " << step;
   }
 }
 
