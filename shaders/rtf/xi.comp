@@ -3,8 +3,8 @@
 // per-frame compute pass in three dispatches (push constant `stage`), engine/gi/rtf/xi_pass.hpp:
 //  stage 0, Eq. 12: u_{h,e,i} = Σ_k Σ_j E_{he,k}[i][j] L_{k,j}  (per RGB channel), one invocation
 //           per (cluster h, component e = 0 (mean) … n_e, output coefficient i);
-//  stage 1, Eq. 11: ξ_{r,i} = u_{h(r),0,i} + Σ_e α_e(r) u_{h(r),e,i}, one invocation per
-//           (sample r, coefficient i), stored in the ξ image; with it X (below) and its range;
+//  stage 1, Eq. 11: ξ_{r,i} = u_{h(r),0,i} + Σ_e α_e(r) u_{h(r),e,i}, one invocation per sample r
+//           (all 16 coefficients i), stored in the ξ image; with it X (below) and its range;
 //  stage 2: X encoded into the 8-bit image the shading step reads (below).
 // Data (std430, bytes), as the field file stores it (cpca.hpp quantize / storedParts), with
 // n₈ = byteComponents and n_h = n_e − n₈: basis = n_c·(n_h+1)·D halves (per cluster the mean and
@@ -152,14 +152,22 @@ void main() {
     } while (k < pc.proxies);
     eigen[t] = vec4(u, 0.0);
   } else {
-    if (t >= pc.samples * 16u) return;
-    uint r = t / 16u, i = t % 16u;
+    // One invocation per sample r, all 16 coefficients: the sample's cluster, α, OOF and scale are read
+    // once, not once per coefficient (llvmpipe reads a storage buffer per lane with a bounds check; one
+    // invocation per (r, i) read each α 16 times and each OOF value 9 times). Every x_i and X_i is summed in
+    // the same order as before, so the values are the same.
+    if (t >= pc.samples) return;
+    uint r = t;
     uint base = cluster[r] * (pc.components + 1u) * 16u;
-    vec3 x = eigen[base + i].rgb;
+    vec3 x[16];
+    for (uint i = 0u; i < 16u; ++i) x[i] = eigen[base + i].rgb;
     uint nh = pc.components - pc.byteComponents;
     uint e = 1u;
     do {  // do…while, guarded, as stage 0's loop
-      if (e <= nh) x += alphaAt(r * nh + e - 1u) * eigen[base + e * 16u + i].rgb;
+      if (e <= nh) {
+        float a = alphaAt(r * nh + e - 1u);
+        for (uint i = 0u; i < 16u; ++i) x[i] += a * eigen[base + e * 16u + i].rgb;
+      }
       ++e;
     } while (e <= nh);
     if (pc.byteComponents > 0u) {  // α = scale·code: the products in fp32 as the C++ decode (field.cpp)
@@ -167,7 +175,10 @@ void main() {
       e = nh + 1u;  // the loop above ran its body once even for n_h = 0
       do {
         uint n = r * pc.byteComponents + e - nh - 1u;
-        if (e <= pc.components) x += (s * codeAt(alphaCodes[n >> 2u], n)) * eigen[base + e * 16u + i].rgb;
+        if (e <= pc.components) {
+          float a = s * codeAt(alphaCodes[n >> 2u], n);
+          for (uint i = 0u; i < 16u; ++i) x[i] += a * eigen[base + e * 16u + i].rgb;
+        }
         ++e;
       } while (e <= pc.components);
     }
@@ -175,19 +186,20 @@ void main() {
     uint sphere = r / per, rest = r % per, face = rest / n2;
     uint px = rest % pc.faceSize, py = (rest % n2) / pc.faceSize;
     ivec2 texel = ivec2(int(face * pc.faceSize + px), int(py));
-    imageStore(xi, ivec3(texel, int(sphere * 16u + i)), vec4(x, 0.0));
-    if (i < 9u) {
-      const float kInvPi = 0.31830988618379067;
+    for (uint i = 0u; i < 16u; ++i) imageStore(xi, ivec3(texel, int(sphere * 16u + i)), vec4(x[i], 0.0));
+    float notV[16];
+    for (uint j = 0u; j < 16u; ++j) notV[j] = (j == 0u ? 3.5449077018110318 : 0.0) - oof[r * 16u + j];  // u_0 = 2√π
+    vec4 scale = blockedScale[r];
+    float r2 = netScale(sphere, pc.samples / per);
+    uint T = pc.proxies * 16u;
+    const float kInvPi = 0.31830988618379067;
+    for (uint i = 0u; i < 9u; ++i) {
       float a = (i == 0u ? 3.14159265358979324 : (i < 4u ? 2.09439510239319549 : 0.78539816339744831)) * kInvPi;
-      vec3 X = a * x * blockedScale[r].w;  // w: the share of ξ the nearer objects let through (overlap.hpp)
-      uint T = pc.proxies * 16u;
+      vec3 X = a * x[i] * scale.w;  // w: the share of ξ the nearer objects let through (overlap.hpp)
       vec3 blocked = vec3(0.0);
-      for (uint j = 0u; j < 16u; ++j) {
-        float notV = (j == 0u ? 3.5449077018110318 : 0.0) - oof[r * 16u + j];  // u_0 = 2√π
-        blocked += notV * light[T + j * 9u + i].rgb;
-      }
-      X -= blockedScale[r].rgb * blocked;
-      X *= netScale(sphere, pc.samples / per);  // Y, the value the 8 bits hold
+      for (uint j = 0u; j < 16u; ++j) blocked += notV[j] * light[T + j * 9u + i].rgb;
+      X -= scale.rgb * blocked;
+      X *= r2;  // Y, the value the 8 bits hold
       netValue[r * 9u + i] = vec4(X, 0.0);
       for (uint c = 0u; c < 3u; ++c) atomicMax(range[rtfNetSlot(c, i)], floatBitsToUint(abs(X[c])));
     }

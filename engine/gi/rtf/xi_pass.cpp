@@ -208,7 +208,7 @@ void XiPass::record(VkCommandBuffer cmd) {
                        nullptr, 0, nullptr);
   p.stage = 1;
   pipeline_.push(cmd, p);
-  vkCmdDispatch(cmd, (p.samples * kShCount + 63) / 64, 1, 1);
+  vkCmdDispatch(cmd, (p.samples + 63) / 64, 1, 1);  // one invocation per sample
   // Stage 2 reads every X and the finished ranges.
   vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &barrier, 0,
                        nullptr, 0, nullptr);
