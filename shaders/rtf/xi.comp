@@ -2,7 +2,7 @@
 // RTF caches (Pan et al. 2007, §5 "Caching RTF eigens" and "Caching RTF samples") as one
 // per-frame compute pass in three dispatches (push constant `stage`), engine/gi/rtf/xi_pass.hpp:
 //  stage 0, Eq. 12: u_{h,e,i} = Σ_k Σ_j E_{he,k}[i][j] L_{k,j}  (per RGB channel), one invocation
-//           per (cluster h, component e = 0 (mean) … n_e, output coefficient i);
+//           per (cluster h, component e = 0 (mean) … n_e), all 16 output coefficients i;
 //  stage 1, Eq. 11: ξ_{r,i} = u_{h(r),0,i} + Σ_e α_e(r) u_{h(r),e,i}, one invocation per sample r
 //           (all 16 coefficients i), stored in the ξ image; with it X (below) and its range;
 //  stage 2: X encoded into the 8-bit image the shading step reads (below).
@@ -113,12 +113,16 @@ void main() {
     return;
   }
   if (pc.stage == 0u) {
-    uint count = pc.clusters * (pc.components + 1u) * 16u;
+    // One invocation per (cluster h, component e), all 16 output coefficients i: each proxy-light
+    // coefficient is read once, not once per i (a storage-buffer read per lane on llvmpipe). Every u_i is
+    // summed over k and j in the same order as one invocation per (h, e, i) did, so the values are the same.
+    uint count = pc.clusters * (pc.components + 1u);
     if (t >= count) return;
-    uint he = t / 16u, i = t % 16u;
+    uint he = t;
     uint D = pc.proxies * 768u;
     uint nh = pc.components - pc.byteComponents, h = he / (pc.components + 1u), e = he % (pc.components + 1u);
-    vec3 u = vec3(0.0);
+    vec3 u[16];
+    for (uint i = 0u; i < 16u; ++i) u[i] = vec3(0.0);
     // do…while with a guarded body: llvmpipe runs a `for` body once more with every lane masked
     // (README "Loop bodies III"): 2 bodies of 16 multiply-adds for one proxy, not 1.
     uint k = 0u;
@@ -127,14 +131,18 @@ void main() {
       do {
         if (k < pc.proxies)
           for (uint j = 0u; j < 16u; ++j) {
-            uint n = row + (k * 16u + i) * 48u + j * 3u;  // element (j, c) of the row's (k, i) block
-            vec3 q = vec3(codeAt(basisCodes[n >> 2u], n), codeAt(basisCodes[(n + 1u) >> 2u], n + 1u),
-                          codeAt(basisCodes[(n + 2u) >> 2u], n + 2u));
-            u += q * light[k * 16u + j].rgb;
+            vec3 L = light[k * 16u + j].rgb;
+            for (uint i = 0u; i < 16u; ++i) {
+              uint n = row + (k * 16u + i) * 48u + j * 3u;  // element (j, c) of the row's (k, i) block
+              vec3 q = vec3(codeAt(basisCodes[n >> 2u], n), codeAt(basisCodes[(n + 1u) >> 2u], n + 1u),
+                            codeAt(basisCodes[(n + 2u) >> 2u], n + 2u));
+              u[i] += q * L;
+            }
           }
         ++k;
       } while (k < pc.proxies);
-      eigen[t] = vec4(scales[h * pc.byteComponents + e - nh - 1u] * u, 0.0);
+      float scale = scales[h * pc.byteComponents + e - nh - 1u];
+      for (uint i = 0u; i < 16u; ++i) eigen[he * 16u + i] = vec4(scale * u[i], 0.0);
       return;
     }
     uint hh = h * (nh + 1u) + e;  // the row among the half rows
@@ -143,14 +151,17 @@ void main() {
         // E[i][j].rgb for j = 2jj, 2jj + 1: 6 halves in 3 words (the row of 48 halves starts at an
         // even element: D and 48 are even).
         for (uint jj = 0u; jj < 8u; ++jj) {
-          uint w = (hh * D + (k * 16u + i) * 48u) / 2u + jj * 3u;
-          vec2 a = unpackHalf2x16(basis[w]), b = unpackHalf2x16(basis[w + 1u]), c = unpackHalf2x16(basis[w + 2u]);
-          u += vec3(a.x, a.y, b.x) * light[k * 16u + 2u * jj].rgb;
-          u += vec3(b.y, c.x, c.y) * light[k * 16u + 2u * jj + 1u].rgb;
+          vec3 L0 = light[k * 16u + 2u * jj].rgb, L1 = light[k * 16u + 2u * jj + 1u].rgb;
+          for (uint i = 0u; i < 16u; ++i) {
+            uint w = (hh * D + (k * 16u + i) * 48u) / 2u + jj * 3u;
+            vec2 a = unpackHalf2x16(basis[w]), b = unpackHalf2x16(basis[w + 1u]), c = unpackHalf2x16(basis[w + 2u]);
+            u[i] += vec3(a.x, a.y, b.x) * L0;
+            u[i] += vec3(b.y, c.x, c.y) * L1;
+          }
         }
       ++k;
     } while (k < pc.proxies);
-    eigen[t] = vec4(u, 0.0);
+    for (uint i = 0u; i < 16u; ++i) eigen[he * 16u + i] = vec4(u[i], 0.0);
   } else {
     // One invocation per sample r, all 16 coefficients: the sample's cluster, α, OOF and scale are read
     // once, not once per coefficient (llvmpipe reads a storage buffer per lane with a bounds check; one

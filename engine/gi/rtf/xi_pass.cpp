@@ -200,8 +200,8 @@ void XiPass::record(VkCommandBuffer cmd) {
   Push p = push_;
   p.stage = 0;
   pipeline_.push(cmd, p);
-  const std::uint32_t eigenCount = p.clusters * (p.components + 1) * kShCount;
-  vkCmdDispatch(cmd, (eigenCount + 63) / 64, 1, 1);
+  const std::uint32_t eigenRows = p.clusters * (p.components + 1);  // one invocation per (h, e)
+  vkCmdDispatch(cmd, (eigenRows + 63) / 64, 1, 1);
   // Stage 1 reads what stage 0 wrote.
   VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_SHADER_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT};
   vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &barrier, 0,
