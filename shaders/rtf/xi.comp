@@ -124,7 +124,7 @@ void main() {
     vec3 u[16];
     for (uint i = 0u; i < 16u; ++i) u[i] = vec3(0.0);
     // do…while with a guarded body: llvmpipe runs a `for` body once more with every lane masked
-    // (README "Loop bodies III"): 2 bodies of 16 multiply-adds for one proxy, not 1.
+    // (README "Loop bodies III"): with one proxy, 2 bodies of 16·16 multiply-adds, not 1.
     uint k = 0u;
     if (e > nh) {  // an 8-bit row: Σ code·L, then × the row's scale
       uint row = (h * pc.byteComponents + e - nh - 1u) * D;

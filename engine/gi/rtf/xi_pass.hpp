@@ -22,7 +22,7 @@ class XiPass {
   // The proxies' incident light, m·16 RGB in the object's frame: record() writes it into the
   // command buffer (vkCmdUpdateBuffer), so it takes effect at the next record().
   void setProxyLight(std::span<const glm::vec3> light);
-  // Both dispatches with the barriers they need; ξ is in GENERAL layout from construction on (no
+  // The three dispatches with the barriers they need; ξ is in GENERAL layout from construction on (no
   // layout change is recorded here), its writes made visible to later compute and fragment reads.
   void record(VkCommandBuffer cmd);
   // The shading step's blocked light folded per sample (xi.comp: X_i = Â_l/π ξ_i − Σ_j T'_ij (u − V)_j):
