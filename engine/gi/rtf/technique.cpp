@@ -151,24 +151,25 @@ class RtfTechnique final : public Technique {
       };
       rows.push_back(std::move(r));
     }
-    // The shading at half and quarter resolution (the level's "rtf": {"resolution"}), 9 SH: what the
-    // reduced draws and their upsample cost in accuracy (2 bounces), and at quarter the tail, whose
+    // The shading at half and quarter resolution (the level's "rtf": {"resolution"}): what the reduced
+    // draws and their upsample cost in accuracy (2 bounces, 9 and 4 SH), and at quarter the tail, whose
     // extra pixels cost a sixteenth there (1 and 2 bounces).
-    for (const std::tuple<std::uint32_t, int, float>& row : {std::tuple{2u, 2, 0.0f}, std::tuple{4u, 2, 0.0f},
-                                                             std::tuple{4u, 1, kAccuracyTail}, std::tuple{4u, 2, kAccuracyTail}}) {
+    for (const std::tuple<std::uint32_t, int, int, float>& row :
+         {std::tuple{2u, 2, 9, 0.0f}, std::tuple{4u, 2, 9, 0.0f}, std::tuple{2u, 2, 4, 0.0f}, std::tuple{4u, 2, 4, 0.0f},
+          std::tuple{4u, 1, 9, kAccuracyTail}, std::tuple{4u, 2, 9, kAccuracyTail}}) {
       const std::uint32_t step = std::get<0>(row);
-      const int bounces = std::get<1>(row);
-      const float tail = std::get<2>(row);
+      const int bounces = std::get<1>(row), sh = std::get<2>(row);
+      const float tail = std::get<3>(row);
       AccuracyRow r;
       r.technique = "rtf";
-      r.setting = std::string("resolution=") + gi::resolutionName(step) + ";" + (tail > 0.0f ? "tail=0.01;" : "") +
-                  "bounces=" + std::to_string(bounces) + ";ref=all";
+      r.setting = std::string("resolution=") + gi::resolutionName(step) + ";" + (sh == 4 ? "sh=4;" : "") +
+                  (tail > 0.0f ? "tail=0.01;" : "") + "bounces=" + std::to_string(bounces) + ";ref=all";
       r.effects = {"direct", "shadows", "probes", "rtf"};
       r.passes = {"shadow", "lighting", "probes", "rtf.bounce", "rtf", "rtf.upsample"};
-      r.configure = [step, bounces, tail](scene::Level& level) {
+      r.configure = [step, bounces, sh, tail](scene::Level& level) {
         level.rtf.step = step;
         for (auto& e : level.entities)
-          if (e.rtf) e.rtf->bounces = bounces, e.rtf->sh = 9, e.rtf->tail = tail;
+          if (e.rtf) e.rtf->bounces = bounces, e.rtf->sh = sh, e.rtf->tail = tail;
       };
       rows.push_back(std::move(r));
     }
