@@ -9,6 +9,7 @@
 #include "engine/gi/dnrt/bake.hpp"
 #include "engine/gi/dnrt/object_scene.hpp"
 #include "engine/scene/level.hpp"
+#include "tests/support/level_errors.hpp"
 
 namespace bounce::gi::dnrt {
 namespace {
@@ -128,17 +129,7 @@ TEST(DnrtLevel, ResolutionKeyAndItsBadInput) {
       {R"({"step": 2})", ": /dnrt/step: "},
       {R"("half")", ": /dnrt: "},
   };
-  for (const auto& [json, want] : cases) {
-    const fs::path path = levelWith("dnrt-res-bad.json", json);
-    try {
-      scene::loadLevel(path);
-      ADD_FAILURE() << json;
-    } catch (const InputError& e) {
-      const std::string what = e.what();
-      EXPECT_EQ(what.rfind(path.string() + want, 0), 0u) << what;
-      EXPECT_EQ(what.find('\n'), std::string::npos) << what;
-    }
-  }
+  testlevel::expectOneLineLoadErrors(cases, [&](const char* json) { return levelWith("dnrt-res-bad.json", json); });
 }
 
 TEST(DnrtLevel, ObjectSceneIsTheEntityInItsLocalFrame) {

@@ -22,6 +22,7 @@
 #include "engine/math/sh.hpp"
 #include "engine/scene/level.hpp"
 #include "engine/scene/systems.hpp"
+#include "tests/support/level_errors.hpp"
 #include "tests/support/technique_level.hpp"
 #include "tests/support/box_mesh.hpp"
 #include "tests/support/point_light.hpp"
@@ -128,17 +129,7 @@ TEST(RtfLevel, ResolutionKeyAndItsBadInput) {
       {R"({"bounces": 2})", ": /rtf/bounces: "},
       {R"("half")", ": /rtf: "},
   };
-  for (const auto& [json, want] : cases) {
-    const fs::path path = levelWith("rtf-res-bad", json);
-    try {
-      scene::loadLevel(path);
-      ADD_FAILURE() << json;
-    } catch (const InputError& e) {
-      const std::string what = e.what();
-      EXPECT_EQ(what.rfind(path.string() + want, 0), 0u) << what;
-      EXPECT_EQ(what.find('\n'), std::string::npos) << what;
-    }
-  }
+  testlevel::expectOneLineLoadErrors(cases, [&](const char* json) { return levelWith("rtf-res-bad", json); });
 }
 
 TEST(RtfTechnique, TakesPartAndBakesOneEntryPerEntity) {
