@@ -197,6 +197,7 @@ class DnrtTechnique final : public Technique {
             r.passes = {"shadow", "lighting", "probes", "dnrt.combine", "dnrt"};  // combine: Σ c_j M_j per vertex
             r.optionalPasses = {"dnrt.cube"};  // the intrusion maps (one outermost pass per object)
             r.configure = [=](scene::Level& level) {
+              level.dnrt.step = 1;  // full resolution, whatever the level's "dnrt": {"resolution"}
               for (auto& e : level.entities)
                 if (e.dnrt) {
                   e.dnrt->shCount = shCount;

@@ -216,5 +216,26 @@ TEST(Techniques, AccuracyRowsComeFromTheTable) {
   }
 }
 
+// A DNRT or RTF row measures at the resolution its setting names — "resolution=half;…" half, otherwise
+// full — whatever the level's own "dnrt" / "rtf": {"resolution"}: a full-resolution row on a level shading
+// at quarter would otherwise measure the quarter draw under a full label (and lack its pass list's upsample).
+TEST(Techniques, AccuracyRowsSetTheirOwnResolution) {
+  int checked = 0;
+  for (const auto& r : game::accuracyRows()) {
+    if (r.technique != "dnrt" && r.technique != "rtf") continue;
+    const std::uint32_t want = r.setting.starts_with("resolution=half")      ? 2u
+                               : r.setting.starts_with("resolution=quarter") ? 4u
+                                                                              : 1u;
+    for (const std::uint32_t levelStep : {1u, 2u, 4u}) {
+      scene::Level level;
+      level.dnrt.step = level.rtf.step = levelStep;
+      r.configure(level);
+      EXPECT_EQ(r.technique == "dnrt" ? level.dnrt.step : level.rtf.step, want) << r.setting << " on a level at step " << levelStep;
+    }
+    ++checked;
+  }
+  EXPECT_EQ(checked, 26 + 10);  // DNRT's 24 + 2 reduced, RTF's 4 + 6 reduced
+}
+
 }  // namespace
 }  // namespace bounce
