@@ -17,7 +17,7 @@ namespace bounce::testlevel {
 // Each case (json, want): `write(json)` writes a level whose key holds `json` and returns its path;
 // loading it must throw one line beginning with that path followed by `want`.
 template <class Write>
-void expectOneLineLoadErrors(std::span<const std::pair<const char*, std::string>> cases, Write&& write) {
+void expectOneLineLoadErrors(std::span<const std::pair<std::string, std::string>> cases, Write&& write) {
   for (const auto& [json, want] : cases) {
     const std::filesystem::path path = write(json);
     try {
@@ -29,6 +29,21 @@ void expectOneLineLoadErrors(std::span<const std::pair<const char*, std::string>
       EXPECT_EQ(what.find('\n'), std::string::npos) << what;
     }
   }
+}
+
+// A level-wide `{"resolution": …}` object under `key` ("dnrt", "rtf"; gi/resolution.hpp's names): an
+// unknown name, a number, a key the object does not take (`otherKey`) and a string in place of the object,
+// each one line at its place.
+template <class Write>
+void expectResolutionKeyErrors(const std::string& key, const std::string& otherKey, Write&& write) {
+  const std::pair<std::string, std::string> cases[] = {
+      {R"({"resolution": "eighth"})",
+       ": /" + key + "/resolution: unknown resolution \"eighth\" (expected full, half or quarter)"},
+      {R"({"resolution": 2})", ": /" + key + "/resolution: wrong type: integer (expected a string)"},
+      {"{\"" + otherKey + "\": 2}", ": /" + key + "/" + otherKey + ": "},
+      {R"("half")", ": /" + key + ": "},
+  };
+  expectOneLineLoadErrors(cases, std::forward<Write>(write));
 }
 
 }  // namespace bounce::testlevel
