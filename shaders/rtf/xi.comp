@@ -1,4 +1,5 @@
 #version 450
+#extension GL_KHR_shader_subgroup_arithmetic : enable
 // RTF caches (Pan et al. 2007, §5 "Caching RTF eigens" and "Caching RTF samples") as one
 // per-frame compute pass in three dispatches (push constant `stage`), engine/gi/rtf/xi_pass.hpp:
 //  stage 0, Eq. 12: u_{h,e,i} = Σ_k Σ_j E_{he,k}[i][j] L_{k,j}  (per RGB channel), one invocation
@@ -20,6 +21,17 @@
 // r = (sphere·6 + face)·n_r² + y·n_r + x (field.hpp's sample order). SSBOs are fine here: this is a
 // compute pass (DESIGN machine facts forbid them in fragment shaders, which read the image).
 layout(local_size_x = 64) in;
+
+// Specialization (xi_pass.cpp), one pipeline each: llvmpipe runs an untaken branch in full.
+// kKeepXi: stage 1 also stores ξ (16 rgba32f texels a sample) in the ξ image. Only tests read it (the
+// shading step reads X); frames skip the stores: ≈ 12 % of `rtf.bounce` on cornell-5 (README "RTF's
+// bouncing step without ξ stores, session 26").
+layout(constant_id = 0) const bool kKeepXi = true;
+// kSubgroupMax: each slot's range is reduced over the subgroup first (subgroupMax of the same float bits),
+// so one lane of 8 (llvmpipe's subgroup) does the 27 atomicMax, not every lane; the maximum is the same
+// (≈ 3–5 % of `rtf.bounce` on llvmpipe).
+// Off where the device's compute stage lacks subgroup arithmetic (XiPass asks the device).
+layout(constant_id = 1) const bool kSubgroupMax = false;
 
 layout(std430, binding = 0) readonly buffer Basis { uint basis[]; };  // packHalf2x16 words
 layout(std430, binding = 1) readonly buffer Alpha { uint alpha[]; };  // packHalf2x16 words
@@ -197,7 +209,8 @@ void main() {
     uint sphere = r / per, rest = r % per, face = rest / n2;
     uint px = rest % pc.faceSize, py = (rest % n2) / pc.faceSize;
     ivec2 texel = ivec2(int(face * pc.faceSize + px), int(py));
-    for (uint i = 0u; i < 16u; ++i) imageStore(xi, ivec3(texel, int(sphere * 16u + i)), vec4(x[i], 0.0));
+    if (kKeepXi)
+      for (uint i = 0u; i < 16u; ++i) imageStore(xi, ivec3(texel, int(sphere * 16u + i)), vec4(x[i], 0.0));
     float notV[16];
     for (uint j = 0u; j < 16u; ++j) notV[j] = (j == 0u ? 3.5449077018110318 : 0.0) - oof[r * 16u + j];  // u_0 = 2√π
     vec4 scale = blockedScale[r];
@@ -212,7 +225,15 @@ void main() {
       X -= scale.rgb * blocked;
       X *= r2;  // Y, the value the 8 bits hold
       netValue[r * 9u + i] = vec4(X, 0.0);
-      for (uint c = 0u; c < 3u; ++c) atomicMax(range[rtfNetSlot(c, i)], floatBitsToUint(abs(X[c])));
+      for (uint c = 0u; c < 3u; ++c) {
+        uint bits = floatBitsToUint(abs(X[c]));
+        if (kSubgroupMax) {
+          bits = subgroupMax(bits);
+          if (subgroupElect()) atomicMax(range[rtfNetSlot(c, i)], bits);
+        } else {
+          atomicMax(range[rtfNetSlot(c, i)], bits);
+        }
+      }
     }
   }
 }

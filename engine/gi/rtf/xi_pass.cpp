@@ -7,6 +7,7 @@
 
 #include "engine/core/error.hpp"
 #include "engine/gpu/commands.hpp"
+#include "engine/gpu/context.hpp"
 
 namespace bounce::gi::rtf {
 
@@ -44,8 +45,16 @@ std::vector<std::uint32_t> byteWords(const std::vector<std::int8_t>& q) {
 
 }  // namespace
 
-XiPass::XiPass(gpu::Context& ctx, const Field& f)
+bool computeSubgroupArithmetic(const gpu::Context& ctx) {
+  VkPhysicalDeviceSubgroupProperties sub{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES, nullptr, 0, 0, 0, VK_FALSE};
+  VkPhysicalDeviceProperties2 props{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &sub, {}};
+  vkGetPhysicalDeviceProperties2(ctx.physicalDevice(), &props);
+  return (sub.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT) != 0 && (sub.supportedOperations & VK_SUBGROUP_FEATURE_ARITHMETIC_BIT) != 0;
+}
+
+XiPass::XiPass(gpu::Context& ctx, const Field& f, XiPassOptions options)
     : settings_(f.settings),
+      keepXi_(options.keepXi),
       setLayout_(ctx,
                  {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                   {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
@@ -90,7 +99,14 @@ XiPass::XiPass(gpu::Context& ctx, const Field& f)
   d.layers = std::uint32_t(s.spheres * kShCount);
   d.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
   d.name = "rtf.xi";
-  xi_ = gpu::Image(ctx, d);
+  {
+    gpu::ImageDesc xd = d;  // without keepXi nothing is stored there: two 1×1 layers keep binding 5 a valid 2D array
+    if (!keepXi_) {
+      xd.width = xd.height = 1;
+      xd.layers = 2;
+    }
+    xi_ = gpu::Image(ctx, xd);
+  }
   gpu::ImageDesc nd = d;
   nd.format = VK_FORMAT_R8G8B8A8_UNORM;  // X in DNRT's Table 2 order, 7 texels per sample (xi.comp)
   nd.type = gpu::ImageType::Tex3D;
@@ -132,7 +148,9 @@ XiPass::XiPass(gpu::Context& ctx, const Field& f)
     }
     gpu::upload(ctx, oof_, std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(texels.data()), texels.size() * sizeof(float)));
   }
-  pipeline_ = gpu::createComputePipeline(ctx, layout_, gpu::ShaderModule(ctx, "rtf/xi.comp.spv"), "rtf.xi");
+  const bool subgroupMax = options.subgroupMax && computeSubgroupArithmetic(ctx);
+  pipeline_ = gpu::createComputePipeline(ctx, layout_, gpu::ShaderModule(ctx, "rtf/xi.comp.spv"), "rtf.xi", nullptr,
+                                         {keepXi_ ? 1u : 0u, subgroupMax ? 1u : 0u});
   set_ = descriptors_.allocate(setLayout_);
   gpu::DescriptorWriter()
       .buffer(0, basis_)
@@ -153,6 +171,11 @@ XiPass::XiPass(gpu::Context& ctx, const Field& f)
   blocked_.assign(kShCount * 9, glm::vec4(0.0f));
   std::vector<glm::vec3> zero(std::size_t(s.proxies) * kShCount, glm::vec3(0.0f));
   setProxyLight(zero);
+}
+
+gpu::Image& XiPass::xi() {
+  if (!keepXi_) throw InternalError("rtf::XiPass: ξ is stored only with XiPassOptions::keepXi");
+  return xi_;
 }
 
 void XiPass::setProxyLight(std::span<const glm::vec3> light) {

@@ -1,8 +1,8 @@
 #pragma once
 // One object's RTF on the GPU: the bouncing step's caches (Eq. 11–12, shaders/rtf/xi.comp): one object's CPCA field
-// uploaded once, the proxies' light each frame, ξ written into an rgba32f 2D-array image (layer
-// sphere·16 + i, texel (face·n_r + x, y)) and the shading step's X into an 8-bit 3D image (net()). The CPU
-// reference is xiCache() (evaluate.hpp); tests/unit/rtf/xi_gpu_test.cpp compares the two.
+// uploaded once, the proxies' light each frame, the shading step's X into an 8-bit 3D image (net()) and, when
+// asked (XiPassOptions::keepXi), ξ into an rgba32f 2D-array image (layer sphere·16 + i, texel (face·n_r + x,
+// y)). The CPU reference is xiCache() (evaluate.hpp); tests/unit/rtf/xi_gpu_test.cpp compares the two.
 #include <span>
 #include <vector>
 
@@ -16,9 +16,21 @@
 
 namespace bounce::gi::rtf {
 
+struct XiPassOptions {
+  // Stage 1 also stores ξ in xi(). Only tests read ξ (the shading step reads X), so frames skip the 16
+  // rgba32f stores a sample; without it xi() throws.
+  bool keepXi = false;
+  // Each slot's range is reduced over the subgroup before its atomicMax (xi.comp kSubgroupMax), where the
+  // device's compute stage has subgroup arithmetic; false: one atomicMax a lane (same ranges).
+  bool subgroupMax = true;
+};
+
+// Whether the device's compute stage has subgroup arithmetic (Vulkan 1.1 subgroup properties).
+bool computeSubgroupArithmetic(const gpu::Context& ctx);
+
 class XiPass {
  public:
-  XiPass(gpu::Context& ctx, const Field& field);
+  XiPass(gpu::Context& ctx, const Field& field, XiPassOptions options = {});
   // The proxies' incident light, m·16 RGB in the object's frame: record() writes it into the
   // command buffer (vkCmdUpdateBuffer), so it takes effect at the next record().
   void setProxyLight(std::span<const glm::vec3> light);
@@ -58,7 +70,7 @@ class XiPass {
   gpu::Image& net() { return net_; }
   // 28 floats (vec4[7]): each slot's m; the shading pass binds it as a uniform block.
   gpu::Buffer& netRange() { return range_; }
-  gpu::Image& xi() { return xi_; }
+  gpu::Image& xi();  // needs XiPassOptions::keepXi
   // The object occlusion field, uploaded once: rgba32f 2D array, layer sphere·4 + i/4, texel
   // (face·n_r + x, y), component i%4 (shaders/rtf/rtf.glsl), SHADER_READ_ONLY_OPTIMAL.
   gpu::Image& oof() { return oof_; }
@@ -69,6 +81,7 @@ class XiPass {
     float innerRadius, outerRadius;  // η: the spheres' radii (field.hpp sphereRadius; netScale)
   };
   FieldSettings settings_;
+  bool keepXi_ = false;
   Push push_{};
   gpu::Buffer basis_, alpha_, cluster_, light_, eigen_, basisCodes_, alphaCodes_, codeScales_;
   std::vector<glm::vec4> pending_;  // the light record() writes: m·16 proxy light, then 144 of T'

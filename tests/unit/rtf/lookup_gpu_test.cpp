@@ -49,7 +49,7 @@ TEST(RtfLookupGpu, GlslLookupEqualsTheCpuEvaluation) {
     points.emplace_back(2.5f * glm::normalize(d), 0.0f);
   const std::uint32_t n = std::uint32_t(points.size());
 
-  XiPass pass(ctx, f);
+  XiPass pass(ctx, f, {.keepXi = true});
   pass.setProxyLight(L);
   gpu::Buffer in(ctx, {points.size() * sizeof(glm::vec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::Upload, "rtf.points"});
   gpu::Buffer out(ctx, {n * sizeof(Output), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::Readback, "rtf.out"});

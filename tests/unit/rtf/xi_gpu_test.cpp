@@ -8,7 +8,9 @@
 #include <cstring>
 #include <string>
 #include <utility>
+#include <vector>
 
+#include "engine/core/error.hpp"
 #include "engine/gi/rtf/evaluate.hpp"
 #include "engine/gi/rtf/xi_pass.hpp"
 #include "engine/gpu/commands.hpp"
@@ -48,7 +50,7 @@ TEST(RtfXiGpu, ComputePassEqualsTheCpuCaches) {
     for (std::size_t i = 0; i < L.size(); ++i) absL[i] = glm::abs(L[i]);
     const std::vector<glm::vec3> scale = xiCache(absField, absL);
 
-    XiPass pass(ctx, f);
+    XiPass pass(ctx, f, {.keepXi = true});
     // ξ and X leave UNDEFINED when the pass is built (a one-time submit), not inside a frame, whose
     // layout changes by passes the render graph's journal does not roll back (review 15, item 2);
     // record() then changes no layout, which validation checks against the GPU's layout.
@@ -138,6 +140,46 @@ TEST(RtfXiGpu, NetImageHoldsXToHalfAStepOfItsSlotsRange) {
     }
     std::printf("rtf 8-bit X%s: worst %.3f of half a step\n", withScale ? " (scaled)" : "", worst);
   }
+}
+
+// The frames' variant (xi.comp kKeepXi off, kSubgroupMax on where the device has it) writes the same
+// ranges and the same 8-bit X, byte for byte, as one atomicMax a lane with ξ stored: a maximum does not
+// depend on the order it is taken in, and ξ is not read by stage 2. Without keepXi, xi() refuses.
+TEST(RtfXiGpu, SubgroupRangesAndNoXiStoresLeaveTheSameX) {
+  gpu::Context& ctx = gpu::testkit::sharedContext();
+  if (!computeSubgroupArithmetic(ctx)) {
+    GTEST_SKIP() << "no subgroup arithmetic in the compute stage";
+  }
+  const BakeResult b = bake(testing::unitSphere(glm::vec3(0.8f, 0.6f, 0.4f), 8), testing::smallSettings());
+  const Field& f = b.field;
+  const FieldSettings& s = f.settings;
+  math::Pcg32 rng(17);
+  std::vector<glm::vec3> L(std::size_t(s.proxies) * kShCount);
+  for (auto& l : L) l = rng.nextFloat3() * 2.0f - 1.0f;
+  std::vector<glm::vec4> blocked(kShCount * 9);
+  for (auto& t : blocked) t = glm::vec4(rng.nextFloat3() * 0.2f - 0.1f, 0.0f);
+  std::vector<glm::vec4> scale;
+  for (std::size_t r = 0; r < sampleCount(s); ++r) scale.push_back(glm::vec4(rng.nextFloat3(), rng.nextFloat()));
+  std::vector<std::vector<std::uint8_t>> ranges, nets;
+  for (const XiPassOptions o : {XiPassOptions{.keepXi = true, .subgroupMax = false}, XiPassOptions{.keepXi = false, .subgroupMax = true}}) {
+    XiPass pass(ctx, f, o);
+    pass.setProxyLight(L);
+    pass.setBlockedLight(blocked);
+    pass.setBlockedScale(scale);
+    gpu::submitAndWait(ctx, [&](VkCommandBuffer cmd) { pass.record(cmd); });
+    ranges.push_back(gpu::readback(ctx, pass.netRange()));
+    nets.push_back(gpu::readback(ctx, pass.net()));
+    if (!o.keepXi) {
+      EXPECT_THROW(pass.xi(), InternalError);
+    }
+  }
+  ASSERT_EQ(ranges[0].size(), 28 * sizeof(float));
+  std::array<float, 28> m{};
+  std::memcpy(m.data(), ranges[1].data(), sizeof(m));
+  for (int slot = 0; slot < 27; ++slot) EXPECT_GT(m[std::size_t(slot)], 0.0f) << "slot " << slot;  // not a trivially equal zero
+  EXPECT_EQ(ranges[0], ranges[1]);
+  ASSERT_EQ(nets[0].size(), nets[1].size());
+  EXPECT_EQ(nets[0], nets[1]);
 }
 
 }  // namespace
