@@ -18,9 +18,14 @@
 #         dnrt-1280x720.csv        bounce bench dnrt at the README's resolution
 #         vlm-lights.csv           bounce bench vlm-lights (thesis Table 5.1), 1280x720
 #         vlm-k.csv                bounce bench vlm-k (thesis Table 5.3), 1280x720
+#         rtf-profile.csv          bounce profile of cornell-5 with dnrt and rtf in the same run, 1280x720:
+#                                  RTF's shading per object against DNRT's (issue 14's cost goal)
+#         rtf-scenes.csv           bounce bench rtf on cornell-5's field settings, 1280x720, RTF shaded
+#                                  at full, half and quarter resolution (column `shading`); rtf-objects.csv
+#                                  its per-object bake and CPCA lines
 #         profile.csv              bounce profile of every content level, 1280x720 (level column first)
 #         vlm-grid.csv             bounce bench vlm-grid (thesis Table 5.2) on every core
-#       Steps: dnrt1366 dnrt720 vlm-lights vlm-k profile vlm-grid, in that order (most wanted first);
+#       Steps: dnrt1366 dnrt720 rtf vlm-lights vlm-k profile vlm-grid, in that order (most wanted first);
 #       --only keeps some of them, for a rerun. --quick: tiny resolutions, 1-2 frames, fewer
 #       settings (a rehearsal, minutes on lavapipe). --device: Vulkan device substring (default
 #       NVIDIA, none with --quick). --bundled-libc: start bounce through the packed dynamic linker
@@ -102,6 +107,10 @@ cmd_pack() {
     done
     BOUNCE_CACHE=$b/cache LD_LIBRARY_PATH=$b/lib MESA_SHADER_CACHE_DIR=$stage/mesa \
       "$b/bin/bounce" bench dnrt --resolution 32x18 --frames 1 >/dev/null
+    # cornell-5's RTF fields (its props carry "rtf" components; the level's effects leave rtf out), which
+    # the rtf step's profile and bench read.
+    BOUNCE_CACHE=$b/cache LD_LIBRARY_PATH=$b/lib "$b/bin/bounce" bake "$b/share/bounce/content/levels/cornell-5.json" \
+      --effects direct,shadows,probes,dnrt,rtf >/dev/null
   fi
 
   mkdir -p "$packdir"
@@ -231,6 +240,16 @@ cmd_run() {
   if wanted dnrt720; then
     step dnrt720 "$bx" bench dnrt --resolution "$r720" --frames "$frames" "${dnrt_extra[@]}" --csv "$out/dnrt-1280x720.csv"
   fi
+  if wanted rtf; then
+    # Issue 14's "RTF shading per object ≤ DNRT's in the same bounce profile run", on a GPU: both effects on
+    # cornell-5's props in one profile (rows "rtf" and "dnrt" per object), then bench rtf at the three shading
+    # resolutions (README "RTF at half and quarter resolution, session 25"), on the level's field settings.
+    local c5=$B/share/bounce/content/levels/cornell-5.json rtf_frames=$prof_frames
+    step rtf-profile "$bx" profile "$c5" --effects direct,shadows,probes,dnrt,rtf --frames "$rtf_frames" \
+      --resolution "$r720" --csv "$out/rtf-profile.csv"
+    step rtf-bench "$bx" bench rtf --level "$c5" --runs 1 --proxies 8 --spheres 6 --face 6 --rays 8 --vertex-rays 8 \
+      --clusters 16 --components 8 --radii 0.5,4 --resolution "$r720" --frames "$frames" --rtf-resolution full,half,quarter
+  fi
   if wanted vlm-lights; then
     step vlm-lights "$bx" bench vlm-lights --resolution "$r720" "${vlm_extra[@]}"
   fi
@@ -264,6 +283,10 @@ cmd_run() {
   kv_to_csv '^lights=[0-9]+ .*vlm_ms=' <"$log" >"$out/vlm-lights.csv"
   kv_to_csv '^k=[0-9]+ .*vlm_ms=' <"$log" >"$out/vlm-k.csv"
   kv_to_csv '^lights=[0-9]+ .*scatter_ms=' <"$log" >"$out/vlm-grid.csv"
+  # bench rtf's scene lines carry both the render size (bare WxH, kv_to_csv's "resolution") and the shading
+  # resolution ("resolution=full|half|quarter"): the latter becomes "shading".
+  sed 's/ resolution=\(full\|half\|quarter\)/ shading=\1/' "$log" | kv_to_csv '^objects=[0-9]+ .*rtf_ms=' >"$out/rtf-scenes.csv"
+  kv_to_csv '^object=[^ ]+ .*compressed_mb=' <"$log" >"$out/rtf-objects.csv"
   local csv first=1
   : >"$out/profile.csv"
   for csv in "$work"/profile-*.csv; do
