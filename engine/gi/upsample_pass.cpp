@@ -6,12 +6,12 @@
 #include "engine/gi/resolution.hpp"
 #include "engine/render/passes/gbuffer_pass.hpp"
 #include "engine/render/passes/rendering.hpp"
+#include "engine/render/hdr_format.hpp"
 
 namespace bounce::gi {
 
 namespace {
 constexpr VkDescriptorType kSampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-constexpr VkFormat kHdrFormat = VK_FORMAT_R16G16B16A16_SFLOAT;  // "lighting.hdr" (renderer.cpp)
 }  // namespace
 
 ReducedUpsample::ReducedUpsample(gpu::Context& ctx, const render::Pipelines& shared, std::string name)
@@ -31,7 +31,7 @@ const gpu::Pipeline& ReducedUpsample::pipeline(std::uint32_t step) {
   gpu::GraphicsPipelineDesc d;
   d.vertex = &vert_;
   d.fragment = &frag_;
-  d.colorFormats = {kHdrFormat};
+  d.colorFormats = {render::kLightingHdrFormat};
   d.blend = gpu::Blend::Additive;  // added to "lighting.hdr", as a full-resolution draw would
   d.specialization = {step};       // reduced_upsample.frag kStep
   d.name = name_ + ".step" + std::to_string(step);

@@ -12,6 +12,7 @@
 #include "engine/render/passes/skinning_pass.hpp"
 #include "engine/render/passes/subdivision_pass.hpp"
 #include "engine/render/passes/tonemap_pass.hpp"
+#include "engine/render/hdr_format.hpp"
 
 namespace bounce::render {
 
@@ -29,7 +30,6 @@ const char* debugViewName(DebugView v) {
 
 namespace {
 
-constexpr VkFormat kHdrFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 constexpr VkFormat kDisplayFormat = VK_FORMAT_R8G8B8A8_UNORM;
 
 // The render-graph state an imported image is in, from its tracked Vulkan layout. The stages and
@@ -88,7 +88,7 @@ void Renderer::ensureTargets(VkExtent2D extent) {
   gpu::ImageDesc d;
   d.width = extent.width;
   d.height = extent.height;
-  d.format = kHdrFormat;
+  d.format = render::kLightingHdrFormat;
   d.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
   d.name = "lighting.hdr";
   hdr_ = std::make_unique<gpu::Image>(ctx_, d);

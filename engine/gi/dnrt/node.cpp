@@ -16,6 +16,7 @@
 #include "engine/render/passes/rendering.hpp"
 #include "engine/render/passes/skinning_pass.hpp"
 #include "engine/render/passes/gbuffer_pass.hpp"
+#include "engine/render/hdr_format.hpp"
 
 namespace bounce::gi::dnrt {
 
@@ -24,7 +25,6 @@ constexpr VkDescriptorType kSampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
 constexpr VkDescriptorType kStorage = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
 constexpr VkDescriptorType kUniform = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
 constexpr VkDescriptorType kStorageImage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
-constexpr VkFormat kHdrFormat = VK_FORMAT_R16G16B16A16_SFLOAT;  // "lighting.hdr" (renderer.cpp)
 constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;        // "gbuffer.depth" (gbuffer_pass.cpp)
 // The depth's layout in the dnrt pass: a read-only depth attachment (the box draws' test) that the
 // shaders also sample (rg::Usage::DepthRead beside SampledFragment).
@@ -203,7 +203,7 @@ const gpu::Pipeline& Node::pipeline(const Variant& v) {
   gpu::GraphicsPipelineDesc d;
   d.vertex = &vert_;
   d.fragment = &frag_;
-  d.colorFormats = {kHdrFormat};  // "lighting.hdr", or "dnrt.half" / "dnrt.quarter" (the same format)
+  d.colorFormats = {render::kLightingHdrFormat};  // "lighting.hdr", or "dnrt.half" / "dnrt.quarter" (the same format)
   d.blend = gpu::Blend::Additive;
   // Box: back faces of the cube, each covered pixel once, inside or out. Full screen: one triangle.
   d.cull = v.fullScreen ? VK_CULL_MODE_NONE : VK_CULL_MODE_FRONT_BIT;
@@ -231,7 +231,7 @@ const gpu::Pipeline& Node::clusteredPipeline(bool single, bool selfInNormal, std
   gpu::GraphicsPipelineDesc d;
   d.vertex = &fullscreenVert_;
   d.fragment = &clusterFrag_;
-  d.colorFormats = {kHdrFormat};
+  d.colorFormats = {render::kLightingHdrFormat};
   d.blend = gpu::Blend::Additive;
   // The dnrt pass's read-only depth attachment (not tested here); none on a reduced target.
   d.depthFormat = step > 1u ? VK_FORMAT_UNDEFINED : kDepthFormat;

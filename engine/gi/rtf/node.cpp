@@ -8,13 +8,13 @@
 #include "engine/gpu/commands.hpp"
 #include "engine/render/passes/rendering.hpp"
 #include "engine/render/passes/gbuffer_pass.hpp"
+#include "engine/render/hdr_format.hpp"
 
 namespace bounce::gi::rtf {
 
 namespace {
 constexpr VkDescriptorType kSampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
 constexpr VkDescriptorType kUniform = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
-constexpr VkFormat kHdrFormat = VK_FORMAT_R16G16B16A16_SFLOAT;  // "lighting.hdr" (renderer.cpp)
 }  // namespace
 
 Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t framesInFlight)
@@ -35,7 +35,7 @@ const gpu::Pipeline& Node::pipeline(bool sh4, bool entity, std::uint32_t step) {
   gpu::GraphicsPipelineDesc d;
   d.vertex = &vert_;
   d.fragment = &frag_;
-  d.colorFormats = {kHdrFormat};  // "lighting.hdr", or "rtf.half" / "rtf.quarter" (the same format)
+  d.colorFormats = {render::kLightingHdrFormat};  // "lighting.hdr", or "rtf.half" / "rtf.quarter" (the same format)
   d.blend = gpu::Blend::Additive;
   d.cull = VK_CULL_MODE_NONE;  // rtf.vert's camera-facing octagon (or full-screen triangle): each covered pixel once
   d.name = std::string("rtf") + (sh4 ? ".sh4" : "") + (entity ? ".entity" : "") +

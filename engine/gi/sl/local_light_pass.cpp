@@ -4,13 +4,13 @@
 #include "engine/render/gpu_types.hpp"
 #include "engine/render/passes/gbuffer_pass.hpp"
 #include "engine/render/passes/rendering.hpp"
+#include "engine/render/hdr_format.hpp"
 
 namespace bounce::gi::sl {
 
 namespace {
 constexpr VkDescriptorType kSampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
 constexpr VkDescriptorType kUniform = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
-constexpr VkFormat kHdrFormat = VK_FORMAT_R16G16B16A16_SFLOAT;  // "lighting.hdr" (renderer.cpp)
 constexpr std::uint32_t kTilesBinding = 6;                     // tiles.glsl: SlTiles
 constexpr std::uint32_t kFirstShadeBinding = 7;                // local_light.frag: SL_BINDING
 
@@ -40,7 +40,7 @@ LocalLightPass::LocalLightPass(gpu::Context& ctx, const render::Pipelines& share
   gpu::GraphicsPipelineDesc d;
   d.vertex = &vert;
   d.fragment = &frag;
-  d.colorFormats = {kHdrFormat};
+  d.colorFormats = {render::kLightingHdrFormat};
   d.blend = gpu::Blend::Additive;  // RGBA16F keeps the negative sum: the shadow takes light away
   d.specialization = ShadeData::specialization(order, blocking, spheres, influence);
   d.name = "sl.local";

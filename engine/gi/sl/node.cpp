@@ -11,12 +11,12 @@
 #include "engine/gi/probes/relight_pass.hpp"
 #include "engine/render/passes/rendering.hpp"
 #include "engine/render/passes/gbuffer_pass.hpp"
+#include "engine/render/hdr_format.hpp"
 
 namespace bounce::gi::sl {
 
 namespace {
 constexpr VkDescriptorType kSampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-constexpr VkFormat kHdrFormat = VK_FORMAT_R16G16B16A16_SFLOAT;  // "lighting.hdr" (renderer.cpp)
 constexpr std::uint32_t kFirstShadeBinding = 3;                // sl.frag: SL_BINDING
 constexpr std::uint32_t kTilesBinding = 6;                     // tiles.vert: SlTiles
 constexpr std::uint32_t kReducedBinding = 7;                   // upsample.frag: slReduced
@@ -90,7 +90,7 @@ Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t fra
   d.fragment = &frag_;
   const std::uint32_t step = resolutionStep(resolution);
   const bool reduced = step > 1u;
-  d.colorFormats = {kHdrFormat};
+  d.colorFormats = {render::kLightingHdrFormat};
   // Full: added to "lighting.hdr"; half, quarter: written into the cleared "sl.half" / "sl.quarter"
   // for the upsample.
   d.blend = reduced ? gpu::Blend::None : gpu::Blend::Additive;
@@ -114,7 +114,7 @@ Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t fra
     gpu::GraphicsPipelineDesc u;
     u.vertex = &vert_;
     u.fragment = &upsampleFrag_;
-    u.colorFormats = {kHdrFormat};
+    u.colorFormats = {render::kLightingHdrFormat};
     u.blend = gpu::Blend::Additive;
     u.specialization = {step};  // upsample.frag kStep (constant_id 0)
     u.name = "sl.upsample.step" + std::to_string(step);

@@ -8,13 +8,13 @@
 #include "engine/gi/sl/tiles.hpp"
 #include "engine/render/passes/rendering.hpp"
 #include "engine/render/passes/gbuffer_pass.hpp"
+#include "engine/render/hdr_format.hpp"
 
 namespace bounce::gi::sl {
 
 namespace {
 constexpr VkDescriptorType kSampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
 // "lighting.hdr" (renderer.cpp), "sl.half" / "sl.quarter".
-constexpr VkFormat kHdrFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 constexpr std::uint32_t kTilesBinding = 6;                     // tiles.vert: SlTiles
 constexpr std::uint32_t kFirstShadeBinding = 7;                // probe_shadow.frag: SL_BINDING
 constexpr std::uint32_t kRatiosBinding = 10;                   // shadow_hierarchy_tiles.vert: SlRatios
@@ -62,7 +62,7 @@ ProbeShadowPass::ProbeShadowPass(gpu::Context& ctx, const render::Pipelines& sha
   gpu::GraphicsPipelineDesc d;
   d.vertex = &vert;
   d.fragment = &frag;
-  d.colorFormats = {kHdrFormat};
+  d.colorFormats = {render::kLightingHdrFormat};
   d.blend = gpu::Blend::Additive;  // RGBA16F keeps the negative sum: the shadow takes light away
   d.specialization = ShadeData::specialization(order, blocking, spheres, influence);
   d.specialization.push_back(std::uint32_t(probes.volume->coeffs()));  // probe_shadow.frag kCoeffs
