@@ -16,6 +16,7 @@
 #include "frame.glsl"
 #include "sh.glsl"
 #include "upsample.glsl"  // reducedSamplePixel
+#include "rtf/object.glsl"
 #include "rtf/rtf.glsl"
 
 // 9 SH (bands 0–2) or 4 (bands 0–1: texels 0..2 only), the object's "sh" (node.cpp: one pipeline each).
@@ -37,8 +38,10 @@ layout(set = 1, binding = 0) uniform sampler2D gAlbedo;
 layout(set = 1, binding = 1) uniform sampler2D gNormal;
 layout(set = 1, binding = 2) uniform sampler2D gDepth;
 layout(set = 1, binding = 3) uniform usampler2D gEntity;
-// X_i = Â_l/π ξ_i − Σ_j T'_ij (u − V)_j per sample, i < 9 (xi.comp): RGBA8 3D, slice k·spheres + sphere
-// for texel k < 7; a slot's t decodes to Y = m(2t − 1) with m its range (inRange, from xi.comp), and
+// X_i = w Â_l/π ξ_i − Σ_j T'_ij (u − V)_j per sample, i < 9 (xi.comp): RGBA8 3D, slice (v·7 + k)·spheres + sphere
+// for texel k < 7 of variant v — 0: w_off, for receivers off the rtf objects; 1: w_on, for receivers on one
+// (overlap.hpp: Algorithm 1 leaves the receiver's own entity out of the nearer objects' occlusion); a slot's
+// t decodes to Y = m(2t − 1) with m its range (inRange, from xi.comp, one for both variants), and
 // X = Y/r_s² (r_s the sample's sphere radius in η).
 layout(set = 2, binding = 1) uniform sampler3D netTex;
 
@@ -46,10 +49,11 @@ layout(set = 2, binding = 1) uniform sampler3D netTex;
 layout(location = 0) flat in vec4 toQ[3];
 layout(location = 3) flat in vec4 toLocal[3];
 layout(location = 6) flat in vec4 radial;  // inner (η), 1/Δr, spheres − 1, outer (η)
-layout(location = 7) flat in vec4 face;    // n_r, 1/(6 n_r), 1/n_r, 1/(7 · spheres)
+layout(location = 7) flat in vec4 face;    // n_r, 1/(6 n_r), 1/n_r, 1/(14 · spheres)
 layout(location = 8) flat in vec4 inRange[7];
 layout(location = 15) flat in uint self;
 layout(location = 16) flat in float reach;  // the tail's end (η), 0: none (evaluate.cpp tailFade)
+layout(location = 17) flat in uvec4 onObject[2];  // the other rtf objects' entity + 1 (0xFFFFFFFF: none)
 
 layout(location = 0) out vec4 outRadiance;
 
@@ -69,11 +73,15 @@ void main() {
   if (fade <= 0.0) discard;  // beyond the fade: the field is zero
   // The object's own surface: its transfer already holds its self-interreflection (Eq. 8).
   vec4 normal = texelFetch(gNormal, pixel, 0);
+  uint receiver = kSelfInNormal ? uint(normal.w) : texelFetch(gEntity, pixel, 0).r;  // entity + 1
   if (kSelfInNormal) {
     if (self != 0u && normal.w == float(self)) discard;
-  } else if (texelFetch(gEntity, pixel, 0).r == self) {
+  } else if (receiver == self) {
     discard;
   }
+  // On another rtf object's surface: X's on-object variant (2 vector compares, no branch: a slice offset below).
+  bool on = any(equal(uvec4(receiver), onObject[0])) || any(equal(uvec4(receiver), onObject[1]));
+  float variant = on ? 7.0 * (radial.z + 1.0) : 0.0;
   // Between spheres s0 and s0 + 1 the weight w is linear in 1/|q|² (rtfRadialWeight; evaluate.cpp
   // radialWeight says why). The texels hold Y = r_s² X (xi.comp; xi_pass.hpp netScale says why), and
   // (1 − w) Y_a/r_a² + w Y_b/r_b² = ((1 − w') Y_a + w' Y_b)/|q|² with w' = (|q|² − r_a²)/(r_b² − r_a²):
@@ -103,17 +111,17 @@ void main() {
   vec3 sum;
   for (int c = 0; c < 3; ++c) {
     vec4 a = y0 * inRange[c];
-    vec4 ta = texture(netTex, vec3(uv, (float(c) * spheres + t + 0.5) * face.w));
+    vec4 ta = texture(netTex, vec3(uv, (variant + float(c) * spheres + t + 0.5) * face.w));
     sum[c] = dot(a, 2.0 * ta - 1.0);
     if (kSh9) {
       vec4 b = y1 * inRange[3 + c];
-      vec4 tb = texture(netTex, vec3(uv, (float(3 + c) * spheres + t + 0.5) * face.w));
+      vec4 tb = texture(netTex, vec3(uv, (variant + float(3 + c) * spheres + t + 0.5) * face.w));
       sum[c] += dot(b, 2.0 * tb - 1.0);
     }
   }
   if (kSh9) {
     vec3 e = y[8] * inRange[6].rgb;
-    sum += e * (2.0 * texture(netTex, vec3(uv, (6.0 * spheres + t + 0.5) * face.w)).rgb - 1.0);
+    sum += e * (2.0 * texture(netTex, vec3(uv, (variant + 6.0 * spheres + t + 0.5) * face.w)).rgb - 1.0);
   }
   vec3 albedo = kStep == 1u ? texelFetch(gAlbedo, pixel, 0).rgb : vec3(1.0);  // reduced: ρ at the upsample
   outRadiance = vec4(albedo * (fade * sum), 0.0);

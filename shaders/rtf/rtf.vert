@@ -24,10 +24,11 @@ layout(set = 2, binding = 2) uniform NetRange { vec4 range[7]; };  // xi.comp: m
 layout(location = 0) flat out vec4 outToQ[3];
 layout(location = 3) flat out vec4 outToLocal[3];
 layout(location = 6) flat out vec4 outRadial;  // inner (η), 1/Δr, spheres − 1, outer (η)
-layout(location = 7) flat out vec4 outFace;    // n_r, 1/(6 n_r), 1/n_r, 1/(7 · spheres)
+layout(location = 7) flat out vec4 outFace;    // n_r, 1/(6 n_r), 1/n_r, 1/(14 · spheres): X's two variants of 7 texels
 layout(location = 8) flat out vec4 outRange[7];
 layout(location = 15) flat out uint outSelf;
 layout(location = 16) flat out float outReach;  // the tail's end (η; 0: the end at r_N + Δr), ids.z
+layout(location = 17) flat out uvec4 outOnObject[2];  // the other rtf objects' entity + 1 (rtf.frag's variant)
 
 const int kCorners = 8;  // the octagon: 6 fan triangles, 18 vertices (node.cpp's draw)
 // rtf.frag's kStep (the same specialization constant): below full resolution the draw covers the reduced
@@ -39,10 +40,11 @@ void main() {
   outToLocal = ob.toLocal;
   float spheres = ob.grid.x, n = ob.grid.y, inner = ob.grid.z, outer = ob.grid.w;
   outRadial = vec4(inner, (spheres - 1.0) / (outer - inner), spheres - 1.0, outer);
-  outFace = vec4(n, 1.0 / (6.0 * n), 1.0 / n, 1.0 / (7.0 * spheres));
+  outFace = vec4(n, 1.0 / (6.0 * n), 1.0 / n, 1.0 / (14.0 * spheres));
   outRange = range;
   outSelf = ob.ids.x;
   outReach = uintBitsToFloat(ob.ids.z);
+  outOnObject = ob.onObject;
   vec3 o = ob.centreWorld.xyz, toO = o - camera.position.xyz;
   float R = ob.centreWorld.w, d = length(toO);
   if (d < 1.05 * R) {

@@ -6,7 +6,9 @@
 //           per (cluster h, component e = 0 (mean) … n_e), all 16 output coefficients i;
 //  stage 1, Eq. 11: ξ_{r,i} = u_{h(r),0,i} + Σ_e α_e(r) u_{h(r),e,i}, one invocation per sample r
 //           (all 16 coefficients i), stored in the ξ image; with it X (below) and its range;
-//  stage 2: X encoded into the 8-bit image the shading step reads (below).
+//  stage 2: X encoded into the 8-bit image the shading step reads (below), in two variants: X off the
+//           objects and X on them, which differ only in w (the interreflected light's factor, overlap.hpp);
+//           one invocation per sample.
 // Data (std430, bytes), as the field file stores it (cpca.hpp quantize / storedParts), with
 // n₈ = byteComponents and n_h = n_e − n₈: basis = n_c·(n_h+1)·D halves (per cluster the mean and
 // E_1..E_{n_h}), D = m·16·16·3, element ((k·16 + i)·16 + j)·3 + c of a component (field.hpp
@@ -54,11 +56,13 @@ layout(rgba32f, binding = 5) uniform writeonly image2DArray xi;
 // samples this frame (range[], atomicMax of the float bits: non-negative floats order as uints), and
 // holds t = Y/(2m) + ½ rounded to 1/255, so Y = m(2t − 1) to ½·2m/255. Image: 3D, texel
 // (face·n_r + x, y, k·spheres + sphere): one coefficient group's spheres are consecutive slices, so
-// one trilinear fetch is Eq. 10's whole lookup for 4 values (rtf.frag).
+// one trilinear fetch is Eq. 10's whole lookup for 4 values (rtf.frag). Two variants (overlap.hpp): texels
+// k < 7 hold X off the objects (w_off, scale.w), texels 7 ≤ k < 14 the same slots of X on them (w_on,
+// onObjects[]); they share each slot's m (the max over both), so rtf.frag decodes either with one range.
 layout(std430, binding = 6) readonly buffer Oof { float oof[]; };
 layout(rgba8, binding = 7) uniform writeonly image3D net;
 layout(std430, binding = 8) buffer Range { uint range[28]; };  // float bits of max |Y| per slot; 0 before stage 1
-layout(std430, binding = 9) buffer Net { vec4 netValue[]; };    // Y = r_s² X per (sample, i < 9), rgb
+layout(std430, binding = 9) buffer Net { vec4 netValue[]; };    // Y = r_s² X per (sample, variant, i < 9), rgb: [(r·2 + v)·9 + i]
 // Per sample (overlap.hpp sharedOcclusionScale), rgb: the factor of the blocked term (the share of the
 // directions this object hides that no other object's term already takes off); w: the factor of the
 // interreflected term (the share of this object's light the nearer objects let through, Algorithm 1's
@@ -67,6 +71,9 @@ layout(std430, binding = 10) readonly buffer BlockedScale { vec4 blockedScale[];
 layout(std430, binding = 11) readonly buffer BasisCodes { uint basisCodes[]; };  // 4 codes a word
 layout(std430, binding = 12) readonly buffer AlphaCodes { uint alphaCodes[]; };  // 4 codes a word
 layout(std430, binding = 13) readonly buffer Scales { float scales[]; };
+// Per sample: w for receivers on an rtf object's surface (overlap.hpp w_on; XiPass::setBlockedScale), the
+// on-object variant's factor of the interreflected term in place of BlockedScale's w.
+layout(std430, binding = 14) readonly buffer OnObjects { float onObjects[]; };
 
 // Code n of a 4-to-a-word buffer word, sign-extended (two's complement int8).
 float codeAt(uint word, uint n) { return float(bitfieldExtract(int(word), int(8u * (n & 3u)), 8)); }
@@ -99,23 +106,30 @@ float netScale(uint sphere, uint spheres) {
   return r * r;
 }
 
-// Stage 2: after every X and its slot's range are known, one invocation per (sample, texel k < 7).
-void encode(uint t) {
-  if (t >= pc.samples * 7u) return;
-  uint r = t / 7u, k = t % 7u;
-  vec4 v = vec4(128.0 / 255.0);  // slot 27 (texel 6's w) holds nothing: m = 0, so X = 0
-  for (uint comp = 0u; comp < 4u; ++comp) {
-    uint slot = k * 4u + comp;
-    if (slot >= 27u) break;
-    uint c = k < 6u ? k % 3u : comp, i = k < 6u ? (k / 3u) * 4u + comp : 8u;
-    float m = uintBitsToFloat(range[slot]);
-    float enc = m > 0.0 ? netValue[r * 9u + i][c] / (2.0 * m) + 0.5 : 0.5;
-    v[comp] = roundEven(clamp(enc, 0.0, 1.0) * 255.0) / 255.0;  // exact in UNORM8: no conversion rounding left
-  }
+// Stage 2: after every X and its slot's range are known, one invocation per sample r, all 14 texels: the
+// two variants (0: off the objects, 1: on them) of 7 texels each. One invocation per (sample, texel) cost
+// llvmpipe more in workgroups launched than in the encoding (≈ 2 ms an object at cornell-5's 1296 samples,
+// README "RTF's nearer-object occlusion per receiver, session 26"). Constant trip counts: unrolled.
+void encode(uint r) {
+  if (r >= pc.samples) return;
   uint n2 = pc.faceSize * pc.faceSize, per = 6u * n2;
   uint sphere = r / per, rest = r % per, face = rest / n2;
   uint px = rest % pc.faceSize, py = (rest % n2) / pc.faceSize;
-  imageStore(net, ivec3(int(face * pc.faceSize + px), int(py), int(k * (pc.samples / per) + sphere)), v);
+  uint spheres = pc.samples / per;
+  for (uint variant = 0u; variant < 2u; ++variant)
+    for (uint kk = 0u; kk < 7u; ++kk) {
+      vec4 v = vec4(128.0 / 255.0);  // slot 27 (texel 6's w) holds nothing: m = 0, so X = 0
+      for (uint comp = 0u; comp < 4u; ++comp) {
+        uint slot = kk * 4u + comp;
+        if (slot < 27u) {
+          uint c = kk < 6u ? kk % 3u : comp, i = kk < 6u ? (kk / 3u) * 4u + comp : 8u;
+          float m = uintBitsToFloat(range[slot]);
+          float enc = m > 0.0 ? netValue[(r * 2u + variant) * 9u + i][c] / (2.0 * m) + 0.5 : 0.5;
+          v[comp] = roundEven(clamp(enc, 0.0, 1.0) * 255.0) / 255.0;  // exact in UNORM8: no conversion rounding left
+        }
+      }
+      imageStore(net, ivec3(int(face * pc.faceSize + px), int(py), int((variant * 7u + kk) * spheres + sphere)), v);
+    }
 }
 
 void main() {
@@ -211,6 +225,7 @@ void main() {
     ivec2 texel = ivec2(int(face * pc.faceSize + px), int(py));
     if (kKeepXi)
       for (uint i = 0u; i < 16u; ++i) imageStore(xi, ivec3(texel, int(sphere * 16u + i)), vec4(x[i], 0.0));
+    float on = onObjects[r];  // w on the objects' surfaces (scale.w off them)
     float notV[16];
     for (uint j = 0u; j < 16u; ++j) notV[j] = (j == 0u ? 3.5449077018110318 : 0.0) - oof[r * 16u + j];  // u_0 = 2√π
     vec4 scale = blockedScale[r];
@@ -219,14 +234,16 @@ void main() {
     const float kInvPi = 0.31830988618379067;
     for (uint i = 0u; i < 9u; ++i) {
       float a = (i == 0u ? 3.14159265358979324 : (i < 4u ? 2.09439510239319549 : 0.78539816339744831)) * kInvPi;
-      vec3 X = a * x[i] * scale.w;  // w: the share of ξ the nearer objects let through (overlap.hpp)
       vec3 blocked = vec3(0.0);
       for (uint j = 0u; j < 16u; ++j) blocked += notV[j] * light[T + j * 9u + i].rgb;
-      X -= scale.rgb * blocked;
-      X *= r2;  // Y, the value the 8 bits hold
-      netValue[r * 9u + i] = vec4(X, 0.0);
+      blocked *= scale.rgb;
+      // w: the share of ξ the nearer objects let through (overlap.hpp), off and on the objects' surfaces.
+      vec3 X = (a * x[i] * scale.w - blocked) * r2;  // Y, the value the 8 bits hold
+      vec3 Xon = (a * x[i] * on - blocked) * r2;
+      netValue[(r * 2u) * 9u + i] = vec4(X, 0.0);
+      netValue[(r * 2u + 1u) * 9u + i] = vec4(Xon, 0.0);
       for (uint c = 0u; c < 3u; ++c) {
-        uint bits = floatBitsToUint(abs(X[c]));
+        uint bits = floatBitsToUint(max(abs(X[c]), abs(Xon[c])));
         if (kSubgroupMax) {
           bits = subgroupMax(bits);
           if (subgroupElect()) atomicMax(range[rtfNetSlot(c, i)], bits);

@@ -23,7 +23,7 @@
 //   blocked-receiver  L = the probes' light at r, s = 1   (shade()'s light, per object)
 //   blocked-shape-o   L = the light at o scaled per channel by L_00(r)/L_00(o), s = 1   (o's shape, r's level)
 //   blocked-at-o      L = the light at o, s = 1   (the GPU before the third pass)
-//   blocked-gpu       L = the light at o, s_s = overlap.hpp sharedOcclusionScale (the GPU pass as shipped)
+//   blocked-gpu       L = the light at o, s_s = overlap.hpp sharedOcclusion's s (the GPU pass as shipped)
 //   blocked-level     L = the light at o, s_s = update.hpp blockedScale (the GPU before the seventh pass)
 //   blocked-eq3       L = the light at o, s_s = Σ_k w_k L_00(χ_k)/L_00(o), Eq. 3's weights from the sample to the proxies
 //   blocked-surface   L = the light at o, s_s = L_00(o + η d_s)/L_00(o), on the bounding sphere along the sample's ray
@@ -312,7 +312,8 @@ int main(int argc, char** argv) {
   }
   // RTF_PARTS_NEARER=1 (issue 14, session 24; a what-if): the engine's interreflected light at 1 and 2 bounces
   // at EVERY pixel (an object's own pixels skip its own field), each object's field shaded on its own and
-  // added as the GPU pass does, three ways: nearer-add (ξ whole), nearer-w (ξ·w, overlap.hpp as shipped) and
+  // added as the GPU pass does, three ways: nearer-add (ξ whole), nearer-w (ξ·w, overlap.hpp as shipped: w_on on the
+  // pixels that see an object, w_off elsewhere) and
   // nearer-dir (ξ ⊗ V_near per sample: the SH product of ξ with the visibility of the objects nearer to the
   // sample, looked up there and turned into the object's frame — Algorithm 1 at the sample, direction by
   // direction); written as nearer-{add,w,dir}-b{1,2}.pfm, then stop.
@@ -351,15 +352,20 @@ int main(int argc, char** argv) {
         }
       return out;
     };
-    // Three forms × two bounce counts of per-object results.
-    std::vector<gi::rtf::BounceResult> forms[3][2];
+    // Three forms × two bounce counts of per-object results, and ξ·w_on (forms[3]: the shipped form's
+    // factor for the pixels on an object since session 26; nearer-w takes it there, w_off elsewhere).
+    std::vector<gi::rtf::BounceResult> forms[4][2];
     for (int bn = 0; bn < 2; ++bn) {
       const gi::rtf::BounceResult& eb = bn == 0 ? engine1 : engine2;
       for (std::size_t k = 0; k < objects.size(); ++k) {
-        const std::vector<glm::vec4> sc = gi::rtf::sharedOcclusionScale(objects, k);
-        std::vector<glm::vec3> xw = eb.xi[k];
-        for (std::size_t r = 0; r < sc.size(); ++r)
-          for (int i = 0; i < gi::rtf::kShCount; ++i) xw[r * gi::rtf::kShCount + std::size_t(i)] *= sc[r].w;
+        const gi::rtf::OcclusionShares sh = gi::rtf::sharedOcclusion(objects, k);
+        std::vector<glm::vec3> xw = eb.xi[k], xon = eb.xi[k];
+        for (std::size_t r = 0; r < sh.scale.size(); ++r)
+          for (int i = 0; i < gi::rtf::kShCount; ++i) {
+            xw[r * gi::rtf::kShCount + std::size_t(i)] *= sh.scale[r].w;
+            xon[r * gi::rtf::kShCount + std::size_t(i)] *= sh.onObjects[r];
+          }
+        forms[3][bn].push_back({{eb.proxyLight[k]}, {xon}, {}});
         forms[0][bn].push_back({{eb.proxyLight[k]}, {eb.xi[k]}, {}});
         forms[1][bn].push_back({{eb.proxyLight[k]}, {xw}, {}});
         forms[2][bn].push_back({{eb.proxyLight[k]}, {dirXi(k, eb.xi[k])}, {}});
@@ -381,7 +387,8 @@ int main(int argc, char** argv) {
           for (std::size_t k = 0; k < objects.size(); ++k) {
             if (int(k) == own) continue;
             const std::span<const gi::rtf::Object> one(&objects[k], 1);
-            sum += gi::rtf::shade(one, forms[form][bn][k], light.indirect(), hit.position, n, rho, -1, 9).interreflected;
+            const int f = form == 1 && own >= 0 ? 3 : form;  // nearer-w: w_on on an object's pixels
+            sum += gi::rtf::shade(one, forms[f][bn][k], light.indirect(), hit.position, n, rho, -1, 9).interreflected;
           }
           float* px = img[std::size_t(form * 2 + bn)].rgb.data() + pixel * 3;
           px[0] = sum.x, px[1] = sum.y, px[2] = sum.z;
@@ -915,11 +922,11 @@ int main(int argc, char** argv) {
                  bounced.bounceEnergy[b] / std::max(bounced.bounceEnergy[0], 1e-30));
 
   // The GPU's per-sample level of the blocked light (update.hpp blockedScale, static geometry = the level without its props).
-  // The GPU's per-sample factor as shipped (overlap.hpp sharedOcclusionScale: the objects' shared occlusion, light at o),
+  // The GPU's per-sample factor as shipped (overlap.hpp sharedOcclusion's s: the objects' shared occlusion, light at o),
   // and the former per-sample light level (update.hpp blockedScale, static geometry = the level without its props).
   std::vector<std::vector<glm::vec4>> scales, levels;
   for (std::size_t k = 0; k < objects.size(); ++k) {
-    scales.push_back(gi::rtf::sharedOcclusionScale(objects, k));
+    scales.push_back(gi::rtf::sharedOcclusion(objects, k).scale);
     levels.push_back(gi::rtf::blockedScale(*objects[k].field, objects[k].world, light.indirect(), &bvhWithout));
   }
   // Two per-sample levels from the light AT THE OBJECT (issue 14, seventh pass), L_00 per channel over L_00(o):

@@ -63,11 +63,13 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
     std::vector<glm::vec3> proxies;
     std::vector<glm::vec4> blocked;
     std::vector<glm::vec4> scale;
+    std::vector<float> onObjects;
   };
   std::vector<Light> lights;
   std::vector<std::string> names;
   for (NodeObject& o : objects) {
-    lights.push_back({o.xi, std::move(o.proxyLight), {std::begin(o.record.blocked), std::end(o.record.blocked)}, std::move(o.blockedScale)});
+    lights.push_back({o.xi, std::move(o.proxyLight), {std::begin(o.record.blocked), std::end(o.record.blocked)}, std::move(o.blockedScale),
+                      std::move(o.onObjects)});
     names.push_back(o.name);
   }
   graph.addPass<BounceData>(
@@ -78,7 +80,7 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
         for (std::size_t i = 0; i < lights.size(); ++i) {
           lights[i].xi->setProxyLight(lights[i].proxies);
           lights[i].xi->setBlockedLight(lights[i].blocked);
-          lights[i].xi->setBlockedScale(lights[i].scale);
+          lights[i].xi->setBlockedScale(lights[i].scale, lights[i].onObjects);
           if (ts) ts->begin(cmd, "rtf.bounce/" + names[i]);
           lights[i].xi->record(cmd);
           if (ts) ts->end(cmd);
@@ -138,8 +140,11 @@ void Node::addTo(rg::RenderGraph& graph, const render::PassContext& pcIn, std::v
               .sampledImage(1, objects[i].xi->net().view(), linear, VK_IMAGE_LAYOUT_GENERAL)
               .buffer(2, objects[i].xi->netRange(), kUniform)
               .update(ctx_, set);
-          // The self test reads the entity id + 1 from the normal's w while it fits there (gbuffer.glsl).
-          const bool entity = objects[i].record.ids.x > render::kEntityInNormalMax;
+          // The self test and the on-object test read the entity id + 1 from the normal's w while every id
+          // they compare fits there (gbuffer.glsl).
+          bool entity = objects[i].record.ids.x > render::kEntityInNormalMax;
+          for (const glm::uvec4& ids : objects[i].record.onObject)
+            for (int k = 0; k < 4; ++k) entity = entity || (ids[k] != kRtfNoEntity && ids[k] > render::kEntityInNormalMax);
           const gpu::Pipeline* want = &pipeline(objects[i].record.ids.y == 4u, entity, step);
           if (want != bound) {
             want->bind(cmd);

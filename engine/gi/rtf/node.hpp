@@ -35,6 +35,7 @@ struct NodeObject {
   RtfObjectGpu record{};              // packObject()
   std::string name;                   // timestamp scopes "rtf/<name>", "rtf.bounce/<name>"
   std::vector<glm::vec4> blockedScale;  // per sample (XiPass::setBlockedScale); empty: the light at o
+  std::vector<float> onObjects;         // per sample, w for receivers on an rtf object (XiPass::setBlockedScale); empty: blockedScale's w
 };
 
 class Node {

@@ -42,11 +42,11 @@ bool OtherField::nearerThanA(glm::vec3 p) const {
 
 bool OtherField::reaches(float reachA) const { return glm::length(centreA_ - centre_) < reachA + reachWorld_; }
 
-std::vector<glm::vec4> sharedOcclusionScale(std::span<const Object> objects, std::size_t a) {
+OcclusionShares sharedOcclusion(std::span<const Object> objects, std::size_t a) {
   constexpr float u = kUnitVisibility;  // ∫f dω = u·f_0 (evaluate.hpp)
   const Field& f = *objects[a].field;
   const FieldSettings& s = f.settings;
-  std::vector<glm::vec4> out(sampleCount(s), glm::vec4(1.0f));
+  OcclusionShares out{std::vector<glm::vec4>(sampleCount(s), glm::vec4(1.0f)), std::vector<float>(sampleCount(s), 1.0f)};
   const Placement pa = place(f, objects[a].world);
   const float dr = (s.outerRadius - s.innerRadius) / float(s.spheres - 1);
   const float reachA = pa.radiusWorld * (s.outerRadius + dr);
@@ -66,7 +66,7 @@ std::vector<glm::vec4> sharedOcclusionScale(std::span<const Object> objects, std
       const float a0 = u - oofA[0];  // (1 − V_A)'s l = 0 coefficient
       if (a0 <= 1e-6f) continue;     // A hides nothing from this sample
       const glm::vec3 p = pa.centreWorld + pa.radiusWorld * sphereRadius(s, sphere) * dir;
-      float shared = 0.0f, letThrough = 1.0f;
+      float shared = 0.0f, letThrough = 1.0f, letThroughOn = 1.0f;
       for (const OtherField& o : others) {
         const ShScalar vbA = o.hiddenInA(p);  // (1 − V_B) at p, A's frame
         if (vbA == ShScalar{}) continue;      // beyond B's field
@@ -74,12 +74,16 @@ std::vector<glm::vec4> sharedOcclusionScale(std::span<const Object> objects, std
         for (int j = 1; j < kShCount; ++j) dot -= oofA[j] * vbA[std::size_t(j)];  // (1 − V_A)_j = −oof_j for j > 0
         const float share = std::clamp(dot / (a0 * u), 0.0f, 1.0f);
         shared += share;
-        // Algorithm 1 leaves the receiver's own entity out: inside B's bounding sphere the receivers
-        // are mostly B's own surface, so there B takes nothing off A's light (overlap.hpp). Several
-        // nearer objects multiply, as Algorithm 1's visibilities do.
-        if (o.nearerThanA(p) && glm::length(p - o.centre()) >= o.etaWorld()) letThrough *= 1.0f - share;
+        // Several nearer objects multiply, as Algorithm 1's visibilities do. For receivers on an object's
+        // surface, Algorithm 1 leaves the receiver's own entity out: inside B's bounding sphere they are
+        // mostly B's own, so there B takes nothing off (overlap.hpp).
+        if (o.nearerThanA(p)) {
+          letThrough *= 1.0f - share;
+          if (glm::length(p - o.centre()) >= o.etaWorld()) letThroughOn *= 1.0f - share;
+        }
       }
-      out[smp] = glm::vec4(glm::vec3(std::max(0.0f, 1.0f - 0.5f * shared)), letThrough);
+      out.scale[smp] = glm::vec4(glm::vec3(std::max(0.0f, 1.0f - 0.5f * shared)), letThrough);
+      out.onObjects[smp] = letThroughOn;
     }
   }, 64);
   return out;

@@ -23,11 +23,18 @@
 // only from there):
 //   w_A(p) = Π_{B nearer to p than A, |p − o_B| ≥ η_B} (1 − ∫(1 − V_A)(1 − V_B) dω / ∫(1 − V_A) dω),
 // the ξ pass's factor of the interreflected part of X (xi.comp). Where A is the nearer object, or no
-// other field reaches p, w = 1. Algorithm 1 sorts "the entities except J_q", the receiver's own: the
-// receivers inside B's bounding sphere (radius η_B) are mostly B's own surface, so B takes nothing off
-// there (a choice: with B counted there too, cornell-rtf's effect error rises by 0.009, mostly on the
-// boxes' own pixels; README "RTF: the nearer object's occlusion of the other's light, session 24"). The
-// factors of several nearer objects multiply, as Algorithm 1's visibilities do.
+// other field reaches p, w = 1. The factors of several nearer objects multiply, as Algorithm 1's
+// visibilities do. Algorithm 1 sorts "the entities except J_q", the receiver's own, so the factor
+// depends on the receiver as well as on p. Two per sample, and the shading pass picks one per receiver
+// pixel (rtf.frag, by the receiver's entity; session 26):
+//  - w_off, every nearer B counted: for receivers that are not on an rtf object's surface (the room,
+//    other entities) — Algorithm 1 at p;
+//  - w_on, B left out where p lies inside B's bounding sphere (radius η_B): for receivers on another rtf
+//    object's surface. The samples around B's own receivers lie mostly inside B's sphere, so this leaves
+//    B's own occlusion out there, as Algorithm 1 does for its own surface (session 24's per-sample form,
+//    which the GPU used for every receiver until session 26: counted for every receiver instead, B's
+//    occlusion cost cornell-rtf 0.009 on the boxes' own pixels; README "RTF: the nearer object's occlusion
+//    of the other's light, session 24", "RTF's nearer-object occlusion per receiver, session 26").
 // Without w the GPU's second bounce near cornell-5's red box and truck was 1.25–1.5× shade()'s from
 // the same proxy light.
 #include <span>
@@ -40,9 +47,12 @@
 
 namespace bounce::gi::rtf {
 
-// One vec4 (s, s, s, w) per sample of objects[a]'s field, in field.hpp's sample order: s the blocked
-// light's factor, w the interreflected light's.
-std::vector<glm::vec4> sharedOcclusionScale(std::span<const Object> objects, std::size_t a);
+// Per sample of objects[a]'s field, in field.hpp's sample order.
+struct OcclusionShares {
+  std::vector<glm::vec4> scale;   // (s, s, s, w_off): s the blocked light's factor, w_off the interreflected light's off the objects
+  std::vector<float> onObjects;   // w_on: the interreflected light's factor for receivers on another rtf object
+};
+OcclusionShares sharedOcclusion(std::span<const Object> objects, std::size_t a);
 
 // Object B's occlusion seen from object A's field samples: B's OOF looked up at a world point and
 // turned into A's local frame, and the two objects' order in Algorithm 1 there. Built once per pair.

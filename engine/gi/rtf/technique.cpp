@@ -258,7 +258,7 @@ render::Renderer::GraphNode SessionRuntime::node() {
     for (std::size_t o = 0; o < f.participant.size(); ++o) {
       const std::size_t i = f.participant[o];
       objects.push_back({xi_[i].get(), std::move(f.proxyLight[o]), f.records[o], update_->participants()[i].name,
-                         std::move(f.blockedScale[o])});
+                         std::move(f.shares[o].scale), std::move(f.shares[o].onObjects)});
     }
     node_->addTo(graph, pc, std::move(objects), step_);
   };

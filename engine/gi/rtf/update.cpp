@@ -4,6 +4,7 @@
 // per pixel (the product matrix of the indirect light, the q mapping) into the records.
 
 #include <algorithm>
+#include <utility>
 #include <bit>
 #include <limits>
 
@@ -21,6 +22,7 @@ RtfObjectGpu packObject(const Field& f, const glm::mat4& world, const ShRgb& ind
   if (shCount != 4 && shCount != 9) throw InternalError("rtf::packObject: SH count " + std::to_string(shCount) + " (4 or 9)");
   const Placement p = place(f, world);
   RtfObjectGpu o{};
+  for (glm::uvec4& ids : o.onObject) ids = glm::uvec4(kRtfNoEntity);  // no other object: Update::frame fills them
   // q = (worldToLocal·p − centre)/η: rows of the affine map.
   for (int r = 0; r < 3; ++r) {
     glm::vec4 row(p.worldToLocal[0][r], p.worldToLocal[1][r], p.worldToLocal[2][r], p.worldToLocal[3][r]);
@@ -158,7 +160,20 @@ FrameObjects Update::frame(std::span<const render::LightGpu> lights) {
                                        participants_[out.participant[o]].entity.index(), participants_[out.participant[o]].sh,
                                        objects[o].reach));
       // The objects' shared occlusion (overlap.hpp); the light is o's (packObject), unscaled where one object acts.
-      out.blockedScale.push_back(sharedOcclusionScale(objects, o));
+      out.shares.push_back(sharedOcclusion(objects, o));
+    }
+    // Which receivers are on another rtf object (rtf.frag picks the field's on-object X there): the entity
+    // index + 1 of the kRtfOnObjectIds other objects nearest to each one (centre distance, ties by index).
+    for (std::size_t o = 0; o < objects.size(); ++o) {
+      const glm::vec3 c = place(*objects[o].field, objects[o].world).centreWorld;
+      std::vector<std::pair<float, std::size_t>> others;
+      for (std::size_t b = 0; b < objects.size(); ++b)
+        if (b != o) others.emplace_back(glm::length(place(*objects[b].field, objects[b].world).centreWorld - c), b);
+      std::sort(others.begin(), others.end());
+      RtfObjectGpu& r = out.records[o];
+      for (glm::uvec4& ids : r.onObject) ids = glm::uvec4(kRtfNoEntity);
+      for (std::size_t k = 0; k < std::min(others.size(), kRtfOnObjectIds); ++k)
+        r.onObject[k / 4][int(k % 4)] = participants_[out.participant[others[k].second]].entity.index() + 1u;
     }
   }
   bounceMs_.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());

@@ -18,10 +18,11 @@
 //    where the light is the same everywhere;
 //  - the GPU pass adds each object's term on its own (additive blending); Algorithm 1 at a receiver
 //    multiplies the objects' visibilities (V_{<i}). The two agree for one object (the GPU test);
-//    where fields overlap, each object's term is scaled per field sample by sharedOcclusionScale
+//    where fields overlap, each object's term is scaled per field sample by sharedOcclusion's s
 //    (overlap.hpp: half the directions two objects both hide taken off each), which the lookup
 //    carries to the receiver (README RTF "Seventh pass"), and each object's interreflected light ξ by
-//    w, the share of it the nearer objects let through (overlap.hpp; session 24).
+//    w, the share of it the nearer objects let through (overlap.hpp; session 24), w_off for receivers off
+//    the rtf objects and w_on for receivers on one (session 26).
 #include <chrono>
 #include <memory>
 #include <span>
@@ -34,6 +35,7 @@
 #include "engine/gi/incident/incident.hpp"
 #include "engine/gi/rtf/evaluate.hpp"
 #include "engine/gi/rtf/occluders.hpp"
+#include "engine/gi/rtf/overlap.hpp"
 #include "engine/render/gpu_types.hpp"
 
 namespace bounce::gi::rtf {
@@ -47,13 +49,22 @@ struct RtfObjectGpu {
   glm::vec4 centreWorld;   // xyz: o in the world; w: the field's radius R = (outer + Δr)·η, or its reach·η with a tail (m), the sphere rtf.vert covers
   glm::vec4 grid;          // spheres, face size, inner, outer (η)
   glm::uvec4 ids;          // x: entity index + 1 (its own pixels skip the field); y: SH count 4 or 9 (the pipeline); z: the reach (η, float bits; 0: no tail)
+  // Entity index + 1 of the other rtf objects this frame, the kRtfOnObjectIds nearest to this one by
+  // centre distance (kRtfNoEntity: none): a receiver on one of them reads the field's on-object X
+  // (overlap.hpp w_on; rtf.frag). Receivers on farther ones read the off-object X (the field rarely reaches
+  // them). rtf.vert hands them on as two flat uvec4 (8 compares a pixel: ≈ 4 % of a draw on llvmpipe,
+  // half of what 16 ids read from the uniform block cost; README "RTF's nearer-object occlusion per
+  // receiver, session 26").
+  glm::uvec4 onObject[2];
   // blocked[j·9 + i].rgb = Â_{l(i)}/π · T_ij, T the product matrix of the indirect radiance L
   // (object frame, at o): ((u − V) ⊙ L)_i = Σ_j T_ij (u − V)_j (sh_product.hpp productMatrix). Only
   // i < 9: the clamped cosine has Â_3 = 0. The ξ pass folds it into its per-sample X
   // (XiPass::setBlockedLight, xi.comp), so the fragment shader reads only X (7 RGBA8 texels per tap).
   glm::vec4 blocked[kShCount * 9];
 };
-static_assert(sizeof(RtfObjectGpu) == (9 + kShCount * 9) * 16);
+inline constexpr std::size_t kRtfOnObjectIds = 8;
+inline constexpr std::uint32_t kRtfNoEntity = 0xFFFFFFFFu;  // no receiver's entity + 1 (ids + 1 < 2³² − 1)
+static_assert(sizeof(RtfObjectGpu) == (11 + kShCount * 9) * 16);
 inline constexpr std::size_t kRtfObjectStride = 2560;  // a multiple of every minUniformBufferOffsetAlignment (≤ 256)
 static_assert(sizeof(RtfObjectGpu) <= kRtfObjectStride);
 
@@ -106,7 +117,7 @@ struct FrameObjects {
   std::vector<std::size_t> participant;            // index into Update::participants()
   std::vector<std::vector<glm::vec3>> proxyLight;  // m·16 RGB per object, object frame (for the ξ pass)
   std::vector<RtfObjectGpu> records;
-  std::vector<std::vector<glm::vec4>> blockedScale;  // per object: sharedOcclusionScale() of its field (overlap.hpp)
+  std::vector<OcclusionShares> shares;             // per object: sharedOcclusion() of its field (overlap.hpp)
   std::vector<double> bounceEnergy;                // BounceResult::bounceEnergy
   int bounces = 0;
 };

@@ -69,7 +69,8 @@ XiPass::XiPass(gpu::Context& ctx, const Field& f, XiPassOptions options)
                   {10, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                   {11, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                   {12, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                  {13, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}},
+                  {13, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                  {14, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}},
                  "rtf.xi"),
       layout_(ctx, {setLayout_}, {{VK_SHADER_STAGE_ALL, 0, sizeof(Push)}}, "rtf.xi"),
       descriptors_(ctx) {
@@ -111,7 +112,7 @@ XiPass::XiPass(gpu::Context& ctx, const Field& f, XiPassOptions options)
   nd.format = VK_FORMAT_R8G8B8A8_UNORM;  // X in DNRT's Table 2 order, 7 texels per sample (xi.comp)
   nd.type = gpu::ImageType::Tex3D;
   nd.layers = 1;
-  nd.depth = std::uint32_t(s.spheres * kNetTexels);
+  nd.depth = std::uint32_t(s.spheres) * kNetTexels * kNetVariants;
   nd.name = "rtf.net";
   net_ = gpu::Image(ctx, nd);
   // ξ and X stay in GENERAL for the pass's life (written as storage images, sampled in GENERAL).
@@ -127,9 +128,10 @@ XiPass::XiPass(gpu::Context& ctx, const Field& f, XiPassOptions options)
   range_ = gpu::Buffer(ctx, {kNetTexels * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT |
                                                    VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                              gpu::MemoryUsage::GpuOnly, "rtf.net-range"});
-  netValue_ = gpu::Buffer(ctx, {sampleCount(s) * 9 * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::GpuOnly, "rtf.net-value"});
+  netValue_ = gpu::Buffer(ctx, {sampleCount(s) * kNetVariants * 9 * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::GpuOnly, "rtf.net-value"});
   oofBuffer_ = storage(ctx, f.oof, "rtf.oof-buffer");
   scaleBuffer_ = storage(ctx, std::vector<glm::vec4>(sampleCount(s), glm::vec4(1.0f)), "rtf.blocked-scale");
+  onObjectsBuffer_ = storage(ctx, std::vector<float>(sampleCount(s), 1.0f), "rtf.on-objects");
   gpu::ImageDesc o = d;
   o.layers = std::uint32_t(s.spheres * 4);
   o.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
@@ -167,6 +169,7 @@ XiPass::XiPass(gpu::Context& ctx, const Field& f, XiPassOptions options)
       .buffer(11, basisCodes_)
       .buffer(12, alphaCodes_)
       .buffer(13, codeScales_)
+      .buffer(14, onObjectsBuffer_)
       .update(ctx, set_);
   blocked_.assign(kShCount * 9, glm::vec4(0.0f));
   std::vector<glm::vec3> zero(std::size_t(s.proxies) * kShCount, glm::vec3(0.0f));
@@ -189,9 +192,12 @@ void XiPass::setBlockedLight(std::span<const glm::vec4> blocked) {
   blocked_.assign(blocked.begin(), blocked.end());
 }
 
-void XiPass::setBlockedScale(std::span<const glm::vec4> scale) {
+void XiPass::setBlockedScale(std::span<const glm::vec4> scale, std::span<const float> onObjects) {
   if (!scale.empty() && scale.size() != sampleCount(settings_)) throw InternalError("rtf::XiPass: blocked scale is not one per sample");
+  if (!onObjects.empty() && onObjects.size() != sampleCount(settings_))
+    throw InternalError("rtf::XiPass: the on-object factor is not one per sample");
   scale_.assign(scale.begin(), scale.end());
+  onObjects_.assign(onObjects.begin(), onObjects.end());
 }
 
 void XiPass::record(VkCommandBuffer cmd) {
@@ -212,6 +218,17 @@ void XiPass::record(VkCommandBuffer cmd) {
       vkCmdUpdateBuffer(cmd, scaleBuffer_.handle(), at * sizeof(glm::vec4), std::min(kChunk, s.size() - at) * sizeof(glm::vec4),
                         s.data() + at);
     scaleIsOnes_ = scale_.empty();
+  }
+  if (!onObjects_.empty() || !onObjectsFollowScale_ || !scale_.empty()) {
+    // Without its own values the on-object factor is the scale's w (1 with no scale): both variants alike.
+    std::vector<float> w;
+    if (onObjects_.empty())
+      for (std::size_t r = 0; r < sampleCount(settings_); ++r) w.push_back(scale_.empty() ? 1.0f : scale_[r].w);
+    const std::vector<float>& o = onObjects_.empty() ? w : onObjects_;
+    constexpr std::size_t kChunk = 65536 / sizeof(float);
+    for (std::size_t at = 0; at < o.size(); at += kChunk)
+      vkCmdUpdateBuffer(cmd, onObjectsBuffer_.handle(), at * sizeof(float), std::min(kChunk, o.size() - at) * sizeof(float), o.data() + at);
+    onObjectsFollowScale_ = onObjects_.empty() && scale_.empty();
   }
   vkCmdFillBuffer(cmd, range_.handle(), 0, VK_WHOLE_SIZE, 0u);  // atomicMax starts from +0.0
   VkMemoryBarrier uploaded{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_TRANSFER_WRITE_BIT,
@@ -237,7 +254,7 @@ void XiPass::record(VkCommandBuffer cmd) {
                        nullptr, 0, nullptr);
   p.stage = 2;
   pipeline_.push(cmd, p);
-  vkCmdDispatch(cmd, (p.samples * kNetTexels + 63) / 64, 1, 1);
+  vkCmdDispatch(cmd, (p.samples + 63) / 64, 1, 1);  // one invocation per sample, all kNetVariants·kNetTexels texels
   VkMemoryBarrier done{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_SHADER_WRITE_BIT,
                        VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_UNIFORM_READ_BIT};
   // The shading pass reads the ranges in its vertex shader (rtf.vert), X in its fragment shader.

@@ -42,16 +42,20 @@ class XiPass {
   // Written with the light by the next record().
   void setBlockedLight(std::span<const glm::vec4> blocked);
   // Per sample (field.hpp's order), rgb: the factor of the blocked light at that sample — the
-  // session passes overlap.hpp sharedOcclusionScale (the occlusion other objects' terms already
+  // session passes overlap.hpp sharedOcclusion's scale (the occlusion other objects' terms already
   // take off); update.hpp blockedScale (the light's level there) also fits; w: the factor of the
-  // interreflected light ξ (sharedOcclusionScale: the share the nearer objects let through). Empty: 1
-  // everywhere (the light at o, ξ whole). Written by the next record().
-  void setBlockedScale(std::span<const glm::vec4> scale);
-  // X for i < 9 in 8 bits (xi.comp): RGBA8 UNORM 3D, texel (face·n_r + x, y, k·spheres + sphere) for
-  // texel k < kNetTexels in DNRT's Table 2 order; slot k·4 + c holds t = Y/(2m) + ½ of Y = r_s² X
+  // interreflected light ξ for receivers off the rtf objects (w_off: the share the nearer objects let
+  // through). `onObjects`: the same factor for receivers on an rtf object's surface (w_on), the second
+  // variant of X (net()). Empty scale: 1 everywhere (the light at o, ξ whole); empty onObjects: scale's w,
+  // so both variants are the same. Written by the next record().
+  void setBlockedScale(std::span<const glm::vec4> scale, std::span<const float> onObjects = {});
+  // X for i < 9 in 8 bits (xi.comp): RGBA8 UNORM 3D, texel (face·n_r + x, y, (v·kNetTexels + k)·spheres + sphere)
+  // for variant v < kNetVariants and texel k < kNetTexels in DNRT's Table 2 order; slot k·4 + c holds t = Y/(2m) + ½ of Y = r_s² X
   // (netScale: X weighted by its sphere's squared radius) with m = netRange()'s slot (float max |Y| this
   // frame), so X = m(2t − 1)/r_s². GENERAL layout from construction on.
-  static constexpr std::uint32_t kNetTexels = 7;
+  // Two variants of X (overlap.hpp): slices [0, kNetTexels·spheres) hold X off the rtf objects' surfaces
+  // (w_off), the next kNetTexels·spheres X on them (w_on); each slot's m is shared by both.
+  static constexpr std::uint32_t kNetTexels = 7, kNetVariants = 2;
   // Why r_s²: what X carries (the light an object sends to q and the light it hides there) falls as the
   // object's solid angle, ~1/|q|² (evaluate.hpp radialWeight), so one range per slot over X itself spent
   // the 8 bits on the innermost spheres: a sample on sphere s got m/255 steps of an X ≈ (r_1/r_s)² of m,
@@ -87,8 +91,10 @@ class XiPass {
   std::vector<glm::vec4> pending_;  // the light record() writes: m·16 proxy light, then 144 of T'
   std::vector<glm::vec4> blocked_;
   std::vector<glm::vec4> scale_;  // N, or empty: ones
+  std::vector<float> onObjects_;  // N, or empty: scale_'s w
   bool scaleIsOnes_ = true;       // what the GPU buffer holds now
-  gpu::Buffer scaleBuffer_;
+  bool onObjectsFollowScale_ = true;  // the on-objects buffer holds scale's w (ones at first)
+  gpu::Buffer scaleBuffer_, onObjectsBuffer_;
   gpu::Image xi_, oof_, net_;
   gpu::Buffer oofBuffer_;  // the OOF again as floats, for xi.comp's X
   gpu::Buffer range_, netValue_;  // X's per-slot range and X itself before the encoding

@@ -312,11 +312,12 @@ TEST(RtfEvaluate, OverlappingAndTouchingObjectsStayFiniteAndBounded) {
 
 // Algorithm 1 at a receiver q occludes each object's light by the objects nearer to q (evaluate.cpp
 // incidentRadiance: Σ_i V_{<i} ⊙ RTF_i(q)); the GPU pass adds each object's field on its own, its ξ
-// scaled per sample by w (overlap.hpp sharedOcclusionScale's 4th component). Two overlapping unit
-// spheres (centres at x = ∓0.9, gap −0.2) under a uniform sky, 2 bounces, at world scales 1 and 2 (w's
-// distances and B's bounding sphere are in world units). w < 1 only at samples where the other object is
-// the nearer, outside its bounding sphere (its own surface's receivers, which Algorithm 1 leaves it out
-// for). On the axis beyond B (x = 2.6…3.2 × scale, facing −x) B's disc (angular radius 26–36°) covers A's
+// scaled per sample by w (overlap.hpp sharedOcclusion: w_off, the scale's 4th component, for receivers off
+// the objects; w_on for receivers on one). Two overlapping unit spheres (centres at x = ∓0.9, gap −0.2) under
+// a uniform sky, 2 bounces, at world scales 1 and 2 (w's distances and B's bounding sphere are in world
+// units). w_off < 1 only at samples where the other object is the nearer; w_on only where it is also
+// outside the other's bounding sphere (its own surface's receivers, which Algorithm 1 leaves it out for),
+// so w_on ≥ w_off. The receivers below are off the objects: they take w_off. On the axis beyond B (x = 2.6…3.2 × scale, facing −x) B's disc (angular radius 26–36°) covers A's
 // (14–17°, behind it on the same line), and Algorithm 1 takes A's light off by V_B's order-4 product —
 // about a third of it (0.145 of 0.220 is left: the coarse test field and the order-4 OOF blur the discs,
 // what the paper's shading step does too). What A adds with w must be that of Algorithm 1 within 30 % of
@@ -331,17 +332,22 @@ TEST(RtfEvaluate, NearerObjectsShareOfTheOthersLightFollowsAlgorithm1) {
     std::vector<BounceResult> plain(2), scaled(2);
     int hidden = 0;
     for (std::size_t k = 0; k < 2; ++k) {
-      const std::vector<glm::vec4> s = sharedOcclusionScale(objects, k);
+      const OcclusionShares shares = sharedOcclusion(objects, k);
+      const std::vector<glm::vec4>& s = shares.scale;
       const Placement self = place(f, objects[k].world), other = place(f, objects[1 - k].world);
       plain[k].xi = {bounced.xi[k]};
       scaled[k].xi = {bounced.xi[k]};
       for (std::size_t r = 0; r < s.size(); ++r) {
         ASSERT_GE(s[r].w, 0.0f);
         ASSERT_LE(s[r].w, 1.0f);
+        ASSERT_GE(shares.onObjects[r], s[r].w);
+        ASSERT_LE(shares.onObjects[r], 1.0f);
+        const glm::vec3 p(objects[k].world * glm::vec4(f.centre + f.radius * samplePosition(f.settings, r), 1.0f));
         if (s[r].w < 1.0f) {
           ++hidden;
-          const glm::vec3 p(objects[k].world * glm::vec4(f.centre + f.radius * samplePosition(f.settings, r), 1.0f));
           EXPECT_LE(glm::length(p - other.centreWorld), glm::length(p - self.centreWorld)) << "object " << k << " sample " << r;
+        }
+        if (shares.onObjects[r] < 1.0f) {
           EXPECT_GE(glm::length(p - other.centreWorld), other.radiusWorld) << "object " << k << " sample " << r;  // not on B
         }
         for (int i = 0; i < kShCount; ++i) scaled[k].xi[0][r * kShCount + std::size_t(i)] *= s[r].w;
@@ -412,7 +418,7 @@ TEST(RtfEvaluate, MirroredSceneShadesAsTheMirrorImage) {
   const glm::mat4 G = glm::translate(glm::mat4(1.0f), glm::vec3(1.0f, 0.5f, -2.0f)) * glm::mat4_cast(q) * X;
   const glm::mat3 Glin(G);
   mirroredSky.L = throughMirror(sky.L, q);  // the mirrored light L'(ω) = L(G⁻¹ω)
-  for (float gap : {0.4f, -0.2f}) {  // apart, and overlapping (sharedOcclusionScale acts)
+  for (float gap : {0.4f, -0.2f}) {  // apart, and overlapping (sharedOcclusion acts)
     const auto objects = pair(f, gap, 1.0f);
     std::vector<Object> mirrored = objects;
     for (Object& o : mirrored) o.world = G * o.world;
@@ -434,7 +440,9 @@ TEST(RtfEvaluate, MirroredSceneShadesAsTheMirrorImage) {
     EXPECT_LE(worst, 1e-3f * largest) << "gap " << gap << " largest " << largest;
     // The shared occlusion per field sample is the same in each object's own frame.
     for (std::size_t o = 0; o < 2; ++o) {
-      const auto sa = sharedOcclusionScale(objects, o), sb = sharedOcclusionScale(mirrored, o);
+      const OcclusionShares ma = sharedOcclusion(objects, o), mb = sharedOcclusion(mirrored, o);
+      const std::vector<glm::vec4>& sa = ma.scale;
+      const std::vector<glm::vec4>& sb = mb.scale;
       ASSERT_EQ(sa.size(), sb.size());
       float diff = 0.0f, shared = 0.0f;
       // w (the 4th component) steps where a sample's nearer object changes (halfway between the centres)
@@ -442,7 +450,7 @@ TEST(RtfEvaluate, MirroredSceneShadesAsTheMirrorImage) {
       int flipped = 0;
       for (std::size_t i = 0; i < sa.size(); ++i) {
         diff = std::max(diff, glm::length(glm::vec3(sa[i]) - glm::vec3(sb[i]))), shared += 1.0f - sa[i].x;
-        flipped += std::abs(sa[i].w - sb[i].w) > 1e-4f;
+        flipped += std::abs(sa[i].w - sb[i].w) > 1e-4f || std::abs(ma.onObjects[i] - mb.onObjects[i]) > 1e-4f;
       }
       EXPECT_LE(diff, 1e-4f) << "gap " << gap << " object " << o;
       EXPECT_LE(flipped, int(sa.size() / 100)) << "gap " << gap << " object " << o;

@@ -21,16 +21,17 @@ namespace bounce::gi::rtf::testing {
 // X_i = Â_l(i)/π ξ_i − Σ_j T'_ij (u − V)_j per sample and i < 9, [sample·9 + i] (xi.comp's fold;
 // T'_ij = blocked[j·9 + i].rgb as RtfObjectGpu::blocked, u_0 = 2√π).
 // `scale` (XiPass::setBlockedScale; empty: 1): per sample, rgb the blocked term's factor, w the
-// interreflected term's (overlap.hpp).
+// interreflected term's (overlap.hpp; off the rtf objects). `onObjects` non-empty: the on-object variant,
+// with that per-sample factor of the interreflected term in place of scale's w.
 inline std::vector<glm::vec3> netValues(const Field& f, std::span<const glm::vec3> xi, std::span<const glm::vec4> blocked,
-                                        std::span<const glm::vec4> scale = {}) {
+                                        std::span<const glm::vec4> scale = {}, std::span<const float> onObjects = {}) {
   const std::size_t N = sampleCount(f.settings);
   std::vector<glm::vec3> X(N * 9);
   for (std::size_t r = 0; r < N; ++r)
     for (int i = 0; i < 9; ++i) {
       const float a = float(sh::cosineLobeBand(i == 0 ? 0 : i < 4 ? 1 : 2) / math::kPi);
       const glm::vec4 sc = scale.empty() ? glm::vec4(1.0f) : scale[r];
-      glm::vec3 x = a * xi[r * kShCount + std::size_t(i)] * sc.w;
+      glm::vec3 x = a * xi[r * kShCount + std::size_t(i)] * (onObjects.empty() ? sc.w : onObjects[r]);
       glm::vec3 b(0.0f);
       for (int j = 0; j < kShCount; ++j) {
         const float notV = (j == 0 ? 3.5449077018110318f : 0.0f) - f.oof[r * kShCount + std::size_t(j)];
@@ -41,15 +42,17 @@ inline std::vector<glm::vec3> netValues(const Field& f, std::span<const glm::vec
   return X;
 }
 
-// Each slot's scale m = max |Y| over the samples of Y = r_s² X (XiPass::netRange, netScale), [slot].
-inline std::array<float, 28> netRanges(std::span<const glm::vec3> X, const FieldSettings& s) {
+// Each slot's scale m = max |Y| over the samples of Y = r_s² X (XiPass::netRange, netScale), [slot]; with
+// the on-object variant's X too (`on`, netValues with onObjects), over both: they share each slot's m.
+inline std::array<float, 28> netRanges(std::span<const glm::vec3> X, const FieldSettings& s, std::span<const glm::vec3> on = {}) {
   std::array<float, 28> m{};
   const std::size_t per = std::size_t(samplesPerSphere(s));
-  for (std::size_t k = 0; k < X.size(); ++k)
-    for (int c = 0; c < 3; ++c) {
-      float& slot = m[std::size_t(XiPass::netSlot(c, int(k % 9)))];
-      slot = std::max(slot, std::abs(X[k][c]) * XiPass::netScale(s, int(k / 9 / per)));
-    }
+  for (const std::span<const glm::vec3> values : {X, on})
+    for (std::size_t k = 0; k < values.size(); ++k)
+      for (int c = 0; c < 3; ++c) {
+        float& slot = m[std::size_t(XiPass::netSlot(c, int(k % 9)))];
+        slot = std::max(slot, std::abs(values[k][c]) * XiPass::netScale(s, int(k / 9 / per)));
+      }
   return m;
 }
 

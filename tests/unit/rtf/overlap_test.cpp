@@ -37,23 +37,30 @@ Field handField(float c0, float cz, int lobe = 2) {
 TEST(RtfOverlap, OneObjectAloneOrOutOfReachKeepsTheLightAtO) {
   const Field a = handField(2.0f, 0.8f), b = handField(1.5f, 0.6f);
   const std::vector<Object> alone = {{&a, glm::mat4(1.0f), 0.0f}};
-  for (const glm::vec4& s : sharedOcclusionScale(alone, 0)) EXPECT_EQ(s, glm::vec4(1.0f));
+  const OcclusionShares one = sharedOcclusion(alone, 0);
+  for (const glm::vec4& s : one.scale) EXPECT_EQ(s, glm::vec4(1.0f));
+  for (float w : one.onObjects) EXPECT_EQ(w, 1.0f);
   // B's centre 9.5 m away: A's samples reach 4.875·0.5 m, B's field as far: no sample shares.
   const std::vector<Object> apart = {{&a, glm::mat4(1.0f), 0.0f}, {&b, glm::translate(glm::mat4(1.0f), glm::vec3(9.5f, 0, 0)), 0.0f}};
-  for (const glm::vec4& s : sharedOcclusionScale(apart, 0)) EXPECT_EQ(s, glm::vec4(1.0f));
+  const OcclusionShares far = sharedOcclusion(apart, 0);
+  for (const glm::vec4& s : far.scale) EXPECT_EQ(s, glm::vec4(1.0f));
+  for (float w : far.onObjects) EXPECT_EQ(w, 1.0f);
 }
 
 // Checks every sample of A (world wa) against B (world wb): s = 1 − ½ W_B(p)·(2·1.5 + lobe)/(2√(4π)) with
 // W_B(p) from B's lookup at p, `full` where W_B = 1, and all three kinds of sample (W_B = 1, its end, beyond).
-// The 4th component, the share of A's light B lets through: 1 − W_B(p)·(2·1.5 + lobe)/(2√(4π)) where B's
-// centre is nearer to p than A's (Algorithm 1's order) and p lies outside B's bounding sphere (inside it
-// the receivers are B's own surface, which Algorithm 1 leaves B out for), else 1; both kinds occur.
+// The share of A's light B lets through, 1 − W_B(p)·(2·1.5 + lobe)/(2√(4π)): off the objects (the 4th
+// component, w_off) where B's centre is nearer to p than A's (Algorithm 1's order), else 1; on an object
+// (onObjects, w_on) only where p also lies outside B's bounding sphere (inside it the receivers are B's own
+// surface, which Algorithm 1 leaves B out for), else 1. Every kind occurs, inside B's sphere too.
 void expectShared(const Field& a, const glm::mat4& wa, const Field& b, const glm::mat4& wb, float lobe, float fullValue,
                   const std::string& what) {
   const std::vector<Object> objects = {{&a, wa, 0.0f}, {&b, wb, 0.0f}};
-  const std::vector<glm::vec4> s = sharedOcclusionScale(objects, 0);
+  const OcclusionShares shares = sharedOcclusion(objects, 0);
+  const std::vector<glm::vec4>& s = shares.scale;
   ASSERT_EQ(s.size(), sampleCount(a.settings));
-  int full = 0, partial = 0, none = 0, nearer = 0, farther = 0;
+  ASSERT_EQ(shares.onObjects.size(), sampleCount(a.settings));
+  int full = 0, partial = 0, none = 0, nearer = 0, farther = 0, insideB = 0;
   for (std::size_t r = 0; r < s.size(); ++r) {
     const glm::vec3 p(wa * glm::vec4(a.radius * samplePosition(a.settings, r), 1.0f));
     const glm::vec3 qb = glm::vec3(glm::inverse(wb) * glm::vec4(p, 1.0f)) / b.radius;
@@ -64,12 +71,20 @@ void expectShared(const Field& a, const glm::mat4& wa, const Field& b, const glm
     EXPECT_EQ(s[r].x, s[r].y);
     EXPECT_EQ(s[r].x, s[r].z);
     const glm::vec3 oa(wa * glm::vec4(a.centre, 1.0f)), ob(wb * glm::vec4(b.centre, 1.0f));
-    if (glm::length(p - ob) < glm::length(p - oa) && glm::length(p - ob) >= b.radius) {
-      EXPECT_NEAR(s[r].w, std::max(0.0f, 1.0f - w * (2.0f * 1.5f + lobe) / (2.0f * kU)), 4e-5f) << what << " " << r;
-      nearer += w > 0.0f;
+    const float letThrough = std::max(0.0f, 1.0f - w * (2.0f * 1.5f + lobe) / (2.0f * kU));
+    const bool bNearer = glm::length(p - ob) < glm::length(p - oa), outsideB = glm::length(p - ob) >= b.radius;
+    if (bNearer) {  // off the objects: Algorithm 1 at p, B counted wherever it is the nearer
+      EXPECT_NEAR(s[r].w, letThrough, 4e-5f) << what << " " << r;
     } else {
       EXPECT_EQ(s[r].w, 1.0f) << what << " " << r;
-      farther += w > 0.0f;
+    }
+    if (bNearer && outsideB) {  // on an object: B left out inside its bounding sphere
+      EXPECT_NEAR(shares.onObjects[r], letThrough, 4e-5f) << what << " " << r;
+      nearer += w > 0.0f;
+    } else {
+      EXPECT_EQ(shares.onObjects[r], 1.0f) << what << " " << r;
+      farther += w > 0.0f && !bNearer;
+      insideB += w > 0.0f && bNearer;
     }
     if (w > 1.0f - 1e-6f) {
       ++full;
@@ -85,6 +100,7 @@ void expectShared(const Field& a, const glm::mat4& wa, const Field& b, const glm
   EXPECT_GT(none, 0) << what;
   EXPECT_GT(nearer, 0) << what;   // samples in B's field nearer B: A's light there partly hidden
   EXPECT_GT(farther, 0) << what;  // and nearer A: its light whole
+  EXPECT_GT(insideB, 0) << what;  // and inside B's sphere, where the two factors differ
 }
 
 // B 1 m (2 η) from A along x, turned about x by 0, 90 and 180 degrees: its z lobe lands on world z, −y and
@@ -157,7 +173,8 @@ TEST(RtfOverlap, SeveralNearerObjectsMultiplyTheirShares) {
   const Field a = handField(2.0f, 0.8f), b = handField(1.5f, 0.6f);
   const glm::mat4 wb = glm::translate(glm::mat4(1.0f), glm::vec3(1.0f, 0.0f, 0.0f));
   const std::vector<Object> objects = {{&a, glm::mat4(1.0f), 0.0f}, {&b, wb, 0.0f}, {&b, wb, 0.0f}};
-  const std::vector<glm::vec4> s = sharedOcclusionScale(objects, 0);
+  const OcclusionShares shares = sharedOcclusion(objects, 0);
+  const std::vector<glm::vec4>& s = shares.scale;
   int both = 0;
   for (std::size_t r = 0; r < s.size(); ++r) {
     const glm::vec3 p(a.radius * samplePosition(a.settings, r));
@@ -166,11 +183,16 @@ TEST(RtfOverlap, SeveralNearerObjectsMultiplyTheirShares) {
     const float x = w * (2.0f * 1.5f + 0.48f) / (2.0f * kU);
     EXPECT_NEAR(s[r].x, 1.0f - x, 4e-5f) << r;
     const float toB = glm::length(p - glm::vec3(1.0f, 0.0f, 0.0f));
-    if (toB < glm::length(p) && toB >= b.radius) {
+    if (toB < glm::length(p)) {
       EXPECT_NEAR(s[r].w, (1.0f - x) * (1.0f - x), 4e-5f) << r;
-      both += w > 1.0f - 1e-6f;
     } else {
       EXPECT_EQ(s[r].w, 1.0f) << r;
+    }
+    if (toB < glm::length(p) && toB >= b.radius) {
+      EXPECT_NEAR(shares.onObjects[r], (1.0f - x) * (1.0f - x), 4e-5f) << r;
+      both += w > 1.0f - 1e-6f;
+    } else {
+      EXPECT_EQ(shares.onObjects[r], 1.0f) << r;
     }
   }
   EXPECT_GT(both, 0);
@@ -180,7 +202,9 @@ TEST(RtfOverlap, SeveralNearerObjectsMultiplyTheirShares) {
 TEST(RtfOverlap, SampleThatAHidesNothingFromIsOne) {
   const Field a = handField(0.0f, 0.0f), b = handField(1.5f, 0.6f);
   const std::vector<Object> objects = {{&a, glm::mat4(1.0f), 0.0f}, {&b, glm::translate(glm::mat4(1.0f), glm::vec3(1.0f, 0, 0)), 0.0f}};
-  for (const glm::vec4& s : sharedOcclusionScale(objects, 0)) EXPECT_EQ(s, glm::vec4(1.0f));
+  const OcclusionShares shares = sharedOcclusion(objects, 0);
+  for (const glm::vec4& s : shares.scale) EXPECT_EQ(s, glm::vec4(1.0f));
+  for (float w : shares.onObjects) EXPECT_EQ(w, 1.0f);
 }
 
 }  // namespace

@@ -270,11 +270,13 @@ TEST(RtfUpdate, FrameIsTheBouncingStepAndPacksTheRecords) {
   EXPECT_GT(f.bounceEnergy[1], 0.0);  // light did bounce from one box onto the other
   // The blocked term's per-sample factor is the two boxes' shared occlusion (overlap.hpp; README RTF
   // "Seventh pass"): the boxes stand 3 η apart, so some of each one's samples lie in the other's field.
-  ASSERT_EQ(f.blockedScale.size(), 2u);
+  ASSERT_EQ(f.shares.size(), 2u);
   for (std::size_t o = 0; o < 2; ++o) {
-    EXPECT_EQ(f.blockedScale[o], sharedOcclusionScale(objects, o)) << o;
+    const OcclusionShares want = sharedOcclusion(objects, o);
+    EXPECT_EQ(f.shares[o].scale, want.scale) << o;
+    EXPECT_EQ(f.shares[o].onObjects, want.onObjects) << o;
     int shared = 0;
-    for (const glm::vec4& s : f.blockedScale[o]) shared += s.x < 1.0f;
+    for (const glm::vec4& s : f.shares[o].scale) shared += s.x < 1.0f;
     EXPECT_GT(shared, 0) << o;
   }
 
@@ -283,6 +285,9 @@ TEST(RtfUpdate, FrameIsTheBouncingStepAndPacksTheRecords) {
     const Placement pl = place(field, objects[o].world);
     const RtfObjectGpu& r = f.records[o];
     EXPECT_EQ(r.ids.x, parts[o].entity.index() + 1u);
+    // The other rtf object's entity + 1, then none: the receivers that read X's on-object variant.
+    EXPECT_EQ(r.onObject[0], glm::uvec4(parts[1 - o].entity.index() + 1u, kRtfNoEntity, kRtfNoEntity, kRtfNoEntity));
+    EXPECT_EQ(r.onObject[1], glm::uvec4(kRtfNoEntity));
     auto q = [&](glm::vec3 p) { return glm::vec3(glm::dot(r.toQ[0], glm::vec4(p, 1.0f)), glm::dot(r.toQ[1], glm::vec4(p, 1.0f)),
                                                  glm::dot(r.toQ[2], glm::vec4(p, 1.0f))); };
     EXPECT_LT(glm::length(q(pl.centreWorld)), 1e-4f);

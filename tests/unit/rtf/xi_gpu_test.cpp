@@ -83,7 +83,9 @@ TEST(RtfXiGpu, ComputePassEqualsTheCpuCaches) {
 // step (m/255) plus X's float error (1e-4 m: X's sums of ≤ 25 terms in float, against a step of
 // 2m/255 ≈ 8e-3 m). Random light and blocked matrix, so every slot is signed and non-zero; the unused
 // 28th slot decodes to 0. Twice: without a per-sample scale, and with a random one (setBlockedScale: rgb
-// the blocked term's factor, w the interreflected term's, overlap.hpp), which X must carry.
+// the blocked term's factor, w the interreflected term's off the objects, and a random on-object factor,
+// overlap.hpp), which X must carry. Both variants of X (texels 0–6 off the objects, 7–13 on them), one
+// range per slot over both; without a scale the two are the same.
 TEST(RtfXiGpu, NetImageHoldsXToHalfAStepOfItsSlotsRange) {
   gpu::Context& ctx = gpu::testkit::sharedContext();
   const BakeResult b = bake(testing::unitSphere(glm::vec3(0.8f, 0.6f, 0.4f), 8), testing::smallSettings());
@@ -97,15 +99,20 @@ TEST(RtfXiGpu, NetImageHoldsXToHalfAStepOfItsSlotsRange) {
     std::vector<glm::vec4> blocked(kShCount * 9);
     for (auto& t : blocked) t = glm::vec4(rng.nextFloat3() * 0.2f - 0.1f, 0.0f);
     std::vector<glm::vec4> scale;
+    std::vector<float> onObjects;
     if (withScale)
       for (std::size_t r = 0; r < sampleCount(s); ++r) scale.push_back(glm::vec4(rng.nextFloat3(), rng.nextFloat()));
-    const std::vector<glm::vec3> X = testing::netValues(f, xiCache(f, L), blocked, scale);
-    const std::array<float, 28> want = testing::netRanges(X, s);
+    if (withScale)
+      for (std::size_t r = 0; r < sampleCount(s); ++r) onObjects.push_back(rng.nextFloat());
+    const std::vector<glm::vec3> xi = xiCache(f, L);
+    const std::vector<glm::vec3> X = testing::netValues(f, xi, blocked, scale);
+    const std::vector<glm::vec3> Xon = testing::netValues(f, xi, blocked, scale, onObjects);
+    const std::array<float, 28> want = testing::netRanges(X, s, Xon);
 
     XiPass pass(ctx, f);
     pass.setProxyLight(L);
     pass.setBlockedLight(blocked);
-    pass.setBlockedScale(scale);
+    pass.setBlockedScale(scale, onObjects);
     gpu::submitAndWait(ctx, [&](VkCommandBuffer cmd) { pass.record(cmd); });
     const auto rangeBytes = gpu::readback(ctx, pass.netRange());
     ASSERT_EQ(rangeBytes.size(), 28 * sizeof(float));
@@ -119,24 +126,33 @@ TEST(RtfXiGpu, NetImageHoldsXToHalfAStepOfItsSlotsRange) {
 
     const auto bytes = gpu::readback(ctx, pass.net());
     const std::size_t w = std::size_t(6 * s.faceSize), h = std::size_t(s.faceSize);
-    ASSERT_EQ(bytes.size(), std::size_t(s.spheres) * XiPass::kNetTexels * w * h * 4);
+    ASSERT_EQ(bytes.size(), std::size_t(s.spheres) * XiPass::kNetTexels * XiPass::kNetVariants * w * h * 4);
     const int n2 = s.faceSize * s.faceSize, per = samplesPerSphere(s);
     float worst = 0.0f;
+    double differ = 0.0;  // how far the two variants lie apart (they must, with a scale)
+    for (int variant = 0; variant < 2; ++variant)
     for (std::size_t r = 0; r < sampleCount(s); ++r) {
+      const std::vector<glm::vec3>& XV = variant == 0 ? X : Xon;
       const int sphere = int(r) / per, rest = int(r) % per, face = rest / n2, y = rest % n2 / s.faceSize, x = rest % s.faceSize;
       for (int i = 0; i < 9; ++i)
         for (int c = 0; c < 3; ++c) {
-          const int slot = XiPass::netSlot(c, i), k = slot / 4;
+          const int slot = XiPass::netSlot(c, i), k = variant * int(XiPass::kNetTexels) + slot / 4;
           const std::size_t slice = std::size_t(k * s.spheres + sphere);
           const std::uint8_t t = bytes[((slice * h + std::size_t(y)) * w + std::size_t(face * s.faceSize + x)) * 4 + std::size_t(slot % 4)];
           const float mm = m[std::size_t(slot)];
           const float got = mm * (2.0f * float(t) / 255.0f - 1.0f);
-          const float err = std::abs(got - XiPass::netScale(s, sphere) * X[r * 9 + std::size_t(i)][c]);
+          const float err = std::abs(got - XiPass::netScale(s, sphere) * XV[r * 9 + std::size_t(i)][c]);
+          differ += std::abs(Xon[r * 9 + std::size_t(i)][c] - X[r * 9 + std::size_t(i)][c]);
           worst = std::max(worst, err / (mm / 255.0f));
           ASSERT_LE(err, mm / 255.0f + 1e-4f * mm) << "sample " << r << " coefficient " << i << " channel " << c;
         }
-      const std::size_t slice = std::size_t(6 * s.spheres + sphere);
+      const std::size_t slice = std::size_t((variant * int(XiPass::kNetTexels) + 6) * s.spheres + sphere);
       EXPECT_EQ(bytes[((slice * h + std::size_t(y)) * w + std::size_t(face * s.faceSize + x)) * 4 + 3], 128) << "sample " << r;
+    }
+    if (withScale) {
+      EXPECT_GT(differ, 0.0);
+    } else {
+      EXPECT_EQ(differ, 0.0);
     }
     std::printf("rtf 8-bit X%s: worst %.3f of half a step\n", withScale ? " (scaled)" : "", worst);
   }
@@ -159,13 +175,15 @@ TEST(RtfXiGpu, SubgroupRangesAndNoXiStoresLeaveTheSameX) {
   std::vector<glm::vec4> blocked(kShCount * 9);
   for (auto& t : blocked) t = glm::vec4(rng.nextFloat3() * 0.2f - 0.1f, 0.0f);
   std::vector<glm::vec4> scale;
+  std::vector<float> onObjects;
   for (std::size_t r = 0; r < sampleCount(s); ++r) scale.push_back(glm::vec4(rng.nextFloat3(), rng.nextFloat()));
+  for (std::size_t r = 0; r < sampleCount(s); ++r) onObjects.push_back(rng.nextFloat());
   std::vector<std::vector<std::uint8_t>> ranges, nets;
   for (const XiPassOptions o : {XiPassOptions{.keepXi = true, .subgroupMax = false}, XiPassOptions{.keepXi = false, .subgroupMax = true}}) {
     XiPass pass(ctx, f, o);
     pass.setProxyLight(L);
     pass.setBlockedLight(blocked);
-    pass.setBlockedScale(scale);
+    pass.setBlockedScale(scale, onObjects);
     gpu::submitAndWait(ctx, [&](VkCommandBuffer cmd) { pass.record(cmd); });
     ranges.push_back(gpu::readback(ctx, pass.netRange()));
     nets.push_back(gpu::readback(ctx, pass.net()));
