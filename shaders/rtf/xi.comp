@@ -27,7 +27,7 @@ layout(local_size_x = 64) in;
 // Specialization (xi_pass.cpp), one pipeline each: llvmpipe runs an untaken branch in full.
 // kKeepXi: stage 1 also stores ξ (16 rgba32f texels a sample) in the ξ image. Only tests read it (the
 // shading step reads X); frames skip the stores: ≈ 12 % of `rtf.bounce` on cornell-5 (README "RTF's
-// bouncing step without ξ stores, session 26").
+// nearer-object occlusion per receiver, session 26").
 layout(constant_id = 0) const bool kKeepXi = true;
 // kSubgroupMax: each slot's range is reduced over the subgroup first (subgroupMax of the same float bits),
 // so one lane of 8 (llvmpipe's subgroup) does the 27 atomicMax, not every lane; the maximum is the same
