@@ -285,7 +285,7 @@ cmd_run() {
   kv_to_csv '^lights=[0-9]+ .*scatter_ms=' <"$log" >"$out/vlm-grid.csv"
   # bench rtf's scene lines carry both the render size (bare WxH, kv_to_csv's "resolution") and the shading
   # resolution ("resolution=full|half|quarter"): the latter becomes "shading".
-  sed 's/ resolution=\(full\|half\|quarter\)/ shading=\1/' "$log" | kv_to_csv '^objects=[0-9]+ .*rtf_ms=' >"$out/rtf-scenes.csv"
+  sed -E 's/ resolution=(full|half|quarter)/ shading=\1/' "$log" | kv_to_csv '^objects=[0-9]+ .*rtf_ms=' >"$out/rtf-scenes.csv"
   kv_to_csv '^object=[^ ]+ .*compressed_mb=' <"$log" >"$out/rtf-objects.csv"
   local csv first=1
   : >"$out/profile.csv"

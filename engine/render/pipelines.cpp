@@ -1,4 +1,5 @@
 #include "engine/render/pipelines.hpp"
+#include "engine/render/hdr_format.hpp"
 
 #include <cstddef>
 
@@ -78,7 +79,7 @@ Pipelines::Pipelines(gpu::Context& ctx)
   gpu::GraphicsPipelineDesc f;
   f.vertex = &fullscreen;
   f.fragment = &lightingFrag;
-  f.colorFormats = {VK_FORMAT_R16G16B16A16_SFLOAT};
+  f.colorFormats = {render::kLightingHdrFormat};  // "lighting.hdr"
   f.name = "lighting";
   lighting = gpu::createGraphicsPipeline(ctx, lightingPipelineLayout, f);
 

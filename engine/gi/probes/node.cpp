@@ -13,6 +13,7 @@
 #include "engine/gpu/commands.hpp"
 #include "engine/render/passes/rendering.hpp"
 #include "engine/render/passes/gbuffer_pass.hpp"
+#include "engine/render/hdr_format.hpp"
 
 namespace bounce::gi::probes {
 namespace glsl {
@@ -336,7 +337,7 @@ ProbeNode::ProbeNode(gpu::Context& ctx, const render::Pipelines& pipelines, Prob
   gpu::GraphicsPipelineDesc d;
   d.vertex = &vert;
   d.fragment = &frag;
-  d.colorFormats = {VK_FORMAT_R16G16B16A16_SFLOAT};
+  d.colorFormats = {render::kLightingHdrFormat};  // "lighting.hdr"
   d.blend = gpu::Blend::Additive;
   specialization_ = {std::uint32_t(volume_.coeffs()), shInUbo_ ? 1u : 0u, momentsInUbo_ ? 1u : 0u,
                      tiles_ ? 1u : 0u};  // probes.frag kCoeffs, kShInUbo, kMomentsInUbo, kTiles
@@ -449,7 +450,7 @@ void ProbeNode::recordPass(const PassData& d, const rg::PassResources& res, rg::
     gpu::GraphicsPipelineDesc pd;
     pd.vertex = &vert;
     pd.fragment = &frag;
-    pd.colorFormats = {VK_FORMAT_R16G16B16A16_SFLOAT};
+    pd.colorFormats = {render::kLightingHdrFormat};  // "lighting.hdr"
     pd.blend = gpu::Blend::Additive;
     if (splitDraw) {
       pd.depthFormat = kDepthFormat;

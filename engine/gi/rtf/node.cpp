@@ -1,5 +1,6 @@
 #include "engine/gi/rtf/node.hpp"
 
+#include <algorithm>
 #include <cstring>
 #include <string>
 
@@ -25,7 +26,14 @@ Node::Node(gpu::Context& ctx, const render::Pipelines& shared, std::uint32_t fra
       vert_(ctx, "rtf/rtf.vert.spv"),
       frag_(ctx, "rtf/rtf.frag.spv"),
       upsample_(ctx, shared, "rtf.upsample"),
-      records_(framesInFlight) {}
+      records_(framesInFlight) {
+  // rtf.vert hands rtf.frag 19 flat varyings (locations 0–18), above the 16 Vulkan guarantees (desktop GPUs
+  // and lavapipe take 32): say so here rather than fail in pipeline creation.
+  constexpr std::uint32_t kComponents = 19 * 4;
+  if (ctx.limits().maxVertexOutputComponents < kComponents || ctx.limits().maxFragmentInputComponents < kComponents)
+    throw InternalError("rtf: the shading pass passes " + std::to_string(kComponents) + " varying components; this device takes " +
+                        std::to_string(std::min(ctx.limits().maxVertexOutputComponents, ctx.limits().maxFragmentInputComponents)));
+}
 
 // One pipeline per SH count, self test and step (rtf.frag's kSh9, kSelfInNormal, kStep): llvmpipe runs
 // an untaken branch in full.

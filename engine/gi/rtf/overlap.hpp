@@ -21,15 +21,16 @@
 // to q (centre distance, evaluate.cpp incidentRadiance). Per sample p of A, with the same share of
 // what A covers that B covers too, and A's light taken as uniform over what A covers (it arrives
 // only from there):
-//   w_A(p) = Π_{B nearer to p than A, |p − o_B| ≥ η_B} (1 − ∫(1 − V_A)(1 − V_B) dω / ∫(1 − V_A) dω),
-// the ξ pass's factor of the interreflected part of X (xi.comp). Where A is the nearer object, or no
+//   w_A(p) = Π_{B nearer to p than A} (1 − ∫(1 − V_A)(1 − V_B) dω / ∫(1 − V_A) dω),
+// the ξ pass's factor of the interreflected part of X (xi.glsl). Where A is the nearer object, or no
 // other field reaches p, w = 1. The factors of several nearer objects multiply, as Algorithm 1's
 // visibilities do. Algorithm 1 sorts "the entities except J_q", the receiver's own, so the factor
 // depends on the receiver as well as on p. Two per sample, and the shading pass picks one per receiver
 // pixel (rtf.frag, by the receiver's entity; session 26):
 //  - w_off, every nearer B counted: for receivers that are not on an rtf object's surface (the room,
 //    other entities) — Algorithm 1 at p;
-//  - w_on, B left out where p lies inside B's bounding sphere (radius η_B): for receivers on another rtf
+//  - w_on, the same product over the B with |p − o_B| ≥ η_B (B left out where p lies inside B's bounding
+//    sphere, radius η_B): for receivers on another rtf
 //    object's surface. The samples around B's own receivers lie mostly inside B's sphere, so this leaves
 //    B's own occlusion out there, as Algorithm 1 does for its own surface (session 24's per-sample form,
 //    which the GPU used for every receiver until session 26: counted for every receiver instead, B's

@@ -17,6 +17,16 @@
 
 namespace bounce::gi::rtf {
 
+std::vector<std::size_t> nearestOthers(std::span<const glm::vec3> centres, std::size_t o, std::size_t count) {
+  std::vector<std::pair<float, std::size_t>> others;
+  for (std::size_t b = 0; b < centres.size(); ++b)
+    if (b != o) others.emplace_back(glm::length(centres[b] - centres[o]), b);
+  std::sort(others.begin(), others.end());  // by distance, then index
+  std::vector<std::size_t> out;
+  for (std::size_t k = 0; k < std::min(count, others.size()); ++k) out.push_back(others[k].second);
+  return out;
+}
+
 RtfObjectGpu packObject(const Field& f, const glm::mat4& world, const ShRgb& indirect, std::uint32_t entity, int shCount,
                         float reach) {
   if (shCount != 4 && shCount != 9) throw InternalError("rtf::packObject: SH count " + std::to_string(shCount) + " (4 or 9)");
@@ -164,16 +174,13 @@ FrameObjects Update::frame(std::span<const render::LightGpu> lights) {
     }
     // Which receivers are on another rtf object (rtf.frag picks the field's on-object X there): the entity
     // index + 1 of the kRtfOnObjectIds other objects nearest to each one (centre distance, ties by index).
+    std::vector<glm::vec3> centres;
+    for (const Object& ob : objects) centres.push_back(place(*ob.field, ob.world).centreWorld);
     for (std::size_t o = 0; o < objects.size(); ++o) {
-      const glm::vec3 c = place(*objects[o].field, objects[o].world).centreWorld;
-      std::vector<std::pair<float, std::size_t>> others;
-      for (std::size_t b = 0; b < objects.size(); ++b)
-        if (b != o) others.emplace_back(glm::length(place(*objects[b].field, objects[b].world).centreWorld - c), b);
-      std::sort(others.begin(), others.end());
       RtfObjectGpu& r = out.records[o];
-      for (glm::uvec4& ids : r.onObject) ids = glm::uvec4(kRtfNoEntity);
-      for (std::size_t k = 0; k < std::min(others.size(), kRtfOnObjectIds); ++k)
-        r.onObject[k / 4][int(k % 4)] = participants_[out.participant[others[k].second]].entity.index() + 1u;
+      const std::vector<std::size_t> near = nearestOthers(centres, o, kRtfOnObjectIds);
+      for (std::size_t k = 0; k < near.size(); ++k)
+        r.onObject[k / 4][int(k % 4)] = participants_[out.participant[near[k]]].entity.index() + 1u;
     }
   }
   bounceMs_.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());

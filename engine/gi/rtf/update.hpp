@@ -52,9 +52,9 @@ struct RtfObjectGpu {
   // Entity index + 1 of the other rtf objects this frame, the kRtfOnObjectIds nearest to this one by
   // centre distance (kRtfNoEntity: none): a receiver on one of them reads the field's on-object X
   // (overlap.hpp w_on; rtf.frag). Receivers on farther ones read the off-object X (the field rarely reaches
-  // them). rtf.vert hands them on as two flat uvec4 (8 compares a pixel: ≈ 4 % of a draw on llvmpipe,
-  // half of what 16 ids read from the uniform block cost; README "RTF's nearer-object occlusion per
-  // receiver, session 26").
+  // them). rtf.vert hands them on as two flat uvec4 (8 compares a pixel: within the noise of a draw on
+  // llvmpipe, where 16 ids read from the uniform block cost 8–10 %; README "RTF's nearer-object occlusion
+  // per receiver, session 26"). nearestOthers() picks them.
   glm::uvec4 onObject[2];
   // blocked[j·9 + i].rgb = Â_{l(i)}/π · T_ij, T the product matrix of the indirect radiance L
   // (object frame, at o): ((u − V) ⊙ L)_i = Σ_j T_ij (u − V)_j (sh_product.hpp productMatrix). Only
@@ -73,6 +73,10 @@ static_assert(sizeof(RtfObjectGpu) <= kRtfObjectStride);
 // lookup()'s `reach` (η; 0: the end at r_N + Δr, tailFade).
 RtfObjectGpu packObject(const Field& field, const glm::mat4& world, const ShRgb& indirect, std::uint32_t entity,
                         int shCount = 9, float reach = 0.0f);
+
+// The indices of the `count` points of `centres` nearest to centres[o], o left out, nearest first (ties: lower
+// index first): the objects whose surfaces a field's record names (RtfObjectGpu::onObject).
+std::vector<std::size_t> nearestOthers(std::span<const glm::vec3> centres, std::size_t o, std::size_t count);
 
 // NOT the GPU's any more (README RTF "Seventh pass": it helped cornell-rtf only where fields overlap,
 // by cancelling the sum's double count, and hurt both levels elsewhere; kept for rtf_parts' blocked-level

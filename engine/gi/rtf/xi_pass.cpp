@@ -1,6 +1,9 @@
 #include "engine/gi/rtf/xi_pass.hpp"
 
+#include <algorithm>
 #include <cstring>
+#include <span>
+#include <string>
 #include <vector>
 
 #include <glm/gtc/packing.hpp>
@@ -41,6 +44,14 @@ std::vector<std::uint32_t> byteWords(const std::vector<std::int8_t>& q) {
   std::vector<std::uint32_t> w((q.size() + 3) / 4, 0u);
   for (std::size_t i = 0; i < q.size(); ++i) w[i / 4] |= std::uint32_t(std::uint8_t(q[i])) << (8 * (i % 4));
   return w;
+}
+
+// vkCmdUpdateBuffer in 64 KiB calls (its limit; in the command stream, so frames in flight keep theirs).
+template <class T>
+void updateChunked(VkCommandBuffer cmd, const gpu::Buffer& buffer, std::span<const T> data) {
+  constexpr std::size_t kChunk = 65536 / sizeof(T);
+  for (std::size_t at = 0; at < data.size(); at += kChunk)
+    vkCmdUpdateBuffer(cmd, buffer.handle(), at * sizeof(T), std::min(kChunk, data.size() - at) * sizeof(T), data.data() + at);
 }
 
 }  // namespace
@@ -109,10 +120,14 @@ XiPass::XiPass(gpu::Context& ctx, const Field& f, XiPassOptions options)
     xi_ = gpu::Image(ctx, xd);
   }
   gpu::ImageDesc nd = d;
-  nd.format = VK_FORMAT_R8G8B8A8_UNORM;  // X in DNRT's Table 2 order, 7 texels per sample (xi.comp)
+  nd.format = VK_FORMAT_R8G8B8A8_UNORM;  // X in DNRT's Table 2 order, kNetVariants × 7 texels per sample (xi.glsl)
   nd.type = gpu::ImageType::Tex3D;
   nd.layers = 1;
   nd.depth = std::uint32_t(s.spheres) * kNetTexels * kNetVariants;
+  if (nd.depth > ctx.limits().maxImageDimension3D)
+    throw InternalError("rtf: a field of " + std::to_string(s.spheres) + " spheres needs a 3D image " + std::to_string(nd.depth) +
+                        " texels deep for X; this device allows " + std::to_string(ctx.limits().maxImageDimension3D) +
+                        " (fewer spheres: the level's \"rtf\": {\"spheres\"})");
   nd.name = "rtf.net";
   net_ = gpu::Image(ctx, nd);
   // ξ and X stay in GENERAL for the pass's life (written as storage images, sampled in GENERAL).
@@ -151,8 +166,9 @@ XiPass::XiPass(gpu::Context& ctx, const Field& f, XiPassOptions options)
     gpu::upload(ctx, oof_, std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(texels.data()), texels.size() * sizeof(float)));
   }
   const bool subgroupMax = options.subgroupMax && computeSubgroupArithmetic(ctx);
-  pipeline_ = gpu::createComputePipeline(ctx, layout_, gpu::ShaderModule(ctx, "rtf/xi.comp.spv"), "rtf.xi", nullptr,
-                                         {keepXi_ ? 1u : 0u, subgroupMax ? 1u : 0u});
+  // Two modules, not a specialization constant: the subgroup capability must not reach a device without it.
+  pipeline_ = gpu::createComputePipeline(ctx, layout_, gpu::ShaderModule(ctx, subgroupMax ? "rtf/xi_subgroup.comp.spv" : "rtf/xi.comp.spv"),
+                                         "rtf.xi", nullptr, {keepXi_ ? 1u : 0u});
   set_ = descriptors_.allocate(setLayout_);
   gpu::DescriptorWriter()
       .buffer(0, basis_)
@@ -210,25 +226,17 @@ void XiPass::record(VkCommandBuffer cmd) {
   data.insert(data.end(), blocked_.begin(), blocked_.end());
   vkCmdUpdateBuffer(cmd, light_.handle(), 0, data.size() * sizeof(glm::vec4), data.data());
   if (!scale_.empty() || !scaleIsOnes_) {
-    // vkCmdUpdateBuffer takes at most 64 KiB a call (in the command stream, so frames in flight keep theirs).
     const std::vector<glm::vec4> ones(scale_.empty() ? sampleCount(settings_) : 0, glm::vec4(1.0f));
-    const std::vector<glm::vec4>& s = scale_.empty() ? ones : scale_;
-    constexpr std::size_t kChunk = 65536 / sizeof(glm::vec4);
-    for (std::size_t at = 0; at < s.size(); at += kChunk)
-      vkCmdUpdateBuffer(cmd, scaleBuffer_.handle(), at * sizeof(glm::vec4), std::min(kChunk, s.size() - at) * sizeof(glm::vec4),
-                        s.data() + at);
+    updateChunked(cmd, scaleBuffer_, std::span<const glm::vec4>(scale_.empty() ? ones : scale_));
     scaleIsOnes_ = scale_.empty();
   }
-  if (!onObjects_.empty() || !onObjectsFollowScale_ || !scale_.empty()) {
+  if (!onObjects_.empty() || !scale_.empty() || !onObjectsAreOnes_) {
     // Without its own values the on-object factor is the scale's w (1 with no scale): both variants alike.
     std::vector<float> w;
     if (onObjects_.empty())
       for (std::size_t r = 0; r < sampleCount(settings_); ++r) w.push_back(scale_.empty() ? 1.0f : scale_[r].w);
-    const std::vector<float>& o = onObjects_.empty() ? w : onObjects_;
-    constexpr std::size_t kChunk = 65536 / sizeof(float);
-    for (std::size_t at = 0; at < o.size(); at += kChunk)
-      vkCmdUpdateBuffer(cmd, onObjectsBuffer_.handle(), at * sizeof(float), std::min(kChunk, o.size() - at) * sizeof(float), o.data() + at);
-    onObjectsFollowScale_ = onObjects_.empty() && scale_.empty();
+    updateChunked(cmd, onObjectsBuffer_, std::span<const float>(onObjects_.empty() ? w : onObjects_));
+    onObjectsAreOnes_ = onObjects_.empty() && scale_.empty();
   }
   vkCmdFillBuffer(cmd, range_.handle(), 0, VK_WHOLE_SIZE, 0u);  // atomicMax starts from +0.0
   VkMemoryBarrier uploaded{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_TRANSFER_WRITE_BIT,

@@ -1,5 +1,6 @@
 #pragma once
-// One object's RTF on the GPU: the bouncing step's caches (Eq. 11–12, shaders/rtf/xi.comp): one object's CPCA field
+// One object's RTF on the GPU: the bouncing step's caches (Eq. 11–12, shaders/rtf/xi.glsl, compiled as xi.comp and
+// xi_subgroup.comp): one object's CPCA field
 // uploaded once, the proxies' light each frame, the shading step's X into an 8-bit 3D image (net()) and, when
 // asked (XiPassOptions::keepXi), ξ into an rgba32f 2D-array image (layer sphere·16 + i, texel (face·n_r + x,
 // y)). The CPU reference is xiCache() (evaluate.hpp); tests/unit/rtf/xi_gpu_test.cpp compares the two.
@@ -20,8 +21,8 @@ struct XiPassOptions {
   // Stage 1 also stores ξ in xi(). Only tests read ξ (the shading step reads X), so frames skip the 16
   // rgba32f stores a sample; without it xi() throws.
   bool keepXi = false;
-  // Each slot's range is reduced over the subgroup before its atomicMax (xi.comp kSubgroupMax), where the
-  // device's compute stage has subgroup arithmetic; false: one atomicMax a lane (same ranges).
+  // Each slot's range is reduced over the subgroup before its atomicMax (xi_subgroup.comp), where the
+  // device's compute stage has subgroup arithmetic; false, or without it: xi.comp, one atomicMax a lane (same ranges).
   bool subgroupMax = true;
 };
 
@@ -93,7 +94,7 @@ class XiPass {
   std::vector<glm::vec4> scale_;  // N, or empty: ones
   std::vector<float> onObjects_;  // N, or empty: scale_'s w
   bool scaleIsOnes_ = true;       // what the GPU buffer holds now
-  bool onObjectsFollowScale_ = true;  // the on-objects buffer holds scale's w (ones at first)
+  bool onObjectsAreOnes_ = true;  // what the on-objects buffer holds now: ones (as at construction)
   gpu::Buffer scaleBuffer_, onObjectsBuffer_;
   gpu::Image xi_, oof_, net_;
   gpu::Buffer oofBuffer_;  // the OOF again as floats, for xi.comp's X

@@ -8,6 +8,7 @@
 #include "engine/render/passes/rendering.hpp"
 #include "engine/scene/components.hpp"
 #include "engine/render/passes/gbuffer_pass.hpp"
+#include "engine/render/hdr_format.hpp"
 
 namespace bounce::gi::vlm {
 namespace {
@@ -91,7 +92,7 @@ Runtime::Runtime(gpu::Context& ctx, const render::Pipelines& pipelines, ecs::Reg
   d.name = "vlm.lights";
   lightsPipeline_ = gpu::createGraphicsPipeline(ctx, lightsPipelineLayout_, d);
   d.fragment = &shadeFrag;
-  d.colorFormats = {VK_FORMAT_R16G16B16A16_SFLOAT};
+  d.colorFormats = {render::kLightingHdrFormat};  // "lighting.hdr"
   d.blend = gpu::Blend::Additive;
   d.name = "vlm";
   shadePipeline_ = gpu::createGraphicsPipeline(ctx, shadePipelineLayout_, d);

@@ -14,6 +14,7 @@
 #include "engine/gi/rtf/technique.hpp"
 #include "engine/gpu/presenter_offscreen.hpp"
 #include "engine/gpu/testing.hpp"
+#include "engine/render/passes/gbuffer_pass.hpp"
 #include "game/session.hpp"
 #include "tests/unit/render/analytic.hpp"
 #include "tests/unit/rtf/net_bound.hpp"
@@ -518,6 +519,30 @@ TEST(RtfGpu, ReducedResolutionIsTheFullShadingWithinABound) {
   }
 }
 
+// two-boxes.json: its session, the two rtf boxes (in entity order), their fields from the cache, placed, and
+// the two-object bouncing step under Sky.
+struct TwoBoxes {
+  game::Session session;
+  std::vector<ecs::Entity> boxes;
+  std::vector<Field> fields;
+  std::vector<Object> objects;
+  Sky sky;
+  BounceResult bounced;
+  explicit TwoBoxes(gpu::Context& ctx)
+      : session(ctx, game::loadLevelWithEffects(fs::path(BOUNCE_SOURCE_DIR) / "tests/data/rtf/two-boxes.json", std::nullopt)) {
+    session.update(0.0);
+    ecs::Registry& reg = session.registry();
+    ref::ReferenceAssets assets;
+    assets.load(reg, fs::path(BOUNCE_TEST_OUT) / "rtf" / "cooked");
+    reg.view<scene::Rtf>().each([&](ecs::Entity e, scene::Rtf&) { boxes.push_back(e); });
+    std::sort(boxes.begin(), boxes.end());
+    for (ecs::Entity e : boxes)
+      fields.push_back(bakeCached(dnrt::objectScene(reg, e, assets), settingsFrom(reg.get<scene::Rtf>(e)), cacheFolder()));
+    for (std::size_t k = 0; k < boxes.size(); ++k) objects.push_back({&fields[k], reg.get<scene::WorldTransform>(boxes[k]).matrix});
+    bounced = bounce(objects, sky, 2);
+  }
+};
+
 // Two objects whose fields overlap (the hard case): the pass adds each object's term on
 // its own, so the frame with both = the frames with each alone summed, and = Σ_k shade() of each
 // object alone (with the ξ of the two-object bouncing step) within fp16 rounding. Algorithm 1 at a
@@ -525,23 +550,14 @@ TEST(RtfGpu, ReducedResolutionIsTheFullShadingWithinABound) {
 // printed as a number (second order in (1 − V)).
 TEST(RtfGpu, OverlappingObjectsAddAndMatchTheCpuSum) {
   gpu::Context& ctx = gpu::testkit::sharedContext();
-  const fs::path level = fs::path(BOUNCE_SOURCE_DIR) / "tests/data/rtf/two-boxes.json";
-  game::Session session(ctx, game::loadLevelWithEffects(level, std::nullopt));
-  session.update(0.0);
-  ecs::Registry& reg = session.registry();
-  ref::ReferenceAssets assets;
-  assets.load(reg, fs::path(BOUNCE_TEST_OUT) / "rtf" / "cooked");
-  std::vector<ecs::Entity> boxes;
-  reg.view<scene::Rtf>().each([&](ecs::Entity e, scene::Rtf&) { boxes.push_back(e); });
-  std::sort(boxes.begin(), boxes.end());
-  ASSERT_EQ(boxes.size(), 2u);
-  std::vector<Field> fields;
-  std::vector<Object> objects;
-  for (ecs::Entity e : boxes)
-    fields.push_back(bakeCached(dnrt::objectScene(reg, e, assets), settingsFrom(reg.get<scene::Rtf>(e)), cacheFolder()));
-  for (std::size_t k = 0; k < 2; ++k) objects.push_back({&fields[k], reg.get<scene::WorldTransform>(boxes[k]).matrix});
-  const Sky sky;
-  const BounceResult bounced = bounce(objects, sky, 2);
+  TwoBoxes two(ctx);
+  ASSERT_EQ(two.boxes.size(), 2u);
+  game::Session& session = two.session;
+  const std::vector<ecs::Entity>& boxes = two.boxes;
+  const std::vector<Field>& fields = two.fields;
+  const std::vector<Object>& objects = two.objects;
+  const Sky& sky = two.sky;
+  const BounceResult& bounced = two.bounced;
   ASSERT_EQ(bounced.bounceEnergy.size(), 2u);
   EXPECT_GT(bounced.bounceEnergy[1], 0.0);
   EXPECT_LE(bounced.bounceEnergy[1], 0.9 * bounced.bounceEnergy[0]);  // bounces converge: ≤ albedo × the previous
@@ -629,26 +645,18 @@ TEST(RtfGpu, OverlappingObjectsAddAndMatchTheCpuSum) {
 //    only difference is the slice offset in the sampler's coordinate: kSame of the largest value, for
 //    the filter weight's rounding (measured: none);
 //  - B's pixels are the ones B's own field skips: its frame changes when B's record names no entity.
-// And the variants differ on many of those pixels, so the choice is seen.
+// And the variants differ on many of those pixels, so the choice is seen. Twice: with the receiver's entity
+// read from the normal's w, and from gbuffer.entity (the pipeline for ids above kEntityInNormalMax).
 TEST(RtfGpu, ReceiversOnAnotherObjectReadTheOnObjectVariant) {
   gpu::Context& ctx = gpu::testkit::sharedContext();
-  const fs::path level = fs::path(BOUNCE_SOURCE_DIR) / "tests/data/rtf/two-boxes.json";
-  game::Session session(ctx, game::loadLevelWithEffects(level, std::nullopt));
-  session.update(0.0);
-  ecs::Registry& reg = session.registry();
-  ref::ReferenceAssets assets;
-  assets.load(reg, fs::path(BOUNCE_TEST_OUT) / "rtf" / "cooked");
-  std::vector<ecs::Entity> boxes;
-  reg.view<scene::Rtf>().each([&](ecs::Entity e, scene::Rtf&) { boxes.push_back(e); });
-  std::sort(boxes.begin(), boxes.end());
-  ASSERT_EQ(boxes.size(), 2u);
-  std::vector<Field> fields;
-  std::vector<Object> objects;
-  for (ecs::Entity e : boxes)
-    fields.push_back(bakeCached(dnrt::objectScene(reg, e, assets), settingsFrom(reg.get<scene::Rtf>(e)), cacheFolder()));
-  for (std::size_t k = 0; k < 2; ++k) objects.push_back({&fields[k], reg.get<scene::WorldTransform>(boxes[k]).matrix});
-  const Sky sky;
-  const BounceResult bounced = bounce(objects, sky, 2);
+  TwoBoxes two(ctx);
+  ASSERT_EQ(two.boxes.size(), 2u);
+  game::Session& session = two.session;
+  const std::vector<ecs::Entity>& boxes = two.boxes;
+  const std::vector<Field>& fields = two.fields;
+  const std::vector<Object>& objects = two.objects;
+  const Sky& sky = two.sky;
+  const BounceResult& bounced = two.bounced;
   std::vector<std::unique_ptr<XiPass>> xi;
   std::vector<RtfObjectGpu> records;
   for (std::size_t k = 0; k < 2; ++k) {
@@ -659,19 +667,17 @@ TEST(RtfGpu, ReceiversOnAnotherObjectReadTheOnObjectVariant) {
   const std::size_t n = sampleCount(fields[0].settings);
   Node node(ctx, session.renderer().pipelines(), gpu::FrameRing::kDefaultFramesInFlight);
   constexpr std::uint32_t kW = 96, kH = 96;
-  // A's field with the receivers' ids `ids`, w_off and w_on.
-  const auto frameOfA = [&](glm::uvec4 ids, float wOff, float wOn) {
+  // A's field with the receivers' ids `ids`, w_off and w_on; `entityPath`: one more id above
+  // kEntityInNormalMax that no receiver has, so node.cpp draws with the pipeline that reads gbuffer.entity.
+  const auto frameOfA = [&](glm::uvec4 ids, float wOff, float wOn, bool entityPath) {
     RtfObjectGpu r = records[0];
     r.onObject[0] = ids;
-    r.onObject[1] = glm::uvec4(kRtfNoEntity);
+    r.onObject[1] = glm::uvec4(kRtfNoEntity, kRtfNoEntity, kRtfNoEntity, entityPath ? render::kEntityInNormalMax + 1000u : kRtfNoEntity);
     std::vector<NodeObject> drawn{{xi[0].get(), bounced.proxyLight[0], r, "box-a", std::vector<glm::vec4>(n, glm::vec4(1.0f, 1.0f, 1.0f, wOff)),
                                    std::vector<float>(n, wOn)}};
     session.renderer().setNode("rtf", [&](rg::RenderGraph& graph, render::PassContext& pc) { node.addTo(graph, pc, drawn); });
     return renderHdr(session, ctx, kW, kH);
   };
-  const glm::uvec4 none(kRtfNoEntity), idsOfB(boxes[1].index() + 1u, kRtfNoEntity, kRtfNoEntity, kRtfNoEntity);
-  const std::vector<float> test = frameOfA(idsOfB, 0.0f, 1.0f);
-  const std::vector<float> whole = frameOfA(none, 1.0f, 0.0f), blockedOnly = frameOfA(none, 0.0f, 1.0f);
   const auto frameOfB = [&](bool skipsItself) {
     RtfObjectGpu r = records[1];
     if (!skipsItself) r.ids.x = 0u;
@@ -680,6 +686,11 @@ TEST(RtfGpu, ReceiversOnAnotherObjectReadTheOnObjectVariant) {
     return renderHdr(session, ctx, kW, kH);
   };
   const std::vector<float> ofB = frameOfB(true), ofBOnItself = frameOfB(false);
+  const glm::uvec4 none(kRtfNoEntity), idsOfB(boxes[1].index() + 1u, kRtfNoEntity, kRtfNoEntity, kRtfNoEntity);
+  for (const bool entityPath : {false, true}) {
+  SCOPED_TRACE(entityPath ? "the receiver from gbuffer.entity" : "the receiver from the normal's w");
+  const std::vector<float> test = frameOfA(idsOfB, 0.0f, 1.0f, entityPath);
+  const std::vector<float> whole = frameOfA(none, 1.0f, 0.0f, entityPath), blockedOnly = frameOfA(none, 0.0f, 1.0f, entityPath);
   float largest = 0.0f;
   for (float v : whole) largest = std::max(largest, std::abs(v));
   ASSERT_GT(largest, 1e-3f);
@@ -710,6 +721,7 @@ TEST(RtfGpu, ReceiversOnAnotherObjectReadTheOnObjectVariant) {
   EXPECT_GT(offApart, 2000);
   EXPECT_LE(worstOn, kSame);
   EXPECT_LE(worstOff, kSame);
+  }
   session.renderer().frames().waitIdle();
 }
 

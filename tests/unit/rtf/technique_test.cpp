@@ -240,6 +240,18 @@ std::vector<Participant> bakedParticipants(Loaded& l) {
   return parts;
 }
 
+// The objects a field's record names as "on another object" (RtfObjectGpu::onObject): the nearest other
+// centres, nearest first, ties to the lower index, at most `count`, never the object itself. 12 centres
+// on the x axis (distances from centre 5: 0, 1, 1, 2, 2, …): the cap of 8 keeps the 8 nearest.
+TEST(RtfUpdate, NearestOthersAreTheClosestCentresTiesByIndex) {
+  std::vector<glm::vec3> centres;
+  for (int k = 0; k < 12; ++k) centres.emplace_back(float(k), 0.0f, 0.0f);
+  EXPECT_EQ(nearestOthers(centres, 5, 8), (std::vector<std::size_t>{4, 6, 3, 7, 2, 8, 1, 9}));
+  EXPECT_EQ(nearestOthers(centres, 0, 3), (std::vector<std::size_t>{1, 2, 3}));
+  EXPECT_EQ(nearestOthers(centres, 11, 20).size(), 11u);  // fewer others than the cap: all of them
+  EXPECT_TRUE(nearestOthers(std::vector<glm::vec3>{glm::vec3(0.0f)}, 0, 8).empty());
+}
+
 // Two boxes with fields: Update::frame is the bouncing step of evaluate.hpp with the largest
 // `bounces`, its records map o to q = 0 and a point one η away to |q| = 1, and rotate normals into
 // the object's frame; the blocked matrix reproduces shade()'s blocked term.
