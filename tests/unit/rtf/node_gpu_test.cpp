@@ -552,6 +552,7 @@ TEST(RtfGpu, OverlappingObjectsAddAndMatchTheCpuSum) {
   gpu::Context& ctx = gpu::testkit::sharedContext();
   TwoBoxes two(ctx);
   ASSERT_EQ(two.boxes.size(), 2u);
+  // References, not a structured binding: the lambdas below capture them (clang 14 cannot capture bindings).
   game::Session& session = two.session;
   const std::vector<ecs::Entity>& boxes = two.boxes;
   const std::vector<Field>& fields = two.fields;
@@ -651,6 +652,7 @@ TEST(RtfGpu, ReceiversOnAnotherObjectReadTheOnObjectVariant) {
   gpu::Context& ctx = gpu::testkit::sharedContext();
   TwoBoxes two(ctx);
   ASSERT_EQ(two.boxes.size(), 2u);
+  // References, not a structured binding: the lambdas below capture them (clang 14 cannot capture bindings).
   game::Session& session = two.session;
   const std::vector<ecs::Entity>& boxes = two.boxes;
   const std::vector<Field>& fields = two.fields;

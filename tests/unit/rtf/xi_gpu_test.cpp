@@ -77,6 +77,25 @@ TEST(RtfXiGpu, ComputePassEqualsTheCpuCaches) {
   }
 }
 
+// The ξ pass's inputs, random: the proxies' light in [−1, 1], a blocked matrix in [−0.1, 0.1] (so every slot of
+// X is signed and non-zero) and, withScale, a per-sample scale (rgb, w_off) and on-object factor in [0, 1).
+struct XiInputs {
+  std::vector<glm::vec3> L;
+  std::vector<glm::vec4> blocked, scale;
+  std::vector<float> onObjects;
+};
+XiInputs randomInputs(math::Pcg32& rng, const FieldSettings& s, bool withScale) {
+  XiInputs in;
+  in.L.resize(std::size_t(s.proxies) * kShCount);
+  for (auto& l : in.L) l = rng.nextFloat3() * 2.0f - 1.0f;
+  in.blocked.resize(kShCount * 9);
+  for (auto& t : in.blocked) t = glm::vec4(rng.nextFloat3() * 0.2f - 0.1f, 0.0f);
+  if (!withScale) return in;
+  for (std::size_t r = 0; r < sampleCount(s); ++r) in.scale.push_back(glm::vec4(rng.nextFloat3(), rng.nextFloat()));
+  for (std::size_t r = 0; r < sampleCount(s); ++r) in.onObjects.push_back(rng.nextFloat());
+  return in;
+}
+
 // The shading step's X in 8 bits (xi.comp stages 1–2), held as Y = r_s² X (XiPass::netScale): each
 // slot's range = max |Y| over the samples of the CPU's X (netValues: ξ folded with the blocked light)
 // times its sphere's r_s², and each texel decodes, Y = m(2t − 1), to the CPU's r_s² X within half a
@@ -94,16 +113,7 @@ TEST(RtfXiGpu, NetImageHoldsXToHalfAStepOfItsSlotsRange) {
   for (const bool withScale : {false, true}) {
     SCOPED_TRACE(withScale ? "with a per-sample scale" : "without a scale");
     math::Pcg32 rng(9);
-    std::vector<glm::vec3> L(std::size_t(s.proxies) * kShCount);
-    for (auto& l : L) l = rng.nextFloat3() * 2.0f - 1.0f;
-    std::vector<glm::vec4> blocked(kShCount * 9);
-    for (auto& t : blocked) t = glm::vec4(rng.nextFloat3() * 0.2f - 0.1f, 0.0f);
-    std::vector<glm::vec4> scale;
-    std::vector<float> onObjects;
-    if (withScale)
-      for (std::size_t r = 0; r < sampleCount(s); ++r) scale.push_back(glm::vec4(rng.nextFloat3(), rng.nextFloat()));
-    if (withScale)
-      for (std::size_t r = 0; r < sampleCount(s); ++r) onObjects.push_back(rng.nextFloat());
+    const auto [L, blocked, scale, onObjects] = randomInputs(rng, s, withScale);
     const std::vector<glm::vec3> xi = xiCache(f, L);
     const std::vector<glm::vec3> X = testing::netValues(f, xi, blocked, scale);
     const std::vector<glm::vec3> Xon = testing::netValues(f, xi, blocked, scale, onObjects);
@@ -168,14 +178,7 @@ TEST(RtfXiGpu, SubgroupRangesAndNoXiStoresLeaveTheSameX) {
   const Field& f = b.field;
   const FieldSettings& s = f.settings;
   math::Pcg32 rng(17);
-  std::vector<glm::vec3> L(std::size_t(s.proxies) * kShCount);
-  for (auto& l : L) l = rng.nextFloat3() * 2.0f - 1.0f;
-  std::vector<glm::vec4> blocked(kShCount * 9);
-  for (auto& t : blocked) t = glm::vec4(rng.nextFloat3() * 0.2f - 0.1f, 0.0f);
-  std::vector<glm::vec4> scale;
-  std::vector<float> onObjects;
-  for (std::size_t r = 0; r < sampleCount(s); ++r) scale.push_back(glm::vec4(rng.nextFloat3(), rng.nextFloat()));
-  for (std::size_t r = 0; r < sampleCount(s); ++r) onObjects.push_back(rng.nextFloat());
+  const auto [L, blocked, scale, onObjects] = randomInputs(rng, s, true);
   std::vector<std::vector<std::uint8_t>> ranges, nets;
   std::vector<XiPassOptions> options = {{.keepXi = true, .subgroupMax = false}, {.keepXi = false, .subgroupMax = false}};
   if (computeSubgroupArithmetic(ctx)) options.push_back({.keepXi = false, .subgroupMax = true});
