@@ -153,10 +153,13 @@ class RtfTechnique final : public Technique {
     }
     // The shading at half and quarter resolution (the level's "rtf": {"resolution"}): what the reduced
     // draws and their upsample cost in accuracy (2 bounces, 9 and 4 SH), and at quarter the tail, whose
-    // extra pixels cost a sixteenth there (1 and 2 bounces).
+    // extra pixels cost a sixteenth there (1 and 2 bounces, 9 and 4 SH: the 4-SH pair is the cheapest
+    // configuration, the one whose per-object cost meets DNRT's like for like; README "RTF's nearer-object
+    // occlusion per receiver, session 26").
     for (const std::tuple<std::uint32_t, int, int, float>& row :
          {std::tuple{2u, 2, 9, 0.0f}, std::tuple{4u, 2, 9, 0.0f}, std::tuple{2u, 2, 4, 0.0f}, std::tuple{4u, 2, 4, 0.0f},
-          std::tuple{4u, 1, 9, kAccuracyTail}, std::tuple{4u, 2, 9, kAccuracyTail}}) {
+          std::tuple{4u, 1, 9, kAccuracyTail}, std::tuple{4u, 2, 9, kAccuracyTail}, std::tuple{4u, 1, 4, kAccuracyTail},
+          std::tuple{4u, 2, 4, kAccuracyTail}}) {
       const std::uint32_t step = std::get<0>(row);
       const int bounces = std::get<1>(row), sh = std::get<2>(row);
       const float tail = std::get<3>(row);

@@ -76,8 +76,8 @@ TEST(AccuracyRows, EffectNamesValidSettingsUniqueAndCommaFree) {
   EXPECT_EQ(dnrt, 26u);
   EXPECT_EQ(vlm, 16u);    // range {1.5, 2.5, 3.5, 4.5} × K {10, 20, 30, 60}, against one bounce
   // bounces {1, 2} with 9 SH, 2 bounces with 4 SH, 2 bounces with the tail τ = 0.01; then at half and quarter
-  // resolution 2 bounces with 9 and 4 SH, and at quarter the tail with 1 and 2 bounces; full reference
-  EXPECT_EQ(rtf, 10u);
+  // resolution 2 bounces with 9 and 4 SH, and at quarter the tail with 1 and 2 bounces, 9 and 4 SH; full reference
+  EXPECT_EQ(rtf, 12u);
 }
 
 TEST(AccuracyRows, AvailableOnlyWhenTheRendererRanEveryPass) {

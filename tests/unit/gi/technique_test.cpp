@@ -234,7 +234,7 @@ TEST(Techniques, AccuracyRowsSetTheirOwnResolution) {
     }
     ++checked;
   }
-  EXPECT_EQ(checked, 26 + 10);  // DNRT's 24 + 2 reduced, RTF's 4 + 6 reduced
+  EXPECT_EQ(checked, 26 + 12);  // DNRT's 24 + 2 reduced, RTF's 4 + 8 reduced
 }
 
 }  // namespace
