@@ -552,38 +552,31 @@ TEST(RtfGpu, OverlappingObjectsAddAndMatchTheCpuSum) {
   gpu::Context& ctx = gpu::testkit::sharedContext();
   TwoBoxes two(ctx);
   ASSERT_EQ(two.boxes.size(), 2u);
-  // References, not a structured binding: the lambdas below capture them (clang 14 cannot capture bindings).
-  game::Session& session = two.session;
-  const std::vector<ecs::Entity>& boxes = two.boxes;
-  const std::vector<Field>& fields = two.fields;
-  const std::vector<Object>& objects = two.objects;
-  const Sky& sky = two.sky;
-  const BounceResult& bounced = two.bounced;
-  ASSERT_EQ(bounced.bounceEnergy.size(), 2u);
-  EXPECT_GT(bounced.bounceEnergy[1], 0.0);
-  EXPECT_LE(bounced.bounceEnergy[1], 0.9 * bounced.bounceEnergy[0]);  // bounces converge: ≤ albedo × the previous
+  ASSERT_EQ(two.bounced.bounceEnergy.size(), 2u);
+  EXPECT_GT(two.bounced.bounceEnergy[1], 0.0);
+  EXPECT_LE(two.bounced.bounceEnergy[1], 0.9 * two.bounced.bounceEnergy[0]);  // bounces converge: ≤ albedo × the previous
   std::vector<std::unique_ptr<XiPass>> xi;
   std::vector<NodeObject> nodeObjects;
   for (std::size_t k = 0; k < 2; ++k) {
-    xi.push_back(std::make_unique<XiPass>(ctx, fields[k]));
-    const Placement pl = place(fields[k], objects[k].world);
-    nodeObjects.push_back({xi.back().get(), bounced.proxyLight[k],
-                           packObject(fields[k], objects[k].world, sourceRadiance(sky, pl.centreWorld), boxes[k].index()),
+    xi.push_back(std::make_unique<XiPass>(ctx, two.fields[k]));
+    const Placement pl = place(two.fields[k], two.objects[k].world);
+    nodeObjects.push_back({xi.back().get(), two.bounced.proxyLight[k],
+                           packObject(two.fields[k], two.objects[k].world, sourceRadiance(two.sky, pl.centreWorld), two.boxes[k].index()),
                            k == 0 ? "box-a" : "box-b"});
   }
-  Node node(ctx, session.renderer().pipelines(), gpu::FrameRing::kDefaultFramesInFlight);
+  Node node(ctx, two.session.renderer().pipelines(), gpu::FrameRing::kDefaultFramesInFlight);
   constexpr std::uint32_t kW = 96, kH = 96;
   std::vector<float> frames[3];  // both, a alone, b alone
   for (int f = 0; f < 3; ++f) {
     std::vector<NodeObject> drawn = f == 0 ? nodeObjects : std::vector<NodeObject>{nodeObjects[std::size_t(f - 1)]};
-    session.renderer().setNode("rtf", [&](rg::RenderGraph& graph, render::PassContext& pc) { node.addTo(graph, pc, drawn); });
-    frames[f] = renderHdr(session, ctx, kW, kH);
+    two.session.renderer().setNode("rtf", [&](rg::RenderGraph& graph, render::PassContext& pc) { node.addTo(graph, pc, drawn); });
+    frames[f] = renderHdr(two.session, ctx, kW, kH);
   }
-  const rtest::FloorScene floor = rtest::readFloorScene(session.level());
+  const rtest::FloorScene floor = rtest::readFloorScene(two.session.level());
   constexpr float kHalfRel = 1e-3f, kSumRel = 1e-4f;
   // Each object's X in 8 bits (net_bound.hpp).
   std::array<std::array<float, 28>, 2> range;
-  for (std::size_t k = 0; k < 2; ++k) range[k] = testing::netRanges(testing::netValues(fields[k], bounced.xi[k], nodeObjects[k].record.blocked), fields[k].settings);
+  for (std::size_t k = 0; k < 2; ++k) range[k] = testing::netRanges(testing::netValues(two.fields[k], two.bounced.xi[k], nodeObjects[k].record.blocked), two.fields[k].settings);
   float largest = 0.0f, worstAdd = 0.0f, worstSum = 0.0f, departure = 0.0f;
   int compared = 0, overlap = 0;
   // Each object's term has the single-object bound (kHalfRel of the term + kSumRel of the image's
@@ -595,21 +588,21 @@ TEST(RtfGpu, OverlappingObjectsAddAndMatchTheCpuSum) {
       const auto p = rtest::floorPoint(floor, kW, kH, x, y);
       if (!p) continue;
       bool hidden = false;  // the floor under either box
-      for (const Object& o : objects) hidden = hidden || glm::length(glm::vec2(p->x - o.world[3].x, p->z - o.world[3].z)) < 0.15f;
+      for (const Object& o : two.objects) hidden = hidden || glm::length(glm::vec2(p->x - o.world[3].x, p->z - o.world[3].z)) < 0.15f;
       if (hidden) continue;
       glm::vec3 sum(0.0f);
       for (std::size_t k = 0; k < 2; ++k) {
         BounceResult alone;
-        alone.xi = {bounced.xi[k]};
-        sum += shade(std::vector<Object>{objects[k]}, alone, sky, *p, glm::vec3(0, 1, 0), floor.albedo, -1).net();
+        alone.xi = {two.bounced.xi[k]};
+        sum += shade(std::vector<Object>{two.objects[k]}, alone, two.sky, *p, glm::vec3(0, 1, 0), floor.albedo, -1).net();
       }
-      const glm::vec3 product = shade(objects, bounced, sky, *p, glm::vec3(0, 1, 0), floor.albedo, -1).net();
+      const glm::vec3 product = shade(two.objects, two.bounced, two.sky, *p, glm::vec3(0, 1, 0), floor.albedo, -1).net();
       const std::size_t i = (std::size_t(y) * kW + x) * 3;
       largest = std::max(largest, glm::length(sum));
       glm::vec3 netTol(0.0f);
       for (std::size_t k = 0; k < 2; ++k) {
         const RtfObjectGpu& rec = nodeObjects[k].record;
-        const FieldSettings& fs = fields[k].settings;
+        const FieldSettings& fs = two.fields[k].settings;
         const glm::vec4 pw(*p, 1.0f);
         const float qLen = glm::length(glm::vec3(glm::dot(rec.toQ[0], pw), glm::dot(rec.toQ[1], pw), glm::dot(rec.toQ[2], pw)));
         for (int c = 0; c < 3; ++c) netTol[c] += testing::netBound(range[k], rec.toLocal, glm::vec3(0, 1, 0), testing::netDecode(fs, qLen), floor.albedo[c], c);
@@ -633,7 +626,7 @@ TEST(RtfGpu, OverlappingObjectsAddAndMatchTheCpuSum) {
   EXPECT_LE(worstAdd, 1.0f);
   EXPECT_LE(worstSum, 1.0f);
   EXPECT_LT(departure, 0.1f * largest);  // second order: small against the terms themselves
-  session.renderer().frames().waitIdle();
+  two.session.renderer().frames().waitIdle();
 }
 
 // Algorithm 1 leaves the receiver's own entity out of the nearer objects' occlusion, so the ξ pass writes X
@@ -652,22 +645,15 @@ TEST(RtfGpu, ReceiversOnAnotherObjectReadTheOnObjectVariant) {
   gpu::Context& ctx = gpu::testkit::sharedContext();
   TwoBoxes two(ctx);
   ASSERT_EQ(two.boxes.size(), 2u);
-  // References, not a structured binding: the lambdas below capture them (clang 14 cannot capture bindings).
-  game::Session& session = two.session;
-  const std::vector<ecs::Entity>& boxes = two.boxes;
-  const std::vector<Field>& fields = two.fields;
-  const std::vector<Object>& objects = two.objects;
-  const Sky& sky = two.sky;
-  const BounceResult& bounced = two.bounced;
   std::vector<std::unique_ptr<XiPass>> xi;
   std::vector<RtfObjectGpu> records;
   for (std::size_t k = 0; k < 2; ++k) {
-    xi.push_back(std::make_unique<XiPass>(ctx, fields[k]));
-    records.push_back(packObject(fields[k], objects[k].world, sourceRadiance(sky, place(fields[k], objects[k].world).centreWorld),
-                                 boxes[k].index()));
+    xi.push_back(std::make_unique<XiPass>(ctx, two.fields[k]));
+    records.push_back(packObject(two.fields[k], two.objects[k].world, sourceRadiance(two.sky, place(two.fields[k], two.objects[k].world).centreWorld),
+                                 two.boxes[k].index()));
   }
-  const std::size_t n = sampleCount(fields[0].settings);
-  Node node(ctx, session.renderer().pipelines(), gpu::FrameRing::kDefaultFramesInFlight);
+  const std::size_t n = sampleCount(two.fields[0].settings);
+  Node node(ctx, two.session.renderer().pipelines(), gpu::FrameRing::kDefaultFramesInFlight);
   constexpr std::uint32_t kW = 96, kH = 96;
   // A's field with the receivers' ids `ids`, w_off and w_on; `entityPath`: one more id above
   // kEntityInNormalMax that no receiver has, so node.cpp draws with the pipeline that reads gbuffer.entity.
@@ -675,20 +661,20 @@ TEST(RtfGpu, ReceiversOnAnotherObjectReadTheOnObjectVariant) {
     RtfObjectGpu r = records[0];
     r.onObject[0] = ids;
     r.onObject[1] = glm::uvec4(kRtfNoEntity, kRtfNoEntity, kRtfNoEntity, entityPath ? render::kEntityInNormalMax + 1000u : kRtfNoEntity);
-    std::vector<NodeObject> drawn{{xi[0].get(), bounced.proxyLight[0], r, "box-a", std::vector<glm::vec4>(n, glm::vec4(1.0f, 1.0f, 1.0f, wOff)),
+    std::vector<NodeObject> drawn{{xi[0].get(), two.bounced.proxyLight[0], r, "box-a", std::vector<glm::vec4>(n, glm::vec4(1.0f, 1.0f, 1.0f, wOff)),
                                    std::vector<float>(n, wOn)}};
-    session.renderer().setNode("rtf", [&](rg::RenderGraph& graph, render::PassContext& pc) { node.addTo(graph, pc, drawn); });
-    return renderHdr(session, ctx, kW, kH);
+    two.session.renderer().setNode("rtf", [&](rg::RenderGraph& graph, render::PassContext& pc) { node.addTo(graph, pc, drawn); });
+    return renderHdr(two.session, ctx, kW, kH);
   };
   const auto frameOfB = [&](bool skipsItself) {
     RtfObjectGpu r = records[1];
     if (!skipsItself) r.ids.x = 0u;
-    std::vector<NodeObject> drawn{{xi[1].get(), bounced.proxyLight[1], r, "box-b"}};
-    session.renderer().setNode("rtf", [&](rg::RenderGraph& graph, render::PassContext& pc) { node.addTo(graph, pc, drawn); });
-    return renderHdr(session, ctx, kW, kH);
+    std::vector<NodeObject> drawn{{xi[1].get(), two.bounced.proxyLight[1], r, "box-b"}};
+    two.session.renderer().setNode("rtf", [&](rg::RenderGraph& graph, render::PassContext& pc) { node.addTo(graph, pc, drawn); });
+    return renderHdr(two.session, ctx, kW, kH);
   };
   const std::vector<float> ofB = frameOfB(true), ofBOnItself = frameOfB(false);
-  const glm::uvec4 none(kRtfNoEntity), idsOfB(boxes[1].index() + 1u, kRtfNoEntity, kRtfNoEntity, kRtfNoEntity);
+  const glm::uvec4 none(kRtfNoEntity), idsOfB(two.boxes[1].index() + 1u, kRtfNoEntity, kRtfNoEntity, kRtfNoEntity);
   for (const bool entityPath : {false, true}) {
   SCOPED_TRACE(entityPath ? "the receiver from gbuffer.entity" : "the receiver from the normal's w");
   const std::vector<float> test = frameOfA(idsOfB, 0.0f, 1.0f, entityPath);
@@ -724,7 +710,7 @@ TEST(RtfGpu, ReceiversOnAnotherObjectReadTheOnObjectVariant) {
   EXPECT_LE(worstOn, kSame);
   EXPECT_LE(worstOff, kSame);
   }
-  session.renderer().frames().waitIdle();
+  two.session.renderer().frames().waitIdle();
 }
 
 }  // namespace
